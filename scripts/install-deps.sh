@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency of shoal from Debian 12 packages.
+# Nothing else is downloaded at build or test time.
+set -euo pipefail
+PACKAGES=(
+  build-essential cmake ninja-build ccache pkg-config
+  libgdal-dev gdal-bin        # GDAL/OGR: every vector format, CRS, PROJ
+  libgeos-dev                 # GEOS C API: clipping, validity, test oracle
+  libproj-dev                 # geodesic.h (tests), PROJ through GDAL
+  libeigen3-dev nlohmann-json3-dev libcli11-dev libxxhash-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
