@@ -1,0 +1,111 @@
+#include "commands.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "grid/grid_cache.hpp"
+#include "util/error.hpp"
+
+namespace shoal::cli {
+
+bool Command::parsed() const { return m_sub && m_sub->parsed(); }
+
+namespace {
+
+void print_warnings(const std::vector<std::string>& warnings) {
+    for (const auto& w : warnings) std::fprintf(stderr, "shoal: warning: %s\n", w.c_str());
+}
+
+void print_grid(const grid::CoastGrid& g) {
+    const auto& s = g.source();
+    const geo::Box e = g.extent();
+    std::printf("sources:        ");
+    for (std::size_t i = 0; i < s.inputs.size(); ++i) std::printf("%s%s", i ? ", " : "", s.inputs[i].c_str());
+    std::printf("\nlayers:         ");
+    for (std::size_t i = 0; i < s.layers.size(); ++i) std::printf("%s%s", i ? ", " : "", s.layers[i].c_str());
+    std::printf("\nfingerprint:    %016llx\n", static_cast<unsigned long long>(s.fingerprint));
+    std::printf("frame:          %s\n", g.frame().description().c_str());
+    std::printf("cell size:      %.1f m\n", g.cell_size());
+    std::printf("grid:           %d x %d cells, %.1f x %.1f km, origin (%.1f, %.1f) m\n", g.nx(), g.ny(),
+                (e.maxx - e.minx) / 1000, (e.maxy - e.miny) / 1000, e.minx, e.miny);
+    std::printf("cells:          %zu coast, %zu land, %zu water\n", g.coast_cell_count(), g.land_cell_count(),
+                g.cell_count() - g.coast_cell_count() - g.land_cell_count());
+    std::printf("coastline:      %llu vertices read, %llu polylines (%llu with land side known), %zu clipped segments\n",
+                static_cast<unsigned long long>(s.input_vertices), static_cast<unsigned long long>(s.polylines),
+                static_cast<unsigned long long>(s.land_polylines), g.segment_count());
+    std::printf("memory:         %.2f MB (%.1f bytes per vertex)\n", g.memory_bytes() / 1e6,
+                s.input_vertices ? static_cast<double>(g.memory_bytes()) / static_cast<double>(s.input_vertices) : 0.0);
+    if (!g.has_land_side())
+        std::printf("note:           only lines, no land polygons: a ship inside land, away from the coastline, is not seen\n");
+}
+
+class ImportCommand final : public Command {
+public:
+    void setup(CLI::App& app) override {
+        m_sub = app.add_subcommand("import", "Build a coastline grid and save it as a .shoalgrid cache file");
+        m_sub->footer("Usage: shoal import COAST... -o GRID [--cell M | --ship-length M] [--crs CRS] [--layer NAME]");
+        m_sub->add_option("coast", m_inputs, "Coastline sources: any OGR vector file (Shapefile, GeoJSON, GeoPackage, S-57 .000, ...)")
+            ->required()->check(CLI::ExistingPath);
+        m_sub->add_option("-o,--output", m_output, "Grid file to write (.shoalgrid)")->required();
+        auto* cell = m_sub->add_option("--cell", m_request.cell_m, "Cell edge in metres (default 500, or 2.5 x --ship-length)")
+                         ->check(CLI::PositiveNumber);
+        m_sub->add_option("--ship-length", m_request.ship_length_m, "Largest ship length in metres: cell = 2.5 x this")
+            ->check(CLI::PositiveNumber)->excludes(cell);
+        m_sub->add_option("--crs", m_request.crs, "Projected CRS for the local frame (default: transverse Mercator centred on the data)");
+        m_sub->add_option("--layer", m_request.import.layers, "Layer(s) to read (default: all; S-57: LNDARE and COALNE)")
+            ->delimiter(',');
+        m_sub->add_option("--source-crs", m_request.import.source_crs, "CRS of sources that carry none (default: WGS84 if all coordinates are lon/lat)");
+    }
+    int run() override {
+        std::vector<std::string> warnings;
+        grid::BuildStats stats;
+        std::string cell_note;
+        grid::CoastGrid g = grid::build_grid(m_inputs, m_request, &warnings, &stats, &cell_note);
+        print_warnings(warnings);
+        grid::GridFile::save(g, m_output);
+        std::printf("%s\n", cell_note.c_str());
+        print_grid(g);
+        std::printf("build time:     %.3f s (project %.3f s, clip %.3f s with %llu GEOSClipByRect calls, cell states %.3f s)\n",
+                    stats.total_s, stats.project_s, stats.clip_s, static_cast<unsigned long long>(stats.clip_calls), stats.state_s);
+        std::printf("wrote:          %s (%llu bytes)\n", m_output.c_str(),
+                    static_cast<unsigned long long>(std::filesystem::file_size(m_output)));
+        return exit_ok;
+    }
+
+private:
+    std::vector<std::string> m_inputs;
+    std::string m_output;
+    grid::BuildRequest m_request;
+};
+
+class InfoCommand final : public Command {
+public:
+    void setup(CLI::App& app) override {
+        m_sub = app.add_subcommand("info", "Print what a grid file holds");
+        m_sub->footer("Usage: shoal info GRID");
+        m_sub->add_option("grid", m_path, "Grid file written by shoal import")->required();
+    }
+    int run() override {
+        const grid::CoastGrid g = grid::GridFile::load(m_path);
+        std::printf("grid file:      %s (format version %u)\n", m_path.c_str(), grid::grid_format_version);
+        print_grid(g);
+        return exit_ok;
+    }
+
+private:
+    std::string m_path;
+};
+
+}  // namespace
+
+std::vector<std::unique_ptr<Command>> make_commands() {
+    std::vector<std::unique_ptr<Command>> v;
+    v.push_back(std::make_unique<ImportCommand>());
+    v.push_back(std::make_unique<InfoCommand>());
+    return v;
+}
+
+}  // namespace shoal::cli

@@ -1,0 +1,385 @@
+#include "coast/coastline.hpp"
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_geometry.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+
+#include "geo/geos_context.hpp"
+#include "util/error.hpp"
+
+namespace shoal::coast {
+
+namespace fs = std::filesystem;
+using geo::LonLat;
+
+std::uint64_t Coastline::vertex_count() const noexcept {
+    std::uint64_t n = 0;
+    for (const auto& p : polylines) n += p.points.size();
+    return n;
+}
+
+bool Coastline::has_land_side() const noexcept {
+    return std::any_of(polylines.begin(), polylines.end(), [](const Polyline& p) { return p.land_left; });
+}
+
+namespace {
+
+void register_drivers() {
+    static std::once_flag once;
+    std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/// Silences GDAL's stderr output for its lifetime; errors are read back with last().
+class QuietErrors {
+public:
+    QuietErrors() { CPLPushErrorHandler(CPLQuietErrorHandler); CPLErrorReset(); }
+    ~QuietErrors() { CPLPopErrorHandler(); }
+    QuietErrors(const QuietErrors&) = delete;
+    QuietErrors& operator=(const QuietErrors&) = delete;
+    static std::string last() {
+        const char* m = CPLGetLastErrorMsg();
+        return m && *m ? std::string(m) : std::string();
+    }
+};
+
+struct TransformDeleter {
+    void operator()(OGRCoordinateTransformation* t) const noexcept { OGRCoordinateTransformation::DestroyCT(t); }
+};
+
+/// A polygon or line part as read, in source coordinates until transformed.
+struct RawPart {
+    bool polygon = false;
+    std::vector<std::vector<LonLat>> rings;  // one entry for a line
+    std::int64_t fid = -1;
+};
+
+class LayerReader {
+public:
+    LayerReader(std::string file, OGRLayer& layer, const ImportOptions& options, Coastline& out, geo::GeosContext& geos)
+        : m_file(std::move(file)), m_layer(layer), m_options(options), m_out(out), m_geos(geos) {}
+
+    void read() {
+        LayerStats stats;
+        stats.file = m_file;
+        stats.layer = m_layer.GetName();
+        m_layer_index = static_cast<std::uint32_t>(m_out.layers.size());
+        m_layer.ResetReading();
+        std::vector<RawPart> parts;
+        for (auto& feature : m_layer) {
+            ++stats.features;
+            const OGRGeometry* g = feature->GetGeometryRef();
+            if (!g || g->IsEmpty()) {
+                ++stats.empty_skipped;
+                continue;
+            }
+            std::unique_ptr<OGRGeometry> linear;
+            if (g->hasCurveGeometry()) {
+                linear.reset(g->getLinearGeometry());
+                g = linear.get();
+            }
+            const std::size_t before = parts.size();
+            const std::uint64_t points_before = stats.points_skipped;
+            collect(*g, feature->GetFID(), parts, stats);
+            if (parts.size() == before && stats.points_skipped == points_before) ++stats.empty_skipped;
+        }
+        if (stats.features == 0)
+            throw InputError("layer '" + stats.layer + "' in '" + m_file + "' has no features");
+        stats.crs = to_wgs84(parts);
+        for (auto& part : parts) {
+            if (part.polygon)
+                add_polygon(part, stats);
+            else
+                add_line(part, stats);
+        }
+        for (const auto& part : parts)
+            for (const auto& ring : part.rings)
+                for (const auto& p : ring) {
+                    m_out.min = {std::min(m_out.min.lon, p.lon), std::min(m_out.min.lat, p.lat)};
+                    m_out.max = {std::max(m_out.max.lon, p.lon), std::max(m_out.max.lat, p.lat)};
+                }
+        m_out.layers.push_back(std::move(stats));
+    }
+
+private:
+    std::string where(std::int64_t fid) const {
+        return "In '" + m_file + "' layer '" + m_layer.GetName() + "' feature " + std::to_string(fid);
+    }
+
+    static std::vector<LonLat> points_of(const OGRSimpleCurve& c) {
+        std::vector<LonLat> pts(static_cast<std::size_t>(c.getNumPoints()));
+        for (int i = 0; i < c.getNumPoints(); ++i) pts[static_cast<std::size_t>(i)] = {c.getX(i), c.getY(i)};
+        return pts;
+    }
+
+    void collect(const OGRGeometry& g, std::int64_t fid, std::vector<RawPart>& parts, LayerStats& stats) {
+        switch (wkbFlatten(g.getGeometryType())) {
+        case wkbPolygon: {
+            const auto& poly = *g.toPolygon();
+            if (poly.IsEmpty()) return;
+            RawPart part{true, {}, fid};
+            for (const OGRLinearRing* ring : poly) {
+                part.rings.push_back(points_of(*ring));
+                stats.vertices += part.rings.back().size();
+            }
+            ++stats.polygons;
+            parts.push_back(std::move(part));
+            return;
+        }
+        case wkbLineString:
+        case wkbLinearRing: {
+            const auto& line = *g.toSimpleCurve();
+            if (line.IsEmpty()) return;
+            parts.push_back(RawPart{false, {points_of(line)}, fid});
+            stats.vertices += parts.back().rings[0].size();
+            ++stats.lines;
+            return;
+        }
+        case wkbPoint:
+        case wkbMultiPoint:
+            ++stats.points_skipped;
+            return;
+        case wkbMultiPolygon:
+        case wkbMultiLineString:
+        case wkbGeometryCollection: {
+            for (const OGRGeometry* sub : *g.toGeometryCollection()) collect(*sub, fid, parts, stats);
+            return;
+        }
+        default:
+            m_out.warnings.push_back(where(fid) + ": geometry type " + OGRGeometryTypeToName(g.getGeometryType()) +
+                                     " is not coastline; skipped");
+        }
+    }
+
+    /// Transforms every part to WGS84 lon/lat; returns the CRS description for the stats.
+    std::string to_wgs84(std::vector<RawPart>& parts) {
+        const OGRSpatialReference* layer_srs = m_layer.GetSpatialRef();
+        OGRSpatialReference src;
+        std::string description;
+        if (layer_srs) {
+            src = *layer_srs;
+            const char* name = src.GetName();
+            description = name ? name : "unnamed CRS";
+        } else if (!m_options.source_crs.empty()) {
+            if (src.SetFromUserInput(m_options.source_crs.c_str()) != OGRERR_NONE)
+                throw UsageError("--source-crs '" + m_options.source_crs + "' is not a CRS GDAL understands");
+            description = "none in file; --source-crs " + m_options.source_crs;
+        } else {
+            for (const auto& part : parts)
+                for (const auto& ring : part.rings)
+                    for (const auto& p : ring)
+                        if (!(std::fabs(p.lon) <= 180.0 && std::fabs(p.lat) <= 90.0)) {
+                            char buf[128];
+                            std::snprintf(buf, sizeof buf, " (e.g. %.3f, %.3f in feature %lld)", p.lon, p.lat,
+                                          static_cast<long long>(part.fid));
+                            throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file +
+                                             "' has no CRS and its coordinates are not longitude/latitude" + buf +
+                                             "; name its CRS with --source-crs");
+                        }
+            m_out.warnings.push_back("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file +
+                                     "' has no CRS; assuming WGS84 longitude/latitude (every coordinate is a valid one)");
+            return "none in file; assumed WGS84 lon/lat";
+        }
+        src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        OGRSpatialReference wgs84;
+        wgs84.SetWellKnownGeogCS("WGS84");
+        wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        if (src.IsGeographic() && src.IsSame(&wgs84)) return description;
+        std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> ct(OGRCreateCoordinateTransformation(&src, &wgs84));
+        if (!ct)
+            throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "': no transformation from " +
+                             description + " to WGS84");
+        for (auto& part : parts) {
+            for (auto& ring : part.rings) {
+                std::vector<double> xs(ring.size()), ys(ring.size());
+                for (std::size_t i = 0; i < ring.size(); ++i) { xs[i] = ring[i].lon; ys[i] = ring[i].lat; }
+                std::vector<int> ok(ring.size(), 0);
+                ct->Transform(ring.size(), xs.data(), ys.data(), nullptr, ok.data());
+                for (std::size_t i = 0; i < ring.size(); ++i) {
+                    if (!ok[i] || !std::isfinite(xs[i]) || !std::isfinite(ys[i]))
+                        throw InputError(where(part.fid) + ": vertex " + std::to_string(i) +
+                                         " cannot be transformed to WGS84 from " + description);
+                    ring[i] = {xs[i], ys[i]};
+                }
+            }
+        }
+        return description;
+    }
+
+    static void drop_repeats(std::vector<LonLat>& pts) {
+        pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    }
+
+    static double signed_area(const std::vector<LonLat>& ring) {
+        double a = 0;
+        for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+            a += (ring[i].lon - ring[0].lon) * (ring[i + 1].lat - ring[0].lat) -
+                 (ring[i + 1].lon - ring[0].lon) * (ring[i].lat - ring[0].lat);
+        return a / 2;
+    }
+
+    void add_line(RawPart& part, LayerStats& stats) {
+        auto& pts = part.rings[0];
+        drop_repeats(pts);
+        if (pts.size() < 2) {
+            ++stats.empty_skipped;
+            return;
+        }
+        m_out.polylines.push_back(Polyline{std::move(pts), false, m_layer_index, part.fid});
+    }
+
+    void add_polygon(RawPart& part, LayerStats& stats) {
+        std::vector<std::vector<geo::XY>> rings;
+        for (auto& ring : part.rings) {
+            drop_repeats(ring);
+            if (!ring.empty() && !(ring.front() == ring.back())) ring.push_back(ring.front());
+            if (ring.size() < 4) {
+                if (rings.empty()) {  // degenerate shell: nothing of this polygon is usable
+                    m_out.warnings.push_back(where(part.fid) + ": polygon with fewer than 3 distinct points; skipped");
+                    ++stats.empty_skipped;
+                    return;
+                }
+                continue;  // a degenerate hole adds nothing
+            }
+            std::vector<geo::XY> xy(ring.size());
+            for (std::size_t i = 0; i < ring.size(); ++i) xy[i] = {ring[i].lon, ring[i].lat};
+            rings.push_back(std::move(xy));
+        }
+        geo::GeomPtr poly = geo::make_polygon(m_geos, rings);
+        std::vector<std::vector<std::vector<geo::XY>>> valid;
+        if (GEOSisValid_r(m_geos, poly.get()) == 1) {
+            valid.push_back(std::move(rings));
+        } else {
+            char* reason = GEOSisValidReason_r(m_geos, poly.get());
+            const std::string why = reason ? reason : "invalid";
+            GEOSFree_r(m_geos, reason);
+            geo::GeomPtr fixed = geo::own(m_geos, GEOSMakeValid_r(m_geos, poly.get()), "repairing a polygon");
+            geo::collect_polygons(m_geos, fixed.get(), valid);
+            ++stats.repaired;
+            m_out.warnings.push_back(where(part.fid) + ": invalid polygon (" + why + ") repaired with GEOSMakeValid");
+        }
+        for (auto& poly_rings : valid) {
+            for (std::size_t r = 0; r < poly_rings.size(); ++r) {
+                std::vector<LonLat> ll(poly_rings[r].size());
+                for (std::size_t i = 0; i < ll.size(); ++i) ll[i] = {poly_rings[r][i].x, poly_rings[r][i].y};
+                const double area = signed_area(ll);
+                if (area == 0.0) continue;
+                // Shells counter-clockwise, holes clockwise: land is then always on the left.
+                if ((r == 0) != (area > 0)) std::reverse(ll.begin(), ll.end());
+                m_out.polylines.push_back(Polyline{std::move(ll), true, m_layer_index, part.fid});
+            }
+        }
+    }
+
+    std::string m_file;
+    OGRLayer& m_layer;
+    const ImportOptions& m_options;
+    Coastline& m_out;
+    geo::GeosContext& m_geos;
+    std::uint32_t m_layer_index = 0;
+};
+
+std::string layer_names(GDALDataset& ds) {
+    std::string s;
+    for (OGRLayer* l : ds.GetLayers()) s += (s.empty() ? "" : ", ") + std::string(l->GetName());
+    return s.empty() ? "none" : s;
+}
+
+}  // namespace
+
+Coastline import_coastline(const std::vector<std::string>& paths, const ImportOptions& options) {
+    register_drivers();
+    if (paths.empty()) throw UsageError("no coastline file given");
+    Coastline out;
+    geo::GeosContext geos;
+    std::vector<bool> found(options.layers.size(), false);
+    for (const std::string& path : paths) {
+        std::error_code ec;
+        if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
+        GDALDatasetUniquePtr ds;
+        {
+            QuietErrors quiet;
+            ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+            if (!ds) {
+                const std::string why = QuietErrors::last();
+                throw InputError("'" + path + "': not a vector dataset OGR can read" + (why.empty() ? "" : " (" + why + ")"));
+            }
+        }
+        if (char** files = ds->GetFileList()) {
+            for (char** f = files; *f; ++f) out.files.emplace_back(*f);
+            CSLDestroy(files);
+        }
+        std::vector<OGRLayer*> chosen;
+        if (!options.layers.empty()) {
+            for (std::size_t i = 0; i < options.layers.size(); ++i)
+                if (OGRLayer* l = ds->GetLayerByName(options.layers[i].c_str())) {
+                    chosen.push_back(l);
+                    found[i] = true;
+                }
+            if (chosen.empty())
+                throw InputError("'" + path + "' has no layer named " + options.layers.front() +
+                                 (options.layers.size() > 1 ? " (nor the other --layer names)" : "") +
+                                 "; its layers: " + layer_names(*ds));
+        } else if (std::string(ds->GetDriver()->GetDescription()) == "S57") {
+            for (const char* name : {"LNDARE", "COALNE"})
+                if (OGRLayer* l = ds->GetLayerByName(name)) chosen.push_back(l);
+            if (chosen.empty())
+                throw InputError("S-57 chart '" + path + "' has neither an LNDARE nor a COALNE layer; pick layers with --layer (its layers: " +
+                                 layer_names(*ds) + ")");
+        } else {
+            for (OGRLayer* l : ds->GetLayers()) chosen.push_back(l);
+            if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");
+        }
+        QuietErrors quiet;
+        for (OGRLayer* layer : chosen) LayerReader(path, *layer, options, out, geos).read();
+    }
+    for (std::size_t i = 0; i < options.layers.size(); ++i)
+        if (!found[i]) throw InputError("no input has a layer named '" + options.layers[i] + "'");
+    if (out.polylines.empty()) {
+        std::string names;
+        for (const auto& l : out.layers) names += (names.empty() ? "'" : ", '") + l.layer + "'";
+        throw InputError("no coastline (polygon or line) geometry in layer " + names + " of '" + paths.front() +
+                         (paths.size() > 1 ? "' and the other inputs" : "'"));
+    }
+    return out;
+}
+
+}  // namespace shoal::coast
+
+#include "geo/local_frame.hpp"
+
+namespace shoal::coast {
+
+std::vector<LocalPolyline> project(const Coastline& coast, const geo::LocalFrame& frame) {
+    std::vector<LocalPolyline> out;
+    out.reserve(coast.polylines.size());
+    std::vector<double> xs, ys;
+    for (const Polyline& pl : coast.polylines) {
+        xs.resize(pl.points.size());
+        ys.resize(pl.points.size());
+        for (std::size_t i = 0; i < pl.points.size(); ++i) { xs[i] = pl.points[i].lon; ys[i] = pl.points[i].lat; }
+        std::size_t bad = 0;
+        if (!frame.forward(xs, ys, &bad)) {
+            const LayerStats& l = coast.layers.at(pl.layer);
+            char buf[96];
+            std::snprintf(buf, sizeof buf, " (lon %.6f, lat %.6f)", pl.points[bad].lon, pl.points[bad].lat);
+            throw InputError("In '" + l.file + "' layer '" + l.layer + "' feature " + std::to_string(pl.fid) +
+                             ": a vertex" + buf + " cannot be projected into the local frame (" + frame.description() +
+                             "); choose a CRS that covers the data with --crs");
+        }
+        LocalPolyline lp;
+        lp.land_left = pl.land_left;
+        lp.points.resize(xs.size());
+        for (std::size_t i = 0; i < xs.size(); ++i) lp.points[i] = {xs[i], ys[i]};
+        lp.points.erase(std::unique(lp.points.begin(), lp.points.end()), lp.points.end());
+        out.push_back(std::move(lp));
+    }
+    return out;
+}
+
+}  // namespace shoal::coast

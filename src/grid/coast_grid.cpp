@@ -1,0 +1,363 @@
+#include "grid/coast_grid.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "geo/geos_context.hpp"
+#include "util/error.hpp"
+
+namespace shoal::grid {
+
+using geo::XY;
+
+const char* to_string(CellState s) noexcept {
+    switch (s) {
+    case CellState::water: return "water";
+    case CellState::land: return "land";
+    case CellState::coast: return "coast";
+    case CellState::outside: return "outside";
+    }
+    return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Cells are clipped with their rectangle grown by this much (metres), so that a segment
+/// lying exactly on a cell border, which GEOSClipByRect drops, is kept by both neighbours.
+constexpr double clip_slack_m = 1.0 / (1 << 26);
+
+/// Candidate reference points (fractions of a cell), tried in turn until none lies on a segment.
+constexpr double ref_candidates[][2] = {
+    {0.41421356237309515, 0.73205080756887719}, {0.61803398874989485, 0.32471795724474602},
+    {0.25992104989487316, 0.58740105196819947}, {0.77976314968460610, 0.14869835499703500},
+};
+
+/// True when closed segment ab meets the closed box.
+bool segment_meets_box(XY a, XY b, const geo::Box& r) {
+    if (std::max(a.x, b.x) < r.minx || std::min(a.x, b.x) > r.maxx || std::max(a.y, b.y) < r.miny ||
+        std::min(a.y, b.y) > r.maxy)
+        return false;
+    // Separating axis: the line ab separates the box when all four corners are strictly on one side.
+    const double o1 = geo::orient(a, b, {r.minx, r.miny}), o2 = geo::orient(a, b, {r.maxx, r.miny});
+    const double o3 = geo::orient(a, b, {r.maxx, r.maxy}), o4 = geo::orient(a, b, {r.minx, r.maxy});
+    return !((o1 > 0 && o2 > 0 && o3 > 0 && o4 > 0) || (o1 < 0 && o2 < 0 && o3 < 0 && o4 < 0));
+}
+
+struct Incidence {
+    std::uint32_t cell;
+    std::uint32_t line;
+    std::uint32_t seg;
+};
+
+}  // namespace
+
+CellState CoastGrid::state(int i, int j) const noexcept {
+    if (!valid_cell(i, j)) return CellState::outside;
+    const std::uint32_t s = slot(i, j);
+    return s == water_slot ? CellState::water : s == land_slot ? CellState::land : CellState::coast;
+}
+
+std::span<const Segment> CoastGrid::segments(int i, int j) const noexcept {
+    if (!valid_cell(i, j)) return {};
+    const std::uint32_t s = slot(i, j);
+    if (s >= land_slot) return {};
+    return {m_segments.data() + m_seg_offset[s], m_seg_offset[s + 1] - m_seg_offset[s]};
+}
+
+bool CoastGrid::segment_is_boundary(int i, int j, std::size_t k) const noexcept {
+    const std::uint32_t s = slot(i, j);
+    return (m_seg_info[m_seg_offset[s] + k] & boundary_bit) != 0;
+}
+
+XY CoastGrid::reference_point(int i, int j) const noexcept {
+    return {m_x0 + (i + m_ref_fx) * m_cell, m_y0 + (j + m_ref_fy) * m_cell};
+}
+
+std::size_t CoastGrid::land_cell_count() const noexcept {
+    return static_cast<std::size_t>(std::count(m_slot.begin(), m_slot.end(), land_slot));
+}
+
+std::size_t CoastGrid::memory_bytes() const noexcept {
+    return m_slot.size() * sizeof(std::uint32_t) + m_seg_offset.size() * sizeof(std::uint32_t) +
+           m_ref_winding.size() * sizeof(std::int32_t) + m_segments.size() * sizeof(Segment) +
+           m_seg_info.size() * sizeof(std::uint32_t);
+}
+
+int CoastGrid::winding(XY p, bool* on_boundary) const noexcept {
+    if (on_boundary) *on_boundary = false;
+    int i = col_of(p.x), j = row_of(p.y);
+    if (!valid_cell(i, j)) return 0;
+    const std::uint32_t s = slot(i, j);
+    if (s == water_slot) return 0;
+    if (s == land_slot) return 1;
+    // Signed crossings of the path from the reference point R to p with the cell's land
+    // boundary. A vertex on the line Rp counts on the left side (a half-open rule), so a
+    // chain through it crosses once or not at all.
+    const XY r = reference_point(i, j);
+    int w = m_ref_winding[s];
+    for (std::uint32_t k = m_seg_offset[s]; k < m_seg_offset[s + 1]; ++k) {
+        if (!(m_seg_info[k] & boundary_bit)) continue;
+        const Segment& sg = m_segments[k];
+        const bool sa = geo::orient(r, p, sg.a) >= 0, sb = geo::orient(r, p, sg.b) >= 0;
+        if (sa == sb) continue;
+        const double o_r = geo::orient(sg.a, sg.b, r), o_p = geo::orient(sg.a, sg.b, p);
+        if (o_p == 0) {
+            if (on_boundary) *on_boundary = true;
+            return std::max(w, 1);
+        }
+        if ((o_r < 0 && o_p > 0) || (o_r > 0 && o_p < 0)) w += o_p > 0 ? 1 : -1;
+    }
+    return w;
+}
+
+bool CoastGrid::is_land(XY p) const noexcept { return winding(p) > 0; }
+
+CoastGrid CoastGrid::build(const coast::Coastline& coast, geo::LocalFrame frame, double cell_m, BuildStats* stats) {
+    const auto t0 = Clock::now();
+    std::vector<coast::LocalPolyline> lines = coast::project(coast, frame);
+    const double project_s = seconds_since(t0);
+    CoastGrid g = build(lines, std::move(frame), cell_m, stats);
+    if (stats) {
+        stats->project_s = project_s;
+        stats->total_s += project_s;
+    }
+    g.m_source.input_vertices = 0;
+    for (const auto& l : coast.layers) {
+        g.m_source.input_vertices += l.vertices;
+        g.m_source.layers.push_back(l.file + ":" + l.layer);
+    }
+    return g;
+}
+
+CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::LocalFrame frame, double cell_m,
+                           BuildStats* stats) {
+    if (!(cell_m > 0) || !std::isfinite(cell_m)) throw UsageError("cell size must be > 0 metres");
+    const auto t0 = Clock::now();
+    CoastGrid g(std::move(frame));
+    g.m_cell = cell_m;
+    geo::Box ext;
+    std::uint64_t vertices = 0;
+    for (const auto& l : lines) {
+        for (const XY& p : l.points) ext.extend(p);
+        vertices += l.points.size();
+        g.m_has_land_side = g.m_has_land_side || l.land_left;
+        g.m_source.land_polylines += l.land_left ? 1 : 0;
+    }
+    g.m_source.polylines = lines.size();
+    g.m_source.input_vertices = vertices;
+    if (ext.empty()) throw InputError("the coastline has no vertices");
+    const double pad = 1e-6 * cell_m + 1e-6;
+    g.m_x0 = ext.minx - pad;
+    g.m_y0 = ext.miny - pad;
+    const double fnx = std::floor((ext.maxx + pad - g.m_x0) / cell_m) + 1;
+    const double fny = std::floor((ext.maxy + pad - g.m_y0) / cell_m) + 1;
+    if (fnx * fny > static_cast<double>(max_cells)) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "a %.0f m cell over this %.0f x %.0f km extent needs %.3g cells, more than the limit of %llu; choose a larger --cell",
+                      cell_m, (ext.maxx - ext.minx) / 1000, (ext.maxy - ext.miny) / 1000, fnx * fny,
+                      static_cast<unsigned long long>(max_cells));
+        throw UsageError(buf);
+    }
+    g.m_nx = static_cast<int>(fnx);
+    g.m_ny = static_cast<int>(fny);
+
+    // 1. Walk the data: which cells does each segment touch? Only those are clipped.
+    std::vector<Incidence> inc;
+    inc.reserve(vertices * 2);
+    for (std::uint32_t li = 0; li < lines.size(); ++li) {
+        const auto& pts = lines[li].points;
+        for (std::uint32_t k = 0; k + 1 < pts.size(); ++k) {
+            const XY a = pts[k], b = pts[k + 1];
+            const int i0 = std::max(0, g.col_of(std::min(a.x, b.x) - clip_slack_m));
+            const int i1 = std::min(g.m_nx - 1, g.col_of(std::max(a.x, b.x) + clip_slack_m));
+            const int j0 = std::max(0, g.row_of(std::min(a.y, b.y) - clip_slack_m));
+            const int j1 = std::min(g.m_ny - 1, g.row_of(std::max(a.y, b.y) + clip_slack_m));
+            const bool single = (i0 == i1) || (j0 == j1);  // a row or column of cells: all are met
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i)
+                    if (single || segment_meets_box(a, b, g.cell_box(i, j).grown(clip_slack_m)))
+                        inc.push_back({static_cast<std::uint32_t>(j * g.m_nx + i), li, k});
+        }
+    }
+    std::sort(inc.begin(), inc.end(), [](const Incidence& x, const Incidence& y) {
+        return std::tie(x.cell, x.line, x.seg) < std::tie(y.cell, y.line, y.seg);
+    });
+
+    // 2. Clip each touched cell's runs of consecutive segments with GEOS, order kept.
+    geo::GeosContext geos;
+    g.m_slot.assign(static_cast<std::size_t>(g.m_nx) * static_cast<std::size_t>(g.m_ny), water_slot);
+    g.m_seg_offset.push_back(0);
+    std::uint64_t clip_calls = 0;
+    std::vector<std::vector<XY>> pieces;
+    for (std::size_t s = 0; s < inc.size();) {
+        const std::uint32_t cell = inc[s].cell;
+        const int ci = static_cast<int>(cell % static_cast<std::uint32_t>(g.m_nx));
+        const int cj = static_cast<int>(cell / static_cast<std::uint32_t>(g.m_nx));
+        const geo::Box r = g.cell_box(ci, cj).grown(clip_slack_m);
+        const std::size_t before = g.m_segments.size();
+        while (s < inc.size() && inc[s].cell == cell) {
+            const std::uint32_t li = inc[s].line;
+            const std::uint32_t first = inc[s].seg;
+            std::uint32_t last = first;
+            ++s;
+            while (s < inc.size() && inc[s].cell == cell && inc[s].line == li && inc[s].seg == last + 1) last = inc[s++].seg;
+            const auto& pts = lines[li].points;
+            geo::GeomPtr run = geo::make_linestring(geos, pts.data() + first, last - first + 2);
+            geo::GeomPtr clipped =
+                geo::own(geos, GEOSClipByRect_r(geos, run.get(), r.minx, r.miny, r.maxx, r.maxy), "clipping a cell");
+            ++clip_calls;
+            pieces.clear();
+            geo::collect_lines(geos, clipped.get(), pieces);
+            const std::uint32_t info = li | (lines[li].land_left ? boundary_bit : 0u);
+            for (const auto& piece : pieces)
+                for (std::size_t k = 0; k + 1 < piece.size(); ++k)
+                    if (!(piece[k] == piece[k + 1])) {
+                        g.m_segments.push_back({piece[k], piece[k + 1]});
+                        g.m_seg_info.push_back(info);
+                    }
+        }
+        if (g.m_segments.size() > before) {
+            g.m_slot[cell] = static_cast<std::uint32_t>(g.m_seg_offset.size() - 1);
+            g.m_seg_offset.push_back(static_cast<std::uint32_t>(g.m_segments.size()));
+        }
+    }
+    const double clip_s = seconds_since(t0);
+
+    // 3. Land or water: winding numbers along each row of reference points, from the west
+    //    edge (outside every ring), counting signed crossings of land boundary segments.
+    const auto t1 = Clock::now();
+    g.m_ref_winding.assign(g.m_seg_offset.size() - 1, 0);
+    bool settled = false;
+    for (const auto& cand : ref_candidates) {
+        g.m_ref_fx = cand[0];
+        g.m_ref_fy = cand[1];
+        g.assign_windings(lines);
+        if (g.reference_points_clear()) {
+            settled = true;
+            break;
+        }
+    }
+    if (!settled) throw LibraryError("no reference point of a coast cell is clear of the coastline");
+    if (stats) {
+        stats->clip_s = clip_s;
+        stats->state_s = seconds_since(t1);
+        stats->total_s = seconds_since(t0);
+        stats->incidences = inc.size();
+        stats->clip_calls = clip_calls;
+    }
+    return g;
+}
+
+void CoastGrid::assign_windings(const std::vector<coast::LocalPolyline>& lines) {
+    struct Crossing {
+        double x;
+        int sign;
+    };
+    std::vector<std::uint32_t> row_start(static_cast<std::size_t>(m_ny) + 1, 0);
+    auto row_y = [&](int j) { return m_y0 + (j + m_ref_fy) * m_cell; };
+    // Rows j whose line y_j satisfies min(ya,yb) <= y_j < max(ya,yb) (half-open rule).
+    auto rows_of = [&](XY a, XY b, int& j0, int& j1) {
+        const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
+        j0 = std::max(0, static_cast<int>(std::ceil((lo - m_y0) / m_cell - m_ref_fy)) - 1);
+        j1 = std::min(m_ny - 1, static_cast<int>(std::floor((hi - m_y0) / m_cell - m_ref_fy)) + 1);
+        while (j0 <= j1 && row_y(j0) < lo) ++j0;
+        while (j1 >= j0 && !(row_y(j1) < hi)) --j1;
+    };
+    for (int pass = 0; pass < 2; ++pass) {
+        std::vector<Crossing> crossings(pass ? row_start.back() : 0);
+        std::vector<std::uint32_t> fill(row_start.begin(), row_start.end() - 1);
+        for (const auto& l : lines) {
+            if (!l.land_left) continue;
+            for (std::size_t k = 0; k + 1 < l.points.size(); ++k) {
+                const XY a = l.points[k], b = l.points[k + 1];
+                if (a.y == b.y) continue;
+                int j0, j1;
+                rows_of(a, b, j0, j1);
+                for (int j = j0; j <= j1; ++j) {
+                    if (pass == 0) {
+                        ++row_start[static_cast<std::size_t>(j) + 1];
+                    } else {
+                        const double y = row_y(j);
+                        const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
+                        crossings[fill[static_cast<std::size_t>(j)]++] = {x, b.y < a.y ? 1 : -1};
+                    }
+                }
+            }
+        }
+        if (pass == 0) {
+            std::partial_sum(row_start.begin(), row_start.end(), row_start.begin());
+            continue;
+        }
+        for (int j = 0; j < m_ny; ++j) {
+            auto first = crossings.begin() + row_start[static_cast<std::size_t>(j)];
+            auto last = crossings.begin() + row_start[static_cast<std::size_t>(j) + 1];
+            std::sort(first, last, [](const Crossing& p, const Crossing& q) { return p.x < q.x; });
+            int w = 0;
+            auto it = first;
+            for (int i = 0; i < m_nx; ++i) {
+                const double rx = m_x0 + (i + m_ref_fx) * m_cell;
+                while (it != last && it->x < rx) w += (it++)->sign;
+                std::uint32_t& s = m_slot[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_nx) + static_cast<std::size_t>(i)];
+                if (s < land_slot)
+                    m_ref_winding[s] = w;
+                else
+                    s = w > 0 ? land_slot : water_slot;
+            }
+        }
+    }
+}
+
+bool CoastGrid::reference_points_clear() const {
+    const double tol2 = std::pow(1e-7 * m_cell + 1e-9, 2);
+    for (int j = 0; j < m_ny; ++j)
+        for (int i = 0; i < m_nx; ++i) {
+            const std::uint32_t s = slot(i, j);
+            if (s >= land_slot) continue;
+            const XY r = reference_point(i, j);
+            for (std::uint32_t k = m_seg_offset[s]; k < m_seg_offset[s + 1]; ++k)
+                if (geo::point_segment_dist2(r, m_segments[k].a, m_segments[k].b) <= tol2) return false;
+        }
+    return true;
+}
+
+bool operator==(const CoastGrid& a, const CoastGrid& b) {
+    return a.m_frame.definition() == b.m_frame.definition() && a.m_cell == b.m_cell && a.m_x0 == b.m_x0 &&
+           a.m_y0 == b.m_y0 && a.m_nx == b.m_nx && a.m_ny == b.m_ny && a.m_ref_fx == b.m_ref_fx &&
+           a.m_ref_fy == b.m_ref_fy && a.m_has_land_side == b.m_has_land_side && a.m_slot == b.m_slot &&
+           a.m_seg_offset == b.m_seg_offset && a.m_ref_winding == b.m_ref_winding &&
+           a.m_seg_info == b.m_seg_info && a.m_segments.size() == b.m_segments.size() &&
+           std::equal(a.m_segments.begin(), a.m_segments.end(), b.m_segments.begin(),
+                      [](const Segment& p, const Segment& q) { return p.a == q.a && p.b == q.b; }) &&
+           a.m_source.fingerprint == b.m_source.fingerprint && a.m_source.inputs == b.m_source.inputs;
+}
+
+double choose_cell_size(double cell_m, double ship_length_m, const geo::Box& extent, std::string* note) {
+    auto say = [&](const std::string& s) { if (note) *note = s; };
+    char buf[200];
+    if (cell_m > 0) {
+        std::snprintf(buf, sizeof buf, "cell %.1f m (--cell)", cell_m);
+        say(buf);
+        return cell_m;
+    }
+    if (ship_length_m > 0) {
+        std::snprintf(buf, sizeof buf, "cell %.1f m (2.5 x --ship-length %.1f m)", 2.5 * ship_length_m, ship_length_m);
+        say(buf);
+        return 2.5 * ship_length_m;
+    }
+    double cell = 500.0;
+    const double area = (extent.maxx - extent.minx) * (extent.maxy - extent.miny);
+    const double limit = static_cast<double>(CoastGrid::max_cells) / 4;  // keep the default grid well under the cap
+    if (area / (cell * cell) > limit) cell = std::ceil(std::sqrt(area / limit) / 100) * 100;
+    std::snprintf(buf, sizeof buf, "cell %.1f m (default: 2.5 x a 200 m ship%s; set --cell or --ship-length)", cell,
+                  cell > 500 ? ", raised to keep the grid small for this extent" : "");
+    say(buf);
+    return cell;
+}
+
+}  // namespace shoal::grid

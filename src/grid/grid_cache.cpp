@@ -1,0 +1,417 @@
+#include "grid/grid_cache.hpp"
+
+#include <gdal_priv.h>
+#include <unistd.h>
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <type_traits>
+
+#include "util/error.hpp"
+
+namespace shoal::grid {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class Writer {
+public:
+    template <typename T>
+    void pod(const T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        const char* p = reinterpret_cast<const char*>(&v);
+        m_bytes.insert(m_bytes.end(), p, p + sizeof(T));
+    }
+    void str(const std::string& s) {
+        pod<std::uint64_t>(s.size());
+        m_bytes.insert(m_bytes.end(), s.begin(), s.end());
+    }
+    void strings(const std::vector<std::string>& v) {
+        pod<std::uint64_t>(v.size());
+        for (const auto& s : v) str(s);
+    }
+    template <typename T>
+    void vec(const std::vector<T>& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        pod<std::uint64_t>(v.size());
+        const char* p = reinterpret_cast<const char*>(v.data());
+        m_bytes.insert(m_bytes.end(), p, p + v.size() * sizeof(T));
+    }
+    std::vector<char>& bytes() { return m_bytes; }
+
+private:
+    std::vector<char> m_bytes;
+};
+
+class Reader {
+public:
+    Reader(const char* data, std::size_t size, const std::string& name) : m_p(data), m_end(data + size), m_name(name) {}
+    template <typename T>
+    T pod() {
+        T v;
+        need(sizeof(T));
+        std::memcpy(&v, m_p, sizeof(T));
+        m_p += sizeof(T);
+        return v;
+    }
+    std::string str() {
+        const auto n = count(1);
+        std::string s(m_p, n);
+        m_p += n;
+        return s;
+    }
+    std::vector<std::string> strings() {
+        const auto n = count(8);
+        std::vector<std::string> v;
+        for (std::size_t i = 0; i < n; ++i) v.push_back(str());
+        return v;
+    }
+    template <typename T>
+    std::vector<T> vec() {
+        const auto n = count(sizeof(T));
+        std::vector<T> v(n);
+        if (n) std::memcpy(v.data(), m_p, n * sizeof(T));
+        m_p += n * sizeof(T);
+        return v;
+    }
+    bool at_end() const { return m_p == m_end; }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError("grid file '" + m_name + "' is damaged: " + what + "; rebuild it with shoal import");
+    }
+
+private:
+    std::size_t count(std::size_t elem) {
+        const auto n = pod<std::uint64_t>();
+        if (n > static_cast<std::uint64_t>(m_end - m_p) / elem) fail("an array runs past the end of the file");
+        return static_cast<std::size_t>(n);
+    }
+    void need(std::size_t n) {
+        if (static_cast<std::size_t>(m_end - m_p) < n) fail("it ends early");
+    }
+    const char* m_p;
+    const char* m_end;
+    const std::string& m_name;
+};
+
+constexpr std::uint32_t byte_order_mark = 0x01020304u;
+constexpr std::size_t header_size = 8 + 4 + 4 + 8 + 8;
+
+std::vector<char> read_file(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a grid file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError("cannot open grid file '" + path + "': " + std::strerror(errno));
+    in.seekg(0, std::ios::end);
+    const auto size = in.tellg();
+    if (size < 0) throw InputError("cannot read grid file '" + path + "'");
+    in.seekg(0);
+    std::vector<char> bytes(static_cast<std::size_t>(size));
+    if (!in.read(bytes.data(), size)) throw InputError("cannot read grid file '" + path + "'");
+    return bytes;
+}
+
+std::string hex64(std::uint64_t v) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+    return buf;
+}
+
+}  // namespace
+
+std::vector<char> GridFile::serialize(const CoastGrid& g) {
+    Writer w;
+    w.pod(g.m_cell);
+    w.pod(g.m_x0);
+    w.pod(g.m_y0);
+    w.pod<std::int32_t>(g.m_nx);
+    w.pod<std::int32_t>(g.m_ny);
+    w.pod(g.m_ref_fx);
+    w.pod(g.m_ref_fy);
+    w.pod<std::uint8_t>(g.m_has_land_side ? 1 : 0);
+    w.str(g.m_frame.definition());
+    const GridSource& s = g.m_source;
+    w.strings(s.inputs);
+    w.strings(s.layers);
+    w.strings(s.layer_option);
+    w.str(s.source_crs);
+    w.pod(s.fingerprint);
+    w.pod(s.input_vertices);
+    w.pod(s.polylines);
+    w.pod(s.land_polylines);
+    w.vec(g.m_slot);
+    w.vec(g.m_seg_offset);
+    w.vec(g.m_ref_winding);
+    w.vec(g.m_segments);
+    w.vec(g.m_seg_info);
+    const std::vector<char>& payload = w.bytes();
+
+    Writer out;
+    for (char c : grid_magic) out.pod(c);
+    out.pod(grid_format_version);
+    out.pod(byte_order_mark);
+    out.pod<std::uint64_t>(payload.size());
+    out.pod<std::uint64_t>(XXH3_64bits(payload.data(), payload.size()));
+    out.bytes().insert(out.bytes().end(), payload.begin(), payload.end());
+    return std::move(out.bytes());
+}
+
+void GridFile::save(const CoastGrid& grid, const std::string& path) {
+    const std::vector<char> bytes = serialize(grid);
+    const fs::path target(path);
+    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw InputError("cannot write grid '" + path + "': folder '" + dir.string() + "' does not exist");
+    std::random_device rd;
+    const fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + hex64(rd()));
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw InputError("cannot write grid '" + path + "': " + std::strerror(errno));
+    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0 &&
+                    ::fsync(::fileno(f)) == 0;
+    const int err = errno;
+    if (std::fclose(f) != 0 || !ok) {
+        fs::remove(tmp, ec);
+        throw InputError("cannot write grid '" + path + "': " + std::strerror(ok ? errno : err));
+    }
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw InputError("cannot write grid '" + path + "': " + ec.message());
+    }
+}
+
+CoastGrid GridFile::load(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
+    return parse(read_file(path), path);
+}
+
+CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& name) {
+    if (bytes.size() < 8 || std::memcmp(bytes.data(), grid_magic, 8) != 0)
+        throw InputError("'" + name + "' is not a shoal grid file (no SHOALGRD magic number)");
+    Reader h(bytes.data(), bytes.size(), name);
+    if (bytes.size() < header_size) h.fail("the header is cut short");
+    h.pod<std::uint64_t>();
+    const auto version = h.pod<std::uint32_t>();
+    const auto bom = h.pod<std::uint32_t>();
+    if (bom != byte_order_mark) h.fail("wrong byte order mark");
+    if (version != grid_format_version)
+        throw InputError("grid file '" + name + "' has format version " + std::to_string(version) + "; this shoal reads version " +
+                         std::to_string(grid_format_version) + ": rebuild it with shoal import");
+    const auto size = h.pod<std::uint64_t>();
+    const auto checksum = h.pod<std::uint64_t>();
+    if (size != bytes.size() - header_size)
+        h.fail("its length is " + std::to_string(bytes.size() - header_size) + " bytes, the header says " + std::to_string(size) +
+               " (cut short?)");
+    const char* payload = bytes.data() + header_size;
+    if (XXH3_64bits(payload, size) != checksum) h.fail("checksum mismatch");
+
+    Reader r(payload, size, name);
+    const auto cell = r.pod<double>();
+    const auto x0 = r.pod<double>();
+    const auto y0 = r.pod<double>();
+    const auto nx = r.pod<std::int32_t>();
+    const auto ny = r.pod<std::int32_t>();
+    const auto fx = r.pod<double>();
+    const auto fy = r.pod<double>();
+    const bool land = r.pod<std::uint8_t>() != 0;
+    const std::string frame_def = r.str();
+    CoastGrid g(geo::LocalFrame::from_definition(frame_def));
+    g.m_cell = cell;
+    g.m_x0 = x0;
+    g.m_y0 = y0;
+    g.m_nx = nx;
+    g.m_ny = ny;
+    g.m_ref_fx = fx;
+    g.m_ref_fy = fy;
+    g.m_has_land_side = land;
+    GridSource& s = g.m_source;
+    s.inputs = r.strings();
+    s.layers = r.strings();
+    s.layer_option = r.strings();
+    s.source_crs = r.str();
+    s.fingerprint = r.pod<std::uint64_t>();
+    s.input_vertices = r.pod<std::uint64_t>();
+    s.polylines = r.pod<std::uint64_t>();
+    s.land_polylines = r.pod<std::uint64_t>();
+    g.m_slot = r.vec<std::uint32_t>();
+    g.m_seg_offset = r.vec<std::uint32_t>();
+    g.m_ref_winding = r.vec<std::int32_t>();
+    g.m_segments = r.vec<Segment>();
+    g.m_seg_info = r.vec<std::uint32_t>();
+    if (!r.at_end()) r.fail("unexpected bytes after the arrays");
+    // Consistency: a checksum protects against damage, these against a wrong writer.
+    if (!(cell > 0) || !std::isfinite(cell) || !std::isfinite(x0) || !std::isfinite(y0) || nx <= 0 || ny <= 0 ||
+        !(fx > 0 && fx < 1 && fy > 0 && fy < 1))
+        r.fail("bad grid parameters");
+    if (static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny) != g.m_slot.size()) r.fail("cell array size");
+    const std::size_t ncoast = g.m_ref_winding.size();
+    if (g.m_seg_offset.size() != ncoast + 1 || g.m_seg_offset.front() != 0 || g.m_seg_offset.back() != g.m_segments.size() ||
+        !std::is_sorted(g.m_seg_offset.begin(), g.m_seg_offset.end()) || g.m_seg_info.size() != g.m_segments.size())
+        r.fail("segment offsets");
+    for (std::uint32_t v : g.m_slot)
+        if (v < CoastGrid::land_slot && v >= ncoast) r.fail("cell slot out of range");
+    for (const Segment& sg : g.m_segments)
+        if (!std::isfinite(sg.a.x) || !std::isfinite(sg.a.y) || !std::isfinite(sg.b.x) || !std::isfinite(sg.b.y))
+            r.fail("non-finite segment");
+    return g;
+}
+
+bool looks_like_grid(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return false;
+    std::ifstream in(path, std::ios::binary);
+    char head[8] = {};
+    in.read(head, 8);
+    return in.gcount() == 8 && std::memcmp(head, grid_magic, 8) == 0;
+}
+
+std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const coast::ImportOptions& options,
+                                  const std::string& crs, double cell_m) {
+    GDALAllRegister();
+    XXH3_state_t* st = XXH3_createState();
+    XXH3_64bits_reset(st);
+    auto feed = [&](const std::string& s) {
+        const std::uint64_t n = s.size();
+        XXH3_64bits_update(st, &n, sizeof n);
+        XXH3_64bits_update(st, s.data(), s.size());
+    };
+    feed("shoal-grid-v" + std::to_string(grid_format_version));
+    std::vector<char> buf(1 << 20);
+    for (const std::string& path : paths) {
+        std::error_code ec;
+        if (!fs::exists(path, ec)) {
+            XXH3_freeState(st);
+            throw InputError("'" + path + "': no such file or directory");
+        }
+        std::vector<std::string> files;
+        CPLPushErrorHandler(CPLQuietErrorHandler);
+        GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+        CPLPopErrorHandler();
+        if (ds) {
+            if (char** list = ds->GetFileList()) {
+                for (char** f = list; *f; ++f) files.emplace_back(*f);
+                CSLDestroy(list);
+            }
+        }
+        if (files.empty()) files.push_back(path);
+        std::sort(files.begin(), files.end());
+        for (const std::string& f : files) {
+            if (fs::is_directory(f, ec)) continue;
+            feed(fs::path(f).filename().string());
+            std::ifstream in(f, std::ios::binary);
+            while (in) {
+                in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+                XXH3_64bits_update(st, buf.data(), static_cast<std::size_t>(in.gcount()));
+            }
+        }
+    }
+    for (const auto& l : options.layers) feed("layer:" + l);
+    feed("source_crs:" + options.source_crs);
+    feed("crs:" + crs);
+    XXH3_64bits_update(st, &cell_m, sizeof cell_m);
+    const std::uint64_t h = XXH3_64bits_digest(st);
+    XXH3_freeState(st);
+    return h;
+}
+
+CoastGrid build_grid(const std::vector<std::string>& paths, const BuildRequest& request, std::vector<std::string>* warnings,
+                     BuildStats* stats, std::string* cell_note) {
+    coast::Coastline coast = coast::import_coastline(paths, request.import);
+    if (warnings) warnings->insert(warnings->end(), coast.warnings.begin(), coast.warnings.end());
+    geo::LocalFrame frame = request.crs.empty()
+                                ? geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2})
+                                : geo::LocalFrame::from_user_crs(request.crs);
+    const double scale_error = frame.max_scale_error(coast.min, coast.max);
+    if (scale_error > 1e-4 && warnings) {
+        char buf[240];
+        std::snprintf(buf, sizeof buf,
+                      "the data spans %.2f x %.2f degrees: the local frame's scale error reaches %.2g (over 1 in 10,000); "
+                      "distances are off by up to that fraction (split the area or choose a CRS with --crs)",
+                      coast.max.lon - coast.min.lon, coast.max.lat - coast.min.lat, scale_error);
+        warnings->push_back(buf);
+    }
+    // Extent in local metres, for the default cell size.
+    geo::Box ext;
+    for (double fx : {0.0, 0.5, 1.0})
+        for (double fy : {0.0, 0.5, 1.0}) {
+            try {
+                ext.extend(frame.forward({coast.min.lon + fx * (coast.max.lon - coast.min.lon),
+                                          coast.min.lat + fy * (coast.max.lat - coast.min.lat)}));
+            } catch (const InputError&) {
+            }
+        }
+    const double cell = choose_cell_size(request.cell_m, request.ship_length_m, ext, cell_note);
+    CoastGrid g = CoastGrid::build(coast, std::move(frame), cell, stats);
+    g.source().inputs = paths;
+    g.source().layer_option = request.import.layers;
+    g.source().source_crs = request.import.source_crs;
+    g.source().fingerprint =
+        fingerprint_sources(paths, request.import, request.crs, request.cell_m > 0 ? request.cell_m : 2.5 * request.ship_length_m);
+    return g;
+}
+
+namespace {
+
+fs::path cache_folder(const std::string& requested) {
+    if (!requested.empty()) return requested;
+    if (const char* d = std::getenv("SHOAL_CACHE_DIR"); d && *d) return d;
+    if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return fs::path(d) / "shoal";
+    if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".cache" / "shoal";
+    return fs::temp_directory_path() / "shoal-cache";
+}
+
+}  // namespace
+
+CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildRequest& request, LoadReport* report) {
+    const auto t0 = std::chrono::steady_clock::now();
+    LoadReport local;
+    LoadReport& rep = report ? *report : local;
+    auto done = [&](CoastGrid g) {
+        rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return g;
+    };
+    if (paths.size() == 1 && looks_like_grid(paths[0])) {
+        rep.how = "loaded grid";
+        return done(GridFile::load(paths[0]));
+    }
+    for (const auto& p : paths)
+        if (paths.size() > 1 && looks_like_grid(p))
+            throw UsageError("'" + p + "' is a grid file: give either one grid or coastline sources, not both");
+    const double cell_key = request.cell_m > 0 ? request.cell_m : 2.5 * request.ship_length_m;
+    const std::uint64_t fp = fingerprint_sources(paths, request.import, request.crs, cell_key);
+    const fs::path dir = cache_folder(request.cache_dir);
+    const fs::path cache = dir / (fs::path(paths[0]).stem().string() + "-" + hex64(fp) + ".shoalgrid");
+    rep.cache_path = cache.string();
+    std::error_code ec;
+    if (fs::exists(cache, ec)) {
+        try {
+            CoastGrid g = GridFile::load(cache.string());
+            if (g.source().fingerprint == fp) {
+                rep.how = "reused cached grid";
+                return done(std::move(g));
+            }
+        } catch (const InputError& e) {
+            rep.warnings.push_back(std::string("cached grid unusable, rebuilding: ") + e.what());
+        }
+    }
+    CoastGrid g = build_grid(paths, request, &rep.warnings, &rep.build);
+    fs::create_directories(dir, ec);
+    try {
+        GridFile::save(g, cache.string());
+        rep.how = "built and cached";
+    } catch (const InputError& e) {
+        rep.how = "built (not cached)";
+        rep.warnings.push_back(std::string("could not cache the grid: ") + e.what());
+    }
+    return done(std::move(g));
+}
+
+}  // namespace shoal::grid
