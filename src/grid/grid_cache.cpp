@@ -1,7 +1,6 @@
 #include "grid/grid_cache.hpp"
 
 #include <gdal_priv.h>
-#include <unistd.h>
 #include <xxhash.h>
 
 #include <algorithm>
@@ -11,9 +10,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <type_traits>
 
+#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
 namespace shoal::grid {
@@ -165,26 +164,7 @@ std::vector<char> GridFile::serialize(const CoastGrid& g) {
 
 void GridFile::save(const CoastGrid& grid, const std::string& path) {
     const std::vector<char> bytes = serialize(grid);
-    const fs::path target(path);
-    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw InputError("cannot write grid '" + path + "': folder '" + dir.string() + "' does not exist");
-    std::random_device rd;
-    const fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + hex64(rd()));
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw InputError("cannot write grid '" + path + "': " + std::strerror(errno));
-    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0 &&
-                    ::fsync(::fileno(f)) == 0;
-    const int err = errno;
-    if (std::fclose(f) != 0 || !ok) {
-        fs::remove(tmp, ec);
-        throw InputError("cannot write grid '" + path + "': " + std::strerror(ok ? errno : err));
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw InputError("cannot write grid '" + path + "': " + ec.message());
-    }
+    write_file_atomically(path, std::string_view(bytes.data(), bytes.size()));
 }
 
 CoastGrid GridFile::load(const std::string& path) {

@@ -1,0 +1,28 @@
+#pragma once
+/// Reading the poses of `shoal probe`: CSV rows `lat,lon,heading` (degrees, true heading).
+/// A header line naming the columns (lat/latitude, lon/lng/longitude, heading/hdg) is
+/// optional; without one the columns are in that order.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace shoal::io {
+
+struct PoseRow {
+    double lat = 0, lon = 0, heading_deg = 0;
+    std::size_t line = 0;  ///< 1-based line number in the file
+};
+
+struct PoseFile {
+    std::vector<PoseRow> poses;
+    std::size_t skipped = 0;          ///< bad rows skipped
+    std::vector<std::string> errors;  ///< messages for the first few bad rows ("FILE line N: ...")
+};
+
+/// Throws InputError for a missing or unreadable file, or a header without lat/lon columns.
+PoseFile read_pose_csv(const std::string& path);
+/// The same from text already in memory (`name` is used in messages).
+PoseFile parse_pose_csv(const std::string& text, const std::string& name);
+
+}  // namespace shoal::io
