@@ -13,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -99,7 +100,10 @@ std::string to_wkt(const std::vector<XY>& pts) {
     std::ostringstream out;
     out.precision(17);
     out << "POLYGON((";
-    for (std::size_t i = 0; i <= pts.size(); ++i) out << (i ? "," : "") << pts[i % pts.size()].x << ' ' << pts[i % pts.size()].y;
+    for (std::size_t i = 0; i <= pts.size(); ++i) {
+        const XY p = pts[i % pts.size()];
+        out << (i ? "," : "") << p.x << ' ' << p.y;
+    }
     out << "))";
     return out.str();
 }
@@ -306,6 +310,36 @@ TEST(CustomContour, AcceptsAConcaveOutline) {
     EXPECT_EQ(Hull::from_contour(notched).contour(), notched);
 }
 
+TEST(CustomContour, AcceptsExactlyWhatGeosCallsAValidPolygonAroundTheReferencePoint) {
+    // Small integer coordinates provoke the degenerate cases: collinear edges, a vertex touching
+    // an edge, spikes, the reference point on the boundary.
+    std::mt19937 rng{20240611};
+    std::uniform_int_distribution<int> coord{-3, 3};
+    std::uniform_int_distribution<std::size_t> count{3, 7};
+    Geos geos;
+    int accepted = 0, rejected = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        std::vector<XY> pts(count(rng));
+        for (auto& p : pts) p = {static_cast<double>(coord(rng)), static_cast<double>(coord(rng))};
+        bool repeats = false;  // GEOS tolerates these; the hull rejects them on purpose
+        for (std::size_t i = 0; i < pts.size(); ++i) repeats |= pts[i] == pts[(i + 1) % pts.size()];
+        if (repeats) continue;
+
+        const auto poly = geos.polygon(pts);
+        const bool geos_ok = geos.is_valid(poly.get()) && geos.contains(poly.get(), geos.point({0, 0}).get());
+        bool hull_ok = true;
+        try {
+            Hull::from_contour(pts);
+        } catch (const InputError&) {
+            hull_ok = false;
+        }
+        ASSERT_EQ(hull_ok, geos_ok) << to_wkt(pts) << (geos_ok ? "" : ": " + geos.why_invalid(poly.get()));
+        (hull_ok ? accepted : rejected)++;
+    }
+    EXPECT_GT(accepted, 100);  // the sample holds both kinds
+    EXPECT_GT(rejected, 100);
+}
+
 struct BadContour {
     std::string label;
     std::vector<XY> points;
@@ -375,14 +409,24 @@ TEST(ShipFile, KeepsTheFilesDimensionsWhenTheContourIsSmallerThanTheBox) {
 
 TEST(ShipFile, AcceptsSmallDisagreementsWithinTheTolerances) {
     // length within 1 % of a + b (200 * 1 % = 2 m > 0.5 m); beam within 0.5 m of c + d (1 % = 0.1 m).
-    EXPECT_NO_THROW(Hull::load(temp_ship("tol-length.json",
-                                         R"({"name": "T", "length": 201.9, "beam": 10.45, "a": 150, "b": 50, "c": 5, "d": 5})")));
+    EXPECT_NO_THROW(Hull::load(temp_ship(
+        "tol-length.json", R"({"name": "T", "length": 201.9, "beam": 10.45, "a": 150, "b": 50, "c": 5, "d": 5})")));
     // A contour point up to 1 cm beyond the box.
     EXPECT_NO_THROW(Hull::load(temp_ship("tol-contour.json",
                                          R"({"name": "T", "a": 10, "b": 5, "c": 2, "d": 2,
                                             "contour": [[10.009, 0], [-5.009, 2.009], [-5, -2.009]]})")));
-    EXPECT_THAT([] { Hull::load(temp_ship("tol-beam.json", R"({"name": "T", "beam": 10.6, "a": 150, "b": 50, "c": 5, "d": 5})")); },
+    EXPECT_THAT(
+        [] { Hull::load(temp_ship("tol-beam.json", R"({"name": "T", "beam": 10.6, "a": 150, "b": 50, "c": 5, "d": 5})")); },
                 ThrowsMessage<InputError>(HasSubstr("'beam' (10.6) disagrees with 'c' + 'd'")));
+    EXPECT_THAT(
+        [] {
+            Hull::load(temp_ship("tol-length-far.json", R"({"name": "T", "length": 203, "a": 150, "b": 50, "c": 5, "d": 5})"));
+        },
+                ThrowsMessage<InputError>(HasSubstr("'length' (203) disagrees with 'a' + 'b' (150 + 50 = 200)")));
+    EXPECT_THAT([] {
+        Hull::load(temp_ship("tol-contour-far.json", R"({"name": "T", "a": 10, "b": 5, "c": 2, "d": 2,
+                                                        "contour": [[10.011, 0], [-5, 2], [-5, -2]]})"));
+    }, ThrowsMessage<InputError>(HasSubstr("'contour[0]' = [10.011,0] lies outside the box")));
 }
 
 TEST(ShipFile, MissingFileIsNamed) {
@@ -428,7 +472,8 @@ const std::vector<BadShipFile> bad_ship_files{
         BadShipFile{"bad-contour-not-array.json", {"'contour' must be an array"}},
         BadShipFile{"bad-contour-too-few.json", {"'contour' needs at least 3 points (got 2)"}},
         BadShipFile{"bad-contour-point-not-pair.json", {"'contour[1]' must be a pair", "[-5,2,0]"}},
-        BadShipFile{"bad-contour-outside-box.json", {"'contour[2]' = [-5,-2.5] lies outside the box", "x must be in [-5, 10] and y in [-2, 2]"}},
+        BadShipFile{"bad-contour-outside-box.json",
+                    {"'contour[2]' = [-5,-2.5] lies outside the box", "x must be in [-5, 10] and y in [-2, 2]"}},
         BadShipFile{"bad-contour-self-intersecting.json", {"'contour': contour is not a simple polygon"}},
         BadShipFile{"bad-contour-repeated-point.json", {"'contour': contour points 1 and 2 are the same point"}},
         BadShipFile{"bad-contour-reference-outside.json", {"'contour': the reference point (0,0) is outside"}}};

@@ -1,0 +1,325 @@
+// The pose check against independent answers: GEOS (GEOSPreparedIntersects / Distance on the
+// same land polygons, projected with the same frame) on many random poses near real
+// coastlines, the brute-force traversal, and hand-made shapes with known answers.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <numbers>
+#include <ogrsf_frmts.h>
+#include <random>
+
+#include "check/brute_force.hpp"
+#include "check/detector.hpp"
+#include "geo/geos_context.hpp"
+#include "grid/coast_grid.hpp"
+
+namespace shoal::check {
+namespace {
+
+using geo::XY;
+
+std::string test_data(const std::string& rel) { return std::string(SHOAL_TEST_DATA) + rel; }
+
+/// Land polygons of an OGR file as one prepared GEOS geometry in the frame's metres.
+class LandOracle {
+public:
+    LandOracle(const std::string& path, const geo::LocalFrame& frame) : m_frame(frame) {
+        GDALAllRegister();
+        GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+        if (!ds) throw std::runtime_error("cannot open " + path);
+        std::vector<GEOSGeometry*> parts;
+        for (OGRLayer* layer : ds->GetLayers())
+            for (auto& f : *layer) {
+                const OGRGeometry* g = f->GetGeometryRef();
+                if (!g || g->IsEmpty() || wkbFlatten(g->getGeometryType()) == wkbPoint) continue;
+                std::vector<unsigned char> wkb(static_cast<std::size_t>(g->WkbSize()));
+                g->exportToWkb(wkbNDR, wkb.data());
+                GEOSGeometry* lonlat = GEOSGeomFromWKB_buf_r(m_ctx, wkb.data(), wkb.size());
+                GEOSGeometry* local = GEOSGeom_transformXY_r(m_ctx, lonlat, &LandOracle::project, this);
+                GEOSGeom_destroy_r(m_ctx, lonlat);
+                if (GEOSGeomTypeId_r(m_ctx, local) == GEOS_POLYGON) {
+                    parts.push_back(local);
+                    continue;
+                }
+                for (int i = 0; i < GEOSGetNumGeometries_r(m_ctx, local); ++i)
+                    parts.push_back(GEOSGeom_clone_r(m_ctx, GEOSGetGeometryN_r(m_ctx, local, i)));
+                GEOSGeom_destroy_r(m_ctx, local);
+            }
+        // A MultiPolygon (prepared, indexed); made valid by a union where parts overlap.
+        m_land = geo::own(m_ctx, GEOSGeom_createCollection_r(m_ctx, GEOS_MULTIPOLYGON, parts.data(),
+                                                             static_cast<unsigned>(parts.size())), "multipolygon");
+        if (GEOSisValid_r(m_ctx, m_land.get()) != 1)
+            m_land = geo::own(m_ctx, GEOSUnaryUnion_r(m_ctx, m_land.get()), "union");
+        m_prepared = GEOSPrepare_r(m_ctx, m_land.get());
+    }
+    ~LandOracle() { GEOSPreparedGeom_destroy_r(m_ctx, m_prepared); }
+    LandOracle(const LandOracle&) = delete;
+    LandOracle& operator=(const LandOracle&) = delete;
+
+    bool intersects(const std::vector<XY>& hull) const { return GEOSPreparedIntersects_r(m_ctx, m_prepared, polygon(hull).get()) == 1; }
+    double distance(const std::vector<XY>& hull) const {
+        double d = -1;
+        GEOSPreparedDistance_r(m_ctx, m_prepared, polygon(hull).get(), &d);
+        return d;
+    }
+
+private:
+    static int project(double* x, double* y, void* self) {
+        const XY p = static_cast<LandOracle*>(self)->m_frame.forward({*x, *y});
+        *x = p.x;
+        *y = p.y;
+        return 1;
+    }
+    geo::GeomPtr polygon(std::vector<XY> ring) const {
+        ring.push_back(ring.front());
+        return geo::make_polygon(m_ctx, {ring});
+    }
+    geo::GeosContext m_ctx;
+    const geo::LocalFrame& m_frame;
+    geo::GeomPtr m_land{nullptr, {m_ctx.get()}};
+    const GEOSPreparedGeometry* m_prepared = nullptr;
+};
+
+struct Disagreements {
+    int poses = 0, collisions = 0, flag = 0, clearance = 0, brute = 0;
+    double worst_clearance_error = 0;
+};
+
+/// Random poses near the coast of `path`: touching, overlapping, a few metres off, on land
+/// and in open water, all headings; compared with GEOS (and brute force on a subset).
+Disagreements compare_with_geos(const std::string& path, int n_poses, double cell_m, int brute_every) {
+    const coast::Coastline coast = coast::import_coastline({path});
+    const geo::LocalFrame frame =
+        geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+    const auto lines = coast::project(coast, frame);
+    const grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, cell_m);
+    const LandOracle oracle(path, frame);
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
+    const Detector det(grid, hull);
+    const BruteForce brute(lines, hull);
+
+    std::mt19937_64 rng(12345);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<XY> vertices;
+    for (const auto& l : lines) vertices.insert(vertices.end(), l.points.begin(), l.points.end());
+    const geo::Box ext = grid.extent();
+    Disagreements d;
+    for (int k = 0; k < n_poses; ++k) {
+        XY pos;
+        if (k % 10 == 0) {  // anywhere: deep inland, open water
+            pos = {ext.minx + unit(rng) * (ext.maxx - ext.minx), ext.miny + unit(rng) * (ext.maxy - ext.miny)};
+        } else {  // near a coastline vertex or on a segment, within a hull's reach
+            const auto& l = lines[rng() % lines.size()];
+            const std::size_t i = rng() % (l.points.size() - 1);
+            const XY on = l.points[i] + unit(rng) * (l.points[i + 1] - l.points[i]);
+            const double r = (k % 3 == 0 ? 5.0 : 2.5 * hull.radius()) * unit(rng), a = 2 * std::numbers::pi * unit(rng);
+            pos = on + XY{r * std::cos(a), r * std::sin(a)};
+        }
+        const double heading = 360 * unit(rng);
+        LocalPose pose = place(frame, Pose{frame.inverse(pos), heading});
+        const std::vector<XY> outline = hull_outline(hull, pose);
+        const Contact c = det.check(pose, {INFINITY, false});
+        const bool geos_hit = oracle.intersects(outline);
+        ++d.poses;
+        d.collisions += geos_hit;
+        if (c.collision != geos_hit) {
+            ++d.flag;
+            ADD_FAILURE() << path << ": pose " << k << " at (" << pos.x << ", " << pos.y << ") heading " << heading
+                          << ": detector says collision=" << c.collision << ", GEOS says " << geos_hit;
+            continue;
+        }
+        if (!geos_hit) {
+            const double g = oracle.distance(outline);
+            const double err = std::fabs(g - c.clearance_m);
+            d.worst_clearance_error = std::max(d.worst_clearance_error, err);
+            if (!(err <= 1e-3)) {
+                ++d.clearance;
+                ADD_FAILURE() << path << ": pose " << k << " clearance " << c.clearance_m << " vs GEOS " << g;
+            }
+        }
+        if (brute_every > 0 && k % brute_every == 0) {
+            const Contact b = brute.check(pose);
+            if (b.collision != c.collision || std::fabs(b.clearance_m - c.clearance_m) > 1e-6) {
+                ++d.brute;
+                ADD_FAILURE() << path << ": pose " << k << " brute force " << b.collision << "/" << b.clearance_m
+                              << " vs detector " << c.collision << "/" << c.clearance_m;
+            }
+        }
+    }
+    return d;
+}
+
+TEST(DetectorVsGeos, SolentTwentyThousandPosesAgree) {
+    const Disagreements d = compare_with_geos(test_data("coast/uk_solent_land.geojson"), 20000, 500, 20);
+    EXPECT_EQ(d.flag, 0);
+    EXPECT_EQ(d.clearance, 0);
+    EXPECT_EQ(d.brute, 0);
+    EXPECT_GT(d.collisions, 2000) << "too few colliding poses to mean anything";
+    EXPECT_LT(d.collisions, 18000) << "too few clear poses to mean anything";
+    std::printf("solent: %d poses, %d collisions, worst clearance error %.3g m\n", d.poses, d.collisions, d.worst_clearance_error);
+}
+
+TEST(DetectorVsGeos, SaronicShapefileSmallCellsAgree) {
+    const Disagreements d = compare_with_geos(test_data("coast/gr_saronic_piraeus_land.shp"), 20000, 150, 0);
+    EXPECT_EQ(d.flag, 0);
+    EXPECT_EQ(d.clearance, 0);
+    std::printf("saronic: %d poses, %d collisions, worst clearance error %.3g m\n", d.poses, d.collisions, d.worst_clearance_error);
+}
+
+/// Every land file in $SHOAL_SHARED_DATA/coast/gshhg (the project's shared data), when set.
+TEST(DetectorVsGeos, SharedCoastlinesAgree) {
+    const char* shared = std::getenv("SHOAL_SHARED_DATA");
+    if (!shared) GTEST_SKIP() << "SHOAL_SHARED_DATA not set";
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(shared) / "coast" / "gshhg")) {
+        const std::string name = e.path().filename().string();
+        if (name.find("_land.geojson") == std::string::npos) continue;
+        const Disagreements d = compare_with_geos(e.path().string(), 20000, 500, 0);
+        EXPECT_EQ(d.flag + d.clearance, 0) << name;
+        std::printf("%s: %d poses, %d collisions, %d disagreements, worst clearance error %.3g m\n", name.c_str(), d.poses,
+                    d.collisions, d.flag + d.clearance, d.worst_clearance_error);
+    }
+}
+
+// ---- hand-made shapes in local metres ----
+
+geo::LocalFrame any_frame() { return geo::LocalFrame::transverse_mercator({0, 0}); }
+
+coast::LocalPolyline land_ring(std::vector<XY> ring) {
+    ring.push_back(ring.front());
+    return {std::move(ring), true};
+}
+
+LocalPose pose_at(XY p, double grid_heading_deg) {
+    const double h = grid_heading_deg * std::numbers::pi / 180;
+    LocalPose lp;
+    lp.position = p;
+    lp.ship_to_local << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
+    return lp;
+}
+
+struct Scene {
+    std::vector<coast::LocalPolyline> lines;
+    grid::CoastGrid grid;
+    hull::Hull hull;
+    Scene(std::vector<coast::LocalPolyline> l, double cell, hull::Hull h)
+        : lines(std::move(l)), grid(grid::CoastGrid::build(lines, any_frame(), cell)), hull(std::move(h)) {}
+    Contact grid_check(const LocalPose& p) const { return Detector(grid, hull).check(p); }
+    Contact brute_check(const LocalPose& p) const { return BruteForce(lines, hull).check(p); }
+};
+
+TEST(DetectorShapes, ThinSpitBetweenHullPointsIsContact) {
+    // A spit 0.5 m wide and 2 km long, crossing the ship amidships: no hull point is on it.
+    Scene s({land_ring({{-1000, -0.25}, {1000, -0.25}, {1000, 0.25}, {-1000, 0.25}})}, 500,
+            hull::Hull::from_dimensions({100, 20, 8, 8}));
+    const LocalPose across = pose_at({0, 30}, 180);  // heading south, the spit under the hull
+    EXPECT_TRUE(s.grid_check(across).collision);
+    EXPECT_TRUE(s.brute_check(across).collision);
+    const LocalPose clear = pose_at({0, 30}, 0);  // heading north: stern 20 m short of... (b=20 from y=30)
+    const Contact c = s.grid_check(clear);
+    EXPECT_FALSE(c.collision);
+    EXPECT_NEAR(c.clearance_m, 30 - 20 - 0.25, 1e-6);
+}
+
+TEST(DetectorShapes, PierBetweenContourPointsIsContact) {
+    // A pier 2 m wide pokes 3 m into the hull's starboard side halfway between two contour points.
+    const hull::Hull hull = hull::Hull::from_dimensions({100, 20, 10, 10});
+    // The ship lies along +x (grid heading 90), starboard is -y. Side at y = -10.
+    const auto& c = hull.contour();
+    double x_gap = 0;  // the middle of the longest starboard side edge
+    double longest = 0;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        const XY a = c[i], b = c[(i + 1) % c.size()];
+        if (std::fabs(a.y - 10) < 1e-9 && std::fabs(b.y - 10) < 1e-9 && std::fabs(b.x - a.x) > longest) {
+            longest = std::fabs(b.x - a.x);
+            x_gap = (a.x + b.x) / 2;
+        }
+    }
+    ASSERT_GT(longest, 4) << "the generated hull has no straight starboard side to put a pier against";
+    Scene s({land_ring({{x_gap - 1, -40}, {x_gap + 1, -40}, {x_gap + 1, -7}, {x_gap - 1, -7}})}, 200, hull);
+    const LocalPose p = pose_at({0, 0}, 90);
+    EXPECT_TRUE(s.grid_check(p).collision);
+    EXPECT_TRUE(s.brute_check(p).collision);
+    // Moved 3.5 m to port, the pier end is 0.5 m off the side.
+    const Contact off = s.grid_check(pose_at({0, 3.5}, 90));
+    EXPECT_FALSE(off.collision);
+    EXPECT_NEAR(off.clearance_m, 0.5, 1e-9);
+}
+
+TEST(DetectorShapes, ShipDeepInsideAnIslandIsContact) {
+    Scene s({land_ring({{0, 0}, {20000, 0}, {20000, 20000}, {0, 20000}})}, 500, hull::Hull::from_dimensions({100, 20, 8, 8}));
+    ASSERT_EQ(s.grid.state(s.grid.col_of(10000), s.grid.row_of(10000)), grid::CellState::land);
+    const Contact c = s.grid_check(pose_at({10000, 10000}, 33));
+    EXPECT_TRUE(c.collision);
+    EXPECT_NEAR(c.penetration_m, 10000 - 8, 100);  // the deepest hull point is ~10 km from the shore
+}
+
+TEST(DetectorShapes, IsletInsideTheHullIsContact) {
+    Scene s({land_ring({{1, -1}, {3, -1}, {3, 1}, {1, 1}}), land_ring({{5000, 5000}, {5100, 5000}, {5100, 5100}})}, 300,
+            hull::Hull::from_dimensions({100, 20, 8, 8}));
+    const Contact c = s.grid_check(pose_at({0, 0}, 90));
+    EXPECT_TRUE(c.collision);
+    EXPECT_NEAR(c.penetration_m, 7, 1e-9);  // the islet's corner (3, -1) or (3,1) is 7 m from the side
+}
+
+TEST(DetectorShapes, ShipOnCellBordersAndCornersMatchesGeos) {
+    // A coast of right angles whose vertices and edges sit exactly on cell borders and corners.
+    std::vector<coast::LocalPolyline> lines{land_ring({{0, 0}, {400, 0}, {400, 200}, {200, 200}, {200, 400}, {0, 400}})};
+    const hull::Hull hull = hull::Hull::from_dimensions({40, 10, 5, 5});
+    Scene s(lines, 100, hull);
+    geo::GeosContext ctx;
+    std::vector<XY> ring = lines[0].points;
+    geo::GeomPtr land = geo::make_polygon(ctx, {ring});
+    int checked = 0;
+    for (double x = -100; x <= 500; x += 50)
+        for (double y = -100; y <= 500; y += 50)
+            for (double hdg : {0.0, 45.0, 90.0, 180.0, 271.0}) {
+                const LocalPose p = pose_at({x, y}, hdg);
+                std::vector<XY> outline = hull_outline(hull, p);
+                outline.push_back(outline.front());
+                geo::GeomPtr hp = geo::make_polygon(ctx, {outline});
+                const bool hit = GEOSIntersects_r(ctx, land.get(), hp.get()) == 1;
+                double dist = 0;
+                GEOSDistance_r(ctx, land.get(), hp.get(), &dist);
+                const Contact c = s.grid_check(p);
+                EXPECT_EQ(c.collision, hit) << "at " << x << "," << y << " heading " << hdg;
+                if (!hit) {
+                    EXPECT_NEAR(c.clearance_m, dist, 1e-9) << "at " << x << "," << y << " heading " << hdg;
+                }
+                ++checked;
+            }
+    EXPECT_GT(checked, 500);
+}
+
+TEST(DetectorShapes, ClearanceSearchStopsAtTheLimit) {
+    Scene s({land_ring({{0, 0}, {100, 0}, {100, 100}, {0, 100}})}, 100, hull::Hull::from_dimensions({40, 10, 5, 5}));
+    // Far outside the grid, to the east: covered is false, clearance still exact.
+    const Contact far = s.grid_check(pose_at({1000, 50}, 0));
+    EXPECT_FALSE(far.covered);
+    EXPECT_NEAR(far.clearance_m, 1000 - 5 - 100, 1e-9);
+    const Contact limited = Detector(s.grid, s.hull).check(pose_at({1000, 50}, 0), {100.0, false});
+    EXPECT_TRUE(std::isinf(limited.clearance_m));
+}
+
+TEST(Placement, BowLandsWhereTheGeodesicPutsIt) {
+    // Checked in depth in geo tests; here: place() gives the frame's scale and convergence.
+    const geo::LocalFrame frame = geo::LocalFrame::transverse_mercator({24.5, 60.0});
+    const hull::Hull hull = hull::Hull::from_dimensions({300, 100, 20, 20});
+    const LocalPose p = place(frame, Pose{{25.3, 60.3}, 37});
+    const std::vector<XY> outline = hull_outline(hull, p);
+    // The bow tip is the contour point at x = a.
+    std::size_t tip = 0;
+    for (std::size_t i = 0; i < hull.contour().size(); ++i)
+        if (hull.contour()[i].x > hull.contour()[tip].x) tip = i;
+    const geo::LonLat bow = frame.inverse(outline[tip]);
+    // Independent: the bow is 300 m from the position along true azimuth 37 (flat-earth
+    // approximation at this scale is good to ~1 mm per 300 m).
+    const Eigen::Vector2d mpd = geo::metres_per_degree(60.3);
+    const double de = (bow.lon - 25.3) * mpd.x(), dn = (bow.lat - 60.3) * mpd.y();
+    EXPECT_NEAR(std::hypot(de, dn), 300, 0.01);
+    EXPECT_NEAR(std::atan2(de, dn) * 180 / std::numbers::pi, 37, 0.01);
+}
+
+}  // namespace
+}  // namespace shoal::check
