@@ -2,14 +2,21 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <filesystem>
 #include <string>
+#include <chrono>
+#include <unistd.h>
 
 #include "check/detector.hpp"
 #include "grid/grid_cache.hpp"
 #include "hull/hull.hpp"
+#include "audit/audit.hpp"
 #include "io/pose_csv.hpp"
+#include "report/report.hpp"
+#include "track/time.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
@@ -52,7 +59,7 @@ public:
         m_sub = app.add_subcommand("import", "Build a coastline grid and save it as a .shoalgrid cache file");
         m_sub->footer("Usage: shoal import COAST... -o GRID [--cell M | --ship-length M] [--crs CRS] [--layer NAME]");
         m_sub->add_option("coast", m_inputs, "Coastline sources: any OGR vector file (Shapefile, GeoJSON, GeoPackage, S-57 .000, ...)")
-            ->required()->check(CLI::ExistingPath);
+            ->required();
         m_sub->add_option("-o,--output", m_output, "Grid file to write (.shoalgrid)")->required();
         auto* cell = m_sub->add_option("--cell", m_request.cell_m, "Cell edge in metres (default 500, or 2.5 x --ship-length)")
                          ->check(CLI::PositiveNumber);
@@ -178,6 +185,110 @@ private:
     std::string m_output;
 };
 
+/// A progress line on stderr: fixes done, rate and time left. Only when stderr is a terminal.
+class Progress {
+public:
+    explicit Progress(bool on) : m_on(on), m_t0(std::chrono::steady_clock::now()) {}
+    void operator()(std::size_t done, std::size_t total) {
+        if (!m_on || total == 0) return;
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_t0).count();
+        const double rate = s > 0 ? static_cast<double>(done) / s : 0;
+        const double left = rate > 0 ? static_cast<double>(total - done) / rate : 0;
+        const int width = 30;
+        const int fill = static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
+        std::fprintf(stderr, "\r[%.*s%*s] %3.0f%%  %.2fM fixes/s  %3.0f s left ", fill, "==============================",
+                     width - fill, "", 100.0 * static_cast<double>(done) / static_cast<double>(total), rate / 1e6, left);
+        if (done == total) std::fprintf(stderr, "\n");
+        std::fflush(stderr);
+    }
+
+private:
+    bool m_on;
+    std::chrono::steady_clock::time_point m_t0;
+};
+
+class CheckCommand final : public Command {
+public:
+    void setup(CLI::App& app) override {
+        m_sub = app.add_subcommand("check", "Audit voyage tracks: sweep the hull along them, report groundings and close passes");
+        m_sub->footer("Usage: shoal check --coast COAST_OR_GRID --ship SHIP.json TRACK... -o REPORT.geojson [--margin M] [--step M] [--jobs N]\n"
+                      "Tracks: CSV with a header (AIS exports too), GPX, GeoJSON, NMEA 0183 logs; folders are searched.\n"
+                      "Exit status: 0 no grounding, 1 at least one grounding, 2 bad usage or unreadable input.");
+        m_opts.add(*m_sub);
+        m_sub->add_option("tracks", m_tracks, "Track files or folders")->required();
+        m_sub->add_option("-o,--output", m_output, "Report to write: .geojson, or .gpkg (GeoPackage)")->required();
+        m_sub->add_option("--format", m_format, "geojson or gpkg (default: from the extension of -o)")
+            ->check(CLI::IsMember({"geojson", "gpkg"}));
+        m_sub->add_option("--margin", m_audit.sweep.margin_m, "Close pass: clearance under this many metres (default 50)")
+            ->check(CLI::NonNegativeNumber);
+        m_sub->add_option("--step", m_audit.sweep.step_m, "No hull point moves more than this many metres between checks (default 5)")
+            ->check(CLI::PositiveNumber);
+        m_sub->add_option("--max-gap", m_audit.sweep.max_gap_s, "A gap between fixes longer than this (seconds) splits the track (default 600)")
+            ->check(CLI::PositiveNumber);
+        m_sub->add_option("--jobs,-j", m_audit.jobs, "Tracks checked in parallel (default: all cores)");
+        m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
+        m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
+    }
+    int run() override {
+        const hull::Hull hull = m_opts.load_hull();
+        if (!m_date.empty()) {
+            int y = 0, mo = 0, d = 0;
+            char tail = 0;
+            const auto day = std::sscanf(m_date.c_str(), "%d-%d-%d%c", &y, &mo, &d, &tail) == 3
+                                 ? track::utc_seconds(y, mo, d, 0, 0, 0) : std::nullopt;
+            if (!day) throw UsageError("--date '" + m_date + "' is not a date YYYY-MM-DD");
+            m_audit.read.date_s = *day;
+        }
+        const std::string format = !m_format.empty() ? m_format
+                                   : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
+        const std::filesystem::path out_dir = std::filesystem::path(m_output).has_parent_path()
+                                                  ? std::filesystem::path(m_output).parent_path() : ".";
+        if (!std::filesystem::is_directory(out_dir))
+            throw InputError("cannot write '" + m_output + "': folder '" + out_dir.string() + "' does not exist");
+        const grid::CoastGrid g = m_opts.load_grid();
+        Progress bar(m_progress.value_or(::isatty(2) != 0));
+        m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };
+        const audit::AuditResult r = audit::run_audit(m_tracks, g, hull, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : "ship file", m_audit);
+        for (const auto& f : r.files) {
+            for (const auto& m : f.read.messages) std::fprintf(stderr, "shoal: warning: %s\n", m.c_str());
+            if (f.read.skipped > f.read.messages.size())
+                std::fprintf(stderr, "shoal: warning: %s: %zu more bad rows skipped\n", f.file.c_str(), f.read.skipped - f.read.messages.size());
+            if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", f.error.c_str());
+        }
+        for (const auto& e : r.errors)
+            std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", e.track.c_str(), e.file.c_str(), e.message.c_str());
+        report::RunInfo info;
+        for (const auto& c : m_opts.coast) info.coast += (info.coast.empty() ? "" : ", ") + c;
+        info.frame = g.frame().description();
+        info.cell_m = g.cell_size();
+        char fp[20];
+        std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(g.source().fingerprint));
+        info.grid_fingerprint = fp;
+        info.ship = m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name();
+        info.sweep = m_audit.sweep;
+        const auto t0 = std::chrono::steady_clock::now();
+        if (format == "gpkg") report::write_gpkg(m_output, r, info);
+        else report::write_geojson(m_output, r, info);
+        const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::fputs(report::summary_table(r).c_str(), stdout);
+        const double fps = r.sweep_s > 0 ? static_cast<double>(r.fixes) / r.sweep_s : 0;
+        std::printf("time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
+                    m_output.c_str());
+        bool unreadable = r.tracks.empty() && (!r.errors.empty() || std::any_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); }));
+        if (unreadable) return exit_usage;
+        return r.groundings > 0 ? exit_found : exit_ok;
+    }
+
+private:
+    CoastAndShip m_opts;
+    std::vector<std::string> m_tracks;
+    std::string m_output;
+    std::string m_format;
+    std::optional<bool> m_progress;
+    std::string m_date;
+    audit::AuditOptions m_audit;
+};
+
 }  // namespace
 
 std::vector<std::unique_ptr<Command>> make_commands() {
@@ -185,6 +296,7 @@ std::vector<std::unique_ptr<Command>> make_commands() {
     v.push_back(std::make_unique<ImportCommand>());
     v.push_back(std::make_unique<InfoCommand>());
     v.push_back(std::make_unique<ProbeCommand>());
+    v.push_back(std::make_unique<CheckCommand>());
     return v;
 }
 

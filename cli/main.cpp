@@ -20,6 +20,10 @@ int main(int argc, char** argv) {
     CPLSetErrorHandler(CPLQuietErrorHandler);
     CLI::App app{"shoal: audit ship tracks against chart coastlines"};
     app.require_subcommand(1);
+    // One line per usage error, like every other error (subcommands inherit this).
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return std::string("shoal: usage error: ") + e.what() + " (see shoal COMMAND --help)\n";
+    });
     app.set_version_flag("--version", "shoal 0.1.0");
     app.footer("Exit status: 0 ok / no grounding, 1 grounding found (check), 2 bad usage or unreadable input.\n"
                "Run 'shoal COMMAND --help' for a command's options; docs/user-guide.md has the details.");

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The example audit, end to end on a fresh Debian 12 machine: installs the packages, builds
-# shoal (Release), imports the Helsinki coastline into a grid, shows what it holds and checks
-# a few poses. Outputs go to examples/out/.
+# shoal (Release), imports the Helsinki coastline into a grid, audits ten minutes of real AIS
+# traffic off Helsinki and an hour of a sailing yacht's NMEA log, and checks a few single
+# poses. Outputs go to examples/out/: open helsinki-traffic.gpkg, or plaka.geojson (styled by
+# the plaka.qml beside it), in QGIS.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 cd "$here/.."
@@ -17,7 +19,20 @@ echo "== shoal import: Helsinki coastline (GSHHG full resolution) into a grid ==
 echo
 echo "== shoal info =="
 "$shoal" info "$out/helsinki.shoalgrid"
+
+# shoal check exits 1 when it finds a grounding: that is a result here, not a failure.
+audit() { "$shoal" "$@" || { status=$?; [ $status -eq 1 ] || exit $status; echo "(exit status 1: groundings found)"; }; }
 echo
-echo "== shoal probe: single poses of the example ship =="
+echo "== shoal check: 10 minutes of AIS traffic (96 vessels), each as the example ferry =="
+audit check --coast "$out/helsinki.shoalgrid" --ship "$here/ship.json" "$here/data/aava_n2k_fixes.csv" \
+  -o "$out/helsinki-traffic.gpkg" --margin 50
+echo
+echo "== shoal check: a sailing yacht's NMEA 0183 log (the log has no date: times of day) =="
+audit check --coast "$out/helsinki.shoalgrid" --ship "$here/yacht.json" "$here/data/plaka_first_hour.nmea" \
+  -o "$out/plaka.geojson" --margin 50
+echo
+echo "== shoal probe: single poses of the example ferry =="
 "$shoal" probe --coast "$out/helsinki.shoalgrid" --ship "$here/ship.json" "$here/poses.csv" -o "$out/poses-checked.csv"
 cat "$out/poses-checked.csv"
+echo
+echo "Reports for QGIS: $out/helsinki-traffic.gpkg (layers events, tracks, hulls, styled) and $out/plaka.geojson (+ plaka.qml)"

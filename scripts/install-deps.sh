@@ -9,6 +9,7 @@ PACKAGES=(
   libproj-dev                 # geodesic.h (tests), PROJ through GDAL
   libeigen3-dev nlohmann-json3-dev libcli11-dev libxxhash-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-jsonschema python3-gdal   # report schema validation in tests (/usr/bin/python3)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

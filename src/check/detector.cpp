@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <emmintrin.h>
 #include <numbers>
+#include <span>
 
 namespace shoal::check {
 
@@ -31,16 +33,53 @@ namespace {
 /// ship-aligned frame, so a coast segment is tested against few hull edges.
 constexpr std::size_t chunk_edges = 6;
 
+// The hot loops hold a point's x and y, or a box's minima and maxima, in the two lanes of an
+// SSE2 register (every x86-64 CPU has SSE2). Each lane does the same IEEE operations as the
+// scalar expressions in the comments, so the results are the same numbers.
+static_assert(sizeof(XY) == 2 * sizeof(double) && sizeof(geo::Box) == 4 * sizeof(double));
+
+inline __m128d load(const XY& p) noexcept { return _mm_loadu_pd(&p.x); }
+inline void store(XY& p, __m128d v) noexcept { _mm_storeu_pd(&p.x, v); }
+inline __m128d load_min(const geo::Box& b) noexcept { return _mm_loadu_pd(&b.minx); }  // (minx, miny)
+inline __m128d load_max(const geo::Box& b) noexcept { return _mm_loadu_pd(&b.maxx); }  // (maxx, maxy)
+inline double sum(__m128d v) noexcept { return _mm_cvtsd_f64(_mm_add_sd(v, _mm_unpackhi_pd(v, v))); }
+
+/// Squared distance between two boxes given by their corners (0 when they overlap or touch):
+/// dx = max(q.minx - p.maxx, p.minx - q.maxx, 0), likewise dy; dx^2 + dy^2. Squared, so that
+/// the pruning tests, run for every segment read, need no square root.
+inline double box_dist2(__m128d pmin, __m128d pmax, __m128d qmin, __m128d qmax) noexcept {
+    __m128d d = _mm_max_pd(_mm_max_pd(_mm_sub_pd(qmin, pmax), _mm_sub_pd(pmin, qmax)), _mm_setzero_pd());
+    return sum(_mm_mul_pd(d, d));
+}
+inline double box_dist2(const geo::Box& p, const geo::Box& q) noexcept {
+    return box_dist2(load_min(p), load_max(p), load_min(q), load_max(q));
+}
+
+/// Squared distance from p to the segment from `a` along `d`, given 1 / |d|^2 (0 for a
+/// degenerate segment); writes the closest point.
+inline double point_segment_d2(XY p, XY a, XY d, double inv_len2, XY* foot) noexcept {
+    const double t = std::clamp(geo::dot(p - a, d) * inv_len2, 0.0, 1.0);
+    *foot = a + t * d;
+    return geo::norm2(p - *foot);
+}
+
 /// The hull at one pose, in a frame aligned with the ship (origin at the reference point,
 /// first axis along the ship's centreline). Rotation only: distances are metres.
 struct AlignedHull {
     XY origin;
     XY u, v;  // unit axes in local metres
-    std::vector<XY> pts;
+    std::size_t n = 0;
+    std::vector<XY> pts;  // n + 1 points: the outline, first point repeated at the end
+    // Per edge e (pts[e] -> pts[e + 1]), built on demand: direction, 1 / |d|^2, box.
+    std::vector<XY> dir;
+    std::vector<double> inv_len2;
+    std::vector<geo::Box> edge_box;
     std::vector<geo::Box> chunk_box;
+    bool edges_ready = false;
     geo::Box box;        // aligned frame
     geo::Box local_box;  // local metres
 
+    XY pt(std::size_t i) const noexcept { return pts[i]; }
     XY to_aligned(XY p) const noexcept {
         const XY d = p - origin;
         return {geo::dot(d, u), geo::dot(d, v)};
@@ -50,39 +89,93 @@ struct AlignedHull {
     void build(const hull::Hull& hull, const LocalPose& pose) {
         origin = pose.position;
         const Eigen::Matrix2d& m = pose.ship_to_local;
-        const double len = std::hypot(m(0, 0), m(1, 0));
-        u = {m(0, 0) / len, m(1, 0) / len};
+        const double m00 = m(0, 0), m01 = m(0, 1), m10 = m(1, 0), m11 = m(1, 1);
+        const double len = std::sqrt(m00 * m00 + m10 * m10);
+        u = {m00 / len, m10 / len};
         v = {-u.y, u.x};
-        const auto& c = hull.contour();
-        pts.resize(c.size());
-        box = {};
-        local_box = {};
-        for (std::size_t i = 0; i < c.size(); ++i) {
-            const XY w{m(0, 0) * c[i].x + m(0, 1) * c[i].y, m(1, 0) * c[i].x + m(1, 1) * c[i].y};
-            pts[i] = {geo::dot(w, u), geo::dot(w, v)};
-            box.extend(pts[i]);
-            local_box.extend(origin + w);
+        // Ship -> aligned: [u v]^T * m.
+        const double a00 = u.x * m00 + u.y * m10, a01 = u.x * m01 + u.y * m11;
+        const double a10 = v.x * m00 + v.y * m10, a11 = v.x * m01 + v.y * m11;
+        const XY* c = hull.contour().data();
+        n = hull.contour().size();
+        pts.resize(n + 1);
+        // p = (a00 cx + a01 cy, a10 cx + a11 cy); w = m c (local metres from the position).
+        const __m128d col0 = _mm_set_pd(a10, a00), col1 = _mm_set_pd(a11, a01);
+        const __m128d mcol0 = _mm_set_pd(m10, m00), mcol1 = _mm_set_pd(m11, m01);
+        __m128d bmin = _mm_set1_pd(INFINITY), bmax = _mm_set1_pd(-INFINITY);
+        __m128d lmin = bmin, lmax = bmax;
+        for (std::size_t i = 0; i < n; ++i) {
+            const __m128d cx = _mm_set1_pd(c[i].x), cy = _mm_set1_pd(c[i].y);
+            const __m128d p = _mm_add_pd(_mm_mul_pd(col0, cx), _mm_mul_pd(col1, cy));
+            const __m128d w = _mm_add_pd(_mm_mul_pd(mcol0, cx), _mm_mul_pd(mcol1, cy));
+            store(pts[i], p);
+            bmin = _mm_min_pd(p, bmin);
+            bmax = _mm_max_pd(p, bmax);
+            lmin = _mm_min_pd(w, lmin);
+            lmax = _mm_max_pd(w, lmax);
         }
-        const std::size_t n = pts.size();
-        chunk_box.assign((n + chunk_edges - 1) / chunk_edges, geo::Box{});
+        pts[n] = pts[0];
+        _mm_storeu_pd(&box.minx, bmin);
+        _mm_storeu_pd(&box.maxx, bmax);
+        const __m128d o = load(origin);
+        _mm_storeu_pd(&local_box.minx, _mm_add_pd(o, lmin));
+        _mm_storeu_pd(&local_box.maxx, _mm_add_pd(o, lmax));
+        edges_ready = false;
+    }
+
+    /// Edges and chunk boxes: built on the first segment that comes near (open-water poses
+    /// never need them).
+    void ensure_edges() {
+        if (edges_ready) return;
+        edges_ready = true;
+        dir.resize(n);
+        inv_len2.resize(n);
+        edge_box.resize(n);
+        chunk_box.resize((n + chunk_edges - 1) / chunk_edges);
         for (std::size_t e = 0; e < n; ++e) {
-            chunk_box[e / chunk_edges].extend(pts[e]);
-            chunk_box[e / chunk_edges].extend(pts[(e + 1) % n]);
+            const __m128d a = load(pts[e]), b = load(pts[e + 1]);
+            const __m128d d = _mm_sub_pd(b, a);
+            store(dir[e], d);
+            _mm_storeu_pd(&edge_box[e].minx, _mm_min_pd(a, b));
+            _mm_storeu_pd(&edge_box[e].maxx, _mm_max_pd(a, b));
+        }
+        // 1 / |d|^2 (0 for a degenerate edge), two edges per division.
+        std::size_t e = 0;
+        for (; e + 1 < n; e += 2) {
+            const __m128d d0 = load(dir[e]), d1 = load(dir[e + 1]);
+            const __m128d s0 = _mm_mul_pd(d0, d0), s1 = _mm_mul_pd(d1, d1);
+            const __m128d len2 = _mm_add_pd(_mm_unpacklo_pd(s0, s1), _mm_unpackhi_pd(s0, s1));
+            const __m128d inv = _mm_and_pd(_mm_cmpgt_pd(len2, _mm_setzero_pd()), _mm_div_pd(_mm_set1_pd(1.0), len2));
+            _mm_storeu_pd(&inv_len2[e], inv);
+        }
+        for (; e < n; ++e) {
+            const double len2 = geo::norm2(dir[e]);
+            inv_len2[e] = len2 > 0 ? 1.0 / len2 : 0.0;
+        }
+        for (std::size_t c = 0; c < chunk_box.size(); ++c) {
+            __m128d cmin = _mm_set1_pd(INFINITY), cmax = _mm_set1_pd(-INFINITY);
+            for (std::size_t k = c * chunk_edges, k_end = std::min(n, k + chunk_edges); k < k_end; ++k) {
+                cmin = _mm_min_pd(load_min(edge_box[k]), cmin);
+                cmax = _mm_max_pd(load_max(edge_box[k]), cmax);
+            }
+            _mm_storeu_pd(&chunk_box[c].minx, cmin);
+            _mm_storeu_pd(&chunk_box[c].maxx, cmax);
         }
     }
+
+    bool in_box(XY q) const noexcept { return q.x >= box.minx && q.x <= box.maxx && q.y >= box.miny && q.y <= box.maxy; }
 
     /// Crossing-number point-in-polygon in the aligned frame (boundary counts as inside).
     bool contains(XY q) const noexcept {
         bool inside = false;
-        const std::size_t n = pts.size();
-        for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-            const XY a = pts[j], b = pts[i];
+        for (std::size_t i = 0; i < n; ++i) {
+            const XY a = pts[i], b = pts[i + 1];
             if ((a.y > q.y) != (b.y > q.y)) {
                 const double o = geo::orient(a, b, q);
                 if (o == 0) return true;
                 if ((o > 0) == (b.y > a.y)) inside = !inside;
-            } else if (geo::point_segment_dist2(q, a, b) == 0) {
-                return true;
+            } else if ((a.y == q.y || b.y == q.y) && geo::point_segment_dist2(q, a, b) == 0) {
+                return true;  // on an edge that does not straddle q's row: only at its height
             }
         }
         return inside;
@@ -91,40 +184,89 @@ struct AlignedHull {
 
 /// State of one check while cells are read.
 struct Search {
-    const AlignedHull& hull;
-    double best2 = INFINITY;  // squared clearance so far
-    double best = INFINITY;
+    AlignedHull& hull;
+    double best2 = INFINITY;  // squared clearance so far, or the squared search limit
+    bool found = false;        // best2 is a distance found (hull_pt, coast_pt are set)
     XY hull_pt, coast_pt;      // aligned frame
     bool crossing = false;
     std::vector<XY>& inside_candidates;  // coast vertices (aligned) that may lie inside the hull
 
-    void segment(XY a, XY b, bool collect) {
-        geo::Box sb;
-        sb.extend(a);
-        sb.extend(b);
-        const double d = hull.box.distance_to(sb);
-        if (d > 0 && d >= best) return;
-        const std::size_t n = hull.pts.size();
-        for (std::size_t c = 0; c < hull.chunk_box.size(); ++c) {
-            const double dc = hull.chunk_box[c].distance_to(sb);
-            if (dc > 0 && dc >= best) continue;
+    double best() const noexcept { return std::sqrt(best2); }
+
+    /// The segments of one cell: each is moved to the aligned frame and tested against the
+    /// hull's box at the distance found so far; only those that pass meet the edges.
+    void read(std::span<const grid::Segment> segs, bool collect) {
+        // a' = (dot(a - o, u), dot(a - o, v)) for both ends, and the segment's box.
+        const __m128d o = load(hull.origin);
+        const __m128d ux = _mm_set_pd(hull.v.x, hull.u.x), uy = _mm_set_pd(hull.v.y, hull.u.y);
+        const __m128d hmin = load_min(hull.box), hmax = load_max(hull.box);
+        for (const grid::Segment& sg : segs) {
+            const __m128d da = _mm_sub_pd(load(sg.a), o), db = _mm_sub_pd(load(sg.b), o);
+            const __m128d a = _mm_add_pd(_mm_mul_pd(_mm_unpacklo_pd(da, da), ux), _mm_mul_pd(_mm_unpackhi_pd(da, da), uy));
+            const __m128d b = _mm_add_pd(_mm_mul_pd(_mm_unpacklo_pd(db, db), ux), _mm_mul_pd(_mm_unpackhi_pd(db, db), uy));
+            const __m128d smin = _mm_min_pd(a, b), smax = _mm_max_pd(a, b);
+            const double d2 = box_dist2(hmin, hmax, smin, smax);
+            if (d2 >= best2) continue;  // best2 > 0 here: a crossing ends the search
+            XY pa, pb;
+            geo::Box sb;
+            store(pa, a);
+            store(pb, b);
+            _mm_storeu_pd(&sb.minx, smin);
+            _mm_storeu_pd(&sb.maxx, smax);
+            edges(pa, pb, sb);
+            if (crossing) return;
+            if (collect && d2 == 0 && hull.in_box(pa)) inside_candidates.push_back(pa);
+        }
+    }
+
+    /// Coast segment ab (aligned frame, box sb) against the hull's edges: lowers best2, sets
+    /// crossing. Pruned by the boxes of chunks of edges and of edges at the distance found so
+    /// far; the intersection test runs only for an edge whose box meets the segment's box.
+    void edges(XY a, XY b, const geo::Box& sb) {
+        hull.ensure_edges();
+        const XY sd = b - a;
+        const double slen2 = geo::norm2(sd);
+        const double s_inv = slen2 > 0 ? 1.0 / slen2 : 0.0;
+        const std::size_t n_chunks = hull.chunk_box.size();
+        const std::size_t n = hull.n;
+        std::size_t vertex_done = n + 1;  // hull vertex whose distance to ab is already counted
+        auto vertex = [&](std::size_t i) {  // hull vertex i to the coast segment
+            if (i == vertex_done) return;
+            vertex_done = i;
+            XY f;
+            const XY p = hull.pt(i);
+            const double dd = point_segment_d2(p, a, sd, s_inv, &f);
+            if (dd < best2) { best2 = dd; hull_pt = p; coast_pt = f; found = true; }
+        };
+        for (std::size_t c = 0; c < n_chunks; ++c) {
+            if (box_dist2(hull.chunk_box[c], sb) >= best2) continue;
             const std::size_t e_end = std::min(n, (c + 1) * chunk_edges);
             for (std::size_t e = c * chunk_edges; e < e_end; ++e) {
-                XY on_hull, on_coast;
-                const double d2 = geo::segment_segment_dist2(hull.pts[e], hull.pts[(e + 1) % n], a, b, &on_hull, &on_coast);
-                if (d2 < best2) {
-                    best2 = d2;
-                    best = std::sqrt(d2);
+                const double de2 = box_dist2(hull.edge_box[e], sb);
+                if (de2 >= best2) continue;
+                const XY ea = hull.pt(e), eb = hull.pt(e + 1);
+                if (de2 == 0 && geo::segments_intersect(ea, eb, a, b)) {
+                    XY on_hull, on_coast;
+                    geo::segment_segment_dist2(ea, eb, a, b, &on_hull, &on_coast);
+                    best2 = 0;
+                    found = true;
                     hull_pt = on_hull;
                     coast_pt = on_coast;
-                    if (d2 == 0) {
-                        crossing = true;
-                        return;
-                    }
+                    crossing = true;
+                    return;
                 }
+                // Disjoint: the nearest pair has an end of one segment. Each hull vertex is
+                // measured once for the two edges that share it.
+                vertex(e);
+                vertex(e + 1);
+                const XY ed = hull.dir[e];
+                XY f;
+                double dd = point_segment_d2(a, ea, ed, hull.inv_len2[e], &f);
+                if (dd < best2) { best2 = dd; hull_pt = f; coast_pt = a; found = true; }
+                dd = point_segment_d2(b, ea, ed, hull.inv_len2[e], &f);
+                if (dd < best2) { best2 = dd; hull_pt = f; coast_pt = b; found = true; }
             }
         }
-        if (collect && d == 0) inside_candidates.push_back(a);
     }
 };
 
@@ -151,7 +293,11 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     AlignedHull& h = s.hull;
     h.build(m_hull, pose);
     s.inside_candidates.clear();
-    Search search{h, INFINITY, INFINITY, {}, {}, false, s.inside_candidates};
+    // Segments farther than the clearance limit are pruned like those farther than the
+    // clearance found so far (the limit grown by a hair, so that one exactly at it counts).
+    const double limit = options.max_clearance_m;
+    const double bound = std::isfinite(limit) ? limit * (1 + 1e-9) + 1e-9 : INFINITY;
+    Search search{h, bound * bound, false, {}, {}, false, s.inside_candidates};
     Contact out;
     const geo::Box ext = m_grid.extent();
     const geo::Box& lb = h.local_box;
@@ -163,10 +309,8 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     int i0 = std::max(0, m_grid.col_of(lb.minx)), i1 = std::min(nx - 1, m_grid.col_of(lb.maxx));
     int j0 = std::max(0, m_grid.row_of(lb.miny)), j1 = std::min(ny - 1, m_grid.row_of(lb.maxy));
     auto read_cell = [&](int i, int j, bool collect) {
-        for (const grid::Segment& sg : m_grid.segments(i, j)) {
-            search.segment(h.to_aligned(sg.a), h.to_aligned(sg.b), collect);
-            if (search.crossing) return;
-        }
+        const std::span<const grid::Segment> segs = m_grid.segments(i, j);
+        if (!segs.empty()) search.read(segs, collect);
     };
     const bool block_valid = i0 <= i1 && j0 <= j1;
     if (block_valid) {
@@ -176,13 +320,13 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     if (!search.crossing) {
         // No edge crossing: the hull is wholly in water, wholly in land, or holds an islet.
         bool on_boundary = false;
-        const XY p0 = h.to_local(h.pts[0]);
+        const XY p0 = h.to_local(h.pt(0));
         if (m_grid.winding(p0, &on_boundary) > 0) {
             out.collision = true;
             out.hull_point = p0;
             out.coast_point = p0;
         } else {
-            for (const XY& q : s.inside_candidates)
+            for (const XY& q : s.inside_candidates)  // each lies in the hull's box
                 if (h.contains(q)) {
                     out.collision = true;
                     out.hull_point = out.coast_point = h.to_local(q);
@@ -198,18 +342,18 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         out.clearance_m = 0;
         if (options.want_penetration) {
             double depth = 0;
-            for (const XY& q : h.pts) {  // hull points on land: how far inside
-                const XY p = h.to_local(q);
+            for (std::size_t i = 0; i < h.n; ++i) {  // hull points on land: how far inside
+                const XY p = h.to_local(h.pt(i));
                 if (m_grid.winding(p) > 0) depth = std::max(depth, nearest_coast(p, INFINITY, nullptr));
             }
-            const std::size_t n = h.pts.size();
+            const std::size_t n = h.n;
             // Coast vertices inside the hull: how far from its outline.
             auto coast_depth = [&](int i, int j) {
                 for (const grid::Segment& sg : m_grid.segments(i, j)) {
                     const XY q = h.to_aligned(sg.a);
                     if (!h.contains(q)) continue;
                     double d2 = INFINITY;
-                    for (std::size_t e = 0; e < n; ++e) d2 = std::min(d2, geo::point_segment_dist2(q, h.pts[e], h.pts[(e + 1) % n]));
+                    for (std::size_t e = 0; e < n; ++e) d2 = std::min(d2, geo::point_segment_dist2(q, h.pt(e), h.pt(e + 1)));
                     depth = std::max(depth, std::sqrt(d2));
                 }
             };
@@ -231,24 +375,34 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
             for (int i = i0; i <= i1; ++i) read_cell(i, j, false);
     }
     const XY org = m_grid.origin();
+    const double max2 = options.max_clearance_m * options.max_clearance_m;
     for (;;) {
         // Distance from the hull's box to the nearest point outside the block read so far.
         const double gap = std::min({i0 > 0 ? lb.minx - (org.x + i0 * cell) : INFINITY,
                                      i1 < nx - 1 ? (org.x + (i1 + 1) * cell) - lb.maxx : INFINITY,
                                      j0 > 0 ? lb.miny - (org.y + j0 * cell) : INFINITY,
                                      j1 < ny - 1 ? (org.y + (j1 + 1) * cell) - lb.maxy : INFINITY});
-        if (gap >= search.best || gap > options.max_clearance_m || !std::isfinite(gap)) break;
+        if (gap * gap >= search.best2 || gap > options.max_clearance_m || !std::isfinite(gap)) break;
         const int ni0 = std::max(0, i0 - 1), ni1 = std::min(nx - 1, i1 + 1);
         const int nj0 = std::max(0, j0 - 1), nj1 = std::min(ny - 1, j1 + 1);
+        // The new ring of cells; a cell farther from the hull's box than the clearance found
+        // so far (or than the limit) cannot hold a nearer segment.
+        auto ring_cell = [&](int i, int j) {
+            const double cd2 = box_dist2(lb, m_grid.cell_box(i, j).grown(1e-6));  // clipping slack
+            if (cd2 < search.best2 && cd2 <= max2) read_cell(i, j, false);
+        };
         for (int j = nj0; j <= nj1; ++j) {
-            const bool edge_row = j < j0 || j > j1;
-            for (int i = ni0; i <= ni1; ++i)
-                if (edge_row || i < i0 || i > i1) read_cell(i, j, false);
+            if (j < j0 || j > j1) {
+                for (int i = ni0; i <= ni1; ++i) ring_cell(i, j);
+            } else {
+                if (ni0 < i0) ring_cell(ni0, j);
+                if (ni1 > i1) ring_cell(ni1, j);
+            }
         }
         i0 = ni0, i1 = ni1, j0 = nj0, j1 = nj1;
     }
-    if (search.best <= options.max_clearance_m) {
-        out.clearance_m = search.best;
+    if (search.found && search.best() <= options.max_clearance_m) {
+        out.clearance_m = search.best();
         out.hull_point = h.to_local(search.hull_pt);
         out.coast_point = h.to_local(search.coast_pt);
     }

@@ -91,18 +91,19 @@ public:
         if (stats.features == 0)
             throw InputError("layer '" + stats.layer + "' in '" + m_file + "' has no features");
         stats.crs = to_wgs84(parts);
+        const std::size_t first_new = m_out.polylines.size();
         for (auto& part : parts) {
             if (part.polygon)
                 add_polygon(part, stats);
             else
                 add_line(part, stats);
         }
-        for (const auto& part : parts)
-            for (const auto& ring : part.rings)
-                for (const auto& p : ring) {
-                    m_out.min = {std::min(m_out.min.lon, p.lon), std::min(m_out.min.lat, p.lat)};
-                    m_out.max = {std::max(m_out.max.lon, p.lon), std::max(m_out.max.lat, p.lat)};
-                }
+        // The extent of what was kept (add_line moves the points out of `parts`).
+        for (std::size_t i = first_new; i < m_out.polylines.size(); ++i)
+            for (const auto& p : m_out.polylines[i].points) {
+                m_out.min = {std::min(m_out.min.lon, p.lon), std::min(m_out.min.lat, p.lat)};
+                m_out.max = {std::max(m_out.max.lon, p.lon), std::max(m_out.max.lat, p.lat)};
+            }
         m_out.layers.push_back(std::move(stats));
     }
 
@@ -156,6 +157,21 @@ private:
         }
     }
 
+    /// "" when every coordinate is a longitude within +-max_lon and a latitude, else
+    /// " (e.g. X, Y in feature N)" naming the first that is not.
+    static std::string first_not_lonlat(const std::vector<RawPart>& parts, double max_lon) {
+        for (const auto& part : parts)
+            for (const auto& ring : part.rings)
+                for (const auto& p : ring)
+                    if (!(std::fabs(p.lon) <= max_lon && std::fabs(p.lat) <= 90.0)) {
+                        char buf[128];
+                        std::snprintf(buf, sizeof buf, " (e.g. %.3f, %.3f in feature %lld)", p.lon, p.lat,
+                                      static_cast<long long>(part.fid));
+                        return buf;
+                    }
+        return "";
+    }
+
     /// Transforms every part to WGS84 lon/lat; returns the CRS description for the stats.
     std::string to_wgs84(std::vector<RawPart>& parts) {
         const OGRSpatialReference* layer_srs = m_layer.GetSpatialRef();
@@ -170,17 +186,10 @@ private:
                 throw UsageError("--source-crs '" + m_options.source_crs + "' is not a CRS GDAL understands");
             description = "none in file; --source-crs " + m_options.source_crs;
         } else {
-            for (const auto& part : parts)
-                for (const auto& ring : part.rings)
-                    for (const auto& p : ring)
-                        if (!(std::fabs(p.lon) <= 180.0 && std::fabs(p.lat) <= 90.0)) {
-                            char buf[128];
-                            std::snprintf(buf, sizeof buf, " (e.g. %.3f, %.3f in feature %lld)", p.lon, p.lat,
-                                          static_cast<long long>(part.fid));
-                            throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file +
-                                             "' has no CRS and its coordinates are not longitude/latitude" + buf +
-                                             "; name its CRS with --source-crs");
-                        }
+            if (const std::string bad = first_not_lonlat(parts, 180.0); !bad.empty())
+                throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file +
+                                 "' has no CRS and its coordinates are not longitude/latitude" + bad +
+                                 "; name its CRS with --source-crs");
             m_out.warnings.push_back("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file +
                                      "' has no CRS; assuming WGS84 longitude/latitude (every coordinate is a valid one)");
             return "none in file; assumed WGS84 lon/lat";
@@ -189,7 +198,16 @@ private:
         OGRSpatialReference wgs84;
         wgs84.SetWellKnownGeogCS("WGS84");
         wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-        if (src.IsGeographic() && src.IsSame(&wgs84)) return description;
+        if (src.IsGeographic() && src.IsSame(&wgs84)) {
+            // GDAL reports WGS84 for every GeoJSON without a "crs" member (RFC 7946), even
+            // when its coordinates are metres: those must not pass as longitude/latitude
+            // (0..360 longitudes are accepted).
+            if (const std::string bad = first_not_lonlat(parts, 360.0); !bad.empty())
+                throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "' has the CRS " +
+                                 description + " but its coordinates are not longitude/latitude" + bad +
+                                 "; give the file its real CRS (e.g. convert it with ogr2ogr -s_srs ... -t_srs EPSG:4326)");
+            return description;
+        }
         std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> ct(OGRCreateCoordinateTransformation(&src, &wgs84));
         if (!ct)
             throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "': no transformation from " +

@@ -45,16 +45,16 @@ GeomPtr make_linestring(const GeosContext& ctx, const XY* pts, std::size_t n) {
 
 GeomPtr make_polygon(const GeosContext& ctx, const std::vector<std::vector<XY>>& rings) {
     if (rings.empty()) return own(ctx, GEOSGeom_createEmptyPolygon_r(ctx), "creating an empty polygon");
-    GEOSGeometry* shell = GEOSGeom_createLinearRing_r(ctx, make_seq(ctx, rings[0].data(), rings[0].size()));
-    if (!shell) throw LibraryError("creating a ring failed in GEOS: " + ctx.last_message());
+    // Rings are owned here until the polygon takes them.
+    std::vector<GeomPtr> owned;
+    for (const auto& ring : rings)
+        owned.push_back(own(ctx, GEOSGeom_createLinearRing_r(ctx, make_seq(ctx, ring.data(), ring.size())), "creating a ring"));
     std::vector<GEOSGeometry*> holes;
-    for (std::size_t i = 1; i < rings.size(); ++i) {
-        GEOSGeometry* h = GEOSGeom_createLinearRing_r(ctx, make_seq(ctx, rings[i].data(), rings[i].size()));
-        if (!h) throw LibraryError("creating a ring failed in GEOS: " + ctx.last_message());
-        holes.push_back(h);
-    }
-    return own(ctx, GEOSGeom_createPolygon_r(ctx, shell, holes.data(), static_cast<unsigned>(holes.size())),
-               "creating a polygon");
+    for (std::size_t i = 1; i < owned.size(); ++i) holes.push_back(owned[i].get());
+    GEOSGeometry* poly = GEOSGeom_createPolygon_r(ctx, owned[0].get(), holes.data(), static_cast<unsigned>(holes.size()));
+    if (poly)
+        for (auto& r : owned) static_cast<void>(r.release());  // now owned by the polygon
+    return own(ctx, poly, "creating a polygon");
 }
 
 void collect_lines(const GeosContext& ctx, const GEOSGeometry* g, std::vector<std::vector<XY>>& out) {

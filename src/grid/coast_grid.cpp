@@ -27,9 +27,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-/// Cells are clipped with their rectangle grown by this much (metres), so that a segment
-/// lying exactly on a cell border, which GEOSClipByRect drops, is kept by both neighbours.
-constexpr double clip_slack_m = 1.0 / (1 << 26);
 
 /// Candidate reference points (fractions of a cell), tried in turn until none lies on a segment.
 constexpr double ref_candidates[][2] = {
@@ -166,6 +163,13 @@ CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::
     }
     g.m_nx = static_cast<int>(fnx);
     g.m_ny = static_cast<int>(fny);
+    // Cells are clipped with their rectangle grown by a few units in the last place of the
+    // largest coordinate, so that a segment lying exactly on a cell border (which
+    // GEOSClipByRect drops) is kept by both neighbours, and little else is doubled.
+    const double mag = std::max({std::fabs(g.m_x0), std::fabs(g.m_y0), std::fabs(g.m_x0 + fnx * cell_m),
+                                 std::fabs(g.m_y0 + fny * cell_m)});
+    g.m_clip_slack = std::max(1e-12, 16 * (std::nextafter(mag, INFINITY) - mag));
+    const double clip_slack_m = g.m_clip_slack;
 
     // 1. Walk the data: which cells does each segment touch? Only those are clipped.
     std::vector<Incidence> inc;
@@ -329,7 +333,7 @@ bool CoastGrid::reference_points_clear() const {
 bool operator==(const CoastGrid& a, const CoastGrid& b) {
     return a.m_frame.definition() == b.m_frame.definition() && a.m_cell == b.m_cell && a.m_x0 == b.m_x0 &&
            a.m_y0 == b.m_y0 && a.m_nx == b.m_nx && a.m_ny == b.m_ny && a.m_ref_fx == b.m_ref_fx &&
-           a.m_ref_fy == b.m_ref_fy && a.m_has_land_side == b.m_has_land_side && a.m_slot == b.m_slot &&
+           a.m_ref_fy == b.m_ref_fy && a.m_clip_slack == b.m_clip_slack && a.m_has_land_side == b.m_has_land_side && a.m_slot == b.m_slot &&
            a.m_seg_offset == b.m_seg_offset && a.m_ref_winding == b.m_ref_winding &&
            a.m_seg_info == b.m_seg_info && a.m_segments.size() == b.m_segments.size() &&
            std::equal(a.m_segments.begin(), a.m_segments.end(), b.m_segments.begin(),

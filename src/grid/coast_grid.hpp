@@ -68,6 +68,9 @@ public:
     /// The covered area: everything outside it is "outside" (uncovered, never clear).
     geo::Box extent() const noexcept { return {m_x0, m_y0, m_x0 + m_nx * m_cell, m_y0 + m_ny * m_cell}; }
     bool has_land_side() const noexcept { return m_has_land_side; }
+    /// Cells were clipped with their box grown by this many metres (a few units in the last
+    /// place of the coordinates), so a segment lying on a cell border is kept by both cells.
+    double clip_slack() const noexcept { return m_clip_slack; }
 
     bool valid_cell(int i, int j) const noexcept { return i >= 0 && j >= 0 && i < m_nx && j < m_ny; }
     /// Cell of a point (may be out of range: check valid_cell).
@@ -118,6 +121,7 @@ private:
     double m_cell = 0;
     double m_x0 = 0, m_y0 = 0;
     int m_nx = 0, m_ny = 0;
+    double m_clip_slack = 0;
     double m_ref_fx = 0, m_ref_fy = 0;  ///< reference point of a cell, as fractions of the cell
     bool m_has_land_side = false;
     std::vector<std::uint32_t> m_slot;        ///< per cell: water_slot, land_slot or coast index

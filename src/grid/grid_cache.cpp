@@ -134,6 +134,7 @@ std::vector<char> GridFile::serialize(const CoastGrid& g) {
     w.pod<std::int32_t>(g.m_ny);
     w.pod(g.m_ref_fx);
     w.pod(g.m_ref_fy);
+    w.pod(g.m_clip_slack);
     w.pod<std::uint8_t>(g.m_has_land_side ? 1 : 0);
     w.str(g.m_frame.definition());
     const GridSource& s = g.m_source;
@@ -201,6 +202,7 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     const auto ny = r.pod<std::int32_t>();
     const auto fx = r.pod<double>();
     const auto fy = r.pod<double>();
+    const auto slack = r.pod<double>();
     const bool land = r.pod<std::uint8_t>() != 0;
     const std::string frame_def = r.str();
     CoastGrid g(geo::LocalFrame::from_definition(frame_def));
@@ -211,6 +213,7 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     g.m_ny = ny;
     g.m_ref_fx = fx;
     g.m_ref_fy = fy;
+    g.m_clip_slack = slack;
     g.m_has_land_side = land;
     GridSource& s = g.m_source;
     s.inputs = r.strings();

@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""Regenerates the QGIS layer styles shoal writes beside its reports (src/report/styles/*.qml).
+
+They are made with QGIS's own API, so that QGIS reads them back as written. Run with Debian's
+python3-qgis (QGIS 3.22): QT_QPA_PLATFORM=offscreen /usr/bin/python3 scripts/make-qgis-styles.py
+The .qml files are committed; the build embeds them. Field names are the report's (see
+schemas/report.schema.json and docs/user-guide.md).
+"""
+import os
+import sys
+import tempfile
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+os.environ.setdefault("XDG_RUNTIME_DIR", tempfile.mkdtemp(prefix="xdg-"))
+from qgis.core import (QgsApplication, QgsVectorLayer, QgsSymbol, QgsRendererCategory,
+                       QgsCategorizedSymbolRenderer, QgsRuleBasedRenderer, QgsPalLayerSettings,
+                       QgsVectorLayerSimpleLabeling, QgsTextFormat, QgsTextBufferSettings,
+                       QgsMarkerSymbol, QgsLineSymbol, QgsFillSymbol, QgsWkbTypes)
+from qgis.PyQt.QtGui import QColor, QFont
+
+out_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src", "report", "styles")
+app = QgsApplication([], False)
+app.initQgis()
+
+RED, AMBER, GREEN, GREY = "#e31a1c", "#ff9f00", "#33a02c", "#6a7f95"
+
+
+def labels(field, placement):
+    s = QgsPalLayerSettings()
+    s.fieldName = field
+    s.placement = placement
+    fmt = QgsTextFormat()
+    fmt.setFont(QFont("Sans Serif", 9))
+    fmt.setSize(9)
+    buf = QgsTextBufferSettings()
+    buf.setEnabled(True)
+    buf.setSize(1)
+    buf.setColor(QColor("white"))
+    fmt.setBuffer(buf)
+    s.setFormat(fmt)
+    return QgsVectorLayerSimpleLabeling(s)
+
+
+def save(layer, name):
+    path = os.path.join(out_dir, name + ".qml")
+    msg, ok = layer.saveNamedStyle(path)
+    if not ok:
+        sys.exit(f"saving {path}: {msg}")
+    print("wrote", os.path.relpath(path))
+
+
+# events: points, red groundings, amber close passes, labelled with the time of first contact
+events = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=label:string", "events", "memory")
+cats = []
+for value, colour, shape, label in (("grounding", RED, "circle", "grounding"),
+                                    ("close_pass", AMBER, "triangle", "close pass")):
+    sym = QgsMarkerSymbol.createSimple({"name": shape, "color": colour, "outline_color": "#000000",
+                                        "outline_width": "0.4", "size": "4.2"})
+    cats.append(QgsRendererCategory(value, sym, label))
+events.setRenderer(QgsCategorizedSymbolRenderer("kind", cats))
+events.setLabeling(labels("label", QgsPalLayerSettings.OverPoint))
+events.setLabelsEnabled(True)
+save(events, "events")
+
+# hulls: the hull footprint at each event, outlined in the event's colour
+hulls = QgsVectorLayer("Polygon?crs=EPSG:4326&field=kind:string&field=label:string", "hulls", "memory")
+cats = []
+for value, colour, fill, label in (("grounding", RED, "227,26,28,60", "hull aground"),
+                                   ("close_pass", AMBER, "255,159,0,60", "hull at closest pass")):
+    sym = QgsFillSymbol.createSimple({"color": fill, "outline_color": colour, "outline_width": "0.6",
+                                      "style": "solid"})
+    cats.append(QgsRendererCategory(value, sym, label))
+hulls.setRenderer(QgsCategorizedSymbolRenderer("kind", cats))
+save(hulls, "hulls")
+
+# tracks: coloured by least clearance (NULL: never within the search limit)
+tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double", "tracks", "memory")
+root = QgsRuleBasedRenderer.Rule(None)
+for expr, colour, label in (('"min_clearance_m" = 0', RED, "aground"),
+                            ('"min_clearance_m" > 0 AND "min_clearance_m" < 50', AMBER, "closer than 50 m"),
+                            ('"min_clearance_m" >= 50 AND "min_clearance_m" < 200', GREEN, "50 to 200 m"),
+                            ("ELSE", GREY, "200 m or more")):
+    sym = QgsLineSymbol.createSimple({"line_color": colour, "line_width": "0.7"})
+    rule = QgsRuleBasedRenderer.Rule(sym, 0, 0, "" if expr == "ELSE" else expr, label)
+    if expr == "ELSE":
+        rule.setIsElse(True)
+    root.appendChild(rule)
+tracks.setRenderer(QgsRuleBasedRenderer(root))
+tracks.setLabeling(labels("track", QgsPalLayerSettings.Line))
+tracks.setLabelsEnabled(True)
+save(tracks, "tracks")
+app.exitQgis()

@@ -1,0 +1,173 @@
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <random>
+
+#include "report/qgis_styles.hpp"
+#include "report/report.hpp"
+#include "util/error.hpp"
+
+namespace shoal::report {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void add_field(OGRLayer& layer, const char* name, OGRFieldType type) {
+    OGRFieldDefn f(name, type);
+    if (layer.CreateField(&f) != OGRERR_NONE)
+        throw LibraryError(std::string("creating GeoPackage field ") + name + ": " + CPLGetLastErrorMsg());
+}
+
+OGRLayer& make_layer(GDALDataset& ds, const char* name, OGRwkbGeometryType type, OGRSpatialReference& srs) {
+    OGRLayer* l = ds.CreateLayer(name, &srs, type, nullptr);
+    if (!l) throw LibraryError(std::string("creating GeoPackage layer ") + name + ": " + CPLGetLastErrorMsg());
+    return *l;
+}
+
+void put(OGRLayer& layer, OGRFeature& f) {
+    if (layer.CreateFeature(&f) != OGRERR_NONE)
+        throw LibraryError(std::string("writing a feature to layer ") + layer.GetName() + ": " + CPLGetLastErrorMsg());
+}
+
+double finite_or_null(OGRFeature& f, const char* field, double v) {
+    if (std::isfinite(v)) f.SetField(field, v);
+    else f.SetFieldNull(f.GetFieldIndex(field));
+    return v;
+}
+
+void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
+    OGRSpatialReference wgs84;
+    wgs84.importFromEPSG(4326);
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+
+    OGRLayer& events = make_layer(ds, "events", wkbPoint, wgs84);
+    for (const char* s : {"track", "name", "kind", "start", "end"}) add_field(events, s, OFTString);
+    for (const char* s : {"duration_s", "min_clearance_m", "penetration_m", "ship_lat", "ship_lon", "heading"}) add_field(events, s, OFTReal);
+    add_field(events, "heading_source", OFTString);
+    add_field(events, "fix_index", OFTInteger64);
+    add_field(events, "fix_line", OFTInteger64);
+    add_field(events, "file", OFTString);
+    add_field(events, "hull", OFTString);
+    add_field(events, "label", OFTString);
+
+    OGRLayer& tracks = make_layer(ds, "tracks", wkbMultiLineString, wgs84);
+    for (const char* s : {"track", "name", "file", "hull"}) add_field(tracks, s, OFTString);
+    for (const char* s : {"fixes", "skipped_rows", "uncovered_fixes", "segments", "groundings", "close_passes"}) add_field(tracks, s, OFTInteger64);
+    add_field(tracks, "min_clearance_m", OFTReal);
+    add_field(tracks, "distance_km", OFTReal);
+    add_field(tracks, "start", OFTString);
+    add_field(tracks, "end", OFTString);
+
+    OGRLayer& hulls = make_layer(ds, "hulls", wkbPolygon, wgs84);
+    for (const char* s : {"track", "kind", "start", "label"}) add_field(hulls, s, OFTString);
+
+    std::map<std::string, std::size_t> skipped_by_file;
+    for (const auto& f : r.files) skipped_by_file[f.file] = f.read.skipped;
+
+    if (ds.StartTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage transaction failed");
+    for (const auto& t : r.tracks) {
+        const auto& s = t.summary;
+        OGRFeature tf(tracks.GetLayerDefn());
+        tf.SetField("track", s.id.c_str());
+        tf.SetField("name", s.name.c_str());
+        tf.SetField("file", s.file.c_str());
+        tf.SetField("hull", s.hull.c_str());
+        tf.SetField("fixes", static_cast<GIntBig>(s.fixes));
+        tf.SetField("skipped_rows", static_cast<GIntBig>(skipped_by_file[s.file]));
+        tf.SetField("uncovered_fixes", static_cast<GIntBig>(s.uncovered_fixes));
+        tf.SetField("segments", static_cast<GIntBig>(s.segments));
+        tf.SetField("groundings", static_cast<GIntBig>(s.groundings));
+        tf.SetField("close_passes", static_cast<GIntBig>(s.close_passes));
+        finite_or_null(tf, "min_clearance_m", s.min_clearance_m);
+        tf.SetField("distance_km", s.distance_m / 1000);
+        tf.SetField("start", iso_time(s.start_s).c_str());
+        tf.SetField("end", iso_time(s.end_s).c_str());
+        OGRMultiLineString ml;
+        for (const auto& piece : s.lines) {
+            OGRLineString ls;
+            for (const auto& p : piece) ls.addPoint(p.lon, p.lat);
+            if (ls.getNumPoints() == 1) ls.addPoint(piece[0].lon, piece[0].lat);
+            ml.addGeometry(&ls);
+        }
+        tf.SetGeometry(&ml);
+        put(tracks, tf);
+
+        for (const auto& e : t.events) {
+            OGRFeature ef(events.GetLayerDefn());
+            const std::string label = std::string(e.kind == audit::EventKind::grounding ? "aground " : "close ") + iso_time(e.start_s).substr(11);
+            ef.SetField("track", s.id.c_str());
+            ef.SetField("name", s.name.c_str());
+            ef.SetField("kind", audit::to_string(e.kind));
+            ef.SetField("start", iso_time(e.start_s).c_str());
+            ef.SetField("end", iso_time(e.end_s).c_str());
+            ef.SetField("duration_s", e.end_s - e.start_s);
+            finite_or_null(ef, "min_clearance_m", e.min_clearance_m);
+            if (e.kind == audit::EventKind::grounding) ef.SetField("penetration_m", e.penetration_m);
+            else ef.SetFieldNull(ef.GetFieldIndex("penetration_m"));
+            ef.SetField("ship_lat", e.ship.lat);
+            ef.SetField("ship_lon", e.ship.lon);
+            ef.SetField("heading", e.heading_deg);
+            ef.SetField("heading_source", track::to_string(e.heading_source));
+            ef.SetField("fix_index", static_cast<GIntBig>(e.fix_index));
+            ef.SetField("fix_line", static_cast<GIntBig>(e.fix_line));
+            ef.SetField("file", s.file.c_str());
+            ef.SetField("hull", s.hull.c_str());
+            ef.SetField("label", label.c_str());
+            OGRPoint pt(e.point.lon, e.point.lat);
+            ef.SetGeometry(&pt);
+            put(events, ef);
+
+            OGRFeature hf(hulls.GetLayerDefn());
+            hf.SetField("track", s.id.c_str());
+            hf.SetField("kind", audit::to_string(e.kind));
+            hf.SetField("start", iso_time(e.start_s).c_str());
+            hf.SetField("label", label.c_str());
+            OGRLinearRing ring;
+            for (const auto& p : e.hull) ring.addPoint(p.lon, p.lat);
+            OGRPolygon poly;
+            poly.addRing(&ring);
+            hf.SetGeometry(&poly);
+            put(hulls, hf);
+        }
+    }
+    if (ds.CommitTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage commit failed: " + std::string(CPLGetLastErrorMsg()));
+}
+
+}  // namespace
+
+void write_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& /*info*/) {
+    GDALAllRegister();
+    const fs::path target(path);
+    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw InputError("cannot write '" + path + "': folder '" + dir.string() + "' does not exist");
+    std::random_device rd;
+    const fs::path tmp = dir / ("." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd()) + ".gpkg");
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
+    if (!drv) throw LibraryError("GDAL has no GPKG driver");
+    // A fixed "current date" in the GeoPackage's metadata tables: the same run writes the
+    // same bytes (whatever --jobs is).
+    CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
+    try {
+        GDALDatasetUniquePtr ds(drv->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+        if (!ds) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
+        write_layers(*ds, result);
+        add_layer_styles(*ds);
+        CPLErrorReset();
+        ds.reset();  // GDALClose: flushes and closes the SQLite file
+        if (CPLGetLastErrorType() == CE_Failure) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
+    } catch (...) {
+        fs::remove(tmp, ec);
+        throw;
+    }
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw InputError("cannot write '" + path + "': " + ec.message());
+    }
+}
+
+}  // namespace shoal::report

@@ -1,0 +1,65 @@
+#include "report/qgis_styles.hpp"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <filesystem>
+
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+namespace shoal::report {
+
+namespace detail {
+std::string_view style_qml(std::string_view name);  // qgis_styles_data.cpp, generated
+}
+
+std::string_view layer_style(std::string_view layer) { return detail::style_qml(layer); }
+
+void write_sidecar_style(const std::string& geojson_path, std::string_view layer) {
+    std::filesystem::path p(geojson_path);
+    p.replace_extension(".qml");
+    write_file_atomically(p.string(), layer_style(layer));
+}
+
+namespace {
+
+std::string quote(std::string_view s) {
+    std::string out = "'";
+    for (char c : s) {
+        if (c == '\'') out += '\'';
+        out += c;
+    }
+    return out + "'";
+}
+
+void exec(GDALDataset& ds, const std::string& sql) {
+    CPLErrorReset();
+    OGRLayer* result = ds.ExecuteSQL(sql.c_str(), nullptr, nullptr);
+    if (result) ds.ReleaseResultSet(result);
+    if (CPLGetLastErrorType() == CE_Failure)
+        throw LibraryError("writing QGIS styles into the GeoPackage: " + std::string(CPLGetLastErrorMsg()));
+}
+
+}  // namespace
+
+void add_layer_styles(GDALDataset& ds) {
+    // The table QGIS reads (and writes) styles from; QGIS 3.22 matches f_table_schema = '',
+    // f_table_name and f_geometry_column exactly, preferring useAsDefault then update_time.
+    exec(ds,
+         "CREATE TABLE layer_styles (id INTEGER PRIMARY KEY AUTOINCREMENT, f_table_catalog TEXT(256), "
+         "f_table_schema TEXT(256), f_table_name TEXT(256), f_geometry_column TEXT(256), styleName TEXT(30), "
+         "styleQML TEXT, styleSLD TEXT, useAsDefault BOOLEAN, description TEXT, owner TEXT(30), ui TEXT(30), "
+         "update_time DATETIME DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ','now')))");
+    for (const char* layer : {"events", "tracks", "hulls"}) {
+        OGRLayer* l = ds.GetLayerByName(layer);
+        if (!l) continue;
+        const char* geom = l->GetGeometryColumn();
+        exec(ds, "INSERT INTO layer_styles (f_table_catalog, f_table_schema, f_table_name, f_geometry_column, styleName, "
+                 "styleQML, styleSLD, useAsDefault, description, owner, ui, update_time) VALUES ('', '', " +
+                     quote(layer) + ", " + quote(geom && *geom ? geom : "geom") + ", " + quote(std::string("shoal ") + layer) +
+                     ", " + quote(layer_style(layer)) + ", '', 1, 'shoal report style', '', NULL, '2026-01-01T00:00:00.000Z')");
+    }
+}
+
+}  // namespace shoal::report

@@ -1,0 +1,394 @@
+#include "track/csv_reader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <initializer_list>
+#include <unordered_map>
+
+#include "track/parse_util.hpp"
+#include "track/time.hpp"
+#include "util/error.hpp"
+
+namespace shoal::track {
+
+using detail::trim;
+
+// ---------------------------------------------------------------------------------------------
+// Splitting
+
+namespace {
+
+char detect_separator(std::string_view text) {
+    std::size_t commas = 0, semicolons = 0, tabs = 0;
+    bool quoted = false;
+    for (const char c : text) {
+        if (c == '"') quoted = !quoted;
+        if (quoted) continue;
+        if (c == '\n') break;
+        commas += c == ',';
+        semicolons += c == ';';
+        tabs += c == '\t';
+    }
+    if (commas == 0 && semicolons == 0 && tabs == 0) return '\0';
+    if (commas >= semicolons && commas >= tabs) return ',';
+    return semicolons >= tabs ? ';' : '\t';
+}
+
+}  // namespace
+
+CsvSplitter::CsvSplitter(std::string_view text) : m_text(text) {
+    if (m_text.substr(0, 3) == "\xEF\xBB\xBF") m_text.remove_prefix(3);
+    m_sep = detect_separator(m_text);
+}
+
+bool CsvSplitter::next(std::vector<std::string_view>& fields) {
+    const std::string_view t = m_text;
+    const std::size_t n = t.size();
+    const char sep = m_sep ? m_sep : ',';
+    m_unescaped.clear();
+    while (m_pos < n) {
+        fields.clear();
+        m_record_line = m_line;
+        for (;;) {
+            while (m_pos < n && t[m_pos] == ' ' && sep != ' ') ++m_pos;
+            if (m_pos < n && t[m_pos] == '"') {
+                const std::size_t start = ++m_pos;
+                bool escaped = false;
+                std::size_t end = n;
+                while (m_pos < n) {
+                    const char c = t[m_pos];
+                    if (c == '\n') ++m_line;
+                    if (c == '"') {
+                        if (m_pos + 1 < n && t[m_pos + 1] == '"') {
+                            escaped = true;
+                            m_pos += 2;
+                            continue;
+                        }
+                        end = m_pos++;
+                        break;
+                    }
+                    ++m_pos;
+                }
+                std::string_view value = t.substr(start, end - start);
+                if (escaped) {
+                    std::string& s = m_unescaped.emplace_back();
+                    s.reserve(value.size());
+                    for (std::size_t i = 0; i < value.size(); ++i) {
+                        s += value[i];
+                        if (value[i] == '"') ++i;  // "" -> "
+                    }
+                    value = s;
+                }
+                fields.push_back(value);
+                while (m_pos < n && t[m_pos] != sep && t[m_pos] != '\n') ++m_pos;  // text after the quote
+            } else {
+                const std::size_t start = m_pos;
+                while (m_pos < n && t[m_pos] != sep && t[m_pos] != '\n') ++m_pos;
+                fields.push_back(trim(t.substr(start, m_pos - start)));
+            }
+            if (m_pos >= n) break;
+            if (t[m_pos] == sep) {
+                ++m_pos;
+                continue;
+            }
+            ++m_pos;  // '\n'
+            ++m_line;
+            break;
+        }
+        if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
+        return true;
+    }
+    return false;
+}
+
+std::string normalise_column_name(std::string_view name) {
+    name = trim(name);
+    while (!name.empty() && (name.front() == '#' || name.front() == ' ')) name.remove_prefix(1);
+    std::string out(name);
+    for (char& c : out)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return out;
+}
+
+std::string to_utf8(std::string_view text) {
+    // Validate UTF-8 (no overlongs or surrogates needed for this purpose: structure only).
+    bool valid = true;
+    for (std::size_t i = 0; i < text.size() && valid;) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        std::size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+        if (len == 0 || (len == 2 && c < 0xC2) || i + len > text.size()) {
+            valid = false;
+            break;
+        }
+        for (std::size_t k = 1; k < len; ++k)
+            if ((static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80) valid = false;
+        i += len;
+    }
+    if (valid) return std::string(text);
+    std::string out;
+    out.reserve(text.size() * 2);
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c < 0x80) {
+            out += ch;
+        } else {
+            out += static_cast<char>(0xC0 | (c >> 6));
+            out += static_cast<char>(0x80 | (c & 0x3F));
+        }
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tracks
+
+namespace {
+
+constexpr std::size_t absent = static_cast<std::size_t>(-1);
+
+struct Columns {
+    std::size_t id = absent, name = absent, time = absent, lat = absent, lon = absent;
+    std::size_t heading = absent, cog = absent, sog = absent;
+    std::array<std::size_t, 4> dims{absent, absent, absent, absent};
+    std::size_t draught = absent, mobile_type = absent;
+    std::size_t required = 0;  ///< fields a row needs: 1 + the largest required index
+};
+
+std::size_t find_column(const std::vector<std::string>& names, std::initializer_list<std::string_view> candidates) {
+    for (const std::string_view c : candidates)
+        for (std::size_t i = 0; i < names.size(); ++i)
+            if (names[i] == c) return i;
+    return absent;
+}
+
+std::string join(const std::vector<std::string_view>& fields) {
+    std::string s;
+    for (std::size_t i = 0; i < fields.size() && i < 30; ++i) s += (i ? "," : "") + std::string(fields[i]);
+    return s;
+}
+
+Columns map_columns(const std::vector<std::string_view>& header, const std::string& file) {
+    std::vector<std::string> names;
+    names.reserve(header.size());
+    for (const auto h : header) names.push_back(normalise_column_name(h));
+    Columns c;
+    c.id = find_column(names, {"track_id", "id", "mmsi", "vessel", "vessel_id"});
+    c.name = find_column(names, {"vesselname", "vessel_name", "name", "shipname", "ship_name"});
+    if (c.id == absent) c.id = c.name;
+    c.time = find_column(names, {"time", "timestamp", "basedatetime", "time_utc", "datetime", "date_time", "utc"});
+    c.lat = find_column(names, {"lat", "latitude"});
+    c.lon = find_column(names, {"lon", "lng", "long", "longitude"});
+    c.heading = find_column(names, {"heading", "hdg", "heading_deg", "true_heading", "trueheading"});
+    c.cog = find_column(names, {"cog", "course", "cog_deg"});
+    c.sog = find_column(names, {"sog", "speed", "sog_kn", "sog_knots"});
+    c.dims = {find_column(names, {"a", "to_bow_m", "to_bow"}), find_column(names, {"b", "to_stern_m", "to_stern"}),
+              find_column(names, {"c", "to_port_m", "to_port"}), find_column(names, {"d", "to_stbd_m", "to_stbd", "to_starboard_m"})};
+    if (std::find(c.dims.begin(), c.dims.end(), absent) != c.dims.end()) c.dims = {absent, absent, absent, absent};
+    c.draught = find_column(names, {"draught", "draught_m", "draft", "draft_m"});
+    c.mobile_type = find_column(names, {"type of mobile"});
+
+    std::string missing;
+    if (c.time == absent) missing = "time (time, timestamp, basedatetime, time_utc, datetime)";
+    else if (c.lat == absent) missing = "latitude (lat, latitude)";
+    else if (c.lon == absent) missing = "longitude (lon, lng, long, longitude)";
+    if (!missing.empty())
+        throw InputError(file +
+                         ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183): "
+                         "the header has no " + missing + " column; header: " + join(header));
+    c.required = 1 + std::max({c.time, c.lat, c.lon, c.id == absent ? 0 : c.id});
+    return c;
+}
+
+struct SvHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
+};
+
+/// A fix waiting for a date: its time of day and day number.
+struct Pending {
+    std::size_t track, fix;
+    std::int64_t day;
+    double tod;
+};
+
+class CsvTrackReader {
+public:
+    CsvTrackReader(std::string_view text, const std::string& file, const ReadOptions& options)
+        : m_split(text), m_file(file), m_options(options) {
+        m_out.format = "csv";
+        m_out.report.max_messages = options.max_messages;
+    }
+
+    TrackFile read() {
+        std::vector<std::string_view> f;
+        if (m_split.separator() == '\0' || !m_split.next(f))
+            throw InputError(m_file + ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183)" +
+                             (m_split.separator() == '\0' ? ": the first line has no ',', ';' or tab" : ""));
+        m_cols = map_columns(f, m_file);
+        m_decimal_comma = m_split.separator() != ',';
+        while (m_split.next(f)) row(f);
+        date_pending();
+        for (Track& t : m_out.tracks) normalise(t, m_out.report);
+        return std::move(m_out);
+    }
+
+private:
+    void skip(const std::string& what) {
+        m_out.report.skip(m_file + " line " + std::to_string(m_split.line()) + ": " + what + "; row skipped");
+    }
+
+    double number(const std::vector<std::string_view>& f, std::size_t col) const {
+        double v = NAN;
+        if (col >= f.size() || !detail::parse_double(f[col], v, m_decimal_comma)) return NAN;
+        return v;
+    }
+
+    std::size_t track_for(std::string_view id) {
+        if (m_last_track != absent && id == m_last_id) return m_last_track;
+        auto it = m_index.find(id);
+        std::size_t idx;
+        if (it == m_index.end()) {
+            idx = m_out.tracks.size();
+            Track& t = m_out.tracks.emplace_back();
+            t.id = m_cols.id == absent ? detail::file_stem(m_file) : to_utf8(id);
+            t.file = m_file;
+            m_index.emplace(std::string(id), idx);
+        } else {
+            idx = it->second;
+        }
+        m_last_id.assign(id);
+        m_last_track = idx;
+        return idx;
+    }
+
+    void vessel_data(Track& t, const std::vector<std::string_view>& f) {
+        if (m_cols.name != absent && t.name.empty() && m_cols.name < f.size() && !f[m_cols.name].empty())
+            t.name = to_utf8(f[m_cols.name]);
+        if (m_cols.dims[0] != absent && !t.dims) {
+            std::array<double, 4> d{};
+            bool ok = true;
+            for (std::size_t k = 0; k < 4; ++k) {
+                d[k] = number(f, m_cols.dims[k]);
+                ok = ok && std::isfinite(d[k]) && d[k] > 0.0;
+            }
+            if (ok) t.dims = hull::Dimensions{d[0], d[1], d[2], d[3]};
+        }
+        if (m_cols.draught != absent && std::isnan(t.draught_m)) {
+            const double v = number(f, m_cols.draught);
+            if (std::isfinite(v) && v > 0.0) t.draught_m = v;
+        }
+    }
+
+    void row(const std::vector<std::string_view>& f) {
+        ++m_out.report.rows;
+        if (f.size() < m_cols.required) {
+            skip("has " + std::to_string(f.size()) + " fields, the header needs " + std::to_string(m_cols.required));
+            return;
+        }
+        if (m_cols.mobile_type != absent && m_cols.mobile_type < f.size()) {
+            const std::string_view type = f[m_cols.mobile_type];
+            if (type == "Base Station" || type == "AtoN") {
+                skip("not a vessel (Type of mobile " + detail::quoted(type) + ")");
+                return;
+            }
+        }
+        const std::string_view id = m_cols.id == absent ? std::string_view{} : f[m_cols.id];
+        if (m_cols.id != absent && id.empty()) {
+            skip("no vessel id");
+            return;
+        }
+        const std::string_view time_text = f[m_cols.time];
+        if (time_text.empty()) {
+            skip("no time");
+            return;
+        }
+        const auto time = parse_time(time_text);
+        if (!time) {
+            skip("time " + detail::quoted(time_text) +
+                 " is not a valid time (ISO 8601, epoch seconds, dd/mm/yyyy hh:mm:ss or hh:mm:ss)");
+            return;
+        }
+        Fix fix;
+        if (!detail::parse_double(f[m_cols.lat], fix.position.lat, m_decimal_comma)) {
+            skip(f[m_cols.lat].empty() ? "no latitude" : "latitude " + detail::quoted(f[m_cols.lat]) + " is not a number");
+            return;
+        }
+        if (!detail::parse_double(f[m_cols.lon], fix.position.lon, m_decimal_comma)) {
+            skip(f[m_cols.lon].empty() ? "no longitude" : "longitude " + detail::quoted(f[m_cols.lon]) + " is not a number");
+            return;
+        }
+        if (std::string what; detail::position_problem(fix.position.lat, fix.position.lon, what)) {
+            skip(what);
+            return;
+        }
+        if (m_cols.heading != absent) fix.heading_deg = detail::valid_heading(number(f, m_cols.heading));
+        if (m_cols.cog != absent) fix.cog_deg = detail::valid_cog(number(f, m_cols.cog));
+        if (m_cols.sog != absent) fix.sog_kn = detail::valid_sog(number(f, m_cols.sog));
+        fix.line = m_split.line();
+
+        const std::size_t ti = track_for(id);
+        Track& t = m_out.tracks[ti];
+        vessel_data(t, f);
+        if (m_clocks.size() <= ti) m_clocks.resize(ti + 1);
+        DayClock& clock = m_clocks[ti];
+        if (!time->date_missing) {
+            clock.date_seen(time->seconds);
+            if (std::isnan(m_first_date)) m_first_date = day_start(time->seconds);
+            fix.time_s = time->seconds;
+        } else {
+            const std::int64_t day = clock.day_of(time->seconds);
+            if (clock.has_date())
+                fix.time_s = clock.resolve(day, time->seconds);
+            else
+                m_pending.push_back({ti, t.fixes.size(), day, time->seconds});
+        }
+        t.fixes.push_back(fix);
+    }
+
+    /// Times of day met before their vessel's first dated row take that row's date; a vessel
+    /// without dated rows takes the file's first date, else ReadOptions::date_s, else 1970-01-01.
+    void date_pending() {
+        if (m_pending.empty()) return;
+        double fallback = m_first_date;
+        if (std::isnan(fallback)) {
+            if (m_options.date_s) {
+                fallback = day_start(*m_options.date_s);
+            } else {
+                fallback = 0.0;
+                m_out.report.messages.push_back(
+                    m_file + ": times are times of day only and the file has no date; they are dated 1970-01-01 "
+                             "(give the date to place them)");
+            }
+        }
+        for (const Pending& p : m_pending)
+            m_out.tracks[p.track].fixes[p.fix].time_s = m_clocks[p.track].resolve_early(p.day, p.tod, fallback);
+    }
+
+    CsvSplitter m_split;
+    const std::string& m_file;
+    const ReadOptions& m_options;
+    Columns m_cols;
+    bool m_decimal_comma = false;
+    TrackFile m_out;
+    std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;
+    std::string m_last_id;
+    std::size_t m_last_track = absent;
+    std::vector<DayClock> m_clocks;  ///< per track: rows of one vessel come from one recording
+    double m_first_date = NAN;       ///< midnight of the file's first dated row
+    std::vector<Pending> m_pending;
+};
+
+}  // namespace
+
+TrackFile read_csv_text(std::string_view text, const std::string& file, const ReadOptions& options) {
+    return CsvTrackReader(text, file, options).read();
+}
+
+TrackFile read_csv(const std::string& path, const ReadOptions& options) {
+    const std::string text = read_file(path);
+    return read_csv_text(text, path, options);
+}
+
+}  // namespace shoal::track

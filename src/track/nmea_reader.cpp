@@ -1,0 +1,351 @@
+#include "track/nmea_reader.hpp"
+
+#include <charconv>
+#include <cstdint>
+#include <vector>
+
+#include "track/parse_util.hpp"
+#include "track/time.hpp"
+
+namespace shoal::track {
+
+namespace {
+
+constexpr double kmh_per_kn = 1.852;
+
+bool is_alnum_upper(char c) noexcept { return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); }
+
+int hex_value(char c) noexcept {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    return -1;
+}
+
+/// Digits only, as an int.
+bool parse_int(std::string_view s, int& out) noexcept {
+    s = detail::trim(s);
+    if (s.empty()) return false;
+    for (const char c : s)
+        if (c < '0' || c > '9') return false;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+    return ec == std::errc{} && ptr == s.data() + s.size();
+}
+
+/// `hhmmss[.sss]` as seconds since midnight.
+bool parse_hhmmss(std::string_view s, double& tod) noexcept {
+    s = detail::trim(s);
+    int h = 0, m = 0, sec = 0;
+    if (s.size() < 6 || !parse_int(s.substr(0, 2), h) || !parse_int(s.substr(2, 2), m) || !parse_int(s.substr(4, 2), sec))
+        return false;
+    double frac = 0.0;
+    if (s.size() > 6) {
+        if (s[6] != '.') return false;
+        double scale = 0.1;
+        for (const char c : s.substr(7)) {
+            if (c < '0' || c > '9') return false;
+            frac += (c - '0') * scale;
+            scale *= 0.1;
+        }
+    }
+    if (h > 23 || m > 59 || sec > 59) return false;
+    tod = h * 3600.0 + m * 60.0 + sec + frac;
+    return true;
+}
+
+/// `ddmm.mmmm` + `N`/`S` (or `dddmm.mmmm` + `E`/`W`) as signed degrees.
+bool parse_coordinate(std::string_view value, std::string_view hemisphere, bool latitude, double& out) noexcept {
+    double v = 0.0;
+    if (!detail::parse_double(value, v) || !(v >= 0.0)) return false;
+    const double degrees = std::floor(v / 100.0);
+    const double minutes = v - degrees * 100.0;
+    if (minutes >= 60.0 || degrees > (latitude ? 90.0 : 180.0)) return false;
+    out = degrees + minutes / 60.0;
+    hemisphere = detail::trim(hemisphere);
+    if (hemisphere == (latitude ? "S" : "W")) {
+        out = -out;
+    } else if (hemisphere != (latitude ? "N" : "E")) {
+        return false;
+    }
+    return true;
+}
+
+/// Splits the sentence body (between `$` and `*`) at commas.
+void split_fields(std::string_view body, std::vector<std::string_view>& fields) {
+    fields.clear();
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t comma = body.find(',', start);
+        if (comma == std::string_view::npos) {
+            fields.push_back(body.substr(start));
+            return;
+        }
+        fields.push_back(body.substr(start, comma - start));
+        start = comma + 1;
+    }
+}
+
+class NmeaReader {
+public:
+    NmeaReader(std::string_view text, const std::string& file, const ReadOptions& options)
+        : m_text(text), m_file(file), m_options(options) {
+        m_out.format = "nmea";
+        m_out.report.max_messages = options.max_messages;
+        Track& t = m_out.tracks.emplace_back();
+        t.id = detail::file_stem(file);
+        t.file = file;
+    }
+
+    TrackFile read() {
+        std::size_t pos = 0;
+        while (pos < m_text.size()) {
+            std::size_t end = m_text.find('\n', pos);
+            if (end == std::string_view::npos) end = m_text.size();
+            ++m_line;
+            line(detail::trim(m_text.substr(pos, end - pos)));
+            pos = end + 1;
+        }
+        date_pending();
+        normalise(m_out.tracks.front(), m_out.report);
+        return std::move(m_out);
+    }
+
+private:
+    std::vector<Fix>& fixes() { return m_out.tracks.front().fixes; }
+
+    void skip(const std::string& what) {
+        m_out.report.skip(m_file + " line " + std::to_string(m_line) + ": " + what + "; sentence skipped");
+    }
+
+    void line(std::string_view text) {
+        const std::size_t start = text.find_first_of("$!");
+        if (start == std::string_view::npos) return;
+        std::string_view sentence = text.substr(start);
+        ++m_out.report.rows;
+        if (sentence.front() == '!') return;  // AIS: other vessels, not this track
+        std::string_view body = sentence.substr(1);
+        if (const std::size_t star = sentence.find('*'); star != std::string_view::npos) {
+            body = sentence.substr(1, star - 1);
+            const int hi = star + 1 < sentence.size() ? hex_value(sentence[star + 1]) : -1;
+            const int lo = star + 2 < sentence.size() ? hex_value(sentence[star + 2]) : -1;
+            unsigned sum = 0;
+            for (const char c : body) sum ^= static_cast<unsigned char>(c);
+            if (hi < 0 || lo < 0 || static_cast<unsigned>(hi * 16 + lo) != sum) {
+                char expected[3] = {"0123456789ABCDEF"[sum >> 4], "0123456789ABCDEF"[sum & 15], '\0'};
+                skip("bad checksum " + detail::quoted(sentence.substr(star, 3)) + " (computed *" + expected + ")");
+                return;
+            }
+        }
+        split_fields(body, m_f);
+        const std::string_view address = m_f[0];
+        if (address.size() < 5 || address.size() > 6 || address.front() == 'P') return;  // proprietary
+        for (const char c : address)
+            if (!is_alnum_upper(c)) return;
+        const std::string_view type = address.substr(address.size() - 3);
+        if (type == "RMC") rmc();
+        else if (type == "GGA") gga();
+        else if (type == "GLL") gll();
+        else if (type == "HDT") hdt();
+        else if (type == "VTG") vtg();
+        else if (type == "ZDA") zda();
+    }
+
+    std::string_view field(std::size_t i) const noexcept { return i < m_f.size() ? detail::trim(m_f[i]) : std::string_view{}; }
+
+    double number(std::size_t i) const noexcept {
+        double v = NAN;
+        if (!detail::parse_double(field(i), v)) return NAN;
+        return v;
+    }
+
+    /// Latitude from fields i, i+1 and longitude from i+2, i+3; false after a skip message.
+    bool position(std::size_t i, const char* type, geo::LonLat& p) {
+        if (field(i).empty() || field(i + 2).empty()) {
+            skip(std::string(type) + " without a position");
+            return false;
+        }
+        if (!parse_coordinate(field(i), field(i + 1), true, p.lat)) {
+            skip(std::string(type) + " latitude " + detail::quoted(field(i)) + "," + std::string(field(i + 1)) + " is not valid");
+            return false;
+        }
+        if (!parse_coordinate(field(i + 2), field(i + 3), false, p.lon)) {
+            skip(std::string(type) + " longitude " + detail::quoted(field(i + 2)) + "," + std::string(field(i + 3)) +
+                 " is not valid");
+            return false;
+        }
+        return true;
+    }
+
+    bool time_of_day(std::size_t i, const char* type, double& tod) {
+        if (parse_hhmmss(field(i), tod)) return true;
+        skip(field(i).empty() ? std::string(type) + " without a time"
+                              : std::string(type) + " time " + detail::quoted(field(i)) + " is not hhmmss");
+        return false;
+    }
+
+    /// A position at a time of day; `day` from the clock. Same time as the latest fix: one fix.
+    void add_fix(std::int64_t day, double tod, geo::LonLat p, double sog_kn, double cog_deg) {
+        auto& fx = fixes();
+        if (!fx.empty() && day == m_last_day && tod == m_last_tod) {
+            Fix& f = fx.back();
+            if (std::isnan(f.sog_kn)) f.sog_kn = sog_kn;
+            if (std::isnan(f.cog_deg)) f.cog_deg = cog_deg;
+            return;
+        }
+        Fix f;
+        f.position = p;
+        f.sog_kn = sog_kn;
+        f.cog_deg = cog_deg;
+        f.line = m_line;
+        if (m_clock.has_date())
+            f.time_s = m_clock.resolve(day, tod);
+        else
+            m_pending.push_back({fx.size(), day, tod});
+        fx.push_back(f);
+        m_last_day = day;
+        m_last_tod = tod;
+    }
+
+    void rmc() {
+        double tod = 0.0;
+        geo::LonLat p;
+        const std::string_view status = field(2);
+        if (status != "A") {
+            skip("RMC status " + detail::quoted(status) + " (no valid fix)");
+            return;
+        }
+        if (field(12) == "N") {
+            skip("RMC mode N (no valid fix)");
+            return;
+        }
+        if (!time_of_day(1, "RMC", tod) || !position(3, "RMC", p)) return;
+        std::int64_t day = 0;
+        const std::string_view date = field(9);
+        int dd = 0, mm = 0, yy = 0;
+        if (date.size() == 6 && parse_int(date.substr(0, 2), dd) && parse_int(date.substr(2, 2), mm) &&
+            parse_int(date.substr(4, 2), yy) && valid_date(yy < 80 ? 2000 + yy : 1900 + yy, mm, dd)) {
+            const int year = yy < 80 ? 2000 + yy : 1900 + yy;
+            day = m_clock.date_seen(static_cast<double>(days_from_civil(year, mm, dd)) * seconds_per_day + tod);
+        } else {
+            day = m_clock.day_of(tod);
+        }
+        add_fix(day, tod, p, detail::valid_sog(number(7)), detail::valid_cog(number(8)));
+    }
+
+    void gga() {
+        const std::string_view quality = field(6);
+        if (quality.empty() || quality == "0") {
+            skip("GGA fix quality " + detail::quoted(quality) + " (no fix)");
+            return;
+        }
+        double tod = 0.0;
+        geo::LonLat p;
+        if (!time_of_day(1, "GGA", tod) || !position(2, "GGA", p)) return;
+        add_fix(m_clock.day_of(tod), tod, p, NAN, NAN);
+    }
+
+    void gll() {
+        if (field(6) == "V" || field(7) == "N") {
+            skip("GLL status V (no valid fix)");
+            return;
+        }
+        double tod = 0.0;
+        geo::LonLat p;
+        if (!time_of_day(5, "GLL", tod) || !position(1, "GLL", p)) return;
+        add_fix(m_clock.day_of(tod), tod, p, NAN, NAN);
+    }
+
+    void hdt() {
+        const double h = detail::valid_heading(number(1));
+        if (std::isnan(h) || fixes().empty()) return;
+        Fix& f = fixes().back();
+        if (std::isnan(f.heading_deg)) f.heading_deg = h;
+    }
+
+    void vtg() {
+        double cog = NAN, sog = NAN;
+        if (field(2) == "T" || field(2) == "" || field(4) == "M") {  // NMEA 2.x: value,T,value,M,value,N,value,K
+            if (field(9) == "N") return;                              // mode: not valid
+            cog = number(1);
+            sog = number(5);
+            if (std::isnan(sog) && std::isfinite(number(7))) sog = number(7) / kmh_per_kn;
+        } else {  // NMEA 1.5: cog true, cog magnetic, knots, km/h
+            cog = number(1);
+            sog = number(3);
+        }
+        cog = detail::valid_cog(cog);
+        sog = detail::valid_sog(sog);
+        if (fixes().empty()) return;
+        Fix& f = fixes().back();
+        if (std::isnan(f.cog_deg)) f.cog_deg = cog;
+        if (std::isnan(f.sog_kn)) f.sog_kn = sog;
+    }
+
+    void zda() {
+        double tod = 0.0;
+        if (!parse_hhmmss(field(1), tod)) return;  // ZDA gives no fix: nothing to skip
+        int d = 0, m = 0, y = 0;
+        const bool ok = parse_int(field(2), d) && parse_int(field(3), m) && parse_int(field(4), y);
+        if (ok && field(4).size() == 2) y += y < 80 ? 2000 : 1900;  // some devices write a 2-digit year
+        if (ok && valid_date(y, m, d)) {
+            m_clock.date_seen(static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod);
+            return;
+        }
+        m_clock.day_of(tod);
+    }
+
+    void date_pending() {
+        if (m_pending.empty()) return;
+        double fallback = 0.0;
+        if (!m_clock.has_date()) {
+            if (m_options.date_s) {
+                fallback = day_start(*m_options.date_s);
+            } else {
+                m_out.report.messages.push_back(
+                    m_file + ": no date in the log (no RMC or ZDA with a date): times are times of day only, "
+                             "dated 1970-01-01 (give the date to place them)");
+            }
+        }
+        for (const Pending& p : m_pending) fixes()[p.fix].time_s = m_clock.resolve_early(p.day, p.tod, fallback);
+    }
+
+    struct Pending {
+        std::size_t fix;
+        std::int64_t day;
+        double tod;
+    };
+
+    std::string_view m_text;
+    const std::string& m_file;
+    const ReadOptions& m_options;
+    TrackFile m_out;
+    std::size_t m_line = 0;
+    std::vector<std::string_view> m_f;
+    DayClock m_clock;
+    std::vector<Pending> m_pending;
+    std::int64_t m_last_day = 0;
+    double m_last_tod = NAN;
+};
+
+}  // namespace
+
+bool holds_nmea_sentence(std::string_view line) noexcept {
+    for (std::size_t i = line.find_first_of("$!"); i != std::string_view::npos; i = line.find_first_of("$!", i + 1)) {
+        std::size_t k = i + 1;
+        while (k < line.size() && is_alnum_upper(line[k])) ++k;
+        const std::size_t len = k - i - 1;
+        if (len >= 4 && len <= 6 && k < line.size() && line[k] == ',') return true;
+    }
+    return false;
+}
+
+TrackFile read_nmea_text(std::string_view text, const std::string& file, const ReadOptions& options) {
+    return NmeaReader(text, file, options).read();
+}
+
+TrackFile read_nmea(const std::string& path, const ReadOptions& options) {
+    const std::string text = read_file(path);
+    return read_nmea_text(text, path, options);
+}
+
+}  // namespace shoal::track

@@ -1,0 +1,458 @@
+#include "track/ogr_reader.hpp"
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <map>
+#include <mutex>
+#include <unordered_map>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "track/parse_util.hpp"
+#include "track/time.hpp"
+#include "util/error.hpp"
+
+namespace shoal::track {
+
+namespace {
+
+using nlohmann::json;
+
+// ---------------------------------------------------------------------------------------------
+// Shared
+
+/// Tracks of one file by id, in the order ids first appear.
+class TrackSet {
+public:
+    TrackSet(TrackFile& out, const std::string& file) : m_out(out), m_file(file) {}
+    Track& get(const std::string& id, const std::string& name = {}) {
+        auto [it, added] = m_index.try_emplace(id, m_out.tracks.size());
+        if (added) {
+            Track& t = m_out.tracks.emplace_back();
+            t.id = id;
+            t.file = m_file;
+        }
+        Track& t = m_out.tracks[it->second];
+        if (t.name.empty()) t.name = name;
+        return t;
+    }
+
+private:
+    TrackFile& m_out;
+    const std::string& m_file;
+    std::unordered_map<std::string, std::size_t> m_index;
+};
+
+// ---------------------------------------------------------------------------------------------
+// GPX with OGR
+
+void register_drivers() {
+    static std::once_flag once;
+    std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/// Silences GDAL's stderr output for its lifetime; errors are read back with last().
+class QuietErrors {
+public:
+    QuietErrors() {
+        CPLPushErrorHandler(CPLQuietErrorHandler);
+        CPLErrorReset();
+    }
+    ~QuietErrors() { CPLPopErrorHandler(); }
+    QuietErrors(const QuietErrors&) = delete;
+    QuietErrors& operator=(const QuietErrors&) = delete;
+    static std::string last() {
+        const char* m = CPLGetLastErrorMsg();
+        return m && *m ? std::string(m) : std::string("no reason given");
+    }
+};
+
+/// One GPX track or route as OGR numbers it in the `tracks` / `routes` layer.
+struct GpxParent {
+    std::string name;
+    std::size_t timed = 0;
+    std::size_t points = 0;
+};
+
+class GpxReader {
+public:
+    GpxReader(const std::string& path, const ReadOptions& options) : m_file(path), m_set(m_out, m_file) {
+        m_out.format = "gpx";
+        m_out.report.max_messages = options.max_messages;
+    }
+
+    TrackFile read() {
+        register_drivers();
+        QuietErrors quiet;
+        const char* const drivers[] = {"GPX", nullptr};
+        GDALDatasetUniquePtr ds(GDALDataset::Open(m_file.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers));
+        if (!ds) throw InputError(m_file + ": not a GPX file OGR can read (" + QuietErrors::last() + ")");
+        auto tracks = parents(*ds, "tracks");
+        auto routes = parents(*ds, "routes");
+        const bool single = tracks.size() + routes.size() == 1;
+        points(*ds, "track_points", "track_fid", "track", tracks, single);
+        points(*ds, "route_points", "route_fid", "route", routes, single);
+        for (Track& t : m_out.tracks) normalise(t, m_out.report);
+        return std::move(m_out);
+    }
+
+private:
+    static std::map<GIntBig, GpxParent> parents(GDALDataset& ds, const char* layer_name) {
+        std::map<GIntBig, GpxParent> out;
+        OGRLayer* layer = ds.GetLayerByName(layer_name);
+        if (!layer) return out;
+        const int name_field = layer->GetLayerDefn()->GetFieldIndex("name");
+        for (auto& f : *layer)
+            out[f->GetFID()].name = name_field >= 0 && f->IsFieldSetAndNotNull(name_field) ? f->GetFieldAsString(name_field) : "";
+        return out;
+    }
+
+    std::string id_of(const char* kind, GIntBig fid, const GpxParent& parent, bool single) const {
+        if (!parent.name.empty()) return parent.name;
+        if (single) return detail::file_stem(m_file);
+        return detail::file_stem(m_file) + ":" + kind + std::to_string(fid + 1);
+    }
+
+    static std::optional<double> time_of(OGRFeature& f, int field) {
+        if (field < 0 || !f.IsFieldSetAndNotNull(field)) return std::nullopt;
+        int y = 0, mo = 0, d = 0, h = 0, mi = 0, tz = 0;
+        float s = 0.0f;
+        if (!f.GetFieldAsDateTime(field, &y, &mo, &d, &h, &mi, &s, &tz)) return std::nullopt;
+        // OGR keeps seconds as a float: round to the millisecond GPX files write.
+        const double sec = std::round(static_cast<double>(s) * 1000.0) / 1000.0;
+        auto t = utc_seconds(y, mo, d, h, mi, std::min(sec, 59.999));
+        if (!t) return std::nullopt;
+        if (tz > 1) *t -= (tz - 100) * 15.0 * 60.0;  // 100 = UTC, each step 15 minutes east
+        return t;
+    }
+
+    void points(GDALDataset& ds, const char* layer_name, const char* parent_field, const char* kind,
+                std::map<GIntBig, GpxParent>& parents, bool single) {
+        OGRLayer* layer = ds.GetLayerByName(layer_name);
+        if (!layer) return;
+        OGRFeatureDefn* defn = layer->GetLayerDefn();
+        const int fid_field = defn->GetFieldIndex(parent_field);
+        const int time_field = defn->GetFieldIndex("time");
+        const int course_field = defn->GetFieldIndex("course");
+        const int speed_field = defn->GetFieldIndex("speed");
+        for (auto& f : *layer) {
+            ++m_out.report.rows;
+            ++m_point;
+            const GIntBig parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
+            GpxParent& p = parents[parent];
+            ++p.points;
+            const std::string id = id_of(kind, parent, p, single);
+            const std::string where = m_file + " point " + std::to_string(m_point) + " (" + kind + " '" + id + "'): ";
+            const auto t = time_of(*f, time_field);
+            if (!t) {
+                m_out.report.skip(where + "no time; point skipped");
+                continue;
+            }
+            ++p.timed;
+            const OGRGeometry* g = f->GetGeometryRef();
+            if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) {
+                m_out.report.skip(where + "no point geometry; point skipped");
+                continue;
+            }
+            Fix fix;
+            fix.time_s = *t;
+            fix.position = {g->toPoint()->getX(), g->toPoint()->getY()};
+            if (std::string what; detail::position_problem(fix.position.lat, fix.position.lon, what)) {
+                m_out.report.skip(where + what + "; point skipped");
+                continue;
+            }
+            if (course_field >= 0 && f->IsFieldSetAndNotNull(course_field))
+                fix.cog_deg = detail::valid_cog(f->GetFieldAsDouble(course_field));
+            if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field))
+                fix.sog_kn = detail::valid_sog(f->GetFieldAsDouble(speed_field) * 3600.0 / 1852.0);
+            fix.line = m_point;
+            m_set.get(id).fixes.push_back(fix);
+        }
+        for (const auto& [fid, p] : parents)
+            if (p.points > 0 && p.timed == 0)
+                throw InputError(m_file + ": " + kind + " '" + id_of(kind, fid, p, single) + "' (" + kind + " " +
+                                 std::to_string(fid + 1) + ") has no times; shoal needs a time on every point");
+    }
+
+    std::string m_file;
+    TrackFile m_out;
+    TrackSet m_set;
+    std::size_t m_point = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// GeoJSON with nlohmann::json
+
+/// A JSON id value as text: strings as they are, integers without a fraction.
+std::string id_text(const json& v) {
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_number_integer() || v.is_number_unsigned()) return v.dump();
+    if (v.is_number_float()) {
+        const double d = v.get<double>();
+        if (d == std::floor(d) && std::fabs(d) < 1e15) return std::to_string(static_cast<long long>(d));
+        return v.dump();
+    }
+    return {};
+}
+
+const json* member(const json& obj, const char* key) {
+    if (!obj.is_object()) return nullptr;
+    const auto it = obj.find(key);
+    return it == obj.end() || it->is_null() ? nullptr : &*it;
+}
+
+/// Epoch seconds of a JSON time: ISO 8601 (or another form parse_time reads, with a date)
+/// or a number (seconds; milliseconds when > 1e11).
+std::optional<double> json_time(const json& v) {
+    if (v.is_string()) {
+        const auto t = parse_time(v.get_ref<const std::string&>());
+        if (!t || t->date_missing) return std::nullopt;
+        return t->seconds;
+    }
+    if (v.is_number()) {
+        const double d = v.get<double>();
+        if (!std::isfinite(d)) return std::nullopt;
+        return d > 1e11 ? d / 1000.0 : d;
+    }
+    return std::nullopt;
+}
+
+std::string json_text(const json& v) {
+    std::string s = v.dump();
+    return s.size() > 40 ? s.substr(0, 40) + "..." : s;
+}
+
+double json_number(const json& props, const char* key) {
+    const json* v = member(props, key);
+    return v && v->is_number() ? v->get<double>() : NAN;
+}
+
+class GeoJsonReader {
+public:
+    GeoJsonReader(std::string_view text, const std::string& file, const ReadOptions& options)
+        : m_text(text), m_file(file), m_set(m_out, m_file) {
+        m_out.format = "geojson";
+        m_out.report.max_messages = options.max_messages;
+    }
+
+    TrackFile read() {
+        json doc;
+        try {
+            doc = json::parse(m_text.begin(), m_text.end());
+        } catch (const json::parse_error& e) {
+            throw InputError(m_file + ": not valid JSON: " + e.what());
+        }
+        const json* type = member(doc, "type");
+        if (!type || !type->is_string())
+            throw InputError(m_file +
+                             ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183): "
+                             "JSON without a GeoJSON 'type'");
+        check_crs(doc);
+        std::vector<const json*> features;
+        if (*type == "FeatureCollection") {
+            const json* list = member(doc, "features");
+            if (!list || !list->is_array()) throw InputError(m_file + ": FeatureCollection without a 'features' array");
+            for (const json& f : *list) features.push_back(&f);
+        } else if (*type == "Feature") {
+            features.push_back(&doc);
+        } else {
+            throw InputError(m_file + ": a bare " + type->get<std::string>() +
+                             " geometry has no times; shoal reads Features with per-vertex times or timed Points");
+        }
+        std::size_t lines = 0;
+        for (const json* f : features) {
+            const json* g = member(*f, "geometry");
+            const json* gt = g ? member(*g, "type") : nullptr;
+            if (gt && (*gt == "LineString" || *gt == "MultiLineString")) ++lines;
+        }
+        m_single_line = lines == 1;
+        for (std::size_t k = 0; k < features.size(); ++k) feature(*features[k], k + 1);
+        for (Track& t : m_out.tracks) normalise(t, m_out.report);
+        return std::move(m_out);
+    }
+
+private:
+    void check_crs(const json& doc) const {
+        const json* crs = member(doc, "crs");
+        const json* props = crs ? member(*crs, "properties") : nullptr;
+        const json* name = props ? member(*props, "name") : nullptr;
+        if (!name || !name->is_string()) return;
+        const std::string& n = name->get_ref<const std::string&>();
+        if (n.find("CRS84") != std::string::npos || n.find("4326") != std::string::npos) return;
+        throw InputError(m_file + ": crs '" + n + "' is not WGS84 longitude/latitude (RFC 7946 GeoJSON)");
+    }
+
+    std::string where(std::size_t k) const { return m_file + " feature " + std::to_string(k); }
+
+    std::string id_of(const json& feature, const json& props, std::size_t k, bool line) const {
+        for (const char* key : {"id", "mmsi", "vessel", "name"})
+            if (const json* v = member(props, key))
+                if (std::string s = id_text(*v); !s.empty()) return s;
+        if (const json* v = member(feature, "id"))
+            if (std::string s = id_text(*v); !s.empty()) return s;
+        if (!line || m_single_line) return detail::file_stem(m_file);
+        return detail::file_stem(m_file) + ":feature" + std::to_string(k);
+    }
+
+    static std::string name_of(const json& props) {
+        for (const char* key : {"name", "vesselname", "vessel_name"})
+            if (const json* v = member(props, key); v && v->is_string()) return v->get<std::string>();
+        return {};
+    }
+
+    void feature(const json& f, std::size_t k) {
+        static const json empty = json::object();
+        const json* props_ptr = member(f, "properties");
+        const json& props = props_ptr && props_ptr->is_object() ? *props_ptr : empty;
+        const json* g = member(f, "geometry");
+        const json* type = g ? member(*g, "type") : nullptr;
+        if (!type || !type->is_string()) {
+            ++m_out.report.rows;
+            m_out.report.skip(where(k) + ": no geometry; feature skipped");
+            return;
+        }
+        if (*type == "Point") return point(f, props, *g, k);
+        if (*type == "LineString" || *type == "MultiLineString") return line(f, props, *g, k);
+        ++m_out.report.rows;
+        m_out.report.skip(where(k) + ": a " + type->get<std::string>() + " is not a track; feature skipped");
+    }
+
+    /// Position of a coordinate array; false (after a message) when it is not a valid one.
+    bool position(const json& c, const std::string& at, geo::LonLat& p) {
+        if (!c.is_array() || c.size() < 2 || !c[0].is_number() || !c[1].is_number()) {
+            m_out.report.skip(at + "coordinates " + json_text(c) + " are not [lon, lat]; point skipped");
+            return false;
+        }
+        p = {c[0].get<double>(), c[1].get<double>()};
+        if (std::string what; detail::position_problem(p.lat, p.lon, what)) {
+            m_out.report.skip(at + what + "; point skipped");
+            return false;
+        }
+        return true;
+    }
+
+    void point(const json& f, const json& props, const json& g, std::size_t k) {
+        ++m_out.report.rows;
+        ++m_point;
+        const std::string at = where(k) + ": ";
+        const json* tv = member(props, "time");
+        if (!tv) tv = member(props, "timestamp");
+        if (!tv) {
+            m_out.report.skip(at + "Point without a 'time' or 'timestamp' property; point skipped");
+            return;
+        }
+        const auto t = json_time(*tv);
+        if (!t) {
+            m_out.report.skip(at + "time " + json_text(*tv) + " is not a valid time; point skipped");
+            return;
+        }
+        Fix fix;
+        const json* coords = member(g, "coordinates");
+        if (!position(coords ? *coords : json(), at, fix.position)) return;
+        fix.time_s = *t;
+        fix.line = m_point;
+        double h = json_number(props, "heading");
+        if (std::isnan(h)) h = json_number(props, "heading_deg");
+        fix.heading_deg = detail::valid_heading(h);
+        double c = json_number(props, "cog");
+        if (std::isnan(c)) c = json_number(props, "cog_deg");
+        fix.cog_deg = detail::valid_cog(c);
+        double s = json_number(props, "sog");
+        if (std::isnan(s)) s = json_number(props, "sog_kn");
+        fix.sog_kn = detail::valid_sog(s);
+        m_set.get(id_of(f, props, k, false), name_of(props)).fixes.push_back(fix);
+    }
+
+    /// The per-vertex time array of a line, flattened over the parts of a MultiLineString.
+    static const json* time_array(const json& props, std::string& key) {
+        for (const char* name : {"times", "coordTimes", "timestamps"})
+            if (const json* v = member(props, name); v && v->is_array()) {
+                key = name;
+                return v;
+            }
+        if (const json* cp = member(props, "coordinateProperties"))
+            if (const json* v = member(*cp, "times"); v && v->is_array()) {
+                key = "coordinateProperties.times";
+                return v;
+            }
+        return nullptr;
+    }
+
+    void line(const json& f, const json& props, const json& g, std::size_t k) {
+        const json* coords = member(g, "coordinates");
+        if (!coords || !coords->is_array()) throw InputError(where(k) + ": line without a 'coordinates' array");
+        std::vector<const json*> vertices;
+        if (g["type"] == "LineString") {
+            for (const json& c : *coords) vertices.push_back(&c);
+        } else {
+            for (const json& part : *coords)
+                if (part.is_array())
+                    for (const json& c : part) vertices.push_back(&c);
+        }
+        std::string key;
+        std::vector<const json*> times;
+        if (const json* arr = time_array(props, key)) {
+            for (const json& v : *arr) {
+                if (v.is_array()) {
+                    for (const json& w : v) times.push_back(&w);
+                } else {
+                    times.push_back(&v);
+                }
+            }
+            if (times.size() != vertices.size())
+                throw InputError(where(k) + ": '" + key + "' has " + std::to_string(times.size()) + " times for " +
+                                 std::to_string(vertices.size()) + " vertices");
+        } else {
+            const bool all_m = !vertices.empty() && std::all_of(vertices.begin(), vertices.end(), [](const json* c) {
+                return c->is_array() && c->size() >= 4;
+            });
+            if (!all_m)
+                throw InputError(where(k) + " ('" + id_of(f, props, k, true) +
+                                 "'): line without times; shoal needs a property array 'times', 'coordTimes', "
+                                 "'timestamps' or 'coordinateProperties.times', or [lon, lat, z, m] with m = epoch seconds");
+            key = "m";
+            for (const json* c : vertices) times.push_back(&(*c)[3]);
+        }
+        Track& track = m_set.get(id_of(f, props, k, true), name_of(props));
+        for (std::size_t i = 0; i < vertices.size(); ++i) {
+            ++m_out.report.rows;
+            ++m_point;
+            const std::string at = where(k) + " vertex " + std::to_string(i + 1) + ": ";
+            const auto t = json_time(*times[i]);
+            if (!t) {
+                m_out.report.skip(at + key + " " + json_text(*times[i]) + " is not a valid time; point skipped");
+                continue;
+            }
+            Fix fix;
+            if (!position(*vertices[i], at, fix.position)) continue;
+            fix.time_s = *t;
+            fix.line = m_point;
+            track.fixes.push_back(fix);
+        }
+    }
+
+    std::string_view m_text;
+    std::string m_file;
+    TrackFile m_out;
+    TrackSet m_set;
+    std::size_t m_point = 0;
+    bool m_single_line = false;
+};
+
+}  // namespace
+
+TrackFile read_gpx(const std::string& path, const ReadOptions& options) { return GpxReader(path, options).read(); }
+
+TrackFile read_geojson_text(std::string_view text, const std::string& file, const ReadOptions& options) {
+    return GeoJsonReader(text, file, options).read();
+}
+
+TrackFile read_geojson(const std::string& path, const ReadOptions& options) {
+    const std::string text = read_file(path);
+    return read_geojson_text(text, path, options);
+}
+
+}  // namespace shoal::track

@@ -1,0 +1,145 @@
+#include "track/track.hpp"
+
+#include <algorithm>
+#include <numbers>
+
+namespace shoal::track {
+
+namespace {
+
+constexpr double earth_radius_m = 6371008.8;  // mean radius (IUGG)
+constexpr double metres_per_nm = 1852.0;
+constexpr double deg = std::numbers::pi / 180.0;
+
+double wrap_360(double a) noexcept {
+    a = std::fmod(a, 360.0);
+    if (a < 0.0) a += 360.0;
+    if (a >= 360.0) a = 0.0;  // -1e-17 + 360 rounds to 360
+    return a;
+}
+
+/// Great-circle distance in metres (haversine).
+double distance_m(geo::LonLat a, geo::LonLat b) noexcept {
+    const double dlat = (b.lat - a.lat) * deg;
+    const double dlon = (b.lon - a.lon) * deg;
+    const double h = std::sin(dlat / 2) * std::sin(dlat / 2) +
+                     std::cos(a.lat * deg) * std::cos(b.lat * deg) * std::sin(dlon / 2) * std::sin(dlon / 2);
+    return 2.0 * earth_radius_m * std::asin(std::min(1.0, std::sqrt(h)));
+}
+
+/// Initial great-circle bearing from a to b, degrees clockwise from true north in [0, 360).
+double initial_bearing_deg(geo::LonLat a, geo::LonLat b) noexcept {
+    const double p1 = a.lat * deg, p2 = b.lat * deg, dl = (b.lon - a.lon) * deg;
+    const double y = std::sin(dl) * std::cos(p2);
+    const double x = std::cos(p1) * std::sin(p2) - std::sin(p1) * std::cos(p2) * std::cos(dl);
+    return wrap_360(std::atan2(y, x) / deg);
+}
+
+/// Speed in knots between two fixes; NAN when the times do not increase.
+double speed_kn(const Fix& a, const Fix& b) noexcept {
+    const double dt = b.time_s - a.time_s;
+    if (!(dt > 0.0)) return NAN;
+    return distance_m(a.position, b.position) / dt * 3600.0 / metres_per_nm;
+}
+
+}  // namespace
+
+const char* to_string(HeadingSource s) noexcept {
+    switch (s) {
+        case HeadingSource::heading: return "heading";
+        case HeadingSource::cog: return "cog";
+        case HeadingSource::positions: return "positions";
+        case HeadingSource::previous: return "previous";
+        case HeadingSource::none: return "none";
+    }
+    return "none";
+}
+
+void ReadReport::skip(const std::string& message) {
+    ++skipped;
+    if (messages.size() < max_messages) messages.push_back(message);
+}
+
+void normalise(Track& track, ReadReport& report) {
+    auto& fixes = track.fixes;
+    // Readers never make a fix without a time; a caller building tracks by hand might.
+    const auto no_time = std::stable_partition(fixes.begin(), fixes.end(),
+                                               [](const Fix& f) { return std::isfinite(f.time_s); });
+    for (auto it = no_time; it != fixes.end(); ++it)
+        report.skip(track.file + " line " + std::to_string(it->line) + ": fix without a time; dropped");
+    fixes.erase(no_time, fixes.end());
+
+    double latest = -INFINITY;
+    for (const Fix& f : fixes) {
+        if (f.time_s < latest) ++report.reordered;
+        latest = std::max(latest, f.time_s);
+    }
+    std::stable_sort(fixes.begin(), fixes.end(), [](const Fix& a, const Fix& b) { return a.time_s < b.time_s; });
+
+    // Equal times: keep the first fix, and take from the repeats only what it lacks.
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < fixes.size(); ++i) {
+        if (kept > 0 && fixes[i].time_s == fixes[kept - 1].time_s) {
+            Fix& k = fixes[kept - 1];
+            if (std::isnan(k.heading_deg)) k.heading_deg = fixes[i].heading_deg;
+            if (std::isnan(k.cog_deg)) k.cog_deg = fixes[i].cog_deg;
+            if (std::isnan(k.sog_kn)) k.sog_kn = fixes[i].sog_kn;
+            ++report.duplicates;
+            continue;
+        }
+        if (kept != i) fixes[kept] = fixes[i];
+        ++kept;
+    }
+    fixes.resize(kept);
+}
+
+void resolve_headings(Track& track, double moving_kn) {
+    auto& fx = track.fixes;
+    const std::size_t n = fx.size();
+    double previous = NAN;
+    for (std::size_t i = 0; i < n; ++i) {
+        Fix& f = fx[i];
+        const bool has_next = i + 1 < n;
+        const bool has_prev = i > 0;
+        double used = NAN;
+        HeadingSource source = HeadingSource::none;
+        if (std::isfinite(f.heading_deg)) {
+            used = f.heading_deg;
+            source = HeadingSource::heading;
+        } else {
+            bool moving = false;
+            if (std::isfinite(f.sog_kn)) {
+                moving = f.sog_kn >= moving_kn;
+            } else {
+                double v = has_next ? speed_kn(f, fx[i + 1]) : NAN;
+                if (std::isnan(v) && has_prev) v = speed_kn(fx[i - 1], f);
+                moving = v >= moving_kn;
+            }
+            if (moving && std::isfinite(f.cog_deg)) {
+                used = f.cog_deg;
+                source = HeadingSource::cog;
+            } else if (moving) {
+                if (has_next && !(fx[i + 1].position == f.position)) {
+                    used = initial_bearing_deg(f.position, fx[i + 1].position);
+                    source = HeadingSource::positions;
+                } else if (has_prev && !(fx[i - 1].position == f.position)) {
+                    used = initial_bearing_deg(fx[i - 1].position, f.position);
+                    source = HeadingSource::positions;
+                }
+            }
+        }
+        if (std::isnan(used) && std::isfinite(previous)) {
+            used = previous;
+            source = HeadingSource::previous;
+        }
+        if (std::isnan(used)) {
+            used = 0.0;
+            source = HeadingSource::none;
+        }
+        f.heading_used_deg = wrap_360(used);
+        f.heading_source = source;
+        if (source != HeadingSource::none) previous = f.heading_used_deg;
+    }
+}
+
+}  // namespace shoal::track

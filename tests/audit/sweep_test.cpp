@@ -1,0 +1,208 @@
+// Sweeping hulls along tracks: hand-made tracks with known answers (a spit crossed between
+// fixes, an island crossed, a pier touched, open water, a gap), and random tracks near a
+// real coastline swept with the grid detector and with the brute-force traversal.
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <random>
+
+#include "audit/sweep.hpp"
+#include "check/brute_force.hpp"
+
+namespace shoal::audit {
+namespace {
+
+using geo::XY;
+
+/// The brute-force traversal behind the PoseChecker interface, with the detector's search
+/// limit applied so both sweeps sample the same moments.
+class BruteChecker final : public PoseChecker {
+public:
+    BruteChecker(std::vector<coast::LocalPolyline> lines, const hull::Hull& hull) : m_brute(std::move(lines), hull), m_hull(hull) {}
+    check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
+        check::Contact c = m_brute.check(pose);
+        if (c.clearance_m > options.max_clearance_m) c.clearance_m = INFINITY;
+        return c;
+    }
+    const hull::Hull& hull() const override { return m_hull; }
+
+private:
+    check::BruteForce m_brute;
+    hull::Hull m_hull;
+};
+
+/// A frame centred at (0, 0) lon/lat; hand-made shapes are written in its metres.
+const geo::LocalFrame& frame() {
+    static const geo::LocalFrame f = geo::LocalFrame::transverse_mercator({0.0, 0.0});
+    return f;
+}
+
+coast::LocalPolyline land(std::vector<XY> ring) {
+    ring.push_back(ring.front());
+    return {std::move(ring), true};
+}
+
+/// A track through local points (metres) at `speed_ms`, headings along the legs.
+track::Track track_through(const std::vector<XY>& pts, double speed_ms, double t0 = 1.7e9) {
+    track::Track t;
+    t.id = "test";
+    t.file = "hand-made";
+    double time = t0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        if (i > 0) time += geo::distance(pts[i - 1], pts[i]) / speed_ms;
+        const XY next = i + 1 < pts.size() ? pts[i + 1] : pts[i];
+        const XY prev = i > 0 ? pts[i - 1] : pts[i];
+        const XY dir = i + 1 < pts.size() ? next - pts[i] : pts[i] - prev;
+        track::Fix f;
+        f.time_s = time;
+        f.position = frame().inverse(pts[i]);
+        f.line = i + 2;
+        // Grid heading ~ true heading at the frame's centre (convergence ~0 near lon 0).
+        f.heading_used_deg = std::fmod(std::atan2(dir.x, dir.y) * 180 / std::numbers::pi + 360, 360);
+        f.heading_source = track::HeadingSource::cog;
+        t.fixes.push_back(f);
+    }
+    return t;
+}
+
+struct World {
+    std::vector<coast::LocalPolyline> lines;
+    grid::CoastGrid grid;
+    hull::Hull hull = hull::Hull::from_dimensions({80, 20, 8, 8});
+    explicit World(std::vector<coast::LocalPolyline> l, double cell = 200)
+        : lines(std::move(l)), grid(grid::CoastGrid::build(lines, frame(), cell)) {}
+    TrackResult sweep(const track::Track& t, SweepOptions o = {}) const {
+        return sweep_track(t, frame(), DetectorChecker(grid, hull), o);
+    }
+    TrackResult brute_sweep(const track::Track& t, SweepOptions o = {}) const {
+        return sweep_track(t, frame(), BruteChecker(lines, hull), o);
+    }
+};
+
+std::size_t count(const TrackResult& r, EventKind k) {
+    return static_cast<std::size_t>(std::count_if(r.events.begin(), r.events.end(), [&](const Event& e) { return e.kind == k; }));
+}
+
+TEST(Sweep, ThinSpitCrossedBetweenFixesIsAGrounding) {
+    // A spit 1 m wide across the track; fixes 2 km apart on either side never touch it.
+    World w({land({{-3000, 999.5}, {3000, 999.5}, {3000, 1000.5}, {-3000, 1000.5}}),
+             land({{-5000, -5000}, {-4900, -5000}, {-4900, -4900}})});
+    const track::Track t = track_through({{0, 0}, {0, 2000}}, 5.0);
+    const TrackResult r = w.sweep(t);
+    ASSERT_EQ(count(r, EventKind::grounding), 1u);
+    const Event& g = r.events[0].kind == EventKind::grounding ? r.events[0] : r.events[1];
+    // First contact: the bow (80 m ahead) reaches y = 999.5 when the position is at 919.5.
+    EXPECT_NEAR(g.start_s - t.fixes[0].time_s, 919.5 / 5.0, 0.05);
+    EXPECT_NEAR(frame().forward(g.point).y, 999.5, 0.5);
+    EXPECT_EQ(g.fix_index, 0u);
+    // The stern (20 m aft) leaves y = 1000.5 when the position is at 1020.5.
+    EXPECT_NEAR(g.end_s - t.fixes[0].time_s, 1020.5 / 5.0, 0.05);
+    // Approach and departure are close passes? No: they are part of one interval under the
+    // margin that reaches contact, so only the grounding is reported.
+    EXPECT_EQ(count(r, EventKind::close_pass), 0u);
+}
+
+TEST(Sweep, TrackOverTheMiddleOfAnIslandIsAGrounding) {
+    World w({land({{-10000, 5000}, {10000, 5000}, {10000, 25000}, {-10000, 25000}})}, 500);
+    // Fixes 10 km apart: one before the island, one in its middle (far from any segment), one beyond.
+    const TrackResult r = w.sweep(track_through({{0, 0}, {0, 15000}, {0, 30000}}, 10.0));
+    ASSERT_EQ(count(r, EventKind::grounding), 1u);
+    EXPECT_GT(r.events[0].penetration_m, 9000);  // at the middle fix the hull is ~10 km inside
+}
+
+TEST(Sweep, TrackTouchingAPierEndIsAGrounding) {
+    // A pier 4 m wide reaching east to x = -3; the ship heads north, its port side (c = 8)
+    // 8 m west of its track.
+    World w({land({{-100, 490}, {-100, 494}, {-3, 494}, {-3, 490}})});
+    const TrackResult touching = w.sweep(track_through({{4, 0}, {4, 1000}}, 5.0));  // port side at x = -4: 1 m over the pier end
+    EXPECT_EQ(count(touching, EventKind::grounding), 1u);
+    const TrackResult clear = w.sweep(track_through({{25, 0}, {25, 1000}}, 5.0));  // port side at x = 17: 20 m off
+    EXPECT_EQ(count(clear, EventKind::grounding), 0u);
+    ASSERT_EQ(count(clear, EventKind::close_pass), 1u);
+    EXPECT_NEAR(clear.events[0].min_clearance_m, 20.0, 0.01);
+}
+
+TEST(Sweep, CleanTrackInOpenWaterHasNoEvents) {
+    World w({land({{0, 0}, {100, 0}, {100, 100}, {0, 100}}), land({{20000, 20000}, {20100, 20000}, {20100, 20100}})}, 500);
+    SweepOptions o;
+    o.max_gap_s = 3600;
+    const TrackResult r = w.sweep(track_through({{5000, 2000}, {15000, 9000}, {9000, 15000}}, 8.0), o);
+    EXPECT_TRUE(r.events.empty());
+    EXPECT_EQ(r.summary.fixes, 3u);
+    EXPECT_EQ(r.summary.uncovered_fixes, 0u);
+    EXPECT_GT(r.summary.min_clearance_m, 50.0);
+    // Open water: the lookahead lets the sweep skip most checks.
+    EXPECT_LT(r.summary.poses, r.summary.distance_m / 5.0 / 4.0);
+}
+
+TEST(Sweep, GapSplitsTheTrackAndNothingIsSweptAcrossIt) {
+    World w({land({{-3000, 999.5}, {3000, 999.5}, {3000, 1000.5}, {-3000, 1000.5}})});
+    // The same crossing, but the fixes are 700 s apart: a gap over --max-gap 600.
+    const track::Track t = track_through({{0, 0}, {0, 2000}}, 2000.0 / 700.0);
+    const TrackResult r = w.sweep(t);
+    EXPECT_EQ(r.summary.gaps, 1u);
+    EXPECT_EQ(r.summary.segments, 2u);
+    EXPECT_EQ(count(r, EventKind::grounding), 0u);
+    SweepOptions longer;
+    longer.max_gap_s = 800;
+    EXPECT_EQ(count(w.sweep(t, longer), EventKind::grounding), 1u);
+}
+
+TEST(Sweep, FixesOutsideTheCoastlineAreaAreUncovered) {
+    World w({land({{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}})});
+    const TrackResult r = w.sweep(track_through({{500, 1500}, {500, 1800}, {500, 5000}}, 5.0));
+    EXPECT_EQ(r.summary.uncovered_fixes, 3u);  // the grid covers the island's box only
+}
+
+/// Random tracks near the Solent coast: the grid sweep and the brute-force sweep report the
+/// same events (same sampling, so exactly the same).
+TEST(Sweep, RandomTracksAgreeWithBruteForceSweep) {
+    const coast::Coastline coast = coast::import_coastline({std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson"});
+    const geo::LocalFrame f = geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+    const auto lines = coast::project(coast, f);
+    const grid::CoastGrid grid = grid::CoastGrid::build(lines, f, 500);
+    const hull::Hull hull = hull::Hull::from_dimensions({60, 15, 6, 6});
+    const DetectorChecker fast(grid, hull);
+    const BruteChecker slow(lines, hull);
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::size_t groundings = 0, passes = 0;
+    for (int k = 0; k < 12; ++k) {
+        // Start near a random coast vertex, wander 6 legs of ~400 m.
+        const auto& l = lines[rng() % lines.size()];
+        XY p = l.points[rng() % l.points.size()] + XY{(unit(rng) - 0.5) * 600, (unit(rng) - 0.5) * 600};
+        track::Track t;
+        t.id = "random" + std::to_string(k);
+        double time = 1.6e9, hdg = 360 * unit(rng);
+        for (int i = 0; i < 7; ++i) {
+            track::Fix fix;
+            fix.time_s = time;
+            fix.position = f.inverse(p);
+            fix.heading_used_deg = hdg;
+            fix.line = static_cast<std::size_t>(i + 1);
+            t.fixes.push_back(fix);
+            hdg = std::fmod(hdg + (unit(rng) - 0.5) * 90 + 360, 360);
+            const double h = hdg * std::numbers::pi / 180;
+            p = p + 400.0 * XY{std::sin(h), std::cos(h)};
+            time += 80;
+        }
+        const TrackResult a = sweep_track(t, f, fast, {});
+        const TrackResult b = sweep_track(t, f, slow, {});
+        ASSERT_EQ(a.events.size(), b.events.size()) << t.id;
+        for (std::size_t e = 0; e < a.events.size(); ++e) {
+            EXPECT_EQ(a.events[e].kind, b.events[e].kind) << t.id;
+            EXPECT_NEAR(a.events[e].start_s, b.events[e].start_s, 1e-6) << t.id;
+            EXPECT_NEAR(a.events[e].end_s, b.events[e].end_s, 1e-6) << t.id;
+            EXPECT_NEAR(a.events[e].min_clearance_m, b.events[e].min_clearance_m, 1e-6) << t.id;
+        }
+        EXPECT_EQ(a.summary.poses, b.summary.poses) << t.id;
+        groundings += count(a, EventKind::grounding);
+        passes += count(a, EventKind::close_pass);
+    }
+    EXPECT_GT(groundings, 0u) << "the random tracks should meet land sometimes";
+    EXPECT_GT(passes, 0u) << "the random tracks should pass close sometimes";
+}
+
+}  // namespace
+}  // namespace shoal::audit

@@ -1,0 +1,323 @@
+// Tests of the .shoalgrid cache: save/load round trip, one clear InputError per kind of bad
+// file, atomic saving, and load_or_build's reuse and rebuild decisions.
+
+#include "grid/grid_cache.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+#include "util/error.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using shoal::InputError;
+using shoal::UsageError;
+using shoal::geo::XY;
+using shoal::grid::BuildRequest;
+using shoal::grid::CoastGrid;
+using shoal::grid::GridFile;
+using shoal::grid::LoadReport;
+using testing::AllOf;
+using testing::HasSubstr;
+using testing::ThrowsMessage;
+namespace t = shoal::test;
+
+/// Header layout from grid_cache.hpp: magic (8) | version u32 | byte-order mark u32 | payload
+/// size u64 | XXH3 u64 | payload.
+constexpr std::size_t version_offset = 8, size_offset = 16, header_size = 32;
+
+std::vector<std::string> files_in(const fs::path& dir) {
+    std::vector<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+    return out;
+}
+
+class GridCache : public testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        BuildRequest req;
+        req.cell_m = 500;
+        s_grid = new CoastGrid(shoal::grid::build_grid({t::data_path("coast/uk_solent_land.geojson")}, req, nullptr));
+        s_bytes = new std::vector<char>(GridFile::serialize(*s_grid));
+    }
+    static void TearDownTestSuite() {
+        delete s_grid;
+        delete s_bytes;
+        s_grid = nullptr;
+        s_bytes = nullptr;
+    }
+    /// Writes `bytes` as a grid file in the temp folder and returns its path.
+    std::string write_grid(const std::vector<char>& bytes, const std::string& name = "g.shoalgrid") const {
+        const std::string path = tmp.file(name);
+        t::write_bytes(path, bytes);
+        return path;
+    }
+
+    static CoastGrid* s_grid;
+    static std::vector<char>* s_bytes;
+    t::TempDir tmp;
+};
+CoastGrid* GridCache::s_grid = nullptr;
+std::vector<char>* GridCache::s_bytes = nullptr;
+
+void expect_same_grid(const CoastGrid& a, const CoastGrid& b) {
+    EXPECT_TRUE(a == b);
+    // What `shoal info` prints.
+    EXPECT_EQ(a.frame().definition(), b.frame().definition());
+    EXPECT_EQ(a.frame().description(), b.frame().description());
+    EXPECT_EQ(a.cell_size(), b.cell_size());
+    EXPECT_EQ(a.origin(), b.origin());
+    EXPECT_EQ(a.nx(), b.nx());
+    EXPECT_EQ(a.ny(), b.ny());
+    EXPECT_EQ(a.has_land_side(), b.has_land_side());
+    EXPECT_EQ(a.cell_count(), b.cell_count());
+    EXPECT_EQ(a.coast_cell_count(), b.coast_cell_count());
+    EXPECT_EQ(a.land_cell_count(), b.land_cell_count());
+    EXPECT_EQ(a.segment_count(), b.segment_count());
+    EXPECT_EQ(a.memory_bytes(), b.memory_bytes());
+    EXPECT_EQ(a.source().inputs, b.source().inputs);
+    EXPECT_EQ(a.source().layers, b.source().layers);
+    EXPECT_EQ(a.source().layer_option, b.source().layer_option);
+    EXPECT_EQ(a.source().source_crs, b.source().source_crs);
+    EXPECT_EQ(a.source().fingerprint, b.source().fingerprint);
+    EXPECT_EQ(a.source().input_vertices, b.source().input_vertices);
+    EXPECT_EQ(a.source().polylines, b.source().polylines);
+    EXPECT_EQ(a.source().land_polylines, b.source().land_polylines);
+    // And it answers the same.
+    std::mt19937_64 rng(1);
+    const auto e = a.extent();
+    std::uniform_real_distribution<double> ux(e.minx, e.maxx), uy(e.miny, e.maxy);
+    for (int k = 0; k < 2000; ++k) {
+        const XY p{ux(rng), uy(rng)};
+        ASSERT_EQ(a.is_land(p), b.is_land(p));
+        ASSERT_EQ(a.frame().forward(a.frame().inverse(p)), b.frame().forward(b.frame().inverse(p)));
+    }
+}
+
+TEST_F(GridCache, SaveLoadRoundTripGivesAnIdenticalGrid) {
+    const std::string path = tmp.file("solent.shoalgrid");
+    GridFile::save(*s_grid, path);
+    EXPECT_EQ(files_in(tmp.path()), std::vector<std::string>{"solent.shoalgrid"}) << "a temporary file was left behind";
+    EXPECT_TRUE(shoal::grid::looks_like_grid(path));
+    const CoastGrid back = GridFile::load(path);
+    expect_same_grid(*s_grid, back);
+    EXPECT_EQ(GridFile::serialize(back), *s_bytes);
+    // The solent grid as the importer describes it: 13 rings of 1977 vertices, all land.
+    EXPECT_EQ(back.source().input_vertices, 1977u);
+    EXPECT_EQ(back.source().polylines, 13u);
+    EXPECT_EQ(back.source().land_polylines, 13u);
+    EXPECT_GT(back.land_cell_count(), 0u);
+    EXPECT_GT(back.coast_cell_count(), 0u);
+    ASSERT_EQ(back.source().layers.size(), 1u);
+    EXPECT_THAT(back.source().layers[0], HasSubstr("uk_solent_land"));
+}
+
+TEST_F(GridCache, RoundTripKeepsLayerOptionsAndSourceCrs) {
+    BuildRequest req;
+    req.cell_m = 300;
+    req.import.layers = {"LNDARE"};
+    req.crs = "EPSG:32618";  // UTM 18N covers Chesapeake Bay
+    const CoastGrid g = shoal::grid::build_grid({t::data_path("coast/US4MD81M_cut.000")}, req, nullptr);
+    const std::string path = tmp.file("s57.shoalgrid");
+    GridFile::save(g, path);
+    const CoastGrid back = GridFile::load(path);
+    expect_same_grid(g, back);
+    EXPECT_EQ(back.source().layer_option, std::vector<std::string>{"LNDARE"});
+    EXPECT_THAT(back.frame().description(), HasSubstr("EPSG:32618"));
+}
+
+TEST_F(GridCache, OverwritingAnExistingGridIsAtomic) {
+    const std::string path = tmp.file("g.shoalgrid");
+    t::write_bytes(path, {'o', 'l', 'd'});
+    GridFile::save(*s_grid, path);
+    EXPECT_EQ(t::read_bytes(path), *s_bytes);
+    EXPECT_EQ(files_in(tmp.path()), std::vector<std::string>{"g.shoalgrid"});
+}
+
+TEST_F(GridCache, MissingFile) {
+    const std::string path = tmp.file("nope.shoalgrid");
+    EXPECT_THAT([&] { GridFile::load(path); }, ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("no such file"))));
+}
+
+TEST_F(GridCache, FileThatIsNotAGrid) {
+    const std::string path = t::data_path("coast/uk_solent_land.geojson");
+    EXPECT_FALSE(shoal::grid::looks_like_grid(path));
+    EXPECT_THAT([&] { GridFile::load(path); }, ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("not a shoal grid file"))));
+    const std::string empty = write_grid({}, "empty.shoalgrid");
+    EXPECT_THAT([&] { GridFile::load(empty); }, ThrowsMessage<InputError>(AllOf(HasSubstr(empty), HasSubstr("not a shoal grid file"))));
+    EXPECT_THAT([&] { GridFile::load(tmp.path().string()); }, ThrowsMessage<InputError>(HasSubstr("directory")));
+}
+
+TEST_F(GridCache, WrongMagic) {
+    std::vector<char> bytes = *s_bytes;
+    bytes[7] = 'X';  // SHOALGRX
+    const std::string path = write_grid(bytes);
+    EXPECT_FALSE(shoal::grid::looks_like_grid(path));
+    EXPECT_THAT([&] { GridFile::load(path); }, ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("not a shoal grid file"))));
+}
+
+TEST_F(GridCache, AnotherFormatVersion) {
+    std::vector<char> bytes = *s_bytes;
+    const std::uint32_t v = shoal::grid::grid_format_version + 1;
+    std::memcpy(bytes.data() + version_offset, &v, sizeof v);
+    const std::string path = write_grid(bytes);
+    EXPECT_TRUE(shoal::grid::looks_like_grid(path));
+    EXPECT_THAT([&] { GridFile::load(path); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("format version " + std::to_string(v)), HasSubstr("rebuild"))));
+}
+
+TEST_F(GridCache, TruncatedFile) {
+    for (std::size_t keep : {s_bytes->size() - 1, s_bytes->size() / 2, header_size, header_size - 4, std::size_t{12}}) {
+        std::vector<char> bytes(s_bytes->begin(), s_bytes->begin() + static_cast<std::ptrdiff_t>(keep));
+        const std::string path = write_grid(bytes);
+        EXPECT_THAT([&] { GridFile::load(path); }, ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("cut short"))))
+            << "kept " << keep << " bytes";
+    }
+    // Shorter than the magic number: not recognisable as a grid at all.
+    const std::string path = write_grid(std::vector<char>(s_bytes->begin(), s_bytes->begin() + 5));
+    EXPECT_THAT([&] { GridFile::load(path); }, ThrowsMessage<InputError>(HasSubstr("not a shoal grid file")));
+}
+
+TEST_F(GridCache, OneFlippedByteFailsTheChecksum) {
+    std::mt19937_64 rng(4);
+    std::uniform_int_distribution<std::size_t> pos(header_size, s_bytes->size() - 1);
+    std::vector<std::size_t> where = {header_size, s_bytes->size() - 1};
+    for (int k = 0; k < 20; ++k) where.push_back(pos(rng));
+    for (std::size_t at : where) {
+        std::vector<char> bytes = *s_bytes;
+        bytes[at] = static_cast<char>(bytes[at] ^ 0x10);
+        const std::string path = write_grid(bytes);
+        EXPECT_THAT([&] { GridFile::load(path); }, ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("checksum"))))
+            << "byte " << at << " flipped";
+    }
+    // A flipped bit in the stored checksum itself.
+    std::vector<char> bytes = *s_bytes;
+    bytes[header_size - 1] = static_cast<char>(bytes[header_size - 1] ^ 0x01);
+    EXPECT_THAT([&] { GridFile::load(write_grid(bytes)); }, ThrowsMessage<InputError>(HasSubstr("checksum")));
+    // A flipped byte in the payload size: the length no longer matches.
+    bytes = *s_bytes;
+    bytes[size_offset] = static_cast<char>(bytes[size_offset] ^ 0x01);
+    EXPECT_THAT([&] { GridFile::load(write_grid(bytes)); }, ThrowsMessage<InputError>(HasSubstr("the header says")));
+}
+
+TEST_F(GridCache, SaveIntoAMissingFolderFailsAndLeavesNoTemporaryFile) {
+    const std::string path = (tmp.path() / "no" / "such" / "folder" / "g.shoalgrid").string();
+    EXPECT_THAT([&] { GridFile::save(*s_grid, path); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("does not exist"))));
+    EXPECT_TRUE(files_in(tmp.path()).empty());
+    // Over a directory: refused, nothing left either.
+    fs::create_directory(tmp.path() / "d");
+    EXPECT_THROW(GridFile::save(*s_grid, (tmp.path() / "d").string()), InputError);
+    EXPECT_EQ(files_in(tmp.path()), std::vector<std::string>{"d"});
+    EXPECT_TRUE(files_in(tmp.path() / "d").empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// load_or_build
+
+class LoadOrBuild : public testing::Test {
+protected:
+    void SetUp() override {
+        fs::create_directory(tmp.path() / "src");
+        source = (tmp.path() / "src" / "solent.geojson").string();
+        fs::copy_file(t::data_path("coast/uk_solent_land.geojson"), source);
+        request.cell_m = 500;
+        request.cache_dir = (tmp.path() / "cache").string();
+    }
+    t::TempDir tmp;
+    std::string source;
+    BuildRequest request;
+};
+
+TEST_F(LoadOrBuild, BuildsThenReusesTheCacheThenRebuildsWhenTheSourceChanges) {
+    LoadReport r1;
+    const CoastGrid g1 = shoal::grid::load_or_build({source}, request, &r1);
+    EXPECT_EQ(r1.how, "built and cached");
+    EXPECT_TRUE(fs::exists(r1.cache_path));
+    EXPECT_EQ(fs::path(r1.cache_path).parent_path(), fs::path(request.cache_dir));
+    EXPECT_EQ(files_in(request.cache_dir).size(), 1u);
+
+    LoadReport r2;
+    const CoastGrid g2 = shoal::grid::load_or_build({source}, request, &r2);
+    EXPECT_THAT(r2.how, HasSubstr("reused"));
+    EXPECT_EQ(r2.cache_path, r1.cache_path);
+    EXPECT_TRUE(g1 == g2);
+    EXPECT_EQ(r2.build.clip_calls, 0u) << "nothing should be built when the cache is reused";
+
+    // Change one digit of one coordinate: same size, different bytes.
+    std::vector<char> bytes = t::read_bytes(source);
+    const std::string text(bytes.begin(), bytes.end());
+    const auto at = text.find("-1.5900206");
+    ASSERT_NE(at, std::string::npos);
+    bytes[at + 9] = '7';
+    t::write_bytes(source, bytes);
+    LoadReport r3;
+    const CoastGrid g3 = shoal::grid::load_or_build({source}, request, &r3);
+    EXPECT_EQ(r3.how, "built and cached");
+    EXPECT_NE(r3.cache_path, r1.cache_path);
+    EXPECT_NE(g3.source().fingerprint, g1.source().fingerprint);
+    EXPECT_FALSE(g1 == g3);
+    EXPECT_GT(r3.build.clip_calls, 0u);
+
+    // Another cell size is another grid too.
+    request.cell_m = 400;
+    LoadReport r4;
+    const CoastGrid g4 = shoal::grid::load_or_build({source}, request, &r4);
+    EXPECT_EQ(r4.how, "built and cached");
+    EXPECT_EQ(g4.cell_size(), 400);
+}
+
+TEST_F(LoadOrBuild, DamagedCacheIsRebuiltWithAWarning) {
+    LoadReport r1;
+    const CoastGrid g1 = shoal::grid::load_or_build({source}, request, &r1);
+    std::vector<char> bytes = t::read_bytes(r1.cache_path);
+    bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x40);
+    t::write_bytes(r1.cache_path, bytes);
+    LoadReport r2;
+    const CoastGrid g2 = shoal::grid::load_or_build({source}, request, &r2);
+    EXPECT_EQ(r2.how, "built and cached");
+    EXPECT_TRUE(g1 == g2);
+    ASSERT_FALSE(r2.warnings.empty());
+    EXPECT_THAT(r2.warnings.front(), AllOf(HasSubstr("cached grid unusable"), HasSubstr("checksum")));
+    LoadReport r3;
+    shoal::grid::load_or_build({source}, request, &r3);
+    EXPECT_THAT(r3.how, HasSubstr("reused"));
+}
+
+TEST_F(LoadOrBuild, UnwritableCacheFolderStillGivesTheGrid) {
+    t::write_bytes(tmp.file("plain-file"), {'x'});
+    request.cache_dir = (tmp.path() / "plain-file" / "cache").string();
+    LoadReport r;
+    const CoastGrid g = shoal::grid::load_or_build({source}, request, &r);
+    EXPECT_THAT(r.how, HasSubstr("not cached"));
+    ASSERT_FALSE(r.warnings.empty());
+    EXPECT_THAT(r.warnings.back(), HasSubstr("could not cache"));
+    EXPECT_GT(g.coast_cell_count(), 0u);
+}
+
+TEST_F(LoadOrBuild, AGridFileIsLoadedAsIs) {
+    LoadReport r1;
+    const CoastGrid g1 = shoal::grid::load_or_build({source}, request, &r1);
+    LoadReport r2;
+    const CoastGrid g2 = shoal::grid::load_or_build({r1.cache_path}, request, &r2);
+    EXPECT_EQ(r2.how, "loaded grid");
+    EXPECT_TRUE(g1 == g2);
+    EXPECT_THAT([&] { shoal::grid::load_or_build({r1.cache_path, source}, request); },
+                ThrowsMessage<UsageError>(HasSubstr("is a grid file")));
+}
+
+TEST_F(LoadOrBuild, MissingSourceIsAnInputError) {
+    const std::string missing = tmp.file("src/none.geojson");
+    EXPECT_THAT([&] { shoal::grid::load_or_build({missing}, request); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(missing), HasSubstr("no such file"))));
+}
+
+}  // namespace

@@ -1,0 +1,367 @@
+// Tests of track::read_csv on real cuts and hand-made files in tests/data/tracks.
+//
+// Expected counts come from tools independent of shoal, run on the same files:
+//   /usr/bin/python3 with csv.DictReader: rows, distinct ids in first-appearance order, fixes
+//     per id = distinct (id, timestamp) pairs, duplicates = rows - fixes, rows whose time is
+//     earlier than an earlier row of the same id (reordered);
+//   awk -F, for columns (dimensions, headings); GNU date -u -d ... +%s for epoch seconds.
+// Hand-made files were written so that every row's fate is visible in the file itself.
+
+#include "track/csv_reader.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+#include "track/time.hpp"
+#include "util/error.hpp"
+
+namespace {
+
+using shoal::InputError;
+using shoal::test::data_path;
+using namespace shoal::track;
+using testing::AllOf;
+using testing::ElementsAre;
+using testing::HasSubstr;
+using testing::ThrowsMessage;
+
+std::size_t fix_count(const TrackFile& f) {
+    std::size_t n = 0;
+    for (const auto& t : f.tracks) n += t.fixes.size();
+    return n;
+}
+
+const Track* find(const TrackFile& f, const std::string& id) {
+    for (const auto& t : f.tracks)
+        if (t.id == id) return &t;
+    return nullptr;
+}
+
+bool sorted_by_time(const Track& t) {
+    return std::is_sorted(t.fixes.begin(), t.fixes.end(), [](const Fix& a, const Fix& b) { return a.time_s < b.time_s; });
+}
+
+// ---------------------------------------------------------------------------------------------
+// Real files
+
+TEST(CsvReader, DecodedFixesLayoutSplitsVesselsInFirstAppearanceOrder) {
+    // python3 csv: 299 rows, 54 ids, first ids OWN:aava-n2k.data (85 rows), 230035780 (44), 258858000 (5);
+    // no repeated (id, timestamp); no heading_deg values, 213 cog_deg values.
+    const auto f = read_csv(data_path("tracks/aava_n2k_fixes_head300.csv"));
+    EXPECT_EQ(f.format, "csv");
+    EXPECT_EQ(f.report.rows, 299u);
+    EXPECT_EQ(f.report.skipped, 0u);
+    EXPECT_EQ(f.report.duplicates, 0u);
+    ASSERT_EQ(f.tracks.size(), 54u);
+    EXPECT_EQ(fix_count(f), 299u);
+    EXPECT_EQ(f.tracks[0].id, "OWN:aava-n2k.data");
+    EXPECT_EQ(f.tracks[1].id, "230035780");
+    EXPECT_EQ(f.tracks[2].id, "258858000");
+    EXPECT_EQ(f.tracks[0].fixes.size(), 85u);
+    EXPECT_EQ(f.tracks[1].fixes.size(), 44u);
+    EXPECT_EQ(f.tracks[2].fixes.size(), 5u);
+    const Fix& first = f.tracks[0].fixes.front();  // 2014-08-15T19:00:00.042Z,59.7250108,24.7366770
+    EXPECT_DOUBLE_EQ(first.time_s, 1408129200.042);
+    EXPECT_DOUBLE_EQ(first.position.lat, 59.7250108);
+    EXPECT_DOUBLE_EQ(first.position.lon, 24.7366770);
+    EXPECT_EQ(first.line, 2u);
+    const Fix& other = f.tracks[1].fixes.front();  // ...,230035780,59.7249883,24.7366450,6.18,199.0,,PGN129039
+    EXPECT_DOUBLE_EQ(other.sog_kn, 6.18);
+    EXPECT_DOUBLE_EQ(other.cog_deg, 199.0);
+    EXPECT_TRUE(std::isnan(other.heading_deg));
+    for (const auto& t : f.tracks) {
+        EXPECT_TRUE(sorted_by_time(t)) << t.id;
+        EXPECT_EQ(t.file, data_path("tracks/aava_n2k_fixes_head300.csv"));
+    }
+}
+
+TEST(CsvReader, MarineCadastreLayoutTreats511AsUnknownHeading) {
+    // python3 csv: 144 rows, 3 MMSIs with 48 rows each; awk: Heading is 511 on all 144 rows.
+    const auto f = read_csv(data_path("tracks/depons_marinecadastre.csv"));
+    ASSERT_EQ(f.tracks.size(), 3u);
+    EXPECT_EQ(f.tracks[0].id, "209715000");
+    EXPECT_EQ(f.tracks[1].id, "636091769");
+    EXPECT_EQ(f.tracks[2].id, "212396000");
+    for (const auto& t : f.tracks) {
+        EXPECT_EQ(t.fixes.size(), 48u);
+        for (const auto& x : t.fixes) EXPECT_TRUE(std::isnan(x.heading_deg));
+    }
+    // First row: 209715000,2015-12-20T00:00:00,55.842890,15.857993,12.5,238.9,511 ; date -u -> 1450569600
+    const Fix& x = f.tracks[0].fixes.front();
+    EXPECT_EQ(x.time_s, 1450569600.0);
+    EXPECT_DOUBLE_EQ(x.position.lat, 55.842890);
+    EXPECT_DOUBLE_EQ(x.position.lon, 15.857993);
+    EXPECT_DOUBLE_EQ(x.sog_kn, 12.5);
+    EXPECT_DOUBLE_EQ(x.cog_deg, 238.9);
+}
+
+TEST(CsvReader, DanishMaritimeAuthorityExportWithDayFirstTimesAndDimensions) {
+    // python3 csv: 199 rows, 166 MMSIs, 198 distinct (MMSI, time), 1 repeat (309186000 at
+    // 11/06/2010 11:46:12, lines 48 and 50), 9 rows earlier than an earlier row of their vessel.
+    // awk: 23 MMSIs have A,B,C,D all > 0; 219127000 MAERSK BARRY 155,20,11,18, draught 8.8.
+    const auto f = read_csv(data_path("tracks/dma_export_dk_head200.csv"));
+    EXPECT_EQ(f.report.rows, 199u);
+    EXPECT_EQ(f.report.skipped, 0u);
+    EXPECT_EQ(f.tracks.size(), 166u);
+    EXPECT_EQ(fix_count(f), 198u);
+    EXPECT_EQ(f.report.duplicates, 1u);
+    EXPECT_EQ(f.report.reordered, 9u);
+    EXPECT_EQ(std::count_if(f.tracks.begin(), f.tracks.end(), [](const Track& t) { return t.dims.has_value(); }), 23);
+
+    const Track* barry = find(f, "219127000");
+    ASSERT_NE(barry, nullptr);
+    EXPECT_EQ(barry->name, "MAERSK BARRY");
+    ASSERT_TRUE(barry->dims);
+    EXPECT_EQ(*barry->dims, (shoal::hull::Dimensions{155, 20, 11, 18}));
+    EXPECT_DOUBLE_EQ(barry->draught_m, 8.8);
+    ASSERT_EQ(barry->fixes.size(), 1u);
+    EXPECT_EQ(barry->fixes[0].time_s, 1276256778.0);  // 11/06/2010 11:46:18; date -u -> 1276256778
+    EXPECT_DOUBLE_EQ(barry->fixes[0].heading_deg, 337.0);
+
+    const Track* repeated = find(f, "309186000");
+    ASSERT_NE(repeated, nullptr);
+    ASSERT_EQ(repeated->fixes.size(), 1u);
+    EXPECT_EQ(repeated->fixes[0].line, 48u);  // the first of the two rows is kept
+    EXPECT_DOUBLE_EQ(repeated->fixes[0].heading_deg, 326.0);
+}
+
+TEST(CsvReader, TimesOfDayTakeTheDateOfTheVesselsLaterRows) {
+    // gpsd_nl_fixes_head60.csv: 59 rows of one vessel; the first two are T09:47:36 (no date), the
+    // rest 2018-08-20T09:47:37..55 as RMC, GGA, GLL triples: 20 distinct times (sort -u), so 39 repeats.
+    const auto f = read_csv(data_path("tracks/gpsd_nl_fixes_head60.csv"));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    const Track& t = f.tracks[0];
+    EXPECT_EQ(t.id, "OWN:bundg_zeus_9.log");
+    EXPECT_EQ(t.fixes.size(), 20u);
+    EXPECT_EQ(f.report.duplicates, 39u);
+    EXPECT_EQ(t.fixes.front().time_s, 1534758456.0);  // 2018-08-20T09:47:36Z ; date -u -> 1534758456
+    EXPECT_EQ(t.fixes.back().time_s, 1534758456.0 + 19);
+    // 09:47:37: the RMC row comes first and gives SOG 5.6, COG 230.5.
+    EXPECT_DOUBLE_EQ(t.fixes[1].sog_kn, 5.6);
+    EXPECT_DOUBLE_EQ(t.fixes[1].cog_deg, 230.5);
+    EXPECT_TRUE(f.report.messages.empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hand-made failure modes
+
+TEST(CsvReader, TimesOfDayWithoutAnyDateAreDated1970AndSaySo) {
+    // time_of_day.csv: T23:59:58, T23:59:59, T00:00:01 (past midnight).
+    const auto f = read_csv(data_path("tracks/time_of_day.csv"));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    const auto& x = f.tracks[0].fixes;
+    ASSERT_EQ(x.size(), 3u);
+    EXPECT_EQ(x[0].time_s, 86398.0);
+    EXPECT_EQ(x[1].time_s, 86399.0);
+    EXPECT_EQ(x[2].time_s, 86401.0);  // rollover to 1970-01-02
+    ASSERT_EQ(f.report.messages.size(), 1u);
+    EXPECT_THAT(f.report.messages[0], HasSubstr("time_of_day.csv: times are times of day only"));
+    EXPECT_THAT(f.report.messages[0], HasSubstr("1970-01-01"));
+    EXPECT_EQ(f.report.skipped, 0u);
+}
+
+TEST(CsvReader, TimesOfDayTakeTheCallersDate) {
+    ReadOptions options;
+    options.date_s = 1408129200.0 + 1234.5;  // any time on 2014-08-15
+    const auto f = read_csv(data_path("tracks/time_of_day.csv"), options);
+    const auto& x = f.tracks.at(0).fixes;
+    const double midnight = 1408129200.0 - 19 * 3600.0;
+    EXPECT_EQ(x.at(0).time_s, midnight + 86398.0);
+    EXPECT_EQ(x.at(2).time_s, midnight + 86401.0);
+    EXPECT_TRUE(f.report.messages.empty());
+}
+
+TEST(CsvReader, SkipsImpossibleCoordinatesWithAMessagePerRow) {
+    // bad_coordinates.csv: lines 2 and 11 are good; lines 3-10: NaN, inf, 91, 181, -90.5, -180.2, empty, "sixty".
+    const std::string path = data_path("tracks/bad_coordinates.csv");
+    const auto f = read_csv(path);
+    EXPECT_EQ(f.report.rows, 10u);
+    EXPECT_EQ(f.report.skipped, 8u);
+    EXPECT_EQ(fix_count(f), 2u);
+    ASSERT_EQ(f.report.messages.size(), 8u);
+    EXPECT_EQ(f.report.messages[0], path + " line 3: latitude nan is not a number; row skipped");
+    EXPECT_EQ(f.report.messages[1], path + " line 4: longitude inf is not a number; row skipped");
+    EXPECT_EQ(f.report.messages[2], path + " line 5: latitude 91 (AIS: not available); row skipped");
+    EXPECT_EQ(f.report.messages[3], path + " line 6: longitude 181 (AIS: not available); row skipped");
+    EXPECT_THAT(f.report.messages[4], HasSubstr("line 7: latitude -90.5 is outside [-90, 90]"));
+    EXPECT_THAT(f.report.messages[5], HasSubstr("line 8: longitude -180.2 is outside [-180, 180]"));
+    EXPECT_THAT(f.report.messages[6], HasSubstr("line 9: no latitude; row skipped"));
+    EXPECT_THAT(f.report.messages[7], HasSubstr("line 10: latitude 'sixty' is not a number; row skipped"));
+    EXPECT_EQ(f.tracks[0].fixes[0].line, 2u);
+    EXPECT_EQ(f.tracks[0].fixes[1].line, 11u);
+}
+
+TEST(CsvReader, SkipsImpossibleTimesAndReadsEveryTimeForm) {
+    // bad_times.csv lines 2-8: month 13, hour 25, 30 February, date only, "yesterday", empty, minute 60;
+    // lines 9-12: epoch s, epoch ms, day-first, +02:00 offset: 19:00:00, :10.5, :20, :30 on 2014-08-15.
+    const auto f = read_csv(data_path("tracks/bad_times.csv"));
+    EXPECT_EQ(f.report.rows, 11u);
+    EXPECT_EQ(f.report.skipped, 7u);
+    ASSERT_EQ(f.tracks.size(), 1u);
+    std::vector<double> times;
+    for (const auto& x : f.tracks[0].fixes) times.push_back(x.time_s - 1408129200.0);
+    EXPECT_THAT(times, ElementsAre(0.0, 10.5, 20.0, 30.0));
+    ASSERT_GE(f.report.messages.size(), 6u);
+    EXPECT_THAT(f.report.messages[0], HasSubstr("line 2: time '2014-13-15T19:00:00Z' is not a valid time"));
+    EXPECT_THAT(f.report.messages[3], HasSubstr("line 5: time '2014-08-15' is not a valid time"));
+    EXPECT_THAT(f.report.messages[5], HasSubstr("line 7: no time; row skipped"));
+}
+
+TEST(CsvReader, SortsRowsThatGoBackInTime) {
+    // backwards.csv: 19:00:00, :30, :10, :40, :20 -> two rows earlier than an earlier row.
+    const auto f = read_csv(data_path("tracks/backwards.csv"));
+    EXPECT_EQ(f.report.reordered, 2u);
+    std::vector<double> lons;
+    for (const auto& x : f.tracks.at(0).fixes) lons.push_back(x.position.lon);
+    EXPECT_THAT(lons, ElementsAre(24.90, 24.91, 24.92, 24.93, 24.94));
+    std::vector<std::size_t> lines;
+    for (const auto& x : f.tracks.at(0).fixes) lines.push_back(x.line);
+    EXPECT_THAT(lines, ElementsAre(2u, 4u, 6u, 3u, 5u));
+}
+
+TEST(CsvReader, DropsRepeatedTimesKeepingTheFirstRowAndItsMissingValuesFilled) {
+    // repeated.csv: 6 rows at 19:00:00 (x2), :10 (x3), :20 -> 3 fixes, 3 repeats; the second
+    // 19:00:00 row alone has a heading (93).
+    const auto f = read_csv(data_path("tracks/repeated.csv"));
+    EXPECT_EQ(f.report.rows, 6u);
+    EXPECT_EQ(f.report.duplicates, 3u);
+    const auto& x = f.tracks.at(0).fixes;
+    ASSERT_EQ(x.size(), 3u);
+    EXPECT_EQ(x[0].line, 2u);
+    EXPECT_DOUBLE_EQ(x[0].heading_deg, 93.0);
+    EXPECT_TRUE(std::isnan(x[1].heading_deg));
+}
+
+TEST(CsvReader, KeepsTheFirstTenMessagesAndCountsTheRest) {
+    // many_bad_rows.csv: 15 rows with latitudes 95..109, then one good row.
+    const auto f = read_csv(data_path("tracks/many_bad_rows.csv"));
+    EXPECT_EQ(f.report.skipped, 15u);
+    EXPECT_EQ(f.report.messages.size(), 10u);
+    EXPECT_THAT(f.report.messages.back(), HasSubstr("line 11: latitude 104"));
+    EXPECT_EQ(fix_count(f), 1u);
+
+    ReadOptions three;
+    three.max_messages = 3;
+    const auto g = read_csv(data_path("tracks/many_bad_rows.csv"), three);
+    EXPECT_EQ(g.report.skipped, 15u);
+    EXPECT_EQ(g.report.messages.size(), 3u);
+}
+
+TEST(CsvReader, ReadsBomCrlfSemicolonsQuotesAndDecimalCommas) {
+    // crlf_bom_semicolon.csv: UTF-8 BOM, CRLF, ';', "Sea; Star", 60,10 / 24,90, heading 511,
+    // third row COG 360 (AIS: not available) and heading 92.
+    const auto f = read_csv(data_path("tracks/crlf_bom_semicolon.csv"));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    const Track& t = f.tracks[0];
+    EXPECT_EQ(t.id, "230000001");
+    EXPECT_EQ(t.name, "Sea; Star");
+    ASSERT_EQ(t.fixes.size(), 3u);
+    EXPECT_DOUBLE_EQ(t.fixes[0].position.lat, 60.10);
+    EXPECT_DOUBLE_EQ(t.fixes[0].position.lon, 24.90);
+    EXPECT_DOUBLE_EQ(t.fixes[0].sog_kn, 5.5);
+    EXPECT_TRUE(std::isnan(t.fixes[0].heading_deg));
+    EXPECT_TRUE(std::isnan(t.fixes[2].cog_deg));
+    EXPECT_DOUBLE_EQ(t.fixes[2].heading_deg, 92.0);
+    EXPECT_EQ(t.fixes[0].time_s, 1408129200.0);
+}
+
+TEST(CsvReader, ReadsTabSeparatedFiles) {
+    const auto f = read_csv(data_path("tracks/tab_separated.txt"));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "x1");
+    ASSERT_EQ(f.tracks[0].fixes.size(), 2u);
+    EXPECT_DOUBLE_EQ(f.tracks[0].fixes[1].heading_deg, 11.0);
+    EXPECT_DOUBLE_EQ(f.tracks[0].fixes[1].position.lon, 24.91);
+}
+
+TEST(CsvReader, QuotedFieldsMayHoldSeparatorsQuotesAndLineBreaks) {
+    // quoted.csv: line 4 opens a quoted name that ends on line 5, so the last row is on line 6.
+    const auto f = read_csv(data_path("tracks/quoted.csv"));
+    ASSERT_EQ(f.tracks.size(), 3u);
+    EXPECT_EQ(f.tracks[0].id, "111");
+    EXPECT_EQ(f.tracks[0].name, "Smith, John");
+    EXPECT_EQ(f.tracks[1].name, "The \"Quote\"");
+    EXPECT_EQ(f.tracks[2].name, "Two\nLines");
+    ASSERT_EQ(f.tracks[0].fixes.size(), 2u);
+    EXPECT_EQ(f.tracks[0].fixes[1].line, 6u);
+}
+
+TEST(CsvReader, Latin1NamesBecomeUtf8AndDimensionsAreRead) {
+    const auto f = read_csv(data_path("tracks/latin1_name.csv"));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].name, "SK\xC3\x85NE");  // SKÅNE in UTF-8
+    ASSERT_TRUE(f.tracks[0].dims);
+    EXPECT_EQ(*f.tracks[0].dims, (shoal::hull::Dimensions{100, 20, 8, 10}));
+}
+
+TEST(CsvReader, HeaderOnlyGivesNoTrack) {
+    const auto f = read_csv(data_path("tracks/header_only.csv"));
+    EXPECT_EQ(f.report.rows, 0u);
+    EXPECT_TRUE(f.tracks.empty());
+}
+
+TEST(CsvReader, HeaderWithoutPositionColumnsIsNotATrackFormat) {
+    EXPECT_THAT([] { read_csv_text("mmsi,time,x,y\n1,2014-08-15T19:00:00Z,1,2\n", "xy.csv"); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr("xy.csv: not a track format shoal reads"),
+                                                HasSubstr("no latitude"))));
+    EXPECT_THAT([] { read_csv_text("mmsi,lat,lon\n1,60,24\n", "notime.csv"); },
+                ThrowsMessage<InputError>(HasSubstr("no time")));
+}
+
+TEST(CsvReader, WithoutAnIdColumnTheFileIsOneTrackNamedAfterItsStem) {
+    const auto f = read_csv_text("time,lat,lon\n2014-08-15T19:00:00Z,60,24\n2014-08-15T19:00:01Z,60,24.001\n",
+                                 "/some/where/exercise-3.csv");
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "exercise-3");
+    EXPECT_EQ(f.tracks[0].fixes.size(), 2u);
+}
+
+TEST(CsvReader, RowsWithTooFewFieldsOrNoIdAreSkipped) {
+    const auto f = read_csv_text("id,time,lat,lon\na,2014-08-15T19:00:00Z,60\n,2014-08-15T19:00:00Z,60,24\n", "x.csv");
+    EXPECT_EQ(f.report.skipped, 2u);
+    EXPECT_THAT(f.report.messages.at(0), HasSubstr("x.csv line 2: has 3 fields, the header needs 4; row skipped"));
+    EXPECT_THAT(f.report.messages.at(1), HasSubstr("x.csv line 3: no vessel id; row skipped"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pieces
+
+TEST(CsvSplitter, DetectsTheSeparatorAndSplitsQuotedFields) {
+    std::vector<std::string_view> f;
+    CsvSplitter a("a;b,c;d\n1;\"2;3\";4\n");
+    EXPECT_EQ(a.separator(), ';');
+    ASSERT_TRUE(a.next(f));
+    EXPECT_THAT(f, ElementsAre("a", "b,c", "d"));
+    ASSERT_TRUE(a.next(f));
+    EXPECT_THAT(f, ElementsAre("1", "2;3", "4"));
+    EXPECT_FALSE(a.next(f));
+
+    CsvSplitter b("x\ty\r\n\r\n 1 \t 2 \r\n,\t\n");
+    EXPECT_EQ(b.separator(), '\t');
+    ASSERT_TRUE(b.next(f));
+    ASSERT_TRUE(b.next(f));  // the blank line is skipped
+    EXPECT_THAT(f, ElementsAre("1", "2"));
+    EXPECT_EQ(b.line(), 3u);
+    ASSERT_TRUE(b.next(f));
+    EXPECT_THAT(f, ElementsAre(",", ""));
+
+    CsvSplitter none("just words\n");
+    EXPECT_EQ(none.separator(), '\0');
+}
+
+TEST(CsvNames, MatchesCaseAndHashInsensitively) {
+    EXPECT_EQ(normalise_column_name("# Timestamp"), "timestamp");
+    EXPECT_EQ(normalise_column_name(" BaseDateTime "), "basedatetime");
+    EXPECT_EQ(to_utf8("plain"), "plain");
+    EXPECT_EQ(to_utf8("\xC3\x85"), "\xC3\x85");      // valid UTF-8 stays
+    EXPECT_EQ(to_utf8("\xC5"), "\xC3\x85");          // Latin-1 Å
+    EXPECT_EQ(to_utf8("caf\xE9!"), "caf\xC3\xA9!");  // Latin-1 é
+}
+
+}  // namespace

@@ -1,0 +1,157 @@
+// Tests of track::read_gpx and track::read_geojson on hand-made files in tests/data/tracks.
+//
+// The GPX files were checked independently with GDAL's own tool: `ogrinfo -q FILE track_points`
+// (and route_points) lists each point with its time (one track point without a time, one with
+// +02 offset; GPX 1.0 course 80.5 and speed 2.572 m/s). Every GeoJSON value asserted below can
+// be read in the file itself. Epoch seconds: date -u -d '2014-08-15T19:00:00Z' +%s -> 1408129200.
+
+#include "track/ogr_reader.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+#include "util/error.hpp"
+
+namespace {
+
+using shoal::InputError;
+using shoal::test::data_path;
+using namespace shoal::track;
+using testing::AllOf;
+using testing::ElementsAre;
+using testing::HasSubstr;
+using testing::ThrowsMessage;
+
+constexpr double t0 = 1408129200.0;  // 2014-08-15T19:00:00Z
+
+std::vector<double> times(const Track& t) {
+    std::vector<double> out;
+    for (const auto& f : t.fixes) out.push_back(f.time_s - t0);
+    return out;
+}
+
+TEST(GpxReader, ReadsTracksAndRoutesWithTheirNames) {
+    const std::string path = data_path("tracks/track_and_route.gpx");
+    const auto f = read_gpx(path);
+    EXPECT_EQ(f.format, "gpx");
+    EXPECT_EQ(f.report.rows, 8u);  // 5 track points + 3 route points
+    EXPECT_EQ(f.report.skipped, 1u);
+    ASSERT_EQ(f.tracks.size(), 2u);
+    const Track& trk = f.tracks[0];
+    EXPECT_EQ(trk.id, "Trainee A");
+    // Two segments joined; the +02:00 point is 19:00:20 UTC; the untimed 4th point is skipped.
+    EXPECT_THAT(times(trk), ElementsAre(0.0, 10.5, 20.0, 40.0));
+    EXPECT_DOUBLE_EQ(trk.fixes[3].position.lon, 24.904);
+    EXPECT_DOUBLE_EQ(trk.fixes[3].position.lat, 60.15);
+    EXPECT_EQ(trk.fixes[3].line, 5u);
+    const Track& rte = f.tracks[1];
+    EXPECT_EQ(rte.id, "Plan B");
+    EXPECT_THAT(times(rte), ElementsAre(-3600.0, -3000.0, -2400.0));
+    EXPECT_EQ(rte.fixes[0].line, 6u);
+    ASSERT_EQ(f.report.messages.size(), 1u);
+    EXPECT_EQ(f.report.messages[0], path + " point 4 (track 'Trainee A'): no time; point skipped");
+}
+
+TEST(GpxReader, UnnamedSingleTrackTakesTheStemAndGpx10CourseAndSpeed) {
+    const auto f = read_gpx(data_path("tracks/unnamed_track.gpx"));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "unnamed_track");
+    ASSERT_EQ(f.tracks[0].fixes.size(), 2u);
+    EXPECT_DOUBLE_EQ(f.tracks[0].fixes[0].cog_deg, 80.5);
+    EXPECT_NEAR(f.tracks[0].fixes[0].sog_kn, 2.572 * 3600.0 / 1852.0, 1e-12);  // m/s -> knots
+    EXPECT_TRUE(std::isnan(f.tracks[0].fixes[1].sog_kn));
+}
+
+TEST(GpxReader, RouteWithoutTimesIsAnErrorNamingFileAndRoute) {
+    EXPECT_THAT([] { read_gpx(data_path("tracks/route_without_times.gpx")); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr("route_without_times.gpx: route 'Planned passage' (route 1)"),
+                                                HasSubstr("has no times"))));
+}
+
+TEST(GpxReader, NotGpxIsAnInputError) {
+    EXPECT_THAT([] { read_gpx(data_path("tracks/unknown_format.txt")); },
+                ThrowsMessage<InputError>(HasSubstr("unknown_format.txt: not a GPX file")));
+}
+
+TEST(GeoJsonReader, LineStringWithTimesArray) {
+    const std::string path = data_path("tracks/line_times.geojson");
+    const auto f = read_geojson(path);
+    EXPECT_EQ(f.format, "geojson");
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "Aava");
+    EXPECT_EQ(f.tracks[0].name, "Aava");
+    EXPECT_THAT(times(f.tracks[0]), ElementsAre(0.0, 10.0, 20.25, 40.0));
+    EXPECT_DOUBLE_EQ(f.tracks[0].fixes[3].position.lon, 24.94);
+    EXPECT_EQ(f.report.rows, 5u);
+    EXPECT_EQ(f.report.skipped, 1u);
+    ASSERT_EQ(f.report.messages.size(), 1u);
+    EXPECT_EQ(f.report.messages[0], path + " feature 1 vertex 4: times \"not a time\" is not a valid time; point skipped");
+}
+
+TEST(GeoJsonReader, MultiLineStringWithCoordinatePropertiesAndMillisecondCoordTimes) {
+    const auto f = read_geojson(data_path("tracks/line_coordinate_properties.geojson"));
+    ASSERT_EQ(f.tracks.size(), 2u);
+    EXPECT_EQ(f.tracks[0].id, "244000001");  // the feature's id
+    EXPECT_THAT(times(f.tracks[0]), ElementsAre(0.0, 10.0, 20.0, 30.0));
+    EXPECT_DOUBLE_EQ(f.tracks[0].fixes[2].position.lon, 5.32);
+    EXPECT_EQ(f.tracks[1].id, "244000002");  // the mmsi property, a number
+    EXPECT_THAT(times(f.tracks[1]), ElementsAre(0.0, 10.0));
+}
+
+TEST(GeoJsonReader, LineStringWithMeasureCoordinates) {
+    const auto f = read_geojson(data_path("tracks/line_m.geojson"));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "M-ship");
+    EXPECT_THAT(times(f.tracks[0]), ElementsAre(0.0, 10.0, 20.5));
+}
+
+TEST(GeoJsonReader, PointsAreSplitByMmsiInFirstAppearanceOrder) {
+    // points.geojson: 230000002 at 19:00:00 (sog 6.5, cog 45, heading 511) and 19:00:10;
+    // 230000001 at 19:00:05 (heading 270), one point without time, a numeric timestamp
+    // 1408129215, and a Polygon feature.
+    const auto f = read_geojson(data_path("tracks/points.geojson"));
+    EXPECT_EQ(f.report.rows, 6u);
+    EXPECT_EQ(f.report.skipped, 2u);
+    ASSERT_EQ(f.tracks.size(), 2u);
+    EXPECT_EQ(f.tracks[0].id, "230000002");
+    EXPECT_EQ(f.tracks[1].id, "230000001");
+    EXPECT_THAT(times(f.tracks[0]), ElementsAre(0.0, 10.0));
+    EXPECT_THAT(times(f.tracks[1]), ElementsAre(5.0, 15.0));
+    EXPECT_DOUBLE_EQ(f.tracks[0].fixes[0].sog_kn, 6.5);
+    EXPECT_DOUBLE_EQ(f.tracks[0].fixes[0].cog_deg, 45.0);
+    EXPECT_TRUE(std::isnan(f.tracks[0].fixes[0].heading_deg));
+    EXPECT_DOUBLE_EQ(f.tracks[1].fixes[0].heading_deg, 270.0);
+    EXPECT_THAT(f.report.messages.at(0), HasSubstr("feature 4: Point without a 'time' or 'timestamp' property"));
+    EXPECT_THAT(f.report.messages.at(1), HasSubstr("feature 6: a Polygon is not a track"));
+}
+
+TEST(GeoJsonReader, LineWithoutTimesIsAnErrorNamingFileAndFeature) {
+    EXPECT_THAT([] { read_geojson(data_path("tracks/line_without_times.geojson")); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr("line_without_times.geojson feature 1 ('no clock')"),
+                                                HasSubstr("line without times"))));
+    EXPECT_THAT([] { read_geojson(data_path("tracks/line_times_mismatch.geojson")); },
+                ThrowsMessage<InputError>(HasSubstr("feature 1: 'times' has 1 times for 2 vertices")));
+}
+
+TEST(GeoJsonReader, RejectsBrokenJsonOtherJsonAndOtherCrs) {
+    EXPECT_THAT([] { read_geojson_text("{\"type\": \"FeatureCollection\", ", "cut.geojson"); },
+                ThrowsMessage<InputError>(HasSubstr("cut.geojson: not valid JSON")));
+    EXPECT_THAT([] { read_geojson_text(R"({"name": "tanker", "a": 100})", "ship.json"); },
+                ThrowsMessage<InputError>(HasSubstr("ship.json: not a track format shoal reads")));
+    EXPECT_THAT(
+        [] {
+            read_geojson_text(R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:3067"}},
+                                  "features": []})",
+                              "tm35.geojson");
+        },
+        ThrowsMessage<InputError>(HasSubstr("tm35.geojson: crs 'EPSG:3067' is not WGS84")));
+    EXPECT_THAT([] { read_geojson_text(R"({"type": "LineString", "coordinates": [[0, 0], [1, 1]]})", "bare.geojson"); },
+                ThrowsMessage<InputError>(HasSubstr("bare.geojson: a bare LineString geometry has no times")));
+}
+
+}  // namespace

@@ -1,0 +1,271 @@
+// Tests of track.hpp (normalise, resolve_headings) and reader.hpp (read_tracks, expand_inputs,
+// read_vessels).
+//
+// Expected bearings come from an independent computation in /usr/bin/python3: the chord from
+// A to B (unit vectors on the sphere) projected on the east and north unit vectors at A,
+// bearing = atan2(chord.east, chord.north) (shoal uses the trigonometric initial-bearing formula).
+// Speeds: 0.001 deg of latitude = 6371008.8 m * pi/180 * 0.001 = 111.195 m; in 10 s = 21.6 kn.
+// Vessel counts: awk -F, on gpsd_nl_vessels.csv (19 distinct MMSIs, 16 with A,B,C,D all > 0).
+
+#include "track/reader.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+#include "track/track.hpp"
+#include "util/error.hpp"
+
+namespace {
+
+using shoal::InputError;
+using shoal::test::data_path;
+using shoal::test::TempDir;
+using namespace shoal::track;
+using testing::AllOf;
+using testing::ElementsAre;
+using testing::EndsWith;
+using testing::HasSubstr;
+using testing::ThrowsMessage;
+
+Fix fix(double t, double lat, double lon, double heading = NAN, double cog = NAN, double sog = NAN) {
+    Fix f;
+    f.time_s = t;
+    f.position = {lon, lat};
+    f.heading_deg = heading;
+    f.cog_deg = cog;
+    f.sog_kn = sog;
+    return f;
+}
+
+std::vector<HeadingSource> sources(const Track& t) {
+    std::vector<HeadingSource> out;
+    for (const auto& f : t.fixes) out.push_back(f.heading_source);
+    return out;
+}
+
+void write(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+// ---------------------------------------------------------------------------------------------
+// normalise
+
+TEST(Normalise, SortsCountsReorderedAndMergesRepeatedTimes) {
+    Track t;
+    t.file = "x.csv";
+    t.fixes = {fix(30, 60, 24.3), fix(10, 60, 24.1), fix(10, 60, 24.15, 5.0), fix(20, 60, 24.2, NAN, 7.0),
+               fix(NAN, 60, 24.9), fix(0, 60, 24.0)};
+    t.fixes[4].line = 99;
+    ReadReport r;
+    normalise(t, r);
+    std::vector<double> times, lons;
+    for (const auto& f : t.fixes) {
+        times.push_back(f.time_s);
+        lons.push_back(f.position.lon);
+    }
+    EXPECT_THAT(times, ElementsAre(0, 10, 20, 30));
+    EXPECT_THAT(lons, ElementsAre(24.0, 24.1, 24.2, 24.3));  // the first of the two at t=10 kept
+    EXPECT_DOUBLE_EQ(t.fixes[1].heading_deg, 5.0);           // ... with the repeat's heading
+    EXPECT_EQ(r.duplicates, 1u);
+    EXPECT_EQ(r.reordered, 4u);  // 10, 10, 20 and 0 come after 30
+    EXPECT_EQ(r.skipped, 1u);
+    EXPECT_THAT(r.messages, ElementsAre("x.csv line 99: fix without a time; dropped"));
+}
+
+TEST(ReadReport, KeepsMessagesUpToItsLimit) {
+    ReadReport r;
+    r.max_messages = 2;
+    for (int i = 0; i < 5; ++i) r.skip("m" + std::to_string(i));
+    EXPECT_EQ(r.skipped, 5u);
+    EXPECT_THAT(r.messages, ElementsAre("m0", "m1"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// resolve_headings
+
+TEST(ResolveHeadings, PrefersHeadingThenCogWhenMovingThenPrevious) {
+    Track t;
+    t.fixes = {fix(0, 60, 24, NAN, 100.0, 0.1),    // stopped, COG ignored, nothing known yet
+               fix(10, 60, 24, 80.0, 100.0, 0.1),  // true heading
+               fix(20, 60, 24, NAN, 100.0, 6.0),   // moving: COG
+               fix(30, 60, 24, NAN, 120.0, 0.2),   // stopped: previous (100)
+               fix(40, 60, 24, NAN, NAN, 6.0)};    // moving, no COG, positions equal: previous
+    resolve_headings(t);
+    EXPECT_THAT(sources(t), ElementsAre(HeadingSource::none, HeadingSource::heading, HeadingSource::cog,
+                                        HeadingSource::previous, HeadingSource::previous));
+    std::vector<double> used;
+    for (const auto& f : t.fixes) used.push_back(f.heading_used_deg);
+    EXPECT_THAT(used, ElementsAre(0.0, 80.0, 100.0, 100.0, 100.0));
+}
+
+TEST(ResolveHeadings, UnknownSogUsesMotionBetweenPositions) {
+    Track t;
+    t.fixes = {fix(0, 60.0, 24.0, NAN, 30.0),     // 0.001 deg north in 10 s to the next: 21.6 kn, moving: COG
+               fix(10, 60.001, 24.0, NAN, 31.0),  // next is 0.00001 deg away: 0.2 kn, stopped: previous
+               fix(20, 60.00101, 24.0),           // next is 1 deg away: moving, no COG: bearing to it
+               fix(30, 61.0, 25.0),               // next is due north
+               fix(40, 62.0, 25.0)};              // last: speed and bearing from the previous fix
+    resolve_headings(t, 0.5);
+    EXPECT_THAT(sources(t), ElementsAre(HeadingSource::cog, HeadingSource::previous, HeadingSource::positions,
+                                        HeadingSource::positions, HeadingSource::positions));
+    EXPECT_DOUBLE_EQ(t.fixes[0].heading_used_deg, 30.0);
+    EXPECT_DOUBLE_EQ(t.fixes[1].heading_used_deg, 30.0);
+    EXPECT_NEAR(t.fixes[3].heading_used_deg, 0.0, 1e-9);
+    EXPECT_NEAR(t.fixes[4].heading_used_deg, 0.0, 1e-9);
+
+    Track stop;  // the last fix crawls 0.11 m in 10 s (0.02 kn): stopped, heading held
+    stop.fixes = {fix(0, 60, 24, 45.0), fix(10, 60.000001, 24)};
+    resolve_headings(stop, 0.5);
+    EXPECT_THAT(sources(stop), ElementsAre(HeadingSource::heading, HeadingSource::previous));
+    EXPECT_DOUBLE_EQ(stop.fixes[1].heading_used_deg, 45.0);
+}
+
+TEST(ResolveHeadings, BearingBetweenPositionsIsTheInitialGreatCircleBearing) {
+    // python3 (chord projection): 60N 24E -> 61N 25E: 25.782388958202198;
+    // 60N 24E -> 59.99N 23.98E: 225.01298983573034.
+    Track t;
+    t.fixes = {fix(0, 60, 24), fix(3600, 61, 25)};
+    resolve_headings(t);
+    EXPECT_EQ(t.fixes[0].heading_source, HeadingSource::positions);
+    EXPECT_NEAR(t.fixes[0].heading_used_deg, 25.782388958202198, 1e-9);
+    Track u;
+    u.fixes = {fix(0, 60, 24), fix(60, 59.99, 23.98)};
+    resolve_headings(u);
+    EXPECT_NEAR(u.fixes[0].heading_used_deg, 225.01298983573034, 1e-9);
+    EXPECT_NEAR(u.fixes[1].heading_used_deg, 225.01298983573034, 1e-9);  // from the previous fix
+}
+
+TEST(ResolveHeadings, NormalisesToZeroTo360) {
+    Track t;
+    t.fixes = {fix(0, 60, 24, -10.0), fix(10, 60, 24, 370.0), fix(20, 60, 24, 360.0)};
+    resolve_headings(t);
+    EXPECT_DOUBLE_EQ(t.fixes[0].heading_used_deg, 350.0);
+    EXPECT_DOUBLE_EQ(t.fixes[1].heading_used_deg, 10.0);
+    EXPECT_DOUBLE_EQ(t.fixes[2].heading_used_deg, 0.0);
+}
+
+TEST(HeadingSourceNames, AreTheReportWords) {
+    EXPECT_STREQ(to_string(HeadingSource::heading), "heading");
+    EXPECT_STREQ(to_string(HeadingSource::cog), "cog");
+    EXPECT_STREQ(to_string(HeadingSource::positions), "positions");
+    EXPECT_STREQ(to_string(HeadingSource::previous), "previous");
+    EXPECT_STREQ(to_string(HeadingSource::none), "none");
+}
+
+// ---------------------------------------------------------------------------------------------
+// read_tracks
+
+TEST(ReadTracks, DispatchesOnContent) {
+    EXPECT_EQ(read_tracks(data_path("tracks/depons_marinecadastre.csv")).format, "csv");
+    EXPECT_EQ(read_tracks(data_path("tracks/plaka_head400.log")).format, "nmea");
+    EXPECT_EQ(read_tracks(data_path("tracks/bundg_zeus_9_head300.log")).format, "nmea");  // '#' comments first
+    EXPECT_EQ(read_tracks(data_path("tracks/dma_export_dk_head200.csv")).format, "csv");  // '# Timestamp' header
+    EXPECT_EQ(read_tracks(data_path("tracks/track_and_route.gpx")).format, "gpx");
+    EXPECT_EQ(read_tracks(data_path("tracks/line_times.geojson")).format, "geojson");
+    EXPECT_EQ(read_tracks(data_path("tracks/tab_separated.txt")).format, "csv");
+}
+
+TEST(ReadTracks, ARenamedFileIsReadByItsContent) {
+    TempDir dir;
+    const std::string copy = dir.file("log.csv");
+    shoal::test::write_bytes(copy, shoal::test::read_bytes(data_path("tracks/mixed_talkers.nmea")));
+    const auto f = read_tracks(copy);
+    EXPECT_EQ(f.format, "nmea");
+    EXPECT_EQ(f.tracks.at(0).id, "log");
+    EXPECT_EQ(f.tracks.at(0).fixes.size(), 4u);
+}
+
+TEST(ReadTracks, EmptyHeaderOnlyUnknownAndMissingFilesAreInputErrors) {
+    EXPECT_THAT([] { read_tracks(data_path("tracks/empty.csv")); },
+                ThrowsMessage<InputError>(EndsWith("empty.csv: empty file")));
+    EXPECT_THAT([] { read_tracks(data_path("tracks/header_only.csv")); },
+                ThrowsMessage<InputError>(EndsWith("header_only.csv: no usable fix (0 rows read, 0 skipped)")));
+    EXPECT_THAT([] { read_tracks(data_path("tracks/unknown_format.txt")); },
+                ThrowsMessage<InputError>(EndsWith(
+                    "unknown_format.txt: not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183)")));
+    EXPECT_THAT([] { read_tracks(data_path("tracks/no_such_file.csv")); },
+                ThrowsMessage<InputError>(HasSubstr("no_such_file.csv: no such file")));
+    EXPECT_THAT([] { read_tracks(data_path("tracks")); }, ThrowsMessage<InputError>(HasSubstr("is a folder")));
+}
+
+TEST(ReadTracks, AFileWithoutAnyGoodRowSaysWhy) {
+    TempDir dir;
+    write(dir.file("bad.csv"), "id,time,lat,lon\na,2014-08-15T19:00:00Z,91,181\n");
+    EXPECT_THAT([&] { read_tracks(dir.file("bad.csv")); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr("bad.csv: no usable fix (1 rows read, 1 skipped)"),
+                                                HasSubstr("first problem: "), HasSubstr("latitude 91"))));
+    write(dir.file("ais.nmea"), "!AIVDM,1,1,,B,13u?etPv2;0n:dDPwUM1U1Cb069D,0*24\n");
+    EXPECT_THAT([&] { read_tracks(dir.file("ais.nmea")); },
+                ThrowsMessage<InputError>(HasSubstr("AIS !AIVDM sentences are not decoded")));
+}
+
+TEST(ReadTracks, DropsVesselsLeftWithoutFixes) {
+    TempDir dir;
+    write(dir.file("two.csv"), "id,time,lat,lon\na,2014-08-15T19:00:00Z,91,24\nb,2014-08-15T19:00:00Z,60,24\n");
+    const auto f = read_tracks(dir.file("two.csv"));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "b");
+    EXPECT_EQ(f.report.skipped, 1u);
+}
+
+TEST(SniffFormat, LooksAtContentFirst) {
+    EXPECT_EQ(sniff_format("\xEF\xBB\xBF<?xml version=\"1.0\"?>\n<gpx version=\"1.1\">"), "gpx");
+    EXPECT_EQ(sniff_format("<kml></kml>"), "");
+    EXPECT_EQ(sniff_format("<?xml version=\"1.0\"?>\n<trk/>", "x.gpx"), "gpx");  // the extension breaks the tie
+    EXPECT_EQ(sniff_format("  {\"type\": \"FeatureCollection\"}"), "geojson");
+    EXPECT_EQ(sniff_format("# comment\n$GPGGA,1\n$GPRMC,2\n"), "nmea");
+    EXPECT_EQ(sniff_format("# Timestamp,MMSI\n18/03/2013 09:19:09,1\n"), "csv");
+    EXPECT_EQ(sniff_format("plain words\n"), "");
+    EXPECT_EQ(sniff_format(std::string_view("a,b\0c", 5)), "");  // binary
+}
+
+// ---------------------------------------------------------------------------------------------
+// expand_inputs, read_vessels
+
+TEST(ExpandInputs, FoldersBecomeTheirTrackFilesSorted) {
+    TempDir dir;
+    for (const char* name : {"b.GPX", "a.csv", "c_vessels.csv", "notes.md", "z.log", "m.geojson"})
+        write(dir.file(name), "x");
+    std::filesystem::create_directory(dir.path() / "sub.csv");
+    const auto files = expand_inputs({dir.path().string(), data_path("tracks/plaka_head400.log")});
+    EXPECT_THAT(files, ElementsAre(dir.file("a.csv"), dir.file("b.GPX"), dir.file("m.geojson"), dir.file("z.log"),
+                                   data_path("tracks/plaka_head400.log")));
+}
+
+TEST(ExpandInputs, MissingPathsAndFoldersWithoutTracksAreInputErrors) {
+    TempDir dir;
+    write(dir.file("readme.md"), "x");
+    EXPECT_THAT([&] { expand_inputs({dir.file("gone.csv")}); },
+                ThrowsMessage<InputError>(EndsWith("gone.csv: no such file or folder")));
+    EXPECT_THAT([&] { expand_inputs({dir.path().string()}); }, ThrowsMessage<InputError>(HasSubstr("holds no track files")));
+}
+
+TEST(ReadVessels, ReadsStaticDataByMmsi) {
+    // gpsd_nl_vessels.csv rows: 244050308 TYPHOON 37,10,3,2,2,(no draught); 305235000 MEDUM 70,88,12,10,6,6.3;
+    // 211524940 TUI MAYA 69,0,0,0,0,1.7; 244820267 PLEIADE with no values.
+    const auto v = read_vessels(data_path("tracks/gpsd_nl_vessels.csv"));
+    EXPECT_EQ(v.size(), 19u);
+    EXPECT_EQ(std::count_if(v.begin(), v.end(), [](const auto& kv) { return kv.second.dims.has_value(); }), 16);
+    const VesselInfo& medum = v.at("305235000");
+    EXPECT_EQ(medum.name, "MEDUM");
+    EXPECT_EQ(*medum.dims, (shoal::hull::Dimensions{88, 12, 10, 6}));
+    EXPECT_DOUBLE_EQ(medum.draught_m, 6.3);
+    EXPECT_EQ(medum.ship_type, 70);
+    EXPECT_TRUE(std::isnan(v.at("244050308").draught_m));
+    EXPECT_FALSE(v.at("211524940").dims.has_value());
+    EXPECT_DOUBLE_EQ(v.at("211524940").draught_m, 1.7);
+    EXPECT_EQ(v.at("244820267").ship_type, -1);
+    EXPECT_THAT([] { read_vessels(data_path("tracks/backwards.csv")); },
+                ThrowsMessage<InputError>(HasSubstr("without an 'mmsi' column")));
+}
+
+}  // namespace
