@@ -196,12 +196,21 @@ struct Search {
     /// The segments of one cell: each is moved to the aligned frame and tested against the
     /// hull's box at the distance found so far; only those that pass meet the edges.
     void read(std::span<const grid::Segment> segs, bool collect) {
-        // a' = (dot(a - o, u), dot(a - o, v)) for both ends, and the segment's box.
+        // First a test in local metres, on the segment as stored: its box against the hull's
+        // local box grown by the clearance found so far (r). Only the segments that pass are
+        // moved to the aligned frame, a' = (dot(a - o, u), dot(a - o, v)), and tested
+        // against the (tighter) aligned box.
         const __m128d o = load(hull.origin);
         const __m128d ux = _mm_set_pd(hull.v.x, hull.u.x), uy = _mm_set_pd(hull.v.y, hull.u.y);
         const __m128d hmin = load_min(hull.box), hmax = load_max(hull.box);
+        const __m128d lmin = load_min(hull.local_box), lmax = load_max(hull.local_box);
+        __m128d r = _mm_set1_pd(std::sqrt(best2));
+        __m128d qmin = _mm_sub_pd(lmin, r), qmax = _mm_add_pd(lmax, r);
         for (const grid::Segment& sg : segs) {
-            const __m128d da = _mm_sub_pd(load(sg.a), o), db = _mm_sub_pd(load(sg.b), o);
+            const __m128d la = load(sg.a), lb = load(sg.b);
+            const __m128d far = _mm_or_pd(_mm_cmpgt_pd(_mm_min_pd(la, lb), qmax), _mm_cmplt_pd(_mm_max_pd(la, lb), qmin));
+            if (_mm_movemask_pd(far) != 0) continue;
+            const __m128d da = _mm_sub_pd(la, o), db = _mm_sub_pd(lb, o);
             const __m128d a = _mm_add_pd(_mm_mul_pd(_mm_unpacklo_pd(da, da), ux), _mm_mul_pd(_mm_unpackhi_pd(da, da), uy));
             const __m128d b = _mm_add_pd(_mm_mul_pd(_mm_unpacklo_pd(db, db), ux), _mm_mul_pd(_mm_unpackhi_pd(db, db), uy));
             const __m128d smin = _mm_min_pd(a, b), smax = _mm_max_pd(a, b);
@@ -216,6 +225,9 @@ struct Search {
             edges(pa, pb, sb);
             if (crossing) return;
             if (collect && d2 == 0 && hull.in_box(pa)) inside_candidates.push_back(pa);
+            r = _mm_set1_pd(std::sqrt(best2));
+            qmin = _mm_sub_pd(lmin, r);
+            qmax = _mm_add_pd(lmax, r);
         }
     }
 

@@ -14,6 +14,7 @@
 
 #include "hull/hull.hpp"
 #include "track/track.hpp"
+#include "util/error.hpp"
 
 namespace shoal::track {
 

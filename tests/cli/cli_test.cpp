@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <ogrsf_frmts.h>
@@ -21,13 +22,19 @@ struct Outcome {
     std::string out, err;
 };
 
+/// A folder for this run's files, removed when the tests end.
+struct TempDir {
+    fs::path path = fs::temp_directory_path() / ("shoal-cli-test-" + std::to_string(::getpid()));
+    TempDir() { fs::create_directories(path); }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
 fs::path temp_dir() {
-    static const fs::path d = [] {
-        fs::path p = fs::temp_directory_path() / ("shoal-cli-test-" + std::to_string(::getpid()));
-        fs::create_directories(p);
-        return p;
-    }();
-    return d;
+    static const TempDir d;
+    return d.path;
 }
 
 std::string slurp(const fs::path& p) {
@@ -49,6 +56,8 @@ Outcome shoal(const std::string& args) {
     r.err = slurp(err);
     return r;
 }
+
+std::string source_root() { return fs::path(SHOAL_TEST_DATA).parent_path().parent_path().parent_path().string(); }
 
 std::string data(const std::string& rel) { return "'" + std::string(SHOAL_TEST_DATA) + rel + "'"; }
 
@@ -108,6 +117,152 @@ TEST(Cli, ProbeWritesOneRowPerPoseAndSkipsBadRows) {
     EXPECT_NE(r.err.find("line 4"), std::string::npos) << r.err;
     // 50.76N 1.30W is inland on the Isle of Wight: a collision with clearance 0.
     EXPECT_NE(r.out.find("50.7600000,-1.3000000,45.0,1,0.000"), std::string::npos) << r.out;
+}
+
+}  // namespace
+
+namespace {
+
+/// Two vessels in the Solent: A sails from the Solent south across the Isle of Wight (it must
+/// ground), B stays in open water east of the island; one bad row in between.
+fs::path solent_tracks() {
+    const fs::path p = temp_dir() / "solent-tracks.csv";
+    std::ofstream out(p);
+    out << "mmsi,timestamp,lat,lon,sog,cog,heading\n";
+    for (int i = 0; i <= 20; ++i) {  // A: 50.78N -> 50.58N along 1.30W, 1 min apart (~11.9 kn)
+        char row[160];
+        std::snprintf(row, sizeof row, "111111111,2024-05-01T10:%02d:00Z,%.4f,-1.3000,11.9,180,511\n", i, 50.78 - 0.01 * i);
+        out << row;
+        if (i == 5) out << "111111111,2024-05-01T10:05:30Z,95.0,-1.3000,11.9,180,511\n";  // latitude 95: skipped
+    }
+    for (int i = 0; i <= 10; ++i) {  // B: east of the island, far from land
+        char row[160];
+        std::snprintf(row, sizeof row, "222222222,2024-05-01T10:%02d:00Z,50.7400,%.4f,8,90,90\n", i, -1.05 + 0.002 * i);
+        out << row;
+    }
+    return p;
+}
+
+bool validates_against_schema(const fs::path& report) {
+    const std::string schema = source_root() + "/schemas/report.schema.json";
+    const std::string cmd = "/usr/bin/python3 -c \"import json,sys,jsonschema; "
+                            "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))\" '" +
+                            report.string() + "' '" + schema + "' 2>&1";
+    FILE* p = ::popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf;
+    std::string out;
+    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) out.append(buf.data(), n);
+    const int st = ::pclose(p);
+    if (st != 0) ADD_FAILURE() << "schema validation failed:\n" << out;
+    return st == 0;
+}
+
+TEST(CliCheck, GroundingGivesExitOneAndAReportThatValidatesAndReadsBack) {
+    const fs::path tracks = solent_tracks();
+    const fs::path report = temp_dir() / "solent.geojson";
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() +
+                            "' -o '" + report.string() + "' --jobs 2");
+    EXPECT_EQ(r.status, 1) << r.err << r.out;
+    EXPECT_NE(r.err.find("line 8"), std::string::npos) << "the bad row is reported with its line: " << r.err;
+    EXPECT_TRUE(fs::exists(temp_dir() / "solent.qml")) << "QGIS style beside the GeoJSON";
+    EXPECT_TRUE(validates_against_schema(report));
+
+    // Read back through OGR, independently of our writer.
+    GDALAllRegister();
+    GDALDatasetUniquePtr ds(GDALDataset::Open(report.c_str(), GDAL_OF_VECTOR));
+    ASSERT_TRUE(ds);
+    OGRLayer* layer = ds->GetLayer(0);
+    int groundings_a = 0, events_b = 0;
+    for (auto& f : *layer) {
+        const std::string track = f->GetFieldAsString("track");
+        if (track == "111111111" && std::string(f->GetFieldAsString("kind")) == "grounding") {
+            ++groundings_a;
+            const OGRPoint* pt = f->GetGeometryRef()->toPoint();
+            EXPECT_NEAR(pt->getX(), -1.30, 0.01);  // on the track's meridian, within the hull's beam
+            EXPECT_GT(pt->getY(), 50.58);
+            EXPECT_LT(pt->getY(), 50.78);
+            EXPECT_EQ(f->GetFieldAsDouble("min_clearance_m"), 0.0);
+        }
+        if (track == "222222222") ++events_b;
+    }
+    EXPECT_GE(groundings_a, 1);
+    EXPECT_EQ(events_b, 0);
+    const auto doc = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(doc["shoal"]["summary"]["tracks"], 2);
+    EXPECT_EQ(doc["shoal"]["summary"]["skipped_rows"], 1);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);
+}
+
+TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
+    const fs::path tracks = solent_tracks();
+    std::string reports[2];
+    for (int jobs : {1, 2}) {
+        const fs::path report = temp_dir() / ("jobs" + std::to_string(jobs) + ".geojson");
+        shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' '" +
+              tracks.string() + "' -o '" + report.string() + "' --jobs " + std::to_string(jobs));
+        reports[jobs - 1] = slurp(report);
+    }
+    EXPECT_FALSE(reports[0].empty());
+    EXPECT_EQ(reports[0], reports[1]);
+}
+
+TEST(CliCheck, GeoPackageHasStyledLayersInWgs84) {
+    const fs::path report = temp_dir() / "solent.gpkg";
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" +
+                            solent_tracks().string() + "' -o '" + report.string() + "'");
+    ASSERT_EQ(r.status, 1) << r.err;
+    GDALAllRegister();
+    GDALDatasetUniquePtr ds(GDALDataset::Open(report.c_str(), GDAL_OF_VECTOR));
+    ASSERT_TRUE(ds);
+    struct Expect {
+        const char* name;
+        OGRwkbGeometryType type;
+        std::vector<const char*> fields;
+    } layers[] = {
+        {"events", wkbPoint, {"track", "kind", "start", "end", "duration_s", "min_clearance_m", "penetration_m", "ship_lat", "ship_lon", "heading", "fix_index", "label"}},
+        {"tracks", wkbMultiLineString, {"track", "fixes", "skipped_rows", "uncovered_fixes", "groundings", "close_passes", "min_clearance_m"}},
+        {"hulls", wkbPolygon, {"track", "kind", "start"}},
+    };
+    for (const auto& e : layers) {
+        OGRLayer* l = ds->GetLayerByName(e.name);
+        ASSERT_TRUE(l) << e.name;
+        EXPECT_EQ(wkbFlatten(l->GetGeomType()), e.type) << e.name;
+        ASSERT_TRUE(l->GetSpatialRef()) << e.name;
+        EXPECT_STREQ(l->GetSpatialRef()->GetAuthorityCode(nullptr), "4326") << e.name;
+        for (const char* f : e.fields) EXPECT_GE(l->GetLayerDefn()->GetFieldIndex(f), 0) << e.name << "." << f;
+        EXPECT_GT(l->GetFeatureCount(), 0) << e.name;
+    }
+    OGRLayer* styles = ds->ExecuteSQL("SELECT f_table_name, f_table_schema, f_geometry_column, useAsDefault, styleQML FROM layer_styles", nullptr, nullptr);
+    ASSERT_TRUE(styles);
+    std::set<std::string> styled;
+    for (auto& f : *styles) {
+        styled.insert(f->GetFieldAsString(0));
+        EXPECT_STREQ(f->GetFieldAsString(1), "");
+        EXPECT_STREQ(f->GetFieldAsString(2), ds->GetLayerByName(f->GetFieldAsString(0))->GetGeometryColumn());
+        EXPECT_EQ(f->GetFieldAsInteger(3), 1);
+        EXPECT_NE(std::string(f->GetFieldAsString(4)).find("<renderer-v2"), std::string::npos);
+    }
+    ds->ReleaseResultSet(styles);
+    EXPECT_EQ(styled, (std::set<std::string>{"events", "tracks", "hulls"}));
+}
+
+TEST(CliCheck, UnreadableTrackFileIsReportedAndTheBatchGoesOn) {
+    const fs::path bad = temp_dir() / "garbage.csv";
+    std::ofstream(bad) << "this,is,not\na,track,file\n";
+    const fs::path report = temp_dir() / "batch.geojson";
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + bad.string() + "' '" +
+                            solent_tracks().string() + "' -o '" + report.string() + "'");
+    EXPECT_EQ(r.status, 1) << r.err;  // the good file still grounds
+    EXPECT_NE(r.err.find("garbage.csv"), std::string::npos) << r.err;
+    const auto doc = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(doc["shoal"]["summary"]["tracks"], 2);
+}
+
+TEST(CliCheck, MissingReportFolderIsAClearErrorBeforeAnyWork) {
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" +
+                            solent_tracks().string() + "' -o /nonexistent/dir/r.geojson");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
 }
 
 }  // namespace
