@@ -4,24 +4,13 @@
 #include <cstdio>
 #include <numbers>
 #include <ogr_spatialref.h>
+#include <proj.h>
 
 #include "util/error.hpp"
 
 namespace shoal::geo {
 
 namespace {
-
-struct TransformDeleter {
-    void operator()(OGRCoordinateTransformation* t) const noexcept { OGRCoordinateTransformation::DestroyCT(t); }
-};
-using TransformPtr = std::unique_ptr<OGRCoordinateTransformation, TransformDeleter>;
-
-OGRSpatialReference wgs84() {
-    OGRSpatialReference srs;
-    srs.SetWellKnownGeogCS("WGS84");
-    srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    return srs;
-}
 
 std::string format_centre(LonLat c) {
     char buf[96];
@@ -32,10 +21,20 @@ std::string format_centre(LonLat c) {
 
 }  // namespace
 
+/// GDAL reads the user's CRS; the transformations themselves run in PROJ directly, with a
+/// PROJ context of this frame's own, so that copies of a frame used on different threads
+/// share no lock (GDAL's transformation objects are neither cheap per point nor lock-free).
 struct LocalFrame::Impl {
     OGRSpatialReference local;
-    TransformPtr to_local;
-    TransformPtr to_wgs84;
+    PJ_CONTEXT* ctx = nullptr;
+    PJ* op = nullptr;  // WGS84 lon/lat (degrees) <-> local x/y (metres)
+    Impl() = default;
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+    ~Impl() {
+        if (op) proj_destroy(op);
+        if (ctx) proj_context_destroy(ctx);
+    }
 };
 
 Eigen::Vector2d metres_per_degree(double lat_deg) {
@@ -59,11 +58,20 @@ LocalFrame::LocalFrame(std::string definition, std::string description)
     if (!m_impl->local.IsProjected())
         throw UsageError("CRS '" + m_definition + "' is not a projected CRS in metres; give a projected one (e.g. a UTM zone)");
     m_impl->local.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    const OGRSpatialReference geo = wgs84();
-    m_impl->to_local.reset(OGRCreateCoordinateTransformation(&geo, &m_impl->local));
-    m_impl->to_wgs84.reset(OGRCreateCoordinateTransformation(&m_impl->local, &geo));
-    if (!m_impl->to_local || !m_impl->to_wgs84)
-        throw UsageError("no transformation between WGS84 and CRS '" + m_definition + "'");
+    char* wkt = nullptr;
+    const char* options[] = {"FORMAT=WKT2_2019", nullptr};
+    m_impl->local.exportToWkt(&wkt, options);
+    const std::string local_wkt = wkt ? wkt : "";
+    CPLFree(wkt);
+    Impl& im = *m_impl;
+    im.ctx = proj_context_create();
+    proj_log_level(im.ctx, PJ_LOG_NONE);
+    PJ* op = proj_create_crs_to_crs(im.ctx, "EPSG:4326", local_wkt.c_str(), nullptr);
+    if (op) {
+        im.op = proj_normalize_for_visualization(im.ctx, op);  // lon, lat order in; x, y out
+        proj_destroy(op);
+    }
+    if (!im.op) throw UsageError("no transformation between WGS84 and CRS '" + m_definition + "'");
 }
 
 LocalFrame LocalFrame::transverse_mercator(LonLat centre) {
@@ -100,34 +108,32 @@ LocalFrame& LocalFrame::operator=(LocalFrame&&) noexcept = default;
 LocalFrame::~LocalFrame() = default;
 
 XY LocalFrame::forward(LonLat p) const {
-    double x = p.lon, y = p.lat;
-    int ok = 0;
-    if (!m_impl->to_local->Transform(1, &x, &y, nullptr, &ok) || !ok || !std::isfinite(x) || !std::isfinite(y)) {
+    const PJ_COORD c = proj_trans(m_impl->op, PJ_FWD, proj_coord(p.lon, p.lat, 0, 0));
+    if (!std::isfinite(c.xy.x) || !std::isfinite(c.xy.y) || std::fabs(c.xy.x) > 1e30) {
         char buf[160];
         std::snprintf(buf, sizeof buf, "point (lon %.7f, lat %.7f) cannot be projected into the local frame", p.lon, p.lat);
         throw InputError(std::string(buf) + " (" + m_description + "); choose a frame that covers it with --crs");
     }
-    return {x, y};
+    return {c.xy.x, c.xy.y};
 }
 
 LonLat LocalFrame::inverse(XY p) const {
-    double x = p.x, y = p.y;
-    int ok = 0;
-    if (!m_impl->to_wgs84->Transform(1, &x, &y, nullptr, &ok) || !ok) {
+    const PJ_COORD c = proj_trans(m_impl->op, PJ_INV, proj_coord(p.x, p.y, 0, 0));
+    if (!std::isfinite(c.lp.lam) || !std::isfinite(c.lp.phi) || std::fabs(c.lp.lam) > 1e30) {
         char buf[160];
         std::snprintf(buf, sizeof buf, "local point (%.3f, %.3f) m has no WGS84 position", p.x, p.y);
         throw InputError(buf);
     }
-    return {x, y};
+    return {c.lp.lam, c.lp.phi};
 }
 
 bool LocalFrame::forward(std::vector<double>& xs, std::vector<double>& ys, std::size_t* failed_index) const {
     const std::size_t n = xs.size();
     if (n == 0) return true;
-    std::vector<int> ok(n, 0);
-    m_impl->to_local->Transform(n, xs.data(), ys.data(), nullptr, ok.data());
+    proj_trans_generic(m_impl->op, PJ_FWD, xs.data(), sizeof(double), n, ys.data(), sizeof(double), n, nullptr, 0, 0,
+                       nullptr, 0, 0);
     for (std::size_t i = 0; i < n; ++i) {
-        if (!ok[i] || !std::isfinite(xs[i]) || !std::isfinite(ys[i])) {
+        if (!std::isfinite(xs[i]) || !std::isfinite(ys[i]) || std::fabs(xs[i]) > 1e30 || std::fabs(ys[i]) > 1e30) {
             if (failed_index) *failed_index = i;
             return false;
         }

@@ -9,7 +9,6 @@
 
 #include "geo/point.hpp"
 
-class OGRCoordinateTransformation;
 
 namespace shoal::geo {
 
