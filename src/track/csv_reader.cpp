@@ -174,7 +174,7 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     names.reserve(header.size());
     for (const auto h : header) names.push_back(normalise_column_name(h));
     Columns c;
-    c.id = find_column(names, {"track_id", "id", "mmsi", "vessel", "vessel_id"});
+    c.id = find_column(names, {"track_id", "mmsi", "id", "vessel", "vessel_id"});  // mmsi before a possible row id
     c.name = find_column(names, {"vesselname", "vessel_name", "name", "shipname", "ship_name"});
     if (c.id == absent) c.id = c.name;
     c.time = find_column(names, {"time", "timestamp", "basedatetime", "time_utc", "datetime", "date_time", "utc"});

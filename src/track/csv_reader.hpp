@@ -4,7 +4,7 @@
 ///
 /// | role | names (the first present wins) |
 /// |---|---|
-/// | id | track_id, id, mmsi, vessel, vessel_id, then name, vesselname, vessel_name, shipname |
+/// | id | track_id, mmsi, id, vessel, vessel_id, then name, vesselname, vessel_name, shipname |
 /// | time | time, timestamp, basedatetime, time_utc, datetime, date_time, utc |
 /// | lat / lon | lat, latitude / lon, lng, long, longitude |
 /// | heading | heading, hdg, heading_deg, true_heading, trueheading |

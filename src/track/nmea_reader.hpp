@@ -12,7 +12,7 @@
 /// that date; a log without any date uses ReadOptions::date_s, else 1970-01-01 and says so in
 /// the report. Position sentences with the same time (GGA + RMC, or several talkers) make one
 /// fix: the first position, SOG/COG filled in by the others. HDT and VTG, which carry no time,
-/// fill the values still missing in the latest fix.
+/// fill the values still missing in the latest fix. ReadReport::rows counts sentences (`$`, `!`).
 
 #include <string>
 #include <string_view>

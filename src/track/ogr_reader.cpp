@@ -138,30 +138,33 @@ private:
         const int time_field = defn->GetFieldIndex("time");
         const int course_field = defn->GetFieldIndex("course");
         const int speed_field = defn->GetFieldIndex("speed");
+        m_current = nullptr;
         for (auto& f : *layer) {
             ++m_out.report.rows;
             ++m_point;
             const GIntBig parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
             GpxParent& p = parents[parent];
             ++p.points;
-            const std::string id = id_of(kind, parent, p, single);
-            const std::string where = m_file + " point " + std::to_string(m_point) + " (" + kind + " '" + id + "'): ";
+            auto skip = [&](const std::string& what) {
+                m_out.report.skip(m_file + " point " + std::to_string(m_point) + " (" + kind + " '" +
+                                  id_of(kind, parent, p, single) + "'): " + what + "; point skipped");
+            };
             const auto t = time_of(*f, time_field);
             if (!t) {
-                m_out.report.skip(where + "no time; point skipped");
+                skip("no time");
                 continue;
             }
             ++p.timed;
             const OGRGeometry* g = f->GetGeometryRef();
             if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) {
-                m_out.report.skip(where + "no point geometry; point skipped");
+                skip("no point geometry");
                 continue;
             }
             Fix fix;
             fix.time_s = *t;
             fix.position = {g->toPoint()->getX(), g->toPoint()->getY()};
             if (std::string what; detail::position_problem(fix.position.lat, fix.position.lon, what)) {
-                m_out.report.skip(where + what + "; point skipped");
+                skip(what);
                 continue;
             }
             if (course_field >= 0 && f->IsFieldSetAndNotNull(course_field))
@@ -169,7 +172,11 @@ private:
             if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field))
                 fix.sog_kn = detail::valid_sog(f->GetFieldAsDouble(speed_field) * 3600.0 / 1852.0);
             fix.line = m_point;
-            m_set.get(id).fixes.push_back(fix);
+            if (!m_current || parent != m_current_parent) {
+                m_current = &m_set.get(id_of(kind, parent, p, single), p.name);
+                m_current_parent = parent;
+            }
+            m_current->fixes.push_back(fix);
         }
         for (const auto& [fid, p] : parents)
             if (p.points > 0 && p.timed == 0)
@@ -181,6 +188,8 @@ private:
     TrackFile m_out;
     TrackSet m_set;
     std::size_t m_point = 0;
+    Track* m_current = nullptr;  ///< track of the latest point (valid until the next get)
+    GIntBig m_current_parent = -1;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -291,9 +300,10 @@ private:
         for (const char* key : {"id", "mmsi", "vessel", "name"})
             if (const json* v = member(props, key))
                 if (std::string s = id_text(*v); !s.empty()) return s;
+        if (!line) return detail::file_stem(m_file);  // a Point's feature id names the point, not the vessel
         if (const json* v = member(feature, "id"))
             if (std::string s = id_text(*v); !s.empty()) return s;
-        if (!line || m_single_line) return detail::file_stem(m_file);
+        if (m_single_line) return detail::file_stem(m_file);
         return detail::file_stem(m_file) + ":feature" + std::to_string(k);
     }
 

@@ -15,7 +15,8 @@
 ///   the M of 4-D coordinates `[lon, lat, z, m]` as epoch seconds. A line without times is an
 ///   InputError naming the file and the feature.
 /// - Point features with a `time` or `timestamp` property, split into tracks by the `id`,
-///   `mmsi`, `vessel` or `name` property (else the feature id, else the file's stem); optional
+///   `mmsi`, `vessel` or `name` property (else the file's stem: a Point's feature id names the
+///   point, not the vessel); optional
 ///   `heading`, `cog`, `sog` properties as in CSV files.
 /// Track ids of lines: the same properties, else the feature id, else the stem (one feature) or
 /// `STEM:feature3` (1-based). Features with the same id are one track.

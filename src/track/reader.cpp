@@ -93,9 +93,8 @@ TrackFile read_tracks(const std::string& path, const ReadOptions& options) {
     if (!fs::exists(status)) throw InputError(path + ": no such file");
     if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a track file");
     const std::string content = read_file(path);
-    if (content.find_first_not_of(" \t\r\n") == std::string::npos ||
-        (content.size() <= 3 && content.substr(0, 3) == "\xEF\xBB\xBF"))
-        throw InputError(path + ": empty file");
+    const std::size_t bom = content.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+    if (content.find_first_not_of(" \t\r\n", bom) == std::string::npos) throw InputError(path + ": empty file");
     const std::string format = sniff_format(content, path);
     TrackFile out;
     if (format == "csv") out = read_csv_text(content, path, options);

@@ -322,6 +322,14 @@ TEST(CsvReader, WithoutAnIdColumnTheFileIsOneTrackNamedAfterItsStem) {
     EXPECT_EQ(f.tracks[0].fixes.size(), 2u);
 }
 
+TEST(CsvReader, MmsiNamesTheVesselBeforeARowId) {
+    const auto f = read_csv_text("id,mmsi,time,lat,lon\n1,230000001,2014-08-15T19:00:00Z,60,24\n"
+                                 "2,230000001,2014-08-15T19:00:10Z,60,24.001\n",
+                                 "db_dump.csv");
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "230000001");
+}
+
 TEST(CsvReader, RowsWithTooFewFieldsOrNoIdAreSkipped) {
     const auto f = read_csv_text("id,time,lat,lon\na,2014-08-15T19:00:00Z,60\n,2014-08-15T19:00:00Z,60,24\n", "x.csv");
     EXPECT_EQ(f.report.skipped, 2u);

@@ -130,6 +130,16 @@ TEST(GeoJsonReader, PointsAreSplitByMmsiInFirstAppearanceOrder) {
     EXPECT_THAT(f.report.messages.at(1), HasSubstr("feature 6: a Polygon is not a track"));
 }
 
+TEST(GeoJsonReader, PointFeatureIdsDoNotSplitTracks) {
+    const auto f = read_geojson_text(R"({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "id": 1, "properties": {"time": "2014-08-15T19:00:00Z"}, "geometry": {"type": "Point", "coordinates": [24.9, 60.1]}},
+        {"type": "Feature", "id": 2, "properties": {"time": "2014-08-15T19:00:10Z"}, "geometry": {"type": "Point", "coordinates": [24.91, 60.1]}}]})",
+                                     "/x/trainee-7.geojson");
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "trainee-7");
+    EXPECT_THAT(times(f.tracks[0]), ElementsAre(0.0, 10.0));
+}
+
 TEST(GeoJsonReader, LineWithoutTimesIsAnErrorNamingFileAndFeature) {
     EXPECT_THAT([] { read_geojson(data_path("tracks/line_without_times.geojson")); },
                 ThrowsMessage<InputError>(AllOf(HasSubstr("line_without_times.geojson feature 1 ('no clock')"),

@@ -192,6 +192,9 @@ TEST(ReadTracks, EmptyHeaderOnlyUnknownAndMissingFilesAreInputErrors) {
     EXPECT_THAT([] { read_tracks(data_path("tracks/unknown_format.txt")); },
                 ThrowsMessage<InputError>(EndsWith(
                     "unknown_format.txt: not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183)")));
+    TempDir dir;
+    write(dir.file("bom.csv"), "\xEF\xBB\xBF\r\n");
+    EXPECT_THAT([&] { read_tracks(dir.file("bom.csv")); }, ThrowsMessage<InputError>(EndsWith("bom.csv: empty file")));
     EXPECT_THAT([] { read_tracks(data_path("tracks/no_such_file.csv")); },
                 ThrowsMessage<InputError>(HasSubstr("no_such_file.csv: no such file")));
     EXPECT_THAT([] { read_tracks(data_path("tracks")); }, ThrowsMessage<InputError>(HasSubstr("is a folder")));
