@@ -3,7 +3,10 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <filesystem>
 #include <string>
@@ -15,7 +18,9 @@
 #include "hull/hull.hpp"
 #include "audit/audit.hpp"
 #include "io/pose_csv.hpp"
+#include "report/plot.hpp"
 #include "report/report.hpp"
+#include "track/reader.hpp"
 #include "track/time.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
@@ -25,6 +30,35 @@ namespace shoal::cli {
 bool Command::parsed() const { return m_sub && m_sub->parsed(); }
 
 namespace {
+
+/// Before any work: the output can be written where it is asked for (its folder exists, it is
+/// not a folder), and it is none of the inputs (the same file by any path: writing the output
+/// would destroy the input it is made from).
+void check_output(const std::string& output, const std::vector<std::string>& inputs) {
+    namespace fs = std::filesystem;
+    if (output.empty() || output == "-") return;
+    std::error_code ec;
+    const fs::path dir = fs::path(output).has_parent_path() ? fs::path(output).parent_path() : ".";
+    if (!fs::is_directory(dir, ec))
+        throw InputError("cannot write '" + output + "': folder '" + dir.string() + "' does not exist");
+    if (fs::is_directory(output, ec)) throw InputError("cannot write '" + output + "': it is a directory");
+    if (!fs::exists(output, ec)) return;
+    for (const std::string& in : inputs)
+        if (!in.empty() && fs::equivalent(output, in, ec) && !ec)
+            throw UsageError("the output '" + output + "' is the input '" + in +
+                             "': writing it would destroy the input; choose another -o");
+}
+
+/// Coastline sources and grids that exist but cannot be opened: said as such, not as "not a
+/// vector dataset" (which is what OGR makes of a file it may not read).
+void check_readable(const std::vector<std::string>& paths) {
+    for (const std::string& p : paths) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(p, ec)) continue;
+        if (std::FILE* f = std::fopen(p.c_str(), "rb")) std::fclose(f);
+        else throw InputError("'" + p + "': cannot read (" + std::strerror(errno) + ")");
+    }
+}
 
 void print_warnings(const std::vector<std::string>& warnings) {
     for (const auto& w : warnings) std::fprintf(stderr, "shoal: warning: %s\n", w.c_str());
@@ -49,8 +83,29 @@ void print_grid(const grid::CoastGrid& g) {
                 static_cast<unsigned long long>(s.land_polylines), g.segment_count());
     std::printf("memory:         %.2f MB (%.1f bytes per vertex)\n", g.memory_bytes() / 1e6,
                 s.input_vertices ? static_cast<double>(g.memory_bytes()) / static_cast<double>(s.input_vertices) : 0.0);
+    if (std::isnan(s.limiting_depth_m)) {
+        std::printf("hazards:        land only (no limiting depth)\n");
+    } else {
+        std::printf("hazards:        limiting depth %.2f m: %llu depth areas and dangers kept (%llu with unknown depth), "
+                    "%llu at or deeper skipped;\n                %llu shallow-water and %llu danger polylines; point dangers as %.1f m circles%s%s\n",
+                    s.limiting_depth_m, static_cast<unsigned long long>(s.hazard_features),
+                    static_cast<unsigned long long>(s.unknown_depth), static_cast<unsigned long long>(s.deep_skipped),
+                    static_cast<unsigned long long>(s.shallow_polylines), static_cast<unsigned long long>(s.danger_polylines),
+                    s.danger_radius_m, s.depth_field.empty() ? "" : "; depth field ", s.depth_field.c_str());
+    }
     if (!g.has_land_side())
         std::printf("note:           only lines, no land polygons: a ship inside land, away from the coastline, is not seen\n");
+}
+
+/// --hazard-depth, --depth-field, --danger-radius: which depth areas and dangers are hazards.
+void add_hazard_options(CLI::App& sub, coast::ImportOptions& import) {
+    sub.add_option("--hazard-depth", import.limiting_depth_m,
+                   "Limiting depth in metres: depth areas shallower and dangers with a sounding under it (or unknown) are "
+                   "hazards like land (default: the ship's draught + --ukc where there is a ship with a draught; else land only)");
+    sub.add_option("--depth-field", import.depth_field,
+                   "Attribute holding a polygon's least depth in sources other than S-57 (DEPARE/DRGARE use DRVAL1)");
+    sub.add_option("--danger-radius", import.danger_radius_m, "Radius in metres of the circle a point danger becomes (default 10)")
+        ->check(CLI::PositiveNumber);
 }
 
 class ImportCommand final : public Command {
@@ -69,8 +124,11 @@ public:
         m_sub->add_option("--layer", m_request.import.layers, "Layer(s) to read (default: all; S-57: LNDARE and COALNE)")
             ->delimiter(',');
         m_sub->add_option("--source-crs", m_request.import.source_crs, "CRS of sources that carry none (default: WGS84 if all coordinates are lon/lat)");
+        add_hazard_options(*m_sub, m_request.import);
     }
     int run() override {
+        check_output(m_output, m_inputs);
+        check_readable(m_inputs);
         std::vector<std::string> warnings;
         grid::BuildStats stats;
         std::string cell_note;
@@ -116,6 +174,7 @@ struct CoastAndShip {
     std::string ship_file;
     std::string dims;
     grid::BuildRequest request;
+    std::optional<double> ukc;  ///< --ukc: under-keel clearance required, metres
     bool verbose = false;
 
     void add(CLI::App& sub) {
@@ -130,17 +189,59 @@ struct CoastAndShip {
         sub.add_option("--layer", request.import.layers, "Layer(s) to read from coastline sources")->delimiter(',');
         sub.add_option("--source-crs", request.import.source_crs, "CRS of coastline sources that carry none");
         sub.add_option("--cache-dir", request.cache_dir, "Folder for built grids (default $SHOAL_CACHE_DIR or ~/.cache/shoal)");
+        sub.add_option("--ukc", ukc, "Under-keel clearance required, metres: limiting depth = the ship's draught + this (default 0)")
+            ->check(CLI::NonNegativeNumber);
+        add_hazard_options(sub, request.import);
         sub.add_flag("-v,--verbose", verbose, "Say how the grid was obtained and how long it took");
+    }
+    /// Every input file named: `more`, the coastline sources and the ship file.
+    std::vector<std::string> inputs(std::vector<std::string> more) const {
+        more.insert(more.end(), coast.begin(), coast.end());
+        if (!ship_file.empty()) more.push_back(ship_file);
+        return more;
     }
     hull::Hull load_hull() const {
         if (!ship_file.empty()) return hull::Hull::load(ship_file);
         if (!dims.empty()) return hull::Hull::from_dims_string(dims);
         throw UsageError("give the ship with --ship SHIP.json or --dims A,B,C,D");
     }
-    grid::CoastGrid load_grid() const {
+    /// The grid for `hull`: a grid file as it is, or coastline sources built for the limiting
+    /// depth (--hazard-depth, else the ship's draught + --ukc, else land only).
+    grid::CoastGrid load_grid(const hull::Hull& hull) const {
+        grid::BuildRequest req = request;
+        const bool explicit_limit = req.import.limiting_depth_m.has_value();
+        char why[160] = "--hazard-depth";
+        if (!explicit_limit && hull.draught() > 0) {
+            req.import.limiting_depth_m = coast::limiting_depth(std::nullopt, hull.draught(), ukc.value_or(0.0));
+            std::snprintf(why, sizeof why, "draught %.2f m + under-keel clearance %.2f m", hull.draught(), ukc.value_or(0.0));
+        } else if (!explicit_limit && ukc) {
+            print_warnings({"--ukc needs a ship with a draught (or give --hazard-depth): checking against land only"});
+        }
+        const bool is_grid = coast.size() == 1 && grid::looks_like_grid(coast[0]);
+        if (!is_grid && req.import.limiting_depth_m)
+            std::fprintf(stderr, "shoal: limiting depth %.2f m (%s): shallower depth areas and dangers are hazards\n",
+                         *req.import.limiting_depth_m, why);
+        check_readable(coast);
         grid::LoadReport report;
-        grid::CoastGrid g = grid::load_or_build(coast, request, &report);
+        grid::CoastGrid g = grid::load_or_build(coast, req, &report);
         print_warnings(report.warnings);
+        if (is_grid && req.import.limiting_depth_m) {
+            const double built = g.source().limiting_depth_m;
+            const double want = *req.import.limiting_depth_m;
+            char buf[400];
+            if (std::isnan(built) && (explicit_limit || verbose))
+                std::snprintf(buf, sizeof buf, "the grid '%s' holds land only (built without a limiting depth): shallow water and dangers "
+                              "are not checked for the limiting depth %.2f m (%s); rebuild it with shoal import --hazard-depth",
+                              coast[0].c_str(), want, why);
+            else if (!std::isnan(built) && built != want)
+                std::snprintf(buf, sizeof buf, "the grid '%s' was built for the limiting depth %.2f m, not %.2f m (%s): %s; rebuild it with "
+                              "shoal import --hazard-depth %.2f", coast[0].c_str(), built, want, why,
+                              built < want ? "water between those depths is not seen as a hazard" : "more water counts as a hazard than needed",
+                              want);
+            else
+                buf[0] = 0;
+            if (buf[0]) print_warnings({buf});
+        }
         if (verbose)
             std::fprintf(stderr, "shoal: %s%s%s in %.3f s\n", report.how.c_str(), report.cache_path.empty() ? "" : " ",
                          report.cache_path.c_str(), report.seconds);
@@ -160,12 +261,13 @@ public:
         m_sub->add_option("-o,--output", m_output, "Write the CSV here instead of stdout (written atomically)");
     }
     int run() override {
+        check_output(m_output, m_opts.inputs({m_poses}));
         const hull::Hull hull = m_opts.load_hull();
         const io::PoseFile poses = io::read_pose_csv(m_poses);
         for (const auto& e : poses.errors) std::fprintf(stderr, "shoal: warning: %s\n", e.c_str());
         if (poses.skipped > poses.errors.size())
             std::fprintf(stderr, "shoal: warning: %zu more bad rows skipped\n", poses.skipped - poses.errors.size());
-        const grid::CoastGrid g = m_opts.load_grid();
+        const grid::CoastGrid g = m_opts.load_grid(hull);
         const check::Detector detector(g, hull);
         std::string out = "lat,lon,heading,collision,clearance_m\n";
         char line[160];
@@ -226,10 +328,12 @@ public:
         m_sub->add_option("--max-gap", m_audit.sweep.max_gap_s, "A gap between fixes longer than this (seconds) splits the track (default 600)")
             ->check(CLI::PositiveNumber);
         m_sub->add_option("--jobs,-j", m_audit.jobs, "Tracks checked in parallel (default: all cores)");
+        m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and a zoomed panel per grounding");
         m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
     }
     int run() override {
+        check_output(m_output, m_opts.inputs(track::expand_inputs(m_tracks)));
         const hull::Hull hull = m_opts.load_hull();
         if (!m_date.empty()) {
             int y = 0, mo = 0, d = 0;
@@ -241,11 +345,13 @@ public:
         }
         const std::string format = !m_format.empty() ? m_format
                                    : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
-        const std::filesystem::path out_dir = std::filesystem::path(m_output).has_parent_path()
-                                                  ? std::filesystem::path(m_output).parent_path() : ".";
-        if (!std::filesystem::is_directory(out_dir))
-            throw InputError("cannot write '" + m_output + "': folder '" + out_dir.string() + "' does not exist");
-        const grid::CoastGrid g = m_opts.load_grid();
+        for (const std::string& out : {m_output, m_plot}) {
+            if (out.empty()) continue;
+            const std::filesystem::path dir = std::filesystem::path(out).has_parent_path() ? std::filesystem::path(out).parent_path() : ".";
+            if (!std::filesystem::is_directory(dir))
+                throw InputError("cannot write '" + out + "': folder '" + dir.string() + "' does not exist");
+        }
+        const grid::CoastGrid g = m_opts.load_grid(hull);
         Progress bar(m_progress.value_or(::isatty(2) != 0));
         m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };
         const audit::AuditResult r = audit::run_audit(m_tracks, g, hull, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : "ship file", m_audit);
@@ -253,6 +359,11 @@ public:
             for (const auto& m : f.read.messages) std::fprintf(stderr, "shoal: warning: %s\n", m.c_str());
             if (f.read.skipped > f.read.messages.size())
                 std::fprintf(stderr, "shoal: warning: %s: %zu more bad rows skipped\n", f.file.c_str(), f.read.skipped - f.read.messages.size());
+            if (f.read.reordered)
+                std::fprintf(stderr, "shoal: warning: %s: %zu fixes out of time order (sorted by time)\n", f.file.c_str(), f.read.reordered);
+            if (f.read.duplicates)
+                std::fprintf(stderr, "shoal: warning: %s: %zu fixes repeat an earlier time of their vessel (dropped)\n", f.file.c_str(),
+                             f.read.duplicates);
             if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", f.error.c_str());
         }
         for (const auto& e : r.errors)
@@ -261,6 +372,7 @@ public:
         for (const auto& c : m_opts.coast) info.coast += (info.coast.empty() ? "" : ", ") + c;
         info.frame = g.frame().description();
         info.cell_m = g.cell_size();
+        info.limiting_depth_m = g.source().limiting_depth_m;
         char fp[20];
         std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(g.source().fingerprint));
         info.grid_fingerprint = fp;
@@ -269,6 +381,7 @@ public:
         const auto t0 = std::chrono::steady_clock::now();
         if (format == "gpkg") report::write_gpkg(m_output, r, info);
         else report::write_geojson(m_output, r, info);
+        if (!m_plot.empty()) report::write_plot_svg(m_plot, r, g);
         const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::fputs(report::summary_table(r).c_str(), stdout);
         const double fps = r.sweep_s > 0 ? static_cast<double>(r.fixes) / r.sweep_s : 0;
@@ -286,6 +399,7 @@ private:
     std::string m_format;
     std::optional<bool> m_progress;
     std::string m_date;
+    std::string m_plot;
     audit::AuditOptions m_audit;
 };
 

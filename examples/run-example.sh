@@ -25,14 +25,14 @@ audit() { "$shoal" "$@" || { status=$?; [ $status -eq 1 ] || exit $status; echo 
 echo
 echo "== shoal check: 10 minutes of AIS traffic (96 vessels), each as the example ferry =="
 audit check --coast "$out/helsinki.shoalgrid" --ship "$here/ship.json" "$here/data/aava_n2k_fixes.csv" \
-  -o "$out/helsinki-traffic.gpkg" --margin 50
+  -o "$out/helsinki-traffic.gpkg" --margin 50 --plot "$out/helsinki-traffic.svg"
 echo
 echo "== shoal check: a sailing yacht's NMEA 0183 log (the log has no date: times of day) =="
 audit check --coast "$out/helsinki.shoalgrid" --ship "$here/yacht.json" "$here/data/plaka_first_hour.nmea" \
-  -o "$out/plaka.geojson" --margin 50
+  -o "$out/plaka.geojson" --margin 50 --plot "$out/plaka.svg"
 echo
 echo "== shoal probe: single poses of the example ferry =="
 "$shoal" probe --coast "$out/helsinki.shoalgrid" --ship "$here/ship.json" "$here/poses.csv" -o "$out/poses-checked.csv"
 cat "$out/poses-checked.csv"
 echo
-echo "Reports for QGIS: $out/helsinki-traffic.gpkg (layers events, tracks, hulls, styled) and $out/plaka.geojson (+ plaka.qml)"
+echo "Reports for QGIS: $out/helsinki-traffic.gpkg (layers events, tracks, hulls, styled) and $out/plaka.geojson (+ plaka.qml); pictures: $out/*.svg"

@@ -193,6 +193,17 @@ TEST(CliCheck, GroundingGivesExitOneAndAReportThatValidatesAndReadsBack) {
     EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);
 }
 
+TEST(CliCheck, PlotIsAnSvgWithTheEvents) {
+    const fs::path svg = temp_dir() / "run.svg";
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" +
+                            solent_tracks().string() + "' -o '" + (temp_dir() / "plot.geojson").string() + "' --plot '" + svg.string() + "'");
+    ASSERT_EQ(r.status, 1) << r.err;
+    const std::string text = slurp(svg);
+    EXPECT_NE(text.find("<svg"), std::string::npos);
+    EXPECT_NE(text.find("http://www.w3.org/2000/svg"), std::string::npos);
+    EXPECT_NE(text.find("event grounding"), std::string::npos);
+}
+
 TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
     const fs::path tracks = solent_tracks();
     std::string reports[2];

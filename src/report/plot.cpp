@@ -1,0 +1,993 @@
+#include "report/plot.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "report/report.hpp"
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+namespace shoal::report {
+
+namespace {
+
+using audit::Event;
+using audit::EventKind;
+using geo::Box;
+using geo::LonLat;
+using geo::XY;
+
+constexpr double pi = 3.14159265358979323846;
+
+// Colours: pale water, sand land, grey "no chart"; red for groundings, amber for close passes.
+constexpr const char* water_fill = "#f3f8fc";
+constexpr const char* land_fill = "#e8dec3";
+constexpr const char* outside_fill = "#d4d4d4";
+constexpr const char* coast_stroke = "#3b3b3b";
+constexpr const char* red = "#d62728";
+constexpr const char* red_dark = "#9e0e12";
+constexpr const char* amber = "#f0a000";
+constexpr const char* amber_dark = "#8f5600";
+constexpr const char* clear_grey = "#7f8b96";
+constexpr const char* ink = "#222222";
+constexpr const char* font_family = "DejaVu Sans, Verdana, Arial, Helvetica, sans-serif";
+
+// ---------------------------------------------------------------- text and numbers
+
+/// Appends `v` with one decimal ("12.3", "12", "0"): a tenth of a pixel is plenty.
+void put(std::string& out, double v) {
+    if (!std::isfinite(v)) v = 0;
+    char b[40];
+    int n = std::snprintf(b, sizeof b, "%.1f", v);
+    if (n >= 2 && b[n - 2] == '.' && b[n - 1] == '0') n -= 2;
+    if (n == 2 && b[0] == '-' && b[1] == '0') {
+        b[0] = '0';
+        n = 1;
+    }
+    out.append(b, static_cast<std::size_t>(n));
+}
+
+std::string num(double v) {
+    std::string s;
+    put(s, v);
+    return s;
+}
+
+/// Text for XML character data or an attribute value: markup characters escaped, invalid
+/// UTF-8 replaced by U+FFFD, control characters XML 1.0 forbids replaced by spaces.
+std::string xml(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    for (std::size_t i = 0; i < s.size();) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        if (c < 0x80) {
+            switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&apos;"; break;
+            default: out += (c < 0x20 && c != '\t' && c != '\n' && c != '\r') ? ' ' : static_cast<char>(c);
+            }
+            ++i;
+            continue;
+        }
+        const std::size_t n = (c >= 0xC2 && c <= 0xDF) ? 2 : (c >= 0xE0 && c <= 0xEF) ? 3 : (c >= 0xF0 && c <= 0xF4) ? 4 : 0;
+        bool ok = n > 0 && i + n <= s.size();
+        std::uint32_t cp = ok ? (c & (0xFFu >> (n + 1))) : 0;
+        for (std::size_t k = 1; ok && k < n; ++k) {
+            const auto cc = static_cast<unsigned char>(s[i + k]);
+            ok = (cc & 0xC0) == 0x80;
+            cp = (cp << 6) | (cc & 0x3Fu);
+        }
+        const std::uint32_t min_cp = n == 2 ? 0x80 : n == 3 ? 0x800 : 0x10000;
+        ok = ok && cp >= min_cp && cp <= 0x10FFFF && !(cp >= 0xD800 && cp <= 0xDFFF) && cp != 0xFFFE && cp != 0xFFFF;
+        if (ok) {
+            out.append(s.substr(i, n));
+            i += n;
+        } else {
+            out += "\xEF\xBF\xBD";
+            ++i;
+        }
+    }
+    return out;
+}
+
+/// Characters (code points) in UTF-8 text, for estimating its width.
+std::size_t glyphs(std::string_view s) {
+    return static_cast<std::size_t>(
+        std::count_if(s.begin(), s.end(), [](char ch) { return (static_cast<unsigned char>(ch) & 0xC0) != 0x80; }));
+}
+
+/// Rough width in px of `s` at `size` px in a sans-serif font (DejaVu Sans is among the widest).
+double text_width(std::string_view s, double size) { return static_cast<double>(glyphs(s)) * 0.6 * size; }
+
+/// `s` cut (with an ellipsis) to about `max_px` at `size` px.
+std::string fit_text(const std::string& s, double size, double max_px) {
+    const auto max_glyphs = static_cast<std::size_t>(std::max(4.0, std::floor(max_px / (0.6 * size))));
+    if (glyphs(s) <= max_glyphs) return s;
+    std::string cut;
+    std::size_t count = 0;
+    for (char ch : s) {
+        if ((static_cast<unsigned char>(ch) & 0xC0) != 0x80 && ++count > max_glyphs - 1) break;
+        cut += ch;
+    }
+    return cut + "\xE2\x80\xA6";
+}
+
+/// "19:02:33Z" (UTC time of day, cut from the report's ISO time, not rounded).
+std::string clock(double t) {
+    const std::string s = iso_time(t);
+    return s.size() >= 19 ? s.substr(11, 8) + "Z" : "--:--:--";
+}
+
+/// "2014-08-15 19:02:33Z".
+std::string date_clock(double t) {
+    const std::string s = iso_time(t);
+    return s.size() >= 19 ? s.substr(0, 10) + " " + s.substr(11, 8) + "Z" : "?";
+}
+
+std::string plural(std::size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+std::string metres_text(double m) {
+    char b[40];
+    if (m >= 1000) std::snprintf(b, sizeof b, "%g km", m / 1000);
+    else std::snprintf(b, sizeof b, "%g m", m);
+    return b;
+}
+
+// ---------------------------------------------------------------- geometry of the page
+
+/// A rectangle on the page, px, y down.
+struct Rect {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    double w() const noexcept { return x1 - x0; }
+    double h() const noexcept { return y1 - y0; }
+    bool overlaps(const Rect& o) const noexcept { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+    bool within(const Rect& o) const noexcept { return x0 >= o.x0 && y0 >= o.y0 && x1 <= o.x1 && y1 <= o.y1; }
+    Rect grown(double d) const noexcept { return {x0 - d, y0 - d, x1 + d, y1 + d}; }
+};
+
+/// A panel: the ground it shows (local metres) and where it sits on the page.
+struct View {
+    Box world;
+    Rect px;
+    double scale = 1;  ///< px per local metre
+    XY to_px(XY p) const noexcept { return {px.x0 + (p.x - world.minx) * scale, px.y0 + (world.maxy - p.y) * scale}; }
+    XY to_world(XY q) const noexcept { return {world.minx + (q.x - px.x0) / scale, world.maxy - (q.y - px.y0) / scale}; }
+};
+
+/// The view of `want` (grown in one direction to the panel's shape, centred) in `px`.
+View fit(Box want, Rect px) {
+    if (want.empty()) want = {-1000, -1000, 1000, 1000};
+    const double cx = (want.minx + want.maxx) / 2, cy = (want.miny + want.maxy) / 2;
+    const double ww = std::max(want.maxx - want.minx, 1.0), wh = std::max(want.maxy - want.miny, 1.0);
+    const double s = std::min(px.w() / ww, px.h() / wh);
+    const double hw = px.w() / s / 2, hh = px.h() / s / 2;
+    return {{cx - hw, cy - hh, cx + hw, cy + hh}, px, s};
+}
+
+Box intersection(const Box& a, const Box& b) {
+    return {std::max(a.minx, b.minx), std::max(a.miny, b.miny), std::min(a.maxx, b.maxx), std::min(a.maxy, b.maxy)};
+}
+
+/// Where true north points and how long a true metre is, at one place of the frame.
+struct Bearing {
+    double north_deg = 0;  ///< true north, clockwise from the page's up (grid north)
+    double k = 1;          ///< local metres per true metre (the frame's scale there)
+    bool known = false;
+};
+
+Bearing bearing_at(const geo::LocalFrame& frame, XY p) {
+    Bearing b;
+    try {
+        const LonLat ll = frame.inverse(p);
+        if (!std::isfinite(ll.lon) || !std::isfinite(ll.lat)) return b;
+        const Eigen::Matrix2d j = frame.jacobian(ll);
+        const double nx = j(0, 1), ny = j(1, 1);  // one metre north, in local metres
+        const double k = std::sqrt(std::fabs(j(0, 0) * j(1, 1) - j(0, 1) * j(1, 0)));
+        if (!std::isfinite(nx) || !std::isfinite(ny) || !(k > 0) || !std::isfinite(k)) return b;
+        b.north_deg = std::atan2(nx, ny) * 180 / pi;
+        b.k = k;
+        b.known = true;
+    } catch (const std::exception&) {
+    }
+    return b;
+}
+
+/// Largest 1, 2 or 5 x 10^n not above `m` (m > 0).
+double round_length(double m) {
+    const double p = std::pow(10.0, std::floor(std::log10(m)));
+    for (double f : {5.0, 2.0, 1.0})
+        if (f * p <= m * (1 + 1e-9)) return f * p;
+    return p;
+}
+
+// ---------------------------------------------------------------- the data, projected
+
+enum class Status { clear, close, aground };
+
+struct TrackDraw {
+    const audit::TrackSummary* summary = nullptr;
+    std::vector<std::vector<XY>> lines;
+    Box box;
+    Status status = Status::clear;
+};
+
+struct EventDraw {
+    const audit::TrackSummary* track = nullptr;
+    const TrackDraw* drawn_track = nullptr;
+    const Event* event = nullptr;
+    XY point;
+    bool point_ok = false;
+    std::vector<XY> hull;
+    Box box;
+    double hull_length_m = 0;
+    std::size_t zoom = 0;  ///< number of its zoomed panel (1-based), 0 = none
+};
+
+std::optional<XY> project(const geo::LocalFrame& frame, LonLat p) {
+    if (!std::isfinite(p.lon) || !std::isfinite(p.lat)) return std::nullopt;
+    try {
+        const XY q = frame.forward(p);
+        if (std::isfinite(q.x) && std::isfinite(q.y)) return q;
+    } catch (const std::exception&) {
+    }
+    return std::nullopt;
+}
+
+std::vector<XY> project_line(const geo::LocalFrame& frame, const std::vector<LonLat>& line) {
+    std::vector<double> xs, ys;
+    xs.reserve(line.size());
+    ys.reserve(line.size());
+    for (const LonLat& p : line) {
+        xs.push_back(p.lon);
+        ys.push_back(p.lat);
+    }
+    std::vector<XY> out;
+    std::size_t failed = 0;
+    if (!line.empty() && frame.forward(xs, ys, &failed)) {
+        out.reserve(line.size());
+        for (std::size_t k = 0; k < xs.size(); ++k)
+            if (std::isfinite(xs[k]) && std::isfinite(ys[k])) out.push_back({xs[k], ys[k]});
+        return out;
+    }
+    for (const LonLat& p : line)  // some point failed: keep the others
+        if (auto q = project(frame, p)) out.push_back(*q);
+    return out;
+}
+
+struct Scene {
+    std::vector<TrackDraw> tracks;
+    std::vector<EventDraw> events;
+    Box data;  ///< tracks and events, local metres
+};
+
+Scene project_scene(const audit::AuditResult& result, const geo::LocalFrame& frame) {
+    Scene s;
+    s.tracks.reserve(result.tracks.size());
+    for (const auto& t : result.tracks) {
+        TrackDraw& d = s.tracks.emplace_back();
+        d.summary = &t.summary;
+        d.status = t.summary.groundings > 0 ? Status::aground : t.summary.close_passes > 0 ? Status::close : Status::clear;
+        for (const auto& line : t.summary.lines) {
+            std::vector<XY> pts = project_line(frame, line);
+            for (const XY& p : pts) d.box.extend(p);
+            if (!pts.empty()) d.lines.push_back(std::move(pts));
+        }
+        s.data.extend(d.box);
+    }
+    for (std::size_t ti = 0; ti < result.tracks.size(); ++ti) {
+        for (const auto& e : result.tracks[ti].events) {
+            EventDraw& d = s.events.emplace_back();
+            d.track = &result.tracks[ti].summary;
+            d.drawn_track = &s.tracks[ti];
+            d.event = &e;
+            if (auto p = project(frame, e.point)) {
+                d.point = *p;
+                d.point_ok = true;
+                d.box.extend(*p);
+            }
+            for (const LonLat& h : e.hull)
+                if (auto q = project(frame, h)) {
+                    d.hull.push_back(*q);
+                    d.box.extend(*q);
+                }
+            for (std::size_t a = 0; a < d.hull.size(); ++a)
+                for (std::size_t b = a + 1; b < d.hull.size(); ++b)
+                    d.hull_length_m = std::max(d.hull_length_m, geo::distance(d.hull[a], d.hull[b]));
+            if (!d.point_ok && !d.hull.empty()) {  // fall back to the middle of the hull
+                d.point = {(d.box.minx + d.box.maxx) / 2, (d.box.miny + d.box.maxy) / 2};
+                d.point_ok = true;
+            }
+            if (!d.box.empty()) s.data.extend(d.box);
+        }
+    }
+    return s;
+}
+
+// ---------------------------------------------------------------- paths
+
+/// Appends the polyline (page px) to a path in relative moves, dropping points closer than
+/// `min_px` to the last one kept (the last point is always kept). Nothing for a polyline that
+/// stays within 0.1 px.
+void append_simplified(std::string& d, const std::vector<XY>& px, double min_px) {
+    if (px.size() < 2) return;
+    auto tenth = [](double v) { return std::round(v * 10) / 10; };
+    std::string part = "M";
+    XY last{tenth(px[0].x), tenth(px[0].y)};
+    put(part, last.x);
+    part += ',';
+    put(part, last.y);
+    XY kept = px[0];
+    bool any = false;
+    for (std::size_t k = 1; k < px.size(); ++k) {
+        const double dist = geo::distance(px[k], kept);
+        const bool end = k + 1 == px.size();
+        if (dist >= min_px || (end && dist >= 0.1)) {
+            const XY q{tenth(px[k].x), tenth(px[k].y)};
+            part += any ? ' ' : 'l';
+            put(part, q.x - last.x);
+            part += ',';
+            put(part, q.y - last.y);
+            last = q;
+            kept = px[k];
+            any = true;
+        }
+    }
+    if (any) d += part;
+}
+
+/// The parts of a polyline (local metres) that come near the view, as a path in page px.
+std::string line_path(const std::vector<XY>& pts, const View& v, double min_px) {
+    std::string d;
+    const Rect near = v.px.grown(20);
+    std::vector<XY> run;
+    auto flush = [&] {
+        append_simplified(d, run, min_px);
+        run.clear();
+    };
+    for (std::size_t k = 1; k < pts.size(); ++k) {
+        const XY a = v.to_px(pts[k - 1]), b = v.to_px(pts[k]);
+        const Rect seg{std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x) + 1e-9, std::max(a.y, b.y) + 1e-9};
+        if (!seg.overlaps(near)) {
+            flush();
+            continue;
+        }
+        if (run.empty()) run.push_back(a);
+        run.push_back(b);
+    }
+    flush();
+    return d;
+}
+
+/// The coastline segments of the coast cells under the view as one path in page px: the
+/// pieces of each cell chained, the chains of neighbouring cells joined where one ends at the
+/// start of another, then simplified.
+std::string coast_path(const grid::CoastGrid& g, const View& v, double min_px) {
+    std::string d;
+    const Box w = intersection(v.world, g.extent());
+    if (w.empty() || g.nx() <= 0 || g.ny() <= 0) return d;
+    const int i0 = std::clamp(g.col_of(w.minx), 0, g.nx() - 1), i1 = std::clamp(g.col_of(w.maxx), 0, g.nx() - 1);
+    const int j0 = std::clamp(g.row_of(w.miny), 0, g.ny() - 1), j1 = std::clamp(g.row_of(w.maxy), 0, g.ny() - 1);
+    const double join_m = std::max(1e-6, 1e-9 * g.cell_size());
+    std::vector<std::vector<XY>> chains;
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+            if (g.state(i, j) != grid::CellState::coast) continue;
+            XY last_b{NAN, NAN};
+            bool open = false;
+            for (const grid::Segment& s : g.segments(i, j)) {
+                if (!open || !(geo::distance(s.a, last_b) <= join_m)) {
+                    chains.emplace_back().push_back(v.to_px(s.a));
+                    open = true;
+                }
+                chains.back().push_back(v.to_px(s.b));
+                last_b = s.b;
+            }
+        }
+    // Join chains end to start (points equal to a twentieth of a pixel).
+    auto key = [](XY p) {
+        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::llround(p.x * 20))) << 32) |
+               static_cast<std::uint32_t>(std::llround(p.y * 20));
+    };
+    std::unordered_multimap<std::uint64_t, std::size_t> starts;
+    std::unordered_set<std::uint64_t> ends;
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+        starts.emplace(key(chains[c].front()), c);
+        ends.insert(key(chains[c].back()));
+    }
+    std::vector<bool> used(chains.size(), false);
+    std::vector<XY> line;
+    auto follow = [&](std::size_t c) {
+        line = chains[c];
+        used[c] = true;
+        for (;;) {
+            auto [a, b] = starts.equal_range(key(line.back()));
+            auto next = std::find_if(a, b, [&](const auto& kv) { return !used[kv.second]; });
+            if (next == b) break;
+            used[next->second] = true;
+            const auto& more = chains[next->second];
+            line.insert(line.end(), more.begin() + 1, more.end());
+        }
+        append_simplified(d, line, min_px);
+    };
+    for (std::size_t c = 0; c < chains.size(); ++c)  // first the chains nothing leads into
+        if (!used[c] && !ends.count(key(chains[c].front()))) follow(c);
+    for (std::size_t c = 0; c < chains.size(); ++c)  // then the loops
+        if (!used[c]) follow(c);
+    return d;
+}
+
+/// Land as the grid sees it (`is_land` at the centre of each sample square of `cell_px`),
+/// as rectangles: runs along a row, merged with equal runs of the rows below.
+std::string land_path(const grid::CoastGrid& g, const View& v, double cell_px) {
+    struct Run {
+        int c0, c1, r0, r1;  // columns [c0, c1), rows [r0, r1)
+    };
+    std::string d;
+    if (intersection(v.world, g.extent()).empty()) return d;
+    const int cols = static_cast<int>(std::ceil(v.px.w() / cell_px));
+    const int rows = static_cast<int>(std::ceil(v.px.h() / cell_px));
+    auto emit = [&](const Run& r) {
+        d += 'M';
+        put(d, v.px.x0 + r.c0 * cell_px);
+        d += ',';
+        put(d, v.px.y0 + r.r0 * cell_px);
+        d += 'h';
+        put(d, (r.c1 - r.c0) * cell_px);
+        d += 'v';
+        put(d, (r.r1 - r.r0) * cell_px);
+        d += 'h';
+        put(d, -(r.c1 - r.c0) * cell_px);
+        d += 'z';
+    };
+    std::vector<Run> open, row, next;
+    for (int r = 0; r < rows; ++r) {
+        row.clear();
+        const double y = v.px.y0 + (r + 0.5) * cell_px;
+        int start = -1;
+        for (int c = 0; c <= cols; ++c) {
+            const bool land = c < cols && g.is_land(v.to_world({v.px.x0 + (c + 0.5) * cell_px, y}));
+            if (land && start < 0) start = c;
+            if (!land && start >= 0) {
+                row.push_back({start, c, r, r + 1});
+                start = -1;
+            }
+        }
+        next.clear();
+        std::size_t k = 0;
+        for (Run n : row) {
+            while (k < open.size() && open[k].c0 < n.c0) emit(open[k++]);
+            if (k < open.size() && open[k].c0 == n.c0 && open[k].c1 == n.c1) {
+                n.r0 = open[k++].r0;
+            }
+            next.push_back(n);
+        }
+        while (k < open.size()) emit(open[k++]);
+        open.swap(next);
+    }
+    for (const Run& r : open) emit(r);
+    return d;
+}
+
+std::string points_attr(const std::vector<XY>& pts, const View& v) {
+    std::string s;
+    for (const XY& p : pts) {
+        const XY q = v.to_px(p);
+        if (!s.empty()) s += ' ';
+        put(s, q.x);
+        s += ',';
+        put(s, q.y);
+    }
+    return s;
+}
+
+// ---------------------------------------------------------------- labels
+
+/// Places labels where they overlap nothing placed or blocked before, inside the panel.
+class Labels {
+public:
+    explicit Labels(Rect bounds) : m_bounds(bounds) {}
+    void block(const Rect& r) { m_used.push_back(r); }
+    /// Tries the four corners around `anchor` (px) at `gap`, then above and below, then the
+    /// same further out up to `reach` px; the box of the label, or nothing.
+    std::optional<Rect> place(XY anchor, double w, double h, double gap, double reach = 0) {
+        for (double d = gap; d <= std::max(gap, reach); d += d < 2 * gap ? gap : d / 2) {
+            const Rect tries[] = {
+                {anchor.x + d, anchor.y - d - h, anchor.x + d + w, anchor.y - d},
+                {anchor.x + d, anchor.y + d, anchor.x + d + w, anchor.y + d + h},
+                {anchor.x - d - w, anchor.y - d - h, anchor.x - d, anchor.y - d},
+                {anchor.x - d - w, anchor.y + d, anchor.x - d, anchor.y + d + h},
+                {anchor.x - w / 2, anchor.y - 2 * d - h, anchor.x + w / 2, anchor.y - 2 * d},
+                {anchor.x - w / 2, anchor.y + 2 * d, anchor.x + w / 2, anchor.y + 2 * d + h},
+                {anchor.x + 2 * d, anchor.y - h / 2, anchor.x + 2 * d + w, anchor.y + h / 2},
+                {anchor.x - 2 * d - w, anchor.y - h / 2, anchor.x - 2 * d, anchor.y + h / 2},
+            };
+            for (const Rect& r : tries) {
+                if (!r.within(m_bounds)) continue;
+                if (std::any_of(m_used.begin(), m_used.end(), [&](const Rect& u) { return u.overlaps(r); })) continue;
+                m_used.push_back(r);
+                return r;
+            }
+        }
+        return std::nullopt;
+    }
+
+private:
+    Rect m_bounds;
+    std::vector<Rect> m_used;
+};
+
+/// A thin line from `anchor` to the nearest point of a label placed away from it.
+void leader(std::string& out, XY anchor, const Rect& box, double min_px, const char* colour) {
+    const XY near{std::clamp(anchor.x, box.x0, box.x1), std::clamp(anchor.y, box.y0, box.y1)};
+    if (geo::distance(anchor, near) < min_px) return;
+    out += "<line class=\"leader\" x1=\"" + num(anchor.x) + "\" y1=\"" + num(anchor.y) + "\" x2=\"" + num(near.x) + "\" y2=\"" +
+           num(near.y) + "\" stroke=\"" + colour + "\" stroke-width=\"0.8\"/>\n";
+}
+
+/// A label on a pale box (readable over lines), text left-aligned in `box`.
+void label(std::string& out, const Rect& box, const std::string& text, double size, const char* colour,
+           const char* cls = "label", bool bold = false) {
+    out += "<g class=\"" + std::string(cls) + "\"><rect x=\"" + num(box.x0) + "\" y=\"" + num(box.y0) + "\" width=\"" +
+           num(box.w()) + "\" height=\"" + num(box.h()) +
+           "\" rx=\"2\" fill=\"#ffffff\" fill-opacity=\"0.8\"/><text x=\"" + num(box.x0 + 2) + "\" y=\"" +
+           num(box.y0 + size * 0.95 + 1) + "\" font-size=\"" + num(size) + "\" fill=\"" + colour + "\"" +
+           (bold ? " font-weight=\"bold\"" : "") + ">" + xml(text) + "</text></g>\n";
+}
+
+// ---------------------------------------------------------------- pieces of a panel
+
+void text(std::string& out, double x, double y, const std::string& s, double size, const char* colour,
+          const char* extra = "") {
+    out += "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\" font-size=\"" + num(size) + "\" fill=\"" + colour + "\"" + extra +
+           ">" + xml(s) + "</text>\n";
+}
+
+/// Background (grey where there is no chart), water over the grid's extent, land, coastline.
+void draw_chart(std::string& out, const grid::CoastGrid& g, const View& v, double land_px, double coast_width) {
+    out += "<rect class=\"outside\" x=\"" + num(v.px.x0) + "\" y=\"" + num(v.px.y0) + "\" width=\"" + num(v.px.w()) +
+           "\" height=\"" + num(v.px.h()) + "\" fill=\"" + outside_fill + "\"/>\n";
+    const Box covered = intersection(v.world, g.extent());
+    if (!covered.empty()) {
+        const XY a = v.to_px({covered.minx, covered.maxy}), b = v.to_px({covered.maxx, covered.miny});
+        out += "<rect class=\"water\" x=\"" + num(a.x) + "\" y=\"" + num(a.y) + "\" width=\"" + num(b.x - a.x) +
+               "\" height=\"" + num(b.y - a.y) + "\" fill=\"" + water_fill + "\"/>\n";
+    }
+    if (g.has_land_side()) {
+        const std::string land = land_path(g, v, land_px);
+        if (!land.empty()) out += "<path class=\"land\" fill=\"" + std::string(land_fill) + "\" d=\"" + land + "\"/>\n";
+    }
+    const std::string coast = coast_path(g, v, coast_width < 1 ? 0.75 : 0.4);
+    if (!coast.empty())
+        out += "<path class=\"coastline\" fill=\"none\" stroke=\"" + std::string(coast_stroke) + "\" stroke-width=\"" +
+               num(coast_width) + "\" stroke-linejoin=\"round\" stroke-linecap=\"round\" d=\"" + coast + "\"/>\n";
+}
+
+const char* status_colour(Status s) { return s == Status::aground ? red : s == Status::close ? amber : clear_grey; }
+
+void draw_track(std::string& out, const TrackDraw& t, const View& v, const char* colour, double width, double opacity) {
+    if (t.box.empty() || v.world.distance_to(t.box) > 0) return;
+    std::string d;
+    for (const auto& line : t.lines) d += line_path(line, v, 0.6);
+    if (d.empty()) return;
+    out += "<path class=\"track\" fill=\"none\" stroke=\"" + std::string(colour) + "\" stroke-width=\"" + num(width) +
+           "\" stroke-opacity=\"" + num(opacity) + "\" stroke-linejoin=\"round\" stroke-linecap=\"round\" d=\"" + d +
+           "\"><title>" + xml("track " + t.summary->id + (t.summary->name.empty() ? "" : " (" + t.summary->name + ")")) +
+           "</title></path>\n";
+}
+
+/// Single-fix pieces have no line to draw: a dot shows them.
+void draw_lonely_fixes(std::string& out, const TrackDraw& t, const View& v, const char* colour) {
+    for (const auto& line : t.lines) {
+        if (line.size() != 1) continue;
+        const XY p = v.to_px(line[0]);
+        if (!Rect{p.x, p.y, p.x, p.y}.overlaps(v.px.grown(5))) continue;
+        out += "<circle class=\"track fix\" cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"1.8\" fill=\"" + colour + "\"/>\n";
+    }
+}
+
+std::string event_title(const EventDraw& e) {
+    const Event& ev = *e.event;
+    char b[200];
+    if (ev.kind == EventKind::grounding)
+        std::snprintf(b, sizeof b, ": grounding from %s to %s, penetration %.1f m, heading %.0f\xC2\xB0", iso_time(ev.start_s).c_str(),
+                      iso_time(ev.end_s).c_str(), ev.penetration_m, ev.heading_deg);
+    else
+        std::snprintf(b, sizeof b, ": close pass from %s to %s, least clearance %.1f m, heading %.0f\xC2\xB0",
+                      iso_time(ev.start_s).c_str(), iso_time(ev.end_s).c_str(), ev.min_clearance_m, ev.heading_deg);
+    return "track " + e.track->id + b;
+}
+
+void draw_hull(std::string& out, const EventDraw& e, const View& v, bool focus) {
+    if (e.hull.size() < 3) return;
+    const bool g = e.event->kind == EventKind::grounding;
+    const char* stroke = g ? (focus ? red_dark : red) : amber_dark;
+    const char* fill = g ? red : amber;
+    out += std::string("<polygon class=\"hull ") + audit::to_string(e.event->kind) + "\" points=\"" + points_attr(e.hull, v) +
+           "\" fill=\"" + fill + "\" fill-opacity=\"" + (focus ? "0.35" : "0.2") + "\" stroke=\"" + stroke +
+           "\" stroke-width=\"" + (focus ? "1.6" : "1") + "\" stroke-linejoin=\"round\"/>\n";
+}
+
+/// A marker: red circle for a grounding, amber triangle for a close pass. `cls` names it
+/// ("event" in the overview, one per event; "contact" in the zoomed panels).
+Rect draw_marker(std::string& out, const EventDraw& e, const View& v, const char* cls, double size) {
+    const XY p = v.to_px(e.point);
+    const std::string kind = audit::to_string(e.event->kind);
+    const std::string title = "<title>" + xml(event_title(e)) + "</title>";
+    if (e.event->kind == EventKind::grounding) {
+        out += "<circle class=\"" + std::string(cls) + " " + kind + "\" cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"" +
+               num(size) + "\" fill=\"" + red + "\" stroke=\"#ffffff\" stroke-width=\"1.5\">" + title + "</circle>\n";
+    } else {
+        const double s = size * 1.25;
+        const std::vector<XY> tri = {{p.x, p.y - s}, {p.x + s * 0.9, p.y + s * 0.6}, {p.x - s * 0.9, p.y + s * 0.6}};
+        std::string pts;
+        for (const XY& q : tri) {
+            if (!pts.empty()) pts += ' ';
+            put(pts, q.x);
+            pts += ',';
+            put(pts, q.y);
+        }
+        out += "<polygon class=\"" + std::string(cls) + " " + kind + "\" points=\"" + pts + "\" fill=\"" + amber +
+               "\" stroke=\"#ffffff\" stroke-width=\"1.5\" stroke-linejoin=\"round\">" + title + "</polygon>\n";
+    }
+    return {p.x - size - 1, p.y - size - 1, p.x + size + 1, p.y + size + 1};
+}
+
+/// A contact point in a zoomed panel: a ring, so that the hull under it stays visible.
+Rect draw_contact(std::string& out, const EventDraw& e, const View& v, double r) {
+    const XY p = v.to_px(e.point);
+    const bool g = e.event->kind == EventKind::grounding;
+    out += std::string("<g class=\"contact ") + audit::to_string(e.event->kind) + "\"><title>" + xml(event_title(e)) +
+           "</title><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"" + num(r) +
+           "\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"3.5\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) +
+           "\" r=\"" + num(r) + "\" fill=\"none\" stroke=\"" + (g ? red_dark : amber_dark) +
+           "\" stroke-width=\"1.8\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"1.2\" fill=\"" +
+           (g ? red_dark : amber_dark) + "\"/></g>\n";
+    return {p.x - r - 2, p.y - r - 2, p.x + r + 2, p.y + r + 2};
+}
+
+/// Page box of an event's hull footprint (empty far away when it has none).
+Rect hull_rect(const EventDraw& e, const View& v) {
+    if (e.hull.empty()) return {-1e9, -1e9, -1e9, -1e9};
+    Rect r{INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (const XY& p : e.hull) {
+        const XY q = v.to_px(p);
+        r = {std::min(r.x0, q.x), std::min(r.y0, q.y), std::max(r.x1, q.x), std::max(r.y1, q.y)};
+    }
+    return r.grown(1);
+}
+
+/// Scale bar (true metres) in the panel's lower left corner; returns the page area it takes.
+Rect draw_scale_bar(std::string& out, const View& v, const Bearing& b) {
+    const double px_per_true_m = v.scale * b.k;
+    const double length_m = round_length(std::max(v.px.w() * 0.22, 40.0) / px_per_true_m);
+    const double bar = length_m * px_per_true_m;
+    const std::string caption = metres_text(length_m);
+    const double w = std::max(bar, text_width(caption, 11)) + 16, h = 34;
+    const Rect box{v.px.x0 + 8, v.px.y1 - 8 - h, v.px.x0 + 8 + w, v.px.y1 - 8};
+    const double x = box.x0 + 8, y = box.y0 + 21;
+    out += "<g class=\"scale-bar\"><title>" + xml("scale bar: " + caption + " on the ground" +
+                                                    (b.known ? "" : " (frame scale unknown here: local metres)")) +
+           "</title>\n<rect x=\"" + num(box.x0) + "\" y=\"" + num(box.y0) + "\" width=\"" + num(w) + "\" height=\"" + num(h) +
+           "\" rx=\"3\" fill=\"#ffffff\" fill-opacity=\"0.85\"/>\n<rect x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" +
+           num(bar / 2) + "\" height=\"5\" fill=\"" + ink + "\"/>\n<rect x=\"" + num(x + bar / 2) + "\" y=\"" + num(y) +
+           "\" width=\"" + num(bar / 2) + "\" height=\"5\" fill=\"#ffffff\"/>\n<rect class=\"bar\" x=\"" + num(x) + "\" y=\"" + num(y) +
+           "\" width=\"" + num(bar) + "\" height=\"5\" fill=\"none\" stroke=\"" + ink + "\" stroke-width=\"1\"/>\n";
+    text(out, x, y - 5, caption, 11, ink, " class=\"caption\"");
+    out += "</g>\n";
+    return box;
+}
+
+/// Arrow to true north in the panel's upper right corner; returns the page area it takes.
+Rect draw_north_arrow(std::string& out, const View& v, const Bearing& b) {
+    const double r = 22;
+    const XY c{v.px.x1 - 8 - r, v.px.y0 + 8 + r};
+    char title[160];
+    if (b.known)
+        std::snprintf(title, sizeof title, "true north (%.2f\xC2\xB0 %s of grid north, the page's up)", std::fabs(b.north_deg),
+                      b.north_deg >= 0 ? "east" : "west");
+    else
+        std::snprintf(title, sizeof title, "grid north (true north unknown here)");
+    out += "<g class=\"north-arrow\" transform=\"translate(" + num(c.x) + "," + num(c.y) + ") rotate(";
+    char angle[32];
+    std::snprintf(angle, sizeof angle, "%.3f", b.north_deg);
+    out += std::string(angle) + ")\"><title>" + xml(title) + "</title>\n<circle r=\"" + num(r) +
+           "\" fill=\"#ffffff\" fill-opacity=\"0.85\"/>\n<polygon points=\"0,-8 -6,16 0,11\" fill=\"" + ink +
+           "\"/>\n<polygon points=\"0,-8 6,16 0,11\" fill=\"#ffffff\" stroke=\"" + ink +
+           "\" stroke-width=\"1\" stroke-linejoin=\"round\"/>\n<polygon points=\"0,-8 -6,16 0,11\" fill=\"none\" stroke=\"" + ink +
+           "\" stroke-width=\"1\" stroke-linejoin=\"round\"/>\n";
+    text(out, 0, -10.5, "N", 11, ink, " font-weight=\"bold\" text-anchor=\"middle\"");
+    out += "</g>\n";
+    return {c.x - r, c.y - r, c.x + r, c.y + r};
+}
+
+void open_panel(std::string& out, const View& v, const std::string& cls, const std::string& id) {
+    out += "<g class=\"panel " + cls + "\" id=\"" + id + "\">\n<defs><clipPath id=\"clip-" + id + "\"><rect x=\"" + num(v.px.x0) +
+           "\" y=\"" + num(v.px.y0) + "\" width=\"" + num(v.px.w()) + "\" height=\"" + num(v.px.h()) +
+           "\"/></clipPath></defs>\n<g clip-path=\"url(#clip-" + id + ")\">\n";
+}
+
+void close_panel(std::string& out, const View& v) {
+    out += "<rect class=\"frame\" x=\"" + num(v.px.x0) + "\" y=\"" + num(v.px.y0) + "\" width=\"" + num(v.px.w()) + "\" height=\"" +
+           num(v.px.h()) + "\" fill=\"none\" stroke=\"#555555\" stroke-width=\"1\"/>\n</g>\n";
+}
+
+// ---------------------------------------------------------------- the panels
+
+void draw_overview(std::string& out, const Scene& scene, const grid::CoastGrid& g, const View& v) {
+    open_panel(out, v, "overview", "overview");
+    draw_chart(out, g, v, 2, 0.8);
+    for (Status s : {Status::clear, Status::close, Status::aground})
+        for (const TrackDraw& t : scene.tracks)
+            if (t.status == s) {
+                draw_track(out, t, v, status_colour(s), s == Status::clear ? 1.0 : 1.6, s == Status::clear ? 0.75 : 0.95);
+                draw_lonely_fixes(out, t, v, status_colour(s));
+            }
+    for (const EventDraw& e : scene.events) draw_hull(out, e, v, false);
+
+    // Markers (close passes under groundings), then labels where they fit: event times
+    // first (groundings, then close passes), then the ids of tracks with events, then the rest.
+    Labels labels(v.px.grown(-2));
+    std::string marks, texts;
+    for (const EventDraw& e : scene.events) labels.block(hull_rect(e, v));
+    for (EventKind k : {EventKind::close_pass, EventKind::grounding})
+        for (const EventDraw& e : scene.events)
+            if (e.point_ok && e.event->kind == k) labels.block(draw_marker(marks, e, v, "event", 5));
+    out += marks;
+    out += "</g>\n";  // end of the clipped group: labels, scale bar and arrow are placed inside the panel
+    const Bearing b = bearing_at(g.frame(), v.to_world({(v.px.x0 + v.px.x1) / 2, (v.px.y0 + v.px.y1) / 2}));
+    labels.block(draw_scale_bar(texts, v, b));
+    labels.block(draw_north_arrow(texts, v, b));
+    for (EventKind k : {EventKind::grounding, EventKind::close_pass})
+        for (const EventDraw& e : scene.events) {
+            if (!e.point_ok || e.event->kind != k) continue;
+            const std::string s = clock(e.event->start_s) + (e.zoom ? " (" + std::to_string(e.zoom) + ")" : "");
+            const XY at = v.to_px(e.point);
+            const char* colour = k == EventKind::grounding ? red_dark : amber_dark;
+            // Numbered groundings (they have a panel) may move off a crowded spot on a leader line.
+            if (auto r = labels.place(at, text_width(s, 10.5) + 4, 14, 5, e.zoom ? 40 : 10)) {
+                leader(texts, at, *r, 12, colour);
+                label(texts, *r, s, 10.5, colour, "label event-time", true);
+            }
+        }
+    for (Status s : {Status::aground, Status::close, Status::clear})
+        for (const TrackDraw& t : scene.tracks) {
+            if (t.status != s || t.lines.empty()) continue;
+            const XY start = v.to_px(t.lines.front().front());
+            if (!Rect{start.x, start.y, start.x, start.y}.overlaps(v.px)) continue;
+            if (auto r = labels.place(start, text_width(t.summary->id, 9.5) + 4, 13, 3))
+                label(texts, *r, t.summary->id, 9.5, "#333333", "label track-id");
+        }
+    out += texts;
+    close_panel(out, v);
+}
+
+void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, const EventDraw& focus, const View& v) {
+    open_panel(out, v, "zoom", "zoom-" + std::to_string(focus.zoom));
+    draw_chart(out, g, v, 1, 1.3);
+    for (const TrackDraw& t : scene.tracks)
+        if (&t != focus.drawn_track) draw_track(out, t, v, clear_grey, 1.0, 0.8);
+    const TrackDraw& own = *focus.drawn_track;
+    draw_track(out, own, v, status_colour(own.status), 2.0, 0.95);
+    std::string dots;  // the track's fixes: how often the ship was seen
+    for (const auto& line : own.lines)
+        for (const XY& p : line) {
+            const XY q = v.to_px(p);
+            if (!Rect{q.x, q.y, q.x, q.y}.overlaps(v.px.grown(4))) continue;
+            dots += "<circle cx=\"" + num(q.x) + "\" cy=\"" + num(q.y) + "\" r=\"2.2\"/>";
+        }
+    if (!dots.empty())
+        out += "<g class=\"fixes\" fill=\"" + std::string(status_colour(own.status)) + "\" stroke=\"#ffffff\" stroke-width=\"0.6\">" +
+               dots + "</g>\n";
+    Labels labels(v.px.grown(-2));
+    for (const EventDraw& e : scene.events)
+        if (&e != &focus && !e.box.empty() && v.world.distance_to(e.box) == 0) {
+            draw_hull(out, e, v, false);
+            labels.block(hull_rect(e, v));
+        }
+    draw_hull(out, focus, v, true);
+    labels.block(hull_rect(focus, v));
+    for (const EventDraw& e : scene.events)
+        if (&e != &focus && e.point_ok && v.world.distance_to(e.box) == 0) labels.block(draw_contact(out, e, v, 3));
+    labels.block(draw_contact(out, focus, v, 4.5));
+    out += "</g>\n";
+    const Bearing b = bearing_at(g.frame(), focus.point);
+    std::string texts;
+    labels.block(draw_scale_bar(texts, v, b));
+    labels.block(draw_north_arrow(texts, v, b));
+    const std::string s = "first contact " + clock(focus.event->start_s);
+    const XY at = v.to_px(focus.point);
+    if (auto r = labels.place(at, text_width(s, 11) + 4, 15, 7, v.px.w() / 3)) {
+        leader(texts, at, *r, 14, red_dark);
+        label(texts, *r, s, 11, red_dark, "label event-time", true);
+    }
+    out += texts;
+    close_panel(out, v);
+}
+
+// ---------------------------------------------------------------- legend
+
+struct LegendItem {
+    std::string symbol;  ///< SVG drawn in a 22 x 12 box at the origin
+    std::string caption;
+};
+
+double draw_legend(std::string& out, double x0, double y0, double width, const std::vector<LegendItem>& items) {
+    out += "<g class=\"legend\">\n";
+    double x = x0, y = y0;
+    for (const auto& it : items) {
+        const double w = 28 + text_width(it.caption, 11) + 14;
+        if (x > x0 && x + w > x0 + width) {
+            x = x0;
+            y += 18;
+        }
+        out += "<g transform=\"translate(" + num(x) + "," + num(y) + ")\">" + it.symbol + "</g>\n";
+        text(out, x + 28, y + 10.5, it.caption, 11, ink);
+        x += w;
+    }
+    out += "</g>\n";
+    return y + 18;
+}
+
+std::vector<LegendItem> legend_items(const grid::CoastGrid& g) {
+    auto line = [](const char* colour, double w) {
+        return std::string("<line x1=\"0\" y1=\"6\" x2=\"22\" y2=\"6\" stroke=\"") + colour + "\" stroke-width=\"" + num(w) +
+               "\" stroke-linecap=\"round\"/>";
+    };
+    auto swatch = [](const char* colour) {
+        return std::string("<rect x=\"0\" y=\"0\" width=\"22\" height=\"12\" fill=\"") + colour +
+               "\" stroke=\"#999999\" stroke-width=\"0.5\"/>";
+    };
+    std::vector<LegendItem> items;
+    items.push_back({line(coast_stroke, 1.2), "coastline"});
+    if (g.has_land_side()) items.push_back({swatch(land_fill), "land (as the grid sees it)"});
+    else items.push_back({swatch(water_fill), "land side unknown: coastline only"});
+    items.push_back({swatch(outside_fill), "no chart (outside the grid)"});
+    items.push_back({line(red, 2), "track with grounding"});
+    items.push_back({line(amber, 2), "track with close pass"});
+    items.push_back({line(clear_grey, 1.5), "other track"});
+    items.push_back({std::string("<polygon points=\"1,3 15,3 21,6 15,9 1,9\" fill=\"") + red +
+                         "\" fill-opacity=\"0.3\" stroke=\"" + red_dark + "\" stroke-width=\"1\"/>",
+                     "hull at event"});
+    items.push_back({std::string("<circle cx=\"11\" cy=\"6\" r=\"5\" fill=\"") + red + "\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>",
+                     "grounding (first contact, time UTC)"});
+    items.push_back({std::string("<polygon points=\"11,0 16.6,9.7 5.4,9.7\" fill=\"") + amber +
+                         "\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>",
+                     "close pass"});
+    return items;
+}
+
+}  // namespace
+
+std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const PlotOptions& options) {
+    const double width = options.width_px;
+    if (!std::isfinite(width) || width < 400 || width > 20000)
+        throw UsageError("plot width must be between 400 and 20000 px (got " + num(width) + ")");
+    const double margin = 16;
+    const double inner = width - 2 * margin;
+
+    Scene scene = project_scene(result, grid.frame());
+    std::size_t zoom_count = 0, groundings = 0;
+    for (EventDraw& e : scene.events)
+        if (e.event->kind == EventKind::grounding) {
+            ++groundings;
+            if (zoom_count < options.max_zoom_panels && e.point_ok) e.zoom = ++zoom_count;
+        }
+
+    std::string body;
+    // Title and summary.
+    text(body, margin, margin + 18, "shoal audit", 20, ink, " font-weight=\"bold\"");
+    std::string summary = plural(result.tracks.size(), "track", "tracks") + ", " + plural(result.fixes, "fix", "fixes") + ", " +
+                          plural(result.groundings, "grounding", "groundings") + ", " +
+                          plural(result.close_passes, "close pass", "close passes");
+    if (result.uncovered_fixes) summary += ", " + plural(result.uncovered_fixes, "uncovered fix", "uncovered fixes");
+    std::size_t unreadable = result.errors.size();
+    for (const auto& f : result.files) unreadable += f.error.empty() ? 0 : 1;
+    if (unreadable) summary += ", " + plural(unreadable, "file or track not read", "files or tracks not read");
+    text(body, margin, margin + 40, summary, 13, ink, " class=\"summary\"");
+    std::string when;
+    if (std::isfinite(result.first_fix_s) && std::isfinite(result.last_fix_s))
+        when = "fixes from " + date_clock(result.first_fix_s) + " to " + date_clock(result.last_fix_s);
+    const std::string how = "drawn in " + grid.frame().description() + ", grid cells of " + num(grid.cell_size()) + " m";
+    double y = margin + 58;
+    if (!when.empty() && text_width(when + "; " + how, 11) > inner) {
+        text(body, margin, y, when, 11, "#555555");
+        y += 15;
+        text(body, margin, y, fit_text(how, 11, inner), 11, "#555555");
+    } else {
+        text(body, margin, y, fit_text(when.empty() ? how : when + "; " + how, 11, inner), 11, "#555555");
+    }
+    y = draw_legend(body, margin, y + 10, inner, legend_items(grid)) + 8;
+
+    // Overview: the tracks and events, padded by at least 2 km, kept within the chart (unless
+    // the data reach beyond it).
+    Box want = scene.data;
+    if (want.empty()) want = grid.extent();
+    else {
+        const double pad = std::max(2000.0, 0.05 * std::max(want.maxx - want.minx, want.maxy - want.miny));
+        Box allowed = grid.extent();
+        allowed.extend(want);
+        want = intersection(want.grown(pad), allowed);
+    }
+    const double ww = std::max(want.maxx - want.minx, 1.0), wh = std::max(want.maxy - want.miny, 1.0);
+    const double oh = std::clamp(inner * wh / ww, 0.4 * inner, 1.0 * inner);
+    text(body, margin, y + 14, "Overview", 14, ink, " font-weight=\"bold\"");
+    y += 22;
+    const View overview = fit(want, {margin, y, margin + inner, y + oh});
+    draw_overview(body, scene, grid, overview);
+    y += oh + 12;
+
+    // Zoomed panels, one per grounding.
+    if (groundings > 0) {
+        y += 10;
+        text(body, margin, y + 14,
+             zoom_count == groundings ? "Groundings" : "Groundings (first " + std::to_string(zoom_count) + " of " +
+                                                           std::to_string(groundings) + ")",
+             14, ink, " font-weight=\"bold\"");
+        y += 24;
+        const int cols = width >= 900 ? 3 : 2;
+        const double gap = 16;
+        const double zw = (inner - (cols - 1) * gap) / cols, zh = zw * 0.75;
+        std::size_t n = 0;
+        for (const EventDraw& e : scene.events) {
+            if (!e.zoom) continue;
+            const auto col = static_cast<double>(n % static_cast<std::size_t>(cols));
+            const double x = margin + col * (zw + gap);
+            const double ty = y;
+            const Event& ev = *e.event;
+            const double size_m = std::max(8 * (e.hull_length_m > 0 ? e.hull_length_m : 100.0), 100.0);
+            std::string head = "(" + std::to_string(e.zoom) + ") track " + e.track->id;
+            if (!e.track->name.empty() && e.track->name != e.track->id) head += " " + e.track->name;
+            head = fit_text(head, 12, zw);
+            char line2[160];
+            std::snprintf(line2, sizeof line2, "aground %s, penetration %.1f m, heading %.0f\xC2\xB0", clock(ev.start_s).c_str(),
+                          ev.penetration_m, ev.heading_deg);
+            text(body, x, ty + 12, head, 12, ink, " font-weight=\"bold\"");
+            text(body, x, ty + 27, line2, 11, red_dark);
+            const Rect px{x, ty + 34, x + zw, ty + 34 + zh};
+            const View v = fit({e.point.x - size_m / 2, e.point.y - size_m / 2, e.point.x + size_m / 2, e.point.y + size_m / 2}, px);
+            draw_zoom(body, scene, grid, e, v);
+            ++n;
+            if (n % static_cast<std::size_t>(cols) == 0 || n == zoom_count) y += 34 + zh + 16;
+        }
+        if (zoom_count < groundings) {
+            const std::size_t more = groundings - zoom_count;
+            text(body, margin, y + 12,
+                 std::to_string(more) + (more == 1 ? " more grounding" : " more groundings") + " not drawn (at most " +
+                     std::to_string(options.max_zoom_panels) + " zoomed panels; see the report for all)",
+                 12, red_dark, " class=\"note\"");
+            y += 22;
+        }
+    }
+    const double height = std::ceil(y + margin);
+
+    std::string out;
+    out.reserve(body.size() + 600);
+    out += "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n";
+    out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + num(width) + "\" height=\"" + num(height) +
+           "\" viewBox=\"0 0 " + num(width) + " " + num(height) + "\" font-family=\"" + font_family + "\">\n";
+    out += "<title>shoal audit: " + xml(summary) + "</title>\n";
+    out += "<rect width=\"" + num(width) + "\" height=\"" + num(height) + "\" fill=\"#ffffff\"/>\n";
+    out += body;
+    out += "</svg>\n";
+    return out;
+}
+
+void write_plot_svg(const std::string& path, const audit::AuditResult& result, const grid::CoastGrid& grid,
+                    const PlotOptions& options) {
+    write_file_atomically(path, plot_svg(result, grid, options));
+}
+
+}  // namespace shoal::report
