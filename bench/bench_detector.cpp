@@ -1,5 +1,5 @@
 // bench_detector: the per-pose cost of the pose check on every coastline of the shared data,
-// by three methods on the very same LocalPose objects:
+// by four methods on the very same LocalPose objects:
 //
 //   detector   check::Detector (the grid of 500 m cells),
 //   GEOS tree  what a careful engineer would write with GEOS alone: an STRtree of coastline
@@ -14,11 +14,12 @@
 //   brute      check::BruteForce, the paper's traversal of every segment (fewer poses).
 //
 // Poses: "near" = hull within 0-300 m of the coastline (1/3 touching or overlapping land,
-// 2/3 clear),
-// "open" = clearance over 1 km. Hulls of 36 and 8 points. Two check options: a close-pass
+// 2/3 clear), "open" = clearance over 1 km. Hulls of 36 and 8 points. Two check options: a close-pass
 // margin of 100 m (max_clearance_m = 100, no penetration: what the audit asks) and the
 // unlimited clearance of `shoal probe`. Every method's answers are compared with the
 // detector's on every pose; disagreements are counted and make the exit status 1.
+// Batches are timed by the thread's CPU time, the methods taking turns (see time_methods);
+// check::place (which calls PROJ) is timed separately. docs/performance.md has the figures.
 //
 // Usage: bench_detector [--data DIR] [--coast SUBSTRING]... [--near N] [--open N]
 //                       [--rounds R] [--batch B] [--brute-seconds S] [--chunk SEGMENTS]
@@ -26,6 +27,7 @@
 // DIR defaults to $SHOAL_SHARED_DATA, else ../shared/data next to the source tree.
 
 #include <benchmark/benchmark.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -56,6 +58,14 @@ using shoal::geo::XY;
 using Clock = std::chrono::steady_clock;
 
 double ns_since(Clock::time_point t0) { return std::chrono::duration<double, std::nano>(Clock::now() - t0).count(); }
+
+/// CPU time of this thread, nanoseconds. Batches are timed with it, so that the time the
+/// thread spends descheduled (other processes on a shared machine) does not count.
+double thread_cpu_ns() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) * 1e9 + static_cast<double>(ts.tv_nsec);
+}
 double s_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 double quantile(std::vector<double> v, double q) {
@@ -75,8 +85,8 @@ struct Options {
     std::string data;
     std::vector<std::string> coast_filter;
     std::size_t near = 2000, open = 1000;
-    int rounds = 5;            // timed passes over the poses (batches) for the fast methods
-    std::size_t batch = 100;   // poses per timed batch
+    int rounds = 5;            // timed passes over the poses (in batches), per method
+    std::size_t batch = 500;   // poses per timed batch
     double brute_seconds = 2;  // time budget of the brute-force traversal per pose set
     std::size_t chunk = 8;     // segments per GEOS coastline piece (4-32 tried: 8 was best near the coast)
     bool only_detector = false;  // --detector-only: skip GEOS and brute force (for profiling)
@@ -511,32 +521,45 @@ double timer_overhead_ns() {
     return median(v);
 }
 
-/// `f(i)` checks pose i. One untimed warm-up pass, `rounds` passes in batches, one pass of
-/// single timed calls.
-Timing time_method(std::size_t n, int rounds, std::size_t batch, const std::function<void(std::size_t)>& f) {
-    Timing t;
-    t.poses = n;
-    if (n == 0) return t;
-    for (std::size_t i = 0; i < n; ++i) f(i);
-    std::vector<double> per_batch;
+/// `fs[m](i)` checks pose i by method m. The methods take turns pass by pass, so that a
+/// change in the machine's load affects them alike; each turn is an untimed warm-up pass
+/// over the poses, then a pass timed in batches by the thread's CPU time (one method's
+/// passes do not run between another's batches, which would evict its data from the
+/// caches). Then one pass of single calls per method, timed by the steady clock.
+std::vector<Timing> time_methods(std::size_t n, int rounds, std::size_t batch,
+                                 const std::vector<std::function<void(std::size_t)>>& fs) {
+    std::vector<Timing> out(fs.size());
+    if (n == 0) return out;
+    std::vector<std::vector<double>> per_batch(fs.size()), single(fs.size(), std::vector<double>(n));
     for (int r = 0; r < rounds; ++r)
-        for (std::size_t b = 0; b < n; b += batch) {
-            const std::size_t e = std::min(n, b + batch);
-            const auto t0 = Clock::now();
-            for (std::size_t i = b; i < e; ++i) f(i);
-            per_batch.push_back(ns_since(t0) / static_cast<double>(e - b));
+        for (std::size_t m = 0; m < fs.size(); ++m) {
+            for (std::size_t i = 0; i < n; ++i) fs[m](i);
+            for (std::size_t b = 0; b < n; b += batch) {
+                const std::size_t e = std::min(n, b + batch);
+                const double t0 = thread_cpu_ns();
+                for (std::size_t i = b; i < e; ++i) fs[m](i);
+                per_batch[m].push_back((thread_cpu_ns() - t0) / static_cast<double>(e - b));
+            }
         }
-    std::vector<double> single(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto t0 = Clock::now();
-        f(i);
-        single[i] = ns_since(t0);
+    for (std::size_t m = 0; m < fs.size(); ++m)
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto t0 = Clock::now();
+            fs[m](i);
+            single[m][i] = ns_since(t0);
+        }
+    for (std::size_t m = 0; m < fs.size(); ++m) {
+        Timing& t = out[m];
+        t.poses = n;
+        t.batch_median_ns = median(per_batch[m]);
+        t.batch_min_ns = quantile(per_batch[m], 0);
+        t.pose_median_ns = median(single[m]);
+        t.pose_p99_ns = quantile(single[m], 0.99);
     }
-    t.batch_median_ns = median(per_batch);
-    t.batch_min_ns = quantile(per_batch, 0);
-    t.pose_median_ns = median(single);
-    t.pose_p99_ns = quantile(single, 0.99);
-    return t;
+    return out;
+}
+
+Timing time_method(std::size_t n, int rounds, std::size_t batch, const std::function<void(std::size_t)>& f) {
+    return time_methods(n, rounds, batch, {f}).front();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -594,9 +617,9 @@ std::vector<Row> run_coast(CoastBench& cb, const Options& opt) {
                 const std::size_t nb = std::min(n, std::max<std::size_t>(20, static_cast<std::size_t>(opt.brute_seconds / std::max(one, 1e-9))));
                 std::vector<double> single;
                 for (std::size_t i = 0; i < nb; ++i) {
-                    const auto t1 = Clock::now();
+                    const double t1 = thread_cpu_ns();
                     shoal::check::Contact c = hc.brute->check(set->local[i]);
-                    single.push_back(ns_since(t1));
+                    single.push_back(thread_cpu_ns() - t1);
                     if (i > 0) brute_ans.push_back(c);
                 }
                 brute.poses = nb;
@@ -629,33 +652,37 @@ std::vector<Row> run_coast(CoastBench& cb, const Options& opt) {
                 row.brute = brute;
                 const auto& poses = set->local;
                 const shoal::check::Detector& det = *hc.detector;
-                row.det = time_method(n, opt.rounds, opt.batch, [&](std::size_t i) {
+                auto det_f = [&](std::size_t i) {
                     shoal::check::Contact c = det.check(poses[i], co);
                     benchmark::DoNotOptimize(c);
-                });
+                };
+                auto tree_f = [&](std::size_t i) {
+                    Answer a = cb.geos_tree->check(shoal::check::hull_outline(hc.hull, poses[i]), margin);
+                    benchmark::DoNotOptimize(a);
+                };
+                auto prep_f = [&](std::size_t i) {
+                    Answer a = cb.geos_prep->check(shoal::check::hull_outline(hc.hull, poses[i]), margin);
+                    benchmark::DoNotOptimize(a);
+                };
+                if (opt.only_detector) {
+                    row.det = time_method(n, opt.rounds, opt.batch, det_f);
+                } else {
+                    const std::vector<Timing> t = time_methods(n, opt.rounds, opt.batch, {det_f, tree_f, prep_f});
+                    row.det = t[0];
+                    row.tree = t[1];
+                    row.prep = t[2];
+                }
                 for (auto [subset, timing] : {std::pair{&set->touching, &row.det_touching}, std::pair{&set->clear, &row.det_clear}}) {
                     const std::vector<std::size_t>& idx = *subset;
                     if (idx.empty() || idx.size() == n) continue;
-                    *timing = time_method(idx.size(), opt.rounds, opt.batch, [&](std::size_t i) {
-                        shoal::check::Contact c = det.check(poses[idx[i]], co);
-                        benchmark::DoNotOptimize(c);
-                    });
+                    *timing = time_method(idx.size(), opt.rounds, opt.batch, [&](std::size_t i) { det_f(idx[i]); });
                 }
-                const int geos_rounds = std::max(1, opt.rounds / 2);
                 if (opt.only_detector) {
                     rows.push_back(row);
                     std::fprintf(stderr, "  %s %s-pt %s: detector %s us (fastest batch %s)\n", set->name.c_str(), hc.name.c_str(),
                                  row.margin.c_str(), fmt_us(row.det.batch_median_ns).c_str(), fmt_us(row.det.batch_min_ns).c_str());
                     continue;
                 }
-                row.tree = time_method(n, geos_rounds, opt.batch, [&](std::size_t i) {
-                    Answer a = cb.geos_tree->check(shoal::check::hull_outline(hc.hull, poses[i]), margin);
-                    benchmark::DoNotOptimize(a);
-                });
-                row.prep = time_method(n, geos_rounds, opt.batch, [&](std::size_t i) {
-                    Answer a = cb.geos_prep->check(shoal::check::hull_outline(hc.hull, poses[i]), margin);
-                    benchmark::DoNotOptimize(a);
-                });
                 rows.push_back(row);
                 std::fprintf(stderr, "  %s %s-pt %s: detector %s us, GEOS tree %s us, GEOS prepared %s us, brute %s us\n",
                              set->name.c_str(), hc.name.c_str(), row.margin.c_str(), fmt_us(row.det.batch_median_ns).c_str(),
@@ -773,6 +800,10 @@ int main(int argc, char** argv) {
             return std::none_of(opt.coast_filter.begin(), opt.coast_filter.end(),
                                 [&](const std::string& s) { return f.name.find(s) != std::string::npos; });
         });
+    if (files.empty()) {
+        std::fprintf(stderr, "%s: no coastline in '%s' matches --coast. Nothing measured.\n", "bench_detector", opt.data.c_str());
+        return 2;
+    }
 
     std::vector<std::unique_ptr<CoastBench>> coasts;
     for (const CoastFile& f : files) {
@@ -816,7 +847,8 @@ int main(int argc, char** argv) {
         all.push_back(run_coast(*cbp, opt));
     }
 
-    std::printf("\n## Per pose, microseconds (median over batches of %zu poses; single-call median and p99 in brackets)\n\n"
+    std::printf("\n## Per pose, microseconds (median over batches of %zu poses, thread CPU time; median and p99 of single calls, "
+                "steady clock, in brackets; brute force: median of single calls, thread CPU time)\n\n"
                 "GEOS = the faster of the two GEOS-only ways on that row; ratios are method / detector. Agreement: poses where the "
                 "method's collision flag and clearance (to 1e-6 m) equal the detector's.\n\n"
                 "| coastline | poses | hull | margin | detector | det. touching / clear | GEOS tree | GEOS prepared | brute (poses) | GEOS / det | brute / det | agree tree / prep / brute |\n"
