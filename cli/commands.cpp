@@ -328,6 +328,11 @@ public:
         m_sub->add_option("--max-gap", m_audit.sweep.max_gap_s, "A gap between fixes longer than this (seconds) splits the track (default 600)")
             ->check(CLI::PositiveNumber);
         m_sub->add_option("--jobs,-j", m_audit.jobs, "Tracks checked in parallel (default: all cores)");
+        m_sub->add_flag("--encounters", m_audit.encounters,
+                        "Exercise mode: the tracks are one exercise; also report ship-to-ship collisions and close quarters");
+        m_sub->add_option("--ship-margin", m_audit.encounter.ship_margin_m,
+                          "Exercise mode: close quarters when hulls come within this many metres (default 20)")
+            ->check(CLI::NonNegativeNumber);
         m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and a zoomed panel per grounding");
         m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
@@ -378,6 +383,7 @@ public:
         info.grid_fingerprint = fp;
         info.ship = m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name();
         info.sweep = m_audit.sweep;
+        info.ship_margin_m = m_audit.encounter.ship_margin_m;
         const auto t0 = std::chrono::steady_clock::now();
         if (format == "gpkg") report::write_gpkg(m_output, r, info);
         else report::write_geojson(m_output, r, info);
@@ -389,7 +395,7 @@ public:
                     m_output.c_str());
         bool unreadable = r.tracks.empty() && (!r.errors.empty() || std::any_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); }));
         if (unreadable) return exit_usage;
-        return r.groundings > 0 ? exit_found : exit_ok;
+        return r.groundings > 0 || r.collisions > 0 ? exit_found : exit_ok;
     }
 
 private:

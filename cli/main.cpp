@@ -7,15 +7,46 @@
 #include <CLI/CLI.hpp>
 #include <cpl_error.h>
 
+#include <unistd.h>
+
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
+namespace {
+
+/// Ctrl-C (SIGINT) or SIGTERM: delete the temporary files being written (a report, a grid,
+/// a cache entry: the targets are only ever replaced whole by a rename, so none is left
+/// half-written), say so, and exit with 128 + the signal number (130 for Ctrl-C).
+void on_interrupt(int sig) {
+    shoal::remove_temp_files_in_progress();
+    static const char message[] = "\nshoal: interrupted\n";
+    [[maybe_unused]] const auto n = ::write(STDERR_FILENO, message, sizeof message - 1);
+    ::_exit(128 + sig);
+}
+
+void handle_interrupts() {
+    for (const int sig : {SIGINT, SIGTERM}) {
+        struct sigaction old{};
+        // A signal ignored when we started (nohup, `cmd &` in a script) stays ignored.
+        if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+        struct sigaction sa{};
+        sa.sa_handler = on_interrupt;
+        sigemptyset(&sa.sa_mask);
+        ::sigaction(sig, &sa, nullptr);
+    }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+    handle_interrupts();
     // GDAL reports through our exceptions, which name the file and feature; keep its own lines off stderr.
     CPLSetErrorHandler(CPLQuietErrorHandler);
     CLI::App app{"shoal: audit ship tracks against chart coastlines"};

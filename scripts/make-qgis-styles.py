@@ -22,7 +22,9 @@ out_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src", 
 app = QgsApplication([], False)
 app.initQgis()
 
+MAGENTA, VIOLET = "#c51b7d", "#756bb1"
 RED, AMBER, GREEN, GREY = "#e31a1c", "#ff9f00", "#33a02c", "#6a7f95"
+BLUE, PURPLE = "#1f78b4", "#6a3d9a"
 
 
 def labels(field, placement):
@@ -49,15 +51,19 @@ def save(layer, name):
     print("wrote", os.path.relpath(path))
 
 
-# events: points, red groundings, amber close passes, labelled with the time of first contact
-events = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=label:string", "events", "memory")
-cats = []
-for value, colour, shape, label in (("grounding", RED, "circle", "grounding"),
-                                    ("close_pass", AMBER, "triangle", "close pass")):
+# events: points; groundings red circles on land, blue squares in shallow water, purple stars on
+# a danger (rock, wreck, obstruction); close passes amber triangles; labelled with the time
+events = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=hit:string&field=label:string", "events", "memory")
+root = QgsRuleBasedRenderer.Rule(None)
+for expr, colour, shape, size, label in (
+        ("\"kind\" = 'grounding' AND (\"hit\" IS NULL OR \"hit\" NOT IN ('shallow', 'danger'))", RED, "circle", "4.2", "aground on land"),
+        ("\"kind\" = 'grounding' AND \"hit\" = 'shallow'", BLUE, "square", "4.0", "aground in shallow water"),
+        ("\"kind\" = 'grounding' AND \"hit\" = 'danger'", PURPLE, "star", "5.2", "aground on a danger (rock, wreck, obstruction)"),
+        ("\"kind\" = 'close_pass'", AMBER, "triangle", "4.2", "close pass")):
     sym = QgsMarkerSymbol.createSimple({"name": shape, "color": colour, "outline_color": "#000000",
-                                        "outline_width": "0.4", "size": "4.2"})
-    cats.append(QgsRendererCategory(value, sym, label))
-events.setRenderer(QgsCategorizedSymbolRenderer("kind", cats))
+                                        "outline_width": "0.4", "size": size})
+    root.appendChild(QgsRuleBasedRenderer.Rule(sym, 0, 0, expr, label))
+events.setRenderer(QgsRuleBasedRenderer(root))
 events.setLabeling(labels("label", QgsPalLayerSettings.OverPoint))
 events.setLabelsEnabled(True)
 save(events, "events")
@@ -66,12 +72,27 @@ save(events, "events")
 hulls = QgsVectorLayer("Polygon?crs=EPSG:4326&field=kind:string&field=label:string", "hulls", "memory")
 cats = []
 for value, colour, fill, label in (("grounding", RED, "227,26,28,60", "hull aground"),
-                                   ("close_pass", AMBER, "255,159,0,60", "hull at closest pass")):
+                                   ("close_pass", AMBER, "255,159,0,60", "hull at closest pass"),
+                                   ("collision", MAGENTA, "197,27,125,60", "hulls in collision (both ships)"),
+                                   ("close_quarters", VIOLET, "117,107,177,60", "hulls at closest quarters (both ships)")):
     sym = QgsFillSymbol.createSimple({"color": fill, "outline_color": colour, "outline_width": "0.6",
                                       "style": "solid"})
     cats.append(QgsRendererCategory(value, sym, label))
 hulls.setRenderer(QgsCategorizedSymbolRenderer("kind", cats))
 save(hulls, "hulls")
+
+# encounters (exercise mode): ship-to-ship collisions and close quarters, labelled with the time
+encounters = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=label:string", "encounters", "memory")
+cats = []
+for value, colour, shape, label in (("collision", MAGENTA, "diamond", "ship-ship collision"),
+                                    ("close_quarters", VIOLET, "pentagon", "ship-ship close quarters")):
+    sym = QgsMarkerSymbol.createSimple({"name": shape, "color": colour, "outline_color": "#000000",
+                                        "outline_width": "0.4", "size": "4.6"})
+    cats.append(QgsRendererCategory(value, sym, label))
+encounters.setRenderer(QgsCategorizedSymbolRenderer("kind", cats))
+encounters.setLabeling(labels("label", QgsPalLayerSettings.OverPoint))
+encounters.setLabelsEnabled(True)
+save(encounters, "encounters")
 
 # tracks: coloured by least clearance (NULL: never within the search limit)
 tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double", "tracks", "memory")

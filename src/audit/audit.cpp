@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "util/error.hpp"
@@ -49,9 +50,10 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
     const unsigned jobs = options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
     const std::vector<std::string> files = track::expand_inputs(inputs);
 
-    // 1. Read every file (a file that cannot be read is reported; the batch goes on).
+    // 1. Read every file (a file that cannot be read is reported; the batch goes on). Fixes
+    // stay packed (32 bytes each) until their track is swept, and are freed after it.
     const auto t0 = Clock::now();
-    std::vector<track::TrackFile> read(files.size());
+    std::vector<track::PackedTrackFile> read(files.size());
     result.files.resize(files.size());
     parallel_for(
         files.size(), jobs,
@@ -59,7 +61,7 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
             FileResult& fr = result.files[k];
             fr.file = files[k];
             try {
-                read[k] = track::read_tracks(files[k], options.read);
+                read[k] = track::read_tracks_packed(files[k], options.read);
                 fr.format = read[k].format;
                 fr.read = read[k].report;
                 fr.tracks = read[k].tracks.size();
@@ -71,13 +73,16 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
     result.read_s = std::chrono::duration<double>(Clock::now() - t0).count();
 
     // 2. Sweep every track.
-    std::vector<track::Track*> tracks;
+    std::vector<track::PackedTrack*> tracks;
     for (auto& f : read)
         for (auto& t : f.tracks) tracks.push_back(&t);
     std::size_t total_fixes = 0;
-    for (const auto* t : tracks) total_fixes += t->fixes.size();
+    for (const auto* t : tracks) total_fixes += t->size();
     std::vector<TrackResult> swept(tracks.size());
     std::vector<std::string> errors(tracks.size());
+    // Exercise mode keeps every track (headings resolved) and its hull for the encounters.
+    std::vector<track::Track> kept(options.encounters ? tracks.size() : 0);
+    std::vector<std::optional<hull::Hull>> kept_hulls(kept.size());
     std::vector<std::unique_ptr<geo::LocalFrame>> frames;  // PROJ transformations are per thread
     for (unsigned w = 0; w < jobs; ++w) frames.push_back(std::make_unique<geo::LocalFrame>(grid.frame()));
     std::atomic<std::size_t> done{0};
@@ -87,7 +92,8 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
     parallel_for(
         tracks.size(), jobs,
         [&](std::size_t k, unsigned w) {
-            track::Track& t = *tracks[k];
+            track::Track t = tracks[k]->unpack();
+            tracks[k]->release_fixes();
             try {
                 track::resolve_headings(t);
                 std::string label = hull_label;
@@ -99,6 +105,11 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
                 const DetectorChecker checker(grid, hull);
                 swept[k] = sweep_track(t, *frames[w], checker, options.sweep);
                 swept[k].summary.hull = label;
+                if (options.encounters) {
+                    kept[k] = t;
+                    kept_hulls[k] = hull;
+                }
+                for (auto& line : swept[k].summary.lines) line.shrink_to_fit();  // held until the report is written
             } catch (const std::exception& e) {
                 errors[k] = e.what();
                 swept[k].summary.id = t.id;
@@ -109,10 +120,18 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
         tick);
     result.sweep_s = std::chrono::duration<double>(Clock::now() - t1).count();
 
+    std::vector<const track::Track*> exercise;
+    std::vector<std::size_t> exercise_index;  // exercise position -> index in result.tracks
+    std::vector<hull::Hull> exercise_hulls;
     for (std::size_t k = 0; k < tracks.size(); ++k) {
         if (!errors[k].empty()) {
             result.errors.push_back({tracks[k]->file, tracks[k]->id, errors[k]});
             continue;
+        }
+        if (options.encounters && kept_hulls[k] && !kept[k].fixes.empty()) {
+            exercise.push_back(&kept[k]);
+            exercise_hulls.push_back(*kept_hulls[k]);
+            exercise_index.push_back(result.tracks.size());
         }
         const TrackSummary& s = swept[k].summary;
         result.fixes += s.fixes;
@@ -127,6 +146,27 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
         result.tracks.push_back(std::move(swept[k]));
     }
     for (const auto& f : result.files) result.skipped_rows += f.read.skipped;
+
+    // 3. Exercise mode: ship-to-ship encounters over all audited tracks, on one clock.
+    if (options.encounters) {
+        const auto t2 = Clock::now();
+        EncounterOptions eo = options.encounter;
+        eo.step_m = options.sweep.step_m;
+        eo.max_gap_s = options.sweep.max_gap_s;
+        result.encounters = find_encounters(exercise, exercise_hulls, *frames[0], eo);
+        // Indices into the exercise become indices into result.tracks.
+        for (auto& e : result.encounters.events) {
+            e.a.track = exercise_index[e.a.track];
+            e.b.track = exercise_index[e.b.track];
+            (e.kind == EncounterKind::collision ? result.collisions : result.close_quarters) += 1;
+        }
+        for (auto& a : result.encounters.approaches) {
+            a.a = exercise_index[a.a];
+            a.b = exercise_index[a.b];
+        }
+        result.has_encounters = true;
+        result.encounters_s = std::chrono::duration<double>(Clock::now() - t2).count();
+    }
     return result;
 }
 

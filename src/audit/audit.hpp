@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "audit/encounters.hpp"
 #include "audit/sweep.hpp"
 #include "grid/coast_grid.hpp"
 #include "hull/hull.hpp"
@@ -20,6 +21,9 @@ struct AuditOptions {
     track::ReadOptions read;
     /// Called on the calling thread about ten times a second: fixes swept so far, fixes in all.
     std::function<void(std::size_t done, std::size_t total)> progress;
+    /// Exercise mode: the tracks of the run are one exercise; find ship-to-ship encounters.
+    bool encounters = false;
+    EncounterOptions encounter;  ///< step and max gap are taken from `sweep`
 };
 
 /// One input file: how it read.
@@ -44,6 +48,12 @@ struct AuditResult {
     std::size_t groundings = 0, close_passes = 0;
     double first_fix_s = NAN, last_fix_s = NAN;
     double read_s = 0, sweep_s = 0;  ///< wall-clock seconds of the two phases
+    /// Exercise mode: encounters between the audited tracks; ShipAt::track and
+    /// ClosestApproach::a/b index `tracks` above.
+    bool has_encounters = false;
+    EncounterResult encounters;
+    std::size_t collisions = 0, close_quarters = 0;
+    double encounters_s = 0;
 };
 
 /// Audits the tracks of `inputs` (files or folders). `default_hull` serves tracks that carry

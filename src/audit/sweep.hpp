@@ -41,6 +41,11 @@ struct Event {
     std::size_t fix_index = 0;      ///< index (0-based) of the last fix at or before that moment
     std::size_t fix_line = 0;       ///< its line (or point number) in the file
     std::vector<geo::LonLat> hull;  ///< hull outline at that moment (closed ring)
+    /// What the hull touched (grounding) or came nearest to (close pass): land, shallow water
+    /// (a depth area under the limiting depth) or a danger.
+    coast::HazardKind hit = coast::HazardKind::land;
+    double charted_depth_m = NAN;   ///< its charted depth (least depth of the area, danger's sounding); NaN unknown or land
+    coast::DangerKind danger = coast::DangerKind::none;  ///< the danger's kind (rock, wreck, obstruction)
 };
 
 /// Figures of one swept track.
@@ -70,6 +75,8 @@ public:
     virtual ~PoseChecker() = default;
     virtual check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const = 0;
     virtual const hull::Hull& hull() const = 0;
+    /// The grid whose polylines Contact::polyline indexes (what a contact hit), if any.
+    virtual const grid::CoastGrid* grid() const { return nullptr; }
 };
 
 class DetectorChecker final : public PoseChecker {
@@ -79,6 +86,7 @@ public:
         return m_detector.check(pose, options);
     }
     const hull::Hull& hull() const override { return m_detector.hull(); }
+    const grid::CoastGrid* grid() const override { return &m_detector.grid(); }
 
 private:
     check::Detector m_detector;

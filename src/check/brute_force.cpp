@@ -28,7 +28,8 @@ Contact BruteForce::check(const LocalPose& pose) const {
     const std::size_t n = h.size();
     Contact out;
     double best2 = INFINITY;
-    for (const auto& l : m_lines)
+    for (std::size_t li = 0; li < m_lines.size(); ++li) {
+        const auto& l = m_lines[li];
         for (std::size_t k = 0; k + 1 < l.points.size(); ++k)
             for (std::size_t e = 0; e < n; ++e) {
                 XY on_hull, on_coast;
@@ -38,8 +39,10 @@ Contact BruteForce::check(const LocalPose& pose) const {
                     best2 = d2;
                     out.hull_point = on_hull;
                     out.coast_point = on_coast;
+                    out.polyline = static_cast<std::uint32_t>(li);
                 }
             }
+    }
     out.clearance_m = std::sqrt(best2);
     if (best2 == 0) out.collision = true;
     if (!out.collision && winding(h[0]) > 0) out.collision = true;

@@ -1,10 +1,13 @@
 #include "check/detector.hpp"
 
 #include <algorithm>
-#include <array>
-#include <emmintrin.h>
+#include <cmath>
 #include <numbers>
 #include <span>
+
+#if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)
+#include <emmintrin.h>
+#endif
 
 namespace shoal::check {
 
@@ -29,27 +32,91 @@ std::vector<XY> hull_outline(const hull::Hull& hull, const LocalPose& pose) {
 
 namespace {
 
+// How a check stays near a microsecond (docs/performance.md has the figures):
+// - every pruning test compares squared distances of boxes (no square roots);
+// - the search starts with the clearance limit as its bound, so segments beyond the margin
+//   are dropped by the first box test; the ring search reads only the cells of each ring
+//   within the clearance found so far (or the limit);
+// - a segment is first tested in local metres, on its stored coordinates, against the hull's
+//   box grown by that bound; only the survivors are rotated into the ship-aligned frame and
+//   tested against the tighter aligned box, then against boxes of chunks of hull edges and
+//   of single edges, before any exact distance;
+// - hull edges, their boxes and 1/|d|^2 are built only when a segment comes near;
+// - each hull vertex is measured once per segment, not once per edge.
+
 /// Edges are grouped in chunks of this many consecutive edges, each with its box in the
 /// ship-aligned frame, so a coast segment is tested against few hull edges.
 constexpr std::size_t chunk_edges = 6;
 
-// The hot loops hold a point's x and y, or a box's minima and maxima, in the two lanes of an
-// SSE2 register (every x86-64 CPU has SSE2). Each lane does the same IEEE operations as the
-// scalar expressions in the comments, so the results are the same numbers.
+// The hot loops hold a point's x and y, or a box's minima and maxima, in the two lanes of a
+// V2: an SSE2 register where there is one (every x86-64 CPU), else a pair of doubles. Each
+// lane does the same IEEE operations as the scalar expressions in the comments (no fused
+// multiply-add), so the results are the same numbers either way.
 static_assert(sizeof(XY) == 2 * sizeof(double) && sizeof(geo::Box) == 4 * sizeof(double));
 
-inline __m128d load(const XY& p) noexcept { return _mm_loadu_pd(&p.x); }
-inline void store(XY& p, __m128d v) noexcept { _mm_storeu_pd(&p.x, v); }
-inline __m128d load_min(const geo::Box& b) noexcept { return _mm_loadu_pd(&b.minx); }  // (minx, miny)
-inline __m128d load_max(const geo::Box& b) noexcept { return _mm_loadu_pd(&b.maxx); }  // (maxx, maxy)
-inline double sum(__m128d v) noexcept { return _mm_cvtsd_f64(_mm_add_sd(v, _mm_unpackhi_pd(v, v))); }
+#if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)
+struct V2 {
+    __m128d v;
+};
+inline V2 v2(double lo, double hi) noexcept { return {_mm_set_pd(hi, lo)}; }
+inline V2 splat(double a) noexcept { return {_mm_set1_pd(a)}; }
+inline V2 load2(const double* p) noexcept { return {_mm_loadu_pd(p)}; }
+inline void store2(double* p, V2 a) noexcept { _mm_storeu_pd(p, a.v); }
+inline V2 operator+(V2 a, V2 b) noexcept { return {_mm_add_pd(a.v, b.v)}; }
+inline V2 operator-(V2 a, V2 b) noexcept { return {_mm_sub_pd(a.v, b.v)}; }
+inline V2 operator*(V2 a, V2 b) noexcept { return {_mm_mul_pd(a.v, b.v)}; }
+inline V2 vmin(V2 a, V2 b) noexcept { return {_mm_min_pd(a.v, b.v)}; }  // a < b ? a : b, per lane
+inline V2 vmax(V2 a, V2 b) noexcept { return {_mm_max_pd(a.v, b.v)}; }  // a > b ? a : b, per lane
+inline V2 low_both(V2 a) noexcept { return {_mm_unpacklo_pd(a.v, a.v)}; }
+inline V2 high_both(V2 a) noexcept { return {_mm_unpackhi_pd(a.v, a.v)}; }
+inline V2 lows(V2 a, V2 b) noexcept { return {_mm_unpacklo_pd(a.v, b.v)}; }    // (a.lo, b.lo)
+inline V2 highs(V2 a, V2 b) noexcept { return {_mm_unpackhi_pd(a.v, b.v)}; }   // (a.hi, b.hi)
+inline double sum(V2 a) noexcept { return _mm_cvtsd_f64(_mm_add_sd(a.v, _mm_unpackhi_pd(a.v, a.v))); }  // lo + hi
+/// True when a > b or c < d in either lane.
+inline bool any_gt_or_lt(V2 a, V2 b, V2 c, V2 d) noexcept {
+    return _mm_movemask_pd(_mm_or_pd(_mm_cmpgt_pd(a.v, b.v), _mm_cmplt_pd(c.v, d.v))) != 0;
+}
+/// 1 / a where a > 0, else 0, per lane.
+inline V2 recip_or_zero(V2 a) noexcept {
+    return {_mm_and_pd(_mm_cmpgt_pd(a.v, _mm_setzero_pd()), _mm_div_pd(_mm_set1_pd(1.0), a.v))};
+}
+#else
+struct V2 {
+    double lo, hi;
+};
+inline V2 v2(double lo, double hi) noexcept { return {lo, hi}; }
+inline V2 splat(double a) noexcept { return {a, a}; }
+inline V2 load2(const double* p) noexcept { return {p[0], p[1]}; }
+inline void store2(double* p, V2 a) noexcept { p[0] = a.lo, p[1] = a.hi; }
+inline V2 operator+(V2 a, V2 b) noexcept { return {a.lo + b.lo, a.hi + b.hi}; }
+inline V2 operator-(V2 a, V2 b) noexcept { return {a.lo - b.lo, a.hi - b.hi}; }
+inline V2 operator*(V2 a, V2 b) noexcept { return {a.lo * b.lo, a.hi * b.hi}; }
+inline V2 vmin(V2 a, V2 b) noexcept { return {a.lo < b.lo ? a.lo : b.lo, a.hi < b.hi ? a.hi : b.hi}; }
+inline V2 vmax(V2 a, V2 b) noexcept { return {a.lo > b.lo ? a.lo : b.lo, a.hi > b.hi ? a.hi : b.hi}; }
+inline V2 low_both(V2 a) noexcept { return {a.lo, a.lo}; }
+inline V2 high_both(V2 a) noexcept { return {a.hi, a.hi}; }
+inline V2 lows(V2 a, V2 b) noexcept { return {a.lo, b.lo}; }
+inline V2 highs(V2 a, V2 b) noexcept { return {a.hi, b.hi}; }
+inline double sum(V2 a) noexcept { return a.lo + a.hi; }
+inline bool any_gt_or_lt(V2 a, V2 b, V2 c, V2 d) noexcept { return a.lo > b.lo || a.hi > b.hi || c.lo < d.lo || c.hi < d.hi; }
+inline V2 recip_or_zero(V2 a) noexcept { return {a.lo > 0 ? 1.0 / a.lo : 0.0, a.hi > 0 ? 1.0 / a.hi : 0.0}; }
+#endif
+
+inline V2 load(const XY& p) noexcept { return load2(&p.x); }
+inline void store(XY& p, V2 a) noexcept { store2(&p.x, a); }
+inline V2 load_min(const geo::Box& b) noexcept { return load2(&b.minx); }  // (minx, miny)
+inline V2 load_max(const geo::Box& b) noexcept { return load2(&b.maxx); }  // (maxx, maxy)
+inline void store_box(geo::Box& b, V2 lo, V2 hi) noexcept {
+    store2(&b.minx, lo);
+    store2(&b.maxx, hi);
+}
 
 /// Squared distance between two boxes given by their corners (0 when they overlap or touch):
 /// dx = max(q.minx - p.maxx, p.minx - q.maxx, 0), likewise dy; dx^2 + dy^2. Squared, so that
 /// the pruning tests, run for every segment read, need no square root.
-inline double box_dist2(__m128d pmin, __m128d pmax, __m128d qmin, __m128d qmax) noexcept {
-    __m128d d = _mm_max_pd(_mm_max_pd(_mm_sub_pd(qmin, pmax), _mm_sub_pd(pmin, qmax)), _mm_setzero_pd());
-    return sum(_mm_mul_pd(d, d));
+inline double box_dist2(V2 pmin, V2 pmax, V2 qmin, V2 qmax) noexcept {
+    const V2 d = vmax(vmax(qmin - pmax, pmin - qmax), splat(0.0));
+    return sum(d * d);
 }
 inline double box_dist2(const geo::Box& p, const geo::Box& q) noexcept {
     return box_dist2(load_min(p), load_max(p), load_min(q), load_max(q));
@@ -100,26 +167,24 @@ struct AlignedHull {
         n = hull.contour().size();
         pts.resize(n + 1);
         // p = (a00 cx + a01 cy, a10 cx + a11 cy); w = m c (local metres from the position).
-        const __m128d col0 = _mm_set_pd(a10, a00), col1 = _mm_set_pd(a11, a01);
-        const __m128d mcol0 = _mm_set_pd(m10, m00), mcol1 = _mm_set_pd(m11, m01);
-        __m128d bmin = _mm_set1_pd(INFINITY), bmax = _mm_set1_pd(-INFINITY);
-        __m128d lmin = bmin, lmax = bmax;
+        const V2 col0 = v2(a00, a10), col1 = v2(a01, a11);
+        const V2 mcol0 = v2(m00, m10), mcol1 = v2(m01, m11);
+        V2 bmin = splat(INFINITY), bmax = splat(-INFINITY);
+        V2 lmin = bmin, lmax = bmax;
         for (std::size_t i = 0; i < n; ++i) {
-            const __m128d cx = _mm_set1_pd(c[i].x), cy = _mm_set1_pd(c[i].y);
-            const __m128d p = _mm_add_pd(_mm_mul_pd(col0, cx), _mm_mul_pd(col1, cy));
-            const __m128d w = _mm_add_pd(_mm_mul_pd(mcol0, cx), _mm_mul_pd(mcol1, cy));
+            const V2 cx = splat(c[i].x), cy = splat(c[i].y);
+            const V2 p = col0 * cx + col1 * cy;
+            const V2 w = mcol0 * cx + mcol1 * cy;
             store(pts[i], p);
-            bmin = _mm_min_pd(p, bmin);
-            bmax = _mm_max_pd(p, bmax);
-            lmin = _mm_min_pd(w, lmin);
-            lmax = _mm_max_pd(w, lmax);
+            bmin = vmin(p, bmin);
+            bmax = vmax(p, bmax);
+            lmin = vmin(w, lmin);
+            lmax = vmax(w, lmax);
         }
         pts[n] = pts[0];
-        _mm_storeu_pd(&box.minx, bmin);
-        _mm_storeu_pd(&box.maxx, bmax);
-        const __m128d o = load(origin);
-        _mm_storeu_pd(&local_box.minx, _mm_add_pd(o, lmin));
-        _mm_storeu_pd(&local_box.maxx, _mm_add_pd(o, lmax));
+        store_box(box, bmin, bmax);
+        const V2 o = load(origin);
+        store_box(local_box, o + lmin, o + lmax);
         edges_ready = false;
     }
 
@@ -133,33 +198,28 @@ struct AlignedHull {
         edge_box.resize(n);
         chunk_box.resize((n + chunk_edges - 1) / chunk_edges);
         for (std::size_t e = 0; e < n; ++e) {
-            const __m128d a = load(pts[e]), b = load(pts[e + 1]);
-            const __m128d d = _mm_sub_pd(b, a);
-            store(dir[e], d);
-            _mm_storeu_pd(&edge_box[e].minx, _mm_min_pd(a, b));
-            _mm_storeu_pd(&edge_box[e].maxx, _mm_max_pd(a, b));
+            const V2 a = load(pts[e]), b = load(pts[e + 1]);
+            store(dir[e], b - a);
+            store_box(edge_box[e], vmin(a, b), vmax(a, b));
         }
         // 1 / |d|^2 (0 for a degenerate edge), two edges per division.
         std::size_t e = 0;
         for (; e + 1 < n; e += 2) {
-            const __m128d d0 = load(dir[e]), d1 = load(dir[e + 1]);
-            const __m128d s0 = _mm_mul_pd(d0, d0), s1 = _mm_mul_pd(d1, d1);
-            const __m128d len2 = _mm_add_pd(_mm_unpacklo_pd(s0, s1), _mm_unpackhi_pd(s0, s1));
-            const __m128d inv = _mm_and_pd(_mm_cmpgt_pd(len2, _mm_setzero_pd()), _mm_div_pd(_mm_set1_pd(1.0), len2));
-            _mm_storeu_pd(&inv_len2[e], inv);
+            const V2 d0 = load(dir[e]), d1 = load(dir[e + 1]);
+            const V2 s0 = d0 * d0, s1 = d1 * d1;
+            store2(&inv_len2[e], recip_or_zero(lows(s0, s1) + highs(s0, s1)));
         }
         for (; e < n; ++e) {
             const double len2 = geo::norm2(dir[e]);
             inv_len2[e] = len2 > 0 ? 1.0 / len2 : 0.0;
         }
         for (std::size_t c = 0; c < chunk_box.size(); ++c) {
-            __m128d cmin = _mm_set1_pd(INFINITY), cmax = _mm_set1_pd(-INFINITY);
+            V2 cmin = splat(INFINITY), cmax = splat(-INFINITY);
             for (std::size_t k = c * chunk_edges, k_end = std::min(n, k + chunk_edges); k < k_end; ++k) {
-                cmin = _mm_min_pd(load_min(edge_box[k]), cmin);
-                cmax = _mm_max_pd(load_max(edge_box[k]), cmax);
+                cmin = vmin(load_min(edge_box[k]), cmin);
+                cmax = vmax(load_max(edge_box[k]), cmax);
             }
-            _mm_storeu_pd(&chunk_box[c].minx, cmin);
-            _mm_storeu_pd(&chunk_box[c].maxx, cmax);
+            store_box(chunk_box[c], cmin, cmax);
         }
     }
 
@@ -190,6 +250,8 @@ struct Search {
     XY hull_pt, coast_pt;      // aligned frame
     bool crossing = false;
     std::vector<XY>& inside_candidates;  // coast vertices (aligned) that may lie inside the hull
+    const grid::Segment* seg = nullptr;       // the segment being measured
+    const grid::Segment* best_seg = nullptr;  // the segment realising best2 (when found)
 
     double best() const noexcept { return std::sqrt(best2); }
 
@@ -200,34 +262,33 @@ struct Search {
         // local box grown by the clearance found so far (r). Only the segments that pass are
         // moved to the aligned frame, a' = (dot(a - o, u), dot(a - o, v)), and tested
         // against the (tighter) aligned box.
-        const __m128d o = load(hull.origin);
-        const __m128d ux = _mm_set_pd(hull.v.x, hull.u.x), uy = _mm_set_pd(hull.v.y, hull.u.y);
-        const __m128d hmin = load_min(hull.box), hmax = load_max(hull.box);
-        const __m128d lmin = load_min(hull.local_box), lmax = load_max(hull.local_box);
-        __m128d r = _mm_set1_pd(std::sqrt(best2));
-        __m128d qmin = _mm_sub_pd(lmin, r), qmax = _mm_add_pd(lmax, r);
+        const V2 o = load(hull.origin);
+        const V2 ux = v2(hull.u.x, hull.v.x), uy = v2(hull.u.y, hull.v.y);
+        const V2 hmin = load_min(hull.box), hmax = load_max(hull.box);
+        const V2 lmin = load_min(hull.local_box), lmax = load_max(hull.local_box);
+        V2 r = splat(std::sqrt(best2));
+        V2 qmin = lmin - r, qmax = lmax + r;
         for (const grid::Segment& sg : segs) {
-            const __m128d la = load(sg.a), lb = load(sg.b);
-            const __m128d far = _mm_or_pd(_mm_cmpgt_pd(_mm_min_pd(la, lb), qmax), _mm_cmplt_pd(_mm_max_pd(la, lb), qmin));
-            if (_mm_movemask_pd(far) != 0) continue;
-            const __m128d da = _mm_sub_pd(la, o), db = _mm_sub_pd(lb, o);
-            const __m128d a = _mm_add_pd(_mm_mul_pd(_mm_unpacklo_pd(da, da), ux), _mm_mul_pd(_mm_unpackhi_pd(da, da), uy));
-            const __m128d b = _mm_add_pd(_mm_mul_pd(_mm_unpacklo_pd(db, db), ux), _mm_mul_pd(_mm_unpackhi_pd(db, db), uy));
-            const __m128d smin = _mm_min_pd(a, b), smax = _mm_max_pd(a, b);
+            const V2 la = load(sg.a), lb = load(sg.b);
+            if (any_gt_or_lt(vmin(la, lb), qmax, vmax(la, lb), qmin)) continue;
+            const V2 da = la - o, db = lb - o;
+            const V2 a = low_both(da) * ux + high_both(da) * uy;
+            const V2 b = low_both(db) * ux + high_both(db) * uy;
+            const V2 smin = vmin(a, b), smax = vmax(a, b);
             const double d2 = box_dist2(hmin, hmax, smin, smax);
             if (d2 >= best2) continue;  // best2 > 0 here: a crossing ends the search
             XY pa, pb;
             geo::Box sb;
             store(pa, a);
             store(pb, b);
-            _mm_storeu_pd(&sb.minx, smin);
-            _mm_storeu_pd(&sb.maxx, smax);
+            store_box(sb, smin, smax);
+            seg = &sg;
             edges(pa, pb, sb);
             if (crossing) return;
             if (collect && d2 == 0 && hull.in_box(pa)) inside_candidates.push_back(pa);
-            r = _mm_set1_pd(std::sqrt(best2));
-            qmin = _mm_sub_pd(lmin, r);
-            qmax = _mm_add_pd(lmax, r);
+            r = splat(std::sqrt(best2));
+            qmin = lmin - r;
+            qmax = lmax + r;
         }
     }
 
@@ -248,7 +309,7 @@ struct Search {
             XY f;
             const XY p = hull.pt(i);
             const double dd = point_segment_d2(p, a, sd, s_inv, &f);
-            if (dd < best2) { best2 = dd; hull_pt = p; coast_pt = f; found = true; }
+            if (dd < best2) { best2 = dd; hull_pt = p; coast_pt = f; found = true; best_seg = seg; }
         };
         for (std::size_t c = 0; c < n_chunks; ++c) {
             if (box_dist2(hull.chunk_box[c], sb) >= best2) continue;
@@ -262,6 +323,7 @@ struct Search {
                     geo::segment_segment_dist2(ea, eb, a, b, &on_hull, &on_coast);
                     best2 = 0;
                     found = true;
+                    best_seg = seg;
                     hull_pt = on_hull;
                     coast_pt = on_coast;
                     crossing = true;
@@ -274,9 +336,9 @@ struct Search {
                 const XY ed = hull.dir[e];
                 XY f;
                 double dd = point_segment_d2(a, ea, ed, hull.inv_len2[e], &f);
-                if (dd < best2) { best2 = dd; hull_pt = f; coast_pt = a; found = true; }
+                if (dd < best2) { best2 = dd; hull_pt = f; coast_pt = a; found = true; best_seg = seg; }
                 dd = point_segment_d2(b, ea, ed, hull.inv_len2[e], &f);
-                if (dd < best2) { best2 = dd; hull_pt = f; coast_pt = b; found = true; }
+                if (dd < best2) { best2 = dd; hull_pt = f; coast_pt = b; found = true; best_seg = seg; }
             }
         }
     }
@@ -337,11 +399,13 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
             out.collision = true;
             out.hull_point = p0;
             out.coast_point = p0;
+            out.polyline = m_grid.enclosing_polyline(p0);
         } else {
             for (const XY& q : s.inside_candidates)  // each lies in the hull's box
                 if (h.contains(q)) {
                     out.collision = true;
                     out.hull_point = out.coast_point = h.to_local(q);
+                    out.polyline = m_grid.nearest_polyline(out.coast_point);
                     break;
                 }
         }
@@ -349,6 +413,7 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         out.collision = true;
         out.hull_point = h.to_local(search.hull_pt);
         out.coast_point = h.to_local(search.coast_pt);
+        out.polyline = m_grid.polyline_of(*search.best_seg);
     }
     if (out.collision) {
         out.clearance_m = 0;
@@ -387,7 +452,6 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
             for (int i = i0; i <= i1; ++i) read_cell(i, j, false);
     }
     const XY org = m_grid.origin();
-    const double max2 = options.max_clearance_m * options.max_clearance_m;
     for (;;) {
         // Distance from the hull's box to the nearest point outside the block read so far.
         const double gap = std::min({i0 > 0 ? lb.minx - (org.x + i0 * cell) : INFINITY,
@@ -397,26 +461,37 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         if (gap * gap >= search.best2 || gap > options.max_clearance_m || !std::isfinite(gap)) break;
         const int ni0 = std::max(0, i0 - 1), ni1 = std::min(nx - 1, i1 + 1);
         const int nj0 = std::max(0, j0 - 1), nj1 = std::min(ny - 1, j1 + 1);
-        // The new ring of cells; a cell farther from the hull's box than the clearance found
-        // so far (or than the limit) cannot hold a nearer segment.
-        auto ring_cell = [&](int i, int j) {
-            const double cd2 = box_dist2(lb, m_grid.cell_box(i, j).grown(1e-6));  // clipping slack
-            if (cd2 < search.best2 && cd2 <= max2) read_cell(i, j, false);
+        // The new ring of cells, limited to those nearer the hull's box than the clearance
+        // found so far (and the limit): a cell farther away cannot hold a nearer segment.
+        // Rows and columns of the ring are cut to the cells within that reach (the cells'
+        // boxes grown by the clipping slack).
+        const double reach = std::min(search.best(), options.max_clearance_m) + 2e-6;
+        const double span = (nx + ny + 2) * cell;  // farther than any cell
+        // The cells [a, b] of a row (or column, `vertical`) of the ring spanning [lo, hi] across.
+        auto cut = [&](double lo, double hi, int i_lo, int i_hi, bool vertical, int& a, int& b) {
+            const double gap_across = vertical ? std::max({0.0, lo - lb.maxx, lb.minx - hi}) : std::max({0.0, lo - lb.maxy, lb.miny - hi});
+            if (gap_across > reach) return false;
+            const double along = std::min(span, std::sqrt(std::max(0.0, reach * reach - gap_across * gap_across)));
+            a = std::max(i_lo, vertical ? m_grid.row_of(lb.miny - along) : m_grid.col_of(lb.minx - along));
+            b = std::min(i_hi, vertical ? m_grid.row_of(lb.maxy + along) : m_grid.col_of(lb.maxx + along));
+            return a <= b;
         };
-        for (int j = nj0; j <= nj1; ++j) {
-            if (j < j0 || j > j1) {
-                for (int i = ni0; i <= ni1; ++i) ring_cell(i, j);
-            } else {
-                if (ni0 < i0) ring_cell(ni0, j);
-                if (ni1 > i1) ring_cell(ni1, j);
-            }
-        }
+        int a, b;
+        if (nj0 < j0 && cut(org.y + nj0 * cell, org.y + (nj0 + 1) * cell, ni0, ni1, false, a, b))
+            for (int i = a; i <= b; ++i) read_cell(i, nj0, false);
+        if (nj1 > j1 && cut(org.y + nj1 * cell, org.y + (nj1 + 1) * cell, ni0, ni1, false, a, b))
+            for (int i = a; i <= b; ++i) read_cell(i, nj1, false);
+        if (ni0 < i0 && cut(org.x + ni0 * cell, org.x + (ni0 + 1) * cell, j0, j1, true, a, b))
+            for (int j = a; j <= b; ++j) read_cell(ni0, j, false);
+        if (ni1 > i1 && cut(org.x + ni1 * cell, org.x + (ni1 + 1) * cell, j0, j1, true, a, b))
+            for (int j = a; j <= b; ++j) read_cell(ni1, j, false);
         i0 = ni0, i1 = ni1, j0 = nj0, j1 = nj1;
     }
     if (search.found && search.best() <= options.max_clearance_m) {
         out.clearance_m = search.best();
         out.hull_point = h.to_local(search.hull_pt);
         out.coast_point = h.to_local(search.coast_pt);
+        out.polyline = m_grid.polyline_of(*search.best_seg);
     }
     return out;
 }

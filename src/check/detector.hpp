@@ -36,6 +36,10 @@ struct Contact {
     double penetration_m = 0;       ///< on collision: how deep the hull reaches past the coastline (see docs)
     geo::XY hull_point;             ///< hull point realising the clearance (a contact point on collision)
     geo::XY coast_point;            ///< coastline point realising the clearance (same point on collision)
+    /// The grid polyline realising the contact or the clearance (grid::CoastGrid::hazard says
+    /// what it bounds): the one crossed or nearest; for a hull wholly inside land or a hazard,
+    /// the nearest boundary with the hull on its land side. no_polyline when none is known.
+    std::uint32_t polyline = grid::CoastGrid::no_polyline;
 };
 
 struct CheckOptions {

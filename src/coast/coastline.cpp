@@ -6,11 +6,14 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <numbers>
 
 #include "geo/geos_context.hpp"
+#include "geo/local_frame.hpp"
 #include "util/error.hpp"
 
 namespace shoal::coast {
@@ -26,6 +29,36 @@ std::uint64_t Coastline::vertex_count() const noexcept {
 
 bool Coastline::has_land_side() const noexcept {
     return std::any_of(polylines.begin(), polylines.end(), [](const Polyline& p) { return p.land_left; });
+}
+
+std::uint64_t Coastline::count(HazardKind kind) const noexcept {
+    return static_cast<std::uint64_t>(
+        std::count_if(polylines.begin(), polylines.end(), [kind](const Polyline& p) { return p.hazard.kind == kind; }));
+}
+
+std::optional<double> limiting_depth(std::optional<double> hazard_depth_m, double draught_m, double ukc_m) noexcept {
+    if (hazard_depth_m) return hazard_depth_m;
+    if (draught_m > 0) return draught_m + ukc_m;
+    return std::nullopt;
+}
+
+const char* to_string(HazardKind k) noexcept {
+    switch (k) {
+    case HazardKind::land: return "land";
+    case HazardKind::shallow: return "shallow";
+    case HazardKind::danger: return "danger";
+    }
+    return "?";
+}
+
+const char* to_string(DangerKind k) noexcept {
+    switch (k) {
+    case DangerKind::none: return "";
+    case DangerKind::rock: return "rock";
+    case DangerKind::wreck: return "wreck";
+    case DangerKind::obstruction: return "obstruction";
+    }
+    return "?";
 }
 
 namespace {
@@ -52,12 +85,38 @@ struct TransformDeleter {
     void operator()(OGRCoordinateTransformation* t) const noexcept { OGRCoordinateTransformation::DestroyCT(t); }
 };
 
-/// A polygon or line part as read, in source coordinates until transformed.
+/// A polygon, line or (danger) point part as read, in source coordinates until transformed.
 struct RawPart {
     bool polygon = false;
-    std::vector<std::vector<LonLat>> rings;  // one entry for a line
+    std::vector<std::vector<LonLat>> rings;  // one entry for a line, one of one point for a point
     std::int64_t fid = -1;
+    bool point = false;
+    double depth_m = NAN;  // the feature's charted depth (hazard layers)
 };
+
+/// What a layer holds, from its name (S-57 object classes, in any OGR source) or from the
+/// depth field: land, depth areas or dangers, and the attribute holding their depth.
+struct LayerRole {
+    HazardKind kind = HazardKind::land;
+    DangerKind danger = DangerKind::none;
+    std::string field;
+};
+
+std::string upper(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return s;
+}
+
+LayerRole role_of(OGRLayer& layer, const ImportOptions& options) {
+    const std::string name = upper(layer.GetName());
+    if (name == "DEPARE" || name == "DRGARE") return {HazardKind::shallow, DangerKind::none, "DRVAL1"};
+    if (name == "UWTROC") return {HazardKind::danger, DangerKind::rock, "VALSOU"};
+    if (name == "WRECKS") return {HazardKind::danger, DangerKind::wreck, "VALSOU"};
+    if (name == "OBSTRN") return {HazardKind::danger, DangerKind::obstruction, "VALSOU"};
+    if (!options.depth_field.empty() && layer.GetLayerDefn()->GetFieldIndex(options.depth_field.c_str()) >= 0)
+        return {HazardKind::shallow, DangerKind::none, options.depth_field};
+    return {};
+}
 
 class LayerReader {
 public:
@@ -68,11 +127,33 @@ public:
         LayerStats stats;
         stats.file = m_file;
         stats.layer = m_layer.GetName();
+        m_role = role_of(m_layer, m_options);
+        stats.kind = m_role.kind;
+        stats.depth_field = m_role.field;
+        int depth_index = -1;
+        if (m_role.kind != HazardKind::land) {
+            const char* what = m_role.kind == HazardKind::danger ? "dangers" : "depth areas";
+            if (!m_options.limiting_depth_m)
+                throw UsageError("layer '" + stats.layer + "' in '" + m_file + "' holds " + what +
+                                 ": they need a limiting depth (--hazard-depth M, or a ship with a draught)");
+            depth_index = m_layer.GetLayerDefn()->GetFieldIndex(m_role.field.c_str());
+            if (depth_index < 0)
+                throw InputError("layer '" + stats.layer + "' in '" + m_file + "' holds " + what + " but has no field " +
+                                 m_role.field + " for their depth");
+        }
         m_layer_index = static_cast<std::uint32_t>(m_out.layers.size());
         m_layer.ResetReading();
         std::vector<RawPart> parts;
         for (auto& feature : m_layer) {
             ++stats.features;
+            double depth = NAN;
+            if (depth_index >= 0 && feature->IsFieldSetAndNotNull(depth_index)) {
+                depth = feature->GetFieldAsDouble(depth_index);
+                if (depth >= *m_options.limiting_depth_m) {  // deep enough: not a hazard
+                    ++stats.deep_skipped;
+                    continue;
+                }
+            }
             const OGRGeometry* g = feature->GetGeometryRef();
             if (!g || g->IsEmpty()) {
                 ++stats.empty_skipped;
@@ -87,13 +168,20 @@ public:
             const std::uint64_t points_before = stats.points_skipped;
             collect(*g, feature->GetFID(), parts, stats);
             if (parts.size() == before && stats.points_skipped == points_before) ++stats.empty_skipped;
+            if (parts.size() > before && m_role.kind != HazardKind::land) {
+                ++stats.hazards;
+                if (std::isnan(depth)) ++stats.unknown_depth;
+                for (std::size_t i = before; i < parts.size(); ++i) parts[i].depth_m = depth;
+            }
         }
         if (stats.features == 0)
             throw InputError("layer '" + stats.layer + "' in '" + m_file + "' has no features");
         stats.crs = to_wgs84(parts);
         const std::size_t first_new = m_out.polylines.size();
         for (auto& part : parts) {
-            if (part.polygon)
+            if (part.point)
+                add_danger_point(part);
+            else if (part.polygon)
                 add_polygon(part, stats);
             else
                 add_line(part, stats);
@@ -142,7 +230,23 @@ private:
             return;
         }
         case wkbPoint:
+            if (m_role.kind == HazardKind::danger) {  // a point danger: a small polygon around it
+                const auto& pt = *g.toPoint();
+                RawPart part;
+                part.point = true;
+                part.fid = fid;
+                part.rings.push_back({LonLat{pt.getX(), pt.getY()}});
+                parts.push_back(std::move(part));
+                ++stats.vertices;
+                return;
+            }
+            ++stats.points_skipped;
+            return;
         case wkbMultiPoint:
+            if (m_role.kind == HazardKind::danger) {
+                for (const OGRGeometry* sub : *g.toGeometryCollection()) collect(*sub, fid, parts, stats);
+                return;
+            }
             ++stats.points_skipped;
             return;
         case wkbMultiPolygon:
@@ -248,7 +352,27 @@ private:
             ++stats.empty_skipped;
             return;
         }
-        m_out.polylines.push_back(Polyline{std::move(pts), false, m_layer_index, part.fid});
+        m_out.polylines.push_back(Polyline{std::move(pts), false, m_layer_index, part.fid, hazard_of(part)});
+    }
+
+    Hazard hazard_of(const RawPart& part) const {
+        if (m_role.kind == HazardKind::land) return {};
+        return {m_role.kind, m_role.danger, part.depth_m};
+    }
+
+    /// A point danger: the polygon circumscribed about the circle of the danger radius.
+    void add_danger_point(const RawPart& part) {
+        const LonLat c = part.rings[0][0];
+        const Eigen::Vector2d mpd = geo::metres_per_degree(c.lat);
+        const int n = danger_polygon_sides;
+        const double r = m_options.danger_radius_m / std::cos(std::numbers::pi / n);
+        std::vector<LonLat> ring;
+        for (int k = 0; k < n; ++k) {
+            const double a = 2 * std::numbers::pi * k / n;
+            ring.push_back({c.lon + r * std::cos(a) / mpd.x(), c.lat + r * std::sin(a) / mpd.y()});
+        }
+        ring.push_back(ring.front());
+        m_out.polylines.push_back(Polyline{std::move(ring), true, m_layer_index, part.fid, hazard_of(part)});
     }
 
     void add_polygon(RawPart& part, LayerStats& stats) {
@@ -289,7 +413,7 @@ private:
                 if (area == 0.0) continue;
                 // Shells counter-clockwise, holes clockwise: land is then always on the left.
                 if ((r == 0) != (area > 0)) std::reverse(ll.begin(), ll.end());
-                m_out.polylines.push_back(Polyline{std::move(ll), true, m_layer_index, part.fid});
+                m_out.polylines.push_back(Polyline{std::move(ll), true, m_layer_index, part.fid, hazard_of(part)});
             }
         }
     }
@@ -300,6 +424,7 @@ private:
     Coastline& m_out;
     geo::GeosContext& m_geos;
     std::uint32_t m_layer_index = 0;
+    LayerRole m_role;
 };
 
 std::string layer_names(GDALDataset& ds) {
@@ -313,6 +438,13 @@ std::string layer_names(GDALDataset& ds) {
 Coastline import_coastline(const std::vector<std::string>& paths, const ImportOptions& options) {
     register_drivers();
     if (paths.empty()) throw UsageError("no coastline file given");
+    if (options.limiting_depth_m && !std::isfinite(*options.limiting_depth_m))
+        throw UsageError("the limiting depth must be a finite number of metres");
+    if (!(options.danger_radius_m > 0) || !std::isfinite(options.danger_radius_m))
+        throw UsageError("--danger-radius must be > 0 metres");
+    if (!options.depth_field.empty() && !options.limiting_depth_m)
+        throw UsageError("--depth-field " + options.depth_field +
+                         " needs a limiting depth (--hazard-depth M, or a ship with a draught)");
     Coastline out;
     geo::GeosContext geos;
     std::vector<bool> found(options.layers.size(), false);
@@ -344,11 +476,16 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
                                  (options.layers.size() > 1 ? " (nor the other --layer names)" : "") +
                                  "; its layers: " + layer_names(*ds));
         } else if (std::string(ds->GetDriver()->GetDescription()) == "S57") {
-            for (const char* name : {"LNDARE", "COALNE"})
+            // Land; with a limiting depth also depth areas, dredged areas and dangers.
+            std::vector<const char*> names = {"LNDARE", "COALNE"};
+            if (options.limiting_depth_m) names.insert(names.end(), {"DEPARE", "DRGARE", "UWTROC", "WRECKS", "OBSTRN"});
+            for (const char* name : names)
                 if (OGRLayer* l = ds->GetLayerByName(name)) chosen.push_back(l);
             if (chosen.empty())
-                throw InputError("S-57 chart '" + path + "' has neither an LNDARE nor a COALNE layer; pick layers with --layer (its layers: " +
-                                 layer_names(*ds) + ")");
+                throw InputError("S-57 chart '" + path + "' has none of the layers " +
+                                 (options.limiting_depth_m ? "LNDARE, COALNE, DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN"
+                                                           : "LNDARE, COALNE") +
+                                 "; pick layers with --layer (its layers: " + layer_names(*ds) + ")");
         } else {
             for (OGRLayer* l : ds->GetLayers()) chosen.push_back(l);
             if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");
@@ -358,6 +495,9 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
     }
     for (std::size_t i = 0; i < options.layers.size(); ++i)
         if (!found[i]) throw InputError("no input has a layer named '" + options.layers[i] + "'");
+    if (!options.depth_field.empty() &&
+        std::none_of(out.layers.begin(), out.layers.end(), [&](const LayerStats& l) { return l.depth_field == options.depth_field; }))
+        throw InputError("no layer read has the field '" + options.depth_field + "' named by --depth-field");
     if (out.polylines.empty()) {
         std::string names;
         for (const auto& l : out.layers) names += (names.empty() ? "'" : ", '") + l.layer + "'";
@@ -368,8 +508,6 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
 }
 
 }  // namespace shoal::coast
-
-#include "geo/local_frame.hpp"
 
 namespace shoal::coast {
 
@@ -392,6 +530,7 @@ std::vector<LocalPolyline> project(const Coastline& coast, const geo::LocalFrame
         }
         LocalPolyline lp;
         lp.land_left = pl.land_left;
+        lp.hazard = pl.hazard;
         lp.points.resize(xs.size());
         for (std::size_t i = 0; i < xs.size(); ++i) lp.points[i] = {xs[i], ys[i]};
         lp.points.erase(std::unique(lp.points.begin(), lp.points.end()), lp.points.end());

@@ -82,7 +82,134 @@ std::size_t CoastGrid::land_cell_count() const noexcept {
 std::size_t CoastGrid::memory_bytes() const noexcept {
     return m_slot.size() * sizeof(std::uint32_t) + m_seg_offset.size() * sizeof(std::uint32_t) +
            m_ref_winding.size() * sizeof(std::int32_t) + m_segments.size() * sizeof(Segment) +
-           m_seg_info.size() * sizeof(std::uint32_t);
+           m_seg_info.size() * sizeof(std::uint32_t) + m_hazards.size() * sizeof(coast::Hazard);
+}
+
+template <typename Visit>
+void CoastGrid::visit_outward(XY p, Visit& visit) const {
+    if (m_segments.empty()) return;
+    int i0 = std::clamp(col_of(p.x), 0, m_nx - 1), i1 = i0;
+    int j0 = std::clamp(row_of(p.y), 0, m_ny - 1), j1 = j0;
+    auto read_cell = [&](int i, int j) {
+        const std::uint32_t s = slot(i, j);
+        if (s < land_slot)
+            for (std::uint32_t k = m_seg_offset[s]; k < m_seg_offset[s + 1]; ++k) visit(k);
+    };
+    read_cell(i0, j0);
+    for (;;) {
+        const double gap = std::min({i0 > 0 ? p.x - (m_x0 + i0 * m_cell) : INFINITY,
+                                     i1 < m_nx - 1 ? (m_x0 + (i1 + 1) * m_cell) - p.x : INFINITY,
+                                     j0 > 0 ? p.y - (m_y0 + j0 * m_cell) : INFINITY,
+                                     j1 < m_ny - 1 ? (m_y0 + (j1 + 1) * m_cell) - p.y : INFINITY});
+        if (!std::isfinite(gap) || !visit.wants(gap)) break;
+        const int ni0 = std::max(0, i0 - 1), ni1 = std::min(m_nx - 1, i1 + 1);
+        const int nj0 = std::max(0, j0 - 1), nj1 = std::min(m_ny - 1, j1 + 1);
+        for (int j = nj0; j <= nj1; ++j)
+            for (int i = ni0; i <= ni1; ++i)
+                if (j < j0 || j > j1 || i < i0 || i > i1) read_cell(i, j);
+        i0 = ni0, i1 = ni1, j0 = nj0, j1 = nj1;
+    }
+}
+
+namespace {
+
+/// The nearest point of segment ab to p: squared distance, and where it lies (-1: at a,
+/// 0: inside, 1: at b). At an end the distance is measured to the end itself, so the two
+/// segments meeting there give the same number.
+double nearest_on(XY p, XY a, XY b, int* where) {
+    const XY ab = b - a;
+    const double len2 = geo::norm2(ab);
+    const double t = len2 > 0 ? geo::dot(p - a, ab) / len2 : 0.0;
+    if (t <= 0) { *where = -1; return geo::norm2(p - a); }
+    if (t >= 1) { *where = 1; return geo::norm2(p - b); }
+    *where = 0;
+    return geo::norm2(p - (a + t * ab));
+}
+
+/// The nearest point of one boundary ring to p, and the segments there.
+struct RingNear {
+    std::uint32_t polyline = 0;
+    double d2 = INFINITY;
+    int where = 0;                   // of the segment found nearest: -1 / 1 at its start / end, 0 inside
+    const Segment* seg = nullptr;    // that segment
+    const Segment* in = nullptr;     // at a vertex: the segment ending there
+    const Segment* out = nullptr;    // and the one starting there
+
+    void add(const Segment& s, XY p) {
+        int w;
+        const double d = nearest_on(p, s.a, s.b, &w);
+        if (d < d2) {
+            d2 = d;
+            where = w;
+            seg = &s;
+            in = w == 1 ? &s : nullptr;
+            out = w == -1 ? &s : nullptr;
+        } else if (d == d2 && w != 0 && where != 0) {  // the other segment at that vertex
+            if (w == 1 && !in) in = &s;
+            if (w == -1 && !out) out = &s;
+        }
+    }
+    /// Whether p lies on the ring's land (left) side at its nearest point: inside a segment,
+    /// left of it; at a convex corner left of both segments, at a reflex corner of either.
+    bool holds(XY p) const {
+        if (!seg) return false;
+        if (where == 0 || !in || !out) return geo::orient(seg->a, seg->b, p) > 0;
+        const bool l_in = geo::orient(in->a, in->b, p) > 0, l_out = geo::orient(out->a, out->b, p) > 0;
+        return geo::orient(in->a, in->b, out->b) > 0 ? (l_in && l_out) : (l_in || l_out);
+    }
+};
+
+}  // namespace
+
+std::uint32_t CoastGrid::nearest_polyline(XY p) const noexcept {
+    struct Visit {
+        const CoastGrid& g;
+        XY p;
+        double best2 = INFINITY;
+        std::uint32_t best = no_polyline;
+        void operator()(std::uint32_t k) {
+            int where;
+            const double d2 = nearest_on(p, g.m_segments[k].a, g.m_segments[k].b, &where);
+            if (d2 < best2) {
+                best2 = d2;
+                best = g.m_seg_info[k] & ~boundary_bit;
+            }
+        }
+        bool wants(double gap) const { return gap <= 0 || gap * gap < best2; }
+    } visit{*this, p};
+    visit_outward(p, visit);
+    return visit.best;
+}
+
+std::uint32_t CoastGrid::enclosing_polyline(XY p) const {
+    // A ring holds p exactly when p lies on its land side at the ring's nearest point. Rings
+    // are read outward until the nearest one found to hold p is nearer than any cell not
+    // read yet (every ring nearer than the gap has then been seen whole near p).
+    struct Visit {
+        const CoastGrid& g;
+        XY p;
+        std::vector<RingNear> rings;
+        void operator()(std::uint32_t k) {
+            if (!(g.m_seg_info[k] & boundary_bit)) return;
+            const std::uint32_t poly = g.m_seg_info[k] & ~boundary_bit;
+            auto it = std::find_if(rings.begin(), rings.end(), [&](const RingNear& r) { return r.polyline == poly; });
+            if (it == rings.end()) it = rings.insert(rings.end(), RingNear{poly});
+            it->add(g.m_segments[k], p);
+        }
+        const RingNear* best() const {
+            const RingNear* b = nullptr;
+            for (const RingNear& r : rings)
+                if ((!b || r.d2 < b->d2) && r.holds(p)) b = &r;
+            return b;
+        }
+        bool wants(double gap) const {
+            const RingNear* b = best();
+            return gap <= 0 || !b || gap * gap < b->d2;
+        }
+    } visit{*this, p, {}};
+    visit_outward(p, visit);
+    const RingNear* b = visit.best();
+    return b ? b->polyline : nearest_polyline(p);
 }
 
 int CoastGrid::winding(XY p, bool* on_boundary) const noexcept {
@@ -127,6 +254,9 @@ CoastGrid CoastGrid::build(const coast::Coastline& coast, geo::LocalFrame frame,
     for (const auto& l : coast.layers) {
         g.m_source.input_vertices += l.vertices;
         g.m_source.layers.push_back(l.file + ":" + l.layer);
+        g.m_source.hazard_features += l.hazards;
+        g.m_source.unknown_depth += l.unknown_depth;
+        g.m_source.deep_skipped += l.deep_skipped;
     }
     return g;
 }
@@ -139,11 +269,16 @@ CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::
     g.m_cell = cell_m;
     geo::Box ext;
     std::uint64_t vertices = 0;
+    if (lines.size() >= boundary_bit) throw UsageError("too many coastline polylines for one grid");
+    g.m_hazards.reserve(lines.size());
     for (const auto& l : lines) {
         for (const XY& p : l.points) ext.extend(p);
         vertices += l.points.size();
         g.m_has_land_side = g.m_has_land_side || l.land_left;
         g.m_source.land_polylines += l.land_left ? 1 : 0;
+        g.m_source.shallow_polylines += l.hazard.kind == coast::HazardKind::shallow ? 1 : 0;
+        g.m_source.danger_polylines += l.hazard.kind == coast::HazardKind::danger ? 1 : 0;
+        g.m_hazards.push_back(l.hazard);
     }
     g.m_source.polylines = lines.size();
     g.m_source.input_vertices = vertices;
@@ -336,9 +471,16 @@ bool operator==(const CoastGrid& a, const CoastGrid& b) {
            a.m_ref_fy == b.m_ref_fy && a.m_clip_slack == b.m_clip_slack && a.m_has_land_side == b.m_has_land_side && a.m_slot == b.m_slot &&
            a.m_seg_offset == b.m_seg_offset && a.m_ref_winding == b.m_ref_winding &&
            a.m_seg_info == b.m_seg_info && a.m_segments.size() == b.m_segments.size() &&
+           std::equal(a.m_hazards.begin(), a.m_hazards.end(), b.m_hazards.begin(), b.m_hazards.end(),
+                      [](const coast::Hazard& p, const coast::Hazard& q) {
+                          return p.kind == q.kind && p.danger == q.danger &&
+                                 (p.depth_m == q.depth_m || (std::isnan(p.depth_m) && std::isnan(q.depth_m)));
+                      }) &&
            std::equal(a.m_segments.begin(), a.m_segments.end(), b.m_segments.begin(),
                       [](const Segment& p, const Segment& q) { return p.a == q.a && p.b == q.b; }) &&
-           a.m_source.fingerprint == b.m_source.fingerprint && a.m_source.inputs == b.m_source.inputs;
+           a.m_source.fingerprint == b.m_source.fingerprint && a.m_source.inputs == b.m_source.inputs &&
+           (a.m_source.limiting_depth_m == b.m_source.limiting_depth_m ||
+            (std::isnan(a.m_source.limiting_depth_m) && std::isnan(b.m_source.limiting_depth_m)));
 }
 
 double choose_cell_size(double cell_m, double ship_length_m, const geo::Box& extent, std::string* note) {

@@ -6,6 +6,10 @@
 /// (i, j) from the grid's south-west corner. For each coast cell the winding number of a
 /// reference point inside it is kept, so a point's side (land or water) is exact from that
 /// one cell's segments: count the signed crossings of the path from the reference point.
+///
+/// "Land" here is anything the hull must not touch: land, and, in a grid built for a limiting
+/// depth, shallow water and dangers, stored exactly like land. Which one a segment bounds is
+/// kept per polyline (`hazard`).
 
 #include <cmath>
 #include <cstdint>
@@ -30,6 +34,16 @@ struct Segment {
 
 /// Where the grid came from: the sources and how they were read. Kept in the cache.
 struct GridSource {
+    /// Limiting depth (metres) the hazards were chosen for: shallower depth areas and dangers
+    /// are hazards like land. NaN: land only.
+    double limiting_depth_m = NAN;
+    double danger_radius_m = 0;            ///< radius of the polygons point dangers became (with a limit)
+    std::string depth_field;               ///< --depth-field ("" = none)
+    std::uint64_t shallow_polylines = 0;   ///< polylines bounding shallow water
+    std::uint64_t danger_polylines = 0;    ///< polylines bounding dangers
+    std::uint64_t hazard_features = 0;     ///< depth areas and dangers kept as hazards
+    std::uint64_t unknown_depth = 0;       ///< of which with no depth in the chart (unknown is a hazard)
+    std::uint64_t deep_skipped = 0;        ///< depth areas and dangers at or deeper than the limit, skipped
     std::vector<std::string> inputs;       ///< paths as given to import
     std::vector<std::string> layers;       ///< "file:layer" of every layer read
     std::vector<std::string> layer_option; ///< --layer names ("" = default set)
@@ -87,6 +101,21 @@ public:
     /// Reference point of cell (i, j) and its winding number (coast cells).
     geo::XY reference_point(int i, int j) const noexcept;
 
+    /// What polyline `k` bounds (land, shallow water, a danger); `k` < polyline_count().
+    const coast::Hazard& hazard(std::uint32_t k) const noexcept { return m_hazards[k]; }
+    std::size_t polyline_count() const noexcept { return m_hazards.size(); }
+    /// The polyline a segment was clipped from (`s` must be an element of some segments(i, j)).
+    std::uint32_t polyline_of(const Segment& s) const noexcept {
+        return m_seg_info[static_cast<std::size_t>(&s - m_segments.data())] & ~boundary_bit;
+    }
+    /// The polyline nearest to p (any segment); no_polyline for a grid without segments.
+    std::uint32_t nearest_polyline(geo::XY p) const noexcept;
+    /// For p inside land or hazards: the nearest boundary ring that holds p (p lies on its
+    /// land side at the ring's nearest point), i.e. the innermost ring around p: the area
+    /// p is in. Falls back to the nearest polyline when no ring is found to hold p.
+    std::uint32_t enclosing_polyline(geo::XY p) const;
+    static constexpr std::uint32_t no_polyline = 0xFFFFFFFFu;
+
     /// Winding number of land around p: > 0 is land. 0 outside the grid. Exact from one cell.
     /// `on_boundary` is set when p lies on a land boundary segment.
     int winding(geo::XY p, bool* on_boundary = nullptr) const noexcept;
@@ -113,6 +142,11 @@ private:
     explicit CoastGrid(geo::LocalFrame frame) : m_frame(std::move(frame)) {}
     void assign_windings(const std::vector<coast::LocalPolyline>& lines);
     bool reference_points_clear() const;
+    /// Calls visit(k) for the segments (k: index into m_segments) of the cell of p, then of
+    /// rings of cells outward while visit.wants(gap), gap being the distance from p to the
+    /// nearest cell not read yet.
+    template <typename Visit>
+    void visit_outward(geo::XY p, Visit& visit) const;
     std::uint32_t slot(int i, int j) const noexcept {
         return m_slot[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_nx) + static_cast<std::size_t>(i)];
     }
@@ -129,6 +163,7 @@ private:
     std::vector<std::int32_t> m_ref_winding;  ///< per coast cell: winding of its reference point
     std::vector<Segment> m_segments;          ///< clipped segments, cell by cell, order kept
     std::vector<std::uint32_t> m_seg_info;    ///< per segment: polyline index | boundary_bit
+    std::vector<coast::Hazard> m_hazards;     ///< per polyline: what it bounds
     GridSource m_source;
 };
 

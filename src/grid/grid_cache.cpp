@@ -146,11 +146,28 @@ std::vector<char> GridFile::serialize(const CoastGrid& g) {
     w.pod(s.input_vertices);
     w.pod(s.polylines);
     w.pod(s.land_polylines);
+    w.pod(s.limiting_depth_m);
+    w.pod(s.danger_radius_m);
+    w.str(s.depth_field);
+    w.pod(s.shallow_polylines);
+    w.pod(s.danger_polylines);
+    w.pod(s.hazard_features);
+    w.pod(s.unknown_depth);
+    w.pod(s.deep_skipped);
     w.vec(g.m_slot);
     w.vec(g.m_seg_offset);
     w.vec(g.m_ref_winding);
     w.vec(g.m_segments);
     w.vec(g.m_seg_info);
+    // Per polyline what it bounds: kind | danger << 4, and the charted depth (NaN unknown).
+    std::vector<std::uint8_t> kinds;
+    std::vector<double> depths;
+    for (const coast::Hazard& h : g.m_hazards) {
+        kinds.push_back(static_cast<std::uint8_t>(static_cast<unsigned>(h.kind) | static_cast<unsigned>(h.danger) << 4));
+        depths.push_back(h.depth_m);
+    }
+    w.vec(kinds);
+    w.vec(depths);
     const std::vector<char>& payload = w.bytes();
 
     Writer out;
@@ -205,6 +222,10 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     const auto slack = r.pod<double>();
     const bool land = r.pod<std::uint8_t>() != 0;
     const std::string frame_def = r.str();
+    // The frame's CRS text goes to GDAL/PROJ, which may look a name up at length: only text does.
+    if (frame_def.empty() || frame_def.size() > 65536 ||
+        std::any_of(frame_def.begin(), frame_def.end(), [](char c) { return (c >= 0 && c < ' ' && c != '\n' && c != '\t') || c == 0x7F; }))
+        r.fail("bad frame definition");
     CoastGrid g(geo::LocalFrame::from_definition(frame_def));
     g.m_cell = cell;
     g.m_x0 = x0;
@@ -224,12 +245,31 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     s.input_vertices = r.pod<std::uint64_t>();
     s.polylines = r.pod<std::uint64_t>();
     s.land_polylines = r.pod<std::uint64_t>();
+    s.limiting_depth_m = r.pod<double>();
+    s.danger_radius_m = r.pod<double>();
+    s.depth_field = r.str();
+    s.shallow_polylines = r.pod<std::uint64_t>();
+    s.danger_polylines = r.pod<std::uint64_t>();
+    s.hazard_features = r.pod<std::uint64_t>();
+    s.unknown_depth = r.pod<std::uint64_t>();
+    s.deep_skipped = r.pod<std::uint64_t>();
     g.m_slot = r.vec<std::uint32_t>();
     g.m_seg_offset = r.vec<std::uint32_t>();
     g.m_ref_winding = r.vec<std::int32_t>();
     g.m_segments = r.vec<Segment>();
     g.m_seg_info = r.vec<std::uint32_t>();
+    const auto kinds = r.vec<std::uint8_t>();
+    const auto depths = r.vec<double>();
     if (!r.at_end()) r.fail("unexpected bytes after the arrays");
+    if (kinds.size() != depths.size()) r.fail("polyline table sizes");
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+        const unsigned kind = kinds[k] & 0x0Fu, danger = kinds[k] >> 4;
+        if (kind > static_cast<unsigned>(coast::HazardKind::danger) || danger > static_cast<unsigned>(coast::DangerKind::obstruction))
+            r.fail("bad polyline kind");
+        g.m_hazards.push_back({static_cast<coast::HazardKind>(kind), static_cast<coast::DangerKind>(danger), depths[k]});
+    }
+    for (std::uint32_t info : g.m_seg_info)
+        if ((info & ~CoastGrid::boundary_bit) >= kinds.size()) r.fail("segment of a polyline out of range");
     // Consistency: a checksum protects against damage, these against a wrong writer.
     if (!(cell > 0) || !std::isfinite(cell) || !std::isfinite(x0) || !std::isfinite(y0) || nx <= 0 || ny <= 0 ||
         !(fx > 0 && fx < 1 && fy > 0 && fy < 1))
@@ -298,6 +338,14 @@ std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const c
     }
     for (const auto& l : options.layers) feed("layer:" + l);
     feed("source_crs:" + options.source_crs);
+    // Hazards: the limiting depth, the danger radius and the depth field shape the grid.
+    char hazards[96];
+    if (options.limiting_depth_m)
+        std::snprintf(hazards, sizeof hazards, "limit:%.17g radius:%.17g", *options.limiting_depth_m, options.danger_radius_m);
+    else
+        std::snprintf(hazards, sizeof hazards, "limit:none");
+    feed(hazards);
+    feed("depth_field:" + options.depth_field);
     feed("crs:" + crs);
     XXH3_64bits_update(st, &cell_m, sizeof cell_m);
     const std::uint64_t h = XXH3_64bits_digest(st);
@@ -336,6 +384,9 @@ CoastGrid build_grid(const std::vector<std::string>& paths, const BuildRequest& 
     g.source().inputs = paths;
     g.source().layer_option = request.import.layers;
     g.source().source_crs = request.import.source_crs;
+    g.source().limiting_depth_m = request.import.limiting_depth_m.value_or(NAN);
+    g.source().danger_radius_m = request.import.limiting_depth_m ? request.import.danger_radius_m : 0.0;
+    g.source().depth_field = request.import.depth_field;
     g.source().fingerprint =
         fingerprint_sources(paths, request.import, request.crs, request.cell_m > 0 ? request.cell_m : 2.5 * request.ship_length_m);
     return g;

@@ -3,7 +3,8 @@
 ///
 /// Layout (little-endian): magic "SHOALGRD", u32 format version, u32 byte-order mark
 /// 0x01020304, u64 payload size, u64 XXH3-64 checksum of the payload, then the payload
-/// (parameters, frame, source fingerprint, then the grid's flat arrays). Written to a
+/// (parameters, frame, source fingerprint and hazard parameters, then the grid's flat arrays
+/// and the per-polyline table of what each bounds). Written to a
 /// temporary file in the same folder and renamed, so a reader never sees half a file.
 
 #include <cstdint>

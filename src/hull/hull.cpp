@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <numbers>
@@ -227,13 +228,16 @@ std::string brief(const json& v) {
     return text;
 }
 
-/// Strips nlohmann's "[json.exception.parse_error.101] " tag from a message.
+/// Strips nlohmann's "[json.exception.parse_error.101] " tag from a message, and cuts it short:
+/// its "last read: '...'" quotes the whole token, which may be megabytes of the file.
 std::string untagged(const char* what) {
     std::string_view text{what};
     if (!text.empty() && text.front() == '[') {
         const auto close = text.find("] ");
         if (close != std::string_view::npos) text.remove_prefix(close + 2);
     }
+    constexpr std::size_t max_chars = 240;
+    if (text.size() > max_chars) return std::string{text.substr(0, max_chars)} + "...";
     return std::string{text};
 }
 
@@ -246,7 +250,7 @@ struct ShipSpec {
 
 class ShipFileReader {
 public:
-    explicit ShipFileReader(std::string path) : m_path{std::move(path)} {}
+    ShipFileReader(std::string path, std::string_view text) : m_path{std::move(path)}, m_text{text} {}
 
     /// The file's content, checked field by field; the contour is not yet checked as a polygon.
     ShipSpec read() const {
@@ -274,13 +278,8 @@ public:
 
 private:
     json parse() const {
-        std::ifstream in{m_path, std::ios::binary};
-        if (!in) throw InputError{"Cannot open ship file '" + m_path + "': " + std::strerror(errno)};
-        std::ostringstream text;
-        text << in.rdbuf();
-        if (in.bad()) fail("cannot read the file");
         try {
-            return json::parse(text.str());
+            return json::parse(m_text);
         } catch (const json::parse_error& e) {
             fail("not valid JSON at byte " + std::to_string(e.byte) + ": " + untagged(e.what()));
         } catch (const json::exception& e) {  // e.g. a number too large for a double
@@ -293,7 +292,12 @@ private:
         std::size_t count = 0;
         for (const auto& [key, value] : doc.items()) {
             if (std::find(known_fields.begin(), known_fields.end(), key) != known_fields.end()) continue;
-            unknown += (count++ ? ", '" : "'") + key + "'";
+            if (count == 5) {  // the message stays one short line, whatever the file holds
+                unknown += ", ...";
+                ++count;
+            }
+            if (count > 5) continue;
+            unknown += (count++ ? ", '" : "'") + (key.size() > 40 ? key.substr(0, 40) + "..." : key) + "'";
             for (const auto known : known_fields)
                 if (edit_distance(key, known) <= (known.size() <= 2 ? 0u : 2u)) {
                     unknown += " (did you mean '" + std::string{known} + "'?)";
@@ -368,6 +372,7 @@ private:
     }
 
     std::string m_path;
+    std::string_view m_text;
 };
 
 }  // namespace
@@ -433,7 +438,18 @@ Hull Hull::from_dims_string(const std::string& text) {
 }
 
 Hull Hull::load(const std::string& path) {
-    const ShipFileReader reader{path};
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw InputError{"Cannot open ship file '" + path + "': it is a folder"};
+    std::ifstream in{path, std::ios::binary};
+    if (!in) throw InputError{"Cannot open ship file '" + path + "': " + std::strerror(errno)};
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError{"In ship file '" + path + "': cannot read the file"};
+    return parse(text.str(), path);
+}
+
+Hull Hull::parse(std::string_view text, const std::string& name) {
+    const ShipFileReader reader{name, text};
     ShipSpec spec = reader.read();
     std::vector<XY> outline;
     if (spec.contour) {

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <iosfwd>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "geo/point.hpp"
@@ -49,6 +50,8 @@ public:
     /// Loads a ship file per schemas/ship.schema.json. Every error names the file and the field,
     /// e.g. "In ship file 'x.json': 'beam' must be > 0 (got -3.5)".
     static Hull load(const std::string& path);
+    /// The same, from a ship file's text already in memory; `name` stands for the file in messages.
+    static Hull parse(std::string_view text, const std::string& name);
 
     const std::string& name() const noexcept { return m_name; }
     /// Open ring (first point not repeated), counter-clockwise when x and y are read as a

@@ -7,6 +7,7 @@
 
 #include "report/qgis_styles.hpp"
 #include "report/report.hpp"
+#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
 namespace shoal::report {
@@ -44,7 +45,10 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
     wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
 
     OGRLayer& events = make_layer(ds, "events", wkbPoint, wgs84);
-    for (const char* s : {"track", "name", "kind", "start", "end"}) add_field(events, s, OFTString);
+    for (const char* s : {"track", "name", "kind", "hit"}) add_field(events, s, OFTString);
+    add_field(events, "charted_depth_m", OFTReal);
+    add_field(events, "danger", OFTString);
+    for (const char* s : {"start", "end"}) add_field(events, s, OFTString);
     for (const char* s : {"duration_s", "min_clearance_m", "penetration_m", "ship_lat", "ship_lon", "heading"}) add_field(events, s, OFTReal);
     add_field(events, "heading_source", OFTString);
     add_field(events, "fix_index", OFTInteger64);
@@ -62,7 +66,19 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
     add_field(tracks, "end", OFTString);
 
     OGRLayer& hulls = make_layer(ds, "hulls", wkbPolygon, wgs84);
-    for (const char* s : {"track", "kind", "start", "label"}) add_field(hulls, s, OFTString);
+    for (const char* s : {"track", "kind", "hit", "start", "label"}) add_field(hulls, s, OFTString);
+
+    // Exercise mode: ship-to-ship encounters, their own layer (hull footprints of both ships
+    // go into `hulls` with kind collision / close_quarters).
+    OGRLayer* encounters = nullptr;
+    if (r.has_encounters) {
+        encounters = &make_layer(ds, "encounters", wkbPoint, wgs84);
+        for (const char* f : {"track", "other_track", "kind", "start", "end"}) add_field(*encounters, f, OFTString);
+        for (const char* f : {"duration_s", "min_clearance_m", "distance_m", "ship_lat", "ship_lon", "heading", "other_lat",
+                              "other_lon", "other_heading"})
+            add_field(*encounters, f, OFTReal);
+        add_field(*encounters, "label", OFTString);
+    }
 
     std::map<std::string, std::size_t> skipped_by_file;
     for (const auto& f : r.files) skipped_by_file[f.file] = f.read.skipped;
@@ -97,10 +113,13 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
 
         for (const auto& e : t.events) {
             OGRFeature ef(events.GetLayerDefn());
-            const std::string label = std::string(e.kind == audit::EventKind::grounding ? "aground " : "close ") + iso_time(e.start_s).substr(11);
+            const std::string label = event_label(e);
             ef.SetField("track", s.id.c_str());
             ef.SetField("name", s.name.c_str());
             ef.SetField("kind", audit::to_string(e.kind));
+            ef.SetField("hit", coast::to_string(e.hit));
+            finite_or_null(ef, "charted_depth_m", e.hit != coast::HazardKind::land ? e.charted_depth_m : NAN);
+            ef.SetField("danger", coast::to_string(e.danger));
             ef.SetField("start", iso_time(e.start_s).c_str());
             ef.SetField("end", iso_time(e.end_s).c_str());
             ef.SetField("duration_s", e.end_s - e.start_s);
@@ -123,10 +142,48 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
             OGRFeature hf(hulls.GetLayerDefn());
             hf.SetField("track", s.id.c_str());
             hf.SetField("kind", audit::to_string(e.kind));
+            hf.SetField("hit", coast::to_string(e.hit));
             hf.SetField("start", iso_time(e.start_s).c_str());
             hf.SetField("label", label.c_str());
             OGRLinearRing ring;
             for (const auto& p : e.hull) ring.addPoint(p.lon, p.lat);
+            OGRPolygon poly;
+            poly.addRing(&ring);
+            hf.SetGeometry(&poly);
+            put(hulls, hf);
+        }
+    }
+    for (const auto& e : r.encounters.events) {
+        const std::string a = r.tracks.at(e.a.track).summary.id, b = r.tracks.at(e.b.track).summary.id;
+        const std::string label = std::string(e.kind == audit::EncounterKind::collision ? "collision " : "close quarters ") +
+                                  iso_time(e.start_s).substr(11);
+        OGRFeature f(encounters->GetLayerDefn());
+        f.SetField("track", a.c_str());
+        f.SetField("other_track", b.c_str());
+        f.SetField("kind", audit::to_string(e.kind));
+        f.SetField("start", iso_time(e.start_s).c_str());
+        f.SetField("end", iso_time(e.end_s).c_str());
+        f.SetField("duration_s", e.end_s - e.start_s);
+        f.SetField("min_clearance_m", e.min_clearance_m);
+        f.SetField("distance_m", e.distance_m);
+        f.SetField("ship_lat", e.a.position.lat);
+        f.SetField("ship_lon", e.a.position.lon);
+        f.SetField("heading", e.a.heading_deg);
+        f.SetField("other_lat", e.b.position.lat);
+        f.SetField("other_lon", e.b.position.lon);
+        f.SetField("other_heading", e.b.heading_deg);
+        f.SetField("label", label.c_str());
+        OGRPoint pt(e.point.lon, e.point.lat);
+        f.SetGeometry(&pt);
+        put(*encounters, f);
+        for (const audit::ShipAt* ship : {&e.a, &e.b}) {
+            OGRFeature hf(hulls.GetLayerDefn());
+            hf.SetField("track", r.tracks.at(ship->track).summary.id.c_str());
+            hf.SetField("kind", audit::to_string(e.kind));
+            hf.SetField("start", iso_time(e.start_s).c_str());
+            hf.SetField("label", label.c_str());
+            OGRLinearRing ring;
+            for (const auto& p : ship->hull) ring.addPoint(p.lon, p.lat);
             OGRPolygon poly;
             poly.addRing(&ring);
             hf.SetGeometry(&poly);
@@ -144,13 +201,19 @@ void write_gpkg(const std::string& path, const audit::AuditResult& result, const
     const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) throw InputError("cannot write '" + path + "': folder '" + dir.string() + "' does not exist");
+    if (fs::is_directory(target, ec)) throw InputError("cannot write '" + path + "': it is a directory");
+    if (const auto st = fs::status(target, ec); fs::exists(st) && !fs::is_regular_file(st))
+        throw InputError("cannot write '" + path + "': a GeoPackage must be a regular file (write it elsewhere, or use --format geojson)");
     std::random_device rd;
-    const fs::path tmp = dir / ("." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd()) + ".gpkg");
+    std::string name(1, '.');  // appended, not "." + string: GCC 12 -O3 warns falsely (-Wrestrict) on that
+    name += target.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd()) + ".gpkg";
+    const fs::path tmp = dir / name;
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
     if (!drv) throw LibraryError("GDAL has no GPKG driver");
     // A fixed "current date" in the GeoPackage's metadata tables: the same run writes the
     // same bytes (whatever --jobs is).
     CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
+    const TempFileInProgress listed(tmp.string());  // removed (with SQLite's journal) if interrupted
     try {
         GDALDatasetUniquePtr ds(drv->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
         if (!ds) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());

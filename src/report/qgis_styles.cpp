@@ -51,7 +51,7 @@ void add_layer_styles(GDALDataset& ds) {
          "f_table_schema TEXT(256), f_table_name TEXT(256), f_geometry_column TEXT(256), styleName TEXT(30), "
          "styleQML TEXT, styleSLD TEXT, useAsDefault BOOLEAN, description TEXT, owner TEXT(30), ui TEXT(30), "
          "update_time DATETIME DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ','now')))");
-    for (const char* layer : {"events", "tracks", "hulls"}) {
+    for (const char* layer : {"events", "tracks", "hulls", "encounters"}) {
         OGRLayer* l = ds.GetLayerByName(layer);
         if (!l) continue;
         const char* geom = l->GetGeometryColumn();

@@ -4,6 +4,7 @@
 /// events, tracks, hulls) and the summary table for stdout. Reports are deterministic (no
 /// wall-clock figures in them) and written atomically.
 
+#include <cmath>
 #include <string>
 
 #include "audit/audit.hpp"
@@ -15,9 +16,11 @@ struct RunInfo {
     std::string coast;        ///< the --coast inputs
     std::string frame;        ///< description of the local frame
     double cell_m = 0;
+    double limiting_depth_m = NAN;  ///< the grid's limiting depth; NaN: land only
     std::string grid_fingerprint;
     std::string ship;         ///< the default hull: ship name or "--dims a,b,c,d"
     audit::SweepOptions sweep;
+    double ship_margin_m = 0;  ///< exercise mode: close quarters under this
 };
 
 /// The GeoJSON report as text (schemas/report.schema.json).
@@ -33,5 +36,9 @@ std::string summary_table(const audit::AuditResult& result);
 
 /// ISO 8601 UTC, e.g. 2014-08-15T19:00:00.042Z (milliseconds only when not whole seconds).
 std::string iso_time(double epoch_s);
+
+/// Short text for maps: "aground 10:03:12Z" (land), "aground shallow 3.6 m 10:03:12Z",
+/// "aground wreck 10:03:12Z" (a danger; its sounding when charted), "close 10:03:12Z".
+std::string event_label(const audit::Event& e);
 
 }  // namespace shoal::report

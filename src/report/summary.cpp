@@ -32,6 +32,17 @@ std::string summary_table(const audit::AuditResult& r) {
                   "total: %zu files, %zu tracks, %zu fixes (%zu poses checked), %zu groundings, %zu close passes, %zu uncovered fixes, %zu bad rows skipped\n",
                   r.files.size(), r.tracks.size(), r.fixes, r.poses, r.groundings, r.close_passes, r.uncovered_fixes, r.skipped_rows);
     out += line;
+    if (r.has_encounters) {
+        std::snprintf(line, sizeof line, "encounters: %zu collisions, %zu close quarters, %zu pairs came within the threshold (%.0f m)\n",
+                      r.collisions, r.close_quarters, r.encounters.approaches.size(), r.encounters.threshold_m);
+        out += line;
+        for (const auto& e : r.encounters.events) {
+            std::snprintf(line, sizeof line, "  %-14s %s - %s  %s x %s  least %.1f m\n", audit::to_string(e.kind),
+                          iso_time(e.start_s).c_str(), iso_time(e.end_s).c_str(), r.tracks.at(e.a.track).summary.id.c_str(),
+                          r.tracks.at(e.b.track).summary.id.c_str(), e.min_clearance_m);
+            out += line;
+        }
+    }
     for (const auto& f : r.files)
         if (!f.error.empty()) out += "unreadable: " + f.error + "\n";
     for (const auto& e : r.errors) out += "track failed: " + e.track + " in " + e.file + ": " + e.message + "\n";

@@ -2,9 +2,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <functional>
 #include <initializer_list>
+#include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include "track/parse_util.hpp"
@@ -20,17 +25,23 @@ using detail::trim;
 
 namespace {
 
-char detect_separator(std::string_view text) {
+/// The separator the first line holds most often outside quotes ('\0' for none); `ended` tells
+/// whether that line ended within `text`.
+char detect_separator(std::string_view text, bool* ended = nullptr) {
     std::size_t commas = 0, semicolons = 0, tabs = 0;
-    bool quoted = false;
+    bool quoted = false, newline = false;
     for (const char c : text) {
         if (c == '"') quoted = !quoted;
         if (quoted) continue;
-        if (c == '\n') break;
+        if (c == '\n') {
+            newline = true;
+            break;
+        }
         commas += c == ',';
         semicolons += c == ';';
         tabs += c == '\t';
     }
+    if (ended) *ended = newline;
     if (commas == 0 && semicolons == 0 && tabs == 0) return '\0';
     if (commas >= semicolons && commas >= tabs) return ',';
     return semicolons >= tabs ? ';' : '\t';
@@ -38,9 +49,25 @@ char detect_separator(std::string_view text) {
 
 }  // namespace
 
-CsvSplitter::CsvSplitter(std::string_view text) : m_text(text) {
-    if (m_text.substr(0, 3) == "\xEF\xBB\xBF") m_text.remove_prefix(3);
+CsvSplitter::CsvSplitter(std::string_view text, bool complete) : m_text(text), m_complete(complete) {
+    if (m_text.substr(0, 3) == "\xEF\xBB\xBF") {
+        m_text.remove_prefix(3);
+        m_skipped = 3;
+    }
     m_sep = detect_separator(m_text);
+}
+
+bool CsvSplitter::holds_first_line(std::string_view text) noexcept {
+    bool ended = false;
+    detect_separator(text, &ended);
+    return ended;
+}
+
+void CsvSplitter::more(std::string_view text, bool complete) {
+    m_text = text;
+    m_complete = complete;
+    m_skipped = 0;
+    m_pos = 0;
 }
 
 bool CsvSplitter::next(std::vector<std::string_view>& fields) {
@@ -51,6 +78,8 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
     while (m_pos < n) {
         fields.clear();
         m_record_line = m_line;
+        const std::size_t record_start = m_pos;
+        bool at_end = false;  // the record ran to the end of the text (no line end)
         for (;;) {
             while (m_pos < n && t[m_pos] == ' ' && sep != ' ') ++m_pos;
             if (m_pos < n && t[m_pos] == '"') {
@@ -88,7 +117,10 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
                 while (m_pos < n && t[m_pos] != sep && t[m_pos] != '\n') ++m_pos;
                 fields.push_back(trim(t.substr(start, m_pos - start)));
             }
-            if (m_pos >= n) break;
+            if (m_pos >= n) {
+                at_end = true;
+                break;
+            }
             if (t[m_pos] == sep) {
                 ++m_pos;
                 continue;
@@ -96,6 +128,13 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
             ++m_pos;  // '\n'
             ++m_line;
             break;
+        }
+        if (at_end && !m_complete) {  // it may go on in the next block: read it again then
+            m_pos = record_start;
+            m_line = m_record_line;
+            fields.clear();
+            m_unescaped.clear();
+            return false;
         }
         if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
         return true;
@@ -165,7 +204,11 @@ std::size_t find_column(const std::vector<std::string>& names, std::initializer_
 
 std::string join(const std::vector<std::string_view>& fields) {
     std::string s;
-    for (std::size_t i = 0; i < fields.size() && i < 30; ++i) s += (i ? "," : "") + std::string(fields[i]);
+    for (std::size_t i = 0; i < fields.size() && i < 30; ++i) {  // at most 30 fields of 40 bytes: one line
+        if (i) s += ',';
+        s += fields[i].substr(0, 40);
+        if (fields[i].size() > 40) s += "...";
+    }
     return s;
 }
 
@@ -213,30 +256,45 @@ struct Pending {
     double tod;
 };
 
+/// Reads a CSV track file given whole or in blocks (see CsvSplitter): feed() each block, then
+/// finish(). Fixes are packed as they are read.
 class CsvTrackReader {
 public:
-    CsvTrackReader(std::string_view text, const std::string& file, const ReadOptions& options)
-        : m_split(text), m_file(file), m_options(options) {
+    CsvTrackReader(const std::string& file, const ReadOptions& options) : m_file(file), m_options(options) {
         m_out.format = "csv";
         m_out.report.max_messages = options.max_messages;
     }
 
-    TrackFile read() {
-        std::vector<std::string_view> f;
-        if (m_split.separator() == '\0' || !m_split.next(f))
-            throw InputError(m_file + ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183)" +
-                             (m_split.separator() == '\0' ? ": the first line has no ',', ';' or tab" : ""));
-        m_cols = map_columns(f, m_file);
-        m_decimal_comma = m_split.separator() != ',';
-        while (m_split.next(f)) row(f);
+    /// Reads the records `text` holds; returns the bytes taken (the rest must come again,
+    /// followed by more, in the next call). The first text must hold the first line, or be
+    /// `complete` (the whole file, or its last block).
+    std::size_t feed(std::string_view text, bool complete) {
+        if (m_split) m_split->more(text, complete);
+        else m_split.emplace(text, complete);
+        std::vector<std::string_view>& f = m_fields;
+        if (!m_header_read) {
+            if (m_split->separator() == '\0' || !m_split->next(f)) {
+                if (m_split->separator() != '\0' && !complete) return m_split->consumed();  // a header going on
+                throw InputError(m_file + ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183)" +
+                                 (m_split->separator() == '\0' ? ": the first line has no ',', ';' or tab" : ""));
+            }
+            m_cols = map_columns(f, m_file);
+            m_decimal_comma = m_split->separator() != ',';
+            m_header_read = true;
+        }
+        while (m_split->next(f)) row(f);
+        return m_split->consumed();
+    }
+
+    PackedTrackFile finish() {
         date_pending();
-        for (Track& t : m_out.tracks) normalise(t, m_out.report);
+        for (PackedTrack& t : m_out.tracks) normalise(t, m_out.report);
         return std::move(m_out);
     }
 
 private:
     void skip(const std::string& what) {
-        m_out.report.skip(m_file + " line " + std::to_string(m_split.line()) + ": " + what + "; row skipped");
+        m_out.report.skip(m_file + " line " + std::to_string(m_split->line()) + ": " + what + "; row skipped");
     }
 
     double number(const std::vector<std::string_view>& f, std::size_t col) const {
@@ -251,7 +309,7 @@ private:
         std::size_t idx;
         if (it == m_index.end()) {
             idx = m_out.tracks.size();
-            Track& t = m_out.tracks.emplace_back();
+            PackedTrack& t = m_out.tracks.emplace_back();
             t.id = m_cols.id == absent ? detail::file_stem(m_file) : to_utf8(id);
             t.file = m_file;
             m_index.emplace(std::string(id), idx);
@@ -263,7 +321,7 @@ private:
         return idx;
     }
 
-    void vessel_data(Track& t, const std::vector<std::string_view>& f) {
+    void vessel_data(PackedTrack& t, const std::vector<std::string_view>& f) {
         if (m_cols.name != absent && t.name.empty() && m_cols.name < f.size() && !f[m_cols.name].empty())
             t.name = to_utf8(f[m_cols.name]);
         if (m_cols.dims[0] != absent && !t.dims) {
@@ -326,10 +384,10 @@ private:
         if (m_cols.heading != absent) fix.heading_deg = detail::valid_heading(number(f, m_cols.heading));
         if (m_cols.cog != absent) fix.cog_deg = detail::valid_cog(number(f, m_cols.cog));
         if (m_cols.sog != absent) fix.sog_kn = detail::valid_sog(number(f, m_cols.sog));
-        fix.line = m_split.line();
+        fix.line = m_split->line();
 
         const std::size_t ti = track_for(id);
-        Track& t = m_out.tracks[ti];
+        PackedTrack& t = m_out.tracks[ti];
         vessel_data(t, f);
         if (m_clocks.size() <= ti) m_clocks.resize(ti + 1);
         DayClock& clock = m_clocks[ti];
@@ -342,9 +400,9 @@ private:
             if (clock.has_date())
                 fix.time_s = clock.resolve(day, time->seconds);
             else
-                m_pending.push_back({ti, t.fixes.size(), day, time->seconds});
+                m_pending.push_back({ti, t.size(), day, time->seconds});
         }
-        t.fixes.push_back(fix);
+        t.push_back(fix);
     }
 
     /// Times of day met before their vessel's first dated row take that row's date; a vessel
@@ -362,16 +420,22 @@ private:
                              "(give the date to place them)");
             }
         }
-        for (const Pending& p : m_pending)
-            m_out.tracks[p.track].fixes[p.fix].time_s = m_clocks[p.track].resolve_early(p.day, p.tod, fallback);
+        for (const Pending& p : m_pending) {
+            PackedTrack& t = m_out.tracks[p.track];
+            Fix f = t.fix(p.fix);
+            f.time_s = m_clocks[p.track].resolve_early(p.day, p.tod, fallback);
+            t.set(p.fix, f);
+        }
     }
 
-    CsvSplitter m_split;
+    std::optional<CsvSplitter> m_split;
+    std::vector<std::string_view> m_fields;
+    bool m_header_read = false;
     const std::string& m_file;
     const ReadOptions& m_options;
     Columns m_cols;
     bool m_decimal_comma = false;
-    TrackFile m_out;
+    PackedTrackFile m_out;
     std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;
     std::string m_last_id;
     std::size_t m_last_track = absent;
@@ -382,13 +446,54 @@ private:
 
 }  // namespace
 
-TrackFile read_csv_text(std::string_view text, const std::string& file, const ReadOptions& options) {
-    return CsvTrackReader(text, file, options).read();
+PackedTrackFile read_csv_text_packed(std::string_view text, const std::string& file, const ReadOptions& options) {
+    CsvTrackReader reader(file, options);
+    reader.feed(text, true);
+    return reader.finish();
 }
 
-TrackFile read_csv(const std::string& path, const ReadOptions& options) {
-    const std::string text = read_file(path);
-    return read_csv_text(text, path, options);
+TrackFile read_csv_text(std::string_view text, const std::string& file, const ReadOptions& options) {
+    return unpack(read_csv_text_packed(text, file, options));
 }
+
+namespace {
+
+struct FileCloser {
+    void operator()(std::FILE* f) const noexcept { std::fclose(f); }
+};
+
+}  // namespace
+
+PackedTrackFile read_csv_packed(const std::string& path, const ReadOptions& options) {
+    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+    if (!file) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+    constexpr std::size_t block = std::size_t{1} << 20;
+    std::string buf;
+    bool eof = false;
+    // Appends at least `want` bytes (fewer at the end of the file).
+    auto read_more = [&](std::size_t want) {
+        const std::size_t old = buf.size();
+        buf.resize(old + want);
+        const std::size_t got = std::fread(buf.data() + old, 1, want, file.get());
+        buf.resize(old + got);
+        if (got < want) {
+            if (std::ferror(file.get())) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+            eof = true;
+        }
+    };
+    CsvTrackReader reader(path, options);
+    do read_more(block);
+    while (!eof && !CsvSplitter::holds_first_line(buf));
+    std::size_t taken = reader.feed(buf, eof);
+    while (!eof) {
+        buf.erase(0, taken);
+        // A record longer than a block: read as much again, so a huge line costs linear time.
+        read_more(std::max(block, buf.size()));
+        taken = reader.feed(buf, eof);
+    }
+    return reader.finish();
+}
+
+TrackFile read_csv(const std::string& path, const ReadOptions& options) { return unpack(read_csv_packed(path, options)); }
 
 }  // namespace shoal::track

@@ -34,18 +34,32 @@ namespace shoal::track {
 /// quotes), LF or CRLF line ends, a UTF-8 byte order mark skipped, blank lines skipped, blanks
 /// around unquoted fields trimmed. The separator (`,` `;` or tab) is the one the first line
 /// holds most often outside quotes.
+///
+/// A file may come in blocks: construct with its beginning (`complete` false; it must hold the
+/// whole first line, see holds_first_line), take the records next() gives, then call more()
+/// with the bytes from consumed() on followed by the next block, and so on; the records are
+/// exactly those of the whole text at once.
 class CsvSplitter {
 public:
-    explicit CsvSplitter(std::string_view text);
+    explicit CsvSplitter(std::string_view text, bool complete = true);
     /// The separator found; '\0' when the first line holds none (not a CSV table).
     char separator() const noexcept { return m_sep; }
-    /// The next record's fields (views valid until the next call); false at the end.
+    /// The next record's fields (views valid until the next call); false at the end, or, when
+    /// the text is not complete, when the next record may go on beyond it.
     bool next(std::vector<std::string_view>& fields);
     /// 1-based line on which the record last returned starts.
     std::size_t line() const noexcept { return m_record_line; }
+    /// Bytes of the current text taken by the records returned so far.
+    std::size_t consumed() const noexcept { return m_skipped + m_pos; }
+    /// Continues with `text`: the current text from consumed() on, then more of the file.
+    void more(std::string_view text, bool complete);
+    /// True when `text` (a file's beginning) holds the line the separator is found on.
+    static bool holds_first_line(std::string_view text) noexcept;
 
 private:
     std::string_view m_text;
+    bool m_complete = true;
+    std::size_t m_skipped = 0;  // a byte order mark skipped at the start of the first text
     std::size_t m_pos = 0;
     std::size_t m_line = 1;
     std::size_t m_record_line = 0;
@@ -64,5 +78,10 @@ std::string to_utf8(std::string_view text);
 /// longitude column.
 TrackFile read_csv_text(std::string_view text, const std::string& file, const ReadOptions& options = {});
 TrackFile read_csv(const std::string& path, const ReadOptions& options = {});
+
+/// The same with the fixes packed (32 bytes each), the file read in blocks rather than whole:
+/// memory holds the fixes, not the file's text, so a big AIS export reads in bounded memory.
+PackedTrackFile read_csv_packed(const std::string& path, const ReadOptions& options = {});
+PackedTrackFile read_csv_text_packed(std::string_view text, const std::string& file, const ReadOptions& options = {});
 
 }  // namespace shoal::track

@@ -59,8 +59,8 @@ bool parse_coordinate(std::string_view value, std::string_view hemisphere, bool 
     if (!detail::parse_double(value, v) || !(v >= 0.0)) return false;
     const double degrees = std::floor(v / 100.0);
     const double minutes = v - degrees * 100.0;
-    if (minutes >= 60.0 || degrees > (latitude ? 90.0 : 180.0)) return false;
     out = degrees + minutes / 60.0;
+    if (minutes >= 60.0 || out > (latitude ? 90.0 : 180.0)) return false;  // 9000.5 N is past the pole
     hemisphere = detail::trim(hemisphere);
     if (hemisphere == (latitude ? "S" : "W")) {
         out = -out;
@@ -165,11 +165,11 @@ private:
             return false;
         }
         if (!parse_coordinate(field(i), field(i + 1), true, p.lat)) {
-            skip(std::string(type) + " latitude " + detail::quoted(field(i)) + "," + std::string(field(i + 1)) + " is not valid");
+            skip(std::string(type) + " latitude " + detail::quoted(field(i)) + "," + std::string(field(i + 1).substr(0, 8)) + " is not valid");
             return false;
         }
         if (!parse_coordinate(field(i + 2), field(i + 3), false, p.lon)) {
-            skip(std::string(type) + " longitude " + detail::quoted(field(i + 2)) + "," + std::string(field(i + 3)) +
+            skip(std::string(type) + " longitude " + detail::quoted(field(i + 2)) + "," + std::string(field(i + 3).substr(0, 8)) +
                  " is not valid");
             return false;
         }

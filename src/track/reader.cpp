@@ -87,34 +87,106 @@ std::string sniff_format(std::string_view content, const std::string& path) {
     return {};
 }
 
-TrackFile read_tracks(const std::string& path, const ReadOptions& options) {
+namespace {
+
+/// A file's format, from its beginning: enough of it that sniff_format decides as it would on
+/// the whole file (the first 4 KB, and the first 20 lines that are not blank or comments).
+struct Sniffed {
+    std::string format;
+    std::string head;   ///< the bytes read
+    bool whole = false; ///< head is the whole file
+};
+
+Sniffed sniff_file(const std::string& path) {
     std::error_code ec;
     const auto status = fs::status(path, ec);
     if (!fs::exists(status)) throw InputError(path + ": no such file");
     if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a track file");
-    const std::string content = read_file(path);
-    const std::size_t bom = content.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
-    if (content.find_first_not_of(" \t\r\n", bom) == std::string::npos) throw InputError(path + ": empty file");
-    const std::string format = sniff_format(content, path);
-    TrackFile out;
-    if (format == "csv") out = read_csv_text(content, path, options);
-    else if (format == "nmea") out = read_nmea_text(content, path, options);
-    else if (format == "gpx") out = read_gpx(path, options);
-    else if (format == "geojson") out = read_geojson_text(content, path, options);
-    else throw InputError(path + not_a_track_format);
+    std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+    if (!f) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+    Sniffed out;
+    std::size_t scanned = 0, lines = 0;  // complete lines looked at; those sniff_format counts
+    for (;;) {
+        const std::size_t old = out.head.size(), want = std::max<std::size_t>(1 << 16, old);
+        out.head.resize(old + want);
+        const std::size_t got = std::fread(out.head.data() + old, 1, want, f.get());
+        out.head.resize(old + got);
+        if (got < want) {
+            if (std::ferror(f.get())) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+            out.whole = true;
+            break;
+        }
+        for (std::size_t end; lines < 20 && (end = out.head.find('\n', scanned)) != std::string::npos; scanned = end + 1) {
+            const std::string_view line = detail::trim(std::string_view(out.head).substr(scanned, end - scanned));
+            if (!line.empty() && line.front() != '#') ++lines;
+        }
+        if (lines >= 20 && out.head.size() >= 4096 + 3) break;
+    }
+    const std::size_t bom = out.head.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+    if (out.whole && out.head.find_first_not_of(" \t\r\n", bom) == std::string::npos) throw InputError(path + ": empty file");
+    out.format = sniff_format(out.head, path);
+    if (out.format.empty()) throw InputError(path + not_a_track_format);
+    return out;
+}
 
+/// Throws when a file gave no fix at all; drops tracks left without a fix (all their rows
+/// skipped: the report counted them).
+template <typename File>
+void keep_tracks_with_fixes(File& out, const std::string& path) {
     std::size_t fixes = 0;
-    for (const Track& t : out.tracks) fixes += t.fixes.size();
+    for (const auto& t : out.tracks) fixes += t.fixes.size();
     if (fixes == 0) {
         std::string msg = path + ": no usable fix (" + std::to_string(out.report.rows) + " rows read, " +
                           std::to_string(out.report.skipped) + " skipped)";
-        if (format == "nmea" && out.report.skipped == 0)
+        if (out.format == "nmea" && out.report.skipped == 0)
             msg += ": the log holds no RMC, GGA or GLL position (AIS !AIVDM sentences are not decoded)";
         if (!out.report.messages.empty()) msg += "; first problem: " + out.report.messages.front();
         throw InputError(msg);
     }
-    // Tracks left without a fix (all their rows skipped) are dropped; the report counted them.
-    std::erase_if(out.tracks, [](const Track& t) { return t.fixes.empty(); });
+    std::erase_if(out.tracks, [](const auto& t) { return t.fixes.empty(); });
+}
+
+/// Every format but CSV, read whole.
+TrackFile read_whole(const std::string& path, Sniffed&& sniffed, const ReadOptions& options) {
+    const std::string content = sniffed.whole ? std::move(sniffed.head) : read_file(path);
+    if (sniffed.format == "nmea") return read_nmea_text(content, path, options);
+    if (sniffed.format == "gpx") return read_gpx(path, options);
+    return read_geojson_text(content, path, options);
+}
+
+}  // namespace
+
+TrackFile unpack(PackedTrackFile&& packed) {
+    TrackFile out;
+    out.report = std::move(packed.report);
+    out.format = std::move(packed.format);
+    out.tracks.reserve(packed.tracks.size());
+    for (PackedTrack& t : packed.tracks) {
+        out.tracks.push_back(t.unpack());
+        t.release_fixes();
+    }
+    return out;
+}
+
+TrackFile read_tracks(const std::string& path, const ReadOptions& options) {
+    Sniffed sniffed = sniff_file(path);
+    TrackFile out = sniffed.format == "csv" ? read_csv(path, options) : read_whole(path, std::move(sniffed), options);
+    keep_tracks_with_fixes(out, path);
+    return out;
+}
+
+PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& options) {
+    Sniffed sniffed = sniff_file(path);
+    PackedTrackFile out;
+    if (sniffed.format == "csv") {
+        out = read_csv_packed(path, options);
+    } else {
+        TrackFile whole = read_whole(path, std::move(sniffed), options);
+        out.report = std::move(whole.report);
+        out.format = std::move(whole.format);
+        for (Track& t : whole.tracks) out.tracks.push_back(PackedTrack::pack(std::move(t)));
+    }
+    keep_tracks_with_fixes(out, path);
     return out;
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hull/hull.hpp"
+#include "track/packed_track.hpp"
 #include "track/track.hpp"
 #include "util/error.hpp"
 
@@ -35,10 +36,22 @@ struct TrackFile {
     std::string format;
 };
 
+/// The same with the fixes packed (see packed_track.hpp): what a batch holds while it is read.
+struct PackedTrackFile {
+    std::vector<PackedTrack> tracks;
+    ReadReport report;
+    std::string format;
+};
+
 /// Reads `path` as whichever track format its content is. Throws InputError when the file
 /// cannot be read, is empty, is no track format ("FILE: not a track format shoal reads (CSV
 /// with a header, GPX, GeoJSON, NMEA 0183)"), is broken beyond single rows, or yields no fix.
 TrackFile read_tracks(const std::string& path, const ReadOptions& options = {});
+/// The same with the fixes packed, a CSV file read in blocks (never whole): for big batches,
+/// whose memory is then about 32 bytes per fix.
+PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& options = {});
+/// Unpacks every track (freeing the packed fixes as it goes).
+TrackFile unpack(PackedTrackFile&& packed);
 
 /// The track format of a file's content: "csv", "nmea", "gpx", "geojson", or "" when none.
 /// `path` only breaks ties (its extension); the content decides.

@@ -204,6 +204,42 @@ TEST(CliCheck, PlotIsAnSvgWithTheEvents) {
     EXPECT_NE(text.find("event grounding"), std::string::npos);
 }
 
+TEST(CliCheck, EncountersFindTwoShipsCrossingAtTheSameSpot) {
+    // East of the Isle of Wight, far from land: C sails east along 50.74N, D north along
+    // 1.04W; both reach (50.74N, 1.04W) at 10:05.
+    const fs::path tracks = temp_dir() / "exercise.csv";
+    {
+        std::ofstream out(tracks);
+        out << "mmsi,timestamp,lat,lon,heading\n";
+        for (int i = 0; i <= 10; ++i) {
+            char row[160];
+            std::snprintf(row, sizeof row, "333333333,2024-05-01T10:%02d:00Z,50.7400,%.5f,90\n", i, -1.05 + 0.002 * i);
+            out << row;
+            std::snprintf(row, sizeof row, "444444444,2024-05-01T10:%02d:00Z,%.5f,-1.0400,0\n", i, 50.7335 + 0.0013 * i);
+            out << row;
+        }
+    }
+    const fs::path report = temp_dir() / "exercise.geojson";
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() +
+                            "' -o '" + report.string() + "' --encounters");
+    EXPECT_EQ(r.status, 1) << "a collision counts like a grounding: " << r.err << r.out;
+    EXPECT_TRUE(validates_against_schema(report));
+    const auto doc = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 0);
+    EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 1);
+    bool found = false;
+    for (const auto& f : doc["features"])
+        if (f["properties"]["kind"] == "collision") {
+            found = true;
+            EXPECT_EQ(f["properties"]["track"], "333333333");
+            EXPECT_EQ(f["properties"]["other_track"], "444444444");
+            EXPECT_NEAR(f["geometry"]["coordinates"][0].get<double>(), -1.04, 0.002);
+            EXPECT_NEAR(f["geometry"]["coordinates"][1].get<double>(), 50.74, 0.002);
+        }
+    EXPECT_TRUE(found);
+    EXPECT_EQ(doc["shoal"]["closest_approaches"].size(), 1u);
+}
+
 TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
     const fs::path tracks = solent_tracks();
     std::string reports[2];

@@ -1,6 +1,7 @@
 """Cut a small S-57 cell from US4MD81M (updates .001-.003 applied by GDAL on reading):
-the LNDARE, COALNE and SLCONS features meeting a lon/lat box, whole, with exactly the
-vector primitives (edges, nodes) they use. Usage: make_s57_cut.py SRC.000 OUT.000 W S E N"""
+the features of the chosen layers (default LNDARE, COALNE, SLCONS) meeting a lon/lat box,
+whole, with exactly the vector primitives (edges, nodes) they use.
+Usage: make_s57_cut.py SRC.000 OUT.000 W S E N [LAYER,LAYER,...]"""
 import sys
 from osgeo import gdal, ogr
 
@@ -8,12 +9,13 @@ gdal.UseExceptions()
 gdal.SetConfigOption("OGR_S57_OPTIONS", "RETURN_PRIMITIVES=ON,RETURN_LINKAGES=ON,LNAM_REFS=ON")
 src_path, out_path = sys.argv[1], sys.argv[2]
 w, s, e, n = map(float, sys.argv[3:7])
+layers = sys.argv[7].split(",") if len(sys.argv) > 7 else ["LNDARE", "COALNE", "SLCONS"]
 box = ogr.CreateGeometryFromWkt(f"POLYGON(({w} {s},{e} {s},{e} {n},{w} {n},{w} {s}))")
 src = ogr.Open(src_path)
 EDGE, CNODE, INODE = 130, 120, 110
 want = {EDGE: set(), CNODE: set(), INODE: set()}
 kept = {}
-for name in ("LNDARE", "COALNE", "SLCONS"):
+for name in layers:
     layer = src.GetLayerByName(name)
     kept[name] = []
     for f in layer:

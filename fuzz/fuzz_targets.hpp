@@ -1,0 +1,260 @@
+#pragma once
+/// The fuzzed entry points, shared by the libFuzzer targets (fuzz_*.cpp, built with clang by
+/// scripts/fuzz.sh) and by tests/fuzz_replay_test.cpp, which runs every saved input through
+/// them in the normal build. Each function takes arbitrary bytes and must return normally:
+/// an InputError (or UsageError) is the expected answer to bad input; anything else (a crash,
+/// a sanitizer report, another exception, a broken invariant) is a bug.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <xxhash.h>
+
+#include "check/detector.hpp"
+#include "grid/grid_cache.hpp"
+#include "hull/hull.hpp"
+#include "track/csv_reader.hpp"
+#include "track/nmea_reader.hpp"
+#include "track/packed_track.hpp"
+#include "track/reader.hpp"
+#include "track/track.hpp"
+#include "util/error.hpp"
+
+namespace shoal::fuzz {
+
+/// A broken invariant: report it and abort (libFuzzer then saves the input).
+[[noreturn]] inline void broken(const char* target, const std::string& what) {
+    std::fprintf(stderr, "fuzz %s: invariant broken: %s\n", target, what.c_str());
+    std::abort();
+}
+
+/// Messages quote bad input in short pieces: a 10 MB line must not make a 10 MB message.
+inline constexpr std::size_t max_message = 4096;
+inline void bounded(const char* target, std::string_view message) {
+    if (message.size() > max_message) broken(target, "a message of " + std::to_string(message.size()) + " bytes");
+}
+
+/// What every reader promises about the tracks it returns.
+inline void check_tracks(const char* target, track::TrackFile& file) {
+    for (track::Track& t : file.tracks) {
+        for (std::size_t i = 0; i < t.fixes.size(); ++i) {
+            const track::Fix& f = t.fixes[i];
+            if (!std::isfinite(f.time_s)) broken(target, "fix time is not finite");
+            if (!(std::fabs(f.position.lat) <= 90.0) || !(std::fabs(f.position.lon) <= 180.0))
+                broken(target, "fix position out of range");
+            if (i > 0 && !(t.fixes[i - 1].time_s < f.time_s)) broken(target, "fixes not strictly increasing in time");
+            if (!std::isnan(f.heading_deg) && !(f.heading_deg >= 0.0 && f.heading_deg < 360.0)) broken(target, "heading out of range");
+            if (!std::isnan(f.cog_deg) && !(f.cog_deg >= 0.0 && f.cog_deg < 360.0)) broken(target, "cog out of range");
+            if (!std::isnan(f.sog_kn) && !(f.sog_kn >= 0.0)) broken(target, "sog out of range");
+        }
+        track::resolve_headings(t);
+        for (const track::Fix& f : t.fixes)
+            if (!(f.heading_used_deg >= 0.0 && f.heading_used_deg < 360.0)) broken(target, "resolved heading out of [0, 360)");
+    }
+    if (file.report.messages.size() > file.report.max_messages + 1)  // + the "no date" note
+        broken(target, "more messages kept than the limit");
+    for (const std::string& m : file.report.messages) bounded(target, m);
+}
+
+/// The first byte chooses options; the rest is the file's text.
+inline track::ReadOptions options_from(std::uint8_t flags) {
+    track::ReadOptions o;
+    if (flags & 1) o.date_s = 1.7e9;
+    o.max_messages = flags & 2 ? 0 : 10;
+    return o;
+}
+
+/// A CSV record as the splitter gives it: its line and fields.
+struct Record {
+    std::size_t line = 0;
+    std::vector<std::string> fields;
+    friend bool operator==(const Record&, const Record&) = default;
+};
+
+/// The records of `text` split at once.
+inline std::vector<Record> records_whole(std::string_view text) {
+    std::vector<Record> out;
+    track::CsvSplitter split(text);
+    std::vector<std::string_view> fields;
+    while (split.next(fields)) out.push_back({split.line(), {fields.begin(), fields.end()}});
+    return out;
+}
+
+/// The records of `text` fed to the splitter in blocks of `block` bytes, as read_csv_packed
+/// reads a file (the first block extended to hold the first line; a long record read again
+/// with as much more as the buffer holds).
+inline std::vector<Record> records_in_blocks(std::string_view text, std::size_t block) {
+    std::vector<Record> out;
+    std::string buf;
+    std::size_t pos = 0;
+    auto read_more = [&](std::size_t want) {
+        const std::size_t n = std::min(want, text.size() - pos);
+        buf.append(text.substr(pos, n));
+        pos += n;
+        return pos == text.size();
+    };
+    bool eof = read_more(block);
+    while (!eof && !track::CsvSplitter::holds_first_line(buf)) eof = read_more(block);
+    track::CsvSplitter split(buf, eof);
+    std::vector<std::string_view> fields;
+    for (;;) {
+        while (split.next(fields)) out.push_back({split.line(), {fields.begin(), fields.end()}});
+        if (eof) break;
+        buf.erase(0, split.consumed());
+        eof = read_more(std::max(block, buf.size()));
+        split.more(buf, eof);
+    }
+    return out;
+}
+
+/// Packing a fix and unpacking it gives back the same values (NaN as NaN).
+inline void check_packing(const char* target, const std::uint8_t* data, std::size_t size) {
+    track::PackedTrack packed;
+    std::vector<track::Fix> fixes;
+    auto same = [](double a, double b) { return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0; };
+    for (std::size_t at = 0; at + 48 <= size && fixes.size() < 64; at += 48) {
+        double v[6];
+        std::memcpy(v, data + at, sizeof v);
+        track::Fix f;
+        f.time_s = v[0];
+        f.position = {v[1], v[2]};
+        f.heading_deg = v[3];
+        f.cog_deg = v[4];
+        f.sog_kn = v[5];
+        f.line = at;
+        fixes.push_back(f);
+        packed.push_back(f);
+        // Values as exports write them, which pack without the side table.
+        f.position = {std::round(v[1]) / 1e7, std::round(v[2]) / 1e7};
+        f.heading_deg = std::round(v[3]) / 100.0;
+        fixes.push_back(f);
+        packed.push_back(f);
+    }
+    if (packed.size() != fixes.size()) broken(target, "packed size");
+    const track::Track t = packed.unpack();
+    for (std::size_t i = 0; i < fixes.size(); ++i) {
+        const track::Fix& a = fixes[i];
+        const track::Fix& b = t.fixes[i];
+        if (!same(a.time_s, b.time_s) || !same(a.position.lat, b.position.lat) || !same(a.position.lon, b.position.lon) ||
+            !same(a.heading_deg, b.heading_deg) || !same(a.cog_deg, b.cog_deg) || !same(a.sog_kn, b.sog_kn) || a.line != b.line)
+            broken(target, "a packed fix does not unpack to the same values");
+    }
+}
+
+/// CSV tracks: every dialect the reader detects (separator, header layout, decimal comma,
+/// quoting, BOM, CRLF, Latin-1), the format sniffing that sends a file there, reading in
+/// blocks (the same records as at once, wherever the blocks end) and packed fixes.
+inline void csv_tracks(const std::uint8_t* data, std::size_t size) {
+    if (size < 1) return;
+    const std::string_view text(reinterpret_cast<const char*>(data) + 1, size - 1);
+    (void)track::sniff_format(text, "fuzz.csv");
+    const std::vector<Record> whole = records_whole(text);
+    std::size_t last_line = 0;
+    for (const Record& r : whole) {
+        if (r.line <= last_line) broken("csv_tracks", "record lines do not increase");
+        last_line = r.line;
+        if (r.fields.empty()) broken("csv_tracks", "a record without fields");
+    }
+    if (records_in_blocks(text, 1 + (data[0] >> 2)) != whole) broken("csv_tracks", "records differ when read in blocks");
+    check_packing("csv_tracks", data, size);
+    (void)track::to_utf8(text);
+    try {
+        track::TrackFile f = track::read_csv_text(text, "fuzz.csv", options_from(data[0]));
+        check_tracks("csv_tracks", f);
+    } catch (const InputError& e) {
+        bounded("csv_tracks", e.what());
+    }
+}
+
+/// NMEA 0183 logs.
+inline void nmea(const std::uint8_t* data, std::size_t size) {
+    if (size < 1) return;
+    const std::string_view text(reinterpret_cast<const char*>(data) + 1, size - 1);
+    (void)track::holds_nmea_sentence(text);
+    try {
+        track::TrackFile f = track::read_nmea_text(text, "fuzz.nmea", options_from(data[0]));
+        if (f.tracks.size() != 1) broken("nmea", "an NMEA log is one track");
+        check_tracks("nmea", f);
+    } catch (const InputError& e) {
+        bounded("nmea", e.what());
+    }
+}
+
+/// Ship files (and the --dims text, which is just as hostile).
+inline void ship(const std::uint8_t* data, std::size_t size) {
+    const std::string_view text(reinterpret_cast<const char*>(data), size);
+    try {
+        const hull::Hull h = hull::Hull::parse(text, "fuzz.json");
+        if (h.contour().size() < 3) broken("ship", "a hull with fewer than 3 points");
+        if (!std::isfinite(h.radius()) || !(h.radius() > 0)) broken("ship", "hull radius not finite and > 0");
+        const auto placed = h.placed({1000.0, -2000.0}, 37.5);
+        for (const auto p : placed)
+            if (!std::isfinite(p.x) || !std::isfinite(p.y)) broken("ship", "placed hull point not finite");
+    } catch (const InputError& e) {
+        bounded("ship", e.what());
+    }
+    if (size < 200) {
+        try {
+            (void)hull::Hull::from_dims_string(std::string(text));
+        } catch (const InputError& e) {
+            bounded("ship", e.what());
+        }
+    }
+}
+
+inline constexpr std::size_t grid_header_size = 8 + 4 + 4 + 8 + 8;
+
+/// Grid cache files. When the first byte is odd, the rest gets a correct payload size and
+/// checksum written into its header before parsing, so the fuzzer reaches the payload's
+/// checks (a checksum guards against damage, not against a wrong writer); when even, the
+/// bytes are parsed as they are. A grid that loads must also work: cells queried, poses
+/// checked, and a save/load round trip giving the same bytes.
+inline void grid_cache(const std::uint8_t* data, std::size_t size) {
+    if (size < 1) return;
+    std::vector<char> bytes(reinterpret_cast<const char*>(data) + 1, reinterpret_cast<const char*>(data) + size);
+    if ((data[0] & 1) && bytes.size() >= grid_header_size) {
+        const std::uint64_t payload = bytes.size() - grid_header_size;
+        const std::uint64_t sum = XXH3_64bits(bytes.data() + grid_header_size, payload);
+        std::memcpy(bytes.data() + 16, &payload, 8);
+        std::memcpy(bytes.data() + 24, &sum, 8);
+    }
+    try {
+        const grid::CoastGrid g = grid::GridFile::parse(bytes, "fuzz.shoalgrid");
+        (void)g.land_cell_count();
+        (void)g.memory_bytes();
+        const geo::Box e = g.extent();
+        const geo::XY probes[] = {{(e.minx + e.maxx) / 2, (e.miny + e.maxy) / 2},
+                                  {e.minx, e.miny},
+                                  {e.maxx, e.maxy},
+                                  {e.minx + g.cell_size() * 0.5, e.miny + g.cell_size() * 1.5},
+                                  {e.minx - 100.0, e.maxy + 100.0}};
+        for (const geo::XY p : probes) (void)g.is_land(p);
+        if (data[0] & 2) {
+            const hull::Hull h = hull::Hull::from_dimensions({20, 5, 3, 3});
+            const check::Detector det(g, h);
+            for (const geo::XY p : probes) {
+                check::LocalPose pose;
+                pose.position = p;
+                (void)det.check(pose, {g.cell_size() * 3, true});
+            }
+        }
+        // Saving normalises (a flag byte becomes 0 or 1); after that a round trip is exact.
+        const std::vector<char> saved = grid::GridFile::serialize(g);
+        if (grid::GridFile::serialize(grid::GridFile::parse(saved, "fuzz-saved.shoalgrid")) != saved)
+            broken("grid_cache", "a saved grid does not load and save to the same bytes");
+    } catch (const InputError& e) {
+        bounded("grid_cache", e.what());
+    } catch (const UsageError& e) {
+        bounded("grid_cache", e.what());
+    }
+}
+
+}  // namespace shoal::fuzz

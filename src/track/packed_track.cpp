@@ -1,0 +1,170 @@
+#include "track/packed_track.hpp"
+
+#include <bit>
+#include <cmath>
+#include <limits>
+
+namespace shoal::track {
+
+namespace {
+
+/// `v` as an integer multiple of 1/scale when that reads back as exactly `v`.
+template <typename Int>
+bool scaled(double v, double scale, Int lo, Int hi, Int& out) noexcept {
+    if (!std::isfinite(v)) return false;
+    const double s = std::round(v * scale);
+    if (!(s >= static_cast<double>(lo) && s <= static_cast<double>(hi))) return false;
+    if (s / scale != v || (s == 0.0 && std::signbit(v))) return false;  // -0.0 stays exact too
+    out = static_cast<Int>(s);
+    return true;
+}
+
+/// Heading, COG and SOG in hundredths (`PackedFix::none` for NAN); false when not exact.
+bool hundredths(double v, std::uint16_t& out) noexcept {
+    if (std::isnan(v)) {
+        out = PackedFix::none;
+        return true;
+    }
+    return scaled<std::uint16_t>(v, 100.0, 0, PackedFix::none - 1, out);
+}
+
+double from_hundredths(std::uint16_t c) noexcept { return c == PackedFix::none ? NAN : c / 100.0; }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+PackedFix& PackedFixes::operator[](std::size_t i) noexcept {
+    return const_cast<PackedFix&>(static_cast<const PackedFixes&>(*this)[i]);
+}
+
+const PackedFix& PackedFixes::operator[](std::size_t i) const noexcept {
+    constexpr std::size_t growing_total = first_chunk * ((std::size_t{1} << growing_chunks) - 1);  // 508
+    if (i < growing_total) {
+        const std::size_t k = static_cast<std::size_t>(std::bit_width(i / first_chunk + 1)) - 1;
+        return m_chunks[k][i - first_chunk * ((std::size_t{1} << k) - 1)];
+    }
+    const std::size_t j = i - growing_total;
+    return m_chunks[growing_chunks + j / max_chunk][j % max_chunk];
+}
+
+void PackedFixes::push_back(const PackedFix& f) {
+    if (m_size == m_capacity) {
+        const std::size_t n = chunk_size(m_chunks.size());
+        m_chunks.push_back(std::make_unique_for_overwrite<PackedFix[]>(n));
+        m_capacity += n;
+    }
+    (*this)[m_size++] = f;
+}
+
+void PackedFixes::clear() noexcept {
+    m_chunks.clear();
+    m_chunks.shrink_to_fit();
+    m_size = m_capacity = 0;
+}
+
+std::size_t PackedFixes::capacity_bytes() const noexcept { return m_capacity * sizeof(PackedFix); }
+
+// ---------------------------------------------------------------------------------------------
+
+PackedFix PackedTrack::pack(const Fix& f) {
+    PackedFix p;
+    p.time_s = f.time_s;
+    const bool fits = scaled<std::int32_t>(f.position.lat, 1e7, -900000000, 900000000, p.lat_e7) &&
+                      scaled<std::int32_t>(f.position.lon, 1e7, -1800000000, 1800000000, p.lon_e7) &&
+                      hundredths(f.heading_deg, p.heading_c) && hundredths(f.cog_deg, p.cog_c) &&
+                      hundredths(f.sog_kn, p.sog_c) && f.line <= std::numeric_limits<std::uint32_t>::max();
+    if (fits) {
+        p.line = static_cast<std::uint32_t>(f.line);
+        return p;
+    }
+    extras.push_back({f.position.lat, f.position.lon, f.heading_deg, f.cog_deg, f.sog_kn, f.line});
+    p.extra = static_cast<std::uint32_t>(extras.size());
+    return p;
+}
+
+Fix PackedTrack::fix(std::size_t i) const {
+    const PackedFix& p = fixes[i];
+    Fix f;
+    f.time_s = p.time_s;
+    if (p.extra) {
+        const FixExtra& e = extras[p.extra - 1];
+        f.position = {e.lon, e.lat};
+        f.heading_deg = e.heading_deg;
+        f.cog_deg = e.cog_deg;
+        f.sog_kn = e.sog_kn;
+        f.line = e.line;
+        return f;
+    }
+    f.position = {p.lon_e7 / 1e7, p.lat_e7 / 1e7};
+    f.heading_deg = from_hundredths(p.heading_c);
+    f.cog_deg = from_hundredths(p.cog_c);
+    f.sog_kn = from_hundredths(p.sog_c);
+    f.line = p.line;
+    return f;
+}
+
+Track PackedTrack::unpack() const {
+    Track t;
+    t.id = id;
+    t.name = name;
+    t.file = file;
+    t.dims = dims;
+    t.draught_m = draught_m;
+    t.fixes.reserve(fixes.size());
+    for (std::size_t i = 0; i < fixes.size(); ++i) t.fixes.push_back(fix(i));
+    return t;
+}
+
+void PackedTrack::release_fixes() noexcept {
+    fixes.clear();
+    extras.clear();
+    extras.shrink_to_fit();
+}
+
+PackedTrack PackedTrack::pack(Track&& t) {
+    PackedTrack p;
+    p.id = std::move(t.id);
+    p.name = std::move(t.name);
+    p.file = std::move(t.file);
+    p.dims = t.dims;
+    p.draught_m = t.draught_m;
+    for (const Fix& f : t.fixes) p.push_back(f);
+    t.fixes.clear();
+    t.fixes.shrink_to_fit();
+    return p;
+}
+
+void normalise(PackedTrack& track, ReadReport& report) {
+    const std::size_t n = track.size();
+    bool plain = true;  // every time finite, in order
+    for (std::size_t i = 0; i < n && plain; ++i)
+        plain = std::isfinite(track.fixes[i].time_s) && (i == 0 || !(track.fixes[i].time_s < track.fixes[i - 1].time_s));
+    if (!plain) {
+        // Out of order (rare in real exports): normalise this one track unpacked, then pack it again.
+        Track t = track.unpack();
+        normalise(t, report);
+        track.release_fixes();
+        for (const Fix& f : t.fixes) track.push_back(f);
+        return;
+    }
+    // In order: drop repeated times in place, as normalise(Track&) does.
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (kept > 0 && track.fixes[i].time_s == track.fixes[kept - 1].time_s) {
+            Fix k = track.fix(kept - 1);
+            const Fix r = track.fix(i);
+            if (std::isnan(k.heading_deg)) k.heading_deg = r.heading_deg;
+            if (std::isnan(k.cog_deg)) k.cog_deg = r.cog_deg;
+            if (std::isnan(k.sog_kn)) k.sog_kn = r.sog_kn;
+            track.set(kept - 1, k);
+            ++report.duplicates;
+            continue;
+        }
+        if (kept != i) track.fixes[kept] = track.fixes[i];
+        ++kept;
+    }
+    track.fixes.truncate(kept);
+}
+
+}  // namespace shoal::track

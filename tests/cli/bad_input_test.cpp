@@ -1,0 +1,679 @@
+// The catalogue of bad input (docs/bad-input.md), row by row: what `shoal` does with hostile
+// and broken files, as a user sees it: the exit status, the line on stderr, what was still
+// checked, and what is (not) left on disk. Every row of the catalogue names its test here.
+//
+// The binary runs as a child process (posix_spawn, argv as given: no shell quoting), with the
+// grid cache in the test's own folder. Files are written by the tests themselves, from the
+// project's test data or generated, so every input's defect is visible in the test.
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "test_support.hpp"
+#include "util/atomic_file.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using shoal::test::data_path;
+using shoal::test::TempDir;
+
+struct Outcome {
+    int status = -1;  ///< exit status; 128 + N when killed by signal N
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void write(const fs::path& p, const std::string& bytes) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out << bytes;
+}
+
+/// Starts `argv` (argv[0] a path) with stdout and stderr into files in `dir`, SIGINT at its
+/// default action whatever ours is, and SHOAL_CACHE_DIR in `dir`. Returns the child's pid.
+pid_t spawn(const std::vector<std::string>& argv, const fs::path& dir) {
+    posix_spawn_file_actions_t files;
+    posix_spawn_file_actions_init(&files);
+    posix_spawn_file_actions_addopen(&files, 1, (dir / "stdout.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&files, 2, (dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGINT);
+    sigaddset(&defaults, SIGTERM);
+    posix_spawnattr_setsigdefault(&attr, &defaults);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
+    std::vector<std::string> env_strings;
+    for (char** e = environ; *e; ++e)
+        if (std::string(*e).rfind("SHOAL_CACHE_DIR=", 0) != 0) env_strings.emplace_back(*e);
+    env_strings.push_back("SHOAL_CACHE_DIR=" + (dir / "cache").string());
+    std::vector<char*> args, env;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    for (auto& e : env_strings) env.push_back(e.data());
+    env.push_back(nullptr);
+    pid_t pid = -1;
+    const int rc = posix_spawn(&pid, argv[0].c_str(), &files, &attr, args.data(), env.data());
+    posix_spawn_file_actions_destroy(&files);
+    posix_spawnattr_destroy(&attr);
+    if (rc != 0) return -1;
+    return pid;
+}
+
+Outcome wait_for(pid_t pid, const fs::path& dir) {
+    Outcome r;
+    int st = 0;
+    if (pid > 0 && ::waitpid(pid, &st, 0) == pid)
+        r.status = WIFEXITED(st) ? WEXITSTATUS(st) : WIFSIGNALED(st) ? 128 + WTERMSIG(st) : -1;
+    r.out = slurp(dir / "stdout.txt");
+    r.err = slurp(dir / "stderr.txt");
+    return r;
+}
+
+std::size_t lines_of(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
+
+/// Names of the entries of `dir` (not recursive), sorted.
+std::vector<std::string> entries(const fs::path& dir) {
+    std::vector<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+/// Entries of `dir` that look like a temporary file of shoal's atomic writers.
+std::vector<std::string> temporaries(const fs::path& dir) {
+    std::vector<std::string> out;
+    for (const auto& name : entries(dir))
+        if (name.find(".tmp-") != std::string::npos) out.push_back(name);
+    return out;
+}
+
+/// A row of the generic CSV layout.
+std::string row(const std::string& id, int minute, double lat, double lon) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s,2024-05-01T10:%02d:00Z,%.4f,%.4f,11.9,180,511\n", id.c_str(), minute, lat, lon);
+    return buf;
+}
+
+/// Two vessels in the Solent: A sails south across the Isle of Wight (it grounds), B stays in
+/// open water east of it. 21 + 11 fixes.
+std::string solent_rows() {
+    std::string s;
+    for (int i = 0; i <= 20; ++i) s += row("111111111", i, 50.78 - 0.01 * i, -1.30);
+    for (int i = 0; i <= 10; ++i) s += row("222222222", i, 50.74, -1.05 + 0.002 * i);
+    return s;
+}
+const std::string header = "mmsi,timestamp,lat,lon,sog,cog,heading\n";
+
+/// NMEA sentence with its checksum.
+std::string nmea(const std::string& body) {
+    unsigned sum = 0;
+    for (const char c : body) sum ^= static_cast<unsigned char>(c);
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "*%02X\r\n", sum);
+    return "$" + body + buf;
+}
+
+/// An RMC fix at 10:mm:00 on 2024-05-01 at lat 50.74N, lon `lon_min` minutes west of 1 W.
+std::string rmc(int minute, double lon_min) {
+    char body[120];
+    std::snprintf(body, sizeof body, "GPRMC,10%02d00,A,5044.400,N,001%06.3f,W,8.0,90.0,010524,,,A", minute, lon_min);
+    return nmea(body);
+}
+
+class BadInput : public testing::Test {
+protected:
+    /// One grid of the Solent for every test (built once by `shoal import`).
+    static void SetUpTestSuite() {
+        s_dir = new TempDir;
+        s_grid = s_dir->file("solent.shoalgrid");
+        const pid_t pid = spawn({SHOAL_BINARY, "import", data_path("coast/uk_solent_land.geojson"), "--cell", "2000", "-o", s_grid},
+                                s_dir->path());
+        const Outcome r = wait_for(pid, s_dir->path());
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    static void TearDownTestSuite() {
+        delete s_dir;
+        s_dir = nullptr;
+    }
+
+    /// Runs shoal with `args`; files of the run in the test's folder.
+    Outcome shoal(std::vector<std::string> args) const {
+        args.insert(args.begin(), SHOAL_BINARY);
+        return wait_for(spawn(args, m_dir.path()), m_dir.path());
+    }
+    /// `shoal check` of `tracks` against the Solent grid with a 60 m ship, report to `report`.
+    Outcome check(const std::vector<std::string>& tracks, const std::string& report, std::vector<std::string> more = {}) const {
+        std::vector<std::string> args{"check", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", "2", "-o", report};
+        args.insert(args.end(), tracks.begin(), tracks.end());
+        args.insert(args.end(), more.begin(), more.end());
+        return shoal(args);
+    }
+    std::string file(const std::string& name, const std::string& bytes) const {
+        const std::string p = m_dir.file(name);
+        write(p, bytes);
+        return p;
+    }
+    std::string good_tracks() const { return file("good.csv", header + solent_rows()); }
+    nlohmann::json report(const std::string& path) const { return nlohmann::json::parse(slurp(path)); }
+
+    static TempDir* s_dir;
+    static std::string s_grid;
+    TempDir m_dir;
+};
+TempDir* BadInput::s_dir = nullptr;
+std::string BadInput::s_grid;
+
+// ---------------------------------------------------------------------------------------------
+// Empty and truncated files
+
+TEST_F(BadInput, EmptyTrackFileAloneIsAnErrorAndBesideAGoodOneTheBatchGoesOn) {
+    const std::string empty = file("empty.csv", "");
+    const Outcome alone = check({empty}, m_dir.file("a.geojson"));
+    EXPECT_EQ(alone.status, 2) << alone.err;
+    EXPECT_NE(alone.err.find("empty.csv: empty file (file skipped)"), std::string::npos) << alone.err;
+
+    const std::string r = m_dir.file("b.geojson");
+    const Outcome both = check({empty, good_tracks()}, r);
+    EXPECT_EQ(both.status, 1) << both.err;  // vessel A grounds in the good file
+    EXPECT_NE(both.err.find("empty.csv: empty file"), std::string::npos) << both.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["tracks"], 2);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);
+    EXPECT_NE(doc["shoal"]["problems"].dump().find("empty file"), std::string::npos);
+}
+
+TEST_F(BadInput, BlanksOrAByteOrderMarkAloneAreAnEmptyFile) {
+    const Outcome r = check({file("blank.csv", "\xEF\xBB\xBF\r\n  \n\t\n")}, m_dir.file("r.geojson"));
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("blank.csv: empty file"), std::string::npos) << r.err;
+}
+
+TEST_F(BadInput, HeaderOnlyHasNoUsableFix) {
+    const Outcome r = check({file("header.csv", header)}, m_dir.file("r.geojson"));
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("header.csv: no usable fix (0 rows read, 0 skipped)"), std::string::npos) << r.err;
+}
+
+TEST_F(BadInput, CsvCutShortInTheLastRowSkipsThatRowOnly) {
+    std::string text = header + solent_rows();
+    text += "222222222,2024-05-01T10:11:00Z,50.7";  // cut after the latitude
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("cut.csv", text)}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("cut.csv line 34: has 3 fields, the header needs 4; row skipped"), std::string::npos) << o.err;
+    EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 32);
+}
+
+TEST_F(BadInput, CsvCutShortInsideAQuotedFieldSkipsThatRowOnly) {
+    std::string text = header + solent_rows();
+    text += "222222222,\"2024-05-01T10:11:00Z,50.7";  // a quote never closed: the field runs to the end
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("cut.csv", text)}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("cut.csv line 34: has 2 fields, the header needs 4; row skipped"), std::string::npos) << o.err;
+    EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 32);
+}
+
+TEST_F(BadInput, NmeaLogCutShortSkipsTheCutSentence) {
+    std::string text;
+    for (int m = 0; m < 5; ++m) text += rmc(m, 6.0 + 0.2 * m);
+    text += "$GPRMC,100500,A,5044.400,N,0010";  // cut: no hemisphere, no checksum
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("cut.nmea", text)}, r);
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find("cut.nmea line 6: RMC longitude '0010',"), std::string::npos) << o.err;
+    EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 5);
+}
+
+TEST_F(BadInput, GpxAndGeoJsonCutShortAreUnreadableFilesAndTheBatchGoesOn) {
+    const std::string gpx = file("cut.gpx", slurp(data_path("tracks/track_and_route.gpx")).substr(0, 200));
+    const std::string geojson = file("cut.geojson", slurp(data_path("tracks/line_times.geojson")).substr(0, 200));
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({gpx, geojson, good_tracks()}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("cut.gpx: not a GPX file OGR can read"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("cut.geojson: not valid JSON"), std::string::npos) << o.err;
+    EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 32);
+}
+
+TEST_F(BadInput, ShipFileCutShortSaysWhereTheJsonEnds) {
+    const std::string ship = file("ship.json", slurp(data_path("ships/tanker.json")).substr(0, 60));
+    const Outcome o = shoal({"check", "--coast", s_grid, "--ship", ship, good_tracks(), "-o", m_dir.file("r.geojson")});
+    EXPECT_EQ(o.status, 2);
+    EXPECT_NE(o.err.find("In ship file '" + ship + "': not valid JSON at byte"), std::string::npos) << o.err;
+    EXPECT_EQ(lines_of(o.err), 1u) << o.err;
+    EXPECT_FALSE(fs::exists(m_dir.file("r.geojson")));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Encodings and line ends
+
+TEST_F(BadInput, ByteOrderMarkCrlfAndLatin1NamesReadAsTheCleanFileDoes) {
+    const std::string clean_header = "mmsi,name,timestamp,lat,lon,sog,cog,heading\n";
+    std::string clean = clean_header, dirty = "\xEF\xBB\xBF" + clean_header;
+    dirty.replace(dirty.size() - 1, 1, "\r\n");
+    for (int i = 0; i <= 20; ++i) {
+        std::string r = row("111111111", i, 50.78 - 0.01 * i, -1.30);
+        clean += r.insert(10, "SK\xC3\x85NE,");  // UTF-8
+        std::string d = row("111111111", i, 50.78 - 0.01 * i, -1.30);
+        d.insert(10, "SK\xC5NE,");                // Latin-1
+        d.replace(d.size() - 1, 1, "\r\n");
+        dirty += d;
+    }
+    const std::string rc = m_dir.file("clean.geojson"), rd = m_dir.file("dirty.geojson");
+    const Outcome oc = check({file("clean.csv", clean)}, rc);
+    const Outcome od = check({file("dirty.csv", dirty)}, rd);
+    EXPECT_EQ(oc.status, 1) << oc.err;
+    EXPECT_EQ(od.status, 1) << od.err;
+    EXPECT_TRUE(od.err.empty()) << od.err;
+    auto a = report(rc), b = report(rd);
+    EXPECT_EQ(b["shoal"]["tracks"][0]["name"], "SK\xC3\x85NE");  // valid UTF-8 in the report
+    EXPECT_EQ(a["shoal"]["summary"], b["shoal"]["summary"]);
+    ASSERT_FALSE(a["features"].empty());
+    EXPECT_EQ(a["features"][0]["properties"]["start"], b["features"][0]["properties"]["start"]);
+    EXPECT_EQ(a["features"][0]["geometry"], b["features"][0]["geometry"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Impossible values
+
+TEST_F(BadInput, NanInfinityLatitudeOver90AndLongitude181SkipTheirRowsOnly) {
+    std::string text = header + solent_rows();
+    const char* bad[] = {"NaN,-1.1", "nan,-1.1", "inf,-1.1", "50.7,-inf", "91,-1.1", "95.5,-1.1", "50.7,181", "50.7,-200", ",-1.1", "fifty,-1.1"};
+    int minute = 30;
+    for (const char* b : bad) text += "333333333,2024-05-01T10:" + std::to_string(minute++) + ":00Z," + b + ",8,90,90\n";
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("bad.csv", text)}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    for (const char* why : {"line 34: latitude nan is not a number", "line 36: latitude inf is not a number",
+                            "line 37: longitude -inf is not a number", "line 38: latitude 91 (AIS: not available)",
+                            "line 39: latitude 95.5 is outside [-90, 90]", "line 40: longitude 181 (AIS: not available)",
+                            "line 41: longitude -200 is outside [-180, 180]", "line 42: no latitude",
+                            "line 43: latitude 'fifty' is not a number"})
+        EXPECT_NE(o.err.find(why), std::string::npos) << why << "\n" << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["skipped_rows"], 10);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);  // vessel 333333333 had no good row: no track
+}
+
+// ---------------------------------------------------------------------------------------------
+// Times
+
+TEST_F(BadInput, TimesGoingBackwardsAreSortedAndSaidSo) {
+    std::string rows = solent_rows();
+    // Swap the rows of minutes 3 and 4 of vessel A: two fixes out of order in the file.
+    const std::size_t a = rows.find("10:03:00Z"), b = rows.find("10:04:00Z");
+    const std::size_t a0 = rows.rfind('\n', a) + 1, b0 = rows.rfind('\n', b) + 1, b1 = rows.find('\n', b) + 1;
+    std::string swapped = rows.substr(0, a0) + rows.substr(b0, b1 - b0) + rows.substr(a0, b0 - a0) + rows.substr(b1);
+    const std::string rs = m_dir.file("sorted.geojson"), rb = m_dir.file("backwards.geojson");
+    const Outcome os = check({file("sorted.csv", header + rows)}, rs);
+    const Outcome ob = check({file("backwards.csv", header + swapped)}, rb);
+    EXPECT_EQ(ob.status, 1);
+    EXPECT_NE(ob.err.find("backwards.csv: 1 fixes out of time order (sorted by time)"), std::string::npos) << ob.err;
+    auto s = report(rs), b2 = report(rb);
+    EXPECT_EQ(s["shoal"]["summary"], b2["shoal"]["summary"]);
+    EXPECT_EQ(s["features"].size(), b2["features"].size());
+}
+
+TEST_F(BadInput, RepeatedTimesKeepTheFirstFixAndSaySo) {
+    std::string text = header + solent_rows() + row("222222222", 5, 50.70, -1.0) + row("222222222", 5, 50.70, -1.0);
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("repeated.csv", text)}, r);
+    EXPECT_EQ(o.status, 1);
+    EXPECT_NE(o.err.find("repeated.csv: 2 fixes repeat an earlier time of their vessel (dropped)"), std::string::npos) << o.err;
+    EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 32);
+}
+
+TEST_F(BadInput, TimesWithoutADateAreDated1970WithAWarningOrByDate) {
+    std::string text = "mmsi,time,lat,lon\n";
+    for (int i = 0; i <= 10; ++i) {
+        char buf[80];
+        std::snprintf(buf, sizeof buf, "222222222,T10:%02d:00,50.7400,%.4f\n", i, -1.05 + 0.002 * i);
+        text += buf;
+    }
+    const std::string csv = file("tod.csv", text), r1 = m_dir.file("r1.geojson"), r2 = m_dir.file("r2.geojson");
+    const Outcome o1 = check({csv}, r1);
+    EXPECT_EQ(o1.status, 0) << o1.err;
+    EXPECT_NE(o1.err.find("they are dated 1970-01-01 (give the date to place them)"), std::string::npos) << o1.err;
+    EXPECT_EQ(report(r1)["shoal"]["summary"]["first_fix"], "1970-01-01T10:00:00Z");
+    const Outcome o2 = check({csv}, r2, {"--date", "2024-05-01"});
+    EXPECT_EQ(o2.status, 0) << o2.err;
+    EXPECT_TRUE(o2.err.empty()) << o2.err;
+    EXPECT_EQ(report(r2)["shoal"]["summary"]["first_fix"], "2024-05-01T10:00:00Z");
+
+    std::string log;  // GGA only: times of day, no date anywhere
+    for (int m = 0; m < 4; ++m) {
+        char body[100];
+        std::snprintf(body, sizeof body, "GPGGA,10%02d00,5044.400,N,001%06.3f,W,1,08,0.9,0.0,M,47.0,M,,", m, 6.0 + 0.2 * m);
+        log += nmea(body);
+    }
+    const Outcome o3 = check({file("gga.nmea", log)}, m_dir.file("r3.geojson"));
+    EXPECT_EQ(o3.status, 0) << o3.err;
+    EXPECT_NE(o3.err.find("no date in the log (no RMC or ZDA with a date)"), std::string::npos) << o3.err;
+}
+
+// ---------------------------------------------------------------------------------------------
+// A line of 10 MB
+
+TEST_F(BadInput, ATenMegabyteLineIsOneBadRowWithAShortMessage) {
+    const std::string huge(10'000'000, 'x');
+    const std::string rows = solent_rows();
+    const std::size_t half = rows.find("111111111,2024-05-01T10:10");
+    const std::string csv = file("huge.csv", header + rows.substr(0, half) + "111111111,2024-05-01T10:10:30Z," + huge + ",-1.3\n" +
+                                                 rows.substr(half));
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({csv}, r);
+    EXPECT_EQ(o.status, 1) << o.err.substr(0, 500);
+    EXPECT_NE(o.err.find("huge.csv line 12: latitude 'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx...' is not a number; row skipped"),
+              std::string::npos) << o.err.substr(0, 500);
+    EXPECT_LT(o.err.size(), 400u);
+    EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 32);
+
+    // The same line as the header, and in an NMEA log.
+    const Outcome h = check({file("huge-header.csv", huge + ",time\n" + solent_rows())}, m_dir.file("h.geojson"));
+    EXPECT_EQ(h.status, 2);
+    EXPECT_NE(h.err.find("the header has no latitude"), std::string::npos) << h.err.substr(0, 500);
+    EXPECT_LT(h.err.size(), 400u);
+    std::string log;
+    for (int m = 0; m < 5; ++m) log += rmc(m, 6.0 + 0.2 * m) + (m == 2 ? "$GPRMC," + huge + "\r\n" : "");
+    const Outcome n = check({file("huge.nmea", log)}, m_dir.file("n.geojson"));
+    EXPECT_EQ(n.status, 0) << n.err.substr(0, 500);
+    EXPECT_LT(n.err.size(), 400u);
+    EXPECT_EQ(report(m_dir.file("n.geojson"))["shoal"]["summary"]["fixes"], 5);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Folders and unreadable files where a file is expected
+
+TEST_F(BadInput, AFolderWhereAFileIsExpectedIsNamed) {
+    const fs::path dir = m_dir.path() / "folder";
+    fs::create_directories(dir);
+    const std::string d = dir.string(), good = good_tracks(), r = m_dir.file("r.geojson");
+    struct Case {
+        std::vector<std::string> args;
+        std::string expect;
+    } cases[] = {
+        {{"check", "--coast", d, "--dims", "50,10,5,5", good, "-o", r}, "'" + d + "': not a vector dataset OGR can read"},
+        {{"check", "--coast", s_grid, "--ship", d, good, "-o", r}, "Cannot open ship file '" + d + "': it is a folder"},
+        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", d, "-o", r}, d + ": folder holds no track files"},
+        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", good, "-o", d}, "cannot write '" + d + "': it is a directory"},
+        {{"info", d}, "'" + d + "' is a directory, not a grid file"},
+        {{"probe", "--coast", s_grid, "--dims", "50,10,5,5", d}, "'" + d + "' is a directory, not a CSV file"},
+        {{"import", d, "-o", m_dir.file("x.shoalgrid")}, "'" + d + "': not a vector dataset OGR can read"},
+    };
+    for (const auto& c : cases) {
+        const Outcome o = shoal(c.args);
+        EXPECT_EQ(o.status, 2) << c.args[0] << " " << c.expect;
+        EXPECT_EQ(lines_of(o.err), 1u) << o.err;
+        EXPECT_NE(o.err.find(c.expect), std::string::npos) << o.err;
+    }
+    EXPECT_FALSE(fs::exists(r));
+}
+
+TEST_F(BadInput, AnUnreadableFileIsNamedWithTheReason) {
+    // Root reads any file: run shoal as nobody then (setpriv, util-linux), in a folder it may use.
+    std::vector<std::string> as;
+    if (::geteuid() == 0) {
+        if (!fs::exists("/usr/bin/setpriv")) GTEST_SKIP() << "running as root without /usr/bin/setpriv";
+        as = {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"};
+        fs::permissions(m_dir.path(), fs::perms::all);
+    }
+    const std::string locked_track = file("locked.csv", header + solent_rows());
+    const std::string locked_ship = file("locked.json", slurp(data_path("ships/tanker.json")));
+    const std::string locked_coast = file("locked.geojson", slurp(data_path("coast/uk_solent_land.geojson")));
+    const std::string locked_grid = file("locked.shoalgrid", slurp(s_grid));
+    const std::string grid = file("open.shoalgrid", slurp(s_grid));
+    const std::string good = good_tracks(), r = m_dir.file("r.geojson");
+    for (const auto& p : {locked_track, locked_ship, locked_coast, locked_grid}) fs::permissions(p, fs::perms::none);
+    fs::permissions(grid, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    fs::permissions(good, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    auto run = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), SHOAL_BINARY);
+        args.insert(args.begin(), as.begin(), as.end());
+        return wait_for(spawn(args, m_dir.path()), m_dir.path());
+    };
+    const Outcome t = run({"check", "--coast", grid, "--dims", "50,10,5,5", locked_track, good, "-o", r});
+    EXPECT_EQ(t.status, 1) << t.err;  // the readable file is still checked
+    EXPECT_NE(t.err.find(locked_track + ": cannot read (Permission denied) (file skipped)"), std::string::npos) << t.err;
+    struct Case {
+        std::vector<std::string> args;
+        std::string expect;
+    } cases[] = {
+        {{"check", "--coast", grid, "--ship", locked_ship, good, "-o", r}, "Cannot open ship file '" + locked_ship + "': Permission denied"},
+        {{"check", "--coast", locked_coast, "--dims", "50,10,5,5", good, "-o", r}, "'" + locked_coast + "': cannot read (Permission denied)"},
+        {{"check", "--coast", locked_grid, "--dims", "50,10,5,5", good, "-o", r}, "'" + locked_grid + "': cannot read (Permission denied)"},
+        {{"info", locked_grid}, "cannot open grid file '" + locked_grid + "': Permission denied"},
+        {{"import", locked_coast, "-o", m_dir.file("x.shoalgrid")}, "'" + locked_coast + "': cannot read (Permission denied)"},
+    };
+    for (const auto& c : cases) {
+        const Outcome o = run(c.args);
+        EXPECT_EQ(o.status, 2) << c.expect;
+        EXPECT_EQ(lines_of(o.err), 1u) << o.err;
+        EXPECT_NE(o.err.find(c.expect), std::string::npos) << o.err;
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Grid caches
+
+TEST_F(BadInput, AGridOfAnotherFormatVersionOrCutShortAsksForARebuild) {
+    std::string bytes = slurp(s_grid);
+    std::string other = bytes;
+    other[8] = 99;  // the u32 format version after the 8-byte magic
+    other[9] = other[10] = other[11] = 0;
+    const std::string version = file("other.shoalgrid", other);
+    const std::string cut = file("cut.shoalgrid", bytes.substr(0, bytes.size() / 2));
+    const Outcome v = shoal({"info", version});
+    EXPECT_EQ(v.status, 2);
+    EXPECT_NE(v.err.find("grid file '" + version + "' has format version 99; this shoal reads version"), std::string::npos) << v.err;
+    EXPECT_NE(v.err.find("rebuild it with shoal import"), std::string::npos) << v.err;
+    const Outcome c = check({good_tracks()}, m_dir.file("r.geojson"));  // the good grid still works
+    EXPECT_EQ(c.status, 1) << c.err;
+    for (const std::string& g : {version, cut}) {
+        const Outcome o = shoal({"check", "--coast", g, "--dims", "50,10,5,5", good_tracks(), "-o", m_dir.file("x.geojson")});
+        EXPECT_EQ(o.status, 2) << o.err;
+        EXPECT_EQ(lines_of(o.err), 1u) << o.err;
+        EXPECT_NE(o.err.find("rebuild it with shoal import"), std::string::npos) << o.err;
+        EXPECT_FALSE(fs::exists(m_dir.file("x.geojson")));
+    }
+    const Outcome t = shoal({"info", cut});
+    EXPECT_NE(t.err.find("is damaged: its length is"), std::string::npos) << t.err;
+    EXPECT_NE(t.err.find("(cut short?)"), std::string::npos) << t.err;
+}
+
+TEST_F(BadInput, ACachedGridCutShortOrOfAnotherVersionIsRebuiltWithAWarning) {
+    const std::string coast = data_path("coast/uk_solent_land.geojson");
+    auto run = [&](const std::string& report) {
+        return shoal({"check", "--coast", coast, "--cell", "2000", "--dims", "50,10,5,5", good_tracks(), "-o", report});
+    };
+    const Outcome first = run(m_dir.file("first.geojson"));
+    ASSERT_EQ(first.status, 1) << first.err;
+    const fs::path cache = m_dir.path() / "cache";
+    ASSERT_EQ(entries(cache).size(), 1u);
+    const fs::path cached = cache / entries(cache).front();
+    const std::string bytes = slurp(cached);
+    std::string other = bytes;
+    other[8] = 99;
+    for (const auto& [what, damaged] : {std::pair<std::string, std::string>{"(cut short?)", bytes.substr(0, bytes.size() - 100)},
+                                        std::pair<std::string, std::string>{"has format version 99", other}}) {
+        write(cached, damaged);
+        const std::string r = m_dir.file("again.geojson");
+        const Outcome o = run(r);
+        EXPECT_EQ(o.status, 1) << o.err;
+        EXPECT_NE(o.err.find("shoal: warning: cached grid unusable, rebuilding: "), std::string::npos) << o.err;
+        EXPECT_NE(o.err.find(what), std::string::npos) << o.err;
+        EXPECT_EQ(report(r)["features"], report(m_dir.file("first.geojson"))["features"]);
+        EXPECT_EQ(slurp(cached), bytes) << "the cache is written again, whole";
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Outputs
+
+TEST_F(BadInput, AReportFolderThatDoesNotExistStopsBeforeAnyWork) {
+    const std::string out = (m_dir.path() / "missing" / "r.geojson").string();
+    const Outcome c = check({good_tracks()}, out);
+    const Outcome p = shoal({"probe", "--coast", s_grid, "--dims", "50,10,5,5", file("p.csv", "50.76,-1.3,45\n"), "-o", out});
+    const Outcome i = shoal({"import", data_path("coast/uk_solent_land.geojson"), "-o", out});
+    for (const Outcome* o : {&c, &p, &i}) {
+        EXPECT_EQ(o->status, 2) << o->err;
+        EXPECT_NE(o->err.find("folder '" + (m_dir.path() / "missing").string() + "' does not exist"), std::string::npos) << o->err;
+        EXPECT_TRUE(o->out.empty()) << o->out;  // nothing done: no table, no import figures
+    }
+}
+
+TEST_F(BadInput, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
+    const std::string tracks = good_tracks(), ship = file("ship.json", slurp(data_path("ships/tanker.json")));
+    const std::string poses = file("poses.csv", "50.76,-1.3,45\n"), coast = file("coast.geojson", slurp(data_path("coast/uk_solent_land.geojson")));
+    fs::create_directories(m_dir.path() / "sub");
+    const std::string other_path = (m_dir.path() / "sub" / ".." / "good.csv").string();  // the same file by another path
+    struct Case {
+        std::vector<std::string> args;
+        std::string input;
+    } cases[] = {
+        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", tracks, "-o", tracks}, tracks},
+        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", tracks, "-o", other_path}, tracks},
+        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", m_dir.path().string(), "-o", tracks}, tracks},
+        {{"check", "--coast", coast, "--dims", "50,10,5,5", tracks, "-o", coast}, coast},
+        {{"check", "--coast", s_grid, "--ship", ship, tracks, "-o", ship}, ship},
+        {{"probe", "--coast", s_grid, "--dims", "50,10,5,5", poses, "-o", poses}, poses},
+        {{"import", coast, "-o", coast}, coast},
+    };
+    for (const auto& c : cases) {
+        const std::string before = slurp(c.input);
+        const Outcome o = shoal(c.args);
+        EXPECT_EQ(o.status, 2) << c.args.back();
+        EXPECT_NE(o.err.find("is the input '"), std::string::npos) << o.err;
+        EXPECT_NE(o.err.find("writing it would destroy the input; choose another -o"), std::string::npos) << o.err;
+        EXPECT_EQ(slurp(c.input), before) << c.input << " was changed";
+    }
+}
+
+TEST_F(BadInput, AFullDiskGivesNoSpaceLeftOnDeviceAndLeavesNoTemporary) {
+    if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+    const auto dev_before = entries("/dev");
+    const Outcome c = check({good_tracks()}, "/dev/full");
+    const Outcome p = shoal({"probe", "--coast", s_grid, "--dims", "50,10,5,5", file("p.csv", "50.76,-1.3,45\n"), "-o", "/dev/full"});
+    const Outcome i = shoal({"import", data_path("coast/island_with_lake.geojson"), "-o", "/dev/full"});
+    for (const Outcome* o : {&c, &p, &i}) {
+        EXPECT_EQ(o->status, 2) << o->err;
+        EXPECT_NE(o->err.find("cannot write '/dev/full': No space left on device"), std::string::npos) << o->err;
+    }
+    const Outcome g = check({good_tracks()}, "/dev/full", {"--format", "gpkg"});
+    EXPECT_EQ(g.status, 2);
+    EXPECT_NE(g.err.find("a GeoPackage must be a regular file"), std::string::npos) << g.err;
+    EXPECT_EQ(entries("/dev"), dev_before) << "a file was left in /dev";
+    struct stat st{};
+    ASSERT_EQ(::stat("/dev/full", &st), 0);
+    EXPECT_TRUE(S_ISCHR(st.st_mode)) << "/dev/full is no longer a device";
+    // Devices take a report directly: -o /dev/null works (and no style file is written beside it).
+    const Outcome n = check({good_tracks()}, "/dev/null");
+    EXPECT_EQ(n.status, 1) << n.err;
+    EXPECT_FALSE(fs::exists("/dev/null.qml"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ctrl-C
+
+/// An AIS-like CSV of `rows` rows, 200 vessels interleaved by time, in open water east of the
+/// Isle of Wight.
+std::string many_rows(std::size_t rows) {
+    std::string s = header;
+    s.reserve(rows * 60);
+    char buf[128];
+    for (std::size_t k = 0; k < rows; ++k) {
+        const std::size_t v = k % 200, step = k / 200;
+        const double lat = 50.70 + 0.0002 * static_cast<double>(v), lon = -1.05 + 0.00001 * static_cast<double>(step % 5000);
+        const long t = 1714557600 + static_cast<long>(step) * 10;
+        std::snprintf(buf, sizeof buf, "%zu,%ld,%.5f,%.5f,8.0,90.0,90\n", 300000000 + v, t, lat, lon);
+        s += buf;
+    }
+    return s;
+}
+
+TEST_F(BadInput, CtrlCInTheMiddleOfARunLeavesNoReportAndExits130) {
+    const std::string big = file("big.csv", many_rows(2'000'000));
+    for (const char* name : {"r.geojson", "r.gpkg"}) {
+        const std::string r = m_dir.file(name);
+        const auto before = entries(m_dir.path());
+        const pid_t pid = spawn({SHOAL_BINARY, "check", "--coast", s_grid, "--dims", "50,10,5,5", big, "-o", r}, m_dir.path());
+        ASSERT_GT(pid, 0);
+        std::this_thread::sleep_for(std::chrono::milliseconds(700));
+        int st = 0;
+        ASSERT_EQ(::waitpid(pid, &st, WNOHANG), 0) << "shoal finished before the interrupt: make the input bigger";
+        ::kill(pid, SIGINT);
+        const Outcome o = wait_for(pid, m_dir.path());
+        EXPECT_EQ(o.status, 130) << o.err;
+        EXPECT_NE(o.err.find("shoal: interrupted"), std::string::npos) << o.err;
+        EXPECT_FALSE(fs::exists(r)) << name;
+        EXPECT_TRUE(temporaries(m_dir.path()).empty());
+        auto after = entries(m_dir.path());
+        std::erase_if(after, [](const std::string& n) { return n == "stdout.txt" || n == "stderr.txt" || n == "cache"; });
+        auto expected = before;
+        std::erase_if(expected, [](const std::string& n) { return n == "stdout.txt" || n == "stderr.txt" || n == "cache"; });
+        EXPECT_EQ(after, expected);
+    }
+}
+
+TEST_F(BadInput, CtrlCKeepsTheReportOfAnEarlierRunAsItWas) {
+    // Deterministic: the track file is a pipe that shoal is still reading when interrupted.
+    const fs::path fifo = m_dir.path() / "pipe.csv";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+    const std::string r = file("r.geojson", "{\"an\": \"earlier report\"}\n");
+    const pid_t pid = spawn({SHOAL_BINARY, "check", "--coast", s_grid, "--dims", "50,10,5,5", fifo.string(), "-o", r}, m_dir.path());
+    ASSERT_GT(pid, 0);
+    {
+        std::ofstream pipe(fifo);  // blocks until shoal opens the pipe to read it
+        pipe << header << solent_rows().substr(0, 200) << std::flush;
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        ::kill(pid, SIGINT);
+        const Outcome o = wait_for(pid, m_dir.path());
+        EXPECT_EQ(o.status, 130) << o.err;
+    }
+    EXPECT_EQ(slurp(r), "{\"an\": \"earlier report\"}\n");
+    EXPECT_TRUE(temporaries(m_dir.path()).empty());
+}
+
+TEST(TempFilesInProgress, AreRemovedWithSqliteCompanionsByTheInterruptHandlersCall) {
+    TempDir dir;
+    const std::string tmp = dir.file(".r.gpkg.tmp-1-2"), other = dir.file("keep.txt");
+    {
+        const shoal::TempFileInProgress listed(tmp);
+        for (const std::string& p : {tmp, tmp + "-journal", tmp + "-wal", other}) write(p, "x");
+        shoal::remove_temp_files_in_progress();
+        EXPECT_FALSE(fs::exists(tmp));
+        EXPECT_FALSE(fs::exists(tmp + "-journal"));
+        EXPECT_FALSE(fs::exists(tmp + "-wal"));
+        EXPECT_TRUE(fs::exists(other));
+    }
+    write(tmp, "x");  // no longer listed once its writer is done
+    shoal::remove_temp_files_in_progress();
+    EXPECT_TRUE(fs::exists(tmp));
+}
+
+}  // namespace

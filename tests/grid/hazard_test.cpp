@@ -1,0 +1,740 @@
+// Shallow water and dangers as hazards, on a real S-57 cut (tests/data/coast/
+// US4MD81M_hazard_cut.000: LNDARE, COALNE, DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN off
+// Annapolis). What is checked, each against an answer found independently:
+// - import counts per layer and per kind equal OGR's own attribute filters (DRVAL1 < D ...);
+// - a ship of deeper draught grounds where a shallower one does not;
+// - a wreck with an unknown sounding is a hazard, whatever the limiting depth;
+// - collision and clearance for random poses equal GEOS on the same hazard polygons, built
+//   straight from the OGR layers (land + shallow depth areas + danger polygons and circles),
+//   and what each contact hit is the feature GEOS finds nearest or touching;
+// - the hazard table and the limiting depth survive the cache, whose key includes them;
+// - events say what was hit (land, shallow with its depth, danger with its kind) on
+//   hand-made tracks, through the library and through the `shoal` executable.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <sys/wait.h>
+
+#include <nlohmann/json.hpp>
+
+#include "audit/sweep.hpp"
+#include "check/detector.hpp"
+#include "coast/coastline.hpp"
+#include "grid/grid_cache.hpp"
+#include "hull/hull.hpp"
+#include "test_support.hpp"
+#include "util/error.hpp"
+
+namespace shoal {
+namespace {
+
+using coast::DangerKind;
+using coast::HazardKind;
+using geo::LonLat;
+using geo::XY;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
+
+const std::string& cut() {
+    static const std::string p = test::data_path("coast/US4MD81M_hazard_cut.000");
+    return p;
+}
+
+/// The exact position of the point feature of `layer` nearest to `near`, read with OGR.
+LonLat point_feature(const char* layer, LonLat near) {
+    GDALAllRegister();
+    GDALDatasetUniquePtr ds(GDALDataset::Open(cut().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    LonLat best{NAN, NAN};
+    double best_d = INFINITY;
+    for (auto& f : *ds->GetLayerByName(layer)) {
+        const OGRGeometry* g = f->GetGeometryRef();
+        if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint) continue;
+        const double d = std::hypot(g->toPoint()->getX() - near.lon, g->toPoint()->getY() - near.lat);
+        if (d < best_d) {
+            best_d = d;
+            best = {g->toPoint()->getX(), g->toPoint()->getY()};
+        }
+    }
+    if (!(best_d < 1e-4)) throw std::runtime_error(std::string("no ") + layer + " point there");
+    return best;
+}
+
+// Places in the cut (found with OGR; see tests/data/README.md):
+const LonLat in_depth_3_6{-76.45138, 38.92249};  // inside the DEPARE 3.6-5.4 m, 268 m from its edge
+const LonLat in_depth_5_4{-76.44027, 38.92116};  // inside the DEPARE 5.4-9.1 m, 513 m from its edge
+const LonLat wreck_unknown = point_feature("WRECKS", {-76.43120, 38.94417});      // no VALSOU, in the 5.4 m area
+const LonLat obstruction_5_9 = point_feature("OBSTRN", {-76.42332, 38.93916});    // VALSOU 5.9, in the 9.1 m area
+
+coast::ImportOptions with_limit(std::optional<double> depth_m) {
+    coast::ImportOptions o;
+    o.limiting_depth_m = depth_m;
+    return o;
+}
+
+hull::Hull ship_with_draught(double draught_m) {
+    char json[200];
+    std::snprintf(json, sizeof json, R"({"name": "test ship", "a": 45, "b": 15, "c": 5, "d": 5, "draught": %g})", draught_m);
+    return hull::Hull::parse(json, "test ship");
+}
+
+grid::CoastGrid grid_for(std::optional<double> limit, double cell_m = 300) {
+    grid::BuildRequest r;
+    r.import.limiting_depth_m = limit;
+    r.cell_m = cell_m;
+    std::vector<std::string> warnings;
+    return grid::build_grid({cut()}, r, &warnings);
+}
+
+bool same_depth(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+// ---------------------------------------------------------------- import counts
+
+/// Features of `layer` in the cut that pass the OGR SQL `where`, counted by OGR itself.
+std::uint64_t ogr_count(const std::string& layer, const std::string& where) {
+    GDALAllRegister();
+    GDALDatasetUniquePtr ds(GDALDataset::Open(cut().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    OGRLayer* l = ds->GetLayerByName(layer.c_str());
+    if (!l || l->SetAttributeFilter(where.c_str()) != OGRERR_NONE) throw std::runtime_error("bad filter " + where);
+    std::uint64_t n = 0;
+    for (auto& f : *l) {
+        (void)f;
+        ++n;
+    }
+    return n;
+}
+
+/// Rings (polygons) and points of the features of `layer` that pass `where`.
+std::uint64_t ogr_rings_and_points(const std::string& layer, const std::string& where) {
+    GDALDatasetUniquePtr ds(GDALDataset::Open(cut().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    OGRLayer* l = ds->GetLayerByName(layer.c_str());
+    l->SetAttributeFilter(where.c_str());
+    std::uint64_t n = 0;
+    for (auto& f : *l) {
+        const OGRGeometry* g = f->GetGeometryRef();
+        switch (wkbFlatten(g->getGeometryType())) {
+        case wkbPolygon: n += 1 + static_cast<std::uint64_t>(g->toPolygon()->getNumInteriorRings()); break;
+        case wkbPoint: n += 1; break;
+        default: throw std::runtime_error("unexpected geometry in " + layer);
+        }
+    }
+    return n;
+}
+
+TEST(HazardImport, CountsPerLayerAndKindEqualOgrAttributeFilters) {
+    for (double d : {0.0, 2.0, 3.0, 6.0, 11.0}) {
+        SCOPED_TRACE("limiting depth " + std::to_string(d));
+        const coast::Coastline c = coast::import_coastline({cut()}, with_limit(d));
+        ASSERT_EQ(c.layers.size(), 7u) << "with a limit the default S-57 set has seven layers";
+        char lt[64], ge[64];
+        std::uint64_t shallow_rings = 0, danger_rings = 0;
+        for (const auto& l : c.layers) {
+            SCOPED_TRACE(l.layer);
+            const bool area = l.layer == "DEPARE" || l.layer == "DRGARE";
+            const bool danger = l.layer == "UWTROC" || l.layer == "WRECKS" || l.layer == "OBSTRN";
+            if (!area && !danger) {
+                EXPECT_EQ(l.kind, HazardKind::land);
+                EXPECT_EQ(l.hazards + l.deep_skipped, 0u);
+                continue;
+            }
+            const std::string f = area ? "DRVAL1" : "VALSOU";
+            std::snprintf(lt, sizeof lt, "%s < %.3f", f.c_str(), d);
+            std::snprintf(ge, sizeof ge, "%s >= %.3f", f.c_str(), d);
+            const std::string unknown = f + " IS NULL";
+            EXPECT_EQ(l.kind, area ? HazardKind::shallow : HazardKind::danger);
+            EXPECT_EQ(l.features, ogr_count(l.layer, ""));
+            EXPECT_EQ(l.hazards, ogr_count(l.layer, lt) + ogr_count(l.layer, unknown));
+            EXPECT_EQ(l.unknown_depth, ogr_count(l.layer, unknown));
+            EXPECT_EQ(l.deep_skipped, ogr_count(l.layer, ge));
+            const std::uint64_t rings = ogr_rings_and_points(l.layer, "(" + std::string(lt) + ") OR " + unknown);
+            (area ? shallow_rings : danger_rings) += rings;
+        }
+        EXPECT_EQ(c.count(HazardKind::shallow), shallow_rings);
+        EXPECT_EQ(c.count(HazardKind::danger), danger_rings);
+        EXPECT_EQ(c.count(HazardKind::land), ogr_rings_and_points("LNDARE", "") + ogr_count("COALNE", ""));
+        // Every polyline carries its feature's depth: shallow ones under the limit (or unknown).
+        for (const auto& p : c.polylines)
+            if (p.hazard.kind != HazardKind::land) {
+                EXPECT_TRUE(p.land_left);
+                EXPECT_TRUE(std::isnan(p.hazard.depth_m) || p.hazard.depth_m < d) << p.hazard.depth_m;
+            }
+    }
+    // The cut's own figures, as a sanity check of the filters (tests/data/README.md).
+    EXPECT_EQ(ogr_count("DEPARE", "DRVAL1 < 3"), 4u);
+    EXPECT_EQ(ogr_count("WRECKS", "VALSOU IS NULL"), 2u);
+}
+
+TEST(HazardImport, WithoutALimitOnlyLandIsReadAndDepthLayersAreRefused) {
+    const coast::Coastline c = coast::import_coastline({cut()});
+    ASSERT_EQ(c.layers.size(), 2u);
+    EXPECT_EQ(c.layers[0].layer, "LNDARE");
+    EXPECT_EQ(c.layers[1].layer, "COALNE");
+    EXPECT_EQ(c.count(HazardKind::shallow) + c.count(HazardKind::danger), 0u);
+
+    coast::ImportOptions o;
+    o.layers = {"LNDARE", "DEPARE"};
+    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); },
+                ThrowsMessage<UsageError>(AllOf(HasSubstr("DEPARE"), HasSubstr("limiting depth"))));
+    o = {};
+    o.depth_field = "DRVAL1";
+    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<UsageError>(HasSubstr("--depth-field")));
+    o = with_limit(5);
+    o.danger_radius_m = 0;
+    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<UsageError>(HasSubstr("--danger-radius")));
+    o = with_limit(5);
+    o.depth_field = "NO_SUCH_FIELD";
+    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<InputError>(HasSubstr("NO_SUCH_FIELD")));
+}
+
+TEST(HazardImport, LimitingDepthIsTheHazardDepthElseDraughtPlusUkcElseNone) {
+    EXPECT_EQ(coast::limiting_depth(4.0, 7.0, 1.0), 4.0);
+    EXPECT_EQ(coast::limiting_depth(std::nullopt, 7.0, 1.0), 8.0);
+    EXPECT_EQ(coast::limiting_depth(std::nullopt, 0.0, 1.0), std::nullopt);
+}
+
+TEST(HazardImport, DepthFieldMakesDepthAreasOfOtherSources) {
+    test::TempDir dir;
+    const std::string land = dir.file("land.geojson"), depths = dir.file("depths.geojson");
+    std::ofstream(land) << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},
+        "geometry":{"type":"Polygon","coordinates":[[[0,0],[0.01,0],[0.01,0.01],[0,0.01],[0,0]]]}}]})";
+    std::ofstream(depths) << R"({"type":"FeatureCollection","features":[
+        {"type":"Feature","properties":{"mindepth":2.0},"geometry":{"type":"Polygon","coordinates":[[[0.02,0],[0.03,0],[0.03,0.01],[0.02,0]]]}},
+        {"type":"Feature","properties":{"mindepth":8.0},"geometry":{"type":"Polygon","coordinates":[[[0.04,0],[0.05,0],[0.05,0.01],[0.04,0]]]}},
+        {"type":"Feature","properties":{"mindepth":null},"geometry":{"type":"Polygon","coordinates":[[[0.06,0],[0.07,0],[0.07,0.01],[0.06,0]]]}}]})";
+    coast::ImportOptions o = with_limit(5);
+    o.depth_field = "mindepth";
+    const coast::Coastline c = coast::import_coastline({land, depths}, o);
+    ASSERT_EQ(c.layers.size(), 2u);
+    EXPECT_EQ(c.layers[0].kind, HazardKind::land);
+    EXPECT_EQ(c.layers[1].kind, HazardKind::shallow);
+    EXPECT_EQ(c.layers[1].hazards, 2u);
+    EXPECT_EQ(c.layers[1].unknown_depth, 1u);
+    EXPECT_EQ(c.layers[1].deep_skipped, 1u);
+    ASSERT_EQ(c.polylines.size(), 3u);
+    EXPECT_EQ(c.polylines[0].hazard.kind, HazardKind::land);
+    EXPECT_EQ(c.polylines[1].hazard.kind, HazardKind::shallow);
+    EXPECT_EQ(c.polylines[1].hazard.depth_m, 2.0);
+    EXPECT_TRUE(std::isnan(c.polylines[2].hazard.depth_m));
+}
+
+// ---------------------------------------------------------------- single poses
+
+check::Contact check_at(const grid::CoastGrid& g, const hull::Hull& hull, LonLat where, double heading_deg) {
+    return check::Detector(g, hull).check(check::Pose{where, heading_deg});
+}
+
+TEST(HazardPoses, DeeperDraughtGroundsWhereAShallowerOneDoesNot) {
+    // Inside the 3.6 m depth area: a ship of draught 3.0 m floats, one of 3.5 m with 0.5 m
+    // under-keel clearance (limiting depth 4.0 m) is aground.
+    const hull::Hull shallow = ship_with_draught(3.0), deep = ship_with_draught(3.5);
+    const grid::CoastGrid g3 = grid_for(coast::limiting_depth(std::nullopt, shallow.draught(), 0.0));
+    const grid::CoastGrid g4 = grid_for(coast::limiting_depth(std::nullopt, deep.draught(), 0.5));
+    EXPECT_EQ(g3.source().limiting_depth_m, 3.0);
+    EXPECT_EQ(g4.source().limiting_depth_m, 4.0);
+    for (double heading : {0.0, 30.0, 145.0, 270.0}) {
+        const check::Contact afloat = check_at(g3, shallow, in_depth_3_6, heading);
+        EXPECT_FALSE(afloat.collision);
+        EXPECT_GT(afloat.clearance_m, 150);
+        const check::Contact aground = check_at(g4, deep, in_depth_3_6, heading);
+        ASSERT_TRUE(aground.collision);
+        // Wholly inside the area: the contact names the area holding the hull.
+        ASSERT_LT(aground.polyline, g4.polyline_count());
+        EXPECT_EQ(g4.hazard(aground.polyline).kind, HazardKind::shallow);
+        EXPECT_EQ(g4.hazard(aground.polyline).depth_m, 3.6);
+    }
+    // A charted obstruction of 5.9 m: clear at 5.0 m, a hazard at 6.0 m.
+    const grid::CoastGrid g5 = grid_for(5.0), g6 = grid_for(6.0);
+    EXPECT_FALSE(check_at(g5, shallow, obstruction_5_9, 0).collision);
+    const check::Contact hit = check_at(g6, deep, obstruction_5_9, 0);
+    ASSERT_TRUE(hit.collision);
+    EXPECT_EQ(g6.hazard(hit.polyline).kind, HazardKind::danger);
+    EXPECT_EQ(g6.hazard(hit.polyline).danger, DangerKind::obstruction);
+    EXPECT_EQ(g6.hazard(hit.polyline).depth_m, 5.9);
+}
+
+TEST(HazardPoses, WreckWithAnUnknownSoundingIsAHazardAtAnyLimit) {
+    const hull::Hull ship = ship_with_draught(1.0);
+    for (double limit : {0.5, 5.0, 30.0}) {
+        const grid::CoastGrid g = grid_for(limit);
+        const check::Contact c = check_at(g, ship, wreck_unknown, 90);
+        ASSERT_TRUE(c.collision) << "limit " << limit;
+        EXPECT_EQ(g.hazard(c.polyline).kind, HazardKind::danger);
+        EXPECT_EQ(g.hazard(c.polyline).danger, DangerKind::wreck);
+        EXPECT_TRUE(std::isnan(g.hazard(c.polyline).depth_m));
+    }
+    EXPECT_FALSE(check_at(grid_for(std::nullopt), ship, wreck_unknown, 90).collision) << "land only: the wreck is not there";
+    // 25 m east of the wreck, heading north: the port side (c = 5 m) is 20 m from it, and
+    // the wreck's 16-gon reaches 10 m / cos(pi / 16) = 10.196 m east (a vertex).
+    const grid::CoastGrid g = grid_for(5.0);
+    const Eigen::Vector2d mpd = geo::metres_per_degree(wreck_unknown.lat);
+    const check::Contact beside = check_at(g, ship, {wreck_unknown.lon + 25 / mpd.x(), wreck_unknown.lat}, 0);
+    EXPECT_FALSE(beside.collision);
+    EXPECT_NEAR(beside.clearance_m, 20 - 10 / std::cos(std::numbers::pi / 16), 0.02);
+    EXPECT_EQ(g.hazard(beside.polyline).danger, DangerKind::wreck);
+}
+
+// ---------------------------------------------------------------- against GEOS
+
+/// The hazard features of the cut for a limiting depth, read with OGR alone and projected
+/// vertex by vertex with the grid's frame; point dangers become the documented 16-gons.
+class HazardOracle {
+public:
+    struct Feature {
+        HazardKind kind;
+        DangerKind danger;
+        double depth_m;
+        geo::GeomPtr geom;
+        test::PreparedPtr prepared;
+    };
+
+    HazardOracle(double limit_m, double radius_m, const geo::LocalFrame& frame) : m_frame(frame) {
+        GDALAllRegister();
+        GDALDatasetUniquePtr ds(GDALDataset::Open(cut().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+        std::vector<GEOSGeometry*> parts;
+        struct LayerDef {
+            const char* name;
+            HazardKind kind;
+            DangerKind danger;
+            const char* field;
+        } defs[] = {{"LNDARE", HazardKind::land, DangerKind::none, nullptr},
+                    {"COALNE", HazardKind::land, DangerKind::none, nullptr},
+                    {"DEPARE", HazardKind::shallow, DangerKind::none, "DRVAL1"},
+                    {"DRGARE", HazardKind::shallow, DangerKind::none, "DRVAL1"},
+                    {"UWTROC", HazardKind::danger, DangerKind::rock, "VALSOU"},
+                    {"WRECKS", HazardKind::danger, DangerKind::wreck, "VALSOU"},
+                    {"OBSTRN", HazardKind::danger, DangerKind::obstruction, "VALSOU"}};
+        for (const auto& def : defs) {
+            OGRLayer* l = ds->GetLayerByName(def.name);
+            for (auto& f : *l) {
+                double depth = NAN;
+                if (def.field) {
+                    const int i = f->GetFieldIndex(def.field);
+                    if (f->IsFieldSetAndNotNull(i)) depth = f->GetFieldAsDouble(i);
+                    if (depth >= limit_m) continue;
+                }
+                const OGRGeometry* g = f->GetGeometryRef();
+                const auto type = wkbFlatten(g->getGeometryType());
+                geo::GeomPtr geom{nullptr, {m_ctx.get()}};
+                if (type == wkbPolygon) {
+                    std::vector<std::vector<XY>> rings;
+                    for (const OGRLinearRing* r : *g->toPolygon()) rings.push_back(project(*r));
+                    geom = test::polygon(m_ctx, rings);
+                } else if (type == wkbLineString) {
+                    geom = test::line(m_ctx, project(*g->toLineString()));
+                } else if (type == wkbPoint && def.kind == HazardKind::danger) {
+                    geom = test::polygon(m_ctx, {danger_polygon(*g->toPoint(), radius_m)});
+                } else {
+                    continue;  // point islets of LNDARE are not coastline
+                }
+                if (GEOSisValid_r(m_ctx, geom.get()) != 1) throw std::runtime_error("invalid feature in the cut");
+                parts.push_back(GEOSGeom_clone_r(m_ctx, geom.get()));
+                test::PreparedPtr prepared = test::prepare(m_ctx, geom.get());
+                m_features.push_back({def.kind, def.danger, depth, std::move(geom), std::move(prepared)});
+            }
+        }
+        // Poses are sampled near the outline of all hazards together (shared edges inside
+        // it, such as between two shallow areas, are not where contacts begin).
+        geo::GeomPtr all = test::check(m_ctx, GEOSGeom_createCollection_r(m_ctx, GEOS_GEOMETRYCOLLECTION, parts.data(),
+                                                                          static_cast<unsigned>(parts.size())), "collection");
+        geo::GeomPtr outline = test::check(m_ctx, GEOSBoundary_r(m_ctx, test::check(m_ctx, GEOSUnaryUnion_r(m_ctx, all.get()), "union").get()), "boundary");
+        std::vector<std::vector<XY>> lines;
+        geo::collect_lines(m_ctx, outline.get(), lines);
+        for (const auto& l : lines) m_vertices.insert(m_vertices.end(), l.begin(), l.end());
+    }
+
+    const std::vector<Feature>& features() const noexcept { return m_features; }
+    const std::vector<XY>& vertices() const noexcept { return m_vertices; }
+    geo::GeomPtr hull_polygon(std::vector<XY> ring) const {
+        ring.push_back(ring.front());
+        return test::polygon(m_ctx, {ring});
+    }
+    bool intersects(const Feature& f, const GEOSGeometry* hull) const { return GEOSPreparedIntersects_r(m_ctx, f.prepared.get(), hull) == 1; }
+    double distance(const Feature& f, const GEOSGeometry* hull) const {
+        double d = -1;
+        if (!GEOSPreparedDistance_r(m_ctx, f.prepared.get(), hull, &d)) throw std::runtime_error("GEOSPreparedDistance failed");
+        return d;
+    }
+
+private:
+    std::vector<XY> project(const OGRSimpleCurve& c) {
+        std::vector<XY> out;
+        for (int i = 0; i < c.getNumPoints(); ++i) out.push_back(m_frame.forward(LonLat{c.getX(i), c.getY(i)}));
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    }
+    /// docs/method.md: 16 vertices at radius / cos(pi / 16), counter-clockwise from east,
+    /// turned into degrees with the metres per degree at the danger's latitude.
+    std::vector<XY> danger_polygon(const OGRPoint& p, double radius_m) {
+        const Eigen::Vector2d mpd = geo::metres_per_degree(p.getY());
+        const double r = radius_m / std::cos(std::numbers::pi / 16);
+        std::vector<XY> ring;
+        for (int k = 0; k < 16; ++k) {
+            const double a = 2 * std::numbers::pi * k / 16;
+            ring.push_back(m_frame.forward(LonLat{p.getX() + r * std::cos(a) / mpd.x(), p.getY() + r * std::sin(a) / mpd.y()}));
+        }
+        ring.push_back(ring.front());
+        return ring;
+    }
+
+    geo::GeosContext m_ctx;
+    const geo::LocalFrame& m_frame;
+    std::vector<Feature> m_features;
+    std::vector<XY> m_vertices;
+};
+
+struct Disagreements {
+    int poses = 0, collisions = 0, flag = 0, clearance = 0, hit = 0, ties = 0;
+    double worst_clearance_error = 0;
+};
+
+/// Random poses near the hazards and anywhere in the grid, checked by the detector and by
+/// GEOS on every feature (prepared): collision, clearance and what was hit.
+Disagreements compare_with_geos(double limit_m, double cell_m, int n_poses) {
+    const grid::CoastGrid g = grid_for(limit_m, cell_m);
+    const HazardOracle oracle(limit_m, 10.0, g.frame());
+    const hull::Hull hull = hull::Hull::from_dimensions({90, 30, 14, 16}, "test ship");
+    const check::Detector det(g, hull);
+    std::mt19937_64 rng(4242);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const auto& vs = oracle.vertices();
+    const geo::Box ext = g.extent();
+    Disagreements d;
+    for (int k = 0; k < n_poses; ++k) {
+        XY pos;
+        if (k % 10 == 0) {
+            pos = {ext.minx + unit(rng) * (ext.maxx - ext.minx), ext.miny + unit(rng) * (ext.maxy - ext.miny)};
+        } else {
+            const XY v = vs[rng() % vs.size()];
+            const double r = (k % 3 == 0 ? 5.0 : 4.0 * hull.radius()) * unit(rng), a = 2 * std::numbers::pi * unit(rng);
+            pos = v + XY{r * std::cos(a), r * std::sin(a)};
+        }
+        const double heading = 360 * unit(rng);
+        const check::LocalPose pose = check::place(g.frame(), check::Pose{g.frame().inverse(pos), heading});
+        const std::vector<XY> outline = check::hull_outline(hull, pose);
+        const geo::GeomPtr hp = oracle.hull_polygon(outline);
+        const check::Contact c = det.check(pose, {INFINITY, false});
+        ++d.poses;
+        std::vector<double> dist;
+        bool geos_hit = false;
+        for (const auto& f : oracle.features()) {
+            const bool touches = oracle.intersects(f, hp.get());
+            geos_hit = geos_hit || touches;
+            dist.push_back(touches ? 0.0 : oracle.distance(f, hp.get()));
+        }
+        d.collisions += geos_hit;
+        if (c.collision != geos_hit) {
+            ++d.flag;
+            ADD_FAILURE() << "limit " << limit_m << " pose " << k << " at (" << pos.x << ", " << pos.y << ") heading " << heading
+                          << ": detector collision=" << c.collision << ", GEOS " << geos_hit;
+            continue;
+        }
+        const double best = *std::min_element(dist.begin(), dist.end());
+        if (!geos_hit) {
+            const double err = std::fabs(best - c.clearance_m);
+            d.worst_clearance_error = std::max(d.worst_clearance_error, err);
+            if (!(err <= 1e-3)) {
+                ++d.clearance;
+                ADD_FAILURE() << "limit " << limit_m << " pose " << k << " clearance " << c.clearance_m << " vs GEOS " << best;
+                continue;
+            }
+        }
+        // What was hit: a feature with the reported kind, danger and depth must touch the hull
+        // (collision) or lie at the least distance (clearance), within 1 mm.
+        if (c.polyline >= g.polyline_count()) {
+            ++d.hit;
+            ADD_FAILURE() << "pose " << k << ": no polyline reported";
+            continue;
+        }
+        const coast::Hazard& h = g.hazard(c.polyline);
+        bool found = false;
+        int nearest = 0;
+        for (std::size_t i = 0; i < dist.size(); ++i) {
+            if (dist[i] > best + 1e-3) continue;
+            ++nearest;
+            const auto& f = oracle.features()[i];
+            found = found || (f.kind == h.kind && f.danger == h.danger && same_depth(f.depth_m, h.depth_m));
+        }
+        d.ties += nearest > 1;
+        if (!found) {
+            ++d.hit;
+            ADD_FAILURE() << "limit " << limit_m << " pose " << k << " at (" << pos.x << ", " << pos.y << ") heading " << heading
+                          << ": detector says it hit " << coast::to_string(h.kind) << " " << coast::to_string(h.danger) << " "
+                          << h.depth_m << ", no such feature is nearest by GEOS";
+        }
+    }
+    return d;
+}
+
+TEST(HazardVsGeos, RandomPosesAgreeForALimitOf2Point5Metres) {
+    const Disagreements d = compare_with_geos(2.5, 150, 10000);
+    EXPECT_EQ(d.flag, 0);
+    EXPECT_EQ(d.clearance, 0);
+    EXPECT_EQ(d.hit, 0);
+    EXPECT_GT(d.collisions, 3000);
+    EXPECT_LT(d.collisions, 8500);
+    std::printf("limit 2.5 m: %d poses, %d collisions, %d disagreements (flag %d, clearance %d, hit %d), %d ties, worst clearance error %.3g m\n",
+                d.poses, d.collisions, d.flag + d.clearance + d.hit, d.flag, d.clearance, d.hit, d.ties, d.worst_clearance_error);
+}
+
+TEST(HazardVsGeos, RandomPosesAgreeForALimitOf6Metres) {
+    const Disagreements d = compare_with_geos(6.0, 400, 10000);
+    EXPECT_EQ(d.flag, 0);
+    EXPECT_EQ(d.clearance, 0);
+    EXPECT_EQ(d.hit, 0);
+    EXPECT_GT(d.collisions, 3000);
+    EXPECT_LT(d.collisions, 8500);
+    std::printf("limit 6 m: %d poses, %d collisions, %d disagreements (flag %d, clearance %d, hit %d), %d ties, worst clearance error %.3g m\n",
+                d.poses, d.collisions, d.flag + d.clearance + d.hit, d.flag, d.clearance, d.hit, d.ties, d.worst_clearance_error);
+}
+
+// ---------------------------------------------------------------- cache
+
+TEST(HazardCache, RoundTripKeepsTheHazardTableAndTheKeyIncludesTheLimit) {
+    test::TempDir dir;
+    const grid::CoastGrid g = grid_for(4.0);
+    EXPECT_EQ(g.source().limiting_depth_m, 4.0);
+    EXPECT_EQ(g.source().danger_radius_m, 10.0);
+    EXPECT_GT(g.source().shallow_polylines, 0u);
+    EXPECT_GT(g.source().danger_polylines, 0u);
+    grid::GridFile::save(g, dir.file("h.shoalgrid"));
+    const grid::CoastGrid back = grid::GridFile::load(dir.file("h.shoalgrid"));
+    EXPECT_TRUE(back == g);
+    ASSERT_EQ(back.polyline_count(), g.polyline_count());
+    for (std::uint32_t k = 0; k < g.polyline_count(); ++k) {
+        EXPECT_EQ(back.hazard(k).kind, g.hazard(k).kind);
+        EXPECT_EQ(back.hazard(k).danger, g.hazard(k).danger);
+        EXPECT_TRUE(same_depth(back.hazard(k).depth_m, g.hazard(k).depth_m));
+    }
+    EXPECT_EQ(back.source().shallow_polylines, g.source().shallow_polylines);
+    EXPECT_EQ(back.source().unknown_depth, g.source().unknown_depth);
+    EXPECT_TRUE(std::isnan(grid_for(std::nullopt).source().limiting_depth_m));
+
+    // The cache key: every hazard option changes it.
+    std::set<std::uint64_t> keys;
+    auto key = [&](coast::ImportOptions o) { keys.insert(grid::fingerprint_sources({cut()}, o, "", 300)); };
+    key(with_limit(std::nullopt));
+    key(with_limit(4.0));
+    key(with_limit(4.5));
+    coast::ImportOptions o = with_limit(4.0);
+    o.danger_radius_m = 20;
+    key(o);
+    o = with_limit(4.0);
+    o.depth_field = "DEPTH";
+    key(o);
+    EXPECT_EQ(keys.size(), 5u);
+
+    // load_or_build: one cached grid per limit, each reused.
+    grid::BuildRequest r;
+    r.cell_m = 300;
+    r.cache_dir = dir.file("cache");
+    grid::LoadReport rep;
+    r.import.limiting_depth_m = 4.0;
+    grid::load_or_build({cut()}, r, &rep);
+    EXPECT_EQ(rep.how, "built and cached");
+    r.import.limiting_depth_m = 5.0;
+    const grid::CoastGrid g5 = grid::load_or_build({cut()}, r, &rep);
+    EXPECT_EQ(rep.how, "built and cached");
+    EXPECT_EQ(g5.source().limiting_depth_m, 5.0);
+    r.import.limiting_depth_m = 4.0;
+    const grid::CoastGrid g4 = grid::load_or_build({cut()}, r, &rep);
+    EXPECT_EQ(rep.how, "reused cached grid");
+    EXPECT_EQ(g4.source().limiting_depth_m, 4.0);
+}
+
+// ---------------------------------------------------------------- events
+
+/// A track through points given in the grid's local metres, 5 m/s, headings along the legs.
+track::Track track_through(const geo::LocalFrame& frame, const std::vector<XY>& pts) {
+    track::Track t;
+    t.id = "hand-made";
+    t.file = "hand-made";
+    double time = 1.7e9;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        if (i > 0) time += geo::distance(pts[i - 1], pts[i]) / 5.0;
+        const XY dir = i + 1 < pts.size() ? pts[i + 1] - pts[i] : pts[i] - pts[i - 1];
+        track::Fix f;
+        f.time_s = time;
+        f.position = frame.inverse(pts[i]);
+        f.line = i + 2;
+        f.heading_used_deg = std::fmod(std::atan2(dir.x, dir.y) * 180 / std::numbers::pi + 360, 360);
+        f.heading_source = track::HeadingSource::cog;
+        t.fixes.push_back(f);
+    }
+    return t;
+}
+
+std::vector<audit::Event> events_of(const grid::CoastGrid& g, const std::vector<LonLat>& pts, double margin_m = 50) {
+    std::vector<XY> local;
+    for (const LonLat& p : pts) local.push_back(g.frame().forward(p));
+    audit::SweepOptions o;
+    o.margin_m = margin_m;
+    return audit::sweep_track(track_through(g.frame(), local), g.frame(), audit::DetectorChecker(g, ship_with_draught(4.5)), o).events;
+}
+
+LonLat offset(LonLat p, double east_m, double north_m) {
+    const Eigen::Vector2d mpd = geo::metres_per_degree(p.lat);
+    return {p.lon + east_m / mpd.x(), p.lat + north_m / mpd.y()};
+}
+
+TEST(HazardEvents, EventsSayWhatWasHit) {
+    // Draught 4.5 m + 0.5 m under-keel clearance: limiting depth 5 m.
+    const grid::CoastGrid g = grid_for(coast::limiting_depth(std::nullopt, 4.5, 0.5));
+    ASSERT_EQ(g.source().limiting_depth_m, 5.0);
+
+    // Over the wreck (no sounding), in 5.4 m water that is no hazard for this ship.
+    auto ev = events_of(g, {offset(wreck_unknown, 0, -300), offset(wreck_unknown, 0, 300)});
+    ASSERT_EQ(ev.size(), 1u);
+    EXPECT_EQ(ev[0].kind, audit::EventKind::grounding);
+    EXPECT_EQ(ev[0].hit, HazardKind::danger);
+    EXPECT_EQ(ev[0].danger, DangerKind::wreck);
+    EXPECT_TRUE(std::isnan(ev[0].charted_depth_m));
+
+    // Past it 25 m to the east: a close pass, and it says what it passed.
+    ev = events_of(g, {offset(wreck_unknown, 25, -300), offset(wreck_unknown, 25, 300)});
+    ASSERT_EQ(ev.size(), 1u);
+    EXPECT_EQ(ev[0].kind, audit::EventKind::close_pass);
+    EXPECT_EQ(ev[0].hit, HazardKind::danger);
+    EXPECT_EQ(ev[0].danger, DangerKind::wreck);
+    EXPECT_NEAR(ev[0].min_clearance_m, 20 - 10 / std::cos(std::numbers::pi / 16), 0.05);
+
+    // From the 5.4 m area into the 3.6 m area: aground in shallow water of charted depth 3.6 m.
+    ev = events_of(g, {in_depth_5_4, in_depth_3_6});
+    ASSERT_FALSE(ev.empty());
+    EXPECT_EQ(ev[0].kind, audit::EventKind::grounding);
+    EXPECT_EQ(ev[0].hit, HazardKind::shallow);
+    EXPECT_EQ(ev[0].charted_depth_m, 3.6);
+    EXPECT_EQ(ev[0].danger, DangerKind::none);
+
+    // Westward onto the shore south of Annapolis: against land only, the hull hits land; with
+    // the hazards it is aground from the start, in the drying-to-1.8 m area off the shore.
+    const std::vector<LonLat> ashore = {{-76.4560, 38.90855}, {-76.4651, 38.90855}};
+    const grid::CoastGrid land_only = grid_for(std::nullopt);
+    ev = events_of(land_only, ashore);
+    ASSERT_EQ(ev.size(), 1u);
+    EXPECT_EQ(ev[0].kind, audit::EventKind::grounding);
+    EXPECT_EQ(ev[0].hit, HazardKind::land);
+    EXPECT_TRUE(std::isnan(ev[0].charted_depth_m));
+    ev = events_of(g, ashore);
+    ASSERT_EQ(ev.size(), 1u);
+    EXPECT_EQ(ev[0].kind, audit::EventKind::grounding);
+    EXPECT_EQ(ev[0].hit, HazardKind::shallow);
+    EXPECT_EQ(ev[0].charted_depth_m, 0.0);
+    EXPECT_EQ(ev[0].start_s, 1.7e9) << "aground at the first fix";
+}
+
+// ---------------------------------------------------------------- the executable
+
+struct Outcome {
+    int status = -1;
+    std::string out, err;
+};
+
+Outcome shoal_run(const test::TempDir& dir, const std::string& args) {
+    const std::string err = dir.file("stderr.txt");
+    const std::string cmd = "SHOAL_CACHE_DIR='" + dir.file("cache") + "' '" + SHOAL_BINARY + "' " + args + " 2>'" + err + "'";
+    Outcome r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf;
+    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
+    const int st = ::pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    const std::vector<char> e = test::read_bytes(err);
+    r.err.assign(e.begin(), e.end());
+    return r;
+}
+
+TEST(HazardCli, CheckReportsWhatWasHitAndTheReportValidates) {
+    test::TempDir dir;
+    const std::string ship = dir.file("ship.json"), tracks = dir.file("tracks.csv");
+    std::ofstream(ship) << R"({"name": "Test Ship", "a": 45, "b": 15, "c": 5, "d": 5, "draught": 4.5})";
+    {
+        std::ofstream out(tracks);
+        out << "mmsi,timestamp,lat,lon,heading\n";
+        const LonLat w0 = offset(wreck_unknown, 0, -300), w1 = offset(wreck_unknown, 0, 300);
+        char row[200];
+        std::snprintf(row, sizeof row, "1,2024-05-01T10:00:00Z,%.7f,%.7f,0\n1,2024-05-01T10:02:00Z,%.7f,%.7f,0\n", w0.lat, w0.lon, w1.lat, w1.lon);
+        out << row;
+        std::snprintf(row, sizeof row, "2,2024-05-01T10:00:00Z,%.7f,%.7f,263\n2,2024-05-01T10:04:00Z,%.7f,%.7f,263\n", in_depth_5_4.lat,
+                      in_depth_5_4.lon, in_depth_3_6.lat, in_depth_3_6.lon);
+        out << row;
+    }
+    const std::string report = dir.file("r.geojson");
+    const Outcome r = shoal_run(dir, "check --coast '" + cut() + "' --ship '" + ship + "' --ukc 0.5 --cell 300 '" + tracks +
+                                         "' -o '" + report + "'");
+    ASSERT_EQ(r.status, 1) << r.err << r.out;
+    EXPECT_THAT(r.err, HasSubstr("limiting depth 5.00 m (draught 4.50 m + under-keel clearance 0.50 m)"));
+    const auto doc = nlohmann::json::parse(std::string(test::read_bytes(report).data(), test::read_bytes(report).size()));
+    EXPECT_EQ(doc["shoal"]["limiting_depth_m"], 5.0);
+    std::map<std::string, nlohmann::json> first;  // track -> properties of its first event
+    for (const auto& f : doc["features"])
+        if (!first.count(f["properties"]["track"])) first[f["properties"]["track"]] = f["properties"];
+    ASSERT_EQ(first.size(), 2u);
+    EXPECT_EQ(first["1"]["hit"], "danger");
+    EXPECT_EQ(first["1"]["danger"], "wreck");
+    EXPECT_TRUE(first["1"]["charted_depth_m"].is_null());
+    EXPECT_EQ(first["2"]["hit"], "shallow");
+    EXPECT_EQ(first["2"]["danger"], "");
+    EXPECT_EQ(first["2"]["charted_depth_m"], 3.6);
+    EXPECT_THAT(first["2"]["label"].get<std::string>(), HasSubstr("aground shallow 3.6 m "));
+    EXPECT_THAT(first["1"]["label"].get<std::string>(), HasSubstr("aground wreck "));
+
+    // The report matches its schema (Debian's python3-jsonschema).
+    const std::string schema = std::filesystem::path(SHOAL_TEST_DATA).parent_path().parent_path().parent_path().string() +
+                               "/schemas/report.schema.json";
+    const std::string validate = "/usr/bin/python3 -c \"import json,sys,jsonschema; jsonschema.validate(json.load(open(sys.argv[1])), "
+                                 "json.load(open(sys.argv[2])))\" '" + report + "' '" + schema + "'";
+    EXPECT_EQ(std::system(validate.c_str()), 0);
+
+    // The GeoPackage has the same fields.
+    const std::string gpkg = dir.file("r.gpkg");
+    ASSERT_EQ(shoal_run(dir, "check --coast '" + cut() + "' --ship '" + ship + "' --ukc 0.5 --cell 300 '" + tracks + "' -o '" + gpkg + "'").status, 1);
+    GDALDatasetUniquePtr ds(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR));
+    ASSERT_TRUE(ds);
+    OGRLayer* events = ds->GetLayerByName("events");
+    ASSERT_TRUE(events);
+    std::set<std::string> hits;
+    for (auto& f : *events) {
+        hits.insert(f->GetFieldAsString("hit"));
+        if (std::string(f->GetFieldAsString("hit")) == "shallow") {
+            EXPECT_DOUBLE_EQ(f->GetFieldAsDouble("charted_depth_m"), 3.6);
+        }
+        if (std::string(f->GetFieldAsString("hit")) == "danger") {
+            EXPECT_STREQ(f->GetFieldAsString("danger"), "wreck");
+            EXPECT_FALSE(f->IsFieldSetAndNotNull(f->GetFieldIndex("charted_depth_m")));
+        }
+    }
+    EXPECT_EQ(hits, (std::set<std::string>{"danger", "shallow"}));
+}
+
+TEST(HazardCli, ImportInfoAndProbeWithAHazardDepth) {
+    test::TempDir dir;
+    const std::string g = dir.file("h.shoalgrid");
+    const Outcome imp = shoal_run(dir, "import '" + cut() + "' --hazard-depth 4 --cell 300 -o '" + g + "'");
+    ASSERT_EQ(imp.status, 0) << imp.err;
+    const Outcome info = shoal_run(dir, "info '" + g + "'");
+    ASSERT_EQ(info.status, 0) << info.err;
+    EXPECT_THAT(info.out, HasSubstr("limiting depth 4.00 m"));
+    const std::string poses = dir.file("poses.csv");
+    char row[120];
+    std::snprintf(row, sizeof row, "%.7f,%.7f,30\n", in_depth_3_6.lat, in_depth_3_6.lon);
+    std::ofstream(poses) << row;
+    // Built for 4 m: the 3.6 m area is a hazard. From the chart itself at 3 m: it is not.
+    const Outcome deep = shoal_run(dir, "probe --coast '" + g + "' --dims 45,15,5,5 '" + poses + "'");
+    ASSERT_EQ(deep.status, 0) << deep.err;
+    EXPECT_THAT(deep.out, HasSubstr(",30.0,1,0.000"));
+    const Outcome shallow = shoal_run(dir, "probe --coast '" + cut() + "' --hazard-depth 3 --cell 300 --dims 45,15,5,5 '" + poses + "'");
+    ASSERT_EQ(shallow.status, 0) << shallow.err;
+    EXPECT_THAT(shallow.out, HasSubstr(",30.0,0,"));
+    // A grid built for another limit than asked for: a warning says so.
+    const Outcome mismatch = shoal_run(dir, "probe --coast '" + g + "' --hazard-depth 5 --dims 45,15,5,5 '" + poses + "'");
+    EXPECT_THAT(mismatch.err, HasSubstr("built for the limiting depth 4.00 m, not 5.00 m"));
+}
+
+}  // namespace
+}  // namespace shoal
