@@ -101,7 +101,7 @@ void print_grid(const grid::CoastGrid& g) {
 void add_hazard_options(CLI::App& sub, coast::ImportOptions& import) {
     sub.add_option("--hazard-depth", import.limiting_depth_m,
                    "Limiting depth in metres: depth areas shallower and dangers with a sounding under it (or unknown) are "
-                   "hazards like land (default: the ship's draught + --ukc where there is a ship with a draught; else land only)");
+                   "hazards like land (default: none, land only; for probe and check the ship's draught + --ukc when it has one)");
     sub.add_option("--depth-field", import.depth_field,
                    "Attribute holding a polygon's least depth in sources other than S-57 (DEPARE/DRGARE use DRVAL1)");
     sub.add_option("--danger-radius", import.danger_radius_m, "Radius in metres of the circle a point danger becomes (default 10)")
@@ -112,7 +112,8 @@ class ImportCommand final : public Command {
 public:
     void setup(CLI::App& app) override {
         m_sub = app.add_subcommand("import", "Build a coastline grid and save it as a .shoalgrid cache file");
-        m_sub->footer("Usage: shoal import COAST... -o GRID [--cell M | --ship-length M] [--crs CRS] [--layer NAME]");
+        m_sub->footer("Usage: shoal import COAST... -o GRID [--cell M | --ship-length M] [--crs CRS] [--layer NAME] [--hazard-depth M]\n"
+                      "With --hazard-depth, depth areas shallower and dangers with a sounding under it (or none) are hazards like land.");
         m_sub->add_option("coast", m_inputs, "Coastline sources: any OGR vector file (Shapefile, GeoJSON, GeoPackage, S-57 .000, ...)")
             ->required();
         m_sub->add_option("-o,--output", m_output, "Grid file to write (.shoalgrid)")->required();
@@ -121,7 +122,8 @@ public:
         m_sub->add_option("--ship-length", m_request.ship_length_m, "Largest ship length in metres: cell = 2.5 x this")
             ->check(CLI::PositiveNumber)->excludes(cell);
         m_sub->add_option("--crs", m_request.crs, "Projected CRS for the local frame (default: transverse Mercator centred on the data)");
-        m_sub->add_option("--layer", m_request.import.layers, "Layer(s) to read (default: all; S-57: LNDARE and COALNE)")
+        m_sub->add_option("--layer", m_request.import.layers,
+                          "Layer(s) to read (default: all; S-57: LNDARE and COALNE, with --hazard-depth also DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN)")
             ->delimiter(',');
         m_sub->add_option("--source-crs", m_request.import.source_crs, "CRS of sources that carry none (default: WGS84 if all coordinates are lon/lat)");
         add_hazard_options(*m_sub, m_request.import);
@@ -255,7 +257,8 @@ public:
         m_sub = app.add_subcommand("probe", "Check single poses (lat,lon,heading per CSV row): collision and clearance");
         m_sub->footer("Usage: shoal probe --coast COAST_OR_GRID --ship SHIP.json POSES.csv [-o OUT.csv]\n"
                       "Writes lat,lon,heading,collision,clearance_m per pose (collision 0/1; clearance 0 when touching).\n"
-                      "A bad row is reported on stderr with its line number and skipped.");
+                      "A bad row is reported on stderr with its line number and skipped.\n"
+                      "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc.");
         m_opts.add(*m_sub);
         m_sub->add_option("poses", m_poses, "CSV of poses: lat,lon,heading (a header line is optional)")->required();
         m_sub->add_option("-o,--output", m_output, "Write the CSV here instead of stdout (written atomically)");
@@ -315,6 +318,7 @@ public:
         m_sub = app.add_subcommand("check", "Audit voyage tracks: sweep the hull along them, report groundings and close passes");
         m_sub->footer("Usage: shoal check --coast COAST_OR_GRID --ship SHIP.json TRACK... -o REPORT.geojson [--margin M] [--step M] [--jobs N]\n"
                       "Tracks: CSV with a header (AIS exports too), GPX, GeoJSON, NMEA 0183 logs; folders are searched.\n"
+                      "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc.\n"
                       "Exit status: 0 no grounding, 1 at least one grounding, 2 bad usage or unreadable input.");
         m_opts.add(*m_sub);
         m_sub->add_option("tracks", m_tracks, "Track files or folders")->required();

@@ -59,7 +59,10 @@ for expr, colour, shape, size, label in (
         ("\"kind\" = 'grounding' AND (\"hit\" IS NULL OR \"hit\" NOT IN ('shallow', 'danger'))", RED, "circle", "4.2", "aground on land"),
         ("\"kind\" = 'grounding' AND \"hit\" = 'shallow'", BLUE, "square", "4.0", "aground in shallow water"),
         ("\"kind\" = 'grounding' AND \"hit\" = 'danger'", PURPLE, "star", "5.2", "aground on a danger (rock, wreck, obstruction)"),
-        ("\"kind\" = 'close_pass'", AMBER, "triangle", "4.2", "close pass")):
+        ("\"kind\" = 'close_pass'", AMBER, "triangle", "4.2", "close pass"),
+        # a GeoJSON report holds exercise-mode encounters in the same layer: drawn as in `encounters`
+        ("\"kind\" = 'collision'", MAGENTA, "diamond", "4.2", "ship-ship collision"),
+        ("\"kind\" = 'close_quarters'", VIOLET, "pentagon", "4.2", "ship-ship close quarters")):
     sym = QgsMarkerSymbol.createSimple({"name": shape, "color": colour, "outline_color": "#000000",
                                         "outline_width": "0.4", "size": size})
     root.appendChild(QgsRuleBasedRenderer.Rule(sym, 0, 0, expr, label))

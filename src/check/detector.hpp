@@ -37,8 +37,9 @@ struct Contact {
     geo::XY hull_point;             ///< hull point realising the clearance (a contact point on collision)
     geo::XY coast_point;            ///< coastline point realising the clearance (same point on collision)
     /// The grid polyline realising the contact or the clearance (grid::CoastGrid::hazard says
-    /// what it bounds): the one crossed or nearest; for a hull wholly inside land or a hazard,
-    /// the nearest boundary with the hull on its land side. no_polyline when none is known.
+    /// what it bounds): the one a hull edge crosses, or the nearest; for a hull wholly inside
+    /// land or a hazard, the nearest ring that holds it (CoastGrid::enclosing_polyline); for a
+    /// hazard wholly under the hull, that hazard. no_polyline when none is known.
     std::uint32_t polyline = grid::CoastGrid::no_polyline;
 };
 

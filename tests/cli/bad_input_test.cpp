@@ -597,6 +597,19 @@ TEST_F(BadInput, AFullDiskGivesNoSpaceLeftOnDeviceAndLeavesNoTemporary) {
     EXPECT_FALSE(fs::exists("/dev/null.qml"));
 }
 
+TEST_F(BadInput, AWriteThatFailsHalfwayLeavesNoTemporaryAndTheEarlierReport) {
+    // A regular file that cannot grow past 4 KB (ulimit -f, SIGXFSZ ignored): the report's
+    // temporary file fills up as on a full disk.
+    const std::string r = file("r.geojson", "{\"an\": \"earlier report\"}\n");
+    const std::string cmd = "trap '' XFSZ; ulimit -f 4; exec '" + std::string(SHOAL_BINARY) + "' check --coast '" + s_grid +
+                            "' --dims 50,10,5,5 '" + good_tracks() + "' -o '" + r + "'";
+    const Outcome o = wait_for(spawn({"/bin/sh", "-c", cmd}, m_dir.path()), m_dir.path());
+    EXPECT_EQ(o.status, 2) << o.err;
+    EXPECT_NE(o.err.find("cannot write '" + r + "': File too large"), std::string::npos) << o.err;
+    EXPECT_EQ(slurp(r), "{\"an\": \"earlier report\"}\n");
+    EXPECT_TRUE(temporaries(m_dir.path()).empty());
+}
+
 // ---------------------------------------------------------------------------------------------
 // Ctrl-C
 

@@ -6,7 +6,8 @@
 // - a wreck with an unknown sounding is a hazard, whatever the limiting depth;
 // - collision and clearance for random poses equal GEOS on the same hazard polygons, built
 //   straight from the OGR layers (land + shallow depth areas + danger polygons and circles),
-//   and what each contact hit is the feature GEOS finds nearest or touching;
+//   and what each contact hit is the feature GEOS finds nearest or touching (also on the
+//   whole US4MD81M cell when ../shared/data is there);
 // - the hazard table and the limiting depth survive the cache, whose key includes them;
 // - events say what was hit (land, shallow with its depth, danger with its kind) on
 //   hand-made tracks, through the library and through the `shoal` executable.
@@ -84,12 +85,12 @@ hull::Hull ship_with_draught(double draught_m) {
     return hull::Hull::parse(json, "test ship");
 }
 
-grid::CoastGrid grid_for(std::optional<double> limit, double cell_m = 300) {
+grid::CoastGrid grid_for(std::optional<double> limit, double cell_m = 300, const std::string& chart = cut()) {
     grid::BuildRequest r;
     r.import.limiting_depth_m = limit;
     r.cell_m = cell_m;
     std::vector<std::string> warnings;
-    return grid::build_grid({cut()}, r, &warnings);
+    return grid::build_grid({chart}, r, &warnings);
 }
 
 bool same_depth(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
@@ -281,8 +282,9 @@ TEST(HazardPoses, WreckWithAnUnknownSoundingIsAHazardAtAnyLimit) {
 
 // ---------------------------------------------------------------- against GEOS
 
-/// The hazard features of the cut for a limiting depth, read with OGR alone and projected
-/// vertex by vertex with the grid's frame; point dangers become the documented 16-gons.
+/// The hazard features of an S-57 chart for a limiting depth, read with OGR alone and
+/// projected vertex by vertex with the grid's frame; point dangers become the documented
+/// 16-gons; an invalid polygon is repaired with GEOSMakeValid, as the import does.
 class HazardOracle {
 public:
     struct Feature {
@@ -291,11 +293,12 @@ public:
         double depth_m;
         geo::GeomPtr geom;
         test::PreparedPtr prepared;
+        geo::Box box;
     };
 
-    HazardOracle(double limit_m, double radius_m, const geo::LocalFrame& frame) : m_frame(frame) {
+    HazardOracle(const std::string& chart, double limit_m, double radius_m, const geo::LocalFrame& frame) : m_frame(frame) {
         GDALAllRegister();
-        GDALDatasetUniquePtr ds(GDALDataset::Open(cut().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+        GDALDatasetUniquePtr ds(GDALDataset::Open(chart.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
         std::vector<GEOSGeometry*> parts;
         struct LayerDef {
             const char* name;
@@ -311,6 +314,7 @@ public:
                     {"OBSTRN", HazardKind::danger, DangerKind::obstruction, "VALSOU"}};
         for (const auto& def : defs) {
             OGRLayer* l = ds->GetLayerByName(def.name);
+            if (!l) continue;
             for (auto& f : *l) {
                 double depth = NAN;
                 if (def.field) {
@@ -319,8 +323,10 @@ public:
                     if (depth >= limit_m) continue;
                 }
                 const OGRGeometry* g = f->GetGeometryRef();
+                if (!g) continue;
                 const auto type = wkbFlatten(g->getGeometryType());
                 geo::GeomPtr geom{nullptr, {m_ctx.get()}};
+                m_box = {};
                 if (type == wkbPolygon) {
                     std::vector<std::vector<XY>> rings;
                     for (const OGRLinearRing* r : *g->toPolygon()) rings.push_back(project(*r));
@@ -332,10 +338,13 @@ public:
                 } else {
                     continue;  // point islets of LNDARE are not coastline
                 }
-                if (GEOSisValid_r(m_ctx, geom.get()) != 1) throw std::runtime_error("invalid feature in the cut");
+                if (GEOSisValid_r(m_ctx, geom.get()) != 1) {
+                    geom = test::check(m_ctx, GEOSMakeValid_r(m_ctx, geom.get()), "make valid");
+                    ++m_repaired;
+                }
                 parts.push_back(GEOSGeom_clone_r(m_ctx, geom.get()));
                 test::PreparedPtr prepared = test::prepare(m_ctx, geom.get());
-                m_features.push_back({def.kind, def.danger, depth, std::move(geom), std::move(prepared)});
+                m_features.push_back({def.kind, def.danger, depth, std::move(geom), std::move(prepared), m_box});
             }
         }
         // Poses are sampled near the outline of all hazards together (shared edges inside
@@ -349,6 +358,7 @@ public:
     }
 
     const std::vector<Feature>& features() const noexcept { return m_features; }
+    int repaired() const noexcept { return m_repaired; }
     const std::vector<XY>& vertices() const noexcept { return m_vertices; }
     geo::GeomPtr hull_polygon(std::vector<XY> ring) const {
         ring.push_back(ring.front());
@@ -366,6 +376,7 @@ private:
         std::vector<XY> out;
         for (int i = 0; i < c.getNumPoints(); ++i) out.push_back(m_frame.forward(LonLat{c.getX(i), c.getY(i)}));
         out.erase(std::unique(out.begin(), out.end()), out.end());
+        for (const XY& q : out) m_box.extend(q);
         return out;
     }
     /// docs/method.md: 16 vertices at radius / cos(pi / 16), counter-clockwise from east,
@@ -377,6 +388,7 @@ private:
         for (int k = 0; k < 16; ++k) {
             const double a = 2 * std::numbers::pi * k / 16;
             ring.push_back(m_frame.forward(LonLat{p.getX() + r * std::cos(a) / mpd.x(), p.getY() + r * std::sin(a) / mpd.y()}));
+            m_box.extend(ring.back());
         }
         ring.push_back(ring.front());
         return ring;
@@ -386,6 +398,8 @@ private:
     const geo::LocalFrame& m_frame;
     std::vector<Feature> m_features;
     std::vector<XY> m_vertices;
+    geo::Box m_box;  // of the feature being read
+    int m_repaired = 0;
 };
 
 struct Disagreements {
@@ -393,11 +407,18 @@ struct Disagreements {
     double worst_clearance_error = 0;
 };
 
+/// Distance between two boxes (0 when they meet).
+double box_distance(const geo::Box& a, const geo::Box& b) {
+    const double dx = std::max({0.0, a.minx - b.maxx, b.minx - a.maxx}), dy = std::max({0.0, a.miny - b.maxy, b.miny - a.maxy});
+    return std::hypot(dx, dy);
+}
+
 /// Random poses near the hazards and anywhere in the grid, checked by the detector and by
-/// GEOS on every feature (prepared): collision, clearance and what was hit.
-Disagreements compare_with_geos(double limit_m, double cell_m, int n_poses) {
-    const grid::CoastGrid g = grid_for(limit_m, cell_m);
-    const HazardOracle oracle(limit_m, 10.0, g.frame());
+/// GEOS on every feature (prepared) that may be nearest: collision, clearance and what was hit.
+Disagreements compare_with_geos(double limit_m, double cell_m, int n_poses, const std::string& chart = cut()) {
+    const grid::CoastGrid g = grid_for(limit_m, cell_m, chart);
+    const HazardOracle oracle(chart, limit_m, 10.0, g.frame());
+    const auto& features = oracle.features();
     const hull::Hull hull = hull::Hull::from_dimensions({90, 30, 14, 16}, "test ship");
     const check::Detector det(g, hull);
     std::mt19937_64 rng(4242);
@@ -420,12 +441,22 @@ Disagreements compare_with_geos(double limit_m, double cell_m, int n_poses) {
         const geo::GeomPtr hp = oracle.hull_polygon(outline);
         const check::Contact c = det.check(pose, {INFINITY, false});
         ++d.poses;
-        std::vector<double> dist;
+        // Features by the distance of their boxes from the hull's; those whose box lies
+        // farther than the least distance found cannot be nearest (nor touch).
+        geo::Box hb;
+        for (const XY& q : outline) hb.extend(q);
+        std::vector<std::pair<double, std::size_t>> order;
+        for (std::size_t i = 0; i < features.size(); ++i) order.push_back({box_distance(hb, features[i].box), i});
+        std::sort(order.begin(), order.end());
+        std::vector<double> dist(features.size(), INFINITY);
         bool geos_hit = false;
-        for (const auto& f : oracle.features()) {
-            const bool touches = oracle.intersects(f, hp.get());
+        double least = INFINITY;
+        for (const auto& [box_d, i] : order) {
+            if (box_d > least + 1e-3) break;
+            const bool touches = box_d == 0 && oracle.intersects(features[i], hp.get());
             geos_hit = geos_hit || touches;
-            dist.push_back(touches ? 0.0 : oracle.distance(f, hp.get()));
+            dist[i] = touches ? 0.0 : oracle.distance(features[i], hp.get());
+            least = std::min(least, dist[i]);
         }
         d.collisions += geos_hit;
         if (c.collision != geos_hit) {
@@ -457,7 +488,7 @@ Disagreements compare_with_geos(double limit_m, double cell_m, int n_poses) {
         for (std::size_t i = 0; i < dist.size(); ++i) {
             if (dist[i] > best + 1e-3) continue;
             ++nearest;
-            const auto& f = oracle.features()[i];
+            const auto& f = features[i];
             found = found || (f.kind == h.kind && f.danger == h.danger && same_depth(f.depth_m, h.depth_m));
         }
         d.ties += nearest > 1;
@@ -490,6 +521,22 @@ TEST(HazardVsGeos, RandomPosesAgreeForALimitOf6Metres) {
     EXPECT_GT(d.collisions, 3000);
     EXPECT_LT(d.collisions, 8500);
     std::printf("limit 6 m: %d poses, %d collisions, %d disagreements (flag %d, clearance %d, hit %d), %d ties, worst clearance error %.3g m\n",
+                d.poses, d.collisions, d.flag + d.clearance + d.hit, d.flag, d.clearance, d.hit, d.ties, d.worst_clearance_error);
+}
+
+/// The whole US4MD81M cell (updates applied) from the project's shared data, when it is there:
+/// $SHOAL_SHARED_DATA, or ../shared/data beside the repository.
+TEST(HazardVsGeos, WholeSharedS57CellAgrees) {
+    std::filesystem::path shared = std::getenv("SHOAL_SHARED_DATA")
+                                       ? std::filesystem::path(std::getenv("SHOAL_SHARED_DATA"))
+                                       : std::filesystem::path(SHOAL_TEST_DATA).parent_path().parent_path().parent_path().parent_path() / "shared" / "data";
+    const std::filesystem::path cell = shared / "coast" / "s57" / "US4MD81M" / "US4MD81M.000";
+    if (!std::filesystem::exists(cell)) GTEST_SKIP() << cell << " not found (set SHOAL_SHARED_DATA)";
+    const Disagreements d = compare_with_geos(4.0, 500, 10000, cell.string());
+    EXPECT_EQ(d.flag, 0);
+    EXPECT_EQ(d.clearance, 0);
+    EXPECT_EQ(d.hit, 0);
+    std::printf("US4MD81M, limit 4 m: %d poses, %d collisions, %d disagreements (flag %d, clearance %d, hit %d), %d ties, worst clearance error %.3g m\n",
                 d.poses, d.collisions, d.flag + d.clearance + d.hit, d.flag, d.clearance, d.hit, d.ties, d.worst_clearance_error);
 }
 
