@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_data.hpp"
 #include "check/brute_force.hpp"
 #include "check/detector.hpp"
 #include "coast/coastline.hpp"
@@ -95,32 +96,9 @@ struct Options {
     bool gbench = false;
 };
 
-std::string default_data_dir() {
-    if (const char* env = std::getenv("SHOAL_SHARED_DATA"); env && *env) return env;
-    return (fs::path(SHOAL_SOURCE_DIR) / ".." / "shared" / "data").lexically_normal().string();
-}
-
-struct CoastFile {
-    std::string name;
-    std::string path;
-};
-
-std::vector<CoastFile> find_coasts(const std::string& dir) {
-    std::vector<CoastFile> out;
-    const fs::path gshhg = fs::path(dir) / "coast" / "gshhg";
-    std::error_code ec;
-    if (fs::is_directory(gshhg, ec))
-        for (const auto& e : fs::directory_iterator(gshhg, ec)) {
-            const std::string f = e.path().filename().string();
-            const std::string suffix = "_land.geojson";
-            if (f.size() > suffix.size() && f.compare(f.size() - suffix.size(), suffix.size(), suffix) == 0)
-                out.push_back({f.substr(0, f.size() - suffix.size()), e.path().string()});
-        }
-    std::sort(out.begin(), out.end(), [](const CoastFile& a, const CoastFile& b) { return a.name < b.name; });
-    const fs::path s57 = fs::path(dir) / "coast" / "s57" / "US4MD81M" / "US4MD81M.000";
-    if (fs::exists(s57, ec)) out.push_back({"s57_US4MD81M", s57.string()});
-    return out;
-}
+using shoal::bench::CoastFile;
+using shoal::bench::default_data_dir;
+using shoal::bench::find_coasts;
 
 // ---------------------------------------------------------------------------------------
 // The GEOS-only ways. Both take the hull outline in local metres (computed inside the timed
