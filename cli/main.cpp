@@ -2,7 +2,7 @@
 // capability lives in the library (src/).
 //
 // Exit status: 0 success (check: no grounding), 1 check found at least one grounding,
-// 2 bad usage or unreadable input.
+// 2 bad usage or unreadable input, 128 + N on signal N (130 for Ctrl-C).
 
 #include <CLI/CLI.hpp>
 #include <cpl_error.h>
@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
         return std::string("shoal: usage error: ") + e.what() + " (see shoal COMMAND --help)\n";
     });
     app.set_version_flag("--version", "shoal 0.1.0");
-    app.footer("Exit status: 0 ok / no grounding, 1 grounding found (check), 2 bad usage or unreadable input.\n"
+    app.footer("Exit status: 0 ok / no grounding, 1 grounding found (check), 2 bad usage or unreadable input,\n"
+               "130 interrupted (Ctrl-C; nothing half-written is left).\n"
                "Run 'shoal COMMAND --help' for a command's options; docs/user-guide.md has the details.");
     std::vector<std::unique_ptr<shoal::cli::Command>> commands = shoal::cli::make_commands();
     for (auto& c : commands) c->setup(app);

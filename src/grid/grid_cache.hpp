@@ -17,7 +17,7 @@
 namespace shoal::grid {
 
 inline constexpr char grid_magic[8] = {'S', 'H', 'O', 'A', 'L', 'G', 'R', 'D'};
-inline constexpr std::uint32_t grid_format_version = 1;
+inline constexpr std::uint32_t grid_format_version = 2;  // 2: hazard fields and per-polyline kinds (depth hazards)
 
 class GridFile {
 public:
