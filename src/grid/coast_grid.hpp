@@ -88,8 +88,8 @@ public:
 
     bool valid_cell(int i, int j) const noexcept { return i >= 0 && j >= 0 && i < m_nx && j < m_ny; }
     /// Cell of a point (may be out of range: check valid_cell).
-    int col_of(double x) const noexcept { return static_cast<int>(std::floor((x - m_x0) / m_cell)); }
-    int row_of(double y) const noexcept { return static_cast<int>(std::floor((y - m_y0) / m_cell)); }
+    int col_of(double x) const noexcept { return cell_index((x - m_x0) / m_cell); }
+    int row_of(double y) const noexcept { return cell_index((y - m_y0) / m_cell); }
     geo::Box cell_box(int i, int j) const noexcept {
         return {m_x0 + i * m_cell, m_y0 + j * m_cell, m_x0 + (i + 1) * m_cell, m_y0 + (j + 1) * m_cell};
     }
@@ -135,6 +135,13 @@ public:
 
 private:
     friend class GridFile;
+    /// floor(f) as a cell index, clamped to +-2^30 (far outside any grid, with room for i + 1):
+    /// a point millions of cells away, or NaN, must not overflow the int.
+    static int cell_index(double f) noexcept {
+        constexpr double limit = 1073741824.0;
+        const double c = std::floor(f);
+        return c >= -limit ? (c <= limit ? static_cast<int>(c) : static_cast<int>(limit)) : static_cast<int>(-limit);
+    }
     static constexpr std::uint32_t water_slot = 0xFFFFFFFFu;
     static constexpr std::uint32_t land_slot = 0xFFFFFFFEu;
     static constexpr std::uint32_t boundary_bit = 0x80000000u;
