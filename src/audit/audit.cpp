@@ -36,33 +36,6 @@ void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<v
     if (tick) tick();
 }
 
-/// Gives the last answer again for the same pose and options (a pure function of them): a
-/// vessel standing still, a fix a second for a day at anchor or aground, costs one check per
-/// change of pose rather than one per fix (a hull deep in land costs a long penetration search).
-class RepeatingChecker final : public PoseChecker {
-public:
-    explicit RepeatingChecker(const PoseChecker& inner) : m_inner(inner) {}
-    check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
-        if (!(m_have && pose.position == m_pose.position && pose.ship_to_local == m_pose.ship_to_local &&
-              options.max_clearance_m == m_options.max_clearance_m && options.want_penetration == m_options.want_penetration)) {
-            m_contact = m_inner.check(pose, options);
-            m_pose = pose;
-            m_options = options;
-            m_have = true;
-        }
-        return m_contact;
-    }
-    const hull::Hull& hull() const override { return m_inner.hull(); }
-    const grid::CoastGrid* grid() const override { return m_inner.grid(); }
-
-private:
-    const PoseChecker& m_inner;
-    mutable bool m_have = false;
-    mutable check::LocalPose m_pose;
-    mutable check::CheckOptions m_options;
-    mutable check::Contact m_contact;
-};
-
 std::string dims_label(const hull::Dimensions& d) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "AIS dimensions %g,%g,%g,%g", d.a, d.b, d.c, d.d);
@@ -130,8 +103,7 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
                     label = dims_label(*t.dims);
                 }
                 const DetectorChecker detector(grid, hull);
-                const RepeatingChecker checker(detector);
-                swept[k] = sweep_track(t, *frames[w], checker, options.sweep);
+                swept[k] = sweep_track(t, *frames[w], detector, options.sweep);
                 swept[k].summary.hull = label;
                 if (options.encounters) {
                     kept[k] = t;

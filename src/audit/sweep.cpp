@@ -159,11 +159,39 @@ private:
     double m_near_min = INFINITY, m_near_start = 0, m_near_end = 0;
 };
 
+/// Gives the last answer again for the same pose and options (a pure function of them): a
+/// vessel standing still, a fix a second for a day at anchor or aground, costs one check per
+/// change of pose rather than one per fix (a hull deep in land costs a long penetration search).
+class RepeatingChecker final : public PoseChecker {
+public:
+    explicit RepeatingChecker(const PoseChecker& inner) : m_inner(inner) {}
+    check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
+        if (!(m_have && pose.position == m_pose.position && pose.ship_to_local == m_pose.ship_to_local &&
+              options.max_clearance_m == m_options.max_clearance_m && options.want_penetration == m_options.want_penetration)) {
+            m_contact = m_inner.check(pose, options);
+            m_pose = pose;
+            m_options = options;
+            m_have = true;
+        }
+        return m_contact;
+    }
+    const hull::Hull& hull() const override { return m_inner.hull(); }
+    const grid::CoastGrid* grid() const override { return m_inner.grid(); }
+
+private:
+    const PoseChecker& m_inner;
+    mutable bool m_have = false;
+    mutable check::LocalPose m_pose;
+    mutable check::CheckOptions m_options;
+    mutable check::Contact m_contact;
+};
+
 }  // namespace
 
-TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, const PoseChecker& checker,
+TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, const PoseChecker& inner,
                         const SweepOptions& opt) {
     if (!(opt.step_m > 0)) throw UsageError("--step must be > 0 metres");
+    const RepeatingChecker checker(inner);
     TrackResult out;
     TrackSummary& sum = out.summary;
     sum.id = t.id;

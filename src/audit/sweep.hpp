@@ -92,7 +92,8 @@ private:
     check::Detector m_detector;
 };
 
-/// Sweeps `track` (headings resolved) with `checker` in `frame`.
+/// Sweeps `track` (headings resolved) with `checker` in `frame`. A pose equal to the one
+/// checked just before (a vessel standing still) is not checked again: the last answer stands.
 TrackResult sweep_track(const track::Track& track, const geo::LocalFrame& frame, const PoseChecker& checker,
                         const SweepOptions& options);
 

@@ -402,6 +402,9 @@ Hull Hull::from_contour(std::vector<XY> contour, std::string name) {
     if (contour.size() > 1 && contour.front() == contour.back()) contour.pop_back();
     if (contour.size() < 3)
         throw InputError{"a contour needs at least 3 points (got " + std::to_string(contour.size()) + ")"};
+    if (contour.size() > max_points)
+        throw InputError{"a contour of " + std::to_string(contour.size()) + " points is more than the " +
+                         std::to_string(max_points) + " supported; simplify the outline"};
     validate_contour(contour);
     if (twice_signed_area(contour) < 0.0) std::reverse(std::next(contour.begin()), contour.end());
     const Dimensions dims = extent(contour);

@@ -27,6 +27,9 @@ class Hull {
 public:
     /// Number of points of the generated outline.
     static constexpr std::size_t default_points = 36;
+    /// Most points a custom outline may have: the check costs time in proportion to the points,
+    /// and validating the outline compares every pair of edges.
+    static constexpr std::size_t max_points = 10000;
 
     /// 36-point outline with a pointed bow that exactly fits the box x in [-b, a], y in [-c, d]
     /// (touches all four extents: bow tip at x=a, stern at x=-b, sides at y=-c and y=d).
@@ -40,7 +43,7 @@ public:
 
     /// Custom outline (x forward, y starboard); validated: >= 3 points, finite, simple polygon
     /// (no self-intersection, no repeated consecutive points; a closing point equal to the first
-    /// is dropped), reference point (0,0) strictly inside. Dimensions come from its extent.
+    /// is dropped), at most max_points points, reference point (0,0) strictly inside. Dimensions come from its extent.
     /// A clockwise outline is reversed, so contour() is always counter-clockwise (see below).
     static Hull from_contour(std::vector<geo::XY> contour, std::string name = {});
 

@@ -155,6 +155,60 @@ TEST(Sweep, FixesOutsideTheCoastlineAreaAreUncovered) {
     EXPECT_EQ(r.summary.uncovered_fixes, 3u);  // the grid covers the island's box only
 }
 
+/// A day at anchor off an island: 8,640 fixes 10 s apart.
+track::Track day_at_anchor(XY where, double heading_deg, double jitter_m, double swing_deg, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    track::Track t;
+    t.id = "anchored";
+    double hdg = heading_deg;
+    for (std::size_t i = 0; i < 8640; ++i) {
+        track::Fix f;
+        f.time_s = 1.7e9 + 10.0 * static_cast<double>(i);
+        f.position = frame().inverse(where + XY{jitter_m * unit(rng), jitter_m * unit(rng)});
+        f.heading_used_deg = hdg;
+        f.heading_source = track::HeadingSource::heading;
+        f.line = i + 2;
+        t.fixes.push_back(f);
+        hdg = std::fmod(hdg + swing_deg * unit(rng) + 360, 360);
+    }
+    return t;
+}
+
+TEST(Sweep, StandingStillForADayCostsOneCheckPerFix) {
+    World w({land({{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}})});
+    // Still and clear, 200 m off: every fix checked, nothing between them, no event.
+    const TrackResult clear = w.sweep(day_at_anchor({500, -200}, 90, 0, 0, 1));
+    EXPECT_TRUE(clear.events.empty());
+    EXPECT_EQ(clear.summary.poses, 8640u);
+    EXPECT_EQ(clear.summary.distance_m, 0.0);
+    // Still and aground: one grounding lasting the whole day.
+    const TrackResult aground = w.sweep(day_at_anchor({500, 20}, 90, 0, 0, 2));
+    ASSERT_EQ(aground.events.size(), 1u);
+    EXPECT_EQ(aground.events[0].kind, EventKind::grounding);
+    EXPECT_DOUBLE_EQ(aground.events[0].start_s, 1.7e9);
+    EXPECT_DOUBLE_EQ(aground.events[0].end_s, 1.7e9 + 10.0 * 8639);
+    EXPECT_LE(aground.summary.poses, 8640u + 10u);
+}
+
+TEST(Sweep, SwingingAtAnchorForADayAgreesWithBruteForce) {
+    // 60 m off the island with an 80 m bow, GPS jitter of 3 m and the heading swinging up to
+    // 30 degrees between fixes: the bow touches the shore now and then.
+    World w({land({{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}})});
+    const track::Track t = day_at_anchor({500, -60}, 0, 3, 30, 3);
+    const TrackResult a = w.sweep(t);
+    const TrackResult b = w.brute_sweep(t);
+    EXPECT_GT(count(a, EventKind::grounding), 10u);
+    ASSERT_EQ(a.events.size(), b.events.size());
+    for (std::size_t e = 0; e < a.events.size(); ++e) {
+        EXPECT_EQ(a.events[e].kind, b.events[e].kind) << e;
+        EXPECT_NEAR(a.events[e].start_s, b.events[e].start_s, 1e-6) << e;
+        EXPECT_NEAR(a.events[e].end_s, b.events[e].end_s, 1e-6) << e;
+    }
+    EXPECT_EQ(a.summary.poses, b.summary.poses);
+    EXPECT_LT(a.summary.poses, 8640u * 20u);  // bounded by the swing, not by the day
+}
+
 /// Random tracks near the Solent coast: the grid sweep and the brute-force sweep report the
 /// same events (same sampling, so exactly the same).
 TEST(Sweep, RandomTracksAgreeWithBruteForceSweep) {

@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pathological_shapes.hpp"
 #include "util/error.hpp"
 
 namespace {
@@ -338,6 +339,16 @@ TEST(CustomContour, AcceptsExactlyWhatGeosCallsAValidPolygonAroundTheReferencePo
     }
     EXPECT_GT(accepted, 100);  // the sample holds both kinds
     EXPECT_GT(rejected, 100);
+}
+
+TEST(CustomContour, AcceptsAThousandPointsAndRefusesMoreThanTheLimit) {
+    const Hull big = Hull::from_contour(shoal::test::wavy_hull(1000));
+    EXPECT_EQ(big.contour().size(), 1000u);
+    Geos geos;
+    EXPECT_TRUE(geos.is_valid(geos.polygon(big.contour()).get()));
+    EXPECT_EQ(Hull::from_contour(shoal::test::wavy_hull(Hull::max_points)).contour().size(), Hull::max_points);
+    EXPECT_THAT([] { Hull::from_contour(shoal::test::wavy_hull(Hull::max_points + 1)); },
+                ThrowsMessage<InputError>(HasSubstr("a contour of 10001 points is more than the 10000 supported")));
 }
 
 struct BadContour {

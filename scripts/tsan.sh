@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The parallel audit under ThreadSanitizer (GCC, -fsanitize=thread), in build-tsan/:
+#   1. `shoal check --jobs 2` on the example's 96 AIS vessels, plain and in exercise mode
+#      (--encounters), GeoJSON and GeoPackage, with the grid built (and cached) by the run;
+#   2. the tests that run the audit on several threads (audit_test, cli_test, bad_input_test).
+# Any data race or other report from ThreadSanitizer makes it fail (halt_on_error).
+# GDAL, GEOS and PROJ are not instrumented: races inside them are not seen, only ours.
+#
+#   scripts/tsan.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/install-deps.sh
+build=build-tsan
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHOAL_BUILD_BENCH=OFF \
+  -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
+cmake --build "$build" -j "$(nproc)" --target shoal_cli audit_test cli_test bad_input_test
+export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 history_size=4"
+shoal="$build/cli/shoal"
+out="$build/tsan-out"
+rm -rf "$out"
+mkdir -p "$out"
+export SHOAL_CACHE_DIR="$out/cache"
+ex=examples
+run() {  # exit status 1 (groundings found) is a result, not a failure
+  "$shoal" "$@" || { s=$?; [ $s -eq 1 ] || { echo "tsan: shoal $* failed with status $s" >&2; exit $s; }; }
+}
+echo "== shoal check --jobs 2 under ThreadSanitizer =="
+run check --coast "$ex/data/gof_helsinki_land.geojson" --ship "$ex/ship.json" "$ex/data/aava_n2k_fixes.csv" \
+  -o "$out/traffic.geojson" --jobs 2 --margin 50
+run check --coast "$ex/data/gof_helsinki_land.geojson" --ship "$ex/ship.json" "$ex/data/aava_n2k_fixes.csv" \
+  "$ex/data/plaka_first_hour.nmea" -o "$out/traffic.gpkg" --jobs 2 --encounters --plot "$out/traffic.svg"
+run check --coast "$ex/data/gof_helsinki_land.geojson" --ship "$ex/ship.json" "$ex/data/aava_n2k_fixes.csv" \
+  -o "$out/traffic-1.geojson" --jobs 1 --margin 50
+cmp "$out/traffic.geojson" "$out/traffic-1.geojson"
+echo "reports of --jobs 1 and --jobs 2 are byte-identical"
+echo "== tests that run the audit on several threads, under ThreadSanitizer =="
+"$build/tests/audit_test" --gtest_brief=1
+"$build/tests/cli_test" --gtest_brief=1
+"$build/tests/bad_input_test" --gtest_brief=1
+echo "ThreadSanitizer: no report"
