@@ -51,13 +51,17 @@ for t in "${targets[@]}"; do
   "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=16384 -print_final_stats=1 \
     -artifact_prefix="$artifacts" "${dict[@]}" "$work" "fuzz/corpus/$t" "fuzz/regressions/$t" 2>&1 |
     while IFS= read -r line; do printf '%s\t%s\n' "$((SECONDS - start))" "$line"; done >"$build/fuzz-$t.log" || status=$?
-  grep -E '#[0-9]+[[:space:]]+(INITED|DONE)|stat::(number_of_executed_units|peak_rss_mb|new_units_added)|ERROR|SUMMARY|runtime error|Test unit written' \
+  grep -E '#[0-9]+[[:space:]]+(INITED|DONE)|stat::(number_of_executed_units|peak_rss_mb|new_units_added)|==ERROR|SUMMARY|runtime error|Test unit written' \
     "$build/fuzz-$t.log" || true
-  awk -F'\t' -v t="fuzz_$t" '
-    $2 ~ /^#[0-9]+[ \t]+INITED/ { match($2, /cov: [0-9]+/); c0 = substr($2, RSTART + 5, RLENGTH - 5) }
-    $2 ~ /^#[0-9]+[ \t]+NEW/ { match($2, /cov: [0-9]+/); c = substr($2, RSTART + 5, RLENGTH - 5); if (c + 0 > best + 0) { best = c; when = $1 } }
-    $2 ~ /^#[0-9]+[ \t]+DONE/ { match($2, /cov: [0-9]+/); cend = substr($2, RSTART + 5, RLENGTH - 5); end = $1 }
-    END { printf "%s: edges covered %s at start, %s at the end (%s s); the last new edge at %s s\n", t, c0, cend, end, (when == "" ? "-" : when) }
+  awk -v t="fuzz_$t" '
+    function cov(s) { return match(s, /cov: [0-9]+/) ? substr(s, RSTART + 5, RLENGTH - 5) : "" }
+    { at = $1; s = substr($0, index($0, "\t") + 1) }
+    s ~ /^#[0-9]+[ \t]+INITED/ { c0 = cov(s) }
+    s ~ /^#[0-9]+[ \t]+NEW/ { c = cov(s); if (c + 0 > best + 0) { best = c; when = at } }
+    s ~ /^#[0-9]+[ \t]+DONE/ { cend = cov(s); end = at }
+    s ~ /^stat::number_of_executed_units/ { runs = $NF }
+    END { printf "%s: %s runs in %s s; edges covered: %s after the saved inputs, %s at the end, the last new one at %s s\n",
+                 t, runs, end, c0, cend, (when == "" ? "-" : when) }
   ' "$build/fuzz-$t.log"
   if [ $status -ne 0 ] || [ -n "$(ls -A "$artifacts" 2>/dev/null)" ]; then
     tail -n 60 "$build/fuzz-$t.log" >&2

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <cpl_error.h>
 #include <ogr_spatialref.h>
 #include <proj.h>
 
@@ -53,8 +54,11 @@ Eigen::Vector2d metres_per_degree(double lat_deg) {
 
 LocalFrame::LocalFrame(std::string definition, std::string description)
     : m_impl(std::make_unique<Impl>()), m_definition(std::move(definition)), m_description(std::move(description)) {
-    if (m_impl->local.SetFromUserInput(m_definition.c_str()) != OGRERR_NONE)
-        throw UsageError("CRS '" + m_definition + "' is not one GDAL understands");
+    // GDAL would print PROJ's complaint about a bad definition on stderr; the error below says it.
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    const OGRErr parsed = m_impl->local.SetFromUserInput(m_definition.c_str());
+    CPLPopErrorHandler();
+    if (parsed != OGRERR_NONE) throw UsageError("CRS '" + m_definition + "' is not one GDAL understands");
     if (!m_impl->local.IsProjected())
         throw UsageError("CRS '" + m_definition + "' is not a projected CRS in metres; give a projected one (e.g. a UTM zone)");
     m_impl->local.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);

@@ -82,7 +82,16 @@ std::size_t CoastGrid::land_cell_count() const noexcept {
 std::size_t CoastGrid::memory_bytes() const noexcept {
     return m_slot.size() * sizeof(std::uint32_t) + m_seg_offset.size() * sizeof(std::uint32_t) +
            m_ref_winding.size() * sizeof(std::int32_t) + m_segments.size() * sizeof(Segment) +
-           m_seg_info.size() * sizeof(std::uint32_t) + m_hazards.size() * sizeof(coast::Hazard);
+           m_seg_info.size() * sizeof(std::uint32_t) + m_hazards.size() * sizeof(coast::Hazard) +
+           m_chunk_box.size() * sizeof(geo::Box);
+}
+
+void CoastGrid::compute_chunk_boxes() {
+    m_chunk_box.assign((m_segments.size() + chunk_segments - 1) / chunk_segments, geo::Box{});
+    for (std::size_t k = 0; k < m_segments.size(); ++k) {
+        m_chunk_box[k / chunk_segments].extend(m_segments[k].a);
+        m_chunk_box[k / chunk_segments].extend(m_segments[k].b);
+    }
 }
 
 template <typename Visit>
@@ -383,6 +392,7 @@ CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::
         }
     }
     if (!settled) throw LibraryError("no reference point of a coast cell is clear of the coastline");
+    g.compute_chunk_boxes();
     if (stats) {
         stats->clip_s = clip_s;
         stats->state_s = seconds_since(t1);

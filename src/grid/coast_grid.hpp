@@ -121,6 +121,19 @@ public:
     int winding(geo::XY p, bool* on_boundary = nullptr) const noexcept;
     bool is_land(geo::XY p) const noexcept;
 
+    /// Consecutive segments (by their index in the grid's array of segments, so a chunk may
+    /// straddle two cells) are grouped in chunks of this many, each with its box: a reader can
+    /// skip a whole chunk that is far from what it looks for. A cell crossed by thousands of
+    /// segments then costs in proportion to the chunks near the hull, not to all its segments.
+    static constexpr std::size_t chunk_segments = 8;
+    /// Box of chunk k: segments [k * chunk_segments, (k + 1) * chunk_segments).
+    std::span<const geo::Box> chunk_boxes() const noexcept { return m_chunk_box; }
+    /// Index in the grid's array of segments of the first element of `segs`, a non-empty span
+    /// returned by segments(i, j).
+    std::size_t index_of(std::span<const Segment> segs) const noexcept {
+        return static_cast<std::size_t>(segs.data() - m_segments.data());
+    }
+
     std::size_t cell_count() const noexcept { return m_slot.size(); }
     std::size_t coast_cell_count() const noexcept { return m_ref_winding.size(); }
     std::size_t land_cell_count() const noexcept;
@@ -148,6 +161,8 @@ private:
 
     explicit CoastGrid(geo::LocalFrame frame) : m_frame(std::move(frame)) {}
     void assign_windings(const std::vector<coast::LocalPolyline>& lines);
+    /// Fills m_chunk_box from m_segments (after a build or a load: it is not saved).
+    void compute_chunk_boxes();
     bool reference_points_clear() const;
     /// Calls visit(k) for the segments (k: index into m_segments) of the cell of p, then of
     /// rings of cells outward while visit.wants(gap), gap being the distance from p to the
@@ -171,6 +186,7 @@ private:
     std::vector<Segment> m_segments;          ///< clipped segments, cell by cell, order kept
     std::vector<std::uint32_t> m_seg_info;    ///< per segment: polyline index | boundary_bit
     std::vector<coast::Hazard> m_hazards;     ///< per polyline: what it bounds
+    std::vector<geo::Box> m_chunk_box;        ///< per chunk of chunk_segments segments: its box
     GridSource m_source;
 };
 

@@ -284,6 +284,7 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     for (const Segment& sg : g.m_segments)
         if (!std::isfinite(sg.a.x) || !std::isfinite(sg.a.y) || !std::isfinite(sg.b.x) || !std::isfinite(sg.b.y))
             r.fail("non-finite segment");
+    g.compute_chunk_boxes();
     return g;
 }
 

@@ -12,6 +12,10 @@
 #include <optional>
 #include <unordered_map>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "track/parse_util.hpp"
 #include "track/time.hpp"
 #include "util/error.hpp"
@@ -45,6 +49,23 @@ char detect_separator(std::string_view text, bool* ended = nullptr) {
     if (commas == 0 && semicolons == 0 && tabs == 0) return '\0';
     if (commas >= semicolons && commas >= tabs) return ',';
     return semicolons >= tabs ? ';' : '\t';
+}
+
+/// The first position at or after `pos` holding `sep` or a line end (t.size() if none):
+/// the end of an unquoted field. Sixteen bytes at a time where SSE2 is there.
+std::size_t field_end(std::string_view t, std::size_t pos, char sep) noexcept {
+    const std::size_t n = t.size();
+#if defined(__SSE2__)
+    const __m128i vs = _mm_set1_epi8(sep), vn = _mm_set1_epi8('\n');
+    while (pos + 16 <= n) {
+        const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(t.data() + pos));
+        const unsigned mask = static_cast<unsigned>(_mm_movemask_epi8(_mm_or_si128(_mm_cmpeq_epi8(v, vs), _mm_cmpeq_epi8(v, vn))));
+        if (mask != 0) return pos + static_cast<std::size_t>(__builtin_ctz(mask));
+        pos += 16;
+    }
+#endif
+    while (pos < n && t[pos] != sep && t[pos] != '\n') ++pos;
+    return pos;
 }
 
 }  // namespace
@@ -111,10 +132,10 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
                     value = s;
                 }
                 fields.push_back(value);
-                while (m_pos < n && t[m_pos] != sep && t[m_pos] != '\n') ++m_pos;  // text after the quote
+                m_pos = field_end(t, m_pos, sep);  // text after the quote
             } else {
                 const std::size_t start = m_pos;
-                while (m_pos < n && t[m_pos] != sep && t[m_pos] != '\n') ++m_pos;
+                m_pos = field_end(t, m_pos, sep);
                 fields.push_back(trim(t.substr(start, m_pos - start)));
             }
             if (m_pos >= n) {

@@ -155,6 +155,22 @@ TEST(Sweep, FixesOutsideTheCoastlineAreaAreUncovered) {
     EXPECT_EQ(r.summary.uncovered_fixes, 3u);  // the grid covers the island's box only
 }
 
+/// The grid detector, counting the checks that reach it.
+class CountingChecker final : public PoseChecker {
+public:
+    CountingChecker(const grid::CoastGrid& grid, const hull::Hull& hull) : m_inner(grid, hull) {}
+    check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
+        ++calls;
+        return m_inner.check(pose, options);
+    }
+    const hull::Hull& hull() const override { return m_inner.hull(); }
+    const grid::CoastGrid* grid() const override { return m_inner.grid(); }
+    mutable std::size_t calls = 0;
+
+private:
+    DetectorChecker m_inner;
+};
+
 /// A day at anchor off an island: 8,640 fixes 10 s apart.
 track::Track day_at_anchor(XY where, double heading_deg, double jitter_m, double swing_deg, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
@@ -182,8 +198,11 @@ TEST(Sweep, StandingStillForADayCostsOneCheckPerFix) {
     EXPECT_TRUE(clear.events.empty());
     EXPECT_EQ(clear.summary.poses, 8640u);
     EXPECT_EQ(clear.summary.distance_m, 0.0);
-    // Still and aground: one grounding lasting the whole day.
-    const TrackResult aground = w.sweep(day_at_anchor({500, 20}, 90, 0, 0, 2));
+    // Still and aground: one grounding lasting the whole day, and one real check (a pose
+    // deep in land costs a penetration search; an unchanged pose reuses the last answer).
+    const CountingChecker counted(w.grid, w.hull);
+    const TrackResult aground = sweep_track(day_at_anchor({500, 20}, 90, 0, 0, 2), frame(), counted, {});
+    EXPECT_EQ(counted.calls, 1u);
     ASSERT_EQ(aground.events.size(), 1u);
     EXPECT_EQ(aground.events[0].kind, EventKind::grounding);
     EXPECT_DOUBLE_EQ(aground.events[0].start_s, 1.7e9);
