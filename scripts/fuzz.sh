@@ -51,7 +51,7 @@ for t in "${targets[@]}"; do
   "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=16384 -print_final_stats=1 \
     -artifact_prefix="$artifacts" "${dict[@]}" "$work" "fuzz/corpus/$t" "fuzz/regressions/$t" 2>&1 |
     while IFS= read -r line; do printf '%s\t%s\n' "$((SECONDS - start))" "$line"; done >"$build/fuzz-$t.log" || status=$?
-  grep -E '#[0-9]+[[:space:]]+(INITED|DONE)|stat::(number_of_executed_units|peak_rss_mb|new_units_added)|==ERROR|SUMMARY|runtime error|Test unit written' \
+  grep -E '#[0-9]+[[:space:]]+(INITED|DONE)|stat::(number_of_executed_units|peak_rss_mb|new_units_added)|==[0-9]+== ?ERROR|SUMMARY|runtime error|Test unit written' \
     "$build/fuzz-$t.log" || true
   awk -v t="fuzz_$t" '
     function cov(s) { return match(s, /cov: [0-9]+/) ? substr(s, RSTART + 5, RLENGTH - 5) : "" }

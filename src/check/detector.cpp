@@ -464,11 +464,14 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
             const std::size_t n = h.n;
             // Coast vertices inside the hull: how far from its outline.
             auto coast_depth = [&](int i, int j) {
+                // The hull's local box grown by a micrometre: a vertex on the outline up to
+                // rounding is still looked at (it adds no depth, but is counted as before).
+                const geo::Box hb{lb.minx - 1e-6, lb.miny - 1e-6, lb.maxx + 1e-6, lb.maxy + 1e-6};
                 auto meets_hull_box = [&](const geo::Box& b) {
-                    return b.minx <= lb.maxx && b.maxx >= lb.minx && b.miny <= lb.maxy && b.maxy >= lb.miny;
+                    return b.minx <= hb.maxx && b.maxx >= hb.minx && b.miny <= hb.maxy && b.maxy >= hb.miny;
                 };
                 visit_chunks(m_grid, m_grid.segments(i, j), meets_hull_box, [&](const grid::Segment& sg) {
-                    if (sg.a.x < lb.minx || sg.a.x > lb.maxx || sg.a.y < lb.miny || sg.a.y > lb.maxy) return;
+                    if (sg.a.x < hb.minx || sg.a.x > hb.maxx || sg.a.y < hb.miny || sg.a.y > hb.maxy) return;
                     const XY q = h.to_aligned(sg.a);
                     if (!h.in_box(q) || !h.contains(q)) return;
                     double d2 = INFINITY;
@@ -546,7 +549,9 @@ double Detector::nearest_coast(XY p, double max_m, XY* on_coast) const {
     double best2 = INFINITY;
     XY best_pt{};
     auto read_cell = [&](int i, int j) {
-        visit_chunks(m_grid, m_grid.segments(i, j), [&](const geo::Box& b) { return box_point_dist2(b, p) < best2; },
+        // A chunk is skipped only when its box is farther by a clear margin: a segment's distance
+        // as computed may lie a few ulps under its box's.
+        visit_chunks(m_grid, m_grid.segments(i, j), [&](const geo::Box& b) { return box_point_dist2(b, p) * (1 - 1e-9) < best2; },
                      [&](const grid::Segment& sg) {
                          double t;
                          const double d2 = geo::point_segment_dist2(p, sg.a, sg.b, &t);
