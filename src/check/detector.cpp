@@ -242,6 +242,31 @@ struct AlignedHull {
     }
 };
 
+/// Calls visit(segment) for the segments of `segs` (a span of `grid`) in the chunks whose
+/// box passes keep(box) (see CoastGrid::chunk_boxes); keep is asked again for every chunk,
+/// so it may tighten as visit finds things.
+template <class Keep, class Visit>
+void visit_chunks(const grid::CoastGrid& grid, std::span<const grid::Segment> segs, Keep&& keep, Visit&& visit) {
+    if (segs.empty()) return;
+    constexpr std::size_t chunk = grid::CoastGrid::chunk_segments;
+    const std::size_t first = grid.index_of(segs), n = segs.size();
+    const std::span<const geo::Box> boxes = grid.chunk_boxes();
+    for (std::size_t k = 0; k < n;) {
+        const std::size_t g = first + k, end = std::min(n, k + (chunk - g % chunk));
+        if (keep(boxes[g / chunk]))
+            for (; k < end; ++k) visit(segs[k]);
+        else
+            k = end;
+    }
+}
+
+/// Squared distance from p to box b (0 inside).
+inline double box_point_dist2(const geo::Box& b, XY p) noexcept {
+    const double dx = std::max({b.minx - p.x, 0.0, p.x - b.maxx});
+    const double dy = std::max({b.miny - p.y, 0.0, p.y - b.maxy});
+    return dx * dx + dy * dy;
+}
+
 /// State of one check while cells are read.
 struct Search {
     AlignedHull& hull;
@@ -255,10 +280,9 @@ struct Search {
 
     double best() const noexcept { return std::sqrt(best2); }
 
-    /// The segments of one cell (`first`: the index of segs[0] in the grid's array, whose
-    /// chunks have the boxes `chunks`): each is moved to the aligned frame and tested against
-    /// the hull's box at the distance found so far; only those that pass meet the edges.
-    void read(std::span<const grid::Segment> segs, std::size_t first, std::span<const geo::Box> chunks, bool collect) {
+    /// The segments `segs` of one cell of `grid`: each is moved to the aligned frame and tested
+    /// against the hull's box at the distance found so far; only those that pass meet the edges.
+    void read(const grid::CoastGrid& grid, std::span<const grid::Segment> segs, bool collect) {
         // First tests in local metres, on the segments as stored: the box of a chunk of
         // segments, then of each segment, against the hull's local box grown by the clearance
         // found so far (r). Only the segments that pass are moved to the aligned frame,
@@ -269,40 +293,31 @@ struct Search {
         const V2 lmin = load_min(hull.local_box), lmax = load_max(hull.local_box);
         V2 r = splat(std::sqrt(best2));
         V2 qmin = lmin - r, qmax = lmax + r;
-        constexpr std::size_t chunk = grid::CoastGrid::chunk_segments;
-        const std::size_t n = segs.size();
-        for (std::size_t k = 0; k < n;) {
-            const std::size_t g = first + k;
-            const std::size_t chunk_end = std::min(n, k + (chunk - g % chunk));
-            const geo::Box& cb = chunks[g / chunk];
-            if (any_gt_or_lt(load_min(cb), qmax, load_max(cb), qmin)) {
-                k = chunk_end;
-                continue;
-            }
-            for (; k < chunk_end; ++k) {
-                const grid::Segment& sg = segs[k];
-                const V2 la = load(sg.a), lb = load(sg.b);
-                if (any_gt_or_lt(vmin(la, lb), qmax, vmax(la, lb), qmin)) continue;
-                const V2 da = la - o, db = lb - o;
-                const V2 a = low_both(da) * ux + high_both(da) * uy;
-                const V2 b = low_both(db) * ux + high_both(db) * uy;
-                const V2 smin = vmin(a, b), smax = vmax(a, b);
-                const double d2 = box_dist2(hmin, hmax, smin, smax);
-                if (d2 >= best2) continue;  // best2 > 0 here: a crossing ends the search
-                XY pa, pb;
-                geo::Box sb;
-                store(pa, a);
-                store(pb, b);
-                store_box(sb, smin, smax);
-                seg = &sg;
-                edges(pa, pb, sb);
-                if (crossing) return;
-                if (collect && d2 == 0 && hull.in_box(pa)) inside_candidates.push_back(pa);
-                r = splat(std::sqrt(best2));
-                qmin = lmin - r;
-                qmax = lmax + r;
-            }
-        }
+        // After a crossing nothing more is read (the rest of its chunk is passed over).
+        auto near = [&](const geo::Box& cb) { return !crossing && !any_gt_or_lt(load_min(cb), qmax, load_max(cb), qmin); };
+        visit_chunks(grid, segs, near, [&](const grid::Segment& sg) {
+            if (crossing) return;
+            const V2 la = load(sg.a), lb = load(sg.b);
+            if (any_gt_or_lt(vmin(la, lb), qmax, vmax(la, lb), qmin)) return;
+            const V2 da = la - o, db = lb - o;
+            const V2 a = low_both(da) * ux + high_both(da) * uy;
+            const V2 b = low_both(db) * ux + high_both(db) * uy;
+            const V2 smin = vmin(a, b), smax = vmax(a, b);
+            const double d2 = box_dist2(hmin, hmax, smin, smax);
+            if (d2 >= best2) return;  // best2 > 0 here: a crossing ends the search
+            XY pa, pb;
+            geo::Box sb;
+            store(pa, a);
+            store(pb, b);
+            store_box(sb, smin, smax);
+            seg = &sg;
+            edges(pa, pb, sb);
+            if (crossing) return;
+            if (collect && d2 == 0 && hull.in_box(pa)) inside_candidates.push_back(pa);
+            r = splat(std::sqrt(best2));
+            qmin = lmin - r;
+            qmax = lmax + r;
+        });
     }
 
     /// Coast segment ab (aligned frame, box sb) against the hull's edges: lowers best2, sets
@@ -357,31 +372,6 @@ struct Search {
     }
 };
 
-/// Calls visit(segment) for the segments of `segs` (a span of `grid`) in the chunks whose
-/// box passes keep(box) (see CoastGrid::chunk_boxes); keep is asked again for every chunk,
-/// so it may tighten as visit finds things.
-template <class Keep, class Visit>
-void visit_chunks(const grid::CoastGrid& grid, std::span<const grid::Segment> segs, Keep&& keep, Visit&& visit) {
-    if (segs.empty()) return;
-    constexpr std::size_t chunk = grid::CoastGrid::chunk_segments;
-    const std::size_t first = grid.index_of(segs), n = segs.size();
-    const std::span<const geo::Box> boxes = grid.chunk_boxes();
-    for (std::size_t k = 0; k < n;) {
-        const std::size_t g = first + k, end = std::min(n, k + (chunk - g % chunk));
-        if (keep(boxes[g / chunk]))
-            for (; k < end; ++k) visit(segs[k]);
-        else
-            k = end;
-    }
-}
-
-/// Squared distance from p to box b (0 inside).
-inline double box_point_dist2(const geo::Box& b, XY p) noexcept {
-    const double dx = std::max({b.minx - p.x, 0.0, p.x - b.maxx});
-    const double dy = std::max({b.miny - p.y, 0.0, p.y - b.maxy});
-    return dx * dx + dy * dy;
-}
-
 struct Scratch {
     AlignedHull hull;
     std::vector<XY> inside_candidates;
@@ -422,7 +412,7 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     int j0 = std::max(0, m_grid.row_of(lb.miny)), j1 = std::min(ny - 1, m_grid.row_of(lb.maxy));
     auto read_cell = [&](int i, int j, bool collect) {
         const std::span<const grid::Segment> segs = m_grid.segments(i, j);
-        if (!segs.empty()) search.read(segs, m_grid.index_of(segs), m_grid.chunk_boxes(), collect);
+        if (!segs.empty()) search.read(m_grid, segs, collect);
     };
     const bool block_valid = i0 <= i1 && j0 <= j1;
     if (block_valid) {
