@@ -61,14 +61,6 @@ double peak_rss_mb() {
 
 int disagreements = 0;
 
-check::LocalPose pose_at(XY p, double grid_heading_deg) {
-    const double h = grid_heading_deg * std::numbers::pi / 180;
-    check::LocalPose lp;
-    lp.position = p;
-    lp.ship_to_local << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
-    return lp;
-}
-
 /// GEOS on the same land polygon: prepared once, then intersects (and distance when clear).
 class GeosLand {
 public:
@@ -157,7 +149,7 @@ std::vector<check::LocalPose> poses_near(const std::vector<XY>& ring, double rea
     for (std::size_t k = 0; k < n; ++k) {
         const XY on = ring[rng() % (ring.size() - 1)];
         const double r = reach * unit(rng), a = 2 * std::numbers::pi * unit(rng);
-        out.push_back(pose_at(on + XY{r * std::cos(a), r * std::sin(a)}, 360 * unit(rng)));
+        out.push_back(check::LocalPose::at(on + XY{r * std::cos(a), r * std::sin(a)}, 360 * unit(rng)));
     }
     return out;
 }
@@ -252,7 +244,7 @@ int main(int argc, char** argv) {
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<double> unit(0, 1);
     for (std::size_t k = 0; k < n_poses; ++k)
-        above.push_back(pose_at({-300 + 1100 * unit(rng), 1800 + 500 * unit(rng)}, 360 * unit(rng)));
+        above.push_back(check::LocalPose::at({-300 + 1100 * unit(rng), 1800 + 500 * unit(rng)}, 360 * unit(rng)));
     time_poses("comb (up to thousands of segments per cell), 36-point hull", cg, comb_lines, comb, ship, above, brute_s);
     std::printf("\nComb grid: built in %.3f s, up to %zu segments in a cell.\n\n", comb_build, most);
 

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "geo/point.hpp"
@@ -26,6 +27,16 @@ struct Pose {
 struct LocalPose {
     geo::XY position;
     Eigen::Matrix2d ship_to_local = Eigen::Matrix2d::Identity();
+
+    /// The pose at `position` (local metres) heading `grid_heading_deg` clockwise from grid
+    /// north (the frame's +y), at a local scale of 1: shapes made in metres, tests, benchmarks.
+    static LocalPose at(geo::XY position, double grid_heading_deg) {
+        const double h = grid_heading_deg * std::numbers::pi / 180;
+        LocalPose p;
+        p.position = position;
+        p.ship_to_local << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
+        return p;
+    }
 };
 
 /// The result of one pose check.

@@ -191,14 +191,6 @@ coast::LocalPolyline land_ring(std::vector<XY> ring) {
     return {std::move(ring), true};
 }
 
-LocalPose pose_at(XY p, double grid_heading_deg) {
-    const double h = grid_heading_deg * std::numbers::pi / 180;
-    LocalPose lp;
-    lp.position = p;
-    lp.ship_to_local << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
-    return lp;
-}
-
 struct Scene {
     std::vector<coast::LocalPolyline> lines;
     grid::CoastGrid grid;
@@ -213,10 +205,10 @@ TEST(DetectorShapes, ThinSpitBetweenHullPointsIsContact) {
     // A spit 0.5 m wide and 2 km long, crossing the ship amidships: no hull point is on it.
     Scene s({land_ring({{-1000, -0.25}, {1000, -0.25}, {1000, 0.25}, {-1000, 0.25}})}, 500,
             hull::Hull::from_dimensions({100, 20, 8, 8}));
-    const LocalPose across = pose_at({0, 30}, 180);  // heading south, the spit under the hull
+    const LocalPose across = LocalPose::at({0, 30}, 180);  // heading south, the spit under the hull
     EXPECT_TRUE(s.grid_check(across).collision);
     EXPECT_TRUE(s.brute_check(across).collision);
-    const LocalPose clear = pose_at({0, 30}, 0);  // heading north: stern 20 m short of... (b=20 from y=30)
+    const LocalPose clear = LocalPose::at({0, 30}, 0);  // heading north: stern 20 m short of... (b=20 from y=30)
     const Contact c = s.grid_check(clear);
     EXPECT_FALSE(c.collision);
     EXPECT_NEAR(c.clearance_m, 30 - 20 - 0.25, 1e-6);
@@ -238,11 +230,11 @@ TEST(DetectorShapes, PierBetweenContourPointsIsContact) {
     }
     ASSERT_GT(longest, 4) << "the generated hull has no straight starboard side to put a pier against";
     Scene s({land_ring({{x_gap - 1, -40}, {x_gap + 1, -40}, {x_gap + 1, -7}, {x_gap - 1, -7}})}, 200, hull);
-    const LocalPose p = pose_at({0, 0}, 90);
+    const LocalPose p = LocalPose::at({0, 0}, 90);
     EXPECT_TRUE(s.grid_check(p).collision);
     EXPECT_TRUE(s.brute_check(p).collision);
     // Moved 3.5 m to port, the pier end is 0.5 m off the side.
-    const Contact off = s.grid_check(pose_at({0, 3.5}, 90));
+    const Contact off = s.grid_check(LocalPose::at({0, 3.5}, 90));
     EXPECT_FALSE(off.collision);
     EXPECT_NEAR(off.clearance_m, 0.5, 1e-9);
 }
@@ -250,7 +242,7 @@ TEST(DetectorShapes, PierBetweenContourPointsIsContact) {
 TEST(DetectorShapes, ShipDeepInsideAnIslandIsContact) {
     Scene s({land_ring({{0, 0}, {20000, 0}, {20000, 20000}, {0, 20000}})}, 500, hull::Hull::from_dimensions({100, 20, 8, 8}));
     ASSERT_EQ(s.grid.state(s.grid.col_of(10000), s.grid.row_of(10000)), grid::CellState::land);
-    const Contact c = s.grid_check(pose_at({10000, 10000}, 33));
+    const Contact c = s.grid_check(LocalPose::at({10000, 10000}, 33));
     EXPECT_TRUE(c.collision);
     EXPECT_NEAR(c.penetration_m, 10000 - 8, 100);  // the deepest hull point is ~10 km from the shore
 }
@@ -258,7 +250,7 @@ TEST(DetectorShapes, ShipDeepInsideAnIslandIsContact) {
 TEST(DetectorShapes, IsletInsideTheHullIsContact) {
     Scene s({land_ring({{1, -1}, {3, -1}, {3, 1}, {1, 1}}), land_ring({{5000, 5000}, {5100, 5000}, {5100, 5100}})}, 300,
             hull::Hull::from_dimensions({100, 20, 8, 8}));
-    const Contact c = s.grid_check(pose_at({0, 0}, 90));
+    const Contact c = s.grid_check(LocalPose::at({0, 0}, 90));
     EXPECT_TRUE(c.collision);
     EXPECT_NEAR(c.penetration_m, 7, 1e-9);  // the islet's corner (3, -1) or (3,1) is 7 m from the side
 }
@@ -275,7 +267,7 @@ TEST(DetectorShapes, ShipOnCellBordersAndCornersMatchesGeos) {
     for (double x = -100; x <= 500; x += 50)
         for (double y = -100; y <= 500; y += 50)
             for (double hdg : {0.0, 45.0, 90.0, 180.0, 271.0}) {
-                const LocalPose p = pose_at({x, y}, hdg);
+                const LocalPose p = LocalPose::at({x, y}, hdg);
                 std::vector<XY> outline = hull_outline(hull, p);
                 outline.push_back(outline.front());
                 geo::GeomPtr hp = geo::make_polygon(ctx, {outline});
@@ -295,10 +287,10 @@ TEST(DetectorShapes, ShipOnCellBordersAndCornersMatchesGeos) {
 TEST(DetectorShapes, ClearanceSearchStopsAtTheLimit) {
     Scene s({land_ring({{0, 0}, {100, 0}, {100, 100}, {0, 100}})}, 100, hull::Hull::from_dimensions({40, 10, 5, 5}));
     // Far outside the grid, to the east: covered is false, clearance still exact.
-    const Contact far = s.grid_check(pose_at({1000, 50}, 0));
+    const Contact far = s.grid_check(LocalPose::at({1000, 50}, 0));
     EXPECT_FALSE(far.covered);
     EXPECT_NEAR(far.clearance_m, 1000 - 5 - 100, 1e-9);
-    const Contact limited = Detector(s.grid, s.hull).check(pose_at({1000, 50}, 0), {100.0, false});
+    const Contact limited = Detector(s.grid, s.hull).check(LocalPose::at({1000, 50}, 0), {100.0, false});
     EXPECT_TRUE(std::isinf(limited.clearance_m));
 }
 

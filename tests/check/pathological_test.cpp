@@ -25,14 +25,6 @@ namespace {
 
 using geo::XY;
 
-LocalPose pose_at(XY p, double grid_heading_deg) {
-    const double h = grid_heading_deg * std::numbers::pi / 180;
-    LocalPose lp;
-    lp.position = p;
-    lp.ship_to_local << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
-    return lp;
-}
-
 /// GEOS's answer for a hull outline against a prepared land geometry.
 struct GeosAnswer {
     bool hit = false;
@@ -59,7 +51,7 @@ int expect_agreement(const grid::CoastGrid& grid, const hull::Hull& hull, const 
     int hits = 0;
     for (int k = 0; k < n; ++k) {
         const XY pos = draw(rng);
-        const LocalPose pose = pose_at(pos, 360 * unit(rng));
+        const LocalPose pose = LocalPose::at(pos, 360 * unit(rng));
         const Contact c = det.check(pose, {INFINITY, false});
         const GeosAnswer g = geos_answer(ctx, land, hull_outline(hull, pose));
         hits += g.hit;
