@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "check/detector.hpp"
+#include "coast/expected_areas.hpp"
 #include "grid/grid_cache.hpp"
 #include "hull/hull.hpp"
 #include "audit/audit.hpp"
@@ -319,7 +320,10 @@ public:
         m_sub->footer("Usage: shoal check --coast COAST_OR_GRID --ship SHIP.json TRACK... -o REPORT.geojson [--margin M] [--step M] [--jobs N]\n"
                       "Tracks: CSV with a header (AIS exports too), GPX, GeoJSON, NMEA 0183 logs; folders are searched.\n"
                       "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc.\n"
-                      "Exit status: 0 no grounding, 1 at least one grounding, 2 bad usage or unreadable input.");
+                      "Contacts are groundings only when they begin under way after the vessel was seen clear; contacts of a\n"
+                      "vessel stopped or under --berthing-speed are alongside, those at a track's first fix in_contact_at_start,\n"
+                      "those inside --berths areas expected_contact. Wild fixes (over --max-speed) are dropped and listed.\n"
+                      "Exit status: 0 no grounding, 1 at least one grounding (or ship collision), 2 bad usage or unreadable input.");
         m_opts.add(*m_sub);
         m_sub->add_option("tracks", m_tracks, "Track files or folders")->required();
         m_sub->add_option("-o,--output", m_output, "Report to write: .geojson, or .gpkg (GeoPackage)")->required();
@@ -337,12 +341,33 @@ public:
         m_sub->add_option("--ship-margin", m_audit.encounter.ship_margin_m,
                           "Exercise mode: close quarters when hulls come within this many metres (default 20)")
             ->check(CLI::NonNegativeNumber);
-        m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and a zoomed panel per grounding");
+        m_sub->add_option("--berths", m_berths,
+                          "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
+                          "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
+                          "BERTHS, HRBARE and ACHARE, and SLCONS as shore constructions");
+        m_sub->add_option("--berth-tolerance", m_berth_tolerance_m,
+                          "Lines and points of --berths and S-57 berths / shore constructions count within this many metres (default 10)")
+            ->check(CLI::PositiveNumber);
+        m_sub->add_option("--berthing-speed", m_audit.sweep.berthing_speed_kn,
+                          "A contact that begins under this speed (knots) is alongside (berthing, moored), not a grounding (default 1)")
+            ->check(CLI::NonNegativeNumber);
+        m_sub->add_option("--stop-diameter", m_audit.sweep.stop_diameter_m,
+                          "Stopped: every fix of --stop-time seconds within a box of this diagonal, metres (default 50)")
+            ->check(CLI::PositiveNumber);
+        m_sub->add_option("--stop-time", m_audit.sweep.stop_duration_s, "Stopped: a stay of at least this many seconds (default 120)")
+            ->check(CLI::NonNegativeNumber);
+        m_sub->add_option("--max-speed", m_audit.wild.max_speed_kn,
+                          "Fastest plausible speed, knots: a fix that implies more against its neighbours is dropped as an "
+                          "outlier, a jump that persists starts a new piece of track (default 60)")
+            ->check(CLI::PositiveNumber);
+        m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and zoomed panels, groundings first");
         m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
     }
     int run() override {
-        check_output(m_output, m_opts.inputs(track::expand_inputs(m_tracks)));
+        std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks));
+        all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
+        check_output(m_output, all_inputs);
         const hull::Hull hull = m_opts.load_hull();
         if (!m_date.empty()) {
             int y = 0, mo = 0, d = 0;
@@ -361,6 +386,21 @@ public:
                 throw InputError("cannot write '" + out + "': folder '" + dir.string() + "' does not exist");
         }
         const grid::CoastGrid g = m_opts.load_grid(hull);
+        check_readable(m_berths);
+        // Expected-contact areas: --berths, and the S-57 charts the coast came from.
+        std::vector<std::string> charts = m_opts.coast;
+        if (m_opts.coast.size() == 1 && grid::looks_like_grid(m_opts.coast[0])) {
+            charts.clear();
+            for (const std::string& in : g.source().inputs)
+                if (std::error_code ec; std::filesystem::is_regular_file(in, ec)) charts.push_back(in);
+        }
+        std::vector<std::string> area_warnings;
+        const coast::ExpectedAreas areas = coast::ExpectedAreas::load(m_berths, charts, g.frame(), m_berth_tolerance_m, &area_warnings);
+        print_warnings(area_warnings);
+        if (!areas.empty())
+            std::fprintf(stderr, "shoal: %zu expected-contact areas (berths, harbours, anchorages) and %zu shore constructions\n",
+                         areas.count(coast::AreaRole::expected), areas.count(coast::AreaRole::structure));
+        m_audit.areas = &areas;
         Progress bar(m_progress.value_or(::isatty(2) != 0));
         m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };
         const audit::AuditResult r = audit::run_audit(m_tracks, g, hull, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : "ship file", m_audit);
@@ -375,6 +415,11 @@ public:
                              f.read.duplicates);
             if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", f.error.c_str());
         }
+        std::size_t wild_said = 0;
+        for (const auto& t : r.tracks)
+            for (const auto& w : t.summary.wild_fixes)
+                if (wild_said++ < 20) print_warnings({report::wild_fix_message(t.summary, w)});
+        if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
         for (const auto& e : r.errors)
             std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", e.track.c_str(), e.file.c_str(), e.message.c_str());
         report::RunInfo info;
@@ -387,6 +432,8 @@ public:
         info.grid_fingerprint = fp;
         info.ship = m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name();
         info.sweep = m_audit.sweep;
+        info.wild = m_audit.wild;
+        for (const auto& b : m_berths) info.berths += (info.berths.empty() ? "" : ", ") + b;
         info.ship_margin_m = m_audit.encounter.ship_margin_m;
         const auto t0 = std::chrono::steady_clock::now();
         if (format == "gpkg") report::write_gpkg(m_output, r, info);
@@ -410,6 +457,8 @@ private:
     std::optional<bool> m_progress;
     std::string m_date;
     std::string m_plot;
+    std::vector<std::string> m_berths;
+    double m_berth_tolerance_m = 10.0;
     audit::AuditOptions m_audit;
 };
 

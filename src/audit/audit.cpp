@@ -95,6 +95,8 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
             track::Track t = tracks[k]->unpack();
             tracks[k]->release_fixes();
             try {
+                std::vector<track::WildFix> wild = track::drop_wild_fixes(t, options.wild);
+                track::resolve_motion(t, options.sweep.motion());
                 track::resolve_headings(t);
                 std::string label = hull_label;
                 hull::Hull hull = default_hull;
@@ -103,7 +105,13 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
                     label = dims_label(*t.dims);
                 }
                 const DetectorChecker detector(grid, hull);
-                swept[k] = sweep_track(t, *frames[w], detector, options.sweep);
+                const DetectorChecker circle(grid, circle_hull(hull));
+                SweepContext context;
+                context.unknown_heading = &circle;
+                context.areas = options.areas;
+                swept[k] = sweep_track(t, *frames[w], detector, options.sweep, context);
+                swept[k].summary.fixes += wild.size();  // fixes read, the wild ones among them
+                swept[k].summary.wild_fixes = std::move(wild);
                 swept[k].summary.hull = label;
                 if (options.encounters) {
                     kept[k] = t;
@@ -139,6 +147,12 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
         result.uncovered_fixes += s.uncovered_fixes;
         result.groundings += s.groundings;
         result.close_passes += s.close_passes;
+        result.alongside += s.alongside;
+        result.contacts_at_start += s.contacts_at_start;
+        result.expected_contacts += s.expected_contacts;
+        result.wild_fixes += s.wild_fixes.size();
+        result.jumps += s.jumps;
+        result.unknown_heading_fixes += s.unknown_heading_fixes;
         if (s.fixes) {
             result.first_fix_s = std::isnan(result.first_fix_s) ? s.start_s : std::min(result.first_fix_s, s.start_s);
             result.last_fix_s = std::isnan(result.last_fix_s) ? s.end_s : std::max(result.last_fix_s, s.end_s);

@@ -24,6 +24,9 @@ struct AuditOptions {
     /// Exercise mode: the tracks of the run are one exercise; find ship-to-ship encounters.
     bool encounters = false;
     EncounterOptions encounter;  ///< step and max gap are taken from `sweep`
+    track::WildFixOptions wild;  ///< what makes a fix an outlier
+    /// Areas where contact is expected, and shore constructions; may be null. Must outlive the run.
+    const coast::ExpectedAreas* areas = nullptr;
 };
 
 /// One input file: how it read.
@@ -46,6 +49,8 @@ struct AuditResult {
     std::vector<TrackError> errors;
     std::size_t fixes = 0, poses = 0, uncovered_fixes = 0, skipped_rows = 0;
     std::size_t groundings = 0, close_passes = 0;
+    std::size_t alongside = 0, contacts_at_start = 0, expected_contacts = 0;
+    std::size_t wild_fixes = 0, jumps = 0, unknown_heading_fixes = 0;
     double first_fix_s = NAN, last_fix_s = NAN;
     double read_s = 0, sweep_s = 0;  ///< wall-clock seconds of the two phases
     /// Exercise mode: encounters between the audited tracks; ShipAt::track and

@@ -1,16 +1,39 @@
 #include "audit/sweep.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <numbers>
 
 #include "audit/motion.hpp"
+#include "coast/expected_areas.hpp"
 #include "util/error.hpp"
 
 namespace shoal::audit {
 
 using geo::XY;
 
-const char* to_string(EventKind k) noexcept { return k == EventKind::grounding ? "grounding" : "close_pass"; }
+const char* to_string(EventKind k) noexcept {
+    switch (k) {
+        case EventKind::grounding: return "grounding";
+        case EventKind::alongside: return "alongside";
+        case EventKind::contact_at_start: return "in_contact_at_start";
+        case EventKind::expected_contact: return "expected_contact";
+        case EventKind::close_pass: return "close_pass";
+    }
+    return "grounding";
+}
+
+hull::Hull circle_hull(const hull::Hull& h) {
+    constexpr int n = 36;
+    const double r = h.radius() / std::cos(std::numbers::pi / n);
+    std::vector<XY> pts;
+    for (int k = 0; k < n; ++k) {
+        const double a = 2 * std::numbers::pi * k / n;
+        pts.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    hull::Hull c = hull::Hull::from_contour(std::move(pts), h.name().empty() ? "hull circle" : h.name() + " (circle: heading unknown)");
+    return c;
+}
 
 namespace {
 
@@ -26,25 +49,46 @@ struct Sample {
 class EventBuilder {
 public:
     EventBuilder(const track::Track& t, const geo::LocalFrame& frame, const Motion& motion, const PoseChecker& checker,
-                 const SweepOptions& options, TrackResult& out)
-        : m_track(t), m_frame(frame), m_motion(motion), m_checker(checker), m_opt(options), m_out(out) {}
+                 const PoseChecker* unknown_heading, const SweepOptions& options, const SweepContext& context, TrackResult& out)
+        : m_track(t), m_frame(frame), m_motion(motion), m_checker(checker), m_circle(unknown_heading), m_opt(options),
+          m_ctx(context), m_out(out) {}
+
+    /// The checker for poses between fix i and i+1 (f > 0) or at fix i: the hull's circle while
+    /// the heading is unknown at either end.
+    const PoseChecker& checker_at(std::size_t i, double f) const {
+        if (!m_circle) return m_checker;
+        const auto& fx = m_track.fixes;
+        const bool unknown = fx[i].heading_source == track::HeadingSource::none ||
+                             (f > 0 && i + 1 < fx.size() && fx[i + 1].heading_source == track::HeadingSource::none);
+        return unknown ? *m_circle : m_checker;
+    }
 
     check::Contact check(std::size_t i, double f, bool penetration) const {
-        return m_checker.check(m_motion.pose(i, f), {m_opt.margin_m + m_opt.lookahead_m, penetration});
+        return checker_at(i, f).check(m_motion.pose(i, f), {m_opt.margin_m + m_opt.lookahead_m, penetration});
+    }
+
+    /// A new piece of track starts at fix i; `after` is "track start", "gap" or "jump".
+    void start_piece(std::size_t i, const char* after) {
+        m_piece_first = i;
+        m_piece_after = after;
     }
 
     void add(const Sample& s, const Sample* prev) {
         const check::Contact& c = s.contact;
-        // Groundings: intervals of contact, first and last contact refined by bisection.
+        // Contacts: intervals of contact, first and last contact refined by bisection.
         if (c.collision && !m_in_ground) {
             m_in_ground = true;
             Sample first = s;
-            if (prev && !prev->contact.collision) first = bisect(*prev, s, true);
+            const bool seen_clear = prev && !prev->contact.collision;
+            if (seen_clear) first = bisect(*prev, s, true);
             m_ground = make_event(EventKind::grounding, first);
             m_ground.start_s = m_motion.time(first.i, first.f);
             m_ground.end_s = m_ground.start_s;
             m_ground.penetration_m = std::max(first.contact.penetration_m, c.penetration_m);
+            classify(m_ground, first, seen_clear);
+            note_status(s);
         } else if (c.collision) {
+            note_status(s);
             m_ground.end_s = m_motion.time(s.i, s.f);
             m_ground.penetration_m = std::max(m_ground.penetration_m, c.penetration_m);
         } else if (m_in_ground) {
@@ -68,6 +112,10 @@ public:
                 m_near_min = c.clearance_m;
                 m_near = make_event(EventKind::close_pass, s);
                 m_near.min_clearance_m = c.clearance_m;
+                const track::Fix& fx = m_track.fixes[s.i];
+                m_near.speed_kn = fx.speed_used_kn;
+                m_near.speed_source = fx.speed_source;
+                m_near.nav_status = fx.nav_status;
             }
         } else if (m_in_near) {
             finish_near();
@@ -81,6 +129,70 @@ public:
     }
 
 private:
+    /// The kind of a contact that begins at `first`, from what was observed, and its evidence.
+    void classify(Event& e, const Sample& first, bool seen_clear) const {
+        const auto& fx = m_track.fixes;
+        // The fixes around the first contact: `before` the last one at or before it where the
+        // vessel was seen (clear), `after` the first one at or after it.
+        const std::size_t after = first.f > 0 ? first.i + 1 : first.i;
+        const std::size_t before = first.f > 0 ? first.i : (first.i > m_piece_first ? first.i - 1 : first.i);
+        const track::Fix& b = fx[before];
+        const track::Fix& a = fx[std::min(after, fx.size() - 1)];
+        if (std::isfinite(b.sog_kn)) {
+            e.speed_kn = b.sog_kn;
+            e.speed_source = track::SpeedSource::sog;
+        } else if (std::isfinite(a.sog_kn)) {
+            e.speed_kn = a.sog_kn;
+            e.speed_source = track::SpeedSource::sog;
+        } else if (std::isfinite(a.speed_used_kn) || std::isfinite(b.speed_used_kn)) {
+            e.speed_kn = std::isfinite(a.speed_used_kn) ? a.speed_used_kn : b.speed_used_kn;
+            e.speed_source = std::isfinite(a.speed_used_kn) ? a.speed_source : b.speed_source;
+        } else if (after != before && after < fx.size() && fx[after].time_s > b.time_s) {
+            // Motion not resolved (a caller's own track): the speed of the swept interval.
+            e.speed_kn = track::distance_m(b.position, a.position) / (a.time_s - b.time_s) * 3600.0 / 1852.0;
+            e.speed_source = track::SpeedSource::positions;
+        }
+        e.stopped_before = b.stopped;
+        e.nav_status = b.nav_status;
+        const double t0 = e.start_s;
+        if (const auto stop = track::stopped_after(m_track, after < fx.size() ? after : before, t0, m_opt.motion()))
+            e.stopped_after_s = *stop - t0;
+        const check::LocalPose pose = m_motion.pose(first.i, first.f);
+        e.reference_inside_m = m_checker.inside_depth(pose.position, 2 * m_checker.hull().radius() + m_opt.margin_m);
+        if (std::isinf(e.reference_inside_m)) e.reference_inside_m = NAN;
+        e.orientation_unknown = &checker_at(first.i, first.f) != &m_checker;
+        if (m_ctx.areas) {
+            const coast::ExpectedArea* area = m_ctx.areas->find(pose.position, coast::AreaRole::expected);
+            if (!area) area = m_ctx.areas->find(first.contact.coast_point, coast::AreaRole::expected);
+            if (area) {
+                e.area_kind = area->kind;
+                e.area_name = area->name;
+            }
+            if (const coast::ExpectedArea* st = m_ctx.areas->find(first.contact.coast_point, coast::AreaRole::structure))
+                e.structure = st->kind;
+        }
+        // The rules, in order: an expected area; a contact not seen begin; a vessel stopped or
+        // under the berthing speed; else a grounding.
+        if (!e.area_kind.empty()) {
+            e.kind = EventKind::expected_contact;
+        } else if (!seen_clear) {
+            e.kind = EventKind::contact_at_start;
+            e.unseen_after = m_piece_after;
+        } else if (e.stopped_before || !(e.speed_kn >= m_opt.berthing_speed_kn)) {
+            e.kind = EventKind::alongside;
+        } else {
+            e.kind = EventKind::grounding;
+        }
+    }
+
+    /// AIS status 6 "aground" at a fix of the open contact is evidence for it.
+    void note_status(const Sample& s) {
+        const auto& fx = m_track.fixes;
+        const std::size_t i = s.f > 0 && s.i + 1 < fx.size() ? s.i + 1 : s.i;
+        if (fx[s.i].nav_status == track::nav_status_aground || fx[i].nav_status == track::nav_status_aground)
+            m_ground.reported_aground = true;
+    }
+
     /// Between a sample without contact (`clear`) and one with (`hit`), the moment of change.
     /// Returns the sample on the contact side. `forward`: clear is earlier than hit.
     Sample bisect(Sample clear, Sample hit, bool forward) const {
@@ -122,12 +234,14 @@ private:
             e.danger = hit.danger;
         }
         e.ship = m_frame.inverse(pose.position);
-        e.heading_deg = m_motion.heading(s.i, s.f);
         const std::size_t fix = s.f >= 1.0 ? s.i + 1 : s.i;
         e.fix_index = fix;
         e.fix_line = m_track.fixes[fix].line;
-        e.heading_source = m_track.fixes[fix].heading_source;
-        for (const XY& p : check::hull_outline(m_checker.hull(), pose)) e.hull.push_back(m_frame.inverse(p));
+        const PoseChecker& used = checker_at(s.i, s.f);
+        e.orientation_unknown = &used != &m_checker;
+        e.heading_source = e.orientation_unknown ? track::HeadingSource::none : m_track.fixes[fix].heading_source;
+        e.heading_deg = e.orientation_unknown ? NAN : m_motion.heading(s.i, s.f);
+        for (const XY& p : check::hull_outline(used.hull(), pose)) e.hull.push_back(m_frame.inverse(p));
         if (!e.hull.empty()) e.hull.push_back(e.hull.front());
         return e;
     }
@@ -136,7 +250,14 @@ private:
         m_in_ground = false;
         m_ground.min_clearance_m = 0;
         m_out.events.push_back(m_ground);
-        ++m_out.summary.groundings;
+        TrackSummary& sum = m_out.summary;
+        switch (m_ground.kind) {
+            case EventKind::grounding: ++sum.groundings; break;
+            case EventKind::alongside: ++sum.alongside; break;
+            case EventKind::contact_at_start: ++sum.contacts_at_start; break;
+            case EventKind::expected_contact: ++sum.expected_contacts; break;
+            case EventKind::close_pass: break;
+        }
     }
 
     void finish_near() {
@@ -152,8 +273,12 @@ private:
     const geo::LocalFrame& m_frame;
     const Motion& m_motion;
     const PoseChecker& m_checker;
+    const PoseChecker* m_circle;
     const SweepOptions& m_opt;
+    const SweepContext& m_ctx;
     TrackResult& m_out;
+    std::size_t m_piece_first = 0;
+    const char* m_piece_after = "track start";
     bool m_in_ground = false, m_in_near = false, m_near_contact = false;
     Event m_ground, m_near;
     double m_near_min = INFINITY, m_near_start = 0, m_near_end = 0;
@@ -177,6 +302,7 @@ public:
     }
     const hull::Hull& hull() const override { return m_inner.hull(); }
     const grid::CoastGrid* grid() const override { return m_inner.grid(); }
+    double inside_depth(geo::XY p, double max_m) const override { return m_inner.inside_depth(p, max_m); }
 
 private:
     const PoseChecker& m_inner;
@@ -189,9 +315,11 @@ private:
 }  // namespace
 
 TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, const PoseChecker& inner,
-                        const SweepOptions& opt) {
+                        const SweepOptions& opt, const SweepContext& ctx) {
     if (!(opt.step_m > 0)) throw UsageError("--step must be > 0 metres");
     const RepeatingChecker checker(inner);
+    std::optional<RepeatingChecker> circle;
+    if (ctx.unknown_heading) circle.emplace(*ctx.unknown_heading);
     TrackResult out;
     TrackSummary& sum = out.summary;
     sum.id = t.id;
@@ -203,8 +331,8 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     sum.end_s = t.fixes.back().time_s;
     const std::vector<LocalFix> local = project_fixes(t, frame);
     const Motion motion(t, local);
-    EventBuilder events(t, frame, motion, checker, opt, out);
-    const double radius = checker.hull().radius();
+    EventBuilder events(t, frame, motion, checker, circle ? &*circle : nullptr, opt, ctx, out);
+    const double radius = std::max(checker.hull().radius(), circle ? circle->hull().radius() : 0.0);
 
     // Hull motion (metres) that may pass before the next check: what the last check proved clear.
     double budget_m = 0;
@@ -218,12 +346,14 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     bool have_prev = false;
     std::vector<geo::LonLat>* line = nullptr;
     for (std::size_t i = 0; i < t.fixes.size(); ++i) {
-        const bool new_piece = !have_prev || t.fixes[i].time_s - t.fixes[i - 1].time_s > opt.max_gap_s;
-        if (new_piece) {
+        const bool gap = have_prev && t.fixes[i].time_s - t.fixes[i - 1].time_s > opt.max_gap_s;
+        const bool jump = have_prev && t.fixes[i].jump_before;
+        if (!have_prev || gap || jump) {
             if (have_prev) {
                 events.end_piece();
-                ++sum.gaps;
+                ++(gap ? sum.gaps : sum.jumps);
             }
+            events.start_piece(i, !have_prev ? "track start" : gap ? "gap" : "jump");
             ++sum.segments;
             line = &sum.lines.emplace_back();
             have_prev = false;
@@ -250,6 +380,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         }
         Sample s{i, 0.0, {}};
         s.contact = events.check(i, 0.0, true);
+        if (t.fixes[i].heading_source == track::HeadingSource::none && circle) ++sum.unknown_heading_fixes;
         if (!s.contact.covered) ++sum.uncovered_fixes;
         note(s.contact);
         events.add(s, have_prev ? &prev : nullptr);

@@ -15,8 +15,13 @@ using json = nlohmann::ordered_json;
 std::string iso_time(double t) { return track::format_iso8601(t, 3); }
 
 std::string event_label(const audit::Event& e) {
-    std::string s = e.kind == audit::EventKind::grounding ? "aground " : "close ";
-    if (e.kind == audit::EventKind::grounding && e.hit != coast::HazardKind::land) {
+    using audit::EventKind;
+    std::string s = e.kind == EventKind::grounding          ? "aground "
+                    : e.kind == EventKind::alongside        ? "alongside "
+                    : e.kind == EventKind::contact_at_start ? "in contact at start "
+                    : e.kind == EventKind::expected_contact ? "contact in " + (e.area_kind.empty() ? std::string("area") : e.area_kind) + " "
+                                                            : "close ";
+    if (audit::is_contact(e.kind) && e.hit != coast::HazardKind::land) {
         s += e.hit == coast::HazardKind::danger ? coast::to_string(e.danger) : coast::to_string(e.hit);
         if (std::isfinite(e.charted_depth_m)) {
             char depth[32];
@@ -38,6 +43,16 @@ double round_to(double v, double decimals) {
 /// Metres with millimetres, or null for "beyond the search limit".
 json metres(double v) { return std::isfinite(v) ? json(round_to(v, 3)) : json(nullptr); }
 
+}  // namespace
+
+std::string wild_fix_message(const audit::TrackSummary& t, const track::WildFix& w) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " line %zu: fix at %.6f, %.6f (", w.line, w.position.lat, w.position.lon);
+    return t.file + buf + iso_time(w.time_s) + ") of track '" + t.id + "' dropped as an outlier: " + w.why;
+}
+
+namespace {
+
 json event_properties(const audit::TrackSummary& t, const audit::Event& e) {
     json p;
     p["track"] = t.id;
@@ -50,11 +65,25 @@ json event_properties(const audit::TrackSummary& t, const audit::Event& e) {
     p["end"] = iso_time(e.end_s);
     p["duration_s"] = round_to(e.end_s - e.start_s, 3);
     p["min_clearance_m"] = metres(e.min_clearance_m);
-    p["penetration_m"] = e.kind == audit::EventKind::grounding ? metres(e.penetration_m) : json(nullptr);
+    p["penetration_m"] = audit::is_contact(e.kind) ? metres(e.penetration_m) : json(nullptr);
     p["ship_lat"] = round_to(e.ship.lat, 7);
     p["ship_lon"] = round_to(e.ship.lon, 7);
-    p["heading"] = round_to(e.heading_deg, 1);
+    p["heading"] = std::isfinite(e.heading_deg) ? json(round_to(e.heading_deg, 1)) : json(nullptr);
     p["heading_source"] = track::to_string(e.heading_source);
+    p["orientation"] = e.orientation_unknown ? "unknown (hull circle)" : "hull";
+    p["speed_kn"] = std::isfinite(e.speed_kn) ? json(round_to(e.speed_kn, 2)) : json(nullptr);
+    p["speed_source"] = track::to_string(e.speed_source);
+    const bool contact = audit::is_contact(e.kind);
+    p["stopped_before"] = contact ? json(e.stopped_before) : json(nullptr);
+    p["stopped_after_s"] = contact && std::isfinite(e.stopped_after_s) ? json(round_to(e.stopped_after_s, 1)) : json(nullptr);
+    p["reference_inside_m"] = contact && std::isfinite(e.reference_inside_m) ? json(round_to(e.reference_inside_m, 2)) : json(nullptr);
+    p["nav_status"] = e.nav_status == track::nav_status_unknown ? json(nullptr) : json(e.nav_status);
+    p["nav_status_text"] = track::nav_status_text(e.nav_status);
+    p["reported_aground"] = e.reported_aground;
+    p["unseen_after"] = e.unseen_after;
+    p["area"] = e.area_kind;
+    p["area_name"] = e.area_name;
+    p["structure"] = e.structure;
     p["fix_index"] = e.fix_index;
     p["fix_line"] = e.fix_line;
     p["file"] = t.file;
@@ -75,7 +104,13 @@ json track_summary(const audit::TrackSummary& t) {
     j["gaps"] = t.gaps;
     j["poses"] = t.poses;
     j["groundings"] = t.groundings;
+    j["alongside"] = t.alongside;
+    j["contacts_at_start"] = t.contacts_at_start;
+    j["expected_contacts"] = t.expected_contacts;
     j["close_passes"] = t.close_passes;
+    j["wild_fixes"] = t.wild_fixes.size();
+    j["jumps"] = t.jumps;
+    j["unknown_heading_fixes"] = t.unknown_heading_fixes;
     j["min_clearance_m"] = metres(t.min_clearance_m);
     j["distance_m"] = round_to(t.distance_m, 1);
     j["start"] = iso_time(t.start_s);
@@ -131,6 +166,12 @@ std::string geojson(const audit::AuditResult& r, const RunInfo& info) {
     shoal["step_m"] = info.sweep.step_m;
     shoal["margin_m"] = info.sweep.margin_m;
     shoal["max_gap_s"] = info.sweep.max_gap_s;
+    shoal["berthing_speed_kn"] = info.sweep.berthing_speed_kn;
+    shoal["stop_diameter_m"] = info.sweep.stop_diameter_m;
+    shoal["stop_duration_s"] = info.sweep.stop_duration_s;
+    shoal["speed_window_s"] = info.sweep.speed_window_s;
+    shoal["max_speed_kn"] = info.wild.max_speed_kn;
+    shoal["berths"] = info.berths;
     json summary;
     summary["files"] = r.files.size();
     summary["tracks"] = r.tracks.size();
@@ -139,15 +180,22 @@ std::string geojson(const audit::AuditResult& r, const RunInfo& info) {
     summary["poses"] = r.poses;
     summary["skipped_rows"] = r.skipped_rows;
     summary["uncovered_fixes"] = r.uncovered_fixes;
-    summary["events"] = r.groundings + r.close_passes;
+    const std::size_t contacts = r.groundings + r.alongside + r.contacts_at_start + r.expected_contacts;
+    summary["events"] = contacts + r.close_passes;
     summary["groundings"] = r.groundings;
+    summary["alongside"] = r.alongside;
+    summary["contacts_at_start"] = r.contacts_at_start;
+    summary["expected_contacts"] = r.expected_contacts;
     summary["close_passes"] = r.close_passes;
+    summary["wild_fixes"] = r.wild_fixes;
+    summary["jumps"] = r.jumps;
+    summary["unknown_heading_fixes"] = r.unknown_heading_fixes;
     summary["first_fix"] = iso_time(r.first_fix_s);
     summary["last_fix"] = iso_time(r.last_fix_s);
     if (r.has_encounters) {
         summary["collisions"] = r.collisions;
         summary["close_quarters"] = r.close_quarters;
-        summary["events"] = r.groundings + r.close_passes + r.collisions + r.close_quarters;
+        summary["events"] = contacts + r.close_passes + r.collisions + r.close_quarters;
         shoal["ship_margin_m"] = info.ship_margin_m;
         json approaches = json::array();
         for (const auto& a : r.encounters.approaches)
@@ -172,6 +220,10 @@ std::string geojson(const audit::AuditResult& r, const RunInfo& info) {
         for (const auto& m : f.read.messages) problems.push_back({{"file", f.file}, {"message", m}});
     }
     for (const auto& e : r.errors) problems.push_back({{"file", e.file}, {"track", e.track}, {"message", e.message}});
+    for (const auto& t : r.tracks)
+        for (const auto& w : t.summary.wild_fixes)
+            problems.push_back({{"file", t.summary.file}, {"track", t.summary.id}, {"line", w.line},
+                                {"message", wild_fix_message(t.summary, w)}});
     shoal["problems"] = problems;
     doc["shoal"] = shoal;
 

@@ -16,8 +16,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void add_field(OGRLayer& layer, const char* name, OGRFieldType type) {
+void add_field(OGRLayer& layer, const char* name, OGRFieldType type, OGRFieldSubType subtype = OFSTNone) {
     OGRFieldDefn f(name, type);
+    f.SetSubType(subtype);
     if (layer.CreateField(&f) != OGRERR_NONE)
         throw LibraryError(std::string("creating GeoPackage field ") + name + ": " + CPLGetLastErrorMsg());
 }
@@ -51,6 +52,16 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
     for (const char* s : {"start", "end"}) add_field(events, s, OFTString);
     for (const char* s : {"duration_s", "min_clearance_m", "penetration_m", "ship_lat", "ship_lon", "heading"}) add_field(events, s, OFTReal);
     add_field(events, "heading_source", OFTString);
+    add_field(events, "orientation", OFTString);
+    add_field(events, "speed_kn", OFTReal);
+    add_field(events, "speed_source", OFTString);
+    add_field(events, "stopped_before", OFTInteger, OFSTBoolean);
+    add_field(events, "stopped_after_s", OFTReal);
+    add_field(events, "reference_inside_m", OFTReal);
+    add_field(events, "nav_status", OFTInteger);
+    add_field(events, "nav_status_text", OFTString);
+    add_field(events, "reported_aground", OFTInteger, OFSTBoolean);
+    for (const char* s : {"unseen_after", "area", "area_name", "structure"}) add_field(events, s, OFTString);
     add_field(events, "fix_index", OFTInteger64);
     add_field(events, "fix_line", OFTInteger64);
     add_field(events, "file", OFTString);
@@ -59,7 +70,9 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
 
     OGRLayer& tracks = make_layer(ds, "tracks", wkbMultiLineString, wgs84);
     for (const char* s : {"track", "name", "file", "hull"}) add_field(tracks, s, OFTString);
-    for (const char* s : {"fixes", "skipped_rows", "uncovered_fixes", "segments", "groundings", "close_passes"}) add_field(tracks, s, OFTInteger64);
+    for (const char* s : {"fixes", "skipped_rows", "uncovered_fixes", "segments", "groundings", "alongside",
+                          "contacts_at_start", "expected_contacts", "close_passes", "wild_fixes", "jumps", "unknown_heading_fixes"})
+        add_field(tracks, s, OFTInteger64);
     add_field(tracks, "min_clearance_m", OFTReal);
     add_field(tracks, "distance_km", OFTReal);
     add_field(tracks, "start", OFTString);
@@ -97,6 +110,12 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
         tf.SetField("segments", static_cast<GIntBig>(s.segments));
         tf.SetField("groundings", static_cast<GIntBig>(s.groundings));
         tf.SetField("close_passes", static_cast<GIntBig>(s.close_passes));
+        tf.SetField("alongside", static_cast<GIntBig>(s.alongside));
+        tf.SetField("contacts_at_start", static_cast<GIntBig>(s.contacts_at_start));
+        tf.SetField("expected_contacts", static_cast<GIntBig>(s.expected_contacts));
+        tf.SetField("wild_fixes", static_cast<GIntBig>(s.wild_fixes.size()));
+        tf.SetField("jumps", static_cast<GIntBig>(s.jumps));
+        tf.SetField("unknown_heading_fixes", static_cast<GIntBig>(s.unknown_heading_fixes));
         finite_or_null(tf, "min_clearance_m", s.min_clearance_m);
         tf.SetField("distance_km", s.distance_m / 1000);
         tf.SetField("start", iso_time(s.start_s).c_str());
@@ -124,12 +143,31 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r) {
             ef.SetField("end", iso_time(e.end_s).c_str());
             ef.SetField("duration_s", e.end_s - e.start_s);
             finite_or_null(ef, "min_clearance_m", e.min_clearance_m);
-            if (e.kind == audit::EventKind::grounding) ef.SetField("penetration_m", e.penetration_m);
+            const bool contact = audit::is_contact(e.kind);
+            if (contact) ef.SetField("penetration_m", e.penetration_m);
             else ef.SetFieldNull(ef.GetFieldIndex("penetration_m"));
             ef.SetField("ship_lat", e.ship.lat);
             ef.SetField("ship_lon", e.ship.lon);
-            ef.SetField("heading", e.heading_deg);
+            finite_or_null(ef, "heading", e.heading_deg);
             ef.SetField("heading_source", track::to_string(e.heading_source));
+            ef.SetField("orientation", e.orientation_unknown ? "unknown (hull circle)" : "hull");
+            finite_or_null(ef, "speed_kn", e.speed_kn);
+            ef.SetField("speed_source", track::to_string(e.speed_source));
+            if (contact) {
+                ef.SetField("stopped_before", e.stopped_before ? 1 : 0);
+                finite_or_null(ef, "stopped_after_s", e.stopped_after_s);
+                finite_or_null(ef, "reference_inside_m", e.reference_inside_m);
+            } else {
+                for (const char* f : {"stopped_before", "stopped_after_s", "reference_inside_m"}) ef.SetFieldNull(ef.GetFieldIndex(f));
+            }
+            if (e.nav_status != track::nav_status_unknown) ef.SetField("nav_status", e.nav_status);
+            else ef.SetFieldNull(ef.GetFieldIndex("nav_status"));
+            ef.SetField("nav_status_text", track::nav_status_text(e.nav_status));
+            ef.SetField("reported_aground", e.reported_aground ? 1 : 0);
+            ef.SetField("unseen_after", e.unseen_after.c_str());
+            ef.SetField("area", e.area_kind.c_str());
+            ef.SetField("area_name", e.area_name.c_str());
+            ef.SetField("structure", e.structure.c_str());
             ef.SetField("fix_index", static_cast<GIntBig>(e.fix_index));
             ef.SetField("fix_line", static_cast<GIntBig>(e.fix_line));
             ef.SetField("file", s.file.c_str());

@@ -20,6 +20,8 @@ struct RunInfo {
     std::string grid_fingerprint;
     std::string ship;         ///< the default hull: ship name or "--dims a,b,c,d"
     audit::SweepOptions sweep;
+    track::WildFixOptions wild;
+    std::string berths;        ///< the --berths sources (expected-contact areas), comma-separated
     double ship_margin_m = 0;  ///< exercise mode: close quarters under this
 };
 
@@ -33,6 +35,9 @@ void write_gpkg(const std::string& path, const audit::AuditResult& result, const
 
 /// The human summary: one line per track with events, totals, and problems met.
 std::string summary_table(const audit::AuditResult& result);
+
+/// "FILE line N: fix at LAT, LON (TIME) of track 'ID' dropped as an outlier: WHY".
+std::string wild_fix_message(const audit::TrackSummary& track, const track::WildFix& fix);
 
 /// ISO 8601 UTC, e.g. 2014-08-15T19:00:00.042Z (milliseconds only when not whole seconds).
 std::string iso_time(double epoch_s);

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 
 #include "report/report.hpp"
@@ -7,21 +8,22 @@ namespace shoal::report {
 std::string summary_table(const audit::AuditResult& r) {
     std::string out;
     char line[512];
-    std::snprintf(line, sizeof line, "%-24s %9s %9s %6s %6s %10s  %s\n", "track", "fixes", "uncovered", "aground", "close",
-                  "least m", "file");
+    std::snprintf(line, sizeof line, "%-24s %9s %9s %7s %9s %5s %8s %5s %5s %10s  %s\n", "track", "fixes", "uncovered", "aground",
+                  "alongside", "start", "expected", "close", "wild", "least m", "file");
     out += line;
     std::size_t quiet = 0;
     for (const auto& t : r.tracks) {
         const auto& s = t.summary;
-        if (s.groundings == 0 && s.close_passes == 0 && s.uncovered_fixes == 0) {
+        if (t.events.empty() && s.uncovered_fixes == 0 && s.wild_fixes.empty()) {
             ++quiet;
             continue;
         }
         char least[32];
         if (std::isfinite(s.min_clearance_m)) std::snprintf(least, sizeof least, "%.1f", s.min_clearance_m);
         else std::snprintf(least, sizeof least, "-");
-        std::snprintf(line, sizeof line, "%-24.24s %9zu %9zu %6zu %6zu %10s  %s\n", s.id.c_str(), s.fixes, s.uncovered_fixes,
-                      s.groundings, s.close_passes, least, s.file.c_str());
+        std::snprintf(line, sizeof line, "%-24.24s %9zu %9zu %7zu %9zu %5zu %8zu %5zu %5zu %10s  %s\n", s.id.c_str(), s.fixes,
+                      s.uncovered_fixes, s.groundings, s.alongside, s.contacts_at_start, s.expected_contacts, s.close_passes,
+                      s.wild_fixes.size(), least, s.file.c_str());
         out += line;
     }
     if (quiet) {
@@ -32,6 +34,25 @@ std::string summary_table(const audit::AuditResult& r) {
                   "total: %zu files, %zu tracks, %zu fixes (%zu poses checked), %zu groundings, %zu close passes, %zu uncovered fixes, %zu bad rows skipped\n",
                   r.files.size(), r.tracks.size(), r.fixes, r.poses, r.groundings, r.close_passes, r.uncovered_fixes, r.skipped_rows);
     out += line;
+    std::snprintf(line, sizeof line,
+                  "contacts by kind: %zu grounding%s (under way, seen clear before), %zu alongside (stopped or under the berthing "
+                  "speed), %zu in contact at the start (not seen begin), %zu in expected-contact areas; %zu wild fixes dropped, "
+                  "%zu jumps, %zu fixes with no heading known (judged by the hull's circle)\n",
+                  r.groundings, r.groundings == 1 ? "" : "s", r.alongside, r.contacts_at_start, r.expected_contacts, r.wild_fixes,
+                  r.jumps, r.unknown_heading_fixes);
+    out += line;
+    for (const auto& t : r.tracks)
+        for (const auto& e : t.events) {
+            if (e.kind != audit::EventKind::grounding) continue;
+            char speed[48] = "speed unknown";
+            if (std::isfinite(e.speed_kn)) std::snprintf(speed, sizeof speed, "%.1f kn (%s)", e.speed_kn, track::to_string(e.speed_source));
+            char stop[48] = "did not stop";
+            if (std::isfinite(e.stopped_after_s)) std::snprintf(stop, sizeof stop, "stopped %.0f s after", e.stopped_after_s);
+            std::snprintf(line, sizeof line, "  grounding %s  %-16.16s %s, %.0f s in contact, %s, penetration %.1f m%s\n",
+                          iso_time(e.start_s).c_str(), t.summary.id.c_str(), speed, e.end_s - e.start_s, stop, e.penetration_m,
+                          e.reported_aground ? ", AIS status aground" : "");
+            out += line;
+        }
     if (r.has_encounters) {
         std::snprintf(line, sizeof line, "encounters: %zu collisions, %zu close quarters, %zu pairs came within the threshold (%.0f m)\n",
                       r.collisions, r.close_quarters, r.encounters.approaches.size(), r.encounters.threshold_m);

@@ -212,7 +212,7 @@ struct Columns {
     std::size_t id = absent, name = absent, time = absent, lat = absent, lon = absent;
     std::size_t heading = absent, cog = absent, sog = absent;
     std::array<std::size_t, 4> dims{absent, absent, absent, absent};
-    std::size_t draught = absent, mobile_type = absent;
+    std::size_t draught = absent, mobile_type = absent, nav_status = absent;
     std::size_t required = 0;  ///< fields a row needs: 1 + the largest required index
 };
 
@@ -252,6 +252,7 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     if (std::find(c.dims.begin(), c.dims.end(), absent) != c.dims.end()) c.dims = {absent, absent, absent, absent};
     c.draught = find_column(names, {"draught", "draught_m", "draft", "draft_m"});
     c.mobile_type = find_column(names, {"type of mobile"});
+    c.nav_status = find_column(names, {"navigational status", "navigational_status", "nav_status", "navstatus", "status"});
 
     std::string missing;
     if (c.time == absent) missing = "time (time, timestamp, basedatetime, time_utc, datetime)";
@@ -405,6 +406,7 @@ private:
         if (m_cols.heading != absent) fix.heading_deg = detail::valid_heading(number(f, m_cols.heading));
         if (m_cols.cog != absent) fix.cog_deg = detail::valid_cog(number(f, m_cols.cog));
         if (m_cols.sog != absent) fix.sog_kn = detail::valid_sog(number(f, m_cols.sog));
+        if (m_cols.nav_status != absent && m_cols.nav_status < f.size()) fix.nav_status = parse_nav_status(f[m_cols.nav_status]);
         fix.line = m_split->line();
 
         const std::size_t ti = track_for(id);

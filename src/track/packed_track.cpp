@@ -70,6 +70,7 @@ std::size_t PackedFixes::capacity_bytes() const noexcept { return m_capacity * s
 PackedFix PackedTrack::pack(const Fix& f) {
     PackedFix p;
     p.time_s = f.time_s;
+    p.nav_status = f.nav_status;
     const bool fits = scaled<std::int32_t>(f.position.lat, 1e7, -900000000, 900000000, p.lat_e7) &&
                       scaled<std::int32_t>(f.position.lon, 1e7, -1800000000, 1800000000, p.lon_e7) &&
                       hundredths(f.heading_deg, p.heading_c) && hundredths(f.cog_deg, p.cog_c) &&
@@ -87,6 +88,7 @@ Fix PackedTrack::fix(std::size_t i) const {
     const PackedFix& p = fixes[i];
     Fix f;
     f.time_s = p.time_s;
+    f.nav_status = p.nav_status;
     if (p.extra) {
         const FixExtra& e = extras[p.extra - 1];
         f.position = {e.lon, e.lat};

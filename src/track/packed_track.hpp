@@ -25,6 +25,7 @@ struct PackedFix {
     std::uint32_t line = 0;
     std::uint32_t extra = 0;                ///< 0, or 1 + index of the exact values in the track's side table
     std::uint16_t heading_c = 0, cog_c = 0, sog_c = 0;  ///< hundredths; `none` for NAN
+    std::uint8_t nav_status = nav_status_unknown;       ///< AIS navigational status (kept in the padding)
     static constexpr std::uint16_t none = 0xFFFF;
 };
 static_assert(sizeof(PackedFix) == 32);

@@ -1,6 +1,8 @@
 #include "track/track.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <string>
 #include <numbers>
 
 namespace shoal::track {
@@ -18,7 +20,8 @@ double wrap_360(double a) noexcept {
     return a;
 }
 
-/// Great-circle distance in metres (haversine).
+}  // namespace
+
 double distance_m(geo::LonLat a, geo::LonLat b) noexcept {
     const double dlat = (b.lat - a.lat) * deg;
     const double dlon = (b.lon - a.lon) * deg;
@@ -26,6 +29,8 @@ double distance_m(geo::LonLat a, geo::LonLat b) noexcept {
                      std::cos(a.lat * deg) * std::cos(b.lat * deg) * std::sin(dlon / 2) * std::sin(dlon / 2);
     return 2.0 * earth_radius_m * std::asin(std::min(1.0, std::sqrt(h)));
 }
+
+namespace {
 
 /// Initial great-circle bearing from a to b, degrees clockwise from true north in [0, 360).
 double initial_bearing_deg(geo::LonLat a, geo::LonLat b) noexcept {
@@ -53,6 +58,59 @@ const char* to_string(HeadingSource s) noexcept {
         case HeadingSource::none: return "none";
     }
     return "none";
+}
+
+const char* to_string(SpeedSource s) noexcept {
+    switch (s) {
+        case SpeedSource::sog: return "sog";
+        case SpeedSource::positions: return "positions";
+        case SpeedSource::none: return "none";
+    }
+    return "none";
+}
+
+namespace {
+constexpr const char* nav_status_names[16] = {
+    "under way using engine", "at anchor", "not under command", "restricted manoeuvrability",
+    "constrained by her draught", "moored", "aground", "engaged in fishing",
+    "under way sailing", "reserved (HSC)", "reserved (WIG)", "towing astern",
+    "pushing ahead or towing alongside", "reserved", "AIS-SART active", "not defined"};
+}  // namespace
+
+const char* nav_status_text(std::uint8_t status) noexcept { return status < 16 ? nav_status_names[status] : ""; }
+
+std::uint8_t parse_nav_status(std::string_view text) noexcept {
+    while (!text.empty() && (text.front() == ' ' || text.front() == '"')) text.remove_prefix(1);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '"' || text.back() == '\r')) text.remove_suffix(1);
+    if (text.empty()) return nav_status_unknown;
+    if (text.size() <= 2 && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+        const int v = text.size() == 1 ? text[0] - '0' : (text[0] - '0') * 10 + (text[1] - '0');
+        return v < 16 ? static_cast<std::uint8_t>(v) : nav_status_unknown;
+    }
+    std::string t(text.substr(0, 64));
+    for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    auto has = [&](const char* s) { return t.find(s) != std::string::npos; };
+    // DMA's export: "Under way using engine", "At anchor", "Not under command", "Restricted
+    // maneuverability", "Constrained by her draught", "Moored", "Aground", "Engaged in fishing",
+    // "Under way sailing", "Reserved for future amendment [HSC]", "... [WIG]",
+    // "Power-driven vessel towing astern", "Power-driven vessel pushing ahead or towing
+    // alongside", "AIS-SART is active", "Unknown value" / "Undefined".
+    if (has("aground")) return 6;
+    if (has("moored")) return 5;
+    if (has("anchor")) return 1;
+    if (has("not under command")) return 2;
+    if (has("restricted")) return 3;
+    if (has("draught") || has("draft")) return 4;
+    if (has("fishing")) return 7;
+    if (has("sailing")) return 8;
+    if (has("using engine")) return 0;
+    if (has("hsc")) return 9;
+    if (has("wig")) return 10;
+    if (has("towing astern")) return 11;
+    if (has("pushing") || has("towing alongside")) return 12;
+    if (has("sart")) return 14;
+    if (has("undefined") || has("not defined") || has("unknown")) return 15;
+    return nav_status_unknown;
 }
 
 void ReadReport::skip(const std::string& message) {
@@ -108,21 +166,23 @@ void resolve_headings(Track& track, double moving_kn) {
             source = HeadingSource::heading;
         } else {
             bool moving = false;
-            if (std::isfinite(f.sog_kn)) {
+            if (std::isfinite(f.speed_used_kn)) {
+                moving = f.speed_used_kn >= moving_kn;
+            } else if (std::isfinite(f.sog_kn)) {
                 moving = f.sog_kn >= moving_kn;
             } else {
-                double v = has_next ? speed_kn(f, fx[i + 1]) : NAN;
-                if (std::isnan(v) && has_prev) v = speed_kn(fx[i - 1], f);
+                double v = has_next && !fx[i + 1].jump_before ? speed_kn(f, fx[i + 1]) : NAN;
+                if (std::isnan(v) && has_prev && !f.jump_before) v = speed_kn(fx[i - 1], f);
                 moving = v >= moving_kn;
             }
             if (moving && std::isfinite(f.cog_deg)) {
                 used = f.cog_deg;
                 source = HeadingSource::cog;
             } else if (moving) {
-                if (has_next && !(fx[i + 1].position == f.position)) {
+                if (has_next && !fx[i + 1].jump_before && !(fx[i + 1].position == f.position)) {
                     used = initial_bearing_deg(f.position, fx[i + 1].position);
                     source = HeadingSource::positions;
-                } else if (has_prev && !(fx[i - 1].position == f.position)) {
+                } else if (has_prev && !f.jump_before && !(fx[i - 1].position == f.position)) {
                     used = initial_bearing_deg(fx[i - 1].position, f.position);
                     source = HeadingSource::positions;
                 }

@@ -106,7 +106,10 @@ TEST(Sweep, ThinSpitCrossedBetweenFixesIsAGrounding) {
 TEST(Sweep, TrackOverTheMiddleOfAnIslandIsAGrounding) {
     World w({land({{-10000, 5000}, {10000, 5000}, {10000, 25000}, {-10000, 25000}})}, 500);
     // Fixes 10 km apart: one before the island, one in its middle (far from any segment), one beyond.
-    const TrackResult r = w.sweep(track_through({{0, 0}, {0, 15000}, {0, 30000}}, 10.0));
+    // 1,000 s between fixes: a max gap of an hour sweeps across them.
+    SweepOptions o;
+    o.max_gap_s = 3600;
+    const TrackResult r = w.sweep(track_through({{0, 0}, {0, 15000}, {0, 30000}}, 10.0), o);
     ASSERT_EQ(count(r, EventKind::grounding), 1u);
     EXPECT_GT(r.events[0].penetration_m, 9000);  // at the middle fix the hull is ~10 km inside
 }
@@ -198,13 +201,15 @@ TEST(Sweep, StandingStillForADayCostsOneCheckPerFix) {
     EXPECT_TRUE(clear.events.empty());
     EXPECT_EQ(clear.summary.poses, 8640u);
     EXPECT_EQ(clear.summary.distance_m, 0.0);
-    // Still and aground: one grounding lasting the whole day, and one real check (a pose
-    // deep in land costs a penetration search; an unchanged pose reuses the last answer).
+    // Still and aground from the first fix: one contact lasting the whole day (not a
+    // grounding: it was never seen begin), and one real check (a pose deep in land costs a
+    // penetration search; an unchanged pose reuses the last answer).
     const CountingChecker counted(w.grid, w.hull);
     const TrackResult aground = sweep_track(day_at_anchor({500, 20}, 90, 0, 0, 2), frame(), counted, {});
     EXPECT_EQ(counted.calls, 1u);
     ASSERT_EQ(aground.events.size(), 1u);
-    EXPECT_EQ(aground.events[0].kind, EventKind::grounding);
+    EXPECT_EQ(aground.events[0].kind, EventKind::contact_at_start);
+    EXPECT_EQ(aground.events[0].unseen_after, "track start");
     EXPECT_DOUBLE_EQ(aground.events[0].start_s, 1.7e9);
     EXPECT_DOUBLE_EQ(aground.events[0].end_s, 1.7e9 + 10.0 * 8639);
     EXPECT_LE(aground.summary.poses, 8640u + 10u);

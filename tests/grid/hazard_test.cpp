@@ -669,7 +669,7 @@ TEST(HazardEvents, EventsSayWhatWasHit) {
     EXPECT_TRUE(std::isnan(ev[0].charted_depth_m));
     ev = events_of(g, ashore);
     ASSERT_EQ(ev.size(), 1u);
-    EXPECT_EQ(ev[0].kind, audit::EventKind::grounding);
+    EXPECT_EQ(ev[0].kind, audit::EventKind::contact_at_start) << "in contact at the first fix: not seen begin";
     EXPECT_EQ(ev[0].hit, HazardKind::shallow);
     EXPECT_EQ(ev[0].charted_depth_m, 0.0);
     EXPECT_EQ(ev[0].start_s, 1.7e9) << "aground at the first fix";

@@ -1,0 +1,600 @@
+#include "coast/expected_areas.hpp"
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_geometry.h>
+#include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iterator>
+#include <mutex>
+#include <numbers>
+#include <optional>
+#include <set>
+
+#include "geo/geos_context.hpp"
+#include "geo/local_frame.hpp"
+#include "util/error.hpp"
+
+namespace shoal::coast {
+
+namespace fs = std::filesystem;
+using geo::GeomPtr;
+using geo::GeosContext;
+using geo::XY;
+
+const char* to_string(AreaRole r) noexcept {
+    switch (r) {
+    case AreaRole::expected: return "expected";
+    case AreaRole::structure: return "structure";
+    }
+    return "?";
+}
+
+namespace {
+
+void register_drivers() {
+    static std::once_flag once;
+    std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/// Silences GDAL's stderr output for its lifetime; errors are read back with last().
+class QuietErrors {
+public:
+    QuietErrors() { CPLPushErrorHandler(CPLQuietErrorHandler); CPLErrorReset(); }
+    ~QuietErrors() { CPLPopErrorHandler(); }
+    QuietErrors(const QuietErrors&) = delete;
+    QuietErrors& operator=(const QuietErrors&) = delete;
+    static std::string last() {
+        const char* m = CPLGetLastErrorMsg();
+        return m && *m ? std::string(m) : std::string();
+    }
+};
+
+struct TransformDeleter {
+    void operator()(OGRCoordinateTransformation* t) const noexcept { OGRCoordinateTransformation::DestroyCT(t); }
+};
+
+struct PreparedDeleter {
+    GEOSContextHandle_t ctx = nullptr;
+    void operator()(const GEOSPreparedGeometry* p) const noexcept { GEOSPreparedGeom_destroy_r(ctx, p); }
+};
+using PreparedPtr = std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter>;
+
+struct TreeDeleter {
+    GEOSContextHandle_t ctx = nullptr;
+    void operator()(GEOSSTRtree* t) const noexcept { GEOSSTRtree_destroy_r(ctx, t); }
+};
+using TreePtr = std::unique_ptr<GEOSSTRtree, TreeDeleter>;
+
+std::string upper(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return s;
+}
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+/// The S-57 object classes read, in the order a chart's layers are read.
+constexpr const char* s57_area_layers[] = {"BERTHS", "HRBARE", "ACHARE", "SLCONS"};
+constexpr const char* s57_area_layer_list = "BERTHS, HRBARE, ACHARE, SLCONS";
+
+/// What a layer holds, from its name: an S-57 object class, or (user files only) any area.
+struct LayerRole {
+    AreaRole role = AreaRole::expected;
+    std::string kind = "area";  // for structures: taken per feature from CATSLC
+};
+
+std::optional<LayerRole> s57_role(const std::string& layer_name) {
+    const std::string name = upper(layer_name);
+    if (name == "BERTHS") return LayerRole{AreaRole::expected, "berth"};
+    if (name == "HRBARE") return LayerRole{AreaRole::expected, "harbour"};
+    if (name == "ACHARE") return LayerRole{AreaRole::expected, "anchorage"};
+    if (name == "SLCONS") return LayerRole{AreaRole::structure, "structure"};
+    return std::nullopt;
+}
+
+/// S-57 attribute CATSLC (category of shoreline construction), values 1..17.
+constexpr const char* catslc_names[] = {"breakwater",    "groyne",   "mole",         "pier",
+                                        "promenade pier", "wharf",    "training wall", "rip rap",
+                                        "revetment",     "sea wall", "landing steps", "ramp",
+                                        "slipway",       "fender",   "solid face wharf", "open face wharf",
+                                        "log ramp"};
+
+const char* catslc_name(long v) noexcept {
+    constexpr long n = static_cast<long>(std::size(catslc_names));
+    return v >= 1 && v <= n ? catslc_names[v - 1] : "structure";
+}
+
+/// The kind of a shoreline construction from its CATSLC field: an Integer as GDAL's S-57
+/// driver gives it, an IntegerList, or text ("4", "4,6", or the name itself, as other
+/// converters write it). The first value counts; none or an unknown one: "structure".
+std::string catslc_kind(const OGRFeature& f, int index) {
+    if (index < 0 || !f.IsFieldSetAndNotNull(index)) return "structure";
+    const OGRFieldType type = f.GetFieldDefnRef(index)->GetType();
+    if (type == OFTInteger || type == OFTInteger64) return catslc_name(static_cast<long>(f.GetFieldAsInteger64(index)));
+    if (type == OFTIntegerList || type == OFTInteger64List) {
+        int n = 0;
+        const GIntBig* values = f.GetFieldAsInteger64List(index, &n);
+        return n > 0 ? catslc_name(static_cast<long>(values[0])) : "structure";
+    }
+    std::string text = f.GetFieldAsString(index);  // a StringList reads as "(2:4,6)"
+    if (const auto colon = text.find(':'); !text.empty() && text.front() == '(' && colon != std::string::npos)
+        text = text.substr(colon + 1);
+    text = text.substr(0, text.find_first_of(",)"));
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.erase(0, 1);
+    if (text.empty()) return "structure";
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (end && *end == '\0') return catslc_name(v);
+    const std::string name = lower(text);
+    for (const char* known : catslc_names)
+        if (name == known) return known;
+    return "structure";
+}
+
+/// Index of the first field called `name` in any case, or -1.
+int field_index(const OGRFeatureDefn& defn, const std::string& name) {
+    for (int i = 0; i < defn.GetFieldCount(); ++i)
+        if (upper(defn.GetFieldDefn(i)->GetNameRef()) == name) return i;
+    return -1;
+}
+
+std::string text_field(const OGRFeature& f, int index) {
+    if (index < 0 || !f.IsFieldSetAndNotNull(index)) return "";
+    return f.GetFieldAsString(index);
+}
+
+/// One feature's geometry as read: in source coordinates, then (after to_local) in local
+/// metres. Polygons are lists of rings (first the shell); lines and points get buffered.
+struct RawFeature {
+    ExpectedArea area;
+    std::vector<std::vector<std::vector<XY>>> polygons;
+    std::vector<std::vector<XY>> lines;
+    std::vector<XY> points;
+
+    bool empty() const noexcept { return polygons.empty() && lines.empty() && points.empty(); }
+    template <class F> void for_each_sequence(F&& f) {
+        for (auto& poly : polygons)
+            for (auto& ring : poly) f(ring);
+        for (auto& line : lines) f(line);
+        f(points);
+    }
+};
+
+/// A finished area: the feature it came from and its polygonal geometry in local metres.
+struct Built {
+    ExpectedArea area;
+    GeomPtr geom;
+};
+
+/// Reads one layer into areas. `user` layers must hold something usable.
+class LayerReader {
+public:
+    LayerReader(std::string file, OGRLayer& layer, LayerRole role, bool user, const geo::LocalFrame& frame,
+                double tolerance_m, const GeosContext& geos, std::vector<std::string>& warnings)
+        : m_file(std::move(file)), m_layer(layer), m_role(std::move(role)), m_user(user), m_frame(frame),
+          m_tolerance_m(tolerance_m), m_geos(geos), m_warnings(warnings) {}
+
+    std::vector<Built> read() {
+        OGRFeatureDefn& defn = *m_layer.GetLayerDefn();
+        const int objnam = field_index(defn, "OBJNAM");
+        const int name = field_index(defn, "NAME");
+        const int catslc = m_role.role == AreaRole::structure ? field_index(defn, "CATSLC") : -1;
+        std::vector<RawFeature> raws;
+        std::uint64_t features = 0, unusable = 0;
+        m_layer.ResetReading();
+        for (auto& feature : m_layer) {
+            ++features;
+            RawFeature raw;
+            raw.area.role = m_role.role;
+            raw.area.kind = m_role.role == AreaRole::structure ? catslc_kind(*feature, catslc) : m_role.kind;
+            raw.area.name = text_field(*feature, objnam);
+            if (raw.area.name.empty()) raw.area.name = text_field(*feature, name);
+            raw.area.file = m_file;
+            raw.area.layer = m_layer.GetName();
+            raw.area.fid = feature->GetFID();
+            const OGRGeometry* g = feature->GetGeometryRef();
+            std::unique_ptr<OGRGeometry> linear;
+            if (g && g->hasCurveGeometry()) {
+                linear.reset(g->getLinearGeometry());
+                g = linear.get();
+            }
+            if (g && !g->IsEmpty()) collect(*g, raw);
+            if (raw.empty()) {
+                ++unusable;
+                continue;
+            }
+            raws.push_back(std::move(raw));
+        }
+        const auto nothing_usable = [&](const std::string& why) {
+            return InputError("layer '" + layer_name() + "' in '" + m_file + "' has no polygon, line or point to use as an area" + why);
+        };
+        if (raws.empty()) {
+            if (m_user)
+                throw nothing_usable(features == 0 ? " (it has no features)" : " (" + std::to_string(features) + " features without one)");
+            return {};
+        }
+        if (unusable > 0)
+            m_warnings.push_back("layer '" + layer_name() + "' in '" + m_file + "': " + std::to_string(unusable) +
+                                 " feature(s) without a polygon, line or point skipped");
+        to_local(raws);
+        std::vector<Built> out;
+        for (auto& raw : raws)
+            if (GeomPtr g = build(raw)) out.push_back(Built{std::move(raw.area), std::move(g)});
+        if (out.empty() && m_user) throw nothing_usable(" (only degenerate ones)");
+        return out;
+    }
+
+private:
+    std::string layer_name() const { return m_layer.GetName(); }
+
+    std::string where(std::int64_t fid) const {
+        return "In '" + m_file + "' layer '" + layer_name() + "' feature " + std::to_string(fid);
+    }
+
+    static std::vector<XY> points_of(const OGRSimpleCurve& c) {
+        std::vector<XY> pts(static_cast<std::size_t>(c.getNumPoints()));
+        for (int i = 0; i < c.getNumPoints(); ++i) pts[static_cast<std::size_t>(i)] = {c.getX(i), c.getY(i)};
+        return pts;
+    }
+
+    void collect(const OGRGeometry& g, RawFeature& raw) {
+        if (g.IsEmpty()) return;
+        switch (wkbFlatten(g.getGeometryType())) {
+        case wkbPolygon: {
+            auto& rings = raw.polygons.emplace_back();
+            for (const OGRLinearRing* ring : *g.toPolygon()) rings.push_back(points_of(*ring));
+            return;
+        }
+        case wkbLineString:
+        case wkbLinearRing:
+            raw.lines.push_back(points_of(*g.toSimpleCurve()));
+            return;
+        case wkbPoint:
+            raw.points.push_back({g.toPoint()->getX(), g.toPoint()->getY()});
+            return;
+        case wkbMultiPoint:
+        case wkbMultiPolygon:
+        case wkbMultiLineString:
+        case wkbGeometryCollection:
+            for (const OGRGeometry* sub : *g.toGeometryCollection()) collect(*sub, raw);
+            return;
+        default:
+            m_warnings.push_back(where(raw.area.fid) + ": geometry type " + OGRGeometryTypeToName(g.getGeometryType()) +
+                                 " cannot be an area; skipped");
+        }
+    }
+
+    /// "" when every coordinate is a longitude within +-max_lon and a latitude, else
+    /// " (e.g. X, Y in feature N)" naming the first that is not.
+    static std::string first_not_lonlat(std::vector<RawFeature>& raws, double max_lon) {
+        std::string bad;
+        for (auto& raw : raws) {
+            raw.for_each_sequence([&](const std::vector<XY>& seq) {
+                for (const XY& p : seq)
+                    if (bad.empty() && !(std::fabs(p.x) <= max_lon && std::fabs(p.y) <= 90.0)) {
+                        char buf[128];
+                        std::snprintf(buf, sizeof buf, " (e.g. %.3f, %.3f in feature %lld)", p.x, p.y,
+                                      static_cast<long long>(raw.area.fid));
+                        bad = buf;
+                    }
+            });
+            if (!bad.empty()) break;
+        }
+        return bad;
+    }
+
+    /// Transforms every coordinate from the layer's CRS to WGS84 lon/lat, then into the frame.
+    void to_local(std::vector<RawFeature>& raws) {
+        const OGRSpatialReference* layer_srs = m_layer.GetSpatialRef();
+        OGRSpatialReference wgs84;
+        wgs84.SetWellKnownGeogCS("WGS84");
+        wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> ct;
+        std::string description;
+        if (!layer_srs) {
+            if (const std::string bad = first_not_lonlat(raws, 180.0); !bad.empty())
+                throw InputError("layer '" + layer_name() + "' in '" + m_file +
+                                 "' has no CRS and its coordinates are not longitude/latitude" + bad +
+                                 "; give the file its CRS (e.g. with ogr2ogr -a_srs EPSG:...)");
+            m_warnings.push_back("layer '" + layer_name() + "' in '" + m_file +
+                                 "' has no CRS; assuming WGS84 longitude/latitude (every coordinate is a valid one)");
+            description = "WGS84 (assumed)";
+        } else {
+            OGRSpatialReference src(*layer_srs);
+            src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+            const char* name = src.GetName();
+            description = name ? name : "unnamed CRS";
+            if (src.IsGeographic() && src.IsSame(&wgs84)) {
+                // GDAL reports WGS84 for every GeoJSON without a "crs" member, even when its
+                // coordinates are metres.
+                if (const std::string bad = first_not_lonlat(raws, 360.0); !bad.empty())
+                    throw InputError("layer '" + layer_name() + "' in '" + m_file + "' has the CRS " + description +
+                                     " but its coordinates are not longitude/latitude" + bad +
+                                     "; give the file its real CRS (e.g. convert it with ogr2ogr -s_srs ... -t_srs EPSG:4326)");
+            } else {
+                ct.reset(OGRCreateCoordinateTransformation(&src, &wgs84));
+                if (!ct)
+                    throw InputError("layer '" + layer_name() + "' in '" + m_file + "': no transformation from " +
+                                     description + " to WGS84");
+            }
+        }
+        std::vector<double> xs, ys;
+        std::vector<int> ok;
+        for (auto& raw : raws) {
+            raw.for_each_sequence([&](std::vector<XY>& seq) {
+                if (seq.empty()) return;
+                xs.resize(seq.size());
+                ys.resize(seq.size());
+                for (std::size_t i = 0; i < seq.size(); ++i) { xs[i] = seq[i].x; ys[i] = seq[i].y; }
+                if (ct) {
+                    ok.assign(seq.size(), 0);
+                    ct->Transform(seq.size(), xs.data(), ys.data(), nullptr, ok.data());
+                    for (std::size_t i = 0; i < seq.size(); ++i)
+                        if (!ok[i] || !std::isfinite(xs[i]) || !std::isfinite(ys[i]))
+                            throw InputError(where(raw.area.fid) + ": a vertex cannot be transformed to WGS84 from " +
+                                             description);
+                }
+                const std::vector<double> lon = xs, lat = ys;
+                std::size_t bad = 0;
+                if (!m_frame.forward(xs, ys, &bad)) {
+                    char buf[96];
+                    std::snprintf(buf, sizeof buf, " (lon %.6f, lat %.6f)", lon[bad], lat[bad]);
+                    throw InputError(where(raw.area.fid) + ": a vertex" + buf + " cannot be projected into the local frame (" +
+                                     m_frame.description() + ")");
+                }
+                for (std::size_t i = 0; i < seq.size(); ++i) seq[i] = {xs[i], ys[i]};
+            });
+        }
+    }
+
+    static void drop_repeats(std::vector<XY>& pts) { pts.erase(std::unique(pts.begin(), pts.end()), pts.end()); }
+
+    GeomPtr collection(int type, std::vector<GeomPtr> parts) const {
+        std::vector<GEOSGeometry*> raw;
+        for (auto& p : parts) raw.push_back(p.get());
+        GEOSGeometry* c = GEOSGeom_createCollection_r(m_geos, type, raw.data(), static_cast<unsigned>(raw.size()));
+        if (c)
+            for (auto& p : parts) static_cast<void>(p.release());  // now owned by the collection
+        return geo::own(m_geos, c, "creating a collection");
+    }
+
+    /// The polygons of a feature, valid (repaired when not), or null when none is usable.
+    GeomPtr build_polygons(RawFeature& raw) {
+        std::vector<GeomPtr> polys;
+        for (auto& rings : raw.polygons) {
+            std::vector<std::vector<XY>> kept;
+            for (auto& ring : rings) {
+                drop_repeats(ring);
+                if (!ring.empty() && !(ring.front() == ring.back())) ring.push_back(ring.front());
+                if (ring.size() < 4) {
+                    if (kept.empty()) break;  // degenerate shell: nothing of this polygon is usable
+                    continue;                 // a degenerate hole adds nothing
+                }
+                kept.push_back(std::move(ring));
+            }
+            if (kept.empty()) {
+                m_warnings.push_back(where(raw.area.fid) + ": polygon with fewer than 3 distinct points; skipped");
+                continue;
+            }
+            polys.push_back(geo::make_polygon(m_geos, kept));
+        }
+        if (polys.empty()) return nullptr;
+        GeomPtr g = polys.size() == 1 ? std::move(polys[0]) : collection(GEOS_MULTIPOLYGON, std::move(polys));
+        if (GEOSisValid_r(m_geos, g.get()) == 1) return g;
+        char* reason = GEOSisValidReason_r(m_geos, g.get());
+        const std::string why = reason ? reason : "invalid";
+        GEOSFree_r(m_geos, reason);
+        GeomPtr fixed = geo::own(m_geos, GEOSMakeValid_r(m_geos, g.get()), "repairing a polygon");
+        // GEOSMakeValid may return a collection with the collapsed parts as lines or points.
+        std::vector<std::vector<std::vector<XY>>> valid;
+        geo::collect_polygons(m_geos, fixed.get(), valid);
+        polys.clear();
+        for (const auto& rings : valid) polys.push_back(geo::make_polygon(m_geos, rings));
+        if (polys.empty()) {
+            m_warnings.push_back(where(raw.area.fid) + ": invalid polygon (" + why +
+                                 ") has no area left after GEOSMakeValid; skipped");
+            return nullptr;
+        }
+        m_warnings.push_back(where(raw.area.fid) + ": invalid polygon (" + why + ") repaired with GEOSMakeValid");
+        return polys.size() == 1 ? std::move(polys[0]) : collection(GEOS_MULTIPOLYGON, std::move(polys));
+    }
+
+    /// The area within the tolerance of the feature's lines and points, or null when none.
+    GeomPtr build_buffer(RawFeature& raw) {
+        std::vector<GeomPtr> parts;
+        auto add_point = [&](XY p) {
+            parts.push_back(geo::own(m_geos, GEOSGeom_createPointFromXY_r(m_geos, p.x, p.y), "creating a point"));
+        };
+        for (auto& line : raw.lines) {
+            drop_repeats(line);
+            if (line.size() >= 2) parts.push_back(geo::make_linestring(m_geos, line.data(), line.size()));
+            else if (line.size() == 1) add_point(line[0]);
+        }
+        for (const XY& p : raw.points) add_point(p);
+        if (parts.empty()) return nullptr;
+        GeomPtr linework = parts.size() == 1 ? std::move(parts[0]) : collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
+        constexpr int q = expected_area_quadrant_segments;
+        const double radius = m_tolerance_m / std::cos(std::numbers::pi / (4 * q));
+        return geo::own(m_geos, GEOSBuffer_r(m_geos, linework.get(), radius, q), "buffering a line or point");
+    }
+
+    GeomPtr build(RawFeature& raw) {
+        GeomPtr polys = build_polygons(raw);
+        GeomPtr buffer = build_buffer(raw);
+        GeomPtr g;
+        if (polys && buffer) g = geo::own(m_geos, GEOSUnion_r(m_geos, polys.get(), buffer.get()), "joining an area's parts");
+        else g = polys ? std::move(polys) : std::move(buffer);
+        if (g && GEOSisEmpty_r(m_geos, g.get()) == 1) g.reset();
+        return g;
+    }
+
+    std::string m_file;
+    OGRLayer& m_layer;
+    LayerRole m_role;
+    bool m_user;
+    const geo::LocalFrame& m_frame;
+    double m_tolerance_m;
+    const GeosContext& m_geos;
+    std::vector<std::string>& m_warnings;
+};
+
+std::string layer_names(GDALDataset& ds) {
+    std::string s;
+    for (OGRLayer* l : ds.GetLayers()) s += (s.empty() ? "" : ", ") + std::string(l->GetName());
+    return s.empty() ? "none" : s;
+}
+
+GDALDatasetUniquePtr open_dataset(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
+    QuietErrors quiet;
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    if (!ds) {
+        const std::string why = QuietErrors::last();
+        throw InputError("'" + path + "': not a vector dataset OGR can read" + (why.empty() ? "" : " (" + why + ")"));
+    }
+    return ds;
+}
+
+bool is_s57(GDALDataset& ds) { return std::string(ds.GetDriver()->GetDescription()) == "S57"; }
+
+/// The same file, as far as the file system can tell (for skipping a chart also given as a user file).
+std::string file_key(const std::string& path) {
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(path, ec);
+    return ec ? path : p.string();
+}
+
+}  // namespace
+
+struct ExpectedAreas::Impl {
+    GeosContext geos;                      // destroyed last: everything below belongs to it
+    mutable std::mutex mutex;              // serialises the GEOS work of find()
+    std::vector<ExpectedArea> areas;
+    std::vector<GeomPtr> geoms;            // areas[i]'s polygonal geometry in local metres
+    std::vector<PreparedPtr> prepared;     // prepared views of geoms[i]
+    TreePtr trees[2];                      // per role: items are &areas[i]
+    std::size_t counts[2] = {0, 0};
+
+    /// Prepares every geometry and indexes it; areas and geoms are final from here on.
+    void index() {
+        for (auto& t : trees) t = TreePtr(GEOSSTRtree_create_r(geos, 10), TreeDeleter{geos.get()});
+        for (std::size_t i = 0; i < areas.size(); ++i) {
+            const GEOSPreparedGeometry* p = GEOSPrepare_r(geos, geoms[i].get());
+            if (!p) throw LibraryError("preparing an area failed in GEOS: " + geos.last_message());
+            prepared.emplace_back(p, PreparedDeleter{geos.get()});
+            const auto role = static_cast<std::size_t>(areas[i].role);
+            GEOSSTRtree_insert_r(geos, trees[role].get(), geoms[i].get(), &areas[i]);
+            ++counts[role];
+        }
+    }
+};
+
+ExpectedAreas::ExpectedAreas() = default;
+ExpectedAreas::ExpectedAreas(ExpectedAreas&&) noexcept = default;
+ExpectedAreas& ExpectedAreas::operator=(ExpectedAreas&&) noexcept = default;
+ExpectedAreas::~ExpectedAreas() = default;
+
+ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, const std::vector<std::string>& charts,
+                                  const geo::LocalFrame& frame, double tolerance_m, std::vector<std::string>* warnings) {
+    if (!(tolerance_m > 0) || !std::isfinite(tolerance_m))
+        throw UsageError("the tolerance around lines and points of expected areas must be > 0 metres (got " +
+                         std::to_string(tolerance_m) + ")");
+    register_drivers();
+    auto impl = std::make_unique<Impl>();
+    std::vector<std::string> local_warnings;
+    std::vector<std::string>& warn = warnings ? *warnings : local_warnings;
+    auto read_layers = [&](const std::string& path, const std::vector<std::pair<OGRLayer*, LayerRole>>& layers, bool user) {
+        QuietErrors quiet;
+        for (const auto& [layer, role] : layers)
+            for (Built& b : LayerReader(path, *layer, role, user, frame, tolerance_m, impl->geos, warn).read()) {
+                impl->areas.push_back(std::move(b.area));
+                impl->geoms.push_back(std::move(b.geom));
+            }
+    };
+    auto s57_layers = [](GDALDataset& ds) {
+        std::vector<std::pair<OGRLayer*, LayerRole>> chosen;
+        for (const char* name : s57_area_layers)
+            if (OGRLayer* l = ds.GetLayerByName(name)) chosen.emplace_back(l, *s57_role(name));
+        return chosen;
+    };
+
+    std::set<std::string> user_keys;
+    for (const std::string& path : user_files) {
+        GDALDatasetUniquePtr ds = open_dataset(path);
+        user_keys.insert(file_key(path));
+        std::vector<std::pair<OGRLayer*, LayerRole>> chosen;
+        if (is_s57(*ds)) {
+            chosen = s57_layers(*ds);
+            if (chosen.empty())
+                throw InputError("S-57 chart '" + path + "' has none of the layers " + s57_area_layer_list +
+                                 " (its layers: " + layer_names(*ds) + ")");
+        } else {
+            for (OGRLayer* l : ds->GetLayers()) chosen.emplace_back(l, s57_role(l->GetName()).value_or(LayerRole{}));
+            if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");
+        }
+        read_layers(path, chosen, true);
+    }
+    for (const std::string& path : charts) {
+        if (user_keys.count(file_key(path))) continue;  // already read as a user file
+        GDALDatasetUniquePtr ds = open_dataset(path);
+        if (is_s57(*ds)) read_layers(path, s57_layers(*ds), false);
+    }
+
+    ExpectedAreas out;
+    if (impl->areas.empty()) return out;
+    impl->index();
+    out.m_impl = std::move(impl);
+    return out;
+}
+
+namespace {
+
+void collect_item(void* item, void* userdata) {
+    static_cast<std::vector<const ExpectedArea*>*>(userdata)->push_back(static_cast<const ExpectedArea*>(item));
+}
+
+}  // namespace
+
+const ExpectedArea* ExpectedAreas::find(geo::XY p, AreaRole role) const {
+    if (!m_impl) return nullptr;
+    Impl& impl = *m_impl;
+    const auto r = static_cast<std::size_t>(role);
+    if (impl.counts[r] == 0) return nullptr;
+    std::lock_guard lock(impl.mutex);
+    GeomPtr point = geo::own(impl.geos, GEOSGeom_createPointFromXY_r(impl.geos, p.x, p.y), "creating a query point");
+    std::vector<const ExpectedArea*> candidates;
+    GEOSSTRtree_query_r(impl.geos, impl.trees[r].get(), point.get(), &collect_item, &candidates);
+    std::sort(candidates.begin(), candidates.end());  // areas are in one vector: pointer order is read order
+    for (const ExpectedArea* a : candidates) {
+        const auto i = static_cast<std::size_t>(a - impl.areas.data());
+        const char hit = GEOSPreparedIntersects_r(impl.geos, impl.prepared[i].get(), point.get());
+        if (hit == 2) throw LibraryError("testing a point against an expected area failed in GEOS: " + impl.geos.last_message());
+        if (hit == 1) return a;
+    }
+    return nullptr;
+}
+
+const std::vector<ExpectedArea>& ExpectedAreas::areas() const noexcept {
+    static const std::vector<ExpectedArea> none;
+    return m_impl ? m_impl->areas : none;
+}
+
+std::size_t ExpectedAreas::size() const noexcept { return m_impl ? m_impl->areas.size() : 0; }
+
+std::size_t ExpectedAreas::count(AreaRole role) const noexcept {
+    return m_impl ? m_impl->counts[static_cast<std::size_t>(role)] : 0;
+}
+
+}  // namespace shoal::coast
