@@ -25,6 +25,7 @@ app.initQgis()
 MAGENTA, VIOLET = "#c51b7d", "#756bb1"
 RED, AMBER, GREEN, GREY = "#e31a1c", "#ff9f00", "#33a02c", "#6a7f95"
 BLUE, PURPLE = "#1f78b4", "#6a3d9a"
+STEEL = "#4a7fa8"
 
 
 def labels(field, placement):
@@ -52,13 +53,18 @@ def save(layer, name):
 
 
 # events: points; groundings red circles on land, blue squares in shallow water, purple stars on
-# a danger (rock, wreck, obstruction); close passes amber triangles; labelled with the time
+# a danger (rock, wreck, obstruction); contacts that are not groundings small and muted (alongside
+# steel blue, in contact at the start grey, in an expected-contact area green); close passes amber
+# triangles; labelled with the time
 events = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=hit:string&field=label:string", "events", "memory")
 root = QgsRuleBasedRenderer.Rule(None)
 for expr, colour, shape, size, label in (
         ("\"kind\" = 'grounding' AND (\"hit\" IS NULL OR \"hit\" NOT IN ('shallow', 'danger'))", RED, "circle", "4.2", "aground on land"),
         ("\"kind\" = 'grounding' AND \"hit\" = 'shallow'", BLUE, "square", "4.0", "aground in shallow water"),
         ("\"kind\" = 'grounding' AND \"hit\" = 'danger'", PURPLE, "star", "5.2", "aground on a danger (rock, wreck, obstruction)"),
+        ("\"kind\" = 'alongside'", STEEL, "circle", "2.8", "alongside (stopped or berthing: not a grounding)"),
+        ("\"kind\" = 'in_contact_at_start'", GREY, "circle", "2.6", "in contact at the first fix (not seen begin)"),
+        ("\"kind\" = 'expected_contact'", GREEN, "circle", "2.6", "contact in a berth, harbour or anchorage area"),
         ("\"kind\" = 'close_pass'", AMBER, "triangle", "4.2", "close pass"),
         # a GeoJSON report holds exercise-mode encounters in the same layer: drawn as in `encounters`
         ("\"kind\" = 'collision'", MAGENTA, "diamond", "4.2", "ship-ship collision"),
@@ -75,6 +81,9 @@ save(events, "events")
 hulls = QgsVectorLayer("Polygon?crs=EPSG:4326&field=kind:string&field=label:string", "hulls", "memory")
 cats = []
 for value, colour, fill, label in (("grounding", RED, "227,26,28,60", "hull aground"),
+                                   ("alongside", STEEL, "74,127,168,40", "hull alongside (not a grounding)"),
+                                   ("in_contact_at_start", GREY, "106,127,149,40", "hull in contact at the first fix"),
+                                   ("expected_contact", GREEN, "51,160,44,40", "hull in an expected-contact area"),
                                    ("close_pass", AMBER, "255,159,0,60", "hull at closest pass"),
                                    ("collision", MAGENTA, "197,27,125,60", "hulls in collision (both ships)"),
                                    ("close_quarters", VIOLET, "117,107,177,60", "hulls at closest quarters (both ships)")):
@@ -98,9 +107,11 @@ encounters.setLabelsEnabled(True)
 save(encounters, "encounters")
 
 # tracks: coloured by least clearance (NULL: never within the search limit)
-tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double", "tracks", "memory")
+tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double&field=groundings:integer",
+                        "tracks", "memory")
 root = QgsRuleBasedRenderer.Rule(None)
-for expr, colour, label in (('"min_clearance_m" = 0', RED, "aground"),
+for expr, colour, label in (('"groundings" > 0', RED, "aground"),
+                            ('"min_clearance_m" = 0', STEEL, "in contact, not a grounding (alongside, at the start, expected)"),
                             ('"min_clearance_m" > 0 AND "min_clearance_m" < 50', AMBER, "closer than 50 m"),
                             ('"min_clearance_m" >= 50 AND "min_clearance_m" < 200', GREEN, "50 to 200 m"),
                             ("ELSE", GREY, "200 m or more")):

@@ -30,7 +30,7 @@ struct SweepOptions {
     /// not a grounding (berthing approaches are 0.1-0.3 m/s, 0.2-0.6 kn).
     double berthing_speed_kn = 1.0;
     /// Speed from positions and stops (MotionOptions::max_gap_s is taken from max_gap_s above).
-    double speed_window_s = 60.0;
+    double speed_window_s = 120.0;
     double stop_diameter_m = 50.0;
     double stop_duration_s = 120.0;
     track::MotionOptions motion() const noexcept { return {speed_window_s, stop_diameter_m, stop_duration_s, max_gap_s}; }

@@ -27,7 +27,9 @@ using geo::XY;
 
 constexpr double pi = 3.14159265358979323846;
 
-// Colours: pale water, sand land, grey "no chart"; red for groundings, amber for close passes.
+// Colours: pale water, sand land, grey "no chart"; red for groundings, amber for close passes,
+// muted blue, grey and green for the contacts that are not groundings (alongside, in contact
+// at the first fix, in an expected-contact area).
 constexpr const char* water_fill = "#f3f8fc";
 constexpr const char* land_fill = "#e8dec3";
 constexpr const char* outside_fill = "#d4d4d4";
@@ -36,6 +38,13 @@ constexpr const char* red = "#d62728";
 constexpr const char* red_dark = "#9e0e12";
 constexpr const char* amber = "#f0a000";
 constexpr const char* amber_dark = "#8f5600";
+constexpr const char* steel = "#4a7fa8";
+constexpr const char* steel_dark = "#2b5478";
+constexpr const char* slate = "#6a7f95";
+constexpr const char* slate_dark = "#3e4f60";
+constexpr const char* green = "#33a02c";
+constexpr const char* green_dark = "#1d6419";
+constexpr const char* contact_violet = "#8a76b8";  ///< a track with contacts, none of them a grounding
 constexpr const char* clear_grey = "#7f8b96";
 constexpr const char* ink = "#222222";
 constexpr const char* font_family = "DejaVu Sans, Verdana, Arial, Helvetica, sans-serif";
@@ -59,6 +68,15 @@ std::string num(double v) {
     std::string s;
     put(s, v);
     return s;
+}
+
+/// `v` with `decimals` decimals ("9.8", "182"); "?" when not finite.
+std::string num_fixed(double v, int decimals) {
+    if (!std::isfinite(v)) return "?";
+    char b[48];
+    std::snprintf(b, sizeof b, "%.*f", decimals, v);
+    if (std::string_view(b).find_first_not_of("-0.") == std::string_view::npos && b[0] == '-') return b + 1;  // no "-0.0"
+    return b;
 }
 
 /// Text for XML character data or an attribute value: markup characters escaped, invalid
@@ -146,6 +164,175 @@ std::string metres_text(double m) {
     return b;
 }
 
+// ---------------------------------------------------------------- what an event is, in words
+
+/// Fill and dark (stroke, text) colours of an event kind.
+struct KindStyle {
+    const char* fill;
+    const char* dark;
+};
+
+KindStyle kind_style(EventKind k) noexcept {
+    switch (k) {
+    case EventKind::grounding: return {red, red_dark};
+    case EventKind::alongside: return {steel, steel_dark};
+    case EventKind::contact_at_start: return {slate, slate_dark};
+    case EventKind::expected_contact: return {green, green_dark};
+    case EventKind::close_pass: return {amber, amber_dark};
+    }
+    return {red, red_dark};
+}
+
+/// Every kind, most severe first: the order of the zoomed panels.
+constexpr EventKind kinds_by_severity[] = {EventKind::grounding, EventKind::alongside, EventKind::contact_at_start,
+                                           EventKind::expected_contact, EventKind::close_pass};
+
+/// The place of `k` in kinds_by_severity (0 to 4).
+std::size_t severity(EventKind k) noexcept {
+    switch (k) {
+    case EventKind::grounding: return 0;
+    case EventKind::alongside: return 1;
+    case EventKind::contact_at_start: return 2;
+    case EventKind::expected_contact: return 3;
+    case EventKind::close_pass: return 4;
+    }
+    return 0;
+}
+
+/// "3 groundings", "2 alongside", "37 in contact at the start", "1 expected contact", "8 close passes".
+std::string count_text(EventKind k, std::size_t n) {
+    switch (k) {
+    case EventKind::grounding: return plural(n, "grounding", "groundings");
+    case EventKind::alongside: return plural(n, "alongside", "alongside");
+    case EventKind::contact_at_start: return plural(n, "in contact at the start", "in contact at the start");
+    case EventKind::expected_contact: return plural(n, "expected contact", "expected contacts");
+    case EventKind::close_pass: return plural(n, "close pass", "close passes");
+    }
+    return std::to_string(n);
+}
+
+/// What was hit when it is not land: "shallow 3.6 m", "rock", "wreck 2.1 m"; "" for land.
+std::string hazard_text(const Event& e) {
+    if (e.hit == coast::HazardKind::land) return {};
+    std::string s = e.hit == coast::HazardKind::danger ? coast::to_string(e.danger) : coast::to_string(e.hit);
+    if (s.empty()) s = coast::to_string(e.hit);
+    if (std::isfinite(e.charted_depth_m)) s += " " + num_fixed(e.charted_depth_m, 1) + " m";
+    return s;
+}
+
+/// The kind in words: "grounding", "alongside (not a grounding)", "in contact at the first fix
+/// (not seen begin)", "contact in berth Pier 3", "close pass".
+std::string kind_words(const Event& e) {
+    switch (e.kind) {
+    case EventKind::grounding: return "grounding";
+    case EventKind::alongside: return "alongside (not a grounding)";
+    case EventKind::contact_at_start: return "in contact at the first fix (not seen begin)";
+    case EventKind::expected_contact: {
+        std::string s = "contact in " + (e.area_kind.empty() ? std::string("area") : e.area_kind);
+        if (!e.area_name.empty()) s += " " + e.area_name;
+        return s;
+    }
+    case EventKind::close_pass: return "close pass";
+    }
+    return audit::to_string(e.kind);
+}
+
+/// "9.8 kn SOG", "0.3 kn from positions", "speed unknown".
+std::string speed_text(const Event& e) {
+    if (!std::isfinite(e.speed_kn) || e.speed_source == track::SpeedSource::none) return "speed unknown";
+    return num_fixed(e.speed_kn, 1) + (e.speed_source == track::SpeedSource::sog ? " kn SOG" : " kn from positions");
+}
+
+/// " at contact" (a contact whose speed is known), " at least clearance" (a close pass's), "".
+std::string speed_when(const Event& e) {
+    if (!std::isfinite(e.speed_kn) || e.speed_source == track::SpeedSource::none) return {};
+    return audit::is_contact(e.kind) ? " at contact" : " at least clearance";
+}
+
+/// "0 s", "4.2 s", "42 s", "3 min 07 s", "2 h 05 min".
+std::string duration_text(double s) {
+    if (!std::isfinite(s) || s < 0) return "duration unknown";
+    char b[48];
+    if (s < 0.05) return "0 s";
+    if (s < 9.95) std::snprintf(b, sizeof b, "%.1f s", s);
+    else if (s < 59.5) std::snprintf(b, sizeof b, "%.0f s", s);
+    else if (s < 3600) {
+        const long t = std::lround(s);
+        std::snprintf(b, sizeof b, "%ld min %02ld s", t / 60, t % 60);
+    } else {
+        const long t = std::lround(s / 60);
+        std::snprintf(b, sizeof b, "%ld h %02ld min", t / 60, t % 60);
+    }
+    return b;
+}
+
+/// "heading 182°" (with its source when `source`), "heading unknown (hull circle)" when no
+/// heading was known; a heading is printed only when it is finite.
+std::string heading_text(const Event& e, bool source) {
+    if (e.orientation_unknown) return "heading unknown (hull circle)";
+    if (!std::isfinite(e.heading_deg)) return "heading unknown";
+    double h = std::fmod(e.heading_deg, 360.0);
+    if (h < 0) h += 360;
+    if (h >= 359.5) h = 0;
+    std::string s = "heading " + num_fixed(h, 0) + "\xC2\xB0";
+    if (source) {
+        switch (e.heading_source) {
+        case track::HeadingSource::heading: s += " (true heading)"; break;
+        case track::HeadingSource::cog: s += " (COG)"; break;
+        case track::HeadingSource::positions: s += " (from positions)"; break;
+        case track::HeadingSource::previous: s += " (held from an earlier fix)"; break;
+        case track::HeadingSource::none: break;
+        }
+    }
+    return s;
+}
+
+/// "penetration 1.2 m" (contacts), "least clearance 12.3 m" (close passes).
+std::string depth_text(const Event& e) {
+    if (audit::is_contact(e.kind)) return "penetration " + num_fixed(e.penetration_m, 1) + " m";
+    return "least clearance " + num_fixed(e.min_clearance_m, 1) + " m";
+}
+
+/// "track 230123456 AAVA" (the name only when it says more than the id).
+std::string track_text(const audit::TrackSummary& t) {
+    std::string s = "track " + t.id;
+    if (!t.name.empty() && t.name != t.id) s += " " + t.name;
+    return s;
+}
+
+/// The evidence for the kind, for tooltips: "stopped after 40 s; reference point 3.2 m inside
+/// land; AIS status moored; structure pier; ...".
+std::string evidence_text(const Event& e) {
+    std::vector<std::string> parts;
+    if (audit::is_contact(e.kind)) {
+        if (e.stopped_before) parts.push_back("stopped before contact");
+        parts.push_back(std::isfinite(e.stopped_after_s) ? "stopped after " + duration_text(e.stopped_after_s)
+                                                         : std::string("did not stop (in this piece)"));
+        if (std::isfinite(e.reference_inside_m)) {
+            const std::string what = e.hit == coast::HazardKind::land      ? "land"
+                                     : e.hit == coast::HazardKind::shallow ? "the shallow area"
+                                                                           : "the danger";
+            parts.push_back(e.reference_inside_m >= 0
+                                ? "reference point " + num_fixed(e.reference_inside_m, 1) + " m inside " + what
+                                : "reference point " + num_fixed(-e.reference_inside_m, 1) + " m outside " + what + " (in water)");
+        }
+    }
+    if (e.nav_status != track::nav_status_unknown) {
+        const std::string st = track::nav_status_text(e.nav_status);
+        parts.push_back("AIS status " + (st.empty() ? std::to_string(e.nav_status) : st));
+    }
+    if (e.reported_aground) parts.push_back("AIS reported aground");
+    if (!e.structure.empty()) parts.push_back("structure " + e.structure);
+    if (e.kind == EventKind::contact_at_start && !e.unseen_after.empty()) parts.push_back("not seen begin: after " + e.unseen_after);
+    if (!e.area_name.empty() || !e.area_kind.empty())
+        parts.push_back("area " + (e.area_kind.empty() ? std::string("area") : e.area_kind) +
+                        (e.area_name.empty() ? "" : " " + e.area_name));
+    if (e.fix_line > 0) parts.push_back("fix line " + std::to_string(e.fix_line));
+    std::string s;
+    for (const auto& p : parts) s += (s.empty() ? "" : "; ") + p;
+    return s;
+}
+
 // ---------------------------------------------------------------- geometry of the page
 
 /// A rectangle on the page, px, y down.
@@ -215,7 +402,9 @@ double round_length(double m) {
 
 // ---------------------------------------------------------------- the data, projected
 
-enum class Status { clear, close, aground };
+/// What happened on a track, least to most severe: nothing, close passes, contacts that are not
+/// groundings (alongside, in contact at the first fix, expected contact), groundings.
+enum class Status { clear, close, contact, aground };
 
 struct TrackDraw {
     const audit::TrackSummary* summary = nullptr;
@@ -279,7 +468,11 @@ Scene project_scene(const audit::AuditResult& result, const geo::LocalFrame& fra
     for (const auto& t : result.tracks) {
         TrackDraw& d = s.tracks.emplace_back();
         d.summary = &t.summary;
-        d.status = t.summary.groundings > 0 ? Status::aground : t.summary.close_passes > 0 ? Status::close : Status::clear;
+        const std::size_t contacts = t.summary.alongside + t.summary.contacts_at_start + t.summary.expected_contacts;
+        d.status = t.summary.groundings > 0 ? Status::aground
+                   : contacts > 0           ? Status::contact
+                   : t.summary.close_passes > 0 ? Status::close
+                                                : Status::clear;
         for (const auto& line : t.summary.lines) {
             std::vector<XY> pts = project_line(frame, line);
             for (const XY& p : pts) d.box.extend(p);
@@ -575,7 +768,15 @@ void draw_chart(std::string& out, const grid::CoastGrid& g, const View& v, doubl
                num(coast_width) + "\" stroke-linejoin=\"round\" stroke-linecap=\"round\" d=\"" + coast + "\"/>\n";
 }
 
-const char* status_colour(Status s) { return s == Status::aground ? red : s == Status::close ? amber : clear_grey; }
+const char* status_colour(Status s) {
+    switch (s) {
+    case Status::aground: return red;
+    case Status::contact: return contact_violet;
+    case Status::close: return amber;
+    case Status::clear: return clear_grey;
+    }
+    return clear_grey;
+}
 
 void draw_track(std::string& out, const TrackDraw& t, const View& v, const char* colour, double width, double opacity) {
     if (t.box.empty() || v.world.distance_to(t.box) > 0) return;
@@ -598,63 +799,107 @@ void draw_lonely_fixes(std::string& out, const TrackDraw& t, const View& v, cons
     }
 }
 
+/// The event's full description (tooltips): track, kind, times, speed, depth or clearance,
+/// heading, and the evidence for the kind.
 std::string event_title(const EventDraw& e) {
     const Event& ev = *e.event;
-    char b[200];
-    if (ev.kind == EventKind::grounding)
-        std::snprintf(b, sizeof b, ": grounding from %s to %s, penetration %.1f m, heading %.0f\xC2\xB0", iso_time(ev.start_s).c_str(),
-                      iso_time(ev.end_s).c_str(), ev.penetration_m, ev.heading_deg);
-    else
-        std::snprintf(b, sizeof b, ": close pass from %s to %s, least clearance %.1f m, heading %.0f\xC2\xB0",
-                      iso_time(ev.start_s).c_str(), iso_time(ev.end_s).c_str(), ev.min_clearance_m, ev.heading_deg);
-    return "track " + e.track->id + b;
+    std::string s = "track " + e.track->id + (e.track->name.empty() || e.track->name == e.track->id ? "" : " (" + e.track->name + ")");
+    s += ": " + kind_words(ev);
+    const std::string hazard = audit::is_contact(ev.kind) ? hazard_text(ev) : "";
+    if (!hazard.empty()) s += ", " + hazard;
+    s += " from " + iso_time(ev.start_s) + " to " + iso_time(ev.end_s) + " (" + duration_text(ev.end_s - ev.start_s) + "); " +
+         speed_text(ev) + speed_when(ev) + "; " + depth_text(ev) + "; " +
+         heading_text(ev, true);
+    const std::string evidence = evidence_text(ev);
+    if (!evidence.empty()) s += "; " + evidence;
+    return s;
 }
 
+/// The hull footprint; dashed when the heading was unknown (the hull's circle is drawn then).
 void draw_hull(std::string& out, const EventDraw& e, const View& v, bool focus) {
     if (e.hull.size() < 3) return;
-    const bool g = e.event->kind == EventKind::grounding;
-    const char* stroke = g ? (focus ? red_dark : red) : amber_dark;
-    const char* fill = g ? red : amber;
+    const KindStyle k = kind_style(e.event->kind);
+    const char* stroke = e.event->kind == EventKind::grounding && !focus ? red : k.dark;
     out += std::string("<polygon class=\"hull ") + audit::to_string(e.event->kind) + "\" points=\"" + points_attr(e.hull, v) +
-           "\" fill=\"" + fill + "\" fill-opacity=\"" + (focus ? "0.35" : "0.2") + "\" stroke=\"" + stroke +
-           "\" stroke-width=\"" + (focus ? "1.6" : "1") + "\" stroke-linejoin=\"round\"/>\n";
+           "\" fill=\"" + k.fill + "\" fill-opacity=\"" + (focus ? "0.35" : "0.2") + "\" stroke=\"" + stroke +
+           "\" stroke-width=\"" + (focus ? "1.6" : "1") + "\" stroke-linejoin=\"round\"" +
+           (e.event->orientation_unknown ? (focus ? " stroke-dasharray=\"5,3\"" : " stroke-dasharray=\"3,2\"") : "") + ">";
+    if (e.event->orientation_unknown) out += "<title>hull circle: heading unknown, the hull at any heading</title>";
+    out += "</polygon>\n";
 }
 
-/// A marker: red circle for a grounding, amber triangle for a close pass. `cls` names it
-/// ("event" in the overview, one per event; "contact" in the zoomed panels).
+/// `pts` (page px) as an SVG points list.
+std::string page_points(const std::vector<XY>& pts) {
+    std::string s;
+    for (const XY& q : pts) {
+        if (!s.empty()) s += ' ';
+        put(s, q.x);
+        s += ',';
+        put(s, q.y);
+    }
+    return s;
+}
+
+/// The marker shape of a kind at `p` (page px), `size` its radius: a circle (grounding,
+/// larger; alongside), a square (in contact at the first fix), a diamond (expected contact),
+/// a triangle (close pass). Returns the element's start up to its attributes' end, without
+/// the closing of the tag; sets `tag` to the element's name.
+std::string marker_shape(EventKind k, XY p, double size, std::string* tag) {
+    switch (k) {
+    case EventKind::grounding:
+    case EventKind::alongside:
+        *tag = "circle";
+        return "<circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"" + num(size) + "\"";
+    case EventKind::contact_at_start:
+        *tag = "rect";
+        return "<rect x=\"" + num(p.x - size * 0.85) + "\" y=\"" + num(p.y - size * 0.85) + "\" width=\"" + num(size * 1.7) +
+               "\" height=\"" + num(size * 1.7) + "\"";
+    case EventKind::expected_contact: {
+        const double s = size * 1.15;
+        *tag = "polygon";
+        return "<polygon points=\"" + page_points({{p.x, p.y - s}, {p.x + s, p.y}, {p.x, p.y + s}, {p.x - s, p.y}}) + "\"";
+    }
+    case EventKind::close_pass: {
+        const double s = size * 1.25;
+        *tag = "polygon";
+        return "<polygon points=\"" + page_points({{p.x, p.y - s}, {p.x + s * 0.9, p.y + s * 0.6}, {p.x - s * 0.9, p.y + s * 0.6}}) +
+               "\"";
+    }
+    }
+    *tag = "circle";
+    return "<circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"" + num(size) + "\"";
+}
+
+/// Marker radius (px) of a kind in the overview: groundings and close passes large, the other
+/// contacts small.
+double marker_size(EventKind k) noexcept {
+    return k == EventKind::grounding || k == EventKind::close_pass ? 5 : k == EventKind::alongside ? 3.5 : 3.2;
+}
+
+/// A marker in the overview (class `event <kind>`, one per event), the shape and colour of
+/// its kind, with the event's full description as its tooltip.
 Rect draw_marker(std::string& out, const EventDraw& e, const View& v, const char* cls, double size) {
     const XY p = v.to_px(e.point);
-    const std::string kind = audit::to_string(e.event->kind);
-    const std::string title = "<title>" + xml(event_title(e)) + "</title>";
-    if (e.event->kind == EventKind::grounding) {
-        out += "<circle class=\"" + std::string(cls) + " " + kind + "\" cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"" +
-               num(size) + "\" fill=\"" + red + "\" stroke=\"#ffffff\" stroke-width=\"1.5\">" + title + "</circle>\n";
-    } else {
-        const double s = size * 1.25;
-        const std::vector<XY> tri = {{p.x, p.y - s}, {p.x + s * 0.9, p.y + s * 0.6}, {p.x - s * 0.9, p.y + s * 0.6}};
-        std::string pts;
-        for (const XY& q : tri) {
-            if (!pts.empty()) pts += ' ';
-            put(pts, q.x);
-            pts += ',';
-            put(pts, q.y);
-        }
-        out += "<polygon class=\"" + std::string(cls) + " " + kind + "\" points=\"" + pts + "\" fill=\"" + amber +
-               "\" stroke=\"#ffffff\" stroke-width=\"1.5\" stroke-linejoin=\"round\">" + title + "</polygon>\n";
-    }
-    return {p.x - size - 1, p.y - size - 1, p.x + size + 1, p.y + size + 1};
+    const EventKind kind = e.event->kind;
+    std::string tag;
+    std::string shape = marker_shape(kind, p, size, &tag);
+    shape.insert(tag.size() + 1, " class=\"" + std::string(cls) + " " + audit::to_string(kind) + "\"");
+    const bool big = kind == EventKind::grounding || kind == EventKind::close_pass;
+    out += shape + " fill=\"" + kind_style(kind).fill + "\" stroke=\"#ffffff\" stroke-width=\"" + (big ? "1.5" : "1") +
+           "\" stroke-linejoin=\"round\"><title>" + xml(event_title(e)) + "</title></" + tag + ">\n";
+    const double r = size * 1.25;
+    return {p.x - r - 1, p.y - r - 1, p.x + r + 1, p.y + r + 1};
 }
 
 /// A contact point in a zoomed panel: a ring, so that the hull under it stays visible.
 Rect draw_contact(std::string& out, const EventDraw& e, const View& v, double r) {
     const XY p = v.to_px(e.point);
-    const bool g = e.event->kind == EventKind::grounding;
+    const char* dark = kind_style(e.event->kind).dark;
     out += std::string("<g class=\"contact ") + audit::to_string(e.event->kind) + "\"><title>" + xml(event_title(e)) +
            "</title><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"" + num(r) +
            "\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"3.5\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) +
-           "\" r=\"" + num(r) + "\" fill=\"none\" stroke=\"" + (g ? red_dark : amber_dark) +
-           "\" stroke-width=\"1.8\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"1.2\" fill=\"" +
-           (g ? red_dark : amber_dark) + "\"/></g>\n";
+           "\" r=\"" + num(r) + "\" fill=\"none\" stroke=\"" + dark + "\" stroke-width=\"1.8\"/><circle cx=\"" + num(p.x) +
+           "\" cy=\"" + num(p.y) + "\" r=\"1.2\" fill=\"" + dark + "\"/></g>\n";
     return {p.x - r - 2, p.y - r - 2, p.x + r + 2, p.y + r + 2};
 }
 
@@ -726,43 +971,48 @@ void close_panel(std::string& out, const View& v) {
 
 // ---------------------------------------------------------------- the panels
 
-void draw_overview(std::string& out, const Scene& scene, const grid::CoastGrid& g, const View& v) {
+/// The time label of an event in the overview: "10:03:12Z", "(n)" added when it has a panel.
+std::string time_label(const EventDraw& e) {
+    return clock(e.event->start_s) + (e.zoom ? " (" + std::to_string(e.zoom) + ")" : "");
+}
+
+/// `order`: the events most severe first (see order_events).
+void draw_overview(std::string& out, const Scene& scene, const grid::CoastGrid& g, const View& v,
+                   const std::vector<EventDraw*>& order) {
     open_panel(out, v, "overview", "overview");
     draw_chart(out, g, v, 2, 0.8);
-    for (Status s : {Status::clear, Status::close, Status::aground})
+    for (Status s : {Status::clear, Status::close, Status::contact, Status::aground})
         for (const TrackDraw& t : scene.tracks)
             if (t.status == s) {
                 draw_track(out, t, v, status_colour(s), s == Status::clear ? 1.0 : 1.6, s == Status::clear ? 0.75 : 0.95);
                 draw_lonely_fixes(out, t, v, status_colour(s));
             }
-    for (const EventDraw& e : scene.events) draw_hull(out, e, v, false);
+    for (auto it = order.rbegin(); it != order.rend(); ++it) draw_hull(out, **it, v, false);
 
-    // Markers (close passes under groundings), then labels where they fit: event times
-    // first (groundings, then close passes), then the ids of tracks with events, then the rest.
+    // Markers (the most severe drawn last, on top), then labels where they fit: event times
+    // most severe first, then the ids of tracks with events, then the rest.
     Labels labels(v.px.grown(-2));
     std::string marks, texts;
     for (const EventDraw& e : scene.events) labels.block(hull_rect(e, v));
-    for (EventKind k : {EventKind::close_pass, EventKind::grounding})
-        for (const EventDraw& e : scene.events)
-            if (e.point_ok && e.event->kind == k) labels.block(draw_marker(marks, e, v, "event", 5));
+    for (auto it = order.rbegin(); it != order.rend(); ++it)
+        if ((*it)->point_ok) labels.block(draw_marker(marks, **it, v, "event", marker_size((*it)->event->kind)));
     out += marks;
     out += "</g>\n";  // end of the clipped group: labels, scale bar and arrow are placed inside the panel
     const Bearing b = bearing_at(g.frame(), v.to_world({(v.px.x0 + v.px.x1) / 2, (v.px.y0 + v.px.y1) / 2}));
     labels.block(draw_scale_bar(texts, v, b));
     labels.block(draw_north_arrow(texts, v, b));
-    for (EventKind k : {EventKind::grounding, EventKind::close_pass})
-        for (const EventDraw& e : scene.events) {
-            if (!e.point_ok || e.event->kind != k) continue;
-            const std::string s = clock(e.event->start_s) + (e.zoom ? " (" + std::to_string(e.zoom) + ")" : "");
-            const XY at = v.to_px(e.point);
-            const char* colour = k == EventKind::grounding ? red_dark : amber_dark;
-            // Numbered groundings (they have a panel) may move off a crowded spot on a leader line.
-            if (auto r = labels.place(at, text_width(s, 10.5) + 4, 14, 5, e.zoom ? 40 : 10)) {
-                leader(texts, at, *r, 12, colour);
-                label(texts, *r, s, 10.5, colour, "label event-time", true);
-            }
+    for (const EventDraw* e : order) {
+        if (!e->point_ok) continue;
+        const std::string s = time_label(*e);
+        const XY at = v.to_px(e->point);
+        const char* colour = kind_style(e->event->kind).dark;
+        // Numbered events (they have a panel) may move off a crowded spot on a leader line.
+        if (auto r = labels.place(at, text_width(s, 10.5) + 4, 14, 5, e->zoom ? 40 : 10)) {
+            leader(texts, at, *r, 12, colour);
+            label(texts, *r, s, 10.5, colour, "label event-time", e->event->kind == EventKind::grounding || e->zoom);
         }
-    for (Status s : {Status::aground, Status::close, Status::clear})
+    }
+    for (Status s : {Status::aground, Status::contact, Status::close, Status::clear})
         for (const TrackDraw& t : scene.tracks) {
             if (t.status != s || t.lines.empty()) continue;
             const XY start = v.to_px(t.lines.front().front());
@@ -773,6 +1023,33 @@ void draw_overview(std::string& out, const Scene& scene, const grid::CoastGrid& 
     out += texts;
     close_panel(out, v);
 }
+
+/// One line of a zoomed panel's title.
+struct TitleLine {
+    std::string text;
+    const char* colour;
+    double size;
+    bool bold;
+};
+
+/// The title of a zoomed panel: track and name; the kind in words; speed at contact (or at
+/// least clearance) and penetration (or clearance); start and duration; heading.
+std::vector<TitleLine> zoom_title(const EventDraw& e) {
+    const Event& ev = *e.event;
+    std::vector<TitleLine> lines;
+    lines.push_back({"(" + std::to_string(e.zoom) + ") " + track_text(*e.track), ink, 12, true});
+    std::string kind = kind_words(ev);
+    const std::string hazard = audit::is_contact(ev.kind) ? hazard_text(ev) : "";
+    if (!hazard.empty()) kind += ", " + hazard;
+    lines.push_back({kind, kind_style(ev.kind).dark, 11, true});
+    lines.push_back({speed_text(ev) + speed_when(ev) + ", " + depth_text(ev), ink, 11, false});
+    lines.push_back({"from " + date_clock(ev.start_s) + " UTC for " + duration_text(ev.end_s - ev.start_s), ink, 11, false});
+    lines.push_back({heading_text(ev, true), ev.orientation_unknown ? slate_dark : "#555555", 11, false});
+    return lines;
+}
+
+/// Height (px) the title of a zoomed panel takes above it.
+constexpr double zoom_title_px = 76;
 
 void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, const EventDraw& focus, const View& v) {
     open_panel(out, v, "zoom", "zoom-" + std::to_string(focus.zoom));
@@ -807,13 +1084,32 @@ void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, c
     std::string texts;
     labels.block(draw_scale_bar(texts, v, b));
     labels.block(draw_north_arrow(texts, v, b));
-    const std::string s = "first contact " + clock(focus.event->start_s);
+    const Event& ev = *focus.event;
+    const char* dark = kind_style(ev.kind).dark;
+    if (ev.orientation_unknown) {  // said in the picture as well as in the title
+        const std::string s = "heading unknown (hull circle)";
+        const Rect r{v.px.x0 + 6, v.px.y0 + 6, v.px.x0 + 10 + text_width(s, 10.5), v.px.y0 + 21};
+        labels.block(r);
+        label(texts, r, s, 10.5, slate_dark, "label heading-unknown");
+    }
+    const std::string s = (ev.kind == EventKind::contact_at_start ? "in contact at first fix "
+                           : ev.kind == EventKind::close_pass     ? "close pass from "
+                                                                  : "first contact ") +
+                          clock(ev.start_s);
     const XY at = v.to_px(focus.point);
     if (auto r = labels.place(at, text_width(s, 11) + 4, 15, 7, v.px.w() / 3)) {
-        leader(texts, at, *r, 14, red_dark);
-        label(texts, *r, s, 11, red_dark, "label event-time", true);
+        leader(texts, at, *r, 14, dark);
+        label(texts, *r, s, 11, dark, "label event-time", true);
     }
     out += texts;
+    // The title above the panel (inside the panel's group, outside its clip).
+    const auto lines = zoom_title(focus);
+    double ty = v.px.y0 - zoom_title_px;
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+        ty += k == 0 ? 12 : 14.5;
+        text(out, v.px.x0, ty, fit_text(lines[k].text, lines[k].size, v.px.w()), lines[k].size, lines[k].colour,
+             k == 0 ? " class=\"zoom-title\" font-weight=\"bold\"" : lines[k].bold ? " font-weight=\"bold\"" : "");
+    }
     close_panel(out, v);
 }
 
@@ -841,7 +1137,10 @@ double draw_legend(std::string& out, double x0, double y0, double width, const s
     return y + 18;
 }
 
-std::vector<LegendItem> legend_items(const grid::CoastGrid& g) {
+/// What the picture draws: the chart, the kinds of track present, hulls, and a marker for
+/// groundings and close passes (always, so that none drawn says none) and for each other kind
+/// of contact present.
+std::vector<LegendItem> legend_items(const grid::CoastGrid& g, const Scene& scene) {
     auto line = [](const char* colour, double w) {
         return std::string("<line x1=\"0\" y1=\"6\" x2=\"22\" y2=\"6\" stroke=\"") + colour + "\" stroke-width=\"" + num(w) +
                "\" stroke-linecap=\"round\"/>";
@@ -850,23 +1149,68 @@ std::vector<LegendItem> legend_items(const grid::CoastGrid& g) {
         return std::string("<rect x=\"0\" y=\"0\" width=\"22\" height=\"12\" fill=\"") + colour +
                "\" stroke=\"#999999\" stroke-width=\"0.5\"/>";
     };
+    auto marker = [](EventKind k) {
+        std::string tag;
+        const bool big = k == EventKind::grounding || k == EventKind::close_pass;
+        return marker_shape(k, {11, 6}, big ? 5 : 4, &tag) + " fill=\"" + kind_style(k).fill + "\" stroke=\"#ffffff\" stroke-width=\"" +
+               (big ? "1.5" : "1") + "\" stroke-linejoin=\"round\"/>";
+    };
+    bool kind_present[5] = {false, false, false, false, false};
+    bool unknown_heading = false;
+    for (const EventDraw& e : scene.events) {
+        kind_present[severity(e.event->kind)] = true;
+        unknown_heading = unknown_heading || (e.event->orientation_unknown && e.hull.size() >= 3);
+    }
+    bool contact_track = false;
+    for (const TrackDraw& t : scene.tracks) contact_track = contact_track || t.status == Status::contact;
+
     std::vector<LegendItem> items;
     items.push_back({line(coast_stroke, 1.2), "coastline"});
     if (g.has_land_side()) items.push_back({swatch(land_fill), "land (as the grid sees it)"});
     else items.push_back({swatch(water_fill), "land side unknown: coastline only"});
     items.push_back({swatch(outside_fill), "no chart (outside the grid)"});
     items.push_back({line(red, 2), "track with grounding"});
+    if (contact_track) items.push_back({line(contact_violet, 2), "track with contacts, no grounding"});
     items.push_back({line(amber, 2), "track with close pass"});
     items.push_back({line(clear_grey, 1.5), "other track"});
     items.push_back({std::string("<polygon points=\"1,3 15,3 21,6 15,9 1,9\" fill=\"") + red +
                          "\" fill-opacity=\"0.3\" stroke=\"" + red_dark + "\" stroke-width=\"1\"/>",
                      "hull at event"});
-    items.push_back({std::string("<circle cx=\"11\" cy=\"6\" r=\"5\" fill=\"") + red + "\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>",
-                     "grounding (first contact, time UTC)"});
-    items.push_back({std::string("<polygon points=\"11,0 16.6,9.7 5.4,9.7\" fill=\"") + amber +
-                         "\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>",
-                     "close pass"});
+    if (unknown_heading)
+        items.push_back({std::string("<circle cx=\"11\" cy=\"6\" r=\"5.5\" fill=\"") + slate + "\" fill-opacity=\"0.2\" stroke=\"" +
+                             slate_dark + "\" stroke-width=\"1\" stroke-dasharray=\"3,2\"/>",
+                         "hull circle: heading unknown"});
+    items.push_back({marker(EventKind::grounding), "grounding (first contact, time UTC)"});
+    if (kind_present[severity(EventKind::alongside)])
+        items.push_back({marker(EventKind::alongside), "alongside (not a grounding)"});
+    if (kind_present[severity(EventKind::contact_at_start)])
+        items.push_back({marker(EventKind::contact_at_start), "in contact at the first fix"});
+    if (kind_present[severity(EventKind::expected_contact)])
+        items.push_back({marker(EventKind::expected_contact), "contact in a berth or harbour area"});
+    items.push_back({marker(EventKind::close_pass), "close pass"});
     return items;
+}
+
+/// The events most severe first: groundings in time order, then alongside, in contact at the
+/// first fix and expected contacts (each deepest penetration first), then close passes (least
+/// clearance first); report order among equals.
+std::vector<EventDraw*> order_events(Scene& scene) {
+    std::vector<EventDraw*> order;
+    order.reserve(scene.events.size());
+    for (EventDraw& e : scene.events) order.push_back(&e);
+    auto key = [](const Event& e) {
+        if (e.kind == EventKind::grounding) return e.start_s;
+        if (e.kind == EventKind::close_pass) return e.min_clearance_m;
+        return -e.penetration_m;
+    };
+    std::stable_sort(order.begin(), order.end(), [&](const EventDraw* a, const EventDraw* b) {
+        const std::size_t sa = severity(a->event->kind), sb = severity(b->event->kind);
+        if (sa != sb) return sa < sb;
+        const double ka = key(*a->event), kb = key(*b->event);
+        if (ka != kb && !std::isnan(ka) && !std::isnan(kb)) return ka < kb;
+        return std::isnan(kb) && !std::isnan(ka);  // unknown figures last
+    });
+    return order;
 }
 
 }  // namespace
@@ -879,24 +1223,29 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
     const double inner = width - 2 * margin;
 
     Scene scene = project_scene(result, grid.frame());
-    std::size_t zoom_count = 0, groundings = 0;
-    for (EventDraw& e : scene.events)
-        if (e.event->kind == EventKind::grounding) {
-            ++groundings;
-            if (zoom_count < options.max_zoom_panels && e.point_ok) e.zoom = ++zoom_count;
-        }
+    const std::vector<EventDraw*> order = order_events(scene);
+    // Zoomed panels in that order, up to the limit; what is left out is counted by kind.
+    std::size_t zoom_count = 0;
+    std::size_t left_out[5] = {0, 0, 0, 0, 0};
+    for (EventDraw* e : order) {
+        if (zoom_count < options.max_zoom_panels && e->point_ok) e->zoom = ++zoom_count;
+        else ++left_out[severity(e->event->kind)];
+    }
 
     std::string body;
-    // Title and summary.
+    // Title and summary: every kind of event counted (the contacts that are not groundings when present).
     text(body, margin, margin + 18, "shoal audit", 20, ink, " font-weight=\"bold\"");
     std::string summary = plural(result.tracks.size(), "track", "tracks") + ", " + plural(result.fixes, "fix", "fixes") + ", " +
-                          plural(result.groundings, "grounding", "groundings") + ", " +
-                          plural(result.close_passes, "close pass", "close passes");
+                          count_text(EventKind::grounding, result.groundings);
+    if (result.contacts_at_start) summary += ", " + count_text(EventKind::contact_at_start, result.contacts_at_start);
+    if (result.alongside) summary += ", " + count_text(EventKind::alongside, result.alongside);
+    if (result.expected_contacts) summary += ", " + count_text(EventKind::expected_contact, result.expected_contacts);
+    summary += ", " + count_text(EventKind::close_pass, result.close_passes);
     if (result.uncovered_fixes) summary += ", " + plural(result.uncovered_fixes, "uncovered fix", "uncovered fixes");
     std::size_t unreadable = result.errors.size();
     for (const auto& f : result.files) unreadable += f.error.empty() ? 0 : 1;
     if (unreadable) summary += ", " + plural(unreadable, "file or track not read", "files or tracks not read");
-    text(body, margin, margin + 40, summary, 13, ink, " class=\"summary\"");
+    text(body, margin, margin + 40, fit_text(summary, 13, inner), 13, ink, " class=\"summary\"");
     std::string when;
     if (std::isfinite(result.first_fix_s) && std::isfinite(result.last_fix_s))
         when = "fixes from " + date_clock(result.first_fix_s) + " to " + date_clock(result.last_fix_s);
@@ -909,7 +1258,7 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
     } else {
         text(body, margin, y, fit_text(when.empty() ? how : when + "; " + how, 11, inner), 11, "#555555");
     }
-    y = draw_legend(body, margin, y + 10, inner, legend_items(grid)) + 8;
+    y = draw_legend(body, margin, y + 10, inner, legend_items(grid, scene)) + 8;
 
     // Overview: the tracks and events, padded by at least 2 km, kept within the chart (unless
     // the data reach beyond it).
@@ -926,50 +1275,59 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
     text(body, margin, y + 14, "Overview", 14, ink, " font-weight=\"bold\"");
     y += 22;
     const View overview = fit(want, {margin, y, margin + inner, y + oh});
-    draw_overview(body, scene, grid, overview);
+    draw_overview(body, scene, grid, overview, order);
     y += oh + 12;
 
-    // Zoomed panels, one per grounding.
-    if (groundings > 0) {
+    // Zoomed panels in three sections: groundings, the other contacts, close passes.
+    struct Section {
+        const char* heading;
+        bool (*holds)(EventKind);
+    };
+    const Section sections[] = {
+        {"Groundings", [](EventKind k) { return k == EventKind::grounding; }},
+        {"Other contacts (not groundings)", [](EventKind k) { return k != EventKind::grounding && audit::is_contact(k); }},
+        {"Close passes", [](EventKind k) { return k == EventKind::close_pass; }},
+    };
+    const int cols = width >= 900 ? 3 : 2;
+    const double gap = 16;
+    const double zw = (inner - (cols - 1) * gap) / cols, zh = zw * 0.75;
+    for (const Section& sec : sections) {
+        std::vector<const EventDraw*> drawn;
+        std::size_t all = 0;
+        for (const EventDraw* e : order) {
+            if (!sec.holds(e->event->kind)) continue;
+            ++all;
+            if (e->zoom) drawn.push_back(e);
+        }
+        if (drawn.empty()) continue;
         y += 10;
         text(body, margin, y + 14,
-             zoom_count == groundings ? "Groundings" : "Groundings (first " + std::to_string(zoom_count) + " of " +
-                                                           std::to_string(groundings) + ")",
-             14, ink, " font-weight=\"bold\"");
+             drawn.size() == all ? std::string(sec.heading)
+                                 : std::string(sec.heading) + ": first " + std::to_string(drawn.size()) + " of " + std::to_string(all),
+             14, ink, " class=\"section\" font-weight=\"bold\"");
         y += 24;
-        const int cols = width >= 900 ? 3 : 2;
-        const double gap = 16;
-        const double zw = (inner - (cols - 1) * gap) / cols, zh = zw * 0.75;
-        std::size_t n = 0;
-        for (const EventDraw& e : scene.events) {
-            if (!e.zoom) continue;
-            const auto col = static_cast<double>(n % static_cast<std::size_t>(cols));
-            const double x = margin + col * (zw + gap);
-            const double ty = y;
-            const Event& ev = *e.event;
+        for (std::size_t n = 0; n < drawn.size(); ++n) {
+            const EventDraw& e = *drawn[n];
+            const double x = margin + static_cast<double>(n % static_cast<std::size_t>(cols)) * (zw + gap);
             const double size_m = std::max(8 * (e.hull_length_m > 0 ? e.hull_length_m : 100.0), 100.0);
-            std::string head = "(" + std::to_string(e.zoom) + ") track " + e.track->id;
-            if (!e.track->name.empty() && e.track->name != e.track->id) head += " " + e.track->name;
-            head = fit_text(head, 12, zw);
-            char line2[160];
-            std::snprintf(line2, sizeof line2, "aground %s, penetration %.1f m, heading %.0f\xC2\xB0", clock(ev.start_s).c_str(),
-                          ev.penetration_m, ev.heading_deg);
-            text(body, x, ty + 12, head, 12, ink, " font-weight=\"bold\"");
-            text(body, x, ty + 27, line2, 11, red_dark);
-            const Rect px{x, ty + 34, x + zw, ty + 34 + zh};
+            const Rect px{x, y + zoom_title_px, x + zw, y + zoom_title_px + zh};
             const View v = fit({e.point.x - size_m / 2, e.point.y - size_m / 2, e.point.x + size_m / 2, e.point.y + size_m / 2}, px);
             draw_zoom(body, scene, grid, e, v);
-            ++n;
-            if (n % static_cast<std::size_t>(cols) == 0 || n == zoom_count) y += 34 + zh + 16;
+            if ((n + 1) % static_cast<std::size_t>(cols) == 0 || n + 1 == drawn.size()) y += zoom_title_px + zh + 16;
         }
-        if (zoom_count < groundings) {
-            const std::size_t more = groundings - zoom_count;
-            text(body, margin, y + 12,
-                 std::to_string(more) + (more == 1 ? " more grounding" : " more groundings") + " not drawn (at most " +
-                     std::to_string(options.max_zoom_panels) + " zoomed panels; see the report for all)",
-                 12, red_dark, " class=\"note\"");
-            y += 22;
+    }
+    std::size_t more = 0;
+    for (std::size_t n : left_out) more += n;
+    if (more > 0) {
+        std::string what;
+        for (EventKind k : kinds_by_severity) {
+            const std::size_t n = left_out[severity(k)];
+            if (n) what += (what.empty() ? "" : ", ") + count_text(k, n);
         }
+        const std::string note = std::to_string(more) + " more not drawn: " + what + " (at most " +
+                                 std::to_string(options.max_zoom_panels) + " zoomed panels; see the report for all)";
+        text(body, margin, y + 12, fit_text(note, 12, inner), 12, left_out[0] ? red_dark : ink, " class=\"note\"");
+        y += 22;
     }
     const double height = std::ceil(y + margin);
 

@@ -87,11 +87,10 @@ void resolve_motion(Track& t, const MotionOptions& o) {
                 continue;
             }
             std::size_t j = i, k = i;
-            // The latest fix at least a window earlier, else the piece's first.
+            // The latest fix at least a window earlier, else the piece's first; near the
+            // piece's start, the window reaches forward until it is a window long.
             while (j > b && f.time_s - t.fixes[j].time_s < o.speed_window_s) --j;
-            if (j == i) {  // the piece's first fix: look forward instead
-                while (k + 1 < e && t.fixes[k].time_s - f.time_s < o.speed_window_s) ++k;
-            }
+            while (k + 1 < e && t.fixes[k].time_s - t.fixes[j].time_s < o.speed_window_s) ++k;
             const double dt = t.fixes[k].time_s - t.fixes[j].time_s;
             if (dt > 0) {
                 f.speed_used_kn = distance_m(t.fixes[j].position, t.fixes[k].position) / dt * 3600.0 / metres_per_nm;

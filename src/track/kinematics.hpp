@@ -15,9 +15,9 @@ namespace shoal::track {
 
 struct MotionOptions {
     /// Speed from positions: the displacement from the latest fix at least this many seconds
-    /// earlier (or the piece's first fix), divided by the time between them. Over 60 s, a
-    /// jitter of 5 m is 0.16 kn.
-    double speed_window_s = 60.0;
+    /// earlier, divided by the time between them; near a piece's start, from its first fix to
+    /// the first fix this long after it. Over 120 s, GPS jitter of 5 m (sigma) reads as 0.45 kn at most.
+    double speed_window_s = 120.0;
     /// A stop: every fix of a time window lies in a box whose diagonal is at most this (metres)...
     double stop_diameter_m = 50.0;
     /// ... and the window lasts at least this long (seconds).

@@ -47,6 +47,28 @@ double speed_kn(const Fix& a, const Fix& b) noexcept {
     return distance_m(a.position, b.position) / dt * 3600.0 / metres_per_nm;
 }
 
+/// Heading from positions: a baseline long enough that 5 m of jitter turns it by 6 degrees at most.
+constexpr double baseline_m = 50.0;
+/// ... looked for among this many fixes (a vessel crawling at 0.5 kn with a fix a second).
+constexpr std::size_t baseline_max_fixes = 256;
+
+/// The nearest fix before (`dir` -1) or after (+1) fix i, within its piece of track (no jump
+/// between), at least baseline_m from it, among the next baseline_max_fixes; null if none.
+const Fix* baseline_fix(const std::vector<Fix>& fx, std::size_t i, int dir) noexcept {
+    const Fix& f = fx[i];
+    for (std::size_t k = i, seen = 0; seen < baseline_max_fixes; ++seen) {
+        if (dir < 0) {
+            if (k == 0 || fx[k].jump_before) return nullptr;
+            --k;
+        } else {
+            if (k + 1 >= fx.size() || fx[k + 1].jump_before) return nullptr;
+            ++k;
+        }
+        if (distance_m(fx[k].position, f.position) >= baseline_m) return &fx[k];
+    }
+    return nullptr;
+}
+
 }  // namespace
 
 const char* to_string(HeadingSource s) noexcept {
@@ -179,11 +201,15 @@ void resolve_headings(Track& track, double moving_kn) {
                 used = f.cog_deg;
                 source = HeadingSource::cog;
             } else if (moving) {
-                if (has_next && !fx[i + 1].jump_before && !(fx[i + 1].position == f.position)) {
-                    used = initial_bearing_deg(f.position, fx[i + 1].position);
+                // The course made good: the bearing towards the first later fix at least
+                // `baseline_m` away (within the piece), else from the latest earlier one. Not
+                // fix to fix: between fixes a few metres apart, GPS jitter turns the bearing
+                // anywhere (a vessel that has just run aground would swing about).
+                if (const Fix* to = baseline_fix(fx, i, +1)) {
+                    used = initial_bearing_deg(f.position, to->position);
                     source = HeadingSource::positions;
-                } else if (has_prev && !f.jump_before && !(fx[i - 1].position == f.position)) {
-                    used = initial_bearing_deg(fx[i - 1].position, f.position);
+                } else if (const Fix* from = baseline_fix(fx, i, -1)) {
+                    used = initial_bearing_deg(from->position, f.position);
                     source = HeadingSource::positions;
                 }
             }

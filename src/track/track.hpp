@@ -91,7 +91,8 @@ void normalise(Track& track, ReadReport& report);
 
 /// Heading per fix: true heading where valid, else COG when moving (speed_used_kn >= `moving_kn`
 /// when resolve_motion() has run; else SOG, else the speed between neighbouring positions),
-/// else the bearing between positions when moving, else the previous heading. A fix before
+/// else when moving the course made good (bearing towards the first later fix at least 50 m
+/// away among the next 256, else from the latest earlier one), else the previous heading. A fix before
 /// any heading is known gets HeadingSource::none (heading_used_deg 0, to be ignored: the
 /// orientation is unknown). Fills heading_used_deg and heading_source.
 void resolve_headings(Track& track, double moving_kn = 0.5);

@@ -317,3 +317,117 @@ TEST(Motion, JacobianFromAnchorsMatchesTheFrameAtEveryFix) {
 
 }  // namespace
 }  // namespace shoal::audit
+
+namespace shoal::audit {
+namespace {
+
+TEST(Sweep, TheHullsCircleIsContactAtSomeHeadingAgainstBruteForceOverHeadings) {
+    // An island and a pier; random positions around them. The circle's clearance must be the
+    // least clearance of the hull over all headings (brute force over 720 headings), to within
+    // the 36-gon's overshoot (0.4 % of the radius) and the heading sampling.
+    World w({land({{0, 0}, {600, 0}, {600, 400}, {300, 700}, {0, 400}}), land({{900, 200}, {1300, 200}, {1300, 204}, {900, 204}})});
+    const hull::Hull circle = circle_hull(w.hull);
+    const double r = w.hull.radius();
+    EXPECT_NEAR(circle.radius(), r / std::cos(std::numbers::pi / 36), 1e-9);
+    const DetectorChecker by_circle(w.grid, circle);
+    const BruteChecker brute(w.lines, w.hull);
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> ux(-300, 1600), uy(-300, 1000);
+    std::size_t contacts = 0, clear = 0;
+    for (int k = 0; k < 300; ++k) {
+        const XY p{ux(rng), uy(rng)};
+        double least = INFINITY;
+        for (int h = 0; h < 720; ++h) {
+            const check::Contact c = brute.check(check::LocalPose::at(p, h * 0.5), {1e9, false});
+            least = std::min(least, c.collision ? 0.0 : c.clearance_m);
+        }
+        const check::Contact c = by_circle.check(check::LocalPose::at(p, 0), {1e9, false});
+        const double got = c.collision ? 0.0 : c.clearance_m;
+        if (least == 0) {
+            ++contacts;
+            EXPECT_TRUE(c.collision) << "contact at some heading is contact of the circle, at " << p.x << "," << p.y;
+        } else {
+            ++clear;
+            EXPECT_LE(got, least + 1e-6) << p.x << "," << p.y;
+            EXPECT_GE(got, least - 0.01 * r) << p.x << "," << p.y;
+        }
+    }
+    EXPECT_GT(contacts, 30u);
+    EXPECT_GT(clear, 30u);
+}
+
+TEST(Sweep, ContactKindsFollowWhatWasObserved) {
+    // A straight shore at y = 1000 (land to the north). Hand-derived answers for each rule.
+    World w({land({{-5000, 1000}, {5000, 1000}, {5000, 3000}, {-5000, 3000}})}, 500);
+    SweepOptions o;
+    auto resolved = [&](track::Track t) {
+        track::resolve_motion(t, o.motion());
+        return t;
+    };
+    // Under way at 10 kn (5.144 m/s) heading north from y = 0: the bow (80 m ahead) touches
+    // at y = 920, 920 / 5.144 s after the start; then it lies there: one grounding.
+    {
+        track::Track t = track_through({{0, 0}, {0, 940}}, 10 * 1852.0 / 3600);
+        for (int i = 1; i <= 30; ++i) {
+            track::Fix f = t.fixes.back();
+            f.time_s += 10;
+            f.line += 1;
+            t.fixes.push_back(f);
+        }
+        const TrackResult r = w.sweep(resolved(t), o);
+        ASSERT_EQ(r.events.size(), 1u);
+        const Event& e = r.events[0];
+        EXPECT_EQ(e.kind, EventKind::grounding);
+        EXPECT_NEAR(e.start_s - t.fixes[0].time_s, 920 / (10 * 1852.0 / 3600), 0.05);
+        EXPECT_NEAR(e.speed_kn, 10.0, 0.1) << "great-circle metres against the frame's";
+        EXPECT_EQ(e.speed_source, track::SpeedSource::positions);
+        EXPECT_FALSE(e.stopped_before);
+        // Contact at 178.8 s, at the fix (182.7 s) it lies still: stopped from there.
+        ASSERT_TRUE(std::isfinite(e.stopped_after_s));
+        EXPECT_NEAR(e.stopped_after_s, (940 - 920) / (10 * 1852.0 / 3600), 0.05);
+        EXPECT_NEAR(e.reference_inside_m, -80.0, 0.5) << "the reference point is 80 m behind the bow, in water";
+        EXPECT_EQ(r.summary.groundings, 1u);
+    }
+    // The same approach at 0.5 kn: under the berthing speed, alongside.
+    {
+        const TrackResult r = w.sweep(resolved(track_through({{0, 880}, {0, 930}}, 0.5 * 1852.0 / 3600)), o);
+        ASSERT_EQ(r.events.size(), 1u);
+        EXPECT_EQ(r.events[0].kind, EventKind::alongside);
+        EXPECT_NEAR(r.events[0].speed_kn, 0.5, 0.01);
+        o.berthing_speed_kn = 0.4;  // with a lower berthing speed it is a grounding
+        EXPECT_EQ(w.sweep(resolved(track_through({{0, 880}, {0, 930}}, 0.5 * 1852.0 / 3600)), o).events[0].kind, EventKind::grounding);
+        o.berthing_speed_kn = 1.0;
+    }
+    // Already in contact at the first fix: not seen begin.
+    {
+        // Heading south, the stern (20 m aft) is 10 m inside the shore.
+        const TrackResult r = w.sweep(resolved(track_through({{0, 990}, {0, -500}}, 5.0)), o);
+        ASSERT_FALSE(r.events.empty());
+        EXPECT_EQ(r.events[0].kind, EventKind::contact_at_start);
+        EXPECT_EQ(r.events[0].unseen_after, "track start");
+        EXPECT_EQ(r.summary.groundings, 0u);
+    }
+    // Lying still 60 m off for 5 min, then pushed 70 m north within one fix
+    // interval (a jitter burst, a tug): stopped before the contact, so alongside.
+    {
+        track::Track t = track_through({{0, 860}}, 1.0);
+        for (int i = 1; i <= 30; ++i) {
+            track::Fix f = t.fixes.back();
+            f.time_s += 10;
+            f.line += 1;
+            t.fixes.push_back(f);
+        }
+        track::Fix f = t.fixes.back();
+        f.time_s += 6;
+        f.position = frame().inverse({0, 930});
+        f.line += 1;
+        t.fixes.push_back(f);
+        const TrackResult r = w.sweep(resolved(t), o);
+        ASSERT_EQ(r.events.size(), 1u);
+        EXPECT_EQ(r.events[0].kind, EventKind::alongside);
+        EXPECT_TRUE(r.events[0].stopped_before);
+    }
+}
+
+}  // namespace
+}  // namespace shoal::audit

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <set>
 #include <fstream>
@@ -310,6 +311,121 @@ TEST(CliCheck, MissingReportFolderIsAClearErrorBeforeAnyWork) {
                             solent_tracks().string() + "' -o /nonexistent/dir/r.geojson");
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+}
+
+
+// ---------------------------------------------------------------- what kind of contact
+// Hand-made AIS tracks in the MarineCadastre layout with GPS jitter, against the real Helsinki
+// coast (tests/data/tracks/ais_cases, made by make_cases.py there, which derives the first
+// contact time independently with OGR). The expectations are read from its expected.json.
+
+struct CaseRun {
+    Outcome outcome;
+    nlohmann::json report;
+    nlohmann::json expect;
+    std::vector<nlohmann::json> of_kind(const std::string& kind) const {
+        std::vector<nlohmann::json> v;
+        for (const auto& f : report["features"])
+            if (f["properties"]["kind"] == kind) v.push_back(f["properties"]);
+        return v;
+    }
+};
+
+CaseRun run_case(const std::string& file) {
+    static const nlohmann::json expected =
+        nlohmann::json::parse(slurp(std::string(SHOAL_TEST_DATA) + "tracks/ais_cases/expected.json"));
+    CaseRun c;
+    c.expect = expected["cases"][file]["expect"];
+    const fs::path out = temp_dir() / (file + ".geojson");
+    c.outcome = shoal("check --coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 " +
+                      data("tracks/ais_cases/" + file) + " -o '" + out.string() + "' --no-progress");
+    c.report = nlohmann::json::parse(slurp(out));
+    return c;
+}
+
+double epoch_of(const std::string& iso) {
+    std::tm tm{};
+    int y = 0, mo = 0, d = 0, h = 0, mi = 0;
+    double sec = 0;
+    EXPECT_EQ(std::sscanf(iso.c_str(), "%d-%d-%dT%d:%d:%lf", &y, &mo, &d, &h, &mi, &sec), 6) << iso;
+    tm.tm_year = y - 1900, tm.tm_mon = mo - 1, tm.tm_mday = d, tm.tm_hour = h, tm.tm_min = mi;
+    return static_cast<double>(::timegm(&tm)) + sec;
+}
+
+TEST(CliContactKinds, ShipThatRunsAgroundAtSpeedAndLiesThereIsOneGrounding) {
+    for (const char* file : {"aground_at_speed.csv", "aground_at_speed_no_sog.csv"}) {
+        const CaseRun c = run_case(file);
+        EXPECT_EQ(c.outcome.status, 1) << file << c.outcome.err;
+        const auto g = c.of_kind("grounding");
+        ASSERT_EQ(g.size(), 1u) << file << "\n" << c.outcome.out;
+        EXPECT_EQ(c.report["features"].size(), 1u) << "lying aground for 30 min is the same event";
+        const double want = epoch_of(c.expect["grounding_start"].get<std::string>());
+        EXPECT_NEAR(epoch_of(g[0]["start"].get<std::string>()), want, c.expect["start_tolerance_s"].get<double>()) << file;
+        EXPECT_GE(g[0]["speed_kn"].get<double>(), c.expect["speed_kn"][0].get<double>()) << file;
+        EXPECT_LE(g[0]["speed_kn"].get<double>(), c.expect["speed_kn"][1].get<double>()) << file;
+        if (c.expect.contains("speed_source")) EXPECT_EQ(g[0]["speed_source"], c.expect["speed_source"]) << file;
+        else EXPECT_EQ(g[0]["speed_source"], "sog");
+        // It stopped dead at the first fix in contact, within 10 s of the first contact.
+        ASSERT_TRUE(g[0]["stopped_after_s"].is_number()) << file;
+        EXPECT_LT(g[0]["stopped_after_s"].get<double>(), 10.0) << file;
+        EXPECT_EQ(g[0]["stopped_before"], false);
+        EXPECT_NE(c.outcome.out.find("grounding 2024-05-0"), std::string::npos) << c.outcome.out;
+    }
+    EXPECT_EQ(run_case("aground_at_speed.csv").of_kind("grounding")[0]["reported_aground"], true) << "AIS status 6 after a few minutes";
+}
+
+TEST(CliContactKinds, MooredAlongsideThenLeavingIsNoGrounding) {
+    const CaseRun c = run_case("moored_then_leaves.csv");
+    EXPECT_EQ(c.outcome.status, 0) << c.outcome.out << c.outcome.err;
+    EXPECT_TRUE(c.of_kind("grounding").empty());
+    const auto along = c.of_kind("alongside");
+    ASSERT_FALSE(along.empty()) << "the jitter makes the hull touch and clear the shore: each touch is alongside";
+    for (const auto& e : along) {
+        EXPECT_LT(e["speed_kn"].get<double>(), 1.0);
+        EXPECT_EQ(e["nav_status"], 5);
+        EXPECT_EQ(e["nav_status_text"], "moored");
+    }
+}
+
+TEST(CliContactKinds, BerthingSidewaysAtAFewTenthsOfAKnotIsAlongside) {
+    const CaseRun c = run_case("berthing_sideways.csv");
+    EXPECT_EQ(c.outcome.status, 0) << c.outcome.out;
+    EXPECT_TRUE(c.of_kind("grounding").empty());
+    const auto along = c.of_kind("alongside");
+    ASSERT_FALSE(along.empty());
+    EXPECT_NEAR(along[0]["speed_kn"].get<double>(), 0.3, 0.05);
+}
+
+TEST(CliContactKinds, JumpOntoLandAndAFixAtZeroZeroAreDroppedAndListed) {
+    const CaseRun c = run_case("jump_and_null_island.csv");
+    EXPECT_EQ(c.outcome.status, 0) << c.outcome.out << c.outcome.err;
+    EXPECT_TRUE(c.report["features"].empty()) << c.report["features"].dump();
+    EXPECT_EQ(c.report["shoal"]["summary"]["wild_fixes"], c.expect["outliers"]["count"]);
+    std::vector<std::size_t> lines;
+    for (const auto& p : c.report["shoal"]["problems"])
+        if (p.contains("line")) lines.push_back(p["line"].get<std::size_t>());
+    EXPECT_EQ(lines, c.expect["outliers"]["lines"].get<std::vector<std::size_t>>());
+    for (const auto& l : lines) EXPECT_NE(c.outcome.err.find("line " + std::to_string(l) + ": fix at"), std::string::npos) << c.outcome.err;
+    EXPECT_NE(c.outcome.err.find("position 0,0"), std::string::npos) << c.outcome.err;
+}
+
+TEST(CliContactKinds, LyingStillWithNoHeadingIsNoGroundingAndSaysTheHeadingIsUnknown) {
+    const CaseRun c = run_case("still_no_heading.csv");
+    EXPECT_EQ(c.outcome.status, 0) << c.outcome.out;
+    EXPECT_TRUE(c.of_kind("grounding").empty());
+    ASSERT_FALSE(c.report["features"].empty()) << "at some headings the hull overlaps land";
+    for (const auto& f : c.report["features"]) {
+        EXPECT_TRUE(f["properties"]["heading"].is_null()) << f.dump();
+        EXPECT_EQ(f["properties"]["heading_source"], "none");
+        EXPECT_EQ(f["properties"]["orientation"], "unknown (hull circle)");
+    }
+    EXPECT_GT(c.report["shoal"]["summary"]["unknown_heading_fixes"].get<std::size_t>(), 0u);
+}
+
+TEST(CliContactKinds, APassClearOfLandHasNoEvent) {
+    const CaseRun c = run_case("passes_clear.csv");
+    EXPECT_EQ(c.outcome.status, 0);
+    EXPECT_TRUE(c.report["features"].empty());
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // The SVG picture of an audit, drawn from a real run (two vessels in the Solent, one of them
-// sailing across the Isle of Wight) and read back with GDAL's XML parser: well-formed SVG,
-// one marker per event, the events' times as text, a scale bar that measures the hull right,
-// an arrow to true north where grid north differs, one zoomed panel per grounding; an empty
-// audit still gives a picture.
+// sailing across the Isle of Wight) and from audits built by hand with every kind of event,
+// read back with GDAL's XML parser: well-formed SVG, one marker per event, the events' times
+// as text, a scale bar that measures the hull right, an arrow to true north where grid north
+// differs, zoomed panels for groundings first (then the other contacts by severity, then
+// close passes) titled with the kind and the speed at contact, an unknown heading drawn
+// dashed and said, the headline counting each kind; an empty audit still gives a picture.
 
 #include <gtest/gtest.h>
 
@@ -16,6 +18,7 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "audit/audit.hpp"
@@ -23,6 +26,7 @@
 #include "hull/hull.hpp"
 #include "report/plot.hpp"
 #include "report/report.hpp"
+#include "track/track.hpp"
 #include "test_support.hpp"
 #include "util/error.hpp"
 
@@ -142,7 +146,13 @@ const CPLXMLNode* panel(const CPLXMLNode* svg, const std::string& id) {
     return found;
 }
 
-TEST(PlotSvg, SolentRunDrawsEveryEventItsTimeAndOneZoomedPanelPerGrounding) {
+std::size_t event_count(const audit::AuditResult& r) {
+    std::size_t n = 0;
+    for (const auto& t : r.tracks) n += t.events.size();
+    return n;
+}
+
+TEST(PlotSvg, SolentRunDrawsEveryEventItsTimeAndAZoomedPanelPerEventUpToTheLimit) {
     const test::TempDir dir;
     const grid::CoastGrid g = solent_grid();
     const audit::AuditResult r = solent_audit(g, dir);
@@ -162,9 +172,14 @@ TEST(PlotSvg, SolentRunDrawsEveryEventItsTimeAndOneZoomedPanelPerGrounding) {
     EXPECT_EQ(with_class(root, "panel overview").size(), 1u);
     EXPECT_EQ(with_class(root, "event grounding").size(), r.groundings);
     EXPECT_EQ(with_class(root, "event close_pass").size(), r.close_passes);
-    EXPECT_EQ(with_class(root, "panel zoom").size(), r.groundings);
-    EXPECT_EQ(with_class(root, "scale-bar").size(), 1 + r.groundings) << "one per panel";
-    EXPECT_EQ(with_class(root, "north-arrow").size(), 1 + r.groundings) << "one per panel";
+    const std::size_t panels = std::min<std::size_t>(PlotOptions{}.max_zoom_panels, event_count(r));
+    EXPECT_EQ(with_class(root, "panel zoom").size(), panels);
+    EXPECT_EQ(with_class(root, "scale-bar").size(), 1 + panels) << "one per panel";
+    EXPECT_EQ(with_class(root, "north-arrow").size(), 1 + panels) << "one per panel";
+    // The first panel is the first grounding's.
+    const CPLXMLNode* first = panel(root, "zoom-1");
+    ASSERT_NE(first, nullptr);
+    EXPECT_FALSE(with_class(first, "contact grounding").empty());
     EXPECT_FALSE(with_class(root, "coastline").empty());
     EXPECT_FALSE(with_class(root, "land").empty());
     EXPECT_EQ(with_class(root, "legend").size(), 1u);
@@ -255,6 +270,7 @@ TEST(PlotSvg, EmptyAuditStillDrawsTheOverviewOfTheChart) {
     EXPECT_EQ(with_class(root, "north-arrow").size(), 1u);
     EXPECT_FALSE(with_class(root, "coastline").empty()) << "the whole chart is in view";
     EXPECT_TRUE(has_text_containing(root, "0 tracks"));
+    EXPECT_TRUE(has_text_containing(root, "0 groundings, 0 close passes")) << "the other kinds only when there are some";
 }
 
 TEST(PlotSvg, ZoomedPanelsStopAtTheLimitAndTheRestAreCounted) {
@@ -267,8 +283,291 @@ TEST(PlotSvg, ZoomedPanelsStopAtTheLimitAndTheRestAreCounted) {
     const CPLXMLNode* root = root_element(doc.get());
     EXPECT_EQ(with_class(root, "panel zoom").size(), 0u);
     EXPECT_EQ(with_class(root, "event grounding").size(), r.groundings) << "the overview still marks them all";
-    const std::string note = std::to_string(r.groundings) + (r.groundings == 1 ? " more grounding not drawn" : " more groundings not drawn");
+    EXPECT_TRUE(with_class(root, "section").empty()) << "no heading over no panels";
+    const std::string note = std::to_string(event_count(r)) + " more not drawn: " + std::to_string(r.groundings) +
+                             (r.groundings == 1 ? " grounding" : " groundings");
     EXPECT_TRUE(has_text_containing(root, note)) << note;
+}
+
+// ---------------------------------------------------------------- audits built by hand
+
+constexpr double t0 = 1714557600;  // 2024-05-01T10:00:00Z
+
+/// A ring of a 60 m x 10 m hull pointing north (or the hull's circle, 36 points of radius
+/// 31 m, when `circle`) around `at`.
+std::vector<geo::LonLat> hull_ring(geo::LonLat at, bool circle) {
+    const double m_lat = 1 / 111320.0, m_lon = 1 / (111320.0 * std::cos(at.lat * std::numbers::pi / 180));
+    std::vector<geo::LonLat> ring;
+    if (circle) {
+        for (int k = 0; k <= 36; ++k) {
+            const double a = 2 * std::numbers::pi * (k % 36) / 36;
+            ring.push_back({at.lon + 31 * std::sin(a) * m_lon, at.lat + 31 * std::cos(a) * m_lat});
+        }
+    } else {
+        for (auto [x, y] : {std::pair{-5.0, -10.0}, {5.0, -10.0}, {5.0, 45.0}, {0.0, 50.0}, {-5.0, 45.0}, {-5.0, -10.0}})
+            ring.push_back({at.lon + x * m_lon, at.lat + y * m_lat});
+    }
+    return ring;
+}
+
+/// An event `km` km south of 50.78 N on 1.30 W (the events 2 km apart: one per zoomed panel).
+audit::Event hand_event(audit::EventKind kind, double km, double start, double duration, double figure_m, double speed_kn,
+                        track::SpeedSource source) {
+    audit::Event e;
+    e.kind = kind;
+    e.start_s = t0 + start;
+    e.end_s = t0 + start + duration;
+    e.point = {-1.30, 50.78 - km / 111.32};
+    e.ship = e.point;
+    e.heading_deg = 182;
+    e.heading_source = track::HeadingSource::cog;
+    e.hull = hull_ring(e.point, false);
+    if (audit::is_contact(kind)) e.penetration_m = figure_m;
+    else e.min_clearance_m = figure_m;
+    e.speed_kn = speed_kn;
+    e.speed_source = source;
+    return e;
+}
+
+audit::TrackResult hand_track(const std::string& id, const std::string& name, std::vector<audit::Event> events) {
+    audit::TrackResult t;
+    t.summary.id = id;
+    t.summary.name = name;
+    t.summary.fixes = 2;
+    std::vector<geo::LonLat> line;
+    if (!events.empty()) line.push_back({events.front().ship.lon, events.front().ship.lat + 0.005});  // from 550 m north
+    for (const auto& e : events) {
+        line.push_back(e.ship);
+        switch (e.kind) {
+        case audit::EventKind::grounding: ++t.summary.groundings; break;
+        case audit::EventKind::alongside: ++t.summary.alongside; break;
+        case audit::EventKind::contact_at_start: ++t.summary.contacts_at_start; break;
+        case audit::EventKind::expected_contact: ++t.summary.expected_contacts; break;
+        case audit::EventKind::close_pass: ++t.summary.close_passes; break;
+        }
+    }
+    t.summary.lines.push_back(line);
+    t.events = std::move(events);
+    return t;
+}
+
+/// Three tracks with every kind of event, in report order (each track's in time order):
+/// A: an alongside (0.5 m), a grounding at +900 s, a deeper alongside (1.5 m);
+/// B: a grounding at +200 s (the first in time), a contact in a berth, two close passes (30 m, 10 m);
+/// C: only a contact at its first fix.
+audit::AuditResult hand_audit() {
+    using K = audit::EventKind;
+    using S = track::SpeedSource;
+    audit::AuditResult r;
+    audit::Event along_shallow = hand_event(K::alongside, 0, 100, 600, 0.5, 0.3, S::positions);
+    along_shallow.stopped_before = true;
+    along_shallow.nav_status = track::nav_status_moored;
+    along_shallow.structure = "pier";
+    audit::Event late_grounding = hand_event(K::grounding, 2, 900, 42, 0.8, 7.1, S::sog);
+    audit::Event along_deep = hand_event(K::alongside, 4, 1000, 3700, 1.5, 0.3, S::positions);
+    r.tracks.push_back(hand_track("A", "ALPHA", {along_shallow, late_grounding, along_deep}));
+
+    audit::Event early_grounding = hand_event(K::grounding, 6, 200, 95, 1.2, 9.8, S::sog);
+    early_grounding.stopped_after_s = 40;
+    early_grounding.reference_inside_m = 12.5;
+    audit::Event berth = hand_event(K::expected_contact, 8, 300, 50, 0.4, 0.2, S::sog);
+    berth.area_kind = "berth";
+    berth.area_name = "Pier 7";
+    audit::Event wide = hand_event(K::close_pass, 10, 400, 60, 30, 8, S::sog);
+    audit::Event near = hand_event(K::close_pass, 12, 500, 60, 10, NAN, S::none);
+    r.tracks.push_back(hand_track("B", "BRAVO", {early_grounding, berth, wide, near}));
+
+    audit::Event at_start = hand_event(K::contact_at_start, 14, 0, 120, 3, 0, S::sog);
+    at_start.unseen_after = "track start";
+    r.tracks.push_back(hand_track("C", "CHARLIE", {at_start}));
+
+    for (const auto& t : r.tracks) {
+        r.fixes += t.summary.fixes;
+        r.groundings += t.summary.groundings;
+        r.alongside += t.summary.alongside;
+        r.contacts_at_start += t.summary.contacts_at_start;
+        r.expected_contacts += t.summary.expected_contacts;
+        r.close_passes += t.summary.close_passes;
+    }
+    r.first_fix_s = t0;
+    r.last_fix_s = t0 + 5000;
+    return r;
+}
+
+/// Some text of zoomed panel `id` (its title is inside it) contains `needle`.
+bool panel_says(const CPLXMLNode* svg, const std::string& id, const std::string& needle) {
+    const CPLXMLNode* p = panel(svg, id);
+    return p && has_text_containing(p, needle);
+}
+
+TEST(PlotSvg, GroundingsComeFirstThenTheOtherContactsBySeverityThenClosePassesAllTitledWithKindAndSpeed) {
+    const grid::CoastGrid g = solent_grid();
+    const audit::AuditResult r = hand_audit();
+    const std::string svg = plot_svg(r, g);
+    std::string error;
+    const XmlPtr doc = parse(svg, &error);
+    ASSERT_TRUE(doc) << error;
+    const CPLXMLNode* root = root_element(doc.get());
+
+    EXPECT_EQ(with_class(root, "panel zoom").size(), 8u) << "every event has a panel";
+    // One marker per event, each kind its own.
+    EXPECT_EQ(with_class(root, "event grounding").size(), 2u);
+    EXPECT_EQ(with_class(root, "event alongside").size(), 2u);
+    EXPECT_EQ(with_class(root, "event in_contact_at_start").size(), 1u);
+    EXPECT_EQ(with_class(root, "event expected_contact").size(), 1u);
+    EXPECT_EQ(with_class(root, "event close_pass").size(), 2u);
+
+    // Panel n's own contact marker says whose panel it is (the events are 2 km apart).
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"grounding", "from 2024-05-01 10:03:20Z"},     // B's, first in time
+        {"grounding", "from 2024-05-01 10:15:00Z"},     // A's
+        {"alongside", "penetration 1.5 m"},              // the deeper one first
+        {"alongside", "penetration 0.5 m"},
+        {"in_contact_at_start", "in contact at the first fix (not seen begin)"},
+        {"expected_contact", "contact in berth Pier 7"},
+        {"close_pass", "least clearance 10.0 m"},        // least clearance first
+        {"close_pass", "least clearance 30.0 m"},
+    };
+    for (std::size_t n = 0; n < expected.size(); ++n) {
+        const std::string id = "zoom-" + std::to_string(n + 1);
+        const CPLXMLNode* p = panel(root, id);
+        ASSERT_NE(p, nullptr) << id;
+        EXPECT_EQ(with_class(p, "contact " + expected[n].first).size(), 1u) << id;
+        EXPECT_TRUE(has_text_containing(p, expected[n].second)) << id << ": " << expected[n].second;
+    }
+    // Titles: track and name, kind in words, speed at contact with its source, duration.
+    EXPECT_TRUE(panel_says(root, "zoom-1", "(1) track B BRAVO"));
+    EXPECT_TRUE(panel_says(root, "zoom-1", "9.8 kn SOG at contact"));
+    EXPECT_TRUE(panel_says(root, "zoom-1", "for 1 min 35 s"));
+    EXPECT_TRUE(panel_says(root, "zoom-2", "7.1 kn SOG"));
+    EXPECT_TRUE(panel_says(root, "zoom-3", "alongside (not a grounding)"));
+    EXPECT_TRUE(panel_says(root, "zoom-3", "0.3 kn from positions at contact"));
+    EXPECT_TRUE(panel_says(root, "zoom-3", "for 1 h 02 min"));
+    EXPECT_TRUE(panel_says(root, "zoom-7", "speed unknown"));
+    EXPECT_TRUE(panel_says(root, "zoom-1", "heading 182\xC2\xB0"));
+
+    // Section headings in order, each over its panels.
+    std::vector<std::string> sections;
+    for (const CPLXMLNode* s : with_class(root, "section")) sections.push_back(inner_text(s));
+    EXPECT_EQ(sections, (std::vector<std::string>{"Groundings", "Other contacts (not groundings)", "Close passes"}));
+
+    // Tooltips carry the evidence.
+    bool evidence = false, structure = false;
+    for (const CPLXMLNode* m : with_class(root, "event grounding"))
+        each_element(m, [&](const CPLXMLNode* e) {
+            const std::string t = inner_text(e);
+            if (std::string(e->pszValue) == "title" && t.find("stopped after 40 s") != std::string::npos &&
+                t.find("reference point 12.5 m inside land") != std::string::npos && t.find("9.8 kn SOG") != std::string::npos)
+                evidence = true;
+        });
+    for (const CPLXMLNode* m : with_class(root, "event alongside"))
+        each_element(m, [&](const CPLXMLNode* e) {
+            const std::string t = inner_text(e);
+            if (std::string(e->pszValue) == "title" && t.find("AIS status moored") != std::string::npos &&
+                t.find("structure pier") != std::string::npos)
+                structure = true;
+        });
+    EXPECT_TRUE(evidence);
+    EXPECT_TRUE(structure);
+
+    // Only a track with a grounding is red; C (a contact at its first fix only) has its own colour.
+    const CPLXMLNode* overview = panel(root, "overview");
+    ASSERT_NE(overview, nullptr);
+    std::string stroke_a, stroke_c;
+    for (const CPLXMLNode* t : with_class(overview, "track"))
+        each_element(t, [&](const CPLXMLNode* e) {
+            if (std::string(e->pszValue) != "title") return;
+            if (inner_text(e).starts_with("track A")) stroke_a = attr(t, "stroke");
+            if (inner_text(e).starts_with("track C")) stroke_c = attr(t, "stroke");
+        });
+    EXPECT_EQ(stroke_a, "#d62728");
+    EXPECT_FALSE(stroke_c.empty());
+    EXPECT_NE(stroke_c, stroke_a);
+    const auto legend = with_class(root, "legend");
+    ASSERT_EQ(legend.size(), 1u);
+    for (const char* item : {"track with contacts, no grounding", "alongside (not a grounding)", "in contact at the first fix",
+                             "contact in a berth or harbour area", "close pass"})
+        EXPECT_TRUE(has_text_containing(legend[0], item)) << "the legend lists what is drawn: " << item;
+    EXPECT_FALSE(has_text_containing(legend[0], "heading unknown")) << "no hull circle drawn";
+}
+
+TEST(PlotSvg, PanelsLeftOutAreCountedByKind) {
+    const grid::CoastGrid g = solent_grid();
+    const XmlPtr doc = parse(plot_svg(hand_audit(), g, PlotOptions{3, 1200}), nullptr);
+    ASSERT_TRUE(doc);
+    const CPLXMLNode* root = root_element(doc.get());
+    EXPECT_EQ(with_class(root, "panel zoom").size(), 3u);
+    EXPECT_FALSE(with_class(panel(root, "zoom-1"), "contact grounding").empty());
+    EXPECT_FALSE(with_class(panel(root, "zoom-2"), "contact grounding").empty());
+    EXPECT_FALSE(with_class(panel(root, "zoom-3"), "contact alongside").empty());
+    std::vector<std::string> sections;
+    for (const CPLXMLNode* s : with_class(root, "section")) sections.push_back(inner_text(s));
+    EXPECT_EQ(sections, (std::vector<std::string>{"Groundings", "Other contacts (not groundings): first 1 of 4"}));
+    const auto notes = with_class(root, "note");
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(inner_text(notes[0]),
+              "5 more not drawn: 1 alongside, 1 in contact at the start, 1 expected contact, 2 close passes (at most 3 zoomed "
+              "panels; see the report for all)");
+}
+
+TEST(PlotSvg, UnknownHeadingIsDrawnDashedAndSaidNeverAsHeadingZero) {
+    const grid::CoastGrid g = solent_grid();
+    audit::Event e = hand_event(audit::EventKind::grounding, 6, 0, 30, 2, 6.5, track::SpeedSource::positions);
+    e.orientation_unknown = true;
+    e.heading_deg = NAN;
+    e.heading_source = track::HeadingSource::none;
+    e.hull = hull_ring(e.point, true);
+    audit::Event e2 = hand_event(audit::EventKind::alongside, 2, 500, 30, 1, 0.1, track::SpeedSource::sog);
+    e2.orientation_unknown = true;
+    e2.heading_deg = 0;  // whatever it holds, it is not printed
+    e2.hull = hull_ring(e2.point, true);
+    audit::AuditResult r;
+    r.tracks.push_back(hand_track("U", "UNKNOWN HEADING", {e, e2}));
+    r.groundings = 1;
+    r.alongside = 1;
+    const std::string svg = plot_svg(r, g);
+    std::string error;
+    const XmlPtr doc = parse(svg, &error);
+    ASSERT_TRUE(doc) << error;
+    const CPLXMLNode* root = root_element(doc.get());
+
+    for (const char* id : {"zoom-1", "zoom-2"}) {
+        const CPLXMLNode* zoom = panel(root, id);
+        ASSERT_NE(zoom, nullptr) << id;
+        bool dashed = false;
+        each_element(zoom, [&](const CPLXMLNode* n) {
+            if (attr(n, "class").starts_with("hull ") && !attr(n, "stroke-dasharray").empty()) dashed = true;
+        });
+        EXPECT_TRUE(dashed) << id << ": the hull's circle is drawn dashed";
+        const auto labels = with_class(zoom, "label heading-unknown");
+        ASSERT_EQ(labels.size(), 1u) << id;
+        EXPECT_TRUE(has_text_containing(labels[0], "heading unknown (hull circle)"));
+        EXPECT_TRUE(has_text_containing(zoom, "heading unknown (hull circle)")) << id << ": the title says it too";
+    }
+    EXPECT_TRUE(has_text_containing(root, "hull circle: heading unknown")) << "the legend";
+    EXPECT_EQ(svg.find("heading 0"), std::string::npos);
+    EXPECT_EQ(svg.find("nan"), std::string::npos);
+    EXPECT_EQ(svg.find("heading \xC2\xB0"), std::string::npos);
+}
+
+TEST(PlotSvg, HeadlineCountsEachKind) {
+    const grid::CoastGrid g = solent_grid();
+    const XmlPtr doc = parse(plot_svg(hand_audit(), g), nullptr);
+    ASSERT_TRUE(doc);
+    const auto summary = with_class(root_element(doc.get()), "summary");
+    ASSERT_EQ(summary.size(), 1u);
+    EXPECT_EQ(inner_text(summary[0]),
+              "3 tracks, 6 fixes, 2 groundings, 1 in contact at the start, 2 alongside, 1 expected contact, 2 close passes");
+
+    audit::AuditResult r = hand_audit();  // the counts as the run gives them
+    r.groundings = 1;
+    r.contacts_at_start = 37;
+    r.alongside = 2;
+    r.expected_contacts = 0;
+    r.close_passes = 8;
+    const XmlPtr doc2 = parse(plot_svg(r, g), nullptr);
+    ASSERT_TRUE(doc2);
+    EXPECT_TRUE(has_text_containing(root_element(doc2.get()), "1 grounding, 37 in contact at the start, 2 alongside, 8 close passes"));
 }
 
 TEST(PlotSvg, TextFromTheDataIsEscapedAndBadUtf8Replaced) {
