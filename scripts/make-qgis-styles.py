@@ -26,6 +26,7 @@ MAGENTA, VIOLET = "#c51b7d", "#756bb1"
 RED, AMBER, GREEN, GREY = "#e31a1c", "#ff9f00", "#33a02c", "#6a7f95"
 BLUE, PURPLE = "#1f78b4", "#6a3d9a"
 STEEL = "#4a7fa8"
+VIOLET_TRACK = "#8a76b8"  # as in the --plot picture
 
 
 def labels(field, placement):
@@ -111,7 +112,7 @@ tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=
                         "tracks", "memory")
 root = QgsRuleBasedRenderer.Rule(None)
 for expr, colour, label in (('"groundings" > 0', RED, "aground"),
-                            ('"min_clearance_m" = 0', STEEL, "in contact, not a grounding (alongside, at the start, expected)"),
+                            ('"min_clearance_m" = 0', VIOLET_TRACK, "in contact, not a grounding (alongside, at the start, expected)"),
                             ('"min_clearance_m" > 0 AND "min_clearance_m" < 50', AMBER, "closer than 50 m"),
                             ('"min_clearance_m" >= 50 AND "min_clearance_m" < 200', GREEN, "50 to 200 m"),
                             ("ELSE", GREY, "200 m or more")):

@@ -428,4 +428,44 @@ TEST(CliContactKinds, APassClearOfLandHasNoEvent) {
     EXPECT_TRUE(c.report["features"].empty());
 }
 
+
+TEST(CliContactKinds, AContactInsideABerthsAreaIsExpectedNotAGrounding) {
+    // The grounding at speed, audited again with a harbour polygon (0.004 degrees square)
+    // around its first contact point: the same contact, now expected_contact, exit status 0.
+    const CaseRun plain = run_case("aground_at_speed.csv");
+    const auto g = plain.of_kind("grounding");
+    ASSERT_EQ(g.size(), 1u);
+    const double lat = g[0]["ship_lat"].get<double>(), lon = g[0]["ship_lon"].get<double>();
+    const fs::path berths = temp_dir() / "harbour.geojson";
+    {
+        std::ofstream f(berths);
+        char ring[512];
+        std::snprintf(ring, sizeof ring, "[[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f]]", lon - 0.002, lat - 0.002,
+                      lon + 0.002, lat - 0.002, lon + 0.002, lat + 0.002, lon - 0.002, lat + 0.002, lon - 0.002, lat - 0.002);
+        f << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"Test harbour"},)"
+          << R"("geometry":{"type":"Polygon","coordinates":[)" << ring << "]}}]}";
+    }
+    const fs::path out = temp_dir() / "berthed.geojson";
+    const Outcome r = shoal("check --coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 " +
+                            data("tracks/ais_cases/aground_at_speed.csv") + " --berths '" + berths.string() + "' -o '" + out.string() +
+                            "' --no-progress");
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    const nlohmann::json rep = nlohmann::json::parse(slurp(out));
+    ASSERT_EQ(rep["features"].size(), 1u);
+    const auto& p = rep["features"][0]["properties"];
+    EXPECT_EQ(p["kind"], "expected_contact");
+    EXPECT_EQ(p["area"], "area");
+    EXPECT_EQ(p["area_name"], "Test harbour");
+    EXPECT_EQ(p["start"], g[0]["start"]) << "the same contact";
+    EXPECT_EQ(rep["shoal"]["berths"], berths.string());
+    EXPECT_NE(r.err.find("1 expected-contact areas"), std::string::npos) << r.err;
+    // A berths file that is not there is a clear error before any work.
+    const Outcome missing = shoal("check --coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 " +
+                                  data("tracks/ais_cases/aground_at_speed.csv") + " --berths /nonexistent/berths.gpkg -o '" +
+                                  (temp_dir() / "never.geojson").string() + "'");
+    EXPECT_EQ(missing.status, 2);
+    EXPECT_NE(missing.err.find("/nonexistent/berths.gpkg"), std::string::npos) << missing.err;
+    EXPECT_FALSE(fs::exists(temp_dir() / "never.geojson"));
+}
+
 }  // namespace
