@@ -20,10 +20,10 @@
 #include <random>
 #include <string>
 
-#include "audit/audit.hpp"
-#include "check/detector.hpp"
-#include "grid/grid_cache.hpp"
-#include "report/report.hpp"
+#include <shoal/audit/audit.hpp>
+#include <shoal/check/detector.hpp>
+#include <shoal/grid/grid_cache.hpp>
+#include <shoal/report/report.hpp>
 
 namespace fs = std::filesystem;
 using namespace shoal;

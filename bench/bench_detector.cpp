@@ -44,13 +44,13 @@
 #include <vector>
 
 #include "bench_data.hpp"
-#include "check/brute_force.hpp"
-#include "check/detector.hpp"
-#include "coast/coastline.hpp"
-#include "geo/geos_context.hpp"
-#include "geo/local_frame.hpp"
-#include "grid/coast_grid.hpp"
-#include "hull/hull.hpp"
+#include <shoal/check/brute_force.hpp>
+#include <shoal/check/detector.hpp>
+#include <shoal/coast/coastline.hpp>
+#include "detail/geos_context.hpp"
+#include <shoal/geo/local_frame.hpp>
+#include <shoal/grid/coast_grid.hpp>
+#include <shoal/hull/hull.hpp>
 
 namespace {
 

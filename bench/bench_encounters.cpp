@@ -33,10 +33,10 @@
 #include <string>
 #include <vector>
 
-#include "audit/encounters.hpp"
-#include "geo/local_frame.hpp"
-#include "hull/hull.hpp"
-#include "track/track.hpp"
+#include <shoal/audit/encounters.hpp>
+#include <shoal/geo/local_frame.hpp>
+#include <shoal/hull/hull.hpp>
+#include <shoal/track/track.hpp>
 
 namespace {
 

@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "bench_data.hpp"
-#include "coast/coastline.hpp"
-#include "geo/local_frame.hpp"
-#include "grid/coast_grid.hpp"
-#include "grid/grid_cache.hpp"
+#include <shoal/coast/coastline.hpp>
+#include <shoal/geo/local_frame.hpp>
+#include <shoal/grid/coast_grid.hpp>
+#include <shoal/grid/grid_cache.hpp>
 
 namespace {
 

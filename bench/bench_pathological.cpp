@@ -33,13 +33,13 @@
 #include <string>
 #include <vector>
 
-#include "audit/sweep.hpp"
-#include "check/brute_force.hpp"
-#include "check/detector.hpp"
-#include "coast/coastline.hpp"
-#include "geo/geos_context.hpp"
-#include "grid/coast_grid.hpp"
-#include "grid/grid_cache.hpp"
+#include <shoal/audit/sweep.hpp>
+#include <shoal/check/brute_force.hpp>
+#include <shoal/check/detector.hpp>
+#include <shoal/coast/coastline.hpp>
+#include "detail/geos_context.hpp"
+#include <shoal/grid/coast_grid.hpp>
+#include <shoal/grid/grid_cache.hpp>
 #include "pathological_shapes.hpp"
 
 namespace {

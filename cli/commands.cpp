@@ -13,18 +13,18 @@
 #include <chrono>
 #include <unistd.h>
 
-#include "check/detector.hpp"
-#include "coast/expected_areas.hpp"
-#include "grid/grid_cache.hpp"
-#include "hull/hull.hpp"
-#include "audit/audit.hpp"
-#include "io/pose_csv.hpp"
-#include "report/plot.hpp"
-#include "report/report.hpp"
-#include "track/reader.hpp"
-#include "track/time.hpp"
-#include "util/atomic_file.hpp"
-#include "util/error.hpp"
+#include <shoal/check/detector.hpp>
+#include <shoal/coast/expected_areas.hpp>
+#include <shoal/grid/grid_cache.hpp>
+#include <shoal/hull/hull.hpp>
+#include <shoal/audit/audit.hpp>
+#include <shoal/io/pose_csv.hpp>
+#include <shoal/report/plot.hpp>
+#include <shoal/report/report.hpp>
+#include <shoal/track/reader.hpp>
+#include <shoal/track/time.hpp>
+#include <shoal/util/atomic_file.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::cli {
 
@@ -257,7 +257,8 @@ public:
     void setup(CLI::App& app) override {
         m_sub = app.add_subcommand("probe", "Check single poses (lat,lon,heading per CSV row): collision and clearance");
         m_sub->footer("Usage: shoal probe --coast COAST_OR_GRID --ship SHIP.json POSES.csv [-o OUT.csv]\n"
-                      "Writes lat,lon,heading,collision,clearance_m per pose (collision 0/1; clearance 0 when touching).\n"
+                      "Writes lat,lon,heading,collision,clearance_m,covered per pose (collision 0/1; clearance 0 when touching;\n"
+                      "covered 0 for a pose outside the chart, whose collision and clearance are then empty).\n"
                       "A bad row is reported on stderr with its line number and skipped.\n"
                       "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc.");
         m_opts.add(*m_sub);
@@ -273,14 +274,23 @@ public:
             std::fprintf(stderr, "shoal: warning: %zu more bad rows skipped\n", poses.skipped - poses.errors.size());
         const grid::CoastGrid g = m_opts.load_grid(hull);
         const check::Detector detector(g, hull);
-        std::string out = "lat,lon,heading,collision,clearance_m\n";
+        std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
         char line[160];
+        std::size_t uncovered = 0;
         for (const auto& p : poses.poses) {
             const check::Contact c = detector.check(check::Pose{{p.lon, p.lat}, p.heading_deg});
-            std::snprintf(line, sizeof line, "%.7f,%.7f,%.1f,%d,%.3f\n", p.lat, p.lon, p.heading_deg, c.collision ? 1 : 0,
-                          c.clearance_m);
+            // Outside the chart nothing is claimed: no collision found there means nothing.
+            if (c.covered || c.collision)
+                std::snprintf(line, sizeof line, "%.7f,%.7f,%.1f,%d,%.3f,%d\n", p.lat, p.lon, p.heading_deg, c.collision ? 1 : 0,
+                              c.collision ? 0.0 : c.clearance_m, c.covered ? 1 : 0);
+            else
+                std::snprintf(line, sizeof line, "%.7f,%.7f,%.1f,,,0\n", p.lat, p.lon, p.heading_deg);
+            uncovered += c.covered ? 0 : 1;
             out += line;
         }
+        if (uncovered)
+            std::fprintf(stderr, "shoal: warning: %zu of %zu poses lie (partly) outside the chart's area: covered 0, collision and clearance unknown\n",
+                         uncovered, poses.poses.size());
         write_file_atomically(m_output, out);
         return exit_ok;
     }

@@ -16,8 +16,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "util/atomic_file.hpp"
-#include "util/error.hpp"
+#include <shoal/util/atomic_file.hpp>
+#include <shoal/version.hpp>
+#include <shoal/util/error.hpp>
 
 namespace {
 
@@ -55,7 +56,7 @@ int main(int argc, char** argv) {
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
         return std::string("shoal: usage error: ") + e.what() + " (see shoal COMMAND --help)\n";
     });
-    app.set_version_flag("--version", "shoal 0.1.0");
+    app.set_version_flag("--version", std::string("shoal ") + SHOAL_VERSION_STRING);
     app.footer("Exit status: 0 ok / no grounding, 1 grounding found (check), 2 bad usage or unreadable input,\n"
                "130 interrupted (Ctrl-C; nothing half-written is left).\n"
                "Run 'shoal COMMAND --help' for a command's options; docs/user-guide.md has the details.");

@@ -16,17 +16,18 @@
 #include <string_view>
 #include <vector>
 
+#define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include "check/detector.hpp"
-#include "grid/grid_cache.hpp"
-#include "hull/hull.hpp"
-#include "track/csv_reader.hpp"
-#include "track/nmea_reader.hpp"
-#include "track/packed_track.hpp"
-#include "track/reader.hpp"
-#include "track/track.hpp"
-#include "util/error.hpp"
+#include <shoal/check/detector.hpp>
+#include <shoal/grid/grid_cache.hpp>
+#include <shoal/hull/hull.hpp>
+#include <shoal/track/csv_reader.hpp>
+#include <shoal/track/nmea_reader.hpp>
+#include <shoal/track/packed_track.hpp>
+#include <shoal/track/reader.hpp>
+#include <shoal/track/track.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::fuzz {
 

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "geo/point.hpp"
+#include <shoal/geo/point.hpp>
 
 namespace shoal::test {
 

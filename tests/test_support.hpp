@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "geo/geos_context.hpp"
-#include "geo/local_frame.hpp"
-#include "geo/point.hpp"
+#include "detail/geos_context.hpp"
+#include <shoal/geo/local_frame.hpp>
+#include <shoal/geo/point.hpp>
 
 namespace shoal::test {
 

@@ -1,4 +1,4 @@
-#include "audit/audit.hpp"
+#include <shoal/audit/audit.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -7,7 +7,7 @@
 #include <optional>
 #include <thread>
 
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::audit {
 

@@ -1,4 +1,4 @@
-#include "audit/encounters.hpp"
+#include <shoal/audit/encounters.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -9,8 +9,8 @@
 #include <string>
 #include <unordered_map>
 
-#include "audit/motion.hpp"
-#include "util/error.hpp"
+#include <shoal/audit/motion.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::audit {
 

@@ -1,4 +1,4 @@
-#include "audit/motion.hpp"
+#include <shoal/audit/motion.hpp>
 
 #include <Eigen/LU>
 #include <utility>
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::audit {
 

@@ -1,12 +1,12 @@
-#include "audit/sweep.hpp"
+#include <shoal/audit/sweep.hpp>
 
 #include <algorithm>
 #include <optional>
 #include <numbers>
 
-#include "audit/motion.hpp"
-#include "coast/expected_areas.hpp"
-#include "util/error.hpp"
+#include <shoal/audit/motion.hpp>
+#include <shoal/coast/expected_areas.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::audit {
 

@@ -1,4 +1,4 @@
-#include "check/brute_force.hpp"
+#include <shoal/check/brute_force.hpp>
 
 #include <algorithm>
 

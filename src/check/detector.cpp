@@ -1,4 +1,4 @@
-#include "check/detector.hpp"
+#include <shoal/check/detector.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "coast/coastline.hpp"
+#include <shoal/coast/coastline.hpp>
 
 #include <cpl_error.h>
 #include <gdal_priv.h>
@@ -12,9 +12,9 @@
 #include <mutex>
 #include <numbers>
 
-#include "geo/geos_context.hpp"
-#include "geo/local_frame.hpp"
-#include "util/error.hpp"
+#include "detail/geos_context.hpp"
+#include <shoal/geo/local_frame.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::coast {
 

@@ -1,4 +1,4 @@
-#include "coast/expected_areas.hpp"
+#include <shoal/coast/expected_areas.hpp>
 
 #include <cpl_error.h>
 #include <gdal_priv.h>
@@ -18,9 +18,9 @@
 #include <optional>
 #include <set>
 
-#include "geo/geos_context.hpp"
-#include "geo/local_frame.hpp"
-#include "util/error.hpp"
+#include "detail/geos_context.hpp"
+#include <shoal/geo/local_frame.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::coast {
 

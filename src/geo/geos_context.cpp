@@ -1,6 +1,6 @@
-#include "geo/geos_context.hpp"
+#include "detail/geos_context.hpp"
 
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::geo {
 

@@ -1,4 +1,4 @@
-#include "geo/local_frame.hpp"
+#include <shoal/geo/local_frame.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <ogr_spatialref.h>
 #include <proj.h>
 
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::geo {
 

@@ -1,12 +1,12 @@
-#include "grid/coast_grid.hpp"
+#include <shoal/grid/coast_grid.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numeric>
 
-#include "geo/geos_context.hpp"
-#include "util/error.hpp"
+#include "detail/geos_context.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::grid {
 

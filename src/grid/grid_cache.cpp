@@ -1,6 +1,7 @@
-#include "grid/grid_cache.hpp"
+#include <shoal/grid/grid_cache.hpp>
 
 #include <gdal_priv.h>
+#define XXH_INLINE_ALL
 #include <xxhash.h>
 
 #include <algorithm>
@@ -12,8 +13,8 @@
 #include <fstream>
 #include <type_traits>
 
-#include "util/atomic_file.hpp"
-#include "util/error.hpp"
+#include <shoal/util/atomic_file.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::grid {
 

@@ -1,4 +1,4 @@
-#include "hull/hull.hpp"
+#include <shoal/hull/hull.hpp>
 
 #include <algorithm>
 #include <array>
@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::hull {
 

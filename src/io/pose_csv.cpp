@@ -1,4 +1,4 @@
-#include "io/pose_csv.hpp"
+#include <shoal/io/pose_csv.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::io {
 

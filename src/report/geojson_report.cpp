@@ -3,10 +3,11 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "report/qgis_styles.hpp"
-#include "report/report.hpp"
-#include "track/time.hpp"
-#include "util/atomic_file.hpp"
+#include "detail/qgis_styles.hpp"
+#include <shoal/report/report.hpp>
+#include <shoal/version.hpp>
+#include <shoal/track/time.hpp>
+#include <shoal/util/atomic_file.hpp>
 
 namespace shoal::report {
 
@@ -156,7 +157,7 @@ std::string geojson(const audit::AuditResult& r, const RunInfo& info) {
     json doc;
     doc["type"] = "FeatureCollection";
     json shoal;
-    shoal["version"] = "0.1.0";
+    shoal["version"] = SHOAL_VERSION_STRING;
     shoal["coast"] = info.coast;
     shoal["frame"] = info.frame;
     shoal["cell_m"] = info.cell_m;

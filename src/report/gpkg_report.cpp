@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <random>
 
-#include "report/qgis_styles.hpp"
-#include "report/report.hpp"
-#include "util/atomic_file.hpp"
-#include "util/error.hpp"
+#include "detail/qgis_styles.hpp"
+#include <shoal/report/report.hpp>
+#include <shoal/util/atomic_file.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::report {
 

@@ -1,4 +1,4 @@
-#include "report/plot.hpp"
+#include <shoal/report/plot.hpp>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -11,9 +11,9 @@
 #include <unordered_set>
 #include <vector>
 
-#include "report/report.hpp"
-#include "util/atomic_file.hpp"
-#include "util/error.hpp"
+#include <shoal/report/report.hpp>
+#include <shoal/util/atomic_file.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::report {
 

@@ -1,12 +1,12 @@
-#include "report/qgis_styles.hpp"
+#include "detail/qgis_styles.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
 #include <filesystem>
 
-#include "util/atomic_file.hpp"
-#include "util/error.hpp"
+#include <shoal/util/atomic_file.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::report {
 

@@ -1,7 +1,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "report/report.hpp"
+#include <shoal/report/report.hpp>
 
 namespace shoal::report {
 

@@ -1,4 +1,4 @@
-#include "track/csv_reader.hpp"
+#include <shoal/track/csv_reader.hpp>
 
 #include <algorithm>
 #include <array>
@@ -16,9 +16,9 @@
 #include <emmintrin.h>
 #endif
 
-#include "track/parse_util.hpp"
-#include "track/time.hpp"
-#include "util/error.hpp"
+#include "detail/parse_util.hpp"
+#include <shoal/track/time.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::track {
 

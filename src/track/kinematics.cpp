@@ -1,4 +1,4 @@
-#include "track/kinematics.hpp"
+#include <shoal/track/kinematics.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
-#include "track/nmea_reader.hpp"
+#include <shoal/track/nmea_reader.hpp>
 
 #include <charconv>
 #include <cstdint>
 #include <vector>
 
-#include "track/parse_util.hpp"
-#include "track/time.hpp"
+#include "detail/parse_util.hpp"
+#include <shoal/track/time.hpp>
 
 namespace shoal::track {
 

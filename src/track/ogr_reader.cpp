@@ -1,4 +1,4 @@
-#include "track/ogr_reader.hpp"
+#include <shoal/track/ogr_reader.hpp>
 
 #include <cpl_error.h>
 #include <gdal_priv.h>
@@ -11,9 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "track/parse_util.hpp"
-#include "track/time.hpp"
-#include "util/error.hpp"
+#include "detail/parse_util.hpp"
+#include <shoal/track/time.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::track {
 

@@ -1,4 +1,4 @@
-#include "track/packed_track.hpp"
+#include <shoal/track/packed_track.hpp>
 
 #include <bit>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "track/reader.hpp"
+#include <shoal/track/reader.hpp>
 
 #include <algorithm>
 #include <array>
@@ -8,11 +8,11 @@
 #include <filesystem>
 #include <memory>
 
-#include "track/csv_reader.hpp"
-#include "track/nmea_reader.hpp"
-#include "track/ogr_reader.hpp"
-#include "track/parse_util.hpp"
-#include "util/error.hpp"
+#include <shoal/track/csv_reader.hpp>
+#include <shoal/track/nmea_reader.hpp>
+#include <shoal/track/ogr_reader.hpp>
+#include "detail/parse_util.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::track {
 

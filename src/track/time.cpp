@@ -1,4 +1,4 @@
-#include "track/time.hpp"
+#include <shoal/track/time.hpp>
 
 #include <algorithm>
 #include <array>

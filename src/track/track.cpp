@@ -1,4 +1,4 @@
-#include "track/track.hpp"
+#include <shoal/track/track.hpp>
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "track/wild_fixes.hpp"
+#include <shoal/track/wild_fixes.hpp>
 
 #include <cmath>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "util/atomic_file.hpp"
+#include <shoal/util/atomic_file.hpp>
 
 #include <unistd.h>
 
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <random>
 
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal {
 

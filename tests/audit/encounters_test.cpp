@@ -9,9 +9,9 @@
 #include <random>
 #include <string>
 
-#include "audit/encounters.hpp"
+#include <shoal/audit/encounters.hpp>
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::audit {
 namespace {

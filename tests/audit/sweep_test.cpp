@@ -7,8 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "audit/sweep.hpp"
-#include "check/brute_force.hpp"
+#include <shoal/audit/sweep.hpp>
+#include <shoal/check/brute_force.hpp>
 
 namespace shoal::audit {
 namespace {
@@ -285,7 +285,7 @@ TEST(Sweep, RandomTracksAgreeWithBruteForceSweep) {
 }  // namespace
 }  // namespace shoal::audit
 
-#include "audit/motion.hpp"
+#include <shoal/audit/motion.hpp>
 
 namespace shoal::audit {
 namespace {

@@ -10,10 +10,10 @@
 #include <ogrsf_frmts.h>
 #include <random>
 
-#include "check/brute_force.hpp"
-#include "check/detector.hpp"
-#include "geo/geos_context.hpp"
-#include "grid/coast_grid.hpp"
+#include <shoal/check/brute_force.hpp>
+#include <shoal/check/detector.hpp>
+#include "detail/geos_context.hpp"
+#include <shoal/grid/coast_grid.hpp>
 
 namespace shoal::check {
 namespace {

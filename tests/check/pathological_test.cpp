@@ -13,10 +13,10 @@
 #include <numbers>
 #include <random>
 
-#include "check/brute_force.hpp"
-#include "check/detector.hpp"
-#include "coast/coastline.hpp"
-#include "grid/coast_grid.hpp"
+#include <shoal/check/brute_force.hpp>
+#include <shoal/check/detector.hpp>
+#include <shoal/coast/coastline.hpp>
+#include <shoal/grid/coast_grid.hpp>
 #include "pathological_shapes.hpp"
 #include "test_support.hpp"
 

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "util/atomic_file.hpp"
+#include <shoal/util/atomic_file.hpp>
 
 extern char** environ;
 

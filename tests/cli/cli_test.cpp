@@ -114,10 +114,16 @@ TEST(Cli, ProbeWritesOneRowPerPoseAndSkipsBadRows) {
     const Outcome r = shoal("probe --coast " + data("coast/uk_solent_land.geojson") + " --dims 100,20,8,8 '" + poses.string() + "'");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(lines_of(r.out), 4u) << r.out;  // header + 3 poses
-    EXPECT_EQ(r.out.rfind("lat,lon,heading,collision,clearance_m\n", 0), 0u);
+    EXPECT_EQ(r.out.rfind("lat,lon,heading,collision,clearance_m,covered\n", 0), 0u);
     EXPECT_NE(r.err.find("line 4"), std::string::npos) << r.err;
     // 50.76N 1.30W is inland on the Isle of Wight: a collision with clearance 0.
-    EXPECT_NE(r.out.find("50.7600000,-1.3000000,45.0,1,0.000"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("50.7600000,-1.3000000,45.0,1,0.000,1\n"), std::string::npos) << r.out;
+    // Outside the chart nothing is claimed: collision and clearance empty, covered 0.
+    std::ofstream(poses) << "lat,lon,heading\n10.0,10.0,0\n";
+    const Outcome out = shoal("probe --coast " + data("coast/uk_solent_land.geojson") + " --dims 100,20,8,8 '" + poses.string() + "'");
+    ASSERT_EQ(out.status, 0) << out.err;
+    EXPECT_NE(out.out.find("10.0000000,10.0000000,0.0,,,0\n"), std::string::npos) << out.out;
+    EXPECT_NE(out.err.find("outside the chart"), std::string::npos) << out.err;
 }
 
 }  // namespace

@@ -8,7 +8,7 @@
 //   point geometries and null/empty geometries of each layer.
 // Orientation and land side are checked with GEOS against the polygons as OGR reads them.
 
-#include "coast/coastline.hpp"
+#include <shoal/coast/coastline.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "geo/geos_context.hpp"
-#include "geo/local_frame.hpp"
+#include "detail/geos_context.hpp"
+#include <shoal/geo/local_frame.hpp>
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace {
 

@@ -15,7 +15,7 @@
 // points whose vertex 1 (-76.4946579, 38.9104682) lies 0.014 degrees (over 1 km) from every
 // other SLCONS feature.
 
-#include "coast/expected_areas.hpp"
+#include <shoal/coast/expected_areas.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -31,9 +31,9 @@
 #include <thread>
 #include <vector>
 
-#include "geo/local_frame.hpp"
+#include <shoal/geo/local_frame.hpp>
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Tests of geo::LocalFrame. Independent answers come from PROJ's geodesic routines on WGS84
 // (geod_direct / geod_inverse, Karney's algorithms) and from known properties of UTM.
 
-#include "geo/local_frame.hpp"
+#include <shoal/geo/local_frame.hpp>
 
 #include <cpl_error.h>
 #include <geodesic.h>
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace {
 

@@ -3,7 +3,7 @@
 // cases: small integer coordinates (exact in doubles, so collinear, touching and overlapping
 // cases are frequent and GEOS's robust predicates give the exact answer) and general doubles.
 
-#include "geo/point.hpp"
+#include <shoal/geo/point.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

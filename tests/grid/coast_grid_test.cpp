@@ -6,7 +6,7 @@
 // The grid clips with each cell's box grown by CoastGrid::clip_slack() (a few ulps, so a segment
 // lying on a cell border is kept by both neighbours); the reference clip uses the same grown box.
 
-#include "grid/coast_grid.hpp"
+#include <shoal/grid/coast_grid.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -22,11 +22,11 @@
 #include <string>
 #include <vector>
 
-#include "coast/coastline.hpp"
-#include "geo/geos_context.hpp"
-#include "geo/local_frame.hpp"
+#include <shoal/coast/coastline.hpp>
+#include "detail/geos_context.hpp"
+#include <shoal/geo/local_frame.hpp>
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Tests of the .shoalgrid cache: save/load round trip, one clear InputError per kind of bad
 // file, atomic saving, and load_or_build's reuse and rebuild decisions.
 
-#include "grid/grid_cache.hpp"
+#include <shoal/grid/grid_cache.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace {
 

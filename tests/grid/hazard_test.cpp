@@ -24,13 +24,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "audit/sweep.hpp"
-#include "check/detector.hpp"
-#include "coast/coastline.hpp"
-#include "grid/grid_cache.hpp"
-#include "hull/hull.hpp"
+#include <shoal/audit/sweep.hpp>
+#include <shoal/check/detector.hpp>
+#include <shoal/coast/coastline.hpp>
+#include <shoal/grid/grid_cache.hpp>
+#include <shoal/hull/hull.hpp>
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal {
 namespace {

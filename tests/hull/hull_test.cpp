@@ -1,7 +1,7 @@
 // Tests of shoal::hull. Geometric properties of the outlines are checked with GEOS (validity,
 // simplicity, containment, area, orientation), not with the hull code's own helpers.
 
-#include "hull/hull.hpp"
+#include <shoal/hull/hull.hpp>
 
 #include <geos_c.h>
 #include <gmock/gmock.h>
@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pathological_shapes.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace {
 

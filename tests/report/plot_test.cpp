@@ -21,14 +21,14 @@
 #include <utility>
 #include <vector>
 
-#include "audit/audit.hpp"
-#include "grid/grid_cache.hpp"
-#include "hull/hull.hpp"
-#include "report/plot.hpp"
-#include "report/report.hpp"
-#include "track/track.hpp"
+#include <shoal/audit/audit.hpp>
+#include <shoal/grid/grid_cache.hpp>
+#include <shoal/hull/hull.hpp>
+#include <shoal/report/plot.hpp>
+#include <shoal/report/report.hpp>
+#include <shoal/track/track.hpp>
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::report {
 namespace {

@@ -7,7 +7,7 @@
 //   awk -F, for columns (dimensions, headings); GNU date -u -d ... +%s for epoch seconds.
 // Hand-made files were written so that every row's fate is visible in the file itself.
 
-#include "track/csv_reader.hpp"
+#include <shoal/track/csv_reader.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "track/time.hpp"
-#include "util/error.hpp"
+#include <shoal/track/time.hpp>
+#include <shoal/util/error.hpp>
 
 namespace {
 

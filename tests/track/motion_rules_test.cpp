@@ -10,9 +10,9 @@
 #include <random>
 #include <set>
 
-#include "track/kinematics.hpp"
-#include "track/track.hpp"
-#include "track/wild_fixes.hpp"
+#include <shoal/track/kinematics.hpp>
+#include <shoal/track/track.hpp>
+#include <shoal/track/wild_fixes.hpp>
 
 namespace shoal::track {
 namespace {

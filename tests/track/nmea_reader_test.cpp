@@ -9,7 +9,7 @@
 // The hand-made logs were written by /usr/bin/python3 with checksums computed there (XOR of the
 // characters between '$' and '*'); what each line should do is visible in the file.
 
-#include "track/nmea_reader.hpp"
+#include <shoal/track/nmea_reader.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace {
 

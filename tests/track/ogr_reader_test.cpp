@@ -5,7 +5,7 @@
 // +02 offset; GPX 1.0 course 80.5 and speed 2.572 m/s). Every GeoJSON value asserted below can
 // be read in the file itself. Epoch seconds: date -u -d '2014-08-15T19:00:00Z' +%s -> 1408129200.
 
-#include "track/ogr_reader.hpp"
+#include <shoal/track/ogr_reader.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "util/error.hpp"
+#include <shoal/util/error.hpp>
 
 namespace {
 

@@ -9,7 +9,7 @@
 //   date -u -d '1900-01-01T00:00:00Z' +%s   -> -2208988800
 //   date -u -d '2400-02-29T00:00:00Z' +%s   -> 13574563200
 
-#include "track/time.hpp"
+#include <shoal/track/time.hpp>
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 // Speeds: 0.001 deg of latitude = 6371008.8 m * pi/180 * 0.001 = 111.195 m; in 10 s = 21.6 kn.
 // Vessel counts: awk -F, on gpsd_nl_vessels.csv (19 distinct MMSIs, 16 with A,B,C,D all > 0).
 
-#include "track/reader.hpp"
+#include <shoal/track/reader.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "test_support.hpp"
-#include "track/track.hpp"
-#include "util/error.hpp"
+#include <shoal/track/track.hpp>
+#include <shoal/util/error.hpp>
 
 namespace {
 

@@ -1,0 +1,69 @@
+#pragma once
+/// A whole audit: read every track file, sweep every track (in parallel), gather the results
+/// in a deterministic order (input order, then track order in the file), so the report does
+/// not depend on the number of jobs.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <shoal/audit/encounters.hpp>
+#include <shoal/audit/sweep.hpp>
+#include <shoal/grid/coast_grid.hpp>
+#include <shoal/hull/hull.hpp>
+#include <shoal/track/reader.hpp>
+
+namespace shoal::audit {
+
+struct AuditOptions {
+    SweepOptions sweep;
+    unsigned jobs = 0;  ///< worker threads; 0 = all cores
+    track::ReadOptions read;
+    /// Called on the calling thread about ten times a second: fixes swept so far, fixes in all.
+    std::function<void(std::size_t done, std::size_t total)> progress;
+    /// Exercise mode: the tracks of the run are one exercise; find ship-to-ship encounters.
+    bool encounters = false;
+    EncounterOptions encounter;  ///< step and max gap are taken from `sweep`
+    track::WildFixOptions wild;  ///< what makes a fix an outlier
+    /// Areas where contact is expected, and shore constructions; may be null. Must outlive the run.
+    const coast::ExpectedAreas* areas = nullptr;
+};
+
+/// One input file: how it read.
+struct FileResult {
+    std::string file;
+    std::string format;
+    track::ReadReport read;
+    std::string error;  ///< non-empty when the file could not be read at all (the batch went on)
+    std::size_t tracks = 0;
+};
+
+/// A track that could not be audited (the batch went on).
+struct TrackError {
+    std::string file, track, message;
+};
+
+struct AuditResult {
+    std::vector<TrackResult> tracks;
+    std::vector<FileResult> files;
+    std::vector<TrackError> errors;
+    std::size_t fixes = 0, poses = 0, uncovered_fixes = 0, skipped_rows = 0;
+    std::size_t groundings = 0, close_passes = 0;
+    std::size_t alongside = 0, contacts_at_start = 0, expected_contacts = 0;
+    std::size_t wild_fixes = 0, jumps = 0, unknown_heading_fixes = 0;
+    double first_fix_s = NAN, last_fix_s = NAN;
+    double read_s = 0, sweep_s = 0;  ///< wall-clock seconds of the two phases
+    /// Exercise mode: encounters between the audited tracks; ShipAt::track and
+    /// ClosestApproach::a/b index `tracks` above.
+    bool has_encounters = false;
+    EncounterResult encounters;
+    std::size_t collisions = 0, close_quarters = 0;
+    double encounters_s = 0;
+};
+
+/// Audits the tracks of `inputs` (files or folders). `default_hull` serves tracks that carry
+/// no AIS dimensions of their own; `hull_label` says where it came from ("ship file", "--dims").
+AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastGrid& grid, const hull::Hull& default_hull,
+                      const std::string& hull_label, const AuditOptions& options);
+
+}  // namespace shoal::audit

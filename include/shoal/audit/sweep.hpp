@@ -1,0 +1,163 @@
+#pragma once
+/// Sweeping a ship's hull along a track: poses every <= step metres of hull motion between
+/// fixes (position and heading interpolated, heading by the shorter turn), each checked,
+/// and the results gathered into events (grounding, close pass) with the first contact
+/// time refined by bisection.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <shoal/check/detector.hpp>
+#include <shoal/track/kinematics.hpp>
+#include <shoal/track/track.hpp>
+#include <shoal/track/wild_fixes.hpp>
+
+namespace shoal::coast { class ExpectedAreas; }
+
+namespace shoal::audit {
+
+struct SweepOptions {
+    double step_m = 5.0;          ///< no hull point moves more than this between two checks
+    double margin_m = 50.0;       ///< clearance under this (and no contact) is a close pass
+    double max_gap_s = 600.0;     ///< a longer gap between fixes splits the track: nothing is swept across it
+    double time_tolerance_s = 0.01;  ///< bisection stops when the contact time is known this well
+    /// The clearance search reaches this far beyond the margin; a pose found clear by d metres
+    /// lets the sweep skip checks for the next d - margin metres of hull motion (they cannot
+    /// come within the margin). Fixes are always checked.
+    double lookahead_m = 500.0;
+    /// A contact that begins under this speed (knots) is a vessel berthing or lying alongside,
+    /// not a grounding (berthing approaches are 0.1-0.3 m/s, 0.2-0.6 kn).
+    double berthing_speed_kn = 1.0;
+    /// Speed from positions and stops (MotionOptions::max_gap_s is taken from max_gap_s above).
+    double speed_window_s = 120.0;
+    double stop_diameter_m = 50.0;
+    double stop_duration_s = 120.0;
+    track::MotionOptions motion() const noexcept { return {speed_window_s, stop_diameter_m, stop_duration_s, max_gap_s}; }
+};
+
+/// What an event is, decided at the first contact of each interval from what was observed.
+enum class EventKind {
+    grounding,          ///< contact began under way (at or over the berthing speed, not stopped), seen clear before
+    alongside,          ///< contact began while stopped or under the berthing speed (moored, berthing)
+    contact_at_start,   ///< already in contact at the first fix of a track or of a piece (after a gap or jump): not seen
+    expected_contact,   ///< contact inside an area where contact is expected (berth, harbour, anchorage)
+    close_pass,         ///< clearance under the margin, never contact
+};
+/// "grounding", "alongside", "in_contact_at_start", "expected_contact", "close_pass".
+const char* to_string(EventKind k) noexcept;
+/// A contact of any kind (every kind but close_pass).
+constexpr bool is_contact(EventKind k) noexcept { return k != EventKind::close_pass; }
+
+/// A grounding (an interval of contact) or a close pass (an interval with clearance under the
+/// margin that never reaches contact).
+struct Event {
+    EventKind kind = EventKind::grounding;
+    double start_s = 0, end_s = 0;  ///< epoch seconds; start of a grounding is the refined first contact
+    double min_clearance_m = 0;     ///< least clearance (0 for a grounding)
+    double penetration_m = 0;       ///< deepest reach past the coastline seen (groundings)
+    geo::LonLat point;              ///< grounding: first contact point; close pass: nearest coast point at least clearance
+    geo::LonLat ship;               ///< reference point of the ship at that moment
+    double heading_deg = 0;         ///< heading used at that moment
+    track::HeadingSource heading_source = track::HeadingSource::none;
+    std::size_t fix_index = 0;      ///< index (0-based) of the last fix at or before that moment
+    std::size_t fix_line = 0;       ///< its line (or point number) in the file
+    std::vector<geo::LonLat> hull;  ///< hull outline at that moment (closed ring)
+    /// What the hull touched (grounding) or came nearest to (close pass): land, shallow water
+    /// (a depth area under the limiting depth) or a danger.
+    coast::HazardKind hit = coast::HazardKind::land;
+    double charted_depth_m = NAN;   ///< its charted depth (least depth of the area, danger's sounding); NaN unknown or land
+    coast::DangerKind danger = coast::DangerKind::none;  ///< the danger's kind (rock, wreck, obstruction)
+
+    // The evidence for the kind (contacts; for close passes the speed and heading at the least clearance).
+    double speed_kn = NAN;          ///< speed at first contact: SOG of the last fix before it (else the next), else from positions
+    track::SpeedSource speed_source = track::SpeedSource::none;
+    bool stopped_before = false;    ///< the vessel was stopped (a stay within the stop diameter) at the last fix before contact
+    double stopped_after_s = NAN;   ///< seconds from first contact until the vessel was stopped; NaN: it did not stop (in this piece)
+    /// How deep the ship's reference point lies inside the hazard at first contact, metres;
+    /// negative: outside it, in water, by that much (a bow touching has a large negative value).
+    double reference_inside_m = NAN;
+    std::uint8_t nav_status = track::nav_status_unknown;  ///< AIS navigational status at the last fix before contact
+    bool reported_aground = false;  ///< a fix of the contact reported AIS status 6 "aground"
+    bool orientation_unknown = false;  ///< no heading was known: contact judged by the hull's circle (at some heading)
+    std::string unseen_after;       ///< contact_at_start: "track start", "gap" or "jump"
+    std::string area_kind, area_name;  ///< expected_contact: the area ("berth", "harbour", "anchorage", "area") and its name
+    std::string structure;          ///< the contact point is on a shore construction (S-57 SLCONS): its kind ("pier", "wharf", ...)
+};
+
+/// Figures of one swept track.
+struct TrackSummary {
+    std::string id, name, file;
+    std::string hull;                 ///< "ship file", "--dims" or "AIS dimensions a,b,c,d"
+    std::size_t fixes = 0;            ///< fixes in the track
+    std::size_t uncovered_fixes = 0;  ///< fixes whose hull is (partly) outside the coastline's area
+    std::size_t segments = 0;         ///< pieces after splitting at gaps
+    std::size_t gaps = 0;             ///< gaps longer than max_gap_s
+    std::size_t poses = 0;            ///< poses checked (fixes and swept poses between them)
+    std::size_t groundings = 0, close_passes = 0;
+    std::size_t alongside = 0, contacts_at_start = 0, expected_contacts = 0;
+    std::vector<track::WildFix> wild_fixes;  ///< fixes dropped as outliers (never swept)
+    std::size_t jumps = 0;            ///< persistent jumps (each starts a new piece)
+    std::size_t unknown_heading_fixes = 0;  ///< fixes checked by the hull's circle: no heading known yet
+    double min_clearance_m = INFINITY;  ///< least clearance over covered poses (0 on grounding; INFINITY: never within the search limit)
+    double start_s = NAN, end_s = NAN;
+    double distance_m = 0;            ///< length sailed (local metres, gaps excluded)
+    std::vector<std::vector<geo::LonLat>> lines;  ///< the swept pieces, for the report's tracks layer
+};
+
+struct TrackResult {
+    TrackSummary summary;
+    std::vector<Event> events;
+};
+
+/// Anything that checks a pose: the grid Detector, or the brute-force traversal in tests.
+class PoseChecker {
+public:
+    virtual ~PoseChecker() = default;
+    virtual check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const = 0;
+    virtual const hull::Hull& hull() const = 0;
+    /// The grid whose polylines Contact::polyline indexes (what a contact hit), if any.
+    virtual const grid::CoastGrid* grid() const { return nullptr; }
+    /// How deep local point `p` lies inside land or a hazard (metres; negative: in water, by
+    /// its distance to the nearest coast, at most `max_m`); NaN when not known.
+    virtual double inside_depth(geo::XY /*p*/, double /*max_m*/) const { return NAN; }
+};
+
+class DetectorChecker final : public PoseChecker {
+public:
+    DetectorChecker(const grid::CoastGrid& grid, const hull::Hull& hull) : m_detector(grid, hull) {}
+    check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
+        return m_detector.check(pose, options);
+    }
+    const hull::Hull& hull() const override { return m_detector.hull(); }
+    const grid::CoastGrid* grid() const override { return &m_detector.grid(); }
+    double inside_depth(geo::XY p, double max_m) const override {
+        const double d = m_detector.nearest_coast(p, max_m, nullptr);
+        return m_detector.grid().is_land(p) ? d : -d;
+    }
+
+private:
+    check::Detector m_detector;
+};
+
+/// What the sweep may use besides the track and the hull.
+struct SweepContext {
+    /// Checks poses whose heading is unknown (HeadingSource::none): the hull's circle, a hull
+    /// that holds the ship at any heading (see circle_hull). Null: the hull at heading 0.
+    const PoseChecker* unknown_heading = nullptr;
+    /// Areas where contact is expected (berths, harbours, anchorages) and shore constructions.
+    const coast::ExpectedAreas* areas = nullptr;
+};
+
+/// The hull's circle: a 36-gon circumscribed about the circle of the hull's radius around the
+/// reference point, which holds the hull at every heading. Contact of the circle means contact
+/// at some heading; its clearance is the least clearance over all headings.
+hull::Hull circle_hull(const hull::Hull& hull);
+
+/// Sweeps `track` (wild fixes dropped, motion and headings resolved) with `checker` in `frame`.
+/// A pose equal to the one checked just before (a vessel standing still) is not checked again:
+/// the last answer stands. Pieces of track split at gaps over max_gap_s and at Fix::jump_before.
+TrackResult sweep_track(const track::Track& track, const geo::LocalFrame& frame, const PoseChecker& checker,
+                        const SweepOptions& options, const SweepContext& context = {});
+
+}  // namespace shoal::audit

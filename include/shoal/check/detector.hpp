@@ -1,0 +1,90 @@
+#pragma once
+/// `Detector`: the pose check. Given where a ship's reference point is and its true heading,
+/// does the hull touch land, and how far is it from land? Uses the grid: only the cells
+/// under the hull's bounding box grown by the margin are read, then rings of cells outward
+/// until no nearer coastline can exist.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <shoal/geo/point.hpp>
+#include <shoal/grid/coast_grid.hpp>
+#include <shoal/hull/hull.hpp>
+
+namespace shoal::check {
+
+/// A ship's pose: WGS84 position of the reference point and true heading in degrees.
+struct Pose {
+    geo::LonLat position;
+    double heading_deg = 0;
+};
+
+/// A pose in the grid's frame: reference point in local metres and the linear map from ship
+/// coordinates (x forward, y starboard, metres) to local metres (rotation by the grid
+/// heading, times the frame's local scale).
+struct LocalPose {
+    geo::XY position;
+    Eigen::Matrix2d ship_to_local = Eigen::Matrix2d::Identity();
+
+    /// The pose at `position` (local metres) heading `grid_heading_deg` clockwise from grid
+    /// north (the frame's +y), at a local scale of 1: shapes made in metres, tests, benchmarks.
+    static LocalPose at(geo::XY position, double grid_heading_deg) {
+        const double h = grid_heading_deg * std::numbers::pi / 180;
+        LocalPose p;
+        p.position = position;
+        p.ship_to_local << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
+        return p;
+    }
+};
+
+/// The result of one pose check.
+struct Contact {
+    bool collision = false;         ///< hull touches or overlaps land (or a coastline line)
+    bool covered = true;            ///< the hull's box lies inside the grid's extent
+    double clearance_m = INFINITY;  ///< distance hull to coastline; 0 on collision; INFINITY when beyond the search limit
+    double penetration_m = 0;       ///< on collision: how deep the hull reaches past the coastline (see docs)
+    geo::XY hull_point;             ///< hull point realising the clearance (a contact point on collision)
+    geo::XY coast_point;            ///< coastline point realising the clearance (same point on collision)
+    /// The grid polyline realising the contact or the clearance (grid::CoastGrid::hazard says
+    /// what it bounds): the one a hull edge crosses, or the nearest; for a hull wholly inside
+    /// land or a hazard, the nearest ring that holds it (CoastGrid::enclosing_polyline); for a
+    /// hazard wholly under the hull, that hazard. no_polyline when none is known.
+    std::uint32_t polyline = grid::CoastGrid::no_polyline;
+};
+
+struct CheckOptions {
+    /// Search for clearance no further than this (metres); beyond it clearance is INFINITY.
+    double max_clearance_m = INFINITY;
+    /// Compute penetration depth on collision (extra nearest-segment searches).
+    bool want_penetration = true;
+};
+
+/// Where the hull of `hull` lies for `pose` in `frame`: heading corrected for meridian
+/// convergence and the frame's scale applied, so points land where geodesics put them.
+LocalPose place(const geo::LocalFrame& frame, const Pose& pose);
+/// The hull's outline in local metres for a pose.
+std::vector<geo::XY> hull_outline(const hull::Hull& hull, const LocalPose& pose);
+
+class Detector {
+public:
+    /// Keeps a reference to `grid`, which must outlive the detector (a temporary grid is refused).
+    Detector(const grid::CoastGrid& grid, const hull::Hull& hull);
+    Detector(grid::CoastGrid&& grid, const hull::Hull& hull) = delete;
+
+    Contact check(const Pose& pose, const CheckOptions& options = {}) const;
+    Contact check(const LocalPose& pose, const CheckOptions& options = {}) const;
+
+    /// Nearest coastline segment to p within `max_m` (INFINITY if none): distance, and the point.
+    double nearest_coast(geo::XY p, double max_m, geo::XY* on_coast) const;
+
+    const grid::CoastGrid& grid() const noexcept { return m_grid; }
+    const hull::Hull& hull() const noexcept { return m_hull; }
+
+private:
+    const grid::CoastGrid& m_grid;
+    hull::Hull m_hull;
+};
+
+}  // namespace shoal::check

@@ -1,0 +1,32 @@
+#pragma once
+/// NMEA 0183 logs: one track per file, id = the file's stem.
+///
+/// Sentences used, from any talker (GP, GN, II, IN, ...): RMC (date, time, position, SOG, COG;
+/// status V skipped), GGA (time, position; fix quality 0 skipped), GLL (position, time; status V
+/// skipped), HDT (true heading), VTG (true COG, SOG), ZDA (date). Anything before the `$` on a
+/// line (a receive time, a tag block) is ignored; `!AIVDM` and other sentences are ignored; a
+/// checksum `*hh` is verified when present (a mismatch skips the line, with a message).
+///
+/// Dates: RMC and ZDA give them. Times of day from GGA/GLL take the latest date, with midnight
+/// rollover (the time of day falling by more than 12 h). Times met before the first date take
+/// that date; a log without any date uses ReadOptions::date_s, else 1970-01-01 and says so in
+/// the report. Position sentences with the same time (GGA + RMC, or several talkers) make one
+/// fix: the first position, SOG/COG filled in by the others. HDT and VTG, which carry no time,
+/// fill the values still missing in the latest fix. ReadReport::rows counts sentences (`$`, `!`).
+
+#include <string>
+#include <string_view>
+
+#include <shoal/track/reader.hpp>
+
+namespace shoal::track {
+
+/// Reads NMEA text (a whole file's bytes); `file` names it in messages and gives the track id.
+TrackFile read_nmea_text(std::string_view text, const std::string& file, const ReadOptions& options = {});
+TrackFile read_nmea(const std::string& path, const ReadOptions& options = {});
+
+/// True when `line` holds an NMEA sentence (`$` or `!`, 5 or 6 letters or digits of address, a
+/// comma) anywhere: the test read_tracks uses to recognise a log.
+bool holds_nmea_sentence(std::string_view line) noexcept;
+
+}  // namespace shoal::track

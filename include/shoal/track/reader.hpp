@@ -1,0 +1,83 @@
+#pragma once
+/// Reading track files of any format shoal knows: CSV with a header, GPX, GeoJSON, NMEA 0183.
+/// The format is found from the content (and the extension when the content is ambiguous), so
+/// a renamed file still reads. Every track comes back normalised (sorted by time, repeated
+/// times dropped) but not split at gaps: the audit does that (--max-gap).
+
+#include <cmath>
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <shoal/hull/hull.hpp>
+#include <shoal/track/packed_track.hpp>
+#include <shoal/track/track.hpp>
+#include <shoal/util/error.hpp>
+
+namespace shoal::track {
+
+struct ReadOptions {
+    /// Date for logs and rows that give only a time of day and no date anywhere in the file:
+    /// any epoch second of that day (UTC); its time of day is ignored. Without it such times are
+    /// dated 1970-01-01 and the report says so.
+    std::optional<double> date_s;
+    /// Problems kept word for word in ReadReport::messages; the rest are only counted.
+    std::size_t max_messages = 10;
+};
+
+/// All tracks of one file, what reading it found, and the format it was read as
+/// ("csv", "nmea", "gpx", "geojson").
+struct TrackFile {
+    std::vector<Track> tracks;
+    ReadReport report;
+    std::string format;
+};
+
+/// The same with the fixes packed (see packed_track.hpp): what a batch holds while it is read.
+struct PackedTrackFile {
+    std::vector<PackedTrack> tracks;
+    ReadReport report;
+    std::string format;
+};
+
+/// Reads `path` as whichever track format its content is. Throws InputError when the file
+/// cannot be read, is empty, is no track format ("FILE: not a track format shoal reads (CSV
+/// with a header, GPX, GeoJSON, NMEA 0183)"), is broken beyond single rows, or yields no fix.
+TrackFile read_tracks(const std::string& path, const ReadOptions& options = {});
+/// The same with the fixes packed, a CSV file read in blocks (never whole): for big batches,
+/// whose memory is then about 32 bytes per fix.
+PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& options = {});
+/// Unpacks every track (freeing the packed fixes as it goes).
+TrackFile unpack(PackedTrackFile&& packed);
+
+/// The track format of a file's content: "csv", "nmea", "gpx", "geojson", or "" when none.
+/// `path` only breaks ties (its extension); the content decides.
+std::string sniff_format(std::string_view content, const std::string& path = {});
+
+/// Files named on a command line, with each folder replaced by the track files directly in it
+/// (extensions .csv .gpx .geojson .json .nmea .log .txt, any case, not `*_vessels.csv`, sorted
+/// by name; not recursive). Files are kept as given, whatever their extension. Throws
+/// InputError for a path that does not exist and for a folder without track files.
+std::vector<std::string> expand_inputs(const std::vector<std::string>& paths);
+
+/// AIS static data of one vessel.
+struct VesselInfo {
+    std::string name;                      ///< empty when not known
+    std::optional<hull::Dimensions> dims;  ///< A,B,C,D when all four are > 0
+    double draught_m = NAN;
+    int ship_type = -1;                    ///< AIS ship and cargo type, -1 when not known
+};
+
+/// Reads a vessels file (`*_vessels.csv`: mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,
+/// draught_m; also shiptype; A,B,C,D accepted for the dimensions), keyed by MMSI. A vessel named
+/// in several rows takes the first non-empty name, the first complete dimensions and the first
+/// draught. Throws InputError when the file cannot be read or has no mmsi column.
+std::map<std::string, VesselInfo> read_vessels(const std::string& path);
+
+/// The whole file as bytes. Throws InputError "FILE: cannot read (reason)".
+std::string read_file(const std::string& path);
+
+}  // namespace shoal::track

@@ -1,0 +1,103 @@
+#pragma once
+/// A voyage track: time-ordered position fixes of one vessel, as read from any track format.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <shoal/geo/point.hpp>
+#include <shoal/hull/hull.hpp>
+
+namespace shoal::track {
+
+/// Which value the heading used for a fix came from (said in the report).
+enum class HeadingSource : std::uint8_t {
+    heading,    ///< true heading from the source (valid; AIS 511 is not)
+    cog,        ///< course over ground, the vessel moving
+    positions,  ///< bearing between successive positions, the vessel moving, no COG given
+    previous,   ///< held from the previous fix (stopped, or nothing else known)
+    none,       ///< nothing known at all (no heading, COG or motion yet): the orientation is unknown
+};
+const char* to_string(HeadingSource s) noexcept;
+
+/// Where the speed used for a fix came from (said in the report).
+enum class SpeedSource : std::uint8_t {
+    sog,        ///< speed over ground from the source
+    positions,  ///< from the displacement over a window of time (see resolve_motion)
+    none,       ///< a track of one fix: nothing known
+};
+const char* to_string(SpeedSource s) noexcept;
+
+/// AIS navigational status (ITU-R M.1371 message 1-3, field "navigational status"): 0 under
+/// way using engine ... 5 moored, 6 aground ... 15 not defined; `nav_status_unknown` when the
+/// source has no such field.
+inline constexpr std::uint8_t nav_status_unknown = 255;
+inline constexpr std::uint8_t nav_status_at_anchor = 1;
+inline constexpr std::uint8_t nav_status_moored = 5;
+inline constexpr std::uint8_t nav_status_aground = 6;
+/// "under way using engine", "moored", "aground", ...; "" for nav_status_unknown.
+const char* nav_status_text(std::uint8_t status) noexcept;
+/// The status from a number 0-15 or the text of DMA's export ("Under way using engine",
+/// "Moored", "Aground", ...; case-insensitive); nav_status_unknown for anything else.
+std::uint8_t parse_nav_status(std::string_view text) noexcept;
+
+struct Fix {
+    double time_s = NAN;             ///< seconds since 1970-01-01T00:00:00Z
+    geo::LonLat position;
+    double heading_deg = NAN;        ///< true heading from the source; NAN when unknown
+    double cog_deg = NAN;            ///< course over ground; NAN when unknown
+    double sog_kn = NAN;             ///< speed over ground, knots; NAN when unknown
+    std::size_t line = 0;            ///< 1-based line (CSV, NMEA) or point number (GPX, GeoJSON) in the file
+    std::uint8_t nav_status = nav_status_unknown;  ///< AIS navigational status when the source gives it
+    /// Set by drop_wild_fixes(): a jump that persists separates this fix from the one before, so
+    /// a new piece of track starts here (nothing is swept across the jump), as after a gap.
+    bool jump_before = false;
+    double heading_used_deg = NAN;   ///< set by resolve_headings()
+    HeadingSource heading_source = HeadingSource::none;
+    double speed_used_kn = NAN;      ///< set by resolve_motion(): SOG, else from positions
+    SpeedSource speed_source = SpeedSource::none;
+    /// Set by resolve_motion(): the vessel has stayed within the stop diameter for at least the
+    /// stop duration up to this fix (judged from this and earlier fixes only).
+    bool stopped = false;
+};
+
+struct Track {
+    std::string id;     ///< MMSI, name or track id; the file's stem when it holds one unnamed track
+    std::string name;   ///< vessel name when the source gives one
+    std::string file;   ///< file it was read from
+    std::vector<Fix> fixes;                 ///< sorted by time, duplicates dropped
+    std::optional<hull::Dimensions> dims;   ///< AIS A,B,C,D when the source gives all four > 0
+    double draught_m = NAN;
+};
+
+/// What reading a file found, for the user: counts and the first few problems.
+struct ReadReport {
+    std::size_t rows = 0;        ///< data rows / sentences / points read
+    std::size_t skipped = 0;     ///< bad rows skipped (each also counted in messages, up to a limit)
+    std::size_t duplicates = 0;  ///< repeated fixes dropped (same time, same vessel)
+    std::size_t reordered = 0;   ///< fixes found out of time order (the track was sorted)
+    std::vector<std::string> messages;  ///< "FILE line N: what is wrong; row skipped", the first few
+    std::size_t max_messages = 10;
+    /// Counts a skipped row and keeps its message while under the limit.
+    void skip(const std::string& message);
+};
+
+/// Sorts fixes by time (stable), drops exact duplicates in time (counted in `report`).
+void normalise(Track& track, ReadReport& report);
+
+/// Heading per fix: true heading where valid, else COG when moving (speed_used_kn >= `moving_kn`
+/// when resolve_motion() has run; else SOG, else the speed between neighbouring positions),
+/// else when moving the course made good (bearing towards the first later fix at least 50 m
+/// away among the next 256, else from the latest earlier one), else the previous heading. A fix before
+/// any heading is known gets HeadingSource::none (heading_used_deg 0, to be ignored: the
+/// orientation is unknown). Fills heading_used_deg and heading_source.
+void resolve_headings(Track& track, double moving_kn = 0.5);
+
+/// Great-circle distance in metres (haversine, mean Earth radius).
+double distance_m(geo::LonLat a, geo::LonLat b) noexcept;
+
+}  // namespace shoal::track

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# The installed package as a simulator developer uses it (run by ctest as `install_test`):
+# `cmake --install BUILD --prefix P`, then the per-frame examples of examples/simulator built
+# against P: the C++ one with find_package(Shoal CONFIG) and the C one both with CMake and with
+# `pkg-config --cflags --libs shoal_c`; the C program's answers must equal `shoal probe`'s.
+#   scripts/test-install.sh BUILD_DIR [WORK_DIR]
+set -euo pipefail
+src="$(cd "$(dirname "$0")/.." && pwd)"
+build="$(cd "$1" && pwd)"
+work="${2:-$(mktemp -d)}"
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$work"
+prefix="$work/prefix"
+cmake --install "$build" --prefix "$prefix" > "$work/install.log"
+for f in include/shoal/shoal.h include/shoal/version.hpp include/shoal/check/detector.hpp lib/libshoal.a lib/libshoal_c.so.1 \
+         lib/cmake/Shoal/ShoalConfig.cmake lib/cmake/Shoal/ShoalConfigVersion.cmake lib/pkgconfig/shoal.pc lib/pkgconfig/shoal_c.pc; do
+  [ -e "$prefix/$f" ] || { echo "test-install: $f was not installed"; exit 1; }
+done
+if find "$prefix/include" -path '*detail*' | grep -q .; then echo "test-install: internal headers were installed"; exit 1; fi
+# Only the C API is exported from libshoal_c.
+if nm -D --defined-only "$prefix/lib/libshoal_c.so.1" | awk '$2 ~ /[TDB]/ {print $3}' | grep -v '^shoal_' | grep -q .; then
+  echo "test-install: libshoal_c exports more than shoal_*:"; nm -D --defined-only "$prefix/lib/libshoal_c.so.1" | grep -v ' shoal_' | head; exit 1
+fi
+# A separate project with find_package(Shoal 0.2 CONFIG REQUIRED).
+cmake -S "$src/examples/simulator" -B "$work/sim" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" > "$work/sim-configure.log"
+cmake --build "$work/sim" > "$work/sim-build.log"
+# The C program with pkg-config only.
+export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
+cc -std=c11 -Wall -Wextra -Werror "$src/examples/simulator/frame_check.c" $(pkg-config --cflags --libs shoal_c) -lm -o "$work/frame_check_pc"
+export LD_LIBRARY_PATH="$prefix/lib"
+"$prefix/bin/shoal" import "$src/examples/data/gof_helsinki_land.geojson" -o "$work/helsinki.shoalgrid" > /dev/null
+# Poses: the example's, and a few hundred around Helsinki (some outside the chart).
+{
+  cat "$src/examples/poses.csv"
+  awk 'BEGIN { srand(7); for (i = 0; i < 400; i++) printf "%.6f,%.6f,%.1f\n", 59.35 + rand() * 1.0, 23.1 + rand() * 2.8, rand() * 360 }'
+} > "$work/poses.csv"
+"$prefix/bin/shoal" probe --coast "$work/helsinki.shoalgrid" --dims 150,35,14,15 "$work/poses.csv" -o "$work/probe.csv"
+for exe in "$work/frame_check_pc" "$work/sim/frame_check_c"; do
+  "$exe" "$work/helsinki.shoalgrid" "$work/poses.csv" > "$work/c.csv" 2> "$work/c.err"
+  if ! cmp -s "$work/probe.csv" "$work/c.csv"; then
+    echo "test-install: $exe disagrees with shoal probe:"; diff "$work/probe.csv" "$work/c.csv" | head; exit 1
+  fi
+  cat "$work/c.err"
+done
+"$work/sim/frame_check_cpp" "$work/helsinki.shoalgrid" 3000
+echo "test-install: installed package OK ($(wc -l < "$work/probe.csv") poses agree with shoal probe)"

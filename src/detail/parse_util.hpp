@@ -1,0 +1,99 @@
+#pragma once
+/// Small text helpers shared by the track readers (internal to src/track).
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+#include <shoal/track/track.hpp>
+
+namespace shoal::track::detail {
+
+inline std::string_view trim(std::string_view s) noexcept {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r' || s.back() == '\n'))
+        s.remove_suffix(1);
+    return s;
+}
+
+/// A decimal number (leading '+' allowed, "nan"/"inf" read as such); false when `s` is empty
+/// or not entirely a number. With `decimal_comma`, "55,84" reads as 55.84.
+inline bool parse_double(std::string_view s, double& out, bool decimal_comma = false) noexcept {
+    s = trim(s);
+    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+    if (s.empty()) return false;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+    if (ec == std::errc{} && ptr == s.data() + s.size()) return true;
+    if (!decimal_comma || s.size() >= 64) return false;
+    std::array<char, 64> buf{};
+    std::size_t commas = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        buf[i] = s[i] == ',' ? '.' : s[i];
+        commas += s[i] == ',' ? 1 : 0;
+    }
+    if (commas != 1) return false;
+    const auto r = std::from_chars(buf.data(), buf.data() + s.size(), out);
+    return r.ec == std::errc{} && r.ptr == buf.data() + s.size();
+}
+
+/// The file name without folders and the last extension: the id of a one-track file.
+inline std::string file_stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+/// Shortest text of a double that reads back the same ("91", "12.5", "nan").
+inline std::string fmt(double v) {
+    std::array<char, 32> buf{};
+    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+    return {buf.data(), r.ptr};
+}
+
+/// A field's text for a message: at most 40 bytes, quoted.
+inline std::string quoted(std::string_view s) {
+    std::string out(1, '\'');  // appended, not "'" + string: GCC 12 -O3 warns falsely (-Wrestrict) on that
+    out += s.substr(0, 40);
+    out += s.size() > 40 ? "...'" : "'";
+    return out;
+}
+
+/// True when a latitude/longitude pair cannot be a position; `what` then says why
+/// ("latitude 91 (AIS: not available)").
+inline bool position_problem(double lat, double lon, std::string& what) {
+    if (!std::isfinite(lat)) {
+        what = "latitude " + fmt(lat) + " is not a number";
+        return true;
+    }
+    if (!std::isfinite(lon)) {
+        what = "longitude " + fmt(lon) + " is not a number";
+        return true;
+    }
+    if (lat == 91.0) {
+        what = "latitude 91 (AIS: not available)";
+        return true;
+    }
+    if (lon == 181.0) {
+        what = "longitude 181 (AIS: not available)";
+        return true;
+    }
+    if (std::fabs(lat) > 90.0) {
+        what = "latitude " + fmt(lat) + " is outside [-90, 90]";
+        return true;
+    }
+    if (std::fabs(lon) > 180.0) {
+        what = "longitude " + fmt(lon) + " is outside [-180, 180]";
+        return true;
+    }
+    return false;
+}
+
+/// Heading, COG and SOG as AIS defines their ranges; NAN for "not available" and nonsense.
+inline double valid_heading(double h) noexcept {
+    if (!(h >= 0.0 && h <= 360.0)) return NAN;  // AIS 511 = not available
+    return h == 360.0 ? 0.0 : h;
+}
+inline double valid_cog(double c) noexcept { return c >= 0.0 && c < 360.0 ? c : NAN; }     // AIS 360 = n/a
+inline double valid_sog(double s) noexcept { return s >= 0.0 && s < 102.3 ? s : NAN; }     // AIS 102.3 = n/a
+
+}  // namespace shoal::track::detail

@@ -1,0 +1,138 @@
+// The C API (include/shoal/shoal.h, libshoal_c) against `shoal probe` on thousands of poses,
+// and its error handling: NULL results with a message, never an exception across C.
+
+#include <gtest/gtest.h>
+
+#include <shoal/shoal.h>
+#include <shoal/version.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir() {
+    static const fs::path d = [] {
+        fs::path p = fs::temp_directory_path() / ("shoal-c-api-test-" + std::to_string(::getpid()));
+        fs::create_directories(p);
+        return p;
+    }();
+    return d;
+}
+
+int run(const std::string& cmd) {
+    const int st = std::system(cmd.c_str());
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/// A grid of the Solent, built once with the shoal executable.
+const std::string& solent_grid() {
+    static const std::string path = [] {
+        const std::string g = (temp_dir() / "solent.shoalgrid").string();
+        EXPECT_EQ(run("'" SHOAL_BINARY "' import '" SHOAL_TEST_DATA "coast/uk_solent_land.geojson' -o '" + g + "' > /dev/null"), 0);
+        return g;
+    }();
+    return path;
+}
+
+TEST(CApi, VersionIsTheHeadersVersion) { EXPECT_STREQ(shoal_version(), SHOAL_VERSION_STRING); }
+
+TEST(CApi, AgreesWithShoalProbeOnThousandsOfPoses) {
+    shoal_grid* grid = shoal_grid_load(solent_grid().c_str());
+    ASSERT_NE(grid, nullptr) << shoal_last_error();
+    EXPECT_EQ(shoal_last_error(), nullptr);
+    shoal_detector* det = shoal_detector_new(grid, 100, 20, 8, 8);
+    ASSERT_NE(det, nullptr) << shoal_last_error();
+    shoal_grid_free(grid);  // the detector keeps it alive
+    // Poses over the Solent and a little beyond the chart (uncovered ones too).
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> lat(50.50, 51.00), lon(-1.85, -0.85), hdg(0, 360);
+    const fs::path poses = temp_dir() / "poses.csv";
+    std::vector<std::array<double, 3>> p;
+    {
+        std::ofstream out(poses);
+        out << "lat,lon,heading\n";
+        char row[96];
+        for (int k = 0; k < 3000; ++k) {
+            p.push_back({lat(rng), lon(rng), std::round(hdg(rng) * 10) / 10});
+            std::snprintf(row, sizeof row, "%.7f,%.7f,%.1f\n", p.back()[0], p.back()[1], p.back()[2]);
+            out << row;
+        }
+    }
+    const fs::path probed = temp_dir() / "probed.csv";
+    ASSERT_EQ(run("'" SHOAL_BINARY "' probe --coast '" + solent_grid() + "' --dims 100,20,8,8 '" + poses.string() + "' -o '" +
+                  probed.string() + "' 2> /dev/null"),
+              0);
+    std::ifstream in(probed);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "lat,lon,heading,collision,clearance_m,covered");
+    std::size_t contacts = 0, clear = 0, uncovered = 0;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+        ASSERT_TRUE(std::getline(in, line));
+        // Read back the pose as probe printed it, so that both check the same numbers.
+        double la = 0, lo = 0, h = 0;
+        ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &la, &lo, &h), 3) << line;
+        shoal_contact c{};
+        ASSERT_EQ(shoal_check(det, la, lo, h, INFINITY, &c), 0) << shoal_last_error();
+        char mine[160];
+        if (c.covered || c.contact)
+            std::snprintf(mine, sizeof mine, "%.7f,%.7f,%.1f,%d,%.3f,%d", la, lo, h, c.contact, c.clearance_m, c.covered);
+        else
+            std::snprintf(mine, sizeof mine, "%.7f,%.7f,%.1f,,,0", la, lo, h);
+        ASSERT_EQ(line, mine);
+        (c.contact ? contacts : !c.covered ? uncovered : clear) += 1;
+        // The clearance is capped at the search limit asked for.
+        if (c.covered && !c.contact) {
+            shoal_contact capped{};
+            ASSERT_EQ(shoal_check(det, la, lo, h, 10.0, &capped), 0);
+            EXPECT_LE(capped.clearance_m, 10.0);
+            EXPECT_DOUBLE_EQ(capped.clearance_m, std::min(10.0, c.clearance_m));
+        }
+    }
+    EXPECT_GT(contacts, 100u);
+    EXPECT_GT(clear, 100u);
+    EXPECT_GT(uncovered, 10u);
+    shoal_detector_free(det);
+}
+
+TEST(CApi, ErrorsAreNullWithAMessageOfThisThread) {
+    EXPECT_EQ(shoal_grid_load("/nonexistent/x.shoalgrid"), nullptr);
+    ASSERT_NE(shoal_last_error(), nullptr);
+    EXPECT_NE(std::string(shoal_last_error()).find("/nonexistent/x.shoalgrid"), std::string::npos) << shoal_last_error();
+    EXPECT_EQ(shoal_grid_load(nullptr), nullptr);
+    shoal_grid* grid = shoal_grid_load(solent_grid().c_str());
+    ASSERT_NE(grid, nullptr);
+    EXPECT_EQ(shoal_last_error(), nullptr) << "a success clears the message";
+    EXPECT_EQ(shoal_detector_new(grid, -1, 20, 8, 8), nullptr);
+    EXPECT_NE(shoal_last_error(), nullptr);
+    EXPECT_EQ(shoal_detector_new(nullptr, 100, 20, 8, 8), nullptr);
+    EXPECT_EQ(shoal_detector_from_ship_file(grid, "/nonexistent/ship.json"), nullptr);
+    EXPECT_NE(std::string(shoal_last_error()).find("ship.json"), std::string::npos);
+    shoal_detector* det = shoal_detector_from_ship_file(grid, SHOAL_TEST_DATA "../../examples/ship.json");
+    ASSERT_NE(det, nullptr) << shoal_last_error();
+    shoal_contact c{};
+    EXPECT_NE(shoal_check(det, 91, 0, 0, 100, &c), 0);
+    EXPECT_NE(shoal_check(det, 50.7, -1.3, NAN, 100, &c), 0);
+    EXPECT_NE(shoal_check(det, 50.7, -1.3, 0, 0, &c), 0);
+    EXPECT_NE(shoal_check(det, 50.7, -1.3, 0, 100, nullptr), 0);
+    EXPECT_NE(shoal_check(nullptr, 50.7, -1.3, 0, 100, &c), 0);
+    EXPECT_EQ(shoal_check(det, 50.76, -1.30, 45, 100, &c), 0);
+    EXPECT_EQ(c.contact, 1) << "inland on the Isle of Wight";
+    shoal_detector_free(det);
+    shoal_grid_free(grid);
+    shoal_grid_free(nullptr);
+    shoal_detector_free(nullptr);
+}
+
+}  // namespace
