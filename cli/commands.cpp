@@ -32,6 +32,16 @@ bool Command::parsed() const { return m_sub && m_sub->parsed(); }
 
 namespace {
 
+/// Numbers that must be finite: CLI11's PositiveNumber and NonNegativeNumber let NaN through
+/// (every comparison with it is false), and a NaN option would silently switch a rule off.
+const CLI::Validator finite = CLI::Validator(
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v)) return "must be a finite number (got '" + text + "')";
+        return {};
+    },
+    "FINITE");
+
 /// Before any work: the output can be written where it is asked for (its folder exists, it is
 /// not a folder), and it is none of the inputs (the same file by any path: writing the output
 /// would destroy the input it is made from).
@@ -102,11 +112,12 @@ void print_grid(const grid::CoastGrid& g) {
 void add_hazard_options(CLI::App& sub, coast::ImportOptions& import) {
     sub.add_option("--hazard-depth", import.limiting_depth_m,
                    "Limiting depth in metres: depth areas shallower and dangers with a sounding under it (or unknown) are "
-                   "hazards like land (default: none, land only; for probe and check the ship's draught + --ukc when it has one)");
+                   "hazards like land (default: none, land only; for probe and check the ship's draught + --ukc when it has one)")
+        ->check(finite);
     sub.add_option("--depth-field", import.depth_field,
                    "Attribute holding a polygon's least depth in sources other than S-57 (DEPARE/DRGARE use DRVAL1)");
     sub.add_option("--danger-radius", import.danger_radius_m, "Radius in metres of the circle a point danger becomes (default 10)")
-        ->check(CLI::PositiveNumber);
+        ->check(finite)->check(CLI::PositiveNumber);
 }
 
 class ImportCommand final : public Command {
@@ -119,9 +130,9 @@ public:
             ->required();
         m_sub->add_option("-o,--output", m_output, "Grid file to write (.shoalgrid)")->required();
         auto* cell = m_sub->add_option("--cell", m_request.cell_m, "Cell edge in metres (default 500, or 2.5 x --ship-length)")
-                         ->check(CLI::PositiveNumber);
+                         ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--ship-length", m_request.ship_length_m, "Largest ship length in metres: cell = 2.5 x this")
-            ->check(CLI::PositiveNumber)->excludes(cell);
+            ->check(finite)->check(CLI::PositiveNumber)->excludes(cell);
         m_sub->add_option("--crs", m_request.crs, "Projected CRS for the local frame (default: transverse Mercator centred on the data)");
         m_sub->add_option("--layer", m_request.import.layers,
                           "Layer(s) to read (default: all; S-57: LNDARE and COALNE, with --hazard-depth also DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN)")
@@ -185,15 +196,15 @@ struct CoastAndShip {
         auto* ship = sub.add_option("--ship", ship_file, "Ship file (schemas/ship.schema.json)");
         sub.add_option("--dims", dims, "AIS dimensions A,B,C,D in metres instead of --ship")->excludes(ship);
         auto* cell = sub.add_option("--cell", request.cell_m, "Cell edge in metres when building from a coastline")
-                         ->check(CLI::PositiveNumber);
+                         ->check(finite)->check(CLI::PositiveNumber);
         sub.add_option("--ship-length", request.ship_length_m, "Cell = 2.5 x this when building from a coastline")
-            ->check(CLI::PositiveNumber)->excludes(cell);
+            ->check(finite)->check(CLI::PositiveNumber)->excludes(cell);
         sub.add_option("--crs", request.crs, "Projected CRS of the local frame when building from a coastline");
         sub.add_option("--layer", request.import.layers, "Layer(s) to read from coastline sources")->delimiter(',');
         sub.add_option("--source-crs", request.import.source_crs, "CRS of coastline sources that carry none");
         sub.add_option("--cache-dir", request.cache_dir, "Folder for built grids (default $SHOAL_CACHE_DIR or ~/.cache/shoal)");
         sub.add_option("--ukc", ukc, "Under-keel clearance required, metres: limiting depth = the ship's draught + this (default 0)")
-            ->check(CLI::NonNegativeNumber);
+            ->check(finite)->check(CLI::NonNegativeNumber);
         add_hazard_options(sub, request.import);
         sub.add_flag("-v,--verbose", verbose, "Say how the grid was obtained and how long it took");
     }
@@ -340,36 +351,36 @@ public:
         m_sub->add_option("--format", m_format, "geojson or gpkg (default: from the extension of -o)")
             ->check(CLI::IsMember({"geojson", "gpkg"}));
         m_sub->add_option("--margin", m_audit.sweep.margin_m, "Close pass: clearance under this many metres (default 50)")
-            ->check(CLI::NonNegativeNumber);
+            ->check(finite)->check(CLI::NonNegativeNumber);
         m_sub->add_option("--step", m_audit.sweep.step_m, "No hull point moves more than this many metres between checks (default 5)")
-            ->check(CLI::PositiveNumber);
+            ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--max-gap", m_audit.sweep.max_gap_s, "A gap between fixes longer than this (seconds) splits the track (default 600)")
-            ->check(CLI::PositiveNumber);
+            ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--jobs,-j", m_audit.jobs, "Tracks checked in parallel (default: all cores)");
         m_sub->add_flag("--encounters", m_audit.encounters,
                         "Exercise mode: the tracks are one exercise; also report ship-to-ship collisions and close quarters");
         m_sub->add_option("--ship-margin", m_audit.encounter.ship_margin_m,
                           "Exercise mode: close quarters when hulls come within this many metres (default 20)")
-            ->check(CLI::NonNegativeNumber);
+            ->check(finite)->check(CLI::NonNegativeNumber);
         m_sub->add_option("--berths", m_berths,
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
                           "BERTHS, HRBARE and ACHARE, and SLCONS as shore constructions");
         m_sub->add_option("--berth-tolerance", m_berth_tolerance_m,
                           "Lines and points of --berths and S-57 berths / shore constructions count within this many metres (default 10)")
-            ->check(CLI::PositiveNumber);
+            ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--berthing-speed", m_audit.sweep.berthing_speed_kn,
                           "A contact that begins under this speed (knots) is alongside (berthing, moored), not a grounding (default 1)")
-            ->check(CLI::NonNegativeNumber);
+            ->check(finite)->check(CLI::NonNegativeNumber);
         m_sub->add_option("--stop-diameter", m_audit.sweep.stop_diameter_m,
                           "Stopped: every fix of --stop-time seconds within a box of this diagonal, metres (default 50)")
-            ->check(CLI::PositiveNumber);
+            ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--stop-time", m_audit.sweep.stop_duration_s, "Stopped: a stay of at least this many seconds (default 120)")
-            ->check(CLI::NonNegativeNumber);
+            ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--max-speed", m_audit.wild.max_speed_kn,
                           "Fastest plausible speed, knots: a fix that implies more against its neighbours is dropped as an "
                           "outlier, a jump that persists starts a new piece of track (default 60)")
-            ->check(CLI::PositiveNumber);
+            ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and zoomed panels, groundings first");
         m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
@@ -429,6 +440,13 @@ public:
         for (const auto& t : r.tracks)
             for (const auto& w : t.summary.wild_fixes)
                 if (wild_said++ < 20) print_warnings({report::wild_fix_message(t.summary, w)});
+        for (const auto& t : r.tracks) {
+            const auto& s = t.summary;
+            if (s.jumps > 0 && s.fixes >= 4 && 2 * s.segments > s.fixes)
+                print_warnings({"track '" + s.id + "' in '" + s.file + "': " + std::to_string(s.segments) + " pieces of " + std::to_string(s.fixes) +
+                                " fixes: jumps over --max-speed between most fixes, so almost nothing of it was swept (two vessels "
+                                "on one id, or a --max-speed too low for it?)"});
+        }
         if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
         for (const auto& e : r.errors)
             std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", e.track.c_str(), e.file.c_str(), e.message.c_str());

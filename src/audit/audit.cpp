@@ -95,9 +95,11 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
             track::Track t = tracks[k]->unpack();
             tracks[k]->release_fixes();
             try {
-                std::vector<track::WildFix> wild = track::drop_wild_fixes(t, options.wild);
+                track::WildFixOptions wo = options.wild;
+                wo.max_gap_s = options.sweep.max_gap_s;
+                std::vector<track::WildFix> wild = track::drop_wild_fixes(t, wo);
                 track::resolve_motion(t, options.sweep.motion());
-                track::resolve_headings(t);
+                track::resolve_headings(t, 0.5, options.sweep.max_gap_s);
                 std::string label = hull_label;
                 hull::Hull hull = default_hull;
                 if (t.dims) {

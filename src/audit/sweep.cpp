@@ -38,6 +38,9 @@ hull::Hull circle_hull(const hull::Hull& h) {
 namespace {
 
 constexpr double deg = std::numbers::pi / 180.0;
+/// A vessel whose AIS status says moored or at anchor is alongside under this speed, whatever
+/// the berthing speed (SOG noise of a moored vessel reaches 1-2 kn).
+constexpr double moored_speed_kn = 3.0;
 
 /// One checked moment: fix interval i, fraction f.
 struct Sample {
@@ -138,19 +141,27 @@ private:
         const std::size_t before = first.f > 0 ? first.i : (first.i > m_piece_first ? first.i - 1 : first.i);
         const track::Fix& b = fx[before];
         const track::Fix& a = fx[std::min(after, fx.size() - 1)];
-        if (std::isfinite(b.sog_kn)) {
-            e.speed_kn = b.sog_kn;
+        // The approach speed from positions: the displacement over the window that ends at the
+        // first fix at or after the contact, from no earlier than the piece's first fix (never
+        // reaching forward into what came after the contact).
+        double approach_kn = NAN;
+        if (after < fx.size() && after > m_piece_first) {
+            std::size_t j = after;
+            while (j > m_piece_first && a.time_s - fx[j].time_s < m_opt.speed_window_s) --j;
+            if (a.time_s > fx[j].time_s)
+                approach_kn = track::distance_m(fx[j].position, a.position) / (a.time_s - fx[j].time_s) * 3600.0 / 1852.0;
+        }
+        const double sog = std::isfinite(b.sog_kn) ? b.sog_kn : a.sog_kn;
+        if (std::isfinite(sog) && !(approach_kn >= 2.0 && approach_kn > 2 * sog + 1)) {
+            e.speed_kn = sog;
             e.speed_source = track::SpeedSource::sog;
-        } else if (std::isfinite(a.sog_kn)) {
-            e.speed_kn = a.sog_kn;
-            e.speed_source = track::SpeedSource::sog;
-        } else if (std::isfinite(a.speed_used_kn) || std::isfinite(b.speed_used_kn)) {
-            e.speed_kn = std::isfinite(a.speed_used_kn) ? a.speed_used_kn : b.speed_used_kn;
-            e.speed_source = std::isfinite(a.speed_used_kn) ? a.speed_source : b.speed_source;
-        } else if (after != before && after < fx.size() && fx[after].time_s > b.time_s) {
-            // Motion not resolved (a caller's own track): the speed of the swept interval.
-            e.speed_kn = track::distance_m(b.position, a.position) / (a.time_s - b.time_s) * 3600.0 / 1852.0;
-            e.speed_source = track::SpeedSource::positions;
+        } else if (std::isfinite(approach_kn)) {
+            // No SOG, or a SOG the positions belie (class B units that always send 0).
+            e.speed_kn = approach_kn;
+            e.speed_source = std::isfinite(sog) ? track::SpeedSource::positions_over_sog : track::SpeedSource::positions;
+        } else if (std::isfinite(b.speed_used_kn)) {
+            e.speed_kn = b.speed_used_kn;
+            e.speed_source = b.speed_source;
         }
         e.stopped_before = b.stopped;
         e.nav_status = b.nav_status;
@@ -171,15 +182,18 @@ private:
             if (const coast::ExpectedArea* st = m_ctx.areas->find(first.contact.coast_point, coast::AreaRole::structure))
                 e.structure = st->kind;
         }
-        // The rules, in order: an expected area; a contact not seen begin; a vessel stopped or
-        // under the berthing speed; else a grounding.
-        if (!e.area_kind.empty()) {
-            e.kind = EventKind::expected_contact;
-        } else if (!seen_clear) {
-            e.kind = EventKind::contact_at_start;
+        // The rules: a contact not seen begin; a vessel stopped, under the berthing speed, or
+        // moored / at anchor by its AIS status and slow; else a grounding. Inside an area
+        // where contact is expected, the first two are expected contacts; a contact under way
+        // stays a grounding there (an allision with a quay at speed is no berthing), the area
+        // said as evidence.
+        const bool moored_status = b.nav_status == track::nav_status_moored || b.nav_status == track::nav_status_at_anchor;
+        const bool slow = e.stopped_before || !(e.speed_kn >= m_opt.berthing_speed_kn) || (moored_status && e.speed_kn < moored_speed_kn);
+        if (!seen_clear) {
+            e.kind = e.area_kind.empty() ? EventKind::contact_at_start : EventKind::expected_contact;
             e.unseen_after = m_piece_after;
-        } else if (e.stopped_before || !(e.speed_kn >= m_opt.berthing_speed_kn)) {
-            e.kind = EventKind::alongside;
+        } else if (slow) {
+            e.kind = e.area_kind.empty() ? EventKind::alongside : EventKind::expected_contact;
         } else {
             e.kind = EventKind::grounding;
         }

@@ -102,22 +102,25 @@ void resolve_motion(Track& t, const MotionOptions& o) {
         }
         // Stops, from this fix and the ones before it.
         const std::vector<std::size_t> start = stay_starts(t, b, e, o.stop_diameter_m);
-        for (std::size_t i = b; i < e; ++i)
-            t.fixes[i].stopped = t.fixes[i].time_s - t.fixes[start[i - b]].time_s >= o.stop_duration_s;
+        for (std::size_t i = b; i < e; ++i) {
+            t.fixes[i].stay_since_s = t.fixes[start[i - b]].time_s;
+            t.fixes[i].stopped = t.fixes[i].time_s - t.fixes[i].stay_since_s >= o.stop_duration_s;
+        }
         b = e;
     }
 }
 
 std::optional<double> stopped_after(const Track& t, std::size_t from, double time_s, const MotionOptions& o) {
     const std::size_t n = t.fixes.size();
-    if (from >= n) return std::nullopt;
-    const std::size_t b = piece_start(t, from, o.max_gap_s);
-    std::size_t e = from + 1;
-    while (e < n && !breaks_before(t, e, o.max_gap_s)) ++e;
-    const std::vector<std::size_t> start = stay_starts(t, b, e, o.stop_diameter_m);
-    for (std::size_t i = from; i < e; ++i)
-        if (t.fixes[i].time_s - t.fixes[start[i - b]].time_s >= o.stop_duration_s)
-            return std::max(time_s, t.fixes[start[i - b]].time_s);
+    // The first stopped fix from `from` on, within the piece (resolve_motion() set the stays).
+    for (std::size_t i = from; i < n; ++i) {
+        if (i > from && breaks_before(t, i, o.max_gap_s)) break;
+        const Fix& f = t.fixes[i];
+        if (!f.stopped) continue;
+        // The stay began at its first fix, but not before the first fix seen at or after the
+        // contact (the stay's first fix may be the last one of the approach, within the diameter).
+        return std::max({time_s, f.stay_since_s, t.fixes[from].time_s});
+    }
     return std::nullopt;
 }
 

@@ -86,6 +86,7 @@ const char* to_string(SpeedSource s) noexcept {
     switch (s) {
         case SpeedSource::sog: return "sog";
         case SpeedSource::positions: return "positions";
+        case SpeedSource::positions_over_sog: return "positions (SOG disagrees)";
         case SpeedSource::none: return "none";
     }
     return "none";
@@ -173,12 +174,13 @@ void normalise(Track& track, ReadReport& report) {
     fixes.resize(kept);
 }
 
-void resolve_headings(Track& track, double moving_kn) {
+void resolve_headings(Track& track, double moving_kn, double max_gap_s) {
     auto& fx = track.fixes;
     const std::size_t n = fx.size();
     double previous = NAN;
     for (std::size_t i = 0; i < n; ++i) {
         Fix& f = fx[i];
+        if (i > 0 && (f.jump_before || f.time_s - fx[i - 1].time_s > max_gap_s)) previous = NAN;  // a new piece
         const bool has_next = i + 1 < n;
         const bool has_prev = i > 0;
         double used = NAN;

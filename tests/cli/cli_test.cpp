@@ -435,43 +435,66 @@ TEST(CliContactKinds, APassClearOfLandHasNoEvent) {
 }
 
 
-TEST(CliContactKinds, AContactInsideABerthsAreaIsExpectedNotAGrounding) {
-    // The grounding at speed, audited again with a harbour polygon (0.004 degrees square)
-    // around its first contact point: the same contact, now expected_contact, exit status 0.
-    const CaseRun plain = run_case("aground_at_speed.csv");
-    const auto g = plain.of_kind("grounding");
-    ASSERT_EQ(g.size(), 1u);
-    const double lat = g[0]["ship_lat"].get<double>(), lon = g[0]["ship_lon"].get<double>();
-    const fs::path berths = temp_dir() / "harbour.geojson";
-    {
-        std::ofstream f(berths);
-        char ring[512];
-        std::snprintf(ring, sizeof ring, "[[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f]]", lon - 0.002, lat - 0.002,
-                      lon + 0.002, lat - 0.002, lon + 0.002, lat + 0.002, lon - 0.002, lat + 0.002, lon - 0.002, lat - 0.002);
-        f << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"Test harbour"},)"
-          << R"("geometry":{"type":"Polygon","coordinates":[)" << ring << "]}}]}";
-    }
+/// A harbour polygon (0.004 degrees square) around a point, written as GeoJSON.
+fs::path harbour_around(double lat, double lon, const std::string& name) {
+    const fs::path berths = temp_dir() / (name + ".geojson");
+    std::ofstream f(berths);
+    char ring[512];
+    std::snprintf(ring, sizeof ring, "[[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f],[%.7f,%.7f]]", lon - 0.002, lat - 0.002, lon + 0.002,
+                  lat - 0.002, lon + 0.002, lat + 0.002, lon - 0.002, lat + 0.002, lon - 0.002, lat - 0.002);
+    f << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":")" << name << R"("},)"
+      << R"("geometry":{"type":"Polygon","coordinates":[)" << ring << "]}}]}";
+    return berths;
+}
+
+TEST(CliContactKinds, InsideABerthsAreaSlowContactsAreExpectedAndContactsUnderWayStayGroundings) {
+    const std::string coast = "'" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 ";
+    // Moored alongside inside a harbour area: every touch is expected_contact, exit 0.
+    const CaseRun moored = run_case("moored_then_leaves.csv");
+    const auto along = moored.of_kind("alongside");
+    ASSERT_FALSE(along.empty());
+    const fs::path basin = harbour_around(along[0]["ship_lat"].get<double>(), along[0]["ship_lon"].get<double>(), "Test basin");
     const fs::path out = temp_dir() / "berthed.geojson";
-    const Outcome r = shoal("check --coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 " +
-                            data("tracks/ais_cases/aground_at_speed.csv") + " --berths '" + berths.string() + "' -o '" + out.string() +
-                            "' --no-progress");
+    const Outcome r = shoal("check --coast " + coast + data("tracks/ais_cases/moored_then_leaves.csv") + " --berths '" + basin.string() +
+                            "' -o '" + out.string() + "' --no-progress");
     EXPECT_EQ(r.status, 0) << r.out << r.err;
-    const nlohmann::json rep = nlohmann::json::parse(slurp(out));
-    ASSERT_EQ(rep["features"].size(), 1u);
-    const auto& p = rep["features"][0]["properties"];
-    EXPECT_EQ(p["kind"], "expected_contact");
-    EXPECT_EQ(p["area"], "area");
-    EXPECT_EQ(p["area_name"], "Test harbour");
-    EXPECT_EQ(p["start"], g[0]["start"]) << "the same contact";
-    EXPECT_EQ(rep["shoal"]["berths"], berths.string());
+    nlohmann::json rep = nlohmann::json::parse(slurp(out));
+    ASSERT_EQ(rep["features"].size(), along.size());
+    for (const auto& f : rep["features"]) {
+        EXPECT_EQ(f["properties"]["kind"], "expected_contact");
+        EXPECT_EQ(f["properties"]["area"], "area");
+        EXPECT_EQ(f["properties"]["area_name"], "Test basin");
+    }
+    EXPECT_EQ(rep["shoal"]["berths"], basin.string());
     EXPECT_NE(r.err.find("1 expected-contact areas"), std::string::npos) << r.err;
-    // A berths file that is not there is a clear error before any work.
-    const Outcome missing = shoal("check --coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 " +
-                                  data("tracks/ais_cases/aground_at_speed.csv") + " --berths /nonexistent/berths.gpkg -o '" +
-                                  (temp_dir() / "never.geojson").string() + "'");
+    // Running aground at 10 kn inside such an area is still a grounding; the area is evidence.
+    const auto g = run_case("aground_at_speed.csv").of_kind("grounding");
+    ASSERT_EQ(g.size(), 1u);
+    const fs::path harbour = harbour_around(g[0]["ship_lat"].get<double>(), g[0]["ship_lon"].get<double>(), "Test harbour");
+    const Outcome fast = shoal("check --coast " + coast + data("tracks/ais_cases/aground_at_speed.csv") + " --berths '" + harbour.string() +
+                               "' -o '" + out.string() + "' --no-progress");
+    EXPECT_EQ(fast.status, 1) << fast.out << fast.err;
+    rep = nlohmann::json::parse(slurp(out));
+    ASSERT_EQ(rep["features"].size(), 1u);
+    EXPECT_EQ(rep["features"][0]["properties"]["kind"], "grounding");
+    EXPECT_EQ(rep["features"][0]["properties"]["area_name"], "Test harbour");
+    EXPECT_EQ(rep["features"][0]["properties"]["start"], g[0]["start"]) << "the same contact";
+    // A berths file that is not there is a clear error, and no report is written.
+    const Outcome missing = shoal("check --coast " + coast + data("tracks/ais_cases/aground_at_speed.csv") +
+                                  " --berths /nonexistent/berths.gpkg -o '" + (temp_dir() / "never.geojson").string() + "'");
     EXPECT_EQ(missing.status, 2);
     EXPECT_NE(missing.err.find("/nonexistent/berths.gpkg"), std::string::npos) << missing.err;
     EXPECT_FALSE(fs::exists(temp_dir() / "never.geojson"));
+}
+
+TEST(CliContactKinds, NonFiniteRuleOptionsAreRefused) {
+    for (const char* opt : {"--berthing-speed nan", "--stop-diameter nan", "--stop-time 0", "--stop-time nan", "--max-speed nan",
+                            "--margin nan", "--step nan", "--max-gap inf", "--berth-tolerance nan"}) {
+        const Outcome r = shoal("check --coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 " +
+                                data("tracks/ais_cases/aground_at_speed.csv") + " " + opt + " -o '" + (temp_dir() / "never.geojson").string() + "'");
+        EXPECT_EQ(r.status, 2) << opt << "\n" << r.err;
+        EXPECT_FALSE(fs::exists(temp_dir() / "never.geojson")) << opt;
+    }
 }
 
 }  // namespace

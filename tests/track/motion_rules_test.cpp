@@ -194,7 +194,11 @@ TEST(Stops, StoppingAfterAContactIsNotStoppedBeforeIt) {
     const auto stop = stopped_after(t, 30, 295.0, {});
     ASSERT_TRUE(stop.has_value());
     EXPECT_DOUBLE_EQ(*stop, 300.0);
-    EXPECT_FALSE(stopped_after(t, 0, 0.0, {MotionOptions{120, 50, 1e6, 600}}).has_value());
+    // A vessel that never stops: none.
+    Track under_way;
+    for (int i = 0; i < 60; ++i) under_way.fixes.push_back(fix_at(10.0 * i, offset(o, 0, 51.0 * i), 2 + i));
+    resolve_motion(under_way);
+    EXPECT_FALSE(stopped_after(under_way, 0, 0.0, {}).has_value());
 }
 
 TEST(Speed, FromPositionsMatchesTheSpeedSailedAndIgnoresJitter) {

@@ -34,8 +34,10 @@ void resolve_motion(Track& track, const MotionOptions& options = {});
 /// Index of the first fix of the piece that holds fix `i` (gaps over max_gap_s and jumps split pieces).
 std::size_t piece_start(const Track& track, std::size_t i, double max_gap_s) noexcept;
 
-/// When the vessel came to a stop at or after `time_s`: the start (>= time_s) of the first stop
-/// window reached by a fix at index >= `from` of the same piece. None when it never stopped.
+/// When the vessel came to a stop at or after `time_s` (fix `from` being the first at or after
+/// it): the first stopped fix from `from` on, within the piece, gives the start of its stay,
+/// taken no earlier than fix `from` (nor `time_s`). None when it never stopped. Needs
+/// resolve_motion(); costs the fixes until that stop.
 std::optional<double> stopped_after(const Track& track, std::size_t from, double time_s, const MotionOptions& options);
 
 }  // namespace shoal::track

@@ -28,6 +28,7 @@ const char* to_string(HeadingSource s) noexcept;
 enum class SpeedSource : std::uint8_t {
     sog,        ///< speed over ground from the source
     positions,  ///< from the displacement over a window of time (see resolve_motion)
+    positions_over_sog,  ///< from positions: the SOG given was belied by them (e.g. 0 while moving)
     none,       ///< a track of one fix: nothing known
 };
 const char* to_string(SpeedSource s) noexcept;
@@ -63,6 +64,9 @@ struct Fix {
     /// Set by resolve_motion(): the vessel has stayed within the stop diameter for at least the
     /// stop duration up to this fix (judged from this and earlier fixes only).
     bool stopped = false;
+    /// Set by resolve_motion(): the time of the first fix of the longest stay (all fixes within
+    /// the stop diameter) that ends at this fix.
+    double stay_since_s = NAN;
 };
 
 struct Track {
@@ -95,7 +99,9 @@ void normalise(Track& track, ReadReport& report);
 /// away among the next 256, else from the latest earlier one), else the previous heading. A fix before
 /// any heading is known gets HeadingSource::none (heading_used_deg 0, to be ignored: the
 /// orientation is unknown). Fills heading_used_deg and heading_source.
-void resolve_headings(Track& track, double moving_kn = 0.5);
+/// The last known heading is not carried across a gap over `max_gap_s` or a jump
+/// (Fix::jump_before): after them the orientation is unknown again until seen.
+void resolve_headings(Track& track, double moving_kn = 0.5, double max_gap_s = INFINITY);
 
 /// Great-circle distance in metres (haversine, mean Earth radius).
 double distance_m(geo::LonLat a, geo::LonLat b) noexcept;

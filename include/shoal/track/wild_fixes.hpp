@@ -19,9 +19,15 @@ struct WildFixOptions {
     /// Distance always allowed between two fixes, metres, whatever the time between them:
     /// GPS and AIS position error (fixes a fraction of a second apart from two receivers).
     double tolerance_m = 50.0;
-    /// A fix that leaves the track is an outlier when one of this many fixes after it comes
-    /// back (is plausible from the last good fix); otherwise the jump persists.
-    std::size_t lookahead = 10;
+    /// A fix that leaves the track is an outlier when one of the fixes in the next
+    /// `lookahead_s` seconds (at most `lookahead` of them) comes back: is plausible from the
+    /// last good fix and not from the jumped one (or nearer the good one); otherwise the jump
+    /// persists.
+    std::size_t lookahead = 256;
+    double lookahead_s = 300.0;
+    /// A gap longer than this (the sweep's --max-gap) starts afresh: the fix after it is not
+    /// judged against the one before.
+    double max_gap_s = 600.0;
 };
 
 /// One dropped fix, for the report.
@@ -41,11 +47,15 @@ bool plausible(const Fix& a, const Fix& b, const WildFixOptions& options) noexce
 /// first fix after each jump that persists. Rules, in order:
 ///  - a fix at 0,0 (within 1e-7 degrees) is wild;
 ///  - walking the fixes in time order, a fix not plausible from the last good fix is wild when
-///    one of the next `lookahead` fixes is plausible from that good fix (a jump and back: every
-///    fix up to the returning one is wild); otherwise a new piece starts at it;
-///  - a piece of a single fix with a jump on one side and a jump or the track's end on the
-///    other agrees with nothing: it is wild too, when another piece holds two fixes or more
-///    (of a track of lone fixes, none can be told wild: each stays, a piece of its own).
+///    a fix of the next `lookahead_s` comes back (plausible from that good fix, and not from
+///    the jumped one or nearer the good one): every fix up to the returning one is wild;
+///    otherwise a new piece starts at it. After a gap over max_gap_s the walk starts afresh;
+///  - a piece of a single fix with a jump on one side agrees with nothing: it is wild too,
+///    when another piece holds two fixes or more (of a track of lone fixes, none can be told
+///    wild: each stays, a piece of its own);
+///  - a spike against the vessel's own SOG: a fix whose legs from and to its neighbours are
+///    both sailed faster than max(2 x SOG, SOG + 10 kn) (after tolerance_m), while the two
+///    neighbours' own displacement agrees with their SOG (within half of it + 2 kn), is wild.
 /// Returns the dropped fixes in time order.
 std::vector<WildFix> drop_wild_fixes(Track& track, const WildFixOptions& options = {});
 
