@@ -17,7 +17,7 @@ g="$data/coast/gshhg"
 dk="$out/dk_land.geojson"
 if [ ! -f "$dk" ]; then
   command -v gmt > /dev/null || { echo "real_sets: the Danish coast needs Debian's gmt and gmt-gshhg-full (apt-get install gmt gmt-gshhg-full)"; exit 1; }
-  gmt coast -R10.5/13.2/54.8/56.8 -Df -M -W -A0/1/1 > "$out/dk_shore.gmt"
+  (cd "$out" && gmt coast -R10.5/13.2/54.8/56.8 -Df -M -W -A0/1/1 > dk_shore.gmt)  # GMT leaves gmt.history in its folder
   /usr/bin/python3 - "$out" <<'PY'
 import subprocess, sys
 from osgeo import ogr, osr
@@ -31,7 +31,7 @@ faces = ml.Union(ogr.CreateGeometryFromWkt('POINT(10.5 54.8)')).Polygonize()  # 
 pts = ''.join('%r %r %d\n' % (faces.GetGeometryRef(i).PointOnSurface().GetX(), faces.GetGeometryRef(i).PointOnSurface().GetY(), i)
               for i in range(faces.GetGeometryCount()))
 open(out + '/dk_faces.txt', 'w').write(pts)
-sel = subprocess.run(['gmt', 'select', out + '/dk_faces.txt', '-R10.5/13.2/54.8/56.8', '-Df', '-Ns/k'], capture_output=True, text=True, check=True)
+sel = subprocess.run(['gmt', 'select', out + '/dk_faces.txt', '-R10.5/13.2/54.8/56.8', '-Df', '-Ns/k'], capture_output=True, text=True, check=True, cwd=out)
 land = sorted(int(l.split()[2]) for l in sel.stdout.splitlines() if l.strip() and not l.startswith('>'))
 srs = osr.SpatialReference(); srs.ImportFromEPSG(4326)
 o = ogr.GetDriverByName('GeoJSON').CreateDataSource(out + '/dk_land.geojson')
