@@ -180,11 +180,8 @@ inline geo::GeomPtr projected_land(const geo::GeosContext& ctx, const std::vecto
     return check(ctx, GEOSUnaryUnion_r(ctx, all.get()), "union");
 }
 
-struct PreparedDeleter {
-    GEOSContextHandle_t ctx = nullptr;
-    void operator()(const GEOSPreparedGeometry* p) const noexcept { GEOSPreparedGeom_destroy_r(ctx, p); }
-};
-using PreparedPtr = std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter>;
+using geo::PreparedDeleter;
+using geo::PreparedPtr;
 
 /// A prepared view of `g` for fast repeated predicates (`g` must outlive it).
 inline PreparedPtr prepare(const geo::GeosContext& ctx, const GEOSGeometry* g) {

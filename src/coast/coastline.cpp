@@ -1,3 +1,4 @@
+#include "detail/gdal_support.hpp"
 #include <shoal/coast/coastline.hpp>
 
 #include <cpl_error.h>
@@ -63,27 +64,12 @@ const char* to_string(DangerKind k) noexcept {
 
 namespace {
 
-void register_drivers() {
-    static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
-}
+using detail::QuietErrors;
+using detail::register_drivers;
+using detail::TransformDeleter;
 
-/// Silences GDAL's stderr output for its lifetime; errors are read back with last().
-class QuietErrors {
-public:
-    QuietErrors() { CPLPushErrorHandler(CPLQuietErrorHandler); CPLErrorReset(); }
-    ~QuietErrors() { CPLPopErrorHandler(); }
-    QuietErrors(const QuietErrors&) = delete;
-    QuietErrors& operator=(const QuietErrors&) = delete;
-    static std::string last() {
-        const char* m = CPLGetLastErrorMsg();
-        return m && *m ? std::string(m) : std::string();
-    }
-};
 
-struct TransformDeleter {
-    void operator()(OGRCoordinateTransformation* t) const noexcept { OGRCoordinateTransformation::DestroyCT(t); }
-};
+
 
 /// A polygon, line or (danger) point part as read, in source coordinates until transformed.
 struct RawPart {

@@ -1,3 +1,4 @@
+#include "detail/gdal_support.hpp"
 #include <shoal/coast/expected_areas.hpp>
 
 #include <cpl_error.h>
@@ -39,39 +40,17 @@ const char* to_string(AreaRole r) noexcept {
 
 namespace {
 
-void register_drivers() {
-    static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
-}
+using detail::QuietErrors;
+using detail::register_drivers;
+using detail::TransformDeleter;
+using geo::PreparedDeleter;
+using geo::PreparedPtr;
+using geo::TreeDeleter;
+using geo::TreePtr;
 
-/// Silences GDAL's stderr output for its lifetime; errors are read back with last().
-class QuietErrors {
-public:
-    QuietErrors() { CPLPushErrorHandler(CPLQuietErrorHandler); CPLErrorReset(); }
-    ~QuietErrors() { CPLPopErrorHandler(); }
-    QuietErrors(const QuietErrors&) = delete;
-    QuietErrors& operator=(const QuietErrors&) = delete;
-    static std::string last() {
-        const char* m = CPLGetLastErrorMsg();
-        return m && *m ? std::string(m) : std::string();
-    }
-};
 
-struct TransformDeleter {
-    void operator()(OGRCoordinateTransformation* t) const noexcept { OGRCoordinateTransformation::DestroyCT(t); }
-};
 
-struct PreparedDeleter {
-    GEOSContextHandle_t ctx = nullptr;
-    void operator()(const GEOSPreparedGeometry* p) const noexcept { GEOSPreparedGeom_destroy_r(ctx, p); }
-};
-using PreparedPtr = std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter>;
 
-struct TreeDeleter {
-    GEOSContextHandle_t ctx = nullptr;
-    void operator()(GEOSSTRtree* t) const noexcept { GEOSSTRtree_destroy_r(ctx, t); }
-};
-using TreePtr = std::unique_ptr<GEOSSTRtree, TreeDeleter>;
 
 std::string upper(std::string s) {
     for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));

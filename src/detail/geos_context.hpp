@@ -37,6 +37,18 @@ struct GeomDeleter {
 };
 using GeomPtr = std::unique_ptr<GEOSGeometry, GeomDeleter>;
 
+struct PreparedDeleter {
+    GEOSContextHandle_t ctx = nullptr;
+    void operator()(const GEOSPreparedGeometry* p) const noexcept { GEOSPreparedGeom_destroy_r(ctx, p); }
+};
+using PreparedPtr = std::unique_ptr<const GEOSPreparedGeometry, PreparedDeleter>;
+
+struct TreeDeleter {
+    GEOSContextHandle_t ctx = nullptr;
+    void operator()(GEOSSTRtree* t) const noexcept { GEOSSTRtree_destroy_r(ctx, t); }
+};
+using TreePtr = std::unique_ptr<GEOSSTRtree, TreeDeleter>;
+
 /// Takes ownership of `g`; throws LibraryError with `what` and GEOS's message when null.
 GeomPtr own(const GeosContext& ctx, GEOSGeometry* g, const char* what);
 

@@ -1,3 +1,4 @@
+#include "detail/gdal_support.hpp"
 #include <shoal/track/ogr_reader.hpp>
 
 #include <cpl_error.h>
@@ -49,26 +50,13 @@ private:
 // ---------------------------------------------------------------------------------------------
 // GPX with OGR
 
-void register_drivers() {
-    static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
-}
 
-/// Silences GDAL's stderr output for its lifetime; errors are read back with last().
-class QuietErrors {
+/// GDAL's quiet scope; its last message, or "no reason given".
+class QuietErrors : public shoal::detail::QuietErrors {
 public:
-    QuietErrors() {
-        CPLPushErrorHandler(CPLQuietErrorHandler);
-        CPLErrorReset();
-    }
-    ~QuietErrors() { CPLPopErrorHandler(); }
-    QuietErrors(const QuietErrors&) = delete;
-    QuietErrors& operator=(const QuietErrors&) = delete;
-    static std::string last() {
-        const char* m = CPLGetLastErrorMsg();
-        return m && *m ? std::string(m) : std::string("no reason given");
-    }
+    static std::string last() { return shoal::detail::QuietErrors::last("no reason given"); }
 };
+using shoal::detail::register_drivers;
 
 /// One GPX track or route as OGR numbers it in the `tracks` / `routes` layer.
 struct GpxParent {
