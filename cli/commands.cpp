@@ -32,6 +32,9 @@ bool Command::parsed() const { return m_sub && m_sub->parsed(); }
 
 namespace {
 
+/// The smallest --step: a centimetre (a hull point moves at most this between checks).
+constexpr double min_step_m = 0.01;
+
 /// Numbers that must be finite: CLI11's PositiveNumber and NonNegativeNumber let NaN through
 /// (every comparison with it is false), and a NaN option would silently switch a rule off.
 const CLI::Validator finite = CLI::Validator(
@@ -352,7 +355,7 @@ public:
             ->check(CLI::IsMember({"geojson", "gpkg"}));
         m_sub->add_option("--margin", m_audit.sweep.margin_m, "Close pass: clearance under this many metres (default 50)")
             ->check(finite)->check(CLI::NonNegativeNumber);
-        m_sub->add_option("--step", m_audit.sweep.step_m, "No hull point moves more than this many metres between checks (default 5)")
+        m_sub->add_option("--step", m_audit.sweep.step_m, "No hull point moves more than this many metres between checks (default 5, at least 0.01)")
             ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--max-gap", m_audit.sweep.max_gap_s, "A gap between fixes longer than this (seconds) splits the track (default 600)")
             ->check(finite)->check(CLI::PositiveNumber);
@@ -389,6 +392,17 @@ public:
         std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks));
         all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
         check_output(m_output, all_inputs);
+        if (!m_plot.empty()) {
+            // The picture is an output too: never one of the inputs, nor the report itself.
+            check_output(m_plot, all_inputs);
+            std::error_code ec;
+            if (m_plot == m_output || (std::filesystem::exists(m_plot, ec) && std::filesystem::exists(m_output, ec) &&
+                                       std::filesystem::equivalent(m_plot, m_output, ec)))
+                throw UsageError("--plot '" + m_plot + "' is the report -o '" + m_output + "': choose another file for the picture");
+        }
+        if (m_audit.sweep.step_m < min_step_m)
+            throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(min_step_m) +
+                             " m: a sweep that fine never ends");
         const hull::Hull hull = m_opts.load_hull();
         if (!m_date.empty()) {
             int y = 0, mo = 0, d = 0;

@@ -47,7 +47,10 @@ std::string dims_label(const hull::Dimensions& d) {
 AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                       const std::string& hull_label, const AuditOptions& options) {
     AuditResult result;
-    const unsigned jobs = options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+    // Threads: all cores by default; never more than 4 per core (each holds a PROJ context and
+    // buffers: -j 100000 would start 100,000 threads), nor more than there is work (below).
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned jobs = std::clamp(options.jobs ? options.jobs : cores, 1u, 4 * cores);
     const std::vector<std::string> files = track::expand_inputs(inputs);
 
     // 1. Read every file (a file that cannot be read is reported; the batch goes on). Fixes

@@ -690,3 +690,38 @@ TEST(TempFilesInProgress, AreRemovedWithSqliteCompanionsByTheInterruptHandlersCa
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(BadInput, PlotOverAnInputOrTheReportIsRefusedBeforeAnyWork) {
+    const std::string tracks = good_tracks();
+    const std::vector<char> before = shoal::test::read_bytes(tracks);
+    const std::string r = m_dir.file("plot-report.geojson");
+    const Outcome over_input = check({tracks}, r, {"--plot", tracks});
+    EXPECT_EQ(over_input.status, 2) << over_input.err;
+    EXPECT_NE(over_input.err.find("would destroy the input"), std::string::npos) << over_input.err;
+    EXPECT_EQ(shoal::test::read_bytes(tracks), before) << "the track file is untouched";
+    EXPECT_FALSE(std::filesystem::exists(r));
+    const Outcome over_report = check({tracks}, r, {"--plot", r});
+    EXPECT_EQ(over_report.status, 2) << over_report.err;
+    EXPECT_NE(over_report.err.find("is the report"), std::string::npos) << over_report.err;
+}
+
+TEST_F(BadInput, AStepUnderACentimetreIsRefusedAndHugeJobCountsAreCapped) {
+    const std::string tracks = good_tracks();
+    for (const char* step : {"1e-9", "1e-20", "0.001"}) {
+        const Outcome r = check({tracks}, m_dir.file("step.geojson"), {"--step", step});
+        EXPECT_EQ(r.status, 2) << step << r.err;
+        EXPECT_NE(r.err.find("smallest step"), std::string::npos) << r.err;
+    }
+    // -j 100000: capped at 4 per core (and the work), the same report as -j 1.
+    const std::string a = m_dir.file("j1.geojson"), b = m_dir.file("jmany.geojson");
+    auto run_jobs = [&](const std::string& jobs, const std::string& out) {
+        return shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", jobs, "-o", out, tracks}).status;
+    };
+    EXPECT_EQ(run_jobs("1", a), 1);
+    EXPECT_EQ(run_jobs("100000", b), 1);
+    EXPECT_EQ(shoal::test::read_bytes(a), shoal::test::read_bytes(b));
+}
+
+}  // namespace
