@@ -25,6 +25,7 @@
 #include <shoal/track/time.hpp>
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/error.hpp>
+#include <shoal/util/printable.hpp>
 
 namespace shoal::cli {
 
@@ -75,7 +76,7 @@ void check_readable(const std::vector<std::string>& paths) {
 }
 
 void print_warnings(const std::vector<std::string>& warnings) {
-    for (const auto& w : warnings) std::fprintf(stderr, "shoal: warning: %s\n", w.c_str());
+    for (const auto& w : warnings) std::fprintf(stderr, "shoal: warning: %s\n", printable(w).c_str());
 }
 
 void print_grid(const grid::CoastGrid& g) {
@@ -260,8 +261,8 @@ struct CoastAndShip {
             if (buf[0]) print_warnings({buf});
         }
         if (verbose)
-            std::fprintf(stderr, "shoal: %s%s%s in %.3f s\n", report.how.c_str(), report.cache_path.empty() ? "" : " ",
-                         report.cache_path.c_str(), report.seconds);
+            std::fprintf(stderr, "shoal: %s%s%s in %.3f s\n", printable(report.how).c_str(), report.cache_path.empty() ? "" : " ",
+                         printable(report.cache_path).c_str(), report.seconds);
         return g;
     }
 };
@@ -283,7 +284,7 @@ public:
         check_output(m_output, m_opts.inputs({m_poses}));
         const hull::Hull hull = m_opts.load_hull();
         const io::PoseFile poses = io::read_pose_csv(m_poses);
-        for (const auto& e : poses.errors) std::fprintf(stderr, "shoal: warning: %s\n", e.c_str());
+        for (const auto& e : poses.errors) std::fprintf(stderr, "shoal: warning: %s\n", printable(e).c_str());
         if (poses.skipped > poses.errors.size())
             std::fprintf(stderr, "shoal: warning: %zu more bad rows skipped\n", poses.skipped - poses.errors.size());
         const grid::CoastGrid g = m_opts.load_grid(hull);
@@ -440,15 +441,15 @@ public:
         m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };
         const audit::AuditResult r = audit::run_audit(m_tracks, g, hull, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : "ship file", m_audit);
         for (const auto& f : r.files) {
-            for (const auto& m : f.read.messages) std::fprintf(stderr, "shoal: warning: %s\n", m.c_str());
+            for (const auto& m : f.read.messages) std::fprintf(stderr, "shoal: warning: %s\n", printable(m).c_str());
             if (f.read.skipped > f.read.messages.size())
-                std::fprintf(stderr, "shoal: warning: %s: %zu more bad rows skipped\n", f.file.c_str(), f.read.skipped - f.read.messages.size());
+                std::fprintf(stderr, "shoal: warning: %s: %zu more bad rows skipped\n", printable(f.file).c_str(), f.read.skipped - f.read.messages.size());
             if (f.read.reordered)
-                std::fprintf(stderr, "shoal: warning: %s: %zu fixes out of time order (sorted by time)\n", f.file.c_str(), f.read.reordered);
+                std::fprintf(stderr, "shoal: warning: %s: %zu fixes out of time order (sorted by time)\n", printable(f.file).c_str(), f.read.reordered);
             if (f.read.duplicates)
-                std::fprintf(stderr, "shoal: warning: %s: %zu fixes repeat an earlier time of their vessel (dropped)\n", f.file.c_str(),
+                std::fprintf(stderr, "shoal: warning: %s: %zu fixes repeat an earlier time of their vessel (dropped)\n", printable(f.file).c_str(),
                              f.read.duplicates);
-            if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", f.error.c_str());
+            if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", printable(f.error).c_str());
         }
         std::size_t wild_said = 0;
         for (const auto& t : r.tracks)
@@ -463,7 +464,7 @@ public:
         }
         if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
         for (const auto& e : r.errors)
-            std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", e.track.c_str(), e.file.c_str(), e.message.c_str());
+            std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(e.message).c_str());
         report::RunInfo info;
         for (const auto& c : m_opts.coast) info.coast += (info.coast.empty() ? "" : ", ") + c;
         info.frame = g.frame().description();
@@ -479,7 +480,11 @@ public:
         info.ship_margin_m = m_audit.encounter.ship_margin_m;
         const auto t0 = std::chrono::steady_clock::now();
         if (format == "gpkg") report::write_gpkg(m_output, r, info);
-        else report::write_geojson(m_output, r, info);
+        else {
+            std::vector<std::string> style_warnings;
+            report::write_geojson(m_output, r, info, &style_warnings);
+            print_warnings(style_warnings);
+        }
         if (!m_plot.empty()) report::write_plot_svg(m_plot, r, g);
         const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::fputs(report::summary_table(r).c_str(), stdout);

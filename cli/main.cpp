@@ -17,6 +17,7 @@
 
 #include "commands.hpp"
 #include <shoal/util/atomic_file.hpp>
+#include <shoal/util/printable.hpp>
 #include <shoal/version.hpp>
 #include <shoal/util/error.hpp>
 
@@ -72,16 +73,16 @@ int main(int argc, char** argv) {
         for (auto& c : commands)
             if (c->parsed()) return c->run();
     } catch (const shoal::InputError& e) {
-        std::fprintf(stderr, "shoal: error: %s\n", e.what());
+        std::fprintf(stderr, "shoal: error: %s\n", shoal::printable(e.what()).c_str());
         return shoal::cli::exit_usage;
     } catch (const shoal::UsageError& e) {
-        std::fprintf(stderr, "shoal: usage error: %s\n", e.what());
+        std::fprintf(stderr, "shoal: usage error: %s\n", shoal::printable(e.what()).c_str());
         return shoal::cli::exit_usage;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "shoal: error: out of memory (try a larger --cell, or fewer inputs at once)\n");
         return shoal::cli::exit_usage;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "shoal: internal error: %s\n", e.what());
+        std::fprintf(stderr, "shoal: internal error: %s\n", shoal::printable(e.what()).c_str());
         return shoal::cli::exit_usage;
     }
     return shoal::cli::exit_usage;

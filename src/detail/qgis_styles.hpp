@@ -15,7 +15,12 @@ namespace shoal::report {
 std::string_view layer_style(std::string_view layer);
 
 /// Writes `NAME.qml` (the events style) beside a GeoJSON report `NAME.geojson`, atomically.
-void write_sidecar_style(const std::string& geojson_path, std::string_view layer = "events");
+/// Writes the style beside a GeoJSON report (REPORT.qml), marked as shoal's. An existing file
+/// of that name that shoal did not write (no mark) is left as it is: returns a warning then,
+/// "" when the style was written.
+std::string write_sidecar_style(const std::string& geojson_path, std::string_view layer = "events");
+/// The mark shoal puts in the styles it writes beside reports.
+inline constexpr std::string_view sidecar_mark = "<!-- written by shoal beside its report; shoal replaces it at the next run -->";
 
 /// Adds the `layer_styles` table with a default style for each of the report's layers.
 void add_layer_styles(GDALDataset& gpkg);

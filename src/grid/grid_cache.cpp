@@ -1,6 +1,10 @@
 #include <shoal/grid/grid_cache.hpp>
 
 #include <gdal_priv.h>
+#include <pwd.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
@@ -401,7 +405,34 @@ fs::path cache_folder(const std::string& requested) {
     if (const char* d = std::getenv("SHOAL_CACHE_DIR"); d && *d) return d;
     if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return fs::path(d) / "shoal";
     if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".cache" / "shoal";
-    return fs::temp_directory_path() / "shoal-cache";
+    // No HOME (cron, services): the user's home from the password database, never a shared
+    // predictable folder; failing that, a folder of this user's own in the temporary directory
+    // (created 0700 and owner-checked like any other).
+    struct passwd pw{};
+    struct passwd* found = nullptr;
+    char buf[4096];
+    if (getpwuid_r(::geteuid(), &pw, buf, sizeof buf, &found) == 0 && found && found->pw_dir && *found->pw_dir)
+        return fs::path(found->pw_dir) / ".cache" / "shoal";
+    return fs::temp_directory_path() / ("shoal-cache-" + std::to_string(::geteuid()));
+}
+
+/// Whether `p` (a folder or a file) is this user's own and nobody else may write it; else why not.
+bool private_to_user(const fs::path& p, std::string& why) {
+    struct stat st{};
+    if (::lstat(p.c_str(), &st) != 0) return true;  // not there (yet): nothing to distrust
+    if (S_ISLNK(st.st_mode)) {
+        why = "'" + p.string() + "' is a symbolic link";
+        return false;
+    }
+    if (st.st_uid != ::geteuid()) {
+        why = "'" + p.string() + "' belongs to user " + std::to_string(st.st_uid) + ", not to you (" + std::to_string(::geteuid()) + ")";
+        return false;
+    }
+    if (st.st_mode & (S_IWGRP | S_IWOTH)) {
+        why = "'" + p.string() + "' may be written by other users";
+        return false;
+    }
+    return true;
 }
 
 }  // namespace
@@ -427,6 +458,16 @@ CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildReques
     const fs::path cache = dir / (fs::path(paths[0]).stem().string() + "-" + hex64(fp) + ".shoalgrid");
     rep.cache_path = cache.string();
     std::error_code ec;
+    // A cache is trusted only when it is the user's own: a grid planted by another user (its
+    // fingerprint and checksum are plain hashes anyone can recompute) could hide land.
+    std::string why;
+    if (!private_to_user(dir, why) || !private_to_user(cache, why)) {
+        rep.warnings.push_back("the grid cache is not private (" + why + "): not used; the grid is built for this run only "
+                               "(give --cache-dir a folder of your own)");
+        CoastGrid g = build_grid(paths, request, &rep.warnings, &rep.build);
+        rep.how = "built (cache not private, not used)";
+        return done(std::move(g));
+    }
     if (fs::exists(cache, ec)) {
         try {
             CoastGrid g = GridFile::load(cache.string());
@@ -439,7 +480,10 @@ CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildReques
         }
     }
     CoastGrid g = build_grid(paths, request, &rep.warnings, &rep.build);
-    fs::create_directories(dir, ec);
+    if (!fs::exists(dir, ec)) {
+        fs::create_directories(dir, ec);
+        ::chmod(dir.c_str(), 0700);  // the cache folder is private to its user
+    }
     try {
         GridFile::save(g, cache.string());
         rep.how = "built and cached";

@@ -248,11 +248,12 @@ std::string geojson(const audit::AuditResult& r, const RunInfo& info) {
     return doc.dump(1) + "\n";
 }
 
-void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info) {
+void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info, std::vector<std::string>* warnings) {
     write_file_atomically(path, geojson(result, info));
     // The style goes beside a report file, not beside a device (-o /dev/null) or a pipe.
     std::error_code ec;
-    if (path != "-" && !path.empty() && std::filesystem::is_regular_file(path, ec)) write_sidecar_style(path, "events");
+    if (path != "-" && !path.empty() && std::filesystem::is_regular_file(path, ec))
+        if (std::string w = write_sidecar_style(path, "events"); !w.empty() && warnings) warnings->push_back(std::move(w));
 }
 
 }  // namespace shoal::report

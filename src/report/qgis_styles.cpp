@@ -1,3 +1,4 @@
+#include <cstdio>
 #include "detail/qgis_styles.hpp"
 
 #include <gdal_priv.h>
@@ -16,10 +17,27 @@ std::string_view style_qml(std::string_view name);  // qgis_styles_data.cpp, gen
 
 std::string_view layer_style(std::string_view layer) { return detail::style_qml(layer); }
 
-void write_sidecar_style(const std::string& geojson_path, std::string_view layer) {
+std::string write_sidecar_style(const std::string& geojson_path, std::string_view layer) {
     std::filesystem::path p(geojson_path);
     p.replace_extension(".qml");
-    write_file_atomically(p.string(), layer_style(layer));
+    std::error_code ec;
+    if (std::filesystem::exists(p, ec)) {
+        std::string head;
+        if (std::FILE* f = std::fopen(p.c_str(), "rb")) {
+            head.resize(4096);
+            head.resize(std::fread(head.data(), 1, head.size(), f));
+            std::fclose(f);
+        }
+        if (!std::filesystem::is_regular_file(p, ec) || head.find(sidecar_mark) == std::string::npos)
+            return "'" + p.string() + "' exists and was not written by shoal: left as it is, so the report has no QGIS style beside it "
+                   "(move that file, or write the report elsewhere)";
+    }
+    // The mark goes after the DOCTYPE line (an XML comment: QGIS reads the style as before).
+    std::string style(layer_style(layer));
+    const std::size_t eol = style.find('\n');
+    style.insert(eol == std::string::npos ? 0 : eol + 1, std::string(sidecar_mark) + "\n");
+    write_file_atomically(p.string(), style);
+    return {};
 }
 
 namespace {

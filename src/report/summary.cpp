@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include <shoal/report/report.hpp>
+#include <shoal/util/printable.hpp>
 
 namespace shoal::report {
 
@@ -21,9 +22,9 @@ std::string summary_table(const audit::AuditResult& r) {
         char least[32];
         if (std::isfinite(s.min_clearance_m)) std::snprintf(least, sizeof least, "%.1f", s.min_clearance_m);
         else std::snprintf(least, sizeof least, "-");
-        std::snprintf(line, sizeof line, "%-24.24s %9zu %9zu %7zu %9zu %5zu %8zu %5zu %5zu %10s  %s\n", s.id.c_str(), s.fixes,
+        std::snprintf(line, sizeof line, "%-24.24s %9zu %9zu %7zu %9zu %5zu %8zu %5zu %5zu %10s  %s\n", printable(s.id).c_str(), s.fixes,
                       s.uncovered_fixes, s.groundings, s.alongside, s.contacts_at_start, s.expected_contacts, s.close_passes,
-                      s.wild_fixes.size(), least, s.file.c_str());
+                      s.wild_fixes.size(), least, printable(s.file).c_str());
         out += line;
     }
     if (quiet) {
@@ -49,7 +50,7 @@ std::string summary_table(const audit::AuditResult& r) {
             char stop[48] = "did not stop";
             if (std::isfinite(e.stopped_after_s)) std::snprintf(stop, sizeof stop, "stopped %.0f s after", e.stopped_after_s);
             std::snprintf(line, sizeof line, "  grounding %s  %-16.16s %s, %.0f s in contact, %s, penetration %.1f m%s\n",
-                          iso_time(e.start_s).c_str(), t.summary.id.c_str(), speed, e.end_s - e.start_s, stop, e.penetration_m,
+                          iso_time(e.start_s).c_str(), printable(t.summary.id).c_str(), speed, e.end_s - e.start_s, stop, e.penetration_m,
                           e.reported_aground ? ", AIS status aground" : "");
             out += line;
         }
@@ -65,8 +66,8 @@ std::string summary_table(const audit::AuditResult& r) {
         }
     }
     for (const auto& f : r.files)
-        if (!f.error.empty()) out += "unreadable: " + f.error + "\n";
-    for (const auto& e : r.errors) out += "track failed: " + e.track + " in " + e.file + ": " + e.message + "\n";
+        if (!f.error.empty()) out += "unreadable: " + printable(f.error) + "\n";
+    for (const auto& e : r.errors) out += "track failed: " + printable(e.track + " in " + e.file + ": " + e.message) + "\n";
     return out;
 }
 

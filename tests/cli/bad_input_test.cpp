@@ -725,3 +725,52 @@ TEST_F(BadInput, AStepUnderACentimetreIsRefusedAndHugeJobCountsAreCapped) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(BadInput, TerminalEscapesInFileNamesArePrintedAsHex) {
+    const std::string evil = file("evil\x1b]0;owned\x07\x1b[2J.csv", header + "111,2024-05-01T10:00:00Z,bad,-1.3,1,1,1\n" + solent_rows());
+    const Outcome r = check({evil}, m_dir.file("evil.geojson"));
+    EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << "no raw ESC reaches the terminal";
+    EXPECT_EQ(r.out.find('\x1b'), std::string::npos);
+    EXPECT_NE(r.err.find("evil\\x1B]0;owned\\x07\\x1B[2J.csv"), std::string::npos) << r.err;
+}
+
+TEST_F(BadInput, AUsersQmlBesideTheReportIsNeverReplaced) {
+    const std::string mine = file("land.qml", "<qgis>my own style</qgis>\n");
+    const Outcome r = check({good_tracks()}, m_dir.file("land.geojson"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("was not written by shoal: left as it is"), std::string::npos) << r.err;
+    const std::vector<char> kept = shoal::test::read_bytes(mine);
+    EXPECT_EQ(std::string(kept.begin(), kept.end()), "<qgis>my own style</qgis>\n");
+    // shoal's own style beside an earlier report is replaced without a word.
+    const std::string r2 = m_dir.file("again.geojson");
+    EXPECT_EQ(check({good_tracks()}, r2).status, 1);
+    const Outcome second = check({good_tracks()}, r2);
+    EXPECT_EQ(second.err.find("not written by shoal"), std::string::npos) << second.err;
+    EXPECT_TRUE(fs::exists(m_dir.file("again.qml")));
+}
+
+TEST_F(BadInput, AGridCacheInAFolderOthersMayWriteIsNotTrusted) {
+    // A cache folder anyone may write (a planted grid with no land would hide groundings): the
+    // grid is built for the run, nothing is read from or written to that folder.
+    const fs::path shared = fs::path(m_dir.path()) / "shared-cache";
+    fs::create_directories(shared);
+    fs::permissions(shared, fs::perms::all);  // 0777
+    const std::string coast = data_path("coast/uk_solent_land.geojson");
+    const Outcome r = shoal({"check", "--coast", coast, "--cache-dir", shared.string(), "--dims", "50,10,5,5", "-o",
+                             m_dir.file("shared.geojson"), good_tracks()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("the grid cache is not private"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::is_empty(shared)) << "nothing cached there";
+    // A folder of the user's own is used, created 0700.
+    const fs::path own = fs::path(m_dir.path()) / "own-cache";
+    EXPECT_EQ(shoal({"check", "--coast", coast, "--cache-dir", own.string(), "--dims", "50,10,5,5", "-o", m_dir.file("own.geojson"),
+                     good_tracks()})
+                  .status,
+              1);
+    EXPECT_FALSE(fs::is_empty(own));
+    EXPECT_EQ(fs::status(own).permissions() & (fs::perms::group_all | fs::perms::others_all), fs::perms::none);
+}
+
+}  // namespace

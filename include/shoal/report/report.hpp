@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <shoal/audit/audit.hpp>
 
@@ -27,7 +28,10 @@ struct RunInfo {
 
 /// The GeoJSON report as text (schemas/report.schema.json).
 std::string geojson(const audit::AuditResult& result, const RunInfo& info);
-void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info);
+/// Also writes the QGIS style REPORT.qml beside it, unless a file of that name exists that
+/// shoal did not write (then a warning goes into `warnings`, when given, and it is left alone).
+void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
+                   std::vector<std::string>* warnings = nullptr);
 
 /// The GeoPackage report: layers `events` (points), `tracks` (lines with per-track figures),
 /// `hulls` (hull footprints at each event), in EPSG:4326. Written to a temporary file, renamed.
