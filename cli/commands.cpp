@@ -485,15 +485,29 @@ public:
             report::write_geojson(m_output, r, info, &style_warnings);
             print_warnings(style_warnings);
         }
-        if (!m_plot.empty()) report::write_plot_svg(m_plot, r, g);
+        // The report is written: a picture that cannot be written is an error said as such,
+        // but it must not hide the groundings the report holds (exit 1 stays 1).
+        bool plot_failed = false;
+        if (!m_plot.empty()) {
+            try {
+                report::write_plot_svg(m_plot, r, g);
+            } catch (const InputError& e) {
+                std::fprintf(stderr, "shoal: error: the picture was not written: %s (the report %s was)\n", printable(e.what()).c_str(),
+                             printable(m_output).c_str());
+                plot_failed = true;
+            }
+        }
         const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::fputs(report::summary_table(r).c_str(), stdout);
+        // With -o - the report is stdout: the table goes to stderr, so the JSON stays clean.
+        std::FILE* table = m_output == "-" ? stderr : stdout;
+        std::fputs(report::summary_table(r).c_str(), table);
         const double fps = r.sweep_s > 0 ? static_cast<double>(r.fixes) / r.sweep_s : 0;
-        std::printf("time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
-                    m_output.c_str());
+        std::fprintf(table, "time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
+                     printable(m_output).c_str());
         bool unreadable = r.tracks.empty() && (!r.errors.empty() || std::any_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); }));
         if (unreadable) return exit_usage;
-        return r.groundings > 0 || r.collisions > 0 ? exit_found : exit_ok;
+        if (r.groundings > 0 || r.collisions > 0) return exit_found;
+        return plot_failed ? exit_usage : exit_ok;
     }
 
 private:

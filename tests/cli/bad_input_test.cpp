@@ -774,3 +774,23 @@ TEST_F(BadInput, AGridCacheInAFolderOthersMayWriteIsNotTrusted) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(BadInput, APictureThatCannotBeWrittenDoesNotHideTheGroundings) {
+    const std::string r = m_dir.file("with-plot.geojson");
+    const Outcome o = check({good_tracks()}, r, {"--plot", "/dev/full"});
+    EXPECT_EQ(o.status, 1) << "vessel A grounds; the report says so\n" << o.err;
+    EXPECT_NE(o.err.find("the picture was not written"), std::string::npos) << o.err;
+    EXPECT_EQ(report(r)["shoal"]["summary"]["groundings"], 1);
+}
+
+TEST_F(BadInput, ReportOnStdoutKeepsTheTableOnStderr) {
+    const Outcome o = check({good_tracks()}, "-");
+    EXPECT_EQ(o.status, 1) << o.err;
+    const nlohmann::json doc = nlohmann::json::parse(o.out);  // stdout is the report alone
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_NE(o.err.find("total: 1 files"), std::string::npos) << o.err;
+}
+
+}  // namespace
