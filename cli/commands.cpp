@@ -247,7 +247,7 @@ struct CoastAndShip {
             const double built = g.source().limiting_depth_m;
             const double want = *req.import.limiting_depth_m;
             char buf[400];
-            if (std::isnan(built) && (explicit_limit || verbose))
+            if (std::isnan(built))  // with a draught too: a shallow grounding would be missed without a word
                 std::snprintf(buf, sizeof buf, "the grid '%s' holds land only (built without a limiting depth): shallow water and dangers "
                               "are not checked for the limiting depth %.2f m (%s); rebuild it with shoal import --hazard-depth",
                               coast[0].c_str(), want, why);
@@ -455,6 +455,10 @@ public:
         for (const auto& t : r.tracks)
             for (const auto& w : t.summary.wild_fixes)
                 if (wild_said++ < 20) print_warnings({report::wild_fix_message(t.summary, w)});
+        if (r.fixes >= 10 && 2 * r.uncovered_fixes > r.fixes)
+            print_warnings({std::to_string(r.uncovered_fixes) + " of " + std::to_string(r.fixes) +
+                            " fixes lie outside the chart's area (uncovered: nothing is claimed there). Are latitude and "
+                            "longitude swapped, or is it the wrong coast?"});
         for (const auto& t : r.tracks) {
             const auto& s = t.summary;
             if (s.jumps > 0 && s.fixes >= 4 && 2 * s.segments > s.fixes)

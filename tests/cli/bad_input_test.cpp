@@ -794,3 +794,33 @@ TEST_F(BadInput, ReportOnStdoutKeepsTheTableOnStderr) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(BadInput, SwappedLatitudeAndLongitudeAreSaid) {
+    // The Solent rows with latitude and longitude swapped: still in range, all uncovered.
+    std::string rows = header;
+    for (int i = 0; i < 12; ++i) {
+        char row[160];
+        std::snprintf(row, sizeof row, "222,2024-05-01T10:%02d:00Z,-1.%04d,50.7600,10,90,90\n", i, 1000 + 10 * i);
+        rows += row;
+    }
+    const Outcome o = check({file("swapped.csv", rows)}, m_dir.file("swapped.geojson"));
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find("12 of 12 fixes lie outside the chart's area"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("swapped"), std::string::npos) << o.err;
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(BadInput, ALandOnlyGridWithAShipThatHasADraughtIsSaid) {
+    const std::string ship = file("deep.json", R"({"name":"deep","a":50,"b":10,"c":5,"d":5,"draught":6.8})");
+    const Outcome o = shoal({"check", "--coast", s_grid, "--ship", ship, "-o", m_dir.file("deep.geojson"), good_tracks()});
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("holds land only"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("draught 6.80 m"), std::string::npos) << o.err;
+}
+
+}  // namespace
