@@ -424,14 +424,9 @@ public:
         const grid::CoastGrid g = m_opts.load_grid(hull);
         check_readable(m_berths);
         // Expected-contact areas: --berths, and the S-57 charts the coast came from.
-        std::vector<std::string> charts = m_opts.coast;
-        if (m_opts.coast.size() == 1 && grid::looks_like_grid(m_opts.coast[0])) {
-            charts.clear();
-            for (const std::string& in : g.source().inputs)
-                if (std::error_code ec; std::filesystem::is_regular_file(in, ec)) charts.push_back(in);
-        }
         std::vector<std::string> area_warnings;
-        const coast::ExpectedAreas areas = coast::ExpectedAreas::load(m_berths, charts, g.frame(), m_berth_tolerance_m, &area_warnings);
+        const coast::ExpectedAreas areas =
+            coast::ExpectedAreas::load(m_berths, grid::coast_sources(m_opts.coast, g), g.frame(), m_berth_tolerance_m, &area_warnings);
         print_warnings(area_warnings);
         if (!areas.empty())
             std::fprintf(stderr, "shoal: %zu expected-contact areas (berths, harbours, anchorages) and %zu shore constructions\n",
@@ -455,17 +450,7 @@ public:
         for (const auto& t : r.tracks)
             for (const auto& w : t.summary.wild_fixes)
                 if (wild_said++ < 20) print_warnings({report::wild_fix_message(t.summary, w)});
-        if (r.fixes >= 10 && 2 * r.uncovered_fixes > r.fixes)
-            print_warnings({std::to_string(r.uncovered_fixes) + " of " + std::to_string(r.fixes) +
-                            " fixes lie outside the chart's area (uncovered: nothing is claimed there). Are latitude and "
-                            "longitude swapped, or is it the wrong coast?"});
-        for (const auto& t : r.tracks) {
-            const auto& s = t.summary;
-            if (s.jumps > 0 && s.fixes >= 4 && 2 * s.segments > s.fixes)
-                print_warnings({"track '" + s.id + "' in '" + s.file + "': " + std::to_string(s.segments) + " pieces of " + std::to_string(s.fixes) +
-                                " fixes: jumps over --max-speed between most fixes, so almost nothing of it was swept (two vessels "
-                                "on one id, or a --max-speed too low for it?)"});
-        }
+        print_warnings(r.warnings);
         if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
         for (const auto& e : r.errors)
             std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(e.message).c_str());

@@ -165,6 +165,17 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
         result.tracks.push_back(std::move(swept[k]));
     }
     for (const auto& f : result.files) result.skipped_rows += f.read.skipped;
+    if (result.fixes >= 10 && 2 * result.uncovered_fixes > result.fixes)
+        result.warnings.push_back(std::to_string(result.uncovered_fixes) + " of " + std::to_string(result.fixes) +
+                                  " fixes lie outside the chart's area (uncovered: nothing is claimed there). Are latitude and "
+                                  "longitude swapped, or is it the wrong coast?");
+    for (const auto& t : result.tracks) {
+        const TrackSummary& s = t.summary;
+        if (s.jumps > 0 && s.fixes >= 4 && 2 * s.segments > s.fixes)
+            result.warnings.push_back("track '" + s.id + "' in '" + s.file + "': " + std::to_string(s.segments) + " pieces of " +
+                                      std::to_string(s.fixes) + " fixes: jumps over --max-speed between most fixes, so almost nothing "
+                                      "of it was swept (two vessels on one id, or a --max-speed too low for it?)");
+    }
 
     // 3. Exercise mode: ship-to-ship encounters over all audited tracks, on one clock.
     if (options.encounters) {

@@ -494,4 +494,12 @@ CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildReques
     return done(std::move(g));
 }
 
+std::vector<std::string> coast_sources(const std::vector<std::string>& coast, const CoastGrid& g) {
+    if (!(coast.size() == 1 && looks_like_grid(coast[0]))) return coast;
+    std::vector<std::string> out;
+    for (const std::string& in : g.source().inputs)
+        if (std::error_code ec; fs::is_regular_file(in, ec)) out.push_back(in);
+    return out;
+}
+
 }  // namespace shoal::grid

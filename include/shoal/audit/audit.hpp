@@ -51,6 +51,9 @@ struct AuditResult {
     std::size_t groundings = 0, close_passes = 0;
     std::size_t alongside = 0, contacts_at_start = 0, expected_contacts = 0;
     std::size_t wild_fixes = 0, jumps = 0, unknown_heading_fixes = 0;
+    /// What the user should hear about the run as a whole: most fixes uncovered (swapped
+    /// latitude and longitude?), tracks broken into lone fixes by jumps.
+    std::vector<std::string> warnings;
     double first_fix_s = NAN, last_fix_s = NAN;
     double read_s = 0, sweep_s = 0;  ///< wall-clock seconds of the two phases
     /// Exercise mode: encounters between the audited tracks; ShipAt::track and

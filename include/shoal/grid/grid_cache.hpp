@@ -34,6 +34,11 @@ public:
 /// True when the file starts with the grid magic (it is a grid, perhaps a damaged one).
 bool looks_like_grid(const std::string& path);
 
+/// The coastline sources behind a run's grid `g`: `coast` as given, or, when it is one grid
+/// file, the sources that grid was built from that still exist (their S-57 berths, harbours
+/// and shore constructions are read from them).
+std::vector<std::string> coast_sources(const std::vector<std::string>& coast, const CoastGrid& g);
+
 /// Fingerprint of coastline sources and the options that shape a grid: XXH3 over the bytes of
 /// every file the sources consist of (as GDAL lists them) and the option values. Throws
 /// InputError for a missing or unreadable source.
