@@ -1,6 +1,7 @@
 #pragma once
-// The subcommands of `shoal`: each adds its options to the CLI11 app in setup() (no files
-// opened there) and does its work in run(), returning the exit status.
+// The subcommands of `shoal`, one file each (import_command.cpp, info_command.cpp,
+// probe_command.cpp, check_command.cpp): each adds its options to the CLI11 app in setup() (no
+// files opened there) and does its work in run(), returning the exit status.
 
 #include <memory>
 #include <vector>
@@ -9,7 +10,13 @@ namespace CLI { class App; }
 
 namespace shoal::cli {
 
-enum exit_code : int { exit_ok = 0, exit_found = 1, exit_usage = 2 };
+/// Exit status of `shoal` (docs/user-guide.md, "Exit status and errors").
+enum exit_code : int {
+    exit_ok = 0,        ///< success; check: no grounding
+    exit_found = 1,     ///< check: at least one grounding or ship collision
+    exit_usage = 2,     ///< bad usage or unreadable input
+    exit_internal = 3,  ///< a bug in shoal or a failure inside GDAL/GEOS/PROJ that is not the input's fault
+};
 
 class Command {
 public:
@@ -22,6 +29,12 @@ protected:
     CLI::App* m_sub = nullptr;
 };
 
+std::unique_ptr<Command> make_import_command();
+std::unique_ptr<Command> make_info_command();
+std::unique_ptr<Command> make_probe_command();
+std::unique_ptr<Command> make_check_command();
+
+/// Every command, in the order `shoal --help` lists them.
 std::vector<std::unique_ptr<Command>> make_commands();
 
 }  // namespace shoal::cli

@@ -2,7 +2,8 @@
 // capability lives in the library (src/).
 //
 // Exit status: 0 success (check: no grounding), 1 check found at least one grounding,
-// 2 bad usage or unreadable input, 128 + N on signal N (130 for Ctrl-C).
+// 2 bad usage or unreadable input, 3 internal error (a bug, or a failure inside GDAL, GEOS or
+// PROJ that is not the input's fault), 128 + N on signal N (130 for Ctrl-C).
 
 #include <CLI/CLI.hpp>
 #include <cpl_error.h>
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
     });
     app.set_version_flag("--version", std::string("shoal ") + SHOAL_VERSION_STRING);
     app.footer("Exit status: 0 ok / no grounding, 1 grounding found (check), 2 bad usage or unreadable input,\n"
-               "130 interrupted (Ctrl-C; nothing half-written is left).\n"
+               "3 internal error (please report it), 130 interrupted (Ctrl-C; nothing half-written is left).\n"
                "Run 'shoal COMMAND --help' for a command's options; docs/user-guide.md has the details.");
     std::vector<std::unique_ptr<shoal::cli::Command>> commands = shoal::cli::make_commands();
     for (auto& c : commands) c->setup(app);
@@ -81,9 +82,12 @@ int main(int argc, char** argv) {
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "shoal: error: out of memory (try a larger --cell, or fewer inputs at once)\n");
         return shoal::cli::exit_usage;
+    } catch (const shoal::LibraryError& e) {
+        std::fprintf(stderr, "shoal: internal error: %s (not the input's fault: please report it)\n", shoal::printable(e.what()).c_str());
+        return shoal::cli::exit_internal;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "shoal: internal error: %s\n", shoal::printable(e.what()).c_str());
-        return shoal::cli::exit_usage;
+        std::fprintf(stderr, "shoal: internal error: %s (a bug in shoal: please report it)\n", shoal::printable(e.what()).c_str());
+        return shoal::cli::exit_internal;
     }
     return shoal::cli::exit_usage;
 }

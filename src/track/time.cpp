@@ -152,6 +152,14 @@ std::optional<double> parse_iso8601(std::string_view text) noexcept {
     return static_cast<double>(days_from_civil(y, mo, d)) * seconds_per_day + tod - offset;
 }
 
+std::optional<double> parse_date(std::string_view text) noexcept {
+    Cursor c(trim(text));
+    int y = 0, mo = 0, d = 0;
+    if (!c.digits(4, y) || !c.eat('-') || !c.digits(2, mo) || !c.eat('-') || !c.digits(2, d) || !c.done() || !valid_date(y, mo, d))
+        return std::nullopt;
+    return static_cast<double>(days_from_civil(y, mo, d)) * seconds_per_day;
+}
+
 std::optional<double> parse_day_first(std::string_view text) noexcept {
     Cursor c(trim(text));
     int d = 0, mo = 0, y = 0;

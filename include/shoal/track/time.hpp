@@ -39,6 +39,9 @@ std::optional<double> parse_day_first(std::string_view text) noexcept;
 std::optional<double> parse_epoch(std::string_view text) noexcept;
 /// `[T]hh:mm[:ss[.fff]][Z]`: seconds since midnight; nullopt otherwise.
 std::optional<double> parse_time_of_day(std::string_view text) noexcept;
+/// A day `YYYY-MM-DD` (blanks around it ignored): epoch seconds of its midnight, UTC; nullopt
+/// otherwise (for logs whose times carry no date: ReadOptions::date_s).
+std::optional<double> parse_date(std::string_view text) noexcept;
 
 /// True for a real day of the proleptic Gregorian calendar (years 1-9999).
 bool valid_date(int year, int month, int day) noexcept;

@@ -1,0 +1,226 @@
+// shoal check: audit voyage tracks and write the grounding report.
+#include "commands.hpp"
+#include "options.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <shoal/audit/audit.hpp>
+#include <shoal/coast/expected_areas.hpp>
+#include <shoal/report/plot.hpp>
+#include <shoal/report/report.hpp>
+#include <shoal/track/reader.hpp>
+#include <shoal/track/time.hpp>
+#include <shoal/util/error.hpp>
+#include <shoal/util/printable.hpp>
+
+namespace shoal::cli {
+
+namespace {
+
+/// A progress line on stderr: fixes done, rate and time left. Only when stderr is a terminal.
+class Progress {
+public:
+    explicit Progress(bool on) : m_on(on), m_t0(std::chrono::steady_clock::now()) {}
+    void operator()(std::size_t done, std::size_t total) {
+        if (!m_on || total == 0) return;
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_t0).count();
+        const double rate = s > 0 ? static_cast<double>(done) / s : 0;
+        const double left = rate > 0 ? static_cast<double>(total - done) / rate : 0;
+        const int width = 30;
+        const int fill = static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
+        std::fprintf(stderr, "\r[%.*s%*s] %3.0f%%  %.2fM fixes/s  %3.0f s left ", fill, "==============================",
+                     width - fill, "", 100.0 * static_cast<double>(done) / static_cast<double>(total), rate / 1e6, left);
+        if (done == total) std::fprintf(stderr, "\n");
+        std::fflush(stderr);
+    }
+
+private:
+    bool m_on;
+    std::chrono::steady_clock::time_point m_t0;
+};
+
+class CheckCommand final : public Command {
+public:
+    void setup(CLI::App& app) override {
+        m_sub = app.add_subcommand("check", "Audit voyage tracks: sweep the hull along them, report groundings and close passes");
+        m_sub->footer("Usage: shoal check --coast COAST_OR_GRID --ship SHIP.json TRACK... -o REPORT.geojson [--margin M] [--step M] [--jobs N]\n"
+                      "Tracks: CSV with a header (AIS exports too), GPX, GeoJSON, NMEA 0183 logs; folders are searched.\n"
+                      "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc.\n"
+                      "Contacts are groundings only when they begin under way after the vessel was seen clear; contacts of a\n"
+                      "vessel stopped or under --berthing-speed are alongside, those at a track's first fix in_contact_at_start,\n"
+                      "those inside --berths areas expected_contact. Wild fixes (over --max-speed) are dropped and listed.\n"
+                      "Exit status: 0 no grounding, 1 at least one grounding (or ship collision), 2 bad usage or unreadable input.");
+        m_opts.add(*m_sub);
+        m_sub->add_option("tracks", m_tracks, "Track files or folders")->required();
+        m_sub->add_option("-o,--output", m_output, "Report to write: .geojson, or .gpkg (GeoPackage)")->required();
+        m_sub->add_option("--format", m_format, "geojson or gpkg (default: from the extension of -o)")
+            ->check(CLI::IsMember({"geojson", "gpkg"}));
+        m_sub->add_option("--margin", m_audit.sweep.margin_m, "Close pass: clearance under this many metres (default 50)")
+            ->check(finite)->check(CLI::NonNegativeNumber);
+        m_sub->add_option("--step", m_audit.sweep.step_m, "No hull point moves more than this many metres between checks (default 5, at least 0.01)")
+            ->check(finite)->check(CLI::PositiveNumber);
+        m_sub->add_option("--max-gap", m_audit.sweep.max_gap_s, "A gap between fixes longer than this (seconds) splits the track (default 600)")
+            ->check(finite)->check(CLI::PositiveNumber);
+        m_sub->add_option("--jobs,-j", m_audit.jobs, "Tracks checked in parallel (default: all cores)");
+        m_sub->add_flag("--encounters", m_audit.encounters,
+                        "Exercise mode: the tracks are one exercise; also report ship-to-ship collisions and close quarters");
+        m_sub->add_option("--ship-margin", m_audit.encounter.ship_margin_m,
+                          "Exercise mode: close quarters when hulls come within this many metres (default 20)")
+            ->check(finite)->check(CLI::NonNegativeNumber);
+        m_sub->add_option("--berths", m_berths,
+                          "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
+                          "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
+                          "BERTHS, HRBARE and ACHARE, and SLCONS as shore constructions");
+        m_sub->add_option("--berth-tolerance", m_berth_tolerance_m,
+                          "Lines and points of --berths and S-57 berths / shore constructions count within this many metres (default 10)")
+            ->check(finite)->check(CLI::PositiveNumber);
+        m_sub->add_option("--berthing-speed", m_audit.sweep.berthing_speed_kn,
+                          "A contact that begins under this speed (knots) is alongside (berthing, moored), not a grounding (default 1)")
+            ->check(finite)->check(CLI::NonNegativeNumber);
+        m_sub->add_option("--stop-diameter", m_audit.sweep.stop_diameter_m,
+                          "Stopped: every fix of --stop-time seconds within a box of this diagonal, metres (default 50)")
+            ->check(finite)->check(CLI::PositiveNumber);
+        m_sub->add_option("--stop-time", m_audit.sweep.stop_duration_s, "Stopped: a stay of at least this many seconds (default 120)")
+            ->check(finite)->check(CLI::PositiveNumber);
+        m_sub->add_option("--max-speed", m_audit.wild.max_speed_kn,
+                          "Fastest plausible speed, knots: a fix that implies more against its neighbours is dropped as an "
+                          "outlier, a jump that persists starts a new piece of track (default 60)")
+            ->check(finite)->check(CLI::PositiveNumber);
+        m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and zoomed panels, groundings first");
+        m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
+        m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
+    }
+    int run() override {
+        std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks));
+        all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
+        check_output(m_output, all_inputs);
+        if (!m_plot.empty()) {
+            // The picture is an output too: never one of the inputs, nor the report itself.
+            check_output(m_plot, all_inputs);
+            std::error_code ec;
+            if (m_plot == m_output || (std::filesystem::exists(m_plot, ec) && std::filesystem::exists(m_output, ec) &&
+                                       std::filesystem::equivalent(m_plot, m_output, ec)))
+                throw UsageError("--plot '" + m_plot + "' is the report -o '" + m_output + "': choose another file for the picture");
+        }
+        if (m_audit.sweep.step_m < min_step_m)
+            throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(min_step_m) +
+                             " m: a sweep that fine never ends");
+        const hull::Hull hull = m_opts.load_hull();
+        if (!m_date.empty()) {
+            const auto day = track::parse_date(m_date);
+            if (!day) throw UsageError("--date '" + m_date + "' is not a date YYYY-MM-DD");
+            m_audit.read.date_s = *day;
+        }
+        const std::string format = !m_format.empty() ? m_format
+                                   : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
+        for (const std::string& out : {m_output, m_plot}) {
+            if (out.empty()) continue;
+            const std::filesystem::path dir = std::filesystem::path(out).has_parent_path() ? std::filesystem::path(out).parent_path() : ".";
+            if (!std::filesystem::is_directory(dir))
+                throw InputError("cannot write '" + out + "': folder '" + dir.string() + "' does not exist");
+        }
+        const grid::CoastGrid g = m_opts.load_grid(hull);
+        check_readable(m_berths);
+        // Expected-contact areas: --berths, and the S-57 charts the coast came from.
+        std::vector<std::string> area_warnings;
+        const coast::ExpectedAreas areas =
+            coast::ExpectedAreas::load(m_berths, grid::coast_sources(m_opts.coast, g), g.frame(), m_berth_tolerance_m, &area_warnings);
+        print_warnings(area_warnings);
+        if (!areas.empty())
+            std::fprintf(stderr, "shoal: %zu expected-contact areas (berths, harbours, anchorages) and %zu shore constructions\n",
+                         areas.count(coast::AreaRole::expected), areas.count(coast::AreaRole::structure));
+        m_audit.areas = &areas;
+        Progress bar(m_progress.value_or(::isatty(2) != 0));
+        m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };
+        const audit::AuditResult r = audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);
+        for (const auto& f : r.files) {
+            for (const auto& m : f.read.messages) std::fprintf(stderr, "shoal: warning: %s\n", printable(m).c_str());
+            if (f.read.skipped > f.read.messages.size())
+                std::fprintf(stderr, "shoal: warning: %s: %zu more bad rows skipped\n", printable(f.file).c_str(), f.read.skipped - f.read.messages.size());
+            if (f.read.reordered)
+                std::fprintf(stderr, "shoal: warning: %s: %zu fixes out of time order (sorted by time)\n", printable(f.file).c_str(), f.read.reordered);
+            if (f.read.duplicates)
+                std::fprintf(stderr, "shoal: warning: %s: %zu fixes repeat an earlier time of their vessel (dropped)\n", printable(f.file).c_str(),
+                             f.read.duplicates);
+            if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", printable(f.error).c_str());
+        }
+        std::size_t wild_said = 0;
+        for (const auto& t : r.tracks)
+            for (const auto& w : t.summary.wild_fixes)
+                if (wild_said++ < 20) print_warnings({report::wild_fix_message(t.summary, w)});
+        print_warnings(r.warnings);
+        if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
+        for (const auto& e : r.errors)
+            std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(e.message).c_str());
+        report::RunInfo info;
+        for (const auto& c : m_opts.coast) info.coast += (info.coast.empty() ? "" : ", ") + c;
+        info.frame = g.frame().description();
+        info.cell_m = g.cell_size();
+        info.limiting_depth_m = g.source().limiting_depth_m;
+        char fp[20];
+        std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(g.source().fingerprint));
+        info.grid_fingerprint = fp;
+        info.ship = m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name();
+        info.sweep = m_audit.sweep;
+        info.wild = m_audit.wild;
+        for (const auto& b : m_berths) info.berths += (info.berths.empty() ? "" : ", ") + b;
+        info.ship_margin_m = m_audit.encounter.ship_margin_m;
+        const auto t0 = std::chrono::steady_clock::now();
+        if (format == "gpkg") report::write_gpkg(m_output, r, info);
+        else {
+            std::vector<std::string> style_warnings;
+            report::write_geojson(m_output, r, info, &style_warnings);
+            print_warnings(style_warnings);
+        }
+        // The report is written: a picture that cannot be written is an error said as such,
+        // but it must not hide the groundings the report holds (exit 1 stays 1).
+        bool plot_failed = false;
+        if (!m_plot.empty()) {
+            try {
+                report::write_plot_svg(m_plot, r, g);
+            } catch (const InputError& e) {
+                std::fprintf(stderr, "shoal: error: the picture was not written: %s (the report %s was)\n", printable(e.what()).c_str(),
+                             printable(m_output).c_str());
+                plot_failed = true;
+            }
+        }
+        const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        // With -o - the report is stdout: the table goes to stderr, so the JSON stays clean.
+        std::FILE* table = m_output == "-" ? stderr : stdout;
+        std::fputs(report::summary_table(r).c_str(), table);
+        const double fps = r.sweep_s > 0 ? static_cast<double>(r.fixes) / r.sweep_s : 0;
+        std::fprintf(table, "time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
+                     printable(m_output).c_str());
+        bool unreadable = r.tracks.empty() && (!r.errors.empty() || std::any_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); }));
+        if (unreadable) return exit_usage;
+        if (r.groundings > 0 || r.collisions > 0) return exit_found;
+        return plot_failed ? exit_usage : exit_ok;
+    }
+
+private:
+    CoastAndShip m_opts;
+    std::vector<std::string> m_tracks;
+    std::string m_output;
+    std::string m_format;
+    std::optional<bool> m_progress;
+    std::string m_date;
+    std::string m_plot;
+    std::vector<std::string> m_berths;
+    double m_berth_tolerance_m = 10.0;
+    audit::AuditOptions m_audit;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_check_command() { return std::make_unique<CheckCommand>(); }
+
+}  // namespace shoal::cli

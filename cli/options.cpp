@@ -1,0 +1,171 @@
+#include "options.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <shoal/grid/limiting_depth.hpp>
+#include <shoal/util/error.hpp>
+#include <shoal/util/printable.hpp>
+
+namespace shoal::cli {
+
+const CLI::Validator finite = CLI::Validator(
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v)) return "must be a finite number (got '" + text + "')";
+        return {};
+    },
+    "FINITE");
+
+void check_output(const std::string& output, const std::vector<std::string>& inputs) {
+    namespace fs = std::filesystem;
+    if (output.empty() || output == "-") return;
+    std::error_code ec;
+    const fs::path dir = fs::path(output).has_parent_path() ? fs::path(output).parent_path() : ".";
+    if (!fs::is_directory(dir, ec))
+        throw InputError("cannot write '" + output + "': folder '" + dir.string() + "' does not exist");
+    if (fs::is_directory(output, ec)) throw InputError("cannot write '" + output + "': it is a directory");
+    if (!fs::exists(output, ec)) return;
+    for (const std::string& in : inputs)
+        if (!in.empty() && fs::equivalent(output, in, ec) && !ec)
+            throw UsageError("the output '" + output + "' is the input '" + in +
+                             "': writing it would destroy the input; choose another -o");
+}
+
+void check_readable(const std::vector<std::string>& paths) {
+    for (const std::string& p : paths) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(p, ec)) continue;
+        if (std::FILE* f = std::fopen(p.c_str(), "rb")) std::fclose(f);
+        else throw InputError("'" + p + "': cannot read (" + std::strerror(errno) + ")");
+    }
+}
+
+void print_warnings(const std::vector<std::string>& warnings) {
+    for (const auto& w : warnings) std::fprintf(stderr, "shoal: warning: %s\n", printable(w).c_str());
+}
+
+void print_grid(const grid::CoastGrid& g) {
+    const auto& s = g.source();
+    const geo::Box e = g.extent();
+    std::printf("sources:        ");
+    for (std::size_t i = 0; i < s.inputs.size(); ++i) std::printf("%s%s", i ? ", " : "", s.inputs[i].c_str());
+    std::printf("\nlayers:         ");
+    for (std::size_t i = 0; i < s.layers.size(); ++i) std::printf("%s%s", i ? ", " : "", s.layers[i].c_str());
+    std::printf("\nfingerprint:    %016llx\n", static_cast<unsigned long long>(s.fingerprint));
+    std::printf("frame:          %s\n", g.frame().description().c_str());
+    std::printf("cell size:      %.1f m\n", g.cell_size());
+    std::printf("grid:           %d x %d cells, %.1f x %.1f km, origin (%.1f, %.1f) m\n", g.nx(), g.ny(),
+                (e.maxx - e.minx) / 1000, (e.maxy - e.miny) / 1000, e.minx, e.miny);
+    std::printf("cells:          %zu coast, %zu land, %zu water\n", g.coast_cell_count(), g.land_cell_count(),
+                g.cell_count() - g.coast_cell_count() - g.land_cell_count());
+    std::printf("coastline:      %llu vertices read, %llu polylines (%llu with land side known), %zu clipped segments\n",
+                static_cast<unsigned long long>(s.input_vertices), static_cast<unsigned long long>(s.polylines),
+                static_cast<unsigned long long>(s.land_polylines), g.segment_count());
+    std::printf("memory:         %.2f MB (%.1f bytes per vertex)\n", g.memory_bytes() / 1e6,
+                s.input_vertices ? static_cast<double>(g.memory_bytes()) / static_cast<double>(s.input_vertices) : 0.0);
+    if (std::isnan(s.limiting_depth_m)) {
+        std::printf("hazards:        land only (no limiting depth)\n");
+    } else {
+        std::printf("hazards:        limiting depth %.2f m: %llu depth areas and dangers kept (%llu with unknown depth), "
+                    "%llu at or deeper skipped;\n                %llu shallow-water and %llu danger polylines; point dangers as %.1f m circles%s%s\n",
+                    s.limiting_depth_m, static_cast<unsigned long long>(s.hazard_features),
+                    static_cast<unsigned long long>(s.unknown_depth), static_cast<unsigned long long>(s.deep_skipped),
+                    static_cast<unsigned long long>(s.shallow_polylines), static_cast<unsigned long long>(s.danger_polylines),
+                    s.danger_radius_m, s.depth_field.empty() ? "" : "; depth field ", s.depth_field.c_str());
+    }
+    if (!g.has_land_side())
+        std::printf("note:           only lines, no land polygons: a ship inside land, away from the coastline, is not seen\n");
+}
+
+/// --hazard-depth, --depth-field, --danger-radius: which depth areas and dangers are hazards.
+void add_hazard_options(CLI::App& sub, coast::ImportOptions& import) {
+    sub.add_option("--hazard-depth", import.limiting_depth_m,
+                   "Limiting depth in metres: depth areas shallower and dangers with a sounding under it (or unknown) are "
+                   "hazards like land (default: none, land only; for probe and check the ship's draught + --ukc when it has one)")
+        ->check(finite);
+    sub.add_option("--depth-field", import.depth_field,
+                   "Attribute holding a polygon's least depth in sources other than S-57 (DEPARE/DRGARE use DRVAL1)");
+    sub.add_option("--danger-radius", import.danger_radius_m, "Radius in metres of the circle a point danger becomes (default 10)")
+        ->check(finite)->check(CLI::PositiveNumber);
+}
+
+
+void CoastAndShip::add(CLI::App& sub) {
+    sub.add_option("--coast", coast, "A grid file, or coastline sources (built into a cached grid)")->required();
+    auto* ship = sub.add_option("--ship", ship_file, "Ship file (schemas/ship.schema.json)");
+    sub.add_option("--dims", dims, "AIS dimensions A,B,C,D in metres instead of --ship")->excludes(ship);
+    auto* cell = sub.add_option("--cell", request.cell_m, "Cell edge in metres when building from a coastline")
+                     ->check(finite)->check(CLI::PositiveNumber);
+    sub.add_option("--ship-length", request.ship_length_m, "Cell = 2.5 x this when building from a coastline")
+        ->check(finite)->check(CLI::PositiveNumber)->excludes(cell);
+    sub.add_option("--crs", request.crs, "Projected CRS of the local frame when building from a coastline");
+    sub.add_option("--layer", request.import.layers, "Layer(s) to read from coastline sources")->delimiter(',');
+    sub.add_option("--source-crs", request.import.source_crs, "CRS of coastline sources that carry none");
+    sub.add_option("--cache-dir", request.cache_dir, "Folder for built grids (default $SHOAL_CACHE_DIR or ~/.cache/shoal)");
+    sub.add_option("--ukc", ukc, "Under-keel clearance required, metres: limiting depth = the ship's draught + this (default 0)")
+        ->check(finite)->check(CLI::NonNegativeNumber);
+    add_hazard_options(sub, request.import);
+    sub.add_flag("-v,--verbose", verbose, "Say how the grid was obtained and how long it took");
+}
+
+std::vector<std::string> CoastAndShip::inputs(std::vector<std::string> more) const {
+    more.insert(more.end(), coast.begin(), coast.end());
+    if (!ship_file.empty()) more.push_back(ship_file);
+    return more;
+}
+
+hull::Hull CoastAndShip::load_hull() const {
+    if (!ship_file.empty()) return hull::Hull::load(ship_file);
+    if (!dims.empty()) return hull::Hull::from_dims_string(dims);
+    throw UsageError("give the ship with --ship SHIP.json or --dims A,B,C,D");
+}
+
+std::string CoastAndShip::hull_label() const { return ship_file.empty() ? "--dims " + dims : "ship file"; }
+
+grid::CoastGrid CoastAndShip::load_grid(const hull::Hull& hull) const {
+    const grid::DepthPlan plan = grid::plan_limiting_depth(request.import.limiting_depth_m, hull.draught(), ukc);
+    grid::BuildRequest req = request;
+    req.import.limiting_depth_m = plan.depth_m;
+    char why[160] = "--hazard-depth";
+    if (plan.source == grid::DepthPlan::Source::draught)
+        std::snprintf(why, sizeof why, "draught %.2f m + under-keel clearance %.2f m", plan.draught_m, plan.ukc_m);
+    if (plan.ukc_unused) print_warnings({"--ukc needs a ship with a draught (or give --hazard-depth): checking against land only"});
+    const bool is_grid = coast.size() == 1 && grid::looks_like_grid(coast[0]);
+    if (!is_grid && plan.depth_m)
+        std::fprintf(stderr, "shoal: limiting depth %.2f m (%s): shallower depth areas and dangers are hazards\n", *plan.depth_m, why);
+    check_readable(coast);
+    grid::LoadReport report;
+    grid::CoastGrid g = grid::load_or_build(coast, req, &report);
+    print_warnings(report.warnings);
+    if (is_grid) {
+        const double built = g.source().limiting_depth_m;
+        const double want = plan.depth_m.value_or(NAN);
+        char buf[400] = "";
+        switch (grid::depth_fit(g, plan)) {
+        case grid::DepthFit::fits: break;
+        case grid::DepthFit::land_only:  // with a draught too: a shallow grounding would be missed without a word
+            std::snprintf(buf, sizeof buf, "the grid '%s' holds land only (built without a limiting depth): shallow water and dangers "
+                          "are not checked for the limiting depth %.2f m (%s); rebuild it with shoal import --hazard-depth",
+                          coast[0].c_str(), want, why);
+            break;
+        case grid::DepthFit::shallower:
+        case grid::DepthFit::deeper:
+            std::snprintf(buf, sizeof buf, "the grid '%s' was built for the limiting depth %.2f m, not %.2f m (%s): %s; rebuild it with "
+                          "shoal import --hazard-depth %.2f", coast[0].c_str(), built, want, why,
+                          built < want ? "water between those depths is not seen as a hazard" : "more water counts as a hazard than needed",
+                          want);
+            break;
+        }
+        if (buf[0]) print_warnings({buf});
+    }
+    if (verbose)
+        std::fprintf(stderr, "shoal: %s%s%s in %.3f s\n", printable(report.how).c_str(), report.cache_path.empty() ? "" : " ",
+                     printable(report.cache_path).c_str(), report.seconds);
+    return g;
+}
+
+}  // namespace shoal::cli

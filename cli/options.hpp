@@ -1,0 +1,63 @@
+#pragma once
+// What the commands share: option validators, the coast-and-ship options of probe and check,
+// and how warnings and grids are printed.
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <shoal/grid/coast_grid.hpp>
+#include <shoal/grid/grid_cache.hpp>
+#include <shoal/hull/hull.hpp>
+
+namespace shoal::cli {
+
+/// The smallest --step: a centimetre (a hull point moves at most this between checks).
+inline constexpr double min_step_m = 0.01;
+
+/// Numbers that must be finite: CLI11's PositiveNumber and NonNegativeNumber let NaN through
+/// (every comparison with it is false), and a NaN option would silently switch a rule off.
+extern const CLI::Validator finite;
+
+/// Before any work: the output can be written where it is asked for (its folder exists, it is
+/// not a folder), and it is none of the inputs (the same file by any path: writing the output
+/// would destroy the input it is made from).
+void check_output(const std::string& output, const std::vector<std::string>& inputs);
+
+/// Coastline sources and grids that exist but cannot be opened: said as such, not as "not a
+/// vector dataset" (which is what OGR makes of a file it may not read).
+void check_readable(const std::vector<std::string>& paths);
+
+/// "shoal: warning: ..." on stderr, one line each, terminal escapes shown as hex.
+void print_warnings(const std::vector<std::string>& warnings);
+
+/// What a grid holds (import and info).
+void print_grid(const grid::CoastGrid& g);
+
+/// --hazard-depth, --depth-field, --danger-radius: which depth areas and dangers are hazards.
+void add_hazard_options(CLI::App& sub, coast::ImportOptions& import);
+
+/// Options shared by the commands that take `--coast COAST_OR_GRID` and a ship.
+struct CoastAndShip {
+    std::vector<std::string> coast;
+    std::string ship_file;
+    std::string dims;
+    grid::BuildRequest request;
+    std::optional<double> ukc;  ///< --ukc: under-keel clearance required, metres
+    bool verbose = false;
+
+    void add(CLI::App& sub);
+    /// Every input file named: `more`, the coastline sources and the ship file.
+    std::vector<std::string> inputs(std::vector<std::string> more) const;
+    hull::Hull load_hull() const;
+    /// Where the default hull came from, for the report: "ship file" or "--dims A,B,C,D".
+    std::string hull_label() const;
+    /// The grid for `hull`: a grid file as it is, or coastline sources built for the limiting
+    /// depth (grid::plan_limiting_depth: --hazard-depth, else the ship's draught + --ukc, else
+    /// land only), with a warning when a grid file does not serve that depth.
+    grid::CoastGrid load_grid(const hull::Hull& hull) const;
+};
+
+}  // namespace shoal::cli
