@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <thread>
 
@@ -36,6 +38,40 @@ void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<v
     if (tick) tick();
 }
 
+/// Threads: all cores by default; never more than 4 per core (each holds a PROJ context and
+/// buffers: -j 100000 would start 100,000 threads), nor more than there is work (parallel_for).
+unsigned thread_count(unsigned jobs) {
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    return std::clamp(jobs ? jobs : cores, 1u, 4 * cores);
+}
+
+/// The first exception a worker met that is not bad input (a bug, a library failure): the
+/// workers go on, and it is thrown again on the calling thread once they have all finished.
+class FirstFailure {
+public:
+    void keep(std::exception_ptr e) {
+        const std::lock_guard lock(m_mutex);
+        if (!m_first) m_first = std::move(e);
+    }
+    void rethrow() {
+        if (m_first) std::rethrow_exception(m_first);
+    }
+
+private:
+    std::mutex m_mutex;
+    std::exception_ptr m_first;
+};
+
+/// Tracks to audit, taken one by one (a packed track is unpacked when taken, then freed).
+struct TrackSource {
+    std::size_t count = 0;
+    std::function<std::size_t(std::size_t)> fixes;  ///< fixes of track k, for the progress
+    std::function<track::Track(std::size_t)> take;  ///< track k, once
+};
+
+AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
+                  const AuditOptions& options);
+
 std::string dims_label(const hull::Dimensions& d) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "AIS dimensions %g,%g,%g,%g", d.a, d.b, d.c, d.d);
@@ -44,59 +80,97 @@ std::string dims_label(const hull::Dimensions& d) {
 
 }  // namespace
 
-AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastGrid& grid, const hull::Hull& default_hull,
-                      const std::string& hull_label, const AuditOptions& options) {
-    AuditResult result;
-    // Threads: all cores by default; never more than 4 per core (each holds a PROJ context and
-    // buffers: -j 100000 would start 100,000 threads), nor more than there is work (below).
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned jobs = std::clamp(options.jobs ? options.jobs : cores, 1u, 4 * cores);
-    const std::vector<std::string> files = track::expand_inputs(inputs);
-
+ReadResult read_inputs(const std::vector<std::string>& inputs, const track::ReadOptions& options, unsigned jobs) {
+    ReadResult result;
+    const std::vector<std::string> files = track::expand_inputs(inputs, &result.warnings);
     // 1. Read every file (a file that cannot be read is reported; the batch goes on). Fixes
     // stay packed (32 bytes each) until their track is swept, and are freed after it.
     const auto t0 = Clock::now();
     std::vector<track::PackedTrackFile> read(files.size());
     result.files.resize(files.size());
+    FirstFailure failure;
     parallel_for(
-        files.size(), jobs,
+        files.size(), thread_count(jobs),
         [&](std::size_t k, unsigned) {
             FileResult& fr = result.files[k];
             fr.file = files[k];
             try {
-                read[k] = track::read_tracks_packed(files[k], options.read);
+                read[k] = track::read_tracks_packed(files[k], options);
                 fr.format = read[k].format;
                 fr.read = read[k].report;
                 fr.tracks = read[k].tracks.size();
-            } catch (const std::exception& e) {
+            } catch (const InputError& e) {  // bad input costs this file; anything else is a bug
                 fr.error = e.what();
+            } catch (const std::bad_alloc&) {
+                fr.error = files[k] + ": out of memory reading it";
+            } catch (...) {
+                failure.keep(std::current_exception());
             }
         },
         {});
-    result.read_s = std::chrono::duration<double>(Clock::now() - t0).count();
-
-    // 2. Sweep every track.
-    std::vector<track::PackedTrack*> tracks;
+    failure.rethrow();
     for (auto& f : read)
-        for (auto& t : f.tracks) tracks.push_back(&t);
+        for (auto& t : f.tracks) result.tracks.push_back(std::move(t));
+    result.read_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    return result;
+}
+
+AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastGrid& grid, const hull::Hull& default_hull,
+                      const std::string& hull_label, const AuditOptions& options) {
+    return audit_tracks(read_inputs(inputs, options.read, options.jobs), grid, default_hull, hull_label, options);
+}
+
+AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
+                         const AuditOptions& options) {
+    std::vector<track::PackedTrack>& packed = read.tracks;
+    TrackSource source{packed.size(), [&](std::size_t k) { return packed[k].size(); },
+                       [&](std::size_t k) {
+                           track::Track t = packed[k].unpack();
+                           packed[k].release_fixes();
+                           return t;
+                       }};
+    AuditResult result = audit(source, grid, default_hull, hull_label, options);
+    result.files = std::move(read.files);
+    result.read_s = read.read_s;
+    for (const auto& f : result.files) result.skipped_rows += f.read.skipped;
+    result.warnings.insert(result.warnings.begin(), read.warnings.begin(), read.warnings.end());
+    return result;
+}
+
+AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid& grid, const hull::Hull& default_hull,
+                         const std::string& hull_label, const AuditOptions& options) {
+    TrackSource source{tracks.size(), [&](std::size_t k) { return tracks[k].fixes.size(); },
+                       [&](std::size_t k) { return std::move(tracks[k]); }};
+    return audit(source, grid, default_hull, hull_label, options);
+}
+
+namespace {
+
+AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
+                  const AuditOptions& options) {
+    AuditResult result;
+    const unsigned jobs = thread_count(options.jobs);
+    // 2. Sweep every track.
     std::size_t total_fixes = 0;
-    for (const auto* t : tracks) total_fixes += t->size();
-    std::vector<TrackResult> swept(tracks.size());
-    std::vector<std::string> errors(tracks.size());
+    for (std::size_t k = 0; k < source.count; ++k) total_fixes += source.fixes(k);
+    std::vector<TrackResult> swept(source.count);
+    std::vector<std::string> errors(source.count);
     // Exercise mode keeps every track (headings resolved) and its hull for the encounters.
-    std::vector<track::Track> kept(options.encounters ? tracks.size() : 0);
+    std::vector<track::Track> kept(options.encounters ? source.count : 0);
     std::vector<std::optional<hull::Hull>> kept_hulls(kept.size());
     std::vector<std::unique_ptr<geo::LocalFrame>> frames;  // PROJ transformations are per thread
     for (unsigned w = 0; w < jobs; ++w) frames.push_back(std::make_unique<geo::LocalFrame>(grid.frame()));
     std::atomic<std::size_t> done{0};
+    FirstFailure failure;
     const auto t1 = Clock::now();
     std::function<void()> tick;
     if (options.progress) tick = [&] { options.progress(done.load(), total_fixes); };
     parallel_for(
-        tracks.size(), jobs,
+        source.count, jobs,
         [&](std::size_t k, unsigned w) {
-            track::Track t = tracks[k]->unpack();
-            tracks[k]->release_fixes();
+            track::Track t = source.take(k);
+            swept[k].summary.id = t.id;
+            swept[k].summary.file = t.file;
             try {
                 track::WildFixOptions wo = options.wild;
                 wo.max_gap_s = options.sweep.max_gap_s;
@@ -123,22 +197,23 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
                     kept_hulls[k] = hull;
                 }
                 for (auto& line : swept[k].summary.lines) line.shrink_to_fit();  // held until the report is written
-            } catch (const std::exception& e) {
+            } catch (const InputError& e) {  // bad input costs this track; anything else is a bug
                 errors[k] = e.what();
-                swept[k].summary.id = t.id;
-                swept[k].summary.file = t.file;
+            } catch (...) {
+                failure.keep(std::current_exception());
             }
             done.fetch_add(t.fixes.size());
         },
         tick);
+    failure.rethrow();
     result.sweep_s = std::chrono::duration<double>(Clock::now() - t1).count();
 
     std::vector<const track::Track*> exercise;
     std::vector<std::size_t> exercise_index;  // exercise position -> index in result.tracks
     std::vector<hull::Hull> exercise_hulls;
-    for (std::size_t k = 0; k < tracks.size(); ++k) {
+    for (std::size_t k = 0; k < source.count; ++k) {
         if (!errors[k].empty()) {
-            result.errors.push_back({tracks[k]->file, tracks[k]->id, errors[k]});
+            result.errors.push_back({swept[k].summary.file, swept[k].summary.id, errors[k]});
             continue;
         }
         if (options.encounters && kept_hulls[k] && !kept[k].fixes.empty()) {
@@ -164,7 +239,6 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
         }
         result.tracks.push_back(std::move(swept[k]));
     }
-    for (const auto& f : result.files) result.skipped_rows += f.read.skipped;
     if (result.fixes >= 10 && 2 * result.uncovered_fixes > result.fixes)
         result.warnings.push_back(std::to_string(result.uncovered_fixes) + " of " + std::to_string(result.fixes) +
                                   " fixes lie outside the chart's area (uncovered: nothing is claimed there). Are latitude and "
@@ -199,5 +273,7 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
     }
     return result;
 }
+
+}  // namespace
 
 }  // namespace shoal::audit

@@ -190,21 +190,51 @@ PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& o
     return out;
 }
 
-std::vector<std::string> expand_inputs(const std::vector<std::string>& paths) {
+std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings) {
     std::vector<std::string> out;
+    std::vector<fs::path> seen;  // the files taken so far, as canonical paths
+    auto warn = [&](const std::string& w) {
+        if (warnings) warnings->push_back(w);
+    };
+    // A file met again (named twice, or by a symlink, or in a folder also given) is read once.
+    auto take = [&](const std::string& file) {
+        std::error_code ec;
+        const fs::path canonical = fs::weakly_canonical(file, ec);
+        if (!ec) {
+            for (std::size_t i = 0; i < seen.size(); ++i)
+                if (seen[i] == canonical) {
+                    warn("'" + file + "' is the file '" + out[i] + "' given before: read once");
+                    return;
+                }
+        }
+        seen.push_back(ec ? fs::path(file) : canonical);
+        out.push_back(file);
+    };
     for (const std::string& p : paths) {
         std::error_code ec;
         const auto status = fs::status(p, ec);
-        if (!fs::exists(status)) throw InputError(p + ": no such file or folder");
+        if (!fs::exists(status)) {
+            if (ec && ec != std::errc::no_such_file_or_directory)
+                throw InputError(p + ": cannot read (" + ec.message() + ")");
+            throw InputError(p + ": no such file or folder");
+        }
         if (!fs::is_directory(status)) {
-            out.push_back(p);
+            take(p);
             continue;
         }
         std::vector<std::string> found;
-        for (const auto& entry : fs::directory_iterator(p, ec)) {
-            if (!entry.is_regular_file()) continue;
+        for (fs::directory_iterator it(p, ec), end; !ec && it != end; it.increment(ec)) {
+            const fs::directory_entry& entry = *it;
+            std::error_code entry_ec;
+            // A bad entry (a symlink loop, a dangling link, no permission) costs that entry.
+            const bool regular = entry.is_regular_file(entry_ec);
             const std::string name = entry.path().filename().string();
             if (!is_track_extension(lower_extension(entry.path()))) continue;
+            if (entry_ec) {
+                warn(entry.path().string() + ": cannot read (" + entry_ec.message() + "); skipped");
+                continue;
+            }
+            if (!regular) continue;
             if (name.size() >= 12 && lower_extension(entry.path()) == ".csv" &&
                 name.compare(name.size() - 12, 12, "_vessels.csv") == 0)
                 continue;  // AIS static data, read with read_vessels
@@ -214,7 +244,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths) {
         if (found.empty())
             throw InputError(p + ": folder holds no track files (.csv .gpx .geojson .json .nmea .log .txt)");
         std::sort(found.begin(), found.end());
-        out.insert(out.end(), found.begin(), found.end());
+        for (const std::string& f : found) take(f);
     }
     return out;
 }

@@ -64,8 +64,31 @@ struct AuditResult {
     double encounters_s = 0;
 };
 
-/// Audits the tracks of `inputs` (files or folders). `default_hull` serves tracks that carry
-/// no AIS dimensions of their own; `hull_label` says where it came from ("ship file", "--dims").
+/// The tracks of `inputs` (files or folders, see track::expand_inputs) read in parallel on
+/// `jobs` threads (0: all cores). A file that cannot be read (InputError) is reported in its
+/// FileResult and the others are read; any other failure is thrown.
+struct ReadResult {
+    std::vector<FileResult> files;           ///< in input order
+    std::vector<track::PackedTrack> tracks;  ///< every file's tracks, in file order
+    std::vector<std::string> warnings;       ///< files given twice, folder entries skipped
+    double read_s = 0;                       ///< wall-clock seconds
+};
+ReadResult read_inputs(const std::vector<std::string>& inputs, const track::ReadOptions& options, unsigned jobs = 0);
+
+/// Audits tracks: outliers dropped, motion and headings resolved, each swept with its own AIS
+/// hull (Track::dims) or `default_hull`, whose origin `hull_label` names ("ship file",
+/// "--dims ..."); in exercise mode, the encounters between them. A track whose input is bad
+/// (InputError) is listed in AuditResult::errors and the others are audited; any other failure
+/// (a bug, a GEOS or PROJ failure) is thrown once every worker has finished.
+AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid& grid, const hull::Hull& default_hull,
+                         const std::string& hull_label, const AuditOptions& options);
+
+/// The same for tracks read by read_inputs (unpacked one at a time, freed once swept); the
+/// result carries the files read.
+AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
+                         const AuditOptions& options);
+
+/// read_inputs, then audit_tracks.
 AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                       const std::string& hull_label, const AuditOptions& options);
 
