@@ -390,6 +390,11 @@ private:
                  " is not a valid time (ISO 8601, epoch seconds, dd/mm/yyyy hh:mm:ss or hh:mm:ss)");
             return;
         }
+        if (!time->date_missing && !plausible_fix_time(time->seconds)) {
+            skip("time " + detail::quoted(time_text) + " is outside the years " + fix_time_range +
+                 " (a wrong unit, or a corrupt field?)");
+            return;
+        }
         Fix fix;
         if (!detail::parse_double(f[m_cols.lat], fix.position.lat, m_decimal_comma)) {
             skip(f[m_cols.lat].empty() ? "no latitude" : "latitude " + detail::quoted(f[m_cols.lat]) + " is not a number");

@@ -142,6 +142,10 @@ private:
                 skip("no time");
                 continue;
             }
+            if (!plausible_fix_time(*t)) {
+                skip("time " + format_iso8601(*t, 0) + " is outside the years " + fix_time_range);
+                continue;
+            }
             ++p.timed;
             const OGRGeometry* g = f->GetGeometryRef();
             if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) {
@@ -347,6 +351,10 @@ private:
             m_out.report.skip(at + "time " + json_text(*tv) + " is not a valid time; point skipped");
             return;
         }
+        if (!plausible_fix_time(*t)) {
+            m_out.report.skip(at + "time " + json_text(*tv) + " is outside the years " + fix_time_range + "; point skipped");
+            return;
+        }
         Fix fix;
         const json* coords = member(g, "coordinates");
         if (!position(coords ? *coords : json(), at, fix.position)) return;
@@ -424,6 +432,10 @@ private:
                 m_out.report.skip(at + key + " " + json_text(*times[i]) + " is not a valid time; point skipped");
                 continue;
             }
+            if (!plausible_fix_time(*t)) {
+                m_out.report.skip(at + key + " " + json_text(*times[i]) + " is outside the years " + fix_time_range + "; point skipped");
+                continue;
+            }
             Fix fix;
             if (!position(*vertices[i], at, fix.position)) continue;
             fix.time_s = *t;
@@ -445,7 +457,11 @@ private:
 TrackFile read_gpx(const std::string& path, const ReadOptions& options) { return GpxReader(path, options).read(); }
 
 TrackFile read_geojson_text(std::string_view text, const std::string& file, const ReadOptions& options) {
-    return GeoJsonReader(text, file, options).read();
+    try {
+        return GeoJsonReader(text, file, options).read();
+    } catch (const json::exception& e) {  // a value of a type the reader did not check: bad input all the same
+        throw InputError(file + ": unexpected JSON: " + e.what());
+    }
 }
 
 TrackFile read_geojson(const std::string& path, const ReadOptions& options) {

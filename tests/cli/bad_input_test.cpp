@@ -824,3 +824,51 @@ TEST_F(BadInput, ALandOnlyGridWithAShipThatHasADraughtIsSaid) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(BadInput, TimesOutsideThePlausibleYearsCostTheirRowOnly) {
+    // 1e19 (read as milliseconds: year 316889355) once crashed the report's labels; 2e13 ms is
+    // the year 2603, 2150 is past the range. Each costs its row; vessel A still grounds.
+    std::string text = header + solent_rows();
+    text += "111111111,10000000000000000000,50.6800,-1.3000,11.9,180,511\n";
+    text += "111111111,20000000000000,50.6800,-1.3000,11.9,180,511\n";
+    text += "111111111,2150-01-01T00:00:00Z,50.6800,-1.3000,11.9,180,511\n";
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("future.csv", text)}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("future.csv line 34: time '10000000000000000000' is outside the years 1980-2099"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("line 35: time '20000000000000' is outside"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("line 36: time '2150-01-01T00:00:00Z' is outside"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+}
+
+TEST_F(BadInput, ASymlinkLoopInATrackFolderCostsThatEntry) {
+    const fs::path dir = fs::path(m_dir.path()) / "tracks";
+    fs::create_directory(dir);
+    write((dir / "good.csv").string(), header + solent_rows());
+    fs::create_symlink("loop.csv", dir / "loop.csv");  // a link to itself
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({dir.string()}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("loop.csv: cannot read (Too many levels of symbolic links); skipped"), std::string::npos) << o.err;
+    EXPECT_EQ(report(r)["shoal"]["summary"]["tracks"], 2);
+}
+
+TEST_F(BadInput, TheSameFileGivenTwiceOrByASymlinkIsReadOnce) {
+    const std::string good = good_tracks();
+    const std::string link = m_dir.file("link.csv");
+    fs::create_symlink(good, link);
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({good, good, link}, r, {"--encounters"});
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("is the file '" + good + "' given before: read once"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["tracks"], 2);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);
+    EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 0) << "a vessel read twice would collide with itself";
+}
+
+}  // namespace

@@ -166,3 +166,20 @@ TEST(ValidDate, KnowsLeapYears) {
 }
 
 }  // namespace
+
+// Midnights from `date -u -d 2024-05-01 +%s` (1714521600) and `date -u -d 2000-02-29 +%s`.
+TEST(ParseDate, ReadsADayAsItsMidnightUtc) {
+    EXPECT_EQ(shoal::track::parse_date("2024-05-01"), 1714521600.0);
+    EXPECT_EQ(shoal::track::parse_date(" 2000-02-29 "), 951782400.0);
+    for (const char* bad : {"2023-02-29", "2024-13-01", "2024-5-1", "2024-05-01T00:00", "2024-05-01x", "", "yesterday"})
+        EXPECT_EQ(shoal::track::parse_date(bad), std::nullopt) << bad;
+}
+
+TEST(PlausibleFixTime, SpansTheYears1980To2099) {
+    using shoal::track::plausible_fix_time;
+    EXPECT_TRUE(plausible_fix_time(315532800.0));    // date -u -d 1980-01-01 +%s
+    EXPECT_FALSE(plausible_fix_time(315532799.0));
+    EXPECT_TRUE(plausible_fix_time(4102444799.0));
+    EXPECT_FALSE(plausible_fix_time(4102444800.0));  // date -u -d 2100-01-01 +%s
+    EXPECT_FALSE(plausible_fix_time(NAN));
+}

@@ -43,6 +43,14 @@ std::optional<double> parse_time_of_day(std::string_view text) noexcept;
 /// otherwise (for logs whose times carry no date: ReadOptions::date_s).
 std::optional<double> parse_date(std::string_view text) noexcept;
 
+/// The times a fix may carry: from 1980-01-01 (before GPS week 0 and AIS) to 2100-01-01, UTC.
+/// A dated time outside is a corrupt field or a wrong unit (microseconds read as milliseconds,
+/// say) and costs its row; times of day without a date are dated later and not judged here.
+inline constexpr double earliest_fix_time_s = 315532800.0;  // 1980-01-01T00:00:00Z
+inline constexpr double latest_fix_time_s = 4102444800.0;   // 2100-01-01T00:00:00Z
+inline constexpr const char* fix_time_range = "1980-2099";
+inline bool plausible_fix_time(double t) noexcept { return t >= earliest_fix_time_s && t < latest_fix_time_s; }
+
 /// True for a real day of the proleptic Gregorian calendar (years 1-9999).
 bool valid_date(int year, int month, int day) noexcept;
 /// Days from 1970-01-01 to the given date (negative before); no range check.
