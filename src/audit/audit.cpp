@@ -9,6 +9,7 @@
 #include <optional>
 #include <thread>
 
+#include <shoal/track/merge.hpp>
 #include <shoal/util/error.hpp>
 
 namespace shoal::audit {
@@ -111,6 +112,7 @@ ReadResult read_inputs(const std::vector<std::string>& inputs, const track::Read
     failure.rethrow();
     for (auto& f : read)
         for (auto& t : f.tracks) result.tracks.push_back(std::move(t));
+    for (std::string& m : track::merge_same_vessels(result.tracks)) result.warnings.push_back(std::move(m));
     result.read_s = std::chrono::duration<double>(Clock::now() - t0).count();
     return result;
 }

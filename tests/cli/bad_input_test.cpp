@@ -872,3 +872,29 @@ TEST_F(BadInput, TheSameFileGivenTwiceOrByASymlinkIsReadOnce) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(BadInput, OneVesselSplitAcrossTwoReceiversFilesIsOneTrack) {
+    // Receiver 1 heard vessel A's first 14 fixes, receiver 2 its fixes 7-20 (7-13 by both), and
+    // vessel B only in the first file. One track each, every fix once.
+    std::string one = header, two = header;
+    for (int i = 0; i <= 20; ++i) {
+        const std::string r = row("111111111", i, 50.78 - 0.01 * i, -1.30);
+        if (i <= 13) one += r;
+        if (i >= 7) two += r;
+    }
+    for (int i = 0; i <= 10; ++i) one += row("222222222", i, 50.74, -1.05 + 0.002 * i);
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("receiver1.csv", one), file("receiver2.csv", two)}, r, {"--encounters"});
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("vessel 111111111 is in 2 files"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("merged into one track of 21 fixes, 7 fixes held twice kept once"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["tracks"], 2);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 0);
+}
+
+}  // namespace
