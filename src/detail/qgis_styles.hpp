@@ -4,8 +4,11 @@
 /// footprints outlined. QGIS loads `NAME.qml` beside `NAME.geojson` as the layer's default
 /// style, and a GeoPackage's `layer_styles` table for its layers.
 
+#include <optional>
 #include <string>
 #include <string_view>
+
+#include <shoal/util/output_file.hpp>
 
 class GDALDataset;
 
@@ -14,11 +17,10 @@ namespace shoal::report {
 /// The QML of layer `layer` ("events", "tracks" or "hulls"); empty for another name.
 std::string_view layer_style(std::string_view layer);
 
-/// Writes `NAME.qml` (the events style) beside a GeoJSON report `NAME.geojson`, atomically.
-/// Writes the style beside a GeoJSON report (REPORT.qml), marked as shoal's. An existing file
-/// of that name that shoal did not write (no mark) is left as it is: returns a warning then,
-/// "" when the style was written.
-std::string write_sidecar_style(const std::string& geojson_path, std::string_view layer = "events");
+/// Stages the style of `layer` as `qml_path` (REPORT.qml beside a GeoJSON report), marked as
+/// shoal's. An existing file of that name that shoal did not write (no mark) is left as it is:
+/// returns nothing then, with the warning in `warning`.
+std::optional<StagedOutput> stage_sidecar_style(const std::string& qml_path, std::string_view layer, std::string& warning);
 /// The mark shoal puts in the styles it writes beside reports.
 inline constexpr std::string_view sidecar_mark = "<!-- written by shoal beside its report; shoal replaces it at the next run -->";
 

@@ -2,12 +2,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <type_traits>
+#include <variant>
 
 #include "detail/qgis_styles.hpp"
+#include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/version.hpp>
 #include <shoal/track/time.hpp>
-#include <shoal/util/atomic_file.hpp>
+#include <shoal/util/output_file.hpp>
 
 namespace shoal::report {
 
@@ -34,18 +38,6 @@ std::string event_label(const audit::Event& e) {
     return s + iso_time(e.start_s).substr(11);
 }
 
-namespace {
-
-double round_to(double v, double decimals) {
-    const double k = std::pow(10.0, decimals);
-    return std::round(v * k) / k;
-}
-
-/// Metres with millimetres, or null for "beyond the search limit".
-json metres(double v) { return std::isfinite(v) ? json(round_to(v, 3)) : json(nullptr); }
-
-}  // namespace
-
 std::string wild_fix_message(const audit::TrackSummary& t, const track::WildFix& w) {
     char buf[96];
     std::snprintf(buf, sizeof buf, " line %zu: fix at %.6f, %.6f (", w.line, w.position.lat, w.position.lon);
@@ -54,206 +46,101 @@ std::string wild_fix_message(const audit::TrackSummary& t, const track::WildFix&
 
 namespace {
 
-json event_properties(const audit::TrackSummary& t, const audit::Event& e) {
-    json p;
-    p["track"] = t.id;
-    p["name"] = t.name;
-    p["kind"] = audit::to_string(e.kind);
-    p["hit"] = coast::to_string(e.hit);
-    p["charted_depth_m"] = e.hit != coast::HazardKind::land && std::isfinite(e.charted_depth_m) ? json(round_to(e.charted_depth_m, 2)) : json(nullptr);
-    p["danger"] = coast::to_string(e.danger);
-    p["start"] = iso_time(e.start_s);
-    p["end"] = iso_time(e.end_s);
-    p["duration_s"] = round_to(e.end_s - e.start_s, 3);
-    p["min_clearance_m"] = metres(e.min_clearance_m);
-    p["penetration_m"] = audit::is_contact(e.kind) ? metres(e.penetration_m) : json(nullptr);
-    p["ship_lat"] = round_to(e.ship.lat, 7);
-    p["ship_lon"] = round_to(e.ship.lon, 7);
-    p["heading"] = std::isfinite(e.heading_deg) ? json(round_to(e.heading_deg, 1)) : json(nullptr);
-    p["heading_source"] = track::to_string(e.heading_source);
-    p["orientation"] = e.orientation_unknown ? "unknown (hull circle)" : "hull";
-    p["speed_kn"] = std::isfinite(e.speed_kn) ? json(round_to(e.speed_kn, 2)) : json(nullptr);
-    p["speed_source"] = track::to_string(e.speed_source);
-    const bool contact = audit::is_contact(e.kind);
-    p["stopped_before"] = contact ? json(e.stopped_before) : json(nullptr);
-    p["stopped_after_s"] = contact && std::isfinite(e.stopped_after_s) ? json(round_to(e.stopped_after_s, 1)) : json(nullptr);
-    p["reference_inside_m"] = contact && std::isfinite(e.reference_inside_m) ? json(round_to(e.reference_inside_m, 2)) : json(nullptr);
-    p["nav_status"] = e.nav_status == track::nav_status_unknown ? json(nullptr) : json(e.nav_status);
-    p["nav_status_text"] = track::nav_status_text(e.nav_status);
-    p["reported_aground"] = e.reported_aground;
-    p["unseen_after"] = e.unseen_after;
-    p["area"] = e.area_kind;
-    p["area_name"] = e.area_name;
-    p["structure"] = e.structure;
-    p["fix_index"] = e.fix_index;
-    p["fix_line"] = e.fix_line;
-    p["file"] = t.file;
-    p["hull"] = t.hull;
-    p["label"] = event_label(e);
-    return p;
+json to_json(const fields::Value& v) {
+    return std::visit([](const auto& x) -> json {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) return nullptr;
+        else return x;
+    }, v);
 }
 
-json track_summary(const audit::TrackSummary& t) {
-    json j;
-    j["track"] = t.id;
-    j["name"] = t.name;
-    j["file"] = t.file;
-    j["hull"] = t.hull;
-    j["fixes"] = t.fixes;
-    j["uncovered_fixes"] = t.uncovered_fixes;
-    j["segments"] = t.segments;
-    j["gaps"] = t.gaps;
-    j["poses"] = t.poses;
-    j["groundings"] = t.groundings;
-    j["alongside"] = t.alongside;
-    j["contacts_at_start"] = t.contacts_at_start;
-    j["expected_contacts"] = t.expected_contacts;
-    j["close_passes"] = t.close_passes;
-    j["wild_fixes"] = t.wild_fixes.size();
-    j["jumps"] = t.jumps;
-    j["unknown_heading_fixes"] = t.unknown_heading_fixes;
-    j["min_clearance_m"] = metres(t.min_clearance_m);
-    j["distance_m"] = round_to(t.distance_m, 1);
-    j["start"] = iso_time(t.start_s);
-    j["end"] = iso_time(t.end_s);
+/// One row of a layer as a JSON object: every field of the table, in its order. `omit_null`:
+/// fields whose value is null are left out (problems: "track" and "line" only when known).
+template <class Row>
+json object_of(const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r, bool omit_null = false) {
+    json j = json::object();
+    for (const auto& f : table) {
+        if (f.present && !f.present(r)) continue;
+        fields::Value v = fields::value_of(f, row);
+        if (omit_null && std::holds_alternative<std::monostate>(v)) continue;
+        j[f.name] = to_json(v);
+    }
     return j;
 }
 
-/// Properties of a ship-to-ship encounter: the same core fields as an event (of ship a), plus
-/// the other ship.
-json encounter_properties(const audit::AuditResult& r, const audit::Encounter& e) {
-    const auto& ta = r.tracks.at(e.a.track).summary;
-    const auto& tb = r.tracks.at(e.b.track).summary;
-    json p;
-    p["track"] = ta.id;
-    p["name"] = ta.name;
-    p["kind"] = audit::to_string(e.kind);
-    p["hit"] = "ship";
-    p["charted_depth_m"] = nullptr;
-    p["danger"] = "";
-    p["start"] = iso_time(e.start_s);
-    p["end"] = iso_time(e.end_s);
-    p["duration_s"] = round_to(e.end_s - e.start_s, 3);
-    p["min_clearance_m"] = metres(e.min_clearance_m);
-    p["penetration_m"] = nullptr;
-    p["ship_lat"] = round_to(e.a.position.lat, 7);
-    p["ship_lon"] = round_to(e.a.position.lon, 7);
-    p["heading"] = round_to(e.a.heading_deg, 1);
-    p["fix_index"] = e.a.fix_index;
-    p["other_track"] = tb.id;
-    p["other_name"] = tb.name;
-    p["other_lat"] = round_to(e.b.position.lat, 7);
-    p["other_lon"] = round_to(e.b.position.lon, 7);
-    p["other_heading"] = round_to(e.b.heading_deg, 1);
-    p["other_fix_index"] = e.b.fix_index;
-    p["distance_m"] = round_to(e.distance_m, 3);
-    p["label"] = std::string(e.kind == audit::EncounterKind::collision ? "collision " : "close quarters ") + iso_time(e.start_s).substr(11);
-    return p;
+json point_feature(geo::LonLat p, json properties) {
+    using fields::round_to, fields::coordinate_decimals;
+    json f;
+    f["type"] = "Feature";
+    f["geometry"] = {{"type", "Point"}, {"coordinates", {round_to(p.lon, coordinate_decimals), round_to(p.lat, coordinate_decimals)}}};
+    f["properties"] = std::move(properties);
+    return f;
 }
 
 }  // namespace
 
 std::string geojson(const audit::AuditResult& r, const RunInfo& info) {
+    const fields::RunRow run{r, info};
     json doc;
     doc["type"] = "FeatureCollection";
-    json shoal;
-    shoal["version"] = SHOAL_VERSION_STRING;
-    shoal["coast"] = info.coast;
-    shoal["frame"] = info.frame;
-    shoal["cell_m"] = info.cell_m;
-    shoal["limiting_depth_m"] = std::isfinite(info.limiting_depth_m) ? json(info.limiting_depth_m) : json(nullptr);
-    shoal["grid_fingerprint"] = info.grid_fingerprint;
-    shoal["ship"] = info.ship;
-    shoal["step_m"] = info.sweep.step_m;
-    shoal["margin_m"] = info.sweep.margin_m;
-    shoal["max_gap_s"] = info.sweep.max_gap_s;
-    shoal["berthing_speed_kn"] = info.sweep.berthing_speed_kn;
-    shoal["stop_diameter_m"] = info.sweep.stop_diameter_m;
-    shoal["stop_duration_s"] = info.sweep.stop_duration_s;
-    shoal["speed_window_s"] = info.sweep.speed_window_s;
-    shoal["max_speed_kn"] = info.wild.max_speed_kn;
-    shoal["berths"] = info.berths;
-    json summary;
-    summary["files"] = r.files.size();
-    summary["tracks"] = r.tracks.size();
-    summary["tracks_failed"] = r.errors.size();
-    summary["fixes"] = r.fixes;
-    summary["poses"] = r.poses;
-    summary["skipped_rows"] = r.skipped_rows;
-    summary["uncovered_fixes"] = r.uncovered_fixes;
-    const std::size_t contacts = r.groundings + r.alongside + r.contacts_at_start + r.expected_contacts;
-    summary["events"] = contacts + r.close_passes;
-    summary["groundings"] = r.groundings;
-    summary["alongside"] = r.alongside;
-    summary["contacts_at_start"] = r.contacts_at_start;
-    summary["expected_contacts"] = r.expected_contacts;
-    summary["close_passes"] = r.close_passes;
-    summary["wild_fixes"] = r.wild_fixes;
-    summary["jumps"] = r.jumps;
-    summary["unknown_heading_fixes"] = r.unknown_heading_fixes;
-    summary["first_fix"] = iso_time(r.first_fix_s);
-    summary["last_fix"] = iso_time(r.last_fix_s);
+    json shoal = object_of(fields::run_fields(), run, r);
     if (r.has_encounters) {
-        summary["collisions"] = r.collisions;
-        summary["close_quarters"] = r.close_quarters;
-        summary["events"] = contacts + r.close_passes + r.collisions + r.close_quarters;
-        shoal["ship_margin_m"] = info.ship_margin_m;
         json approaches = json::array();
-        for (const auto& a : r.encounters.approaches)
-            approaches.push_back({{"track", r.tracks.at(a.a).summary.id},
-                                  {"other_track", r.tracks.at(a.b).summary.id},
-                                  {"time", iso_time(a.time_s)},
-                                  {"clearance_m", metres(a.clearance_m)},
-                                  {"distance_m", round_to(a.distance_m, 3)},
-                                  {"ship_lat", round_to(a.a_position.lat, 7)},
-                                  {"ship_lon", round_to(a.a_position.lon, 7)},
-                                  {"other_lat", round_to(a.b_position.lat, 7)},
-                                  {"other_lon", round_to(a.b_position.lon, 7)}});
+        for (const auto& a : r.encounters.approaches) approaches.push_back(object_of(fields::approach_fields(), fields::ApproachRow{r, a}, r));
         shoal["closest_approaches"] = approaches;
     }
-    shoal["summary"] = summary;
+    shoal["summary"] = object_of(fields::summary_fields(), run, r);
     json tracks = json::array();
-    for (const auto& t : r.tracks) tracks.push_back(track_summary(t.summary));
+    for (const auto& t : fields::track_rows(r)) tracks.push_back(object_of(fields::track_fields(), t, r));
     shoal["tracks"] = tracks;
     json problems = json::array();
-    for (const auto& f : r.files) {
-        if (!f.error.empty()) problems.push_back({{"file", f.file}, {"message", f.error}});
-        for (const auto& m : f.read.messages) problems.push_back({{"file", f.file}, {"message", m}});
-    }
-    for (const auto& e : r.errors) problems.push_back({{"file", e.file}, {"track", e.track}, {"message", e.message}});
-    for (const auto& t : r.tracks)
-        for (const auto& w : t.summary.wild_fixes)
-            problems.push_back({{"file", t.summary.file}, {"track", t.summary.id}, {"line", w.line},
-                                {"message", wild_fix_message(t.summary, w)}});
+    for (const auto& p : fields::problem_rows(r)) problems.push_back(object_of(fields::problem_fields(), p, r, true));
     shoal["problems"] = problems;
     doc["shoal"] = shoal;
 
     json features = json::array();
     for (const auto& t : r.tracks)
-        for (const auto& e : t.events) {
-            json f;
-            f["type"] = "Feature";
-            f["geometry"] = {{"type", "Point"}, {"coordinates", {round_to(e.point.lon, 7), round_to(e.point.lat, 7)}}};
-            f["properties"] = event_properties(t.summary, e);
-            features.push_back(std::move(f));
-        }
-    for (const auto& e : r.encounters.events) {
-        json f;
-        f["type"] = "Feature";
-        f["geometry"] = {{"type", "Point"}, {"coordinates", {round_to(e.point.lon, 7), round_to(e.point.lat, 7)}}};
-        f["properties"] = encounter_properties(r, e);
-        features.push_back(std::move(f));
-    }
+        for (const auto& e : t.events) features.push_back(point_feature(e.point, object_of(fields::event_fields(), fields::EventRow{t.summary, e}, r)));
+    for (const auto& e : r.encounters.events)
+        features.push_back(point_feature(e.point, object_of(fields::encounter_fields(), fields::EncounterRow{r, e}, r)));
     doc["features"] = features;
     return doc.dump(1) + "\n";
 }
 
-void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info, std::vector<std::string>* warnings) {
-    write_file_atomically(path, geojson(result, info));
-    // The style goes beside a report file, not beside a device (-o /dev/null) or a pipe.
+namespace {
+
+/// Where a GeoJSON report's QGIS style goes: REPORT.qml beside it (not beside stdout, a device or a pipe).
+std::string style_path(const std::string& report) {
     std::error_code ec;
-    if (path != "-" && !path.empty() && std::filesystem::is_regular_file(path, ec))
-        if (std::string w = write_sidecar_style(path, "events"); !w.empty() && warnings) warnings->push_back(std::move(w));
+    if (report.empty() || report == "-") return {};
+    if (const auto st = std::filesystem::status(report, ec); std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) return {};
+    return std::filesystem::path(report).replace_extension(".qml").string();
+}
+
+}  // namespace
+
+std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format) {
+    std::vector<OutputSpec> out{{path, "-o", "the report"}};
+    if (format != "gpkg")
+        if (std::string style = style_path(path); !style.empty()) out.push_back({std::move(style), "-o", "the QGIS style of the report"});
+    return out;
+}
+
+std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
+                                        std::vector<std::string>* warnings) {
+    std::vector<StagedOutput> out;
+    out.emplace_back(path);
+    out.back().write(geojson(result, info));
+    if (const std::string style = style_path(path); !style.empty()) {
+        std::string warning;
+        if (std::optional<StagedOutput> s = stage_sidecar_style(style, "events", warning)) out.push_back(std::move(*s));
+        else if (warnings) warnings->push_back(std::move(warning));
+    }
+    return out;
+}
+
+void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info, std::vector<std::string>* warnings) {
+    std::vector<StagedOutput> staged = stage_geojson(path, result, info, warnings);
+    commit_all(staged);
 }
 
 }  // namespace shoal::report

@@ -6,7 +6,6 @@
 
 #include <filesystem>
 
-#include <shoal/util/atomic_file.hpp>
 #include <shoal/util/error.hpp>
 
 namespace shoal::report {
@@ -17,9 +16,8 @@ std::string_view style_qml(std::string_view name);  // qgis_styles_data.cpp, gen
 
 std::string_view layer_style(std::string_view layer) { return detail::style_qml(layer); }
 
-std::string write_sidecar_style(const std::string& geojson_path, std::string_view layer) {
-    std::filesystem::path p(geojson_path);
-    p.replace_extension(".qml");
+std::optional<StagedOutput> stage_sidecar_style(const std::string& qml_path, std::string_view layer, std::string& warning) {
+    const std::filesystem::path p(qml_path);
     std::error_code ec;
     if (std::filesystem::exists(p, ec)) {
         std::string head;
@@ -28,16 +26,19 @@ std::string write_sidecar_style(const std::string& geojson_path, std::string_vie
             head.resize(std::fread(head.data(), 1, head.size(), f));
             std::fclose(f);
         }
-        if (!std::filesystem::is_regular_file(p, ec) || head.find(sidecar_mark) == std::string::npos)
-            return "'" + p.string() + "' exists and was not written by shoal: left as it is, so the report has no QGIS style beside it "
-                   "(move that file, or write the report elsewhere)";
+        if (!std::filesystem::is_regular_file(p, ec) || head.find(sidecar_mark) == std::string::npos) {
+            warning = "'" + p.string() + "' exists and was not written by shoal: left as it is, so the report has no QGIS style beside it "
+                      "(move that file, or write the report elsewhere)";
+            return std::nullopt;
+        }
     }
     // The mark goes after the DOCTYPE line (an XML comment: QGIS reads the style as before).
     std::string style(layer_style(layer));
     const std::size_t eol = style.find('\n');
     style.insert(eol == std::string::npos ? 0 : eol + 1, std::string(sidecar_mark) + "\n");
-    write_file_atomically(p.string(), style);
-    return {};
+    StagedOutput out(p.string());
+    out.write(style);
+    return out;
 }
 
 namespace {
@@ -69,6 +70,12 @@ void add_layer_styles(GDALDataset& ds) {
          "f_table_schema TEXT(256), f_table_name TEXT(256), f_geometry_column TEXT(256), styleName TEXT(30), "
          "styleQML TEXT, styleSLD TEXT, useAsDefault BOOLEAN, description TEXT, owner TEXT(30), ui TEXT(30), "
          "update_time DATETIME DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ','now')))");
+    // Listed in gpkg_contents as a table of attributes (as QGIS does when it saves a style):
+    // a GeoPackage that has other attribute tables lists only those to OGR, and QGIS finds
+    // `layer_styles` through OGR.
+    exec(ds,
+         "INSERT INTO gpkg_contents (table_name, data_type, identifier, description, last_change) "
+         "VALUES ('layer_styles', 'attributes', 'layer_styles', 'QGIS styles of the layers', '2000-01-01T00:00:00.000Z')");
     for (const char* layer : {"events", "tracks", "hulls", "encounters"}) {
         OGRLayer* l = ds.GetLayerByName(layer);
         if (!l) continue;

@@ -1,14 +1,21 @@
 #pragma once
 /// Writing an audit's results: the GeoJSON report (RFC 7946, WGS84 lon/lat; one Point feature
-/// per event, the run summary in the top-level member "shoal"), the GeoPackage (layers
-/// events, tracks, hulls) and the summary table for stdout. Reports are deterministic (no
-/// wall-clock figures in them) and written atomically.
+/// per event, the run in the top-level member "shoal"), the GeoPackage (the same fields:
+/// layers events, tracks, hulls, encounters; tables problems, closest_approaches, run,
+/// summary) and the summary table for stdout. Reports are deterministic (no wall-clock
+/// figures in them) and written atomically.
+///
+/// A caller that writes several outputs (the report, its style, a picture) checks them all
+/// first with `check_outputs(report_outputs(path, format) + the others, inputs)`, stages each
+/// (stage_geojson / stage_gpkg / StagedOutput), and puts them in place together with
+/// `commit_all`: an interrupt before then leaves every earlier file as it was.
 
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include <shoal/audit/audit.hpp>
+#include <shoal/util/output_file.hpp>
 
 namespace shoal::report {
 
@@ -28,13 +35,28 @@ struct RunInfo {
 
 /// The GeoJSON report as text (schemas/report.schema.json).
 std::string geojson(const audit::AuditResult& result, const RunInfo& info);
-/// Also writes the QGIS style REPORT.qml beside it, unless a file of that name exists that
-/// shoal did not write (then a warning goes into `warnings`, when given, and it is left alone).
+
+/// The files a report at `path` consists of, for check_outputs: the report ("-o", "the
+/// report") and, for a GeoJSON report in a regular file, its QGIS style REPORT.qml beside it.
+/// `format`: "geojson" or "gpkg".
+std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format);
+
+/// The GeoJSON report, staged at `path` (not yet in place: commit_all puts it there), and the
+/// QGIS style REPORT.qml beside it, unless a file of that name exists that shoal did not write
+/// (then a warning goes into `warnings`, when given, and that file is left alone). No style
+/// beside stdout, a device or a pipe. Throws InputError naming the file it could not write.
+std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
+                                        std::vector<std::string>* warnings = nullptr);
+/// stage_geojson, then commit_all.
 void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
                    std::vector<std::string>* warnings = nullptr);
 
-/// The GeoPackage report: layers `events` (points), `tracks` (lines with per-track figures),
-/// `hulls` (hull footprints at each event), in EPSG:4326. Written to a temporary file, renamed.
+/// The GeoPackage report, staged at `path`: layers events, encounters, tracks, hulls, tables
+/// problems, closest_approaches, run, summary (docs/user-guide.md), in
+/// EPSG:4326, QGIS styles in its `layer_styles` table. Throws InputError when `path` is not a
+/// regular file (a device: "a GeoPackage must be a regular file ...") or cannot be written.
+StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info);
+/// stage_gpkg, then commit.
 void write_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info);
 
 /// The human summary: one line per track with events, totals, and problems met.

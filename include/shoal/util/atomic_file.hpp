@@ -1,6 +1,7 @@
 #pragma once
 /// Writing a whole file so that a reader sees the old file or the new one, never half:
-/// write a temporary file in the same folder, flush it to disk, rename it over the target.
+/// write a temporary file in the same folder, flush it to disk, rename it over the target
+/// (a StagedOutput, <shoal/util/output_file.hpp>, which also removes stale temporaries).
 
 #include <string>
 #include <string_view>
@@ -11,6 +12,7 @@ namespace shoal {
 /// exists and is neither a regular file nor a folder (a device such as /dev/null or /dev/full,
 /// a pipe) is written to directly: no temporary beside it, no rename over it. Throws
 /// InputError naming the path (folder missing, disk full, ...), leaving no temporary behind.
+/// The same as `StagedOutput out(path); out.write(bytes); out.commit();`.
 void write_file_atomically(const std::string& path, std::string_view bytes);
 
 /// A temporary file being written now, listed for the length of this object's life so that

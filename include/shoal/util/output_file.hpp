@@ -1,0 +1,87 @@
+#pragma once
+/// Output files: checked before any work, written beside their targets under a temporary name
+/// that says it is shoal's, and put in place (renamed over the targets) together at the end.
+///
+/// A temporary is named `.NAME.shoal.tmp-PID-XXXXXXXX.EXT` beside the target `NAME` (EXT: the
+/// target's extension, so GDAL drivers see the format they expect), with PID the writer's
+/// process id. While it is written it is listed in `TempFileInProgress`, so a signal handler
+/// that calls `remove_temp_files_in_progress` deletes it; a temporary left by a process that
+/// was killed outright (SIGKILL, the OOM killer, a power cut) is recognised by its name and
+/// dead PID and removed the next time an output is staged beside the same target.
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace shoal {
+
+class TempFileInProgress;
+
+/// An output the user asked for, and how messages name it.
+struct OutputSpec {
+    std::string path;                  ///< "" or "-": stdout
+    std::string option = "-o";         ///< the option that named it ("-o", "--plot"); used in "choose another -o"
+    std::string role = "the output";   ///< what it is ("the report", "the picture")
+};
+
+/// Throws InputError unless a file can be written at `path`: its folder exists and it is not
+/// itself a folder ("cannot write 'P': folder 'D' does not exist", "cannot write 'P': it is a
+/// directory"). "" and "-" (stdout) always pass.
+void check_output_place(const std::string& path);
+
+/// Before any work: every output can be written where asked (check_output_place); none is one
+/// of `inputs`, the same file by any path (UsageError "the output 'O' is the input 'I':
+/// writing it would destroy the input; choose another OPTION"); and no two outputs are the
+/// same file, or both stdout (UsageError "OPTION 'B' is ROLE OPTION 'A': choose another file
+/// for ROLE", e.g. "--plot 'r.geojson' is the report -o 'r.geojson': choose another file for
+/// the picture").
+void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std::string>& inputs);
+
+/// One output file being written. The constructor checks the place (check_output_place),
+/// removes stale temporaries of dead processes beside the target, and picks the temporary's
+/// name; `write` (or a library such as GDAL writing to `temp_path()`) fills it; `commit`
+/// renames it over the target. Stdout ("" or "-") and an existing target that is neither a
+/// regular file nor a folder (a device such as /dev/null, a pipe) are *direct*: `write` writes
+/// to them at once and `commit` has nothing to do. An output destroyed before its commit
+/// removes its temporary (with SQLite's -journal, -wal and -shm companions): the target keeps
+/// its old contents.
+class StagedOutput {
+public:
+    explicit StagedOutput(std::string target);
+    StagedOutput(StagedOutput&&) noexcept;
+    StagedOutput& operator=(StagedOutput&&) noexcept;
+    ~StagedOutput();
+
+    const std::string& target() const noexcept { return m_target; }
+    bool direct() const noexcept { return m_temp.empty(); }
+    /// Where the contents go before the commit; empty when direct.
+    const std::string& temp_path() const noexcept { return m_temp; }
+
+    /// Writes all of `bytes`: to the temporary (flushed to disk), or straight to a direct
+    /// target. Throws InputError naming the target (disk full, ...), removing the temporary.
+    void write(std::string_view bytes);
+    /// Puts the temporary in place of the target (a rename); nothing for a direct target.
+    /// Throws InputError naming the target, removing the temporary.
+    void commit();
+
+private:
+    void discard() noexcept;
+    std::string m_target, m_temp;
+    std::unique_ptr<TempFileInProgress> m_listed;
+};
+
+/// Commits every output in order, with SIGINT, SIGTERM, SIGHUP and SIGQUIT held back until the
+/// last rename is done, so that a report, its picture and its style are replaced together at
+/// the very end (a signal that arrives meanwhile is handled just after). Throws the first
+/// failure (the outputs after it are not committed; their temporaries are removed).
+void commit_all(std::vector<StagedOutput>& outputs);
+
+/// Removes the temporaries of `target` (see above) whose writer process no longer exists;
+/// returns how many files were removed. Temporaries of live processes are left alone.
+std::size_t remove_stale_temporaries(const std::string& target);
+
+/// The temporary's name prefix beside `target`: ".NAME.shoal.tmp-".
+std::string temporary_prefix(const std::string& target);
+
+}  // namespace shoal

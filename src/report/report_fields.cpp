@@ -1,0 +1,267 @@
+#include "report/report_fields.hpp"
+
+#include <map>
+
+#include <shoal/track/track.hpp>
+#include <shoal/version.hpp>
+
+namespace shoal::report::fields {
+
+double round_to(double v, int decimals) {
+    const double k = std::pow(10.0, decimals);
+    return std::round(v * k) / k;
+}
+
+namespace {
+
+// Values are built through these, never from a bare `const char*` (which would make a bool).
+Value text(std::string s) { return Value(std::move(s)); }
+Value count(std::size_t n) { return static_cast<std::int64_t>(n); }
+const Value null{};
+
+bool exercise(const audit::AuditResult& r) { return r.has_encounters; }
+
+using audit::is_contact;
+using E = EventRow;
+using C = EncounterRow;
+using T = TrackRow;
+using H = HullRow;
+using P = ProblemRow;
+using A = ApproachRow;
+using R = RunRow;
+constexpr Type text_t = Type::text, integer = Type::integer, real = Type::real, boolean = Type::boolean;
+constexpr const char *none = "", *metres = "m", *seconds = "s", *knots = "kn", *degrees = "deg", *wgs84 = "degrees (WGS84)",
+                      *utc = "ISO 8601 UTC";
+
+}  // namespace
+
+std::string encounter_label(const audit::Encounter& e) {
+    return std::string(e.kind == audit::EncounterKind::collision ? "collision " : "close quarters ") + iso_time(e.start_s).substr(11);
+}
+
+const std::vector<Field<EventRow>>& event_fields() {
+    static const std::vector<Field<EventRow>> f = {
+        {"track", text_t, none, -1, [](const E& x) { return text(x.track.id); }},
+        {"name", text_t, none, -1, [](const E& x) { return text(x.track.name); }},
+        {"kind", text_t, none, -1, [](const E& x) { return text(audit::to_string(x.event.kind)); }},
+        {"hit", text_t, none, -1, [](const E& x) { return text(coast::to_string(x.event.hit)); }},
+        {"charted_depth_m", real, metres, 2,
+         [](const E& x) { return x.event.hit != coast::HazardKind::land ? Value(x.event.charted_depth_m) : null; }},
+        {"danger", text_t, none, -1, [](const E& x) { return text(coast::to_string(x.event.danger)); }},
+        {"start", text_t, utc, -1, [](const E& x) { return text(iso_time(x.event.start_s)); }},
+        {"end", text_t, utc, -1, [](const E& x) { return text(iso_time(x.event.end_s)); }},
+        {"duration_s", real, seconds, 3, [](const E& x) { return Value(x.event.end_s - x.event.start_s); }},
+        {"min_clearance_m", real, metres, 3, [](const E& x) { return Value(x.event.min_clearance_m); }},
+        {"penetration_m", real, metres, 3, [](const E& x) { return is_contact(x.event.kind) ? Value(x.event.penetration_m) : null; }},
+        {"ship_lat", real, wgs84, coordinate_decimals, [](const E& x) { return Value(x.event.ship.lat); }},
+        {"ship_lon", real, wgs84, coordinate_decimals, [](const E& x) { return Value(x.event.ship.lon); }},
+        {"heading", real, degrees, 1, [](const E& x) { return Value(x.event.heading_deg); }},
+        {"heading_source", text_t, none, -1, [](const E& x) { return text(track::to_string(x.event.heading_source)); }},
+        {"orientation", text_t, none, -1, [](const E& x) { return text(x.event.orientation_unknown ? "unknown (hull circle)" : "hull"); }},
+        {"speed_kn", real, knots, 2, [](const E& x) { return Value(x.event.speed_kn); }},
+        {"speed_source", text_t, none, -1, [](const E& x) { return text(track::to_string(x.event.speed_source)); }},
+        {"stopped_before", boolean, none, -1, [](const E& x) { return is_contact(x.event.kind) ? Value(x.event.stopped_before) : null; }},
+        {"stopped_after_s", real, seconds, 1, [](const E& x) { return is_contact(x.event.kind) ? Value(x.event.stopped_after_s) : null; }},
+        {"reference_inside_m", real, metres, 2,
+         [](const E& x) { return is_contact(x.event.kind) ? Value(x.event.reference_inside_m) : null; }},
+        {"nav_status", integer, none, -1,
+         [](const E& x) { return x.event.nav_status == track::nav_status_unknown ? null : Value(std::int64_t{x.event.nav_status}); }},
+        {"nav_status_text", text_t, none, -1, [](const E& x) { return text(track::nav_status_text(x.event.nav_status)); }},
+        {"reported_aground", boolean, none, -1, [](const E& x) { return Value(x.event.reported_aground); }},
+        {"unseen_after", text_t, none, -1, [](const E& x) { return text(x.event.unseen_after); }},
+        {"area", text_t, none, -1, [](const E& x) { return text(x.event.area_kind); }},
+        {"area_name", text_t, none, -1, [](const E& x) { return text(x.event.area_name); }},
+        {"structure", text_t, none, -1, [](const E& x) { return text(x.event.structure); }},
+        {"fix_index", integer, none, -1, [](const E& x) { return count(x.event.fix_index); }},
+        {"fix_line", integer, none, -1, [](const E& x) { return count(x.event.fix_line); }},
+        {"file", text_t, none, -1, [](const E& x) { return text(x.track.file); }},
+        {"hull", text_t, none, -1, [](const E& x) { return text(x.track.hull); }},
+        {"label", text_t, none, -1, [](const E& x) { return text(event_label(x.event)); }},
+    };
+    return f;
+}
+
+const std::vector<Field<EncounterRow>>& encounter_fields() {
+    static const auto a = [](const C& x) -> const audit::TrackSummary& { return x.result.tracks.at(x.encounter.a.track).summary; };
+    static const auto b = [](const C& x) -> const audit::TrackSummary& { return x.result.tracks.at(x.encounter.b.track).summary; };
+    static const std::vector<Field<EncounterRow>> f = {
+        {"track", text_t, none, -1, [](const C& x) { return text(a(x).id); }},
+        {"name", text_t, none, -1, [](const C& x) { return text(a(x).name); }},
+        {"kind", text_t, none, -1, [](const C& x) { return text(audit::to_string(x.encounter.kind)); }},
+        {"hit", text_t, none, -1, [](const C&) { return text("ship"); }},
+        {"charted_depth_m", real, metres, 2, [](const C&) { return null; }},
+        {"danger", text_t, none, -1, [](const C&) { return text(""); }},
+        {"start", text_t, utc, -1, [](const C& x) { return text(iso_time(x.encounter.start_s)); }},
+        {"end", text_t, utc, -1, [](const C& x) { return text(iso_time(x.encounter.end_s)); }},
+        {"duration_s", real, seconds, 3, [](const C& x) { return Value(x.encounter.end_s - x.encounter.start_s); }},
+        {"min_clearance_m", real, metres, 3, [](const C& x) { return Value(x.encounter.min_clearance_m); }},
+        {"penetration_m", real, metres, 3, [](const C&) { return null; }},
+        {"ship_lat", real, wgs84, coordinate_decimals, [](const C& x) { return Value(x.encounter.a.position.lat); }},
+        {"ship_lon", real, wgs84, coordinate_decimals, [](const C& x) { return Value(x.encounter.a.position.lon); }},
+        {"heading", real, degrees, 1, [](const C& x) { return Value(x.encounter.a.heading_deg); }},
+        {"fix_index", integer, none, -1, [](const C& x) { return count(x.encounter.a.fix_index); }},
+        {"other_track", text_t, none, -1, [](const C& x) { return text(b(x).id); }},
+        {"other_name", text_t, none, -1, [](const C& x) { return text(b(x).name); }},
+        {"other_lat", real, wgs84, coordinate_decimals, [](const C& x) { return Value(x.encounter.b.position.lat); }},
+        {"other_lon", real, wgs84, coordinate_decimals, [](const C& x) { return Value(x.encounter.b.position.lon); }},
+        {"other_heading", real, degrees, 1, [](const C& x) { return Value(x.encounter.b.heading_deg); }},
+        {"other_fix_index", integer, none, -1, [](const C& x) { return count(x.encounter.b.fix_index); }},
+        {"distance_m", real, metres, 3, [](const C& x) { return Value(x.encounter.distance_m); }},
+        {"label", text_t, none, -1, [](const C& x) { return text(encounter_label(x.encounter)); }},
+    };
+    return f;
+}
+
+const std::vector<Field<TrackRow>>& track_fields() {
+    static const std::vector<Field<TrackRow>> f = {
+        {"track", text_t, none, -1, [](const T& x) { return text(x.track.id); }},
+        {"name", text_t, none, -1, [](const T& x) { return text(x.track.name); }},
+        {"file", text_t, none, -1, [](const T& x) { return text(x.track.file); }},
+        {"hull", text_t, none, -1, [](const T& x) { return text(x.track.hull); }},
+        {"fixes", integer, none, -1, [](const T& x) { return count(x.track.fixes); }},
+        {"skipped_rows", integer, none, -1, [](const T& x) { return count(x.skipped_rows); }},
+        {"uncovered_fixes", integer, none, -1, [](const T& x) { return count(x.track.uncovered_fixes); }},
+        {"segments", integer, none, -1, [](const T& x) { return count(x.track.segments); }},
+        {"gaps", integer, none, -1, [](const T& x) { return count(x.track.gaps); }},
+        {"poses", integer, none, -1, [](const T& x) { return count(x.track.poses); }},
+        {"groundings", integer, none, -1, [](const T& x) { return count(x.track.groundings); }},
+        {"alongside", integer, none, -1, [](const T& x) { return count(x.track.alongside); }},
+        {"contacts_at_start", integer, none, -1, [](const T& x) { return count(x.track.contacts_at_start); }},
+        {"expected_contacts", integer, none, -1, [](const T& x) { return count(x.track.expected_contacts); }},
+        {"close_passes", integer, none, -1, [](const T& x) { return count(x.track.close_passes); }},
+        {"wild_fixes", integer, none, -1, [](const T& x) { return count(x.track.wild_fixes.size()); }},
+        {"jumps", integer, none, -1, [](const T& x) { return count(x.track.jumps); }},
+        {"unknown_heading_fixes", integer, none, -1, [](const T& x) { return count(x.track.unknown_heading_fixes); }},
+        {"min_clearance_m", real, metres, 3, [](const T& x) { return Value(x.track.min_clearance_m); }},
+        {"distance_m", real, metres, 1, [](const T& x) { return Value(x.track.distance_m); }},
+        {"start", text_t, utc, -1, [](const T& x) { return text(iso_time(x.track.start_s)); }},
+        {"end", text_t, utc, -1, [](const T& x) { return text(iso_time(x.track.end_s)); }},
+    };
+    return f;
+}
+
+const std::vector<Field<HullRow>>& hull_fields() {
+    static const std::vector<Field<HullRow>> f = {
+        {"track", text_t, none, -1, [](const H& x) { return text(x.track); }},
+        {"kind", text_t, none, -1, [](const H& x) { return text(x.kind); }},
+        {"hit", text_t, none, -1, [](const H& x) { return x.hit ? text(x.hit) : null; }},
+        {"start", text_t, utc, -1, [](const H& x) { return text(iso_time(x.start_s)); }},
+        {"label", text_t, none, -1, [](const H& x) { return text(x.label); }},
+    };
+    return f;
+}
+
+const std::vector<Field<ProblemRow>>& problem_fields() {
+    static const std::vector<Field<ProblemRow>> f = {
+        {"file", text_t, none, -1, [](const P& x) { return text(x.file); }},
+        {"track", text_t, none, -1, [](const P& x) { return x.track.empty() ? null : text(x.track); }},
+        {"line", integer, none, -1, [](const P& x) { return x.line ? count(x.line) : null; }},
+        {"message", text_t, none, -1, [](const P& x) { return text(x.message); }},
+    };
+    return f;
+}
+
+const std::vector<Field<ApproachRow>>& approach_fields() {
+    static const std::vector<Field<ApproachRow>> f = {
+        {"track", text_t, none, -1, [](const A& x) { return text(x.result.tracks.at(x.approach.a).summary.id); }},
+        {"other_track", text_t, none, -1, [](const A& x) { return text(x.result.tracks.at(x.approach.b).summary.id); }},
+        {"time", text_t, utc, -1, [](const A& x) { return text(iso_time(x.approach.time_s)); }},
+        {"clearance_m", real, metres, 3, [](const A& x) { return Value(x.approach.clearance_m); }},
+        {"distance_m", real, metres, 3, [](const A& x) { return Value(x.approach.distance_m); }},
+        {"ship_lat", real, wgs84, coordinate_decimals, [](const A& x) { return Value(x.approach.a_position.lat); }},
+        {"ship_lon", real, wgs84, coordinate_decimals, [](const A& x) { return Value(x.approach.a_position.lon); }},
+        {"other_lat", real, wgs84, coordinate_decimals, [](const A& x) { return Value(x.approach.b_position.lat); }},
+        {"other_lon", real, wgs84, coordinate_decimals, [](const A& x) { return Value(x.approach.b_position.lon); }},
+    };
+    return f;
+}
+
+const std::vector<Field<RunRow>>& run_fields() {
+    static const std::vector<Field<RunRow>> f = {
+        {"version", text_t, none, -1, [](const R&) { return text(SHOAL_VERSION_STRING); }},
+        {"coast", text_t, none, -1, [](const R& x) { return text(x.info.coast); }},
+        {"frame", text_t, none, -1, [](const R& x) { return text(x.info.frame); }},
+        {"cell_m", real, metres, -1, [](const R& x) { return Value(x.info.cell_m); }},
+        {"limiting_depth_m", real, metres, -1, [](const R& x) { return Value(x.info.limiting_depth_m); }},
+        {"grid_fingerprint", text_t, none, -1, [](const R& x) { return text(x.info.grid_fingerprint); }},
+        {"ship", text_t, none, -1, [](const R& x) { return text(x.info.ship); }},
+        {"step_m", real, metres, -1, [](const R& x) { return Value(x.info.sweep.step_m); }},
+        {"margin_m", real, metres, -1, [](const R& x) { return Value(x.info.sweep.margin_m); }},
+        {"max_gap_s", real, seconds, -1, [](const R& x) { return Value(x.info.sweep.max_gap_s); }},
+        {"berthing_speed_kn", real, knots, -1, [](const R& x) { return Value(x.info.sweep.berthing_speed_kn); }},
+        {"stop_diameter_m", real, metres, -1, [](const R& x) { return Value(x.info.sweep.stop_diameter_m); }},
+        {"stop_duration_s", real, seconds, -1, [](const R& x) { return Value(x.info.sweep.stop_duration_s); }},
+        {"speed_window_s", real, seconds, -1, [](const R& x) { return Value(x.info.sweep.speed_window_s); }},
+        {"max_speed_kn", real, knots, -1, [](const R& x) { return Value(x.info.wild.max_speed_kn); }},
+        {"berths", text_t, none, -1, [](const R& x) { return text(x.info.berths); }},
+        {"ship_margin_m", real, metres, -1, [](const R& x) { return Value(x.info.ship_margin_m); }, exercise},
+    };
+    return f;
+}
+
+const std::vector<Field<RunRow>>& summary_fields() {
+    static const auto contacts = [](const audit::AuditResult& r) {
+        return r.groundings + r.alongside + r.contacts_at_start + r.expected_contacts;
+    };
+    static const std::vector<Field<RunRow>> f = {
+        {"files", integer, none, -1, [](const R& x) { return count(x.result.files.size()); }},
+        {"tracks", integer, none, -1, [](const R& x) { return count(x.result.tracks.size()); }},
+        {"tracks_failed", integer, none, -1, [](const R& x) { return count(x.result.errors.size()); }},
+        {"fixes", integer, none, -1, [](const R& x) { return count(x.result.fixes); }},
+        {"poses", integer, none, -1, [](const R& x) { return count(x.result.poses); }},
+        {"skipped_rows", integer, none, -1, [](const R& x) { return count(x.result.skipped_rows); }},
+        {"uncovered_fixes", integer, none, -1, [](const R& x) { return count(x.result.uncovered_fixes); }},
+        {"events", integer, none, -1,
+         [](const R& x) {
+             const auto& r = x.result;
+             return count(contacts(r) + r.close_passes + (r.has_encounters ? r.collisions + r.close_quarters : 0));
+         }},
+        {"groundings", integer, none, -1, [](const R& x) { return count(x.result.groundings); }},
+        {"alongside", integer, none, -1, [](const R& x) { return count(x.result.alongside); }},
+        {"contacts_at_start", integer, none, -1, [](const R& x) { return count(x.result.contacts_at_start); }},
+        {"expected_contacts", integer, none, -1, [](const R& x) { return count(x.result.expected_contacts); }},
+        {"close_passes", integer, none, -1, [](const R& x) { return count(x.result.close_passes); }},
+        {"wild_fixes", integer, none, -1, [](const R& x) { return count(x.result.wild_fixes); }},
+        {"jumps", integer, none, -1, [](const R& x) { return count(x.result.jumps); }},
+        {"unknown_heading_fixes", integer, none, -1, [](const R& x) { return count(x.result.unknown_heading_fixes); }},
+        {"first_fix", text_t, utc, -1, [](const R& x) { return text(iso_time(x.result.first_fix_s)); }},
+        {"last_fix", text_t, utc, -1, [](const R& x) { return text(iso_time(x.result.last_fix_s)); }},
+        {"collisions", integer, none, -1, [](const R& x) { return count(x.result.collisions); }, exercise},
+        {"close_quarters", integer, none, -1, [](const R& x) { return count(x.result.close_quarters); }, exercise},
+    };
+    return f;
+}
+
+std::vector<TrackRow> track_rows(const audit::AuditResult& r) {
+    std::map<std::string, std::size_t> skipped_by_file;
+    for (const auto& f : r.files) skipped_by_file[f.file] = f.read.skipped;
+    std::vector<TrackRow> rows;
+    rows.reserve(r.tracks.size());
+    for (const auto& t : r.tracks) rows.push_back({t.summary, skipped_by_file[t.summary.file]});
+    return rows;
+}
+
+std::vector<HullRow> hull_rows(const audit::AuditResult& r) {
+    std::vector<HullRow> rows;
+    for (const auto& t : r.tracks)
+        for (const auto& e : t.events)
+            rows.push_back({t.summary.id, audit::to_string(e.kind), coast::to_string(e.hit), e.start_s, event_label(e), e.hull});
+    for (const auto& e : r.encounters.events)
+        for (const audit::ShipAt* ship : {&e.a, &e.b})
+            rows.push_back({r.tracks.at(ship->track).summary.id, audit::to_string(e.kind), nullptr, e.start_s, encounter_label(e), ship->hull});
+    return rows;
+}
+
+std::vector<ProblemRow> problem_rows(const audit::AuditResult& r) {
+    std::vector<ProblemRow> rows;
+    for (const auto& f : r.files) {
+        if (!f.error.empty()) rows.push_back({f.file, "", 0, f.error});
+        for (const auto& m : f.read.messages) rows.push_back({f.file, "", 0, m});
+    }
+    for (const auto& e : r.errors) rows.push_back({e.file, e.track, 0, e.message});
+    for (const auto& t : r.tracks)
+        for (const auto& w : t.summary.wild_fixes) rows.push_back({t.summary.file, t.summary.id, w.line, wild_fix_message(t.summary, w)});
+    return rows;
+}
+
+}  // namespace shoal::report::fields

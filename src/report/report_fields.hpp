@@ -1,0 +1,117 @@
+#pragma once
+/// The report's fields, listed once for both writers. Each layer of the report is a table of
+/// fields (name, type, unit, rounding, and how to get the value from the audit's result); the
+/// GeoJSON writer (geojson_report.cpp) and the GeoPackage writer (gpkg_report.cpp) both iterate
+/// these tables, so the two reports carry the same fields with the same names, units and
+/// rounding. docs/user-guide.md and schemas/report.schema.json list the same fields (a test
+/// checks that).
+///
+/// Layers and where they go:
+///   layer               GeoJSON                                  GeoPackage
+///   events              Point features                           Point layer `events`
+///   encounters          Point features (exercise mode)           Point layer `encounters` (exercise mode)
+///   tracks              `shoal.tracks[]`                         MultiLineString layer `tracks`
+///   hulls               (none: one geometry per feature)         Polygon layer `hulls`
+///   problems            `shoal.problems[]` (null keys left out)  table `problems`
+///   closest_approaches  `shoal.closest_approaches[]`             table `closest_approaches` (exercise mode)
+///   run                 members of `shoal`                       table `run` (one row)
+///   summary             `shoal.summary`                          table `summary` (one row)
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <shoal/audit/audit.hpp>
+#include <shoal/report/report.hpp>
+
+namespace shoal::report::fields {
+
+enum class Type { text, integer, real, boolean };
+
+/// A field's value; std::monostate is null.
+using Value = std::variant<std::monostate, std::string, std::int64_t, double, bool>;
+
+template <class Row>
+struct Field {
+    const char* name;
+    Type type;
+    const char* unit;  ///< "m", "s", "kn", "deg", "degrees (WGS84)", "ISO 8601 UTC", or "" (none)
+    int decimals;      ///< reals: rounded to this many decimals (-1: as computed); a value that is not finite is null
+    Value (*get)(const Row&);
+    /// The field exists only when this holds (exercise-mode fields); null: always.
+    bool (*present)(const audit::AuditResult&) = nullptr;
+};
+
+/// `v` rounded to `decimals` decimal places (half away from zero).
+double round_to(double v, int decimals);
+
+/// The value of field `f` for `row`, rounded as the field says; null for a real that is not finite.
+template <class Row>
+Value value_of(const Field<Row>& f, const Row& row) {
+    Value v = f.get(row);
+    if (const double* d = std::get_if<double>(&v)) {
+        if (!std::isfinite(*d)) return std::monostate{};
+        if (f.decimals >= 0) return round_to(*d, f.decimals);
+    }
+    return v;
+}
+
+/// Coordinates of points in both reports are rounded to this many decimals (about 1 cm).
+inline constexpr int coordinate_decimals = 7;
+
+// The rows of each layer.
+struct EventRow {
+    const audit::TrackSummary& track;
+    const audit::Event& event;
+};
+struct EncounterRow {
+    const audit::AuditResult& result;
+    const audit::Encounter& encounter;
+};
+struct TrackRow {
+    const audit::TrackSummary& track;
+    std::size_t skipped_rows;  ///< bad rows skipped in the track's file
+};
+struct HullRow {
+    std::string track;
+    const char* kind;
+    const char* hit;  ///< null for an encounter's hull
+    double start_s;
+    std::string label;
+    const std::vector<geo::LonLat>& ring;
+};
+struct ProblemRow {
+    std::string file, track;  ///< track "": none (null)
+    std::size_t line = 0;     ///< 0: none (null)
+    std::string message;
+};
+struct ApproachRow {
+    const audit::AuditResult& result;
+    const audit::ClosestApproach& approach;
+};
+struct RunRow {
+    const audit::AuditResult& result;
+    const RunInfo& info;
+};
+
+const std::vector<Field<EventRow>>& event_fields();
+const std::vector<Field<EncounterRow>>& encounter_fields();
+const std::vector<Field<TrackRow>>& track_fields();
+const std::vector<Field<HullRow>>& hull_fields();
+const std::vector<Field<ProblemRow>>& problem_fields();
+const std::vector<Field<ApproachRow>>& approach_fields();
+const std::vector<Field<RunRow>>& run_fields();
+const std::vector<Field<RunRow>>& summary_fields();
+
+/// The rows of the layers that are not one-to-one with a vector of the result.
+std::vector<TrackRow> track_rows(const audit::AuditResult& r);
+std::vector<HullRow> hull_rows(const audit::AuditResult& r);
+std::vector<ProblemRow> problem_rows(const audit::AuditResult& r);
+
+/// "collision 10:03:12Z", "close quarters 10:03:12Z".
+std::string encounter_label(const audit::Encounter& e);
+
+}  // namespace shoal::report::fields

@@ -1,0 +1,205 @@
+#include <shoal/util/output_file.hpp>
+
+#include <dirent.h>
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <utility>
+
+#include <shoal/util/atomic_file.hpp>
+#include <shoal/util/error.hpp>
+
+namespace shoal {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::string_view temp_mark = ".shoal.tmp-";
+
+fs::path folder_of(const std::string& path) {
+    const fs::path p(path);
+    return p.has_parent_path() ? p.parent_path() : fs::path(".");
+}
+
+bool is_stdout(const std::string& path) { return path.empty() || path == "-"; }
+
+/// Writes all of `bytes` to the open file `f` and closes it; false (errno in `err`) on failure.
+bool write_and_close(std::FILE* f, std::string_view bytes, bool sync, int& err) {
+    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0 &&
+              (!sync || ::fsync(::fileno(f)) == 0);
+    err = ok ? 0 : errno;
+    if (std::fclose(f) != 0 && ok) {
+        ok = false;
+        err = errno;
+    }
+    return ok;
+}
+
+/// The same file: equal paths once made absolute and normal, or (both existing) one inode.
+bool same_file(const std::string& a, const std::string& b) {
+    if (is_stdout(a) || is_stdout(b)) return is_stdout(a) && is_stdout(b);
+    std::error_code ec1, ec2;
+    const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec1), cb = fs::weakly_canonical(fs::absolute(b), ec2);
+    if (!ec1 && !ec2 && ca == cb) return true;
+    std::error_code ec;
+    return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec) && !ec;
+}
+
+/// The writer's pid in a temporary's name "PREFIX<pid>-...", or 0.
+long pid_in(std::string_view name, std::string_view prefix) {
+    if (name.substr(0, prefix.size()) != prefix) return 0;
+    long pid = 0;
+    std::size_t i = prefix.size();
+    for (; i < name.size() && name[i] >= '0' && name[i] <= '9' && pid < 100'000'000; ++i) pid = pid * 10 + (name[i] - '0');
+    return i < name.size() && name[i] == '-' ? pid : 0;
+}
+
+}  // namespace
+
+std::string temporary_prefix(const std::string& target) {
+    std::string name(1, '.');  // appended, not "." + string: GCC 12 -O3 warns falsely (-Wrestrict) on that
+    name += fs::path(target).filename().string();
+    name += temp_mark;
+    return name;
+}
+
+void check_output_place(const std::string& path) {
+    if (is_stdout(path)) return;
+    const fs::path dir = folder_of(path);
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw InputError("cannot write '" + path + "': folder '" + dir.string() + "' does not exist");
+    if (fs::is_directory(path, ec)) throw InputError("cannot write '" + path + "': it is a directory");
+}
+
+void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std::string>& inputs) {
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const OutputSpec& o = outputs[i];
+        check_output_place(o.path);
+        std::error_code ec;
+        if (!is_stdout(o.path) && fs::exists(o.path, ec))
+            for (const std::string& in : inputs)
+                if (!in.empty() && same_file(o.path, in))
+                    throw UsageError("the output '" + o.path + "' is the input '" + in + "': writing it would destroy the input; choose another " +
+                                     o.option);
+        for (std::size_t j = 0; j < i; ++j)
+            if (same_file(outputs[j].path, o.path))
+                throw UsageError(o.option + " '" + o.path + "' is " + outputs[j].role + " " + outputs[j].option + " '" + outputs[j].path +
+                                 "': choose another file for " + o.role);
+    }
+}
+
+std::size_t remove_stale_temporaries(const std::string& target) {
+    if (is_stdout(target)) return 0;
+    const std::string prefix = temporary_prefix(target);
+    const fs::path dir = folder_of(target);
+    std::size_t removed = 0;
+    DIR* d = ::opendir(dir.c_str());
+    if (!d) return 0;
+    std::vector<std::string> stale;
+    while (const dirent* e = ::readdir(d)) {
+        const long pid = pid_in(e->d_name, prefix);
+        // kill(pid, 0): ESRCH means no such process; EPERM means it lives (another user's).
+        if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) stale.emplace_back(e->d_name);
+    }
+    ::closedir(d);
+    for (const std::string& name : stale) {
+        std::error_code ec;
+        if (fs::is_regular_file(fs::symlink_status(dir / name, ec)) && fs::remove(dir / name, ec)) ++removed;
+    }
+    return removed;
+}
+
+StagedOutput::StagedOutput(std::string target) : m_target(std::move(target)) {
+    if (is_stdout(m_target)) return;
+    check_output_place(m_target);
+    std::error_code ec;
+    if (const auto st = fs::status(m_target, ec); fs::exists(st) && !fs::is_regular_file(st)) return;  // a device, a pipe
+    remove_stale_temporaries(m_target);
+    std::random_device rd;
+    char suffix[40];
+    std::snprintf(suffix, sizeof suffix, "%ld-%08x", static_cast<long>(::getpid()), rd());
+    std::string name = temporary_prefix(m_target);
+    name += suffix;
+    name += fs::path(m_target).extension().string();
+    m_temp = (folder_of(m_target) / name).string();
+    m_listed = std::make_unique<TempFileInProgress>(m_temp);
+}
+
+StagedOutput::StagedOutput(StagedOutput&& o) noexcept
+    : m_target(std::move(o.m_target)), m_temp(std::exchange(o.m_temp, {})), m_listed(std::move(o.m_listed)) {}
+
+StagedOutput& StagedOutput::operator=(StagedOutput&& o) noexcept {
+    if (this != &o) {
+        discard();
+        m_target = std::move(o.m_target);
+        m_temp = std::exchange(o.m_temp, {});
+        m_listed = std::move(o.m_listed);
+    }
+    return *this;
+}
+
+StagedOutput::~StagedOutput() { discard(); }
+
+void StagedOutput::discard() noexcept {
+    if (!m_temp.empty()) {
+        ::unlink(m_temp.c_str());
+        for (const char* companion : {"-journal", "-wal", "-shm"}) ::unlink((m_temp + companion).c_str());
+    }
+    m_temp.clear();
+    m_listed.reset();
+}
+
+void StagedOutput::write(std::string_view bytes) {
+    int err = 0;
+    if (is_stdout(m_target)) {
+        if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0)
+            throw InputError(std::string("cannot write to stdout: ") + std::strerror(errno));
+        return;
+    }
+    const std::string& path = direct() ? m_target : m_temp;
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) {
+        err = errno;
+        discard();
+        throw InputError("cannot write '" + m_target + "': " + std::strerror(err));
+    }
+    if (!write_and_close(f, bytes, !direct(), err)) {
+        discard();
+        throw InputError("cannot write '" + m_target + "': " + std::strerror(err));
+    }
+}
+
+void StagedOutput::commit() {
+    if (direct()) return;
+    std::error_code ec;
+    fs::rename(m_temp, m_target, ec);
+    if (ec) {
+        discard();
+        throw InputError("cannot write '" + m_target + "': " + ec.message());
+    }
+    m_temp.clear();
+    m_listed.reset();
+}
+
+void commit_all(std::vector<StagedOutput>& outputs) {
+    sigset_t hold, old;
+    sigemptyset(&hold);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaddset(&hold, sig);
+    ::pthread_sigmask(SIG_BLOCK, &hold, &old);
+    try {
+        for (StagedOutput& o : outputs) o.commit();
+    } catch (...) {
+        ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+        throw;
+    }
+    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+}
+
+}  // namespace shoal

@@ -1,0 +1,354 @@
+// The GeoJSON and the GeoPackage report carry the same layers, fields and values: both are
+// written from one result and read back independently (OGR for the features and layers,
+// nlohmann::json for the GeoJSON's "shoal" member), then compared field by field. The GeoJSON
+// matches its schema (Debian's python3-jsonschema), the schema and the user guide name every
+// field of the report.
+
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "report/report_fields.hpp"
+#include "test_support.hpp"
+#include <shoal/audit/audit.hpp>
+#include <shoal/report/report.hpp>
+
+namespace shoal::report {
+namespace {
+
+using json = nlohmann::json;
+
+/// SHOAL_TEST_DATA is SOURCE/tests/data/.
+std::string source_root() { return std::filesystem::path(SHOAL_TEST_DATA).parent_path().parent_path().parent_path().string(); }
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+std::vector<geo::LonLat> ring_at(geo::LonLat c) {
+    return {{c.lon - 1e-4, c.lat - 1e-4}, {c.lon + 1e-4, c.lat - 1e-4}, {c.lon + 1e-4, c.lat + 1e-4}, {c.lon - 1e-4, c.lat - 1e-4}};
+}
+
+/// A result with every kind of value the report holds: all event kinds, hazards and dangers,
+/// unknown heading and speed, clearance beyond the search limit, an encounter, an approach,
+/// every kind of problem; numbers with more decimals than the report keeps.
+audit::AuditResult hand_result() {
+    using audit::EventKind;
+    audit::AuditResult r;
+    const double t0 = 1714557600.123456;
+    for (int k = 0; k < 2; ++k) {
+        audit::TrackResult t;
+        auto& s = t.summary;
+        s.id = k == 0 ? "244123456" : "235000111";
+        s.name = k == 0 ? "Nordic Star" : "";
+        s.file = k == 0 ? "a.csv" : "b.csv";
+        s.hull = k == 0 ? "--dims" : "AIS dimensions 10,5,2,2";
+        s.fixes = 120 + static_cast<std::size_t>(k);
+        s.uncovered_fixes = 3;
+        s.segments = 2;
+        s.gaps = 1;
+        s.poses = 4567;
+        s.jumps = 1;
+        s.unknown_heading_fixes = 7;
+        s.min_clearance_m = k == 0 ? 0.0 : INFINITY;
+        s.distance_m = 12345.6789 + k;
+        s.start_s = t0;
+        s.end_s = t0 + 3600.5;
+        s.lines = {{{-1.3, 50.7}, {-1.29876543, 50.70123456}}, {{-1.28, 50.71}}};
+        if (k == 0) s.wild_fixes.push_back({17, t0 + 10, {-1.2, 50.8}, 999, "jump of 5.2 km in 10 s (1011 kn) and back"});
+        const EventKind kinds[] = {EventKind::grounding, EventKind::close_pass, EventKind::expected_contact, EventKind::contact_at_start,
+                                   EventKind::alongside};
+        int i = 0;
+        for (EventKind kind : kinds) {
+            audit::Event e;
+            e.kind = kind;
+            e.start_s = t0 + 60.0 * i + 0.0004;
+            e.end_s = e.start_s + 12.34567;
+            e.min_clearance_m = kind == EventKind::close_pass ? 12.34567 : 0.0;
+            e.penetration_m = 1.23456;
+            e.point = {-1.312345678, 50.712345678 + 0.001 * i};
+            e.ship = {-1.31234561, 50.71234561 + 0.001 * i};
+            e.heading_deg = i == 1 ? NAN : 123.456;
+            e.orientation_unknown = i == 1;
+            e.heading_source = i == 1 ? track::HeadingSource::none : track::HeadingSource::cog;
+            e.fix_index = static_cast<std::size_t>(10 + i);
+            e.fix_line = static_cast<std::size_t>(12 + i);
+            e.hull = ring_at(e.ship);
+            e.hit = i == 0 ? coast::HazardKind::shallow : i == 2 ? coast::HazardKind::danger : coast::HazardKind::land;
+            e.charted_depth_m = i == 0 ? 3.4567 : i == 2 ? NAN : 9.0;
+            e.danger = i == 2 ? coast::DangerKind::wreck : coast::DangerKind::none;
+            e.speed_kn = i == 1 ? NAN : 7.891;
+            e.speed_source = i == 1 ? track::SpeedSource::none : track::SpeedSource::sog;
+            e.stopped_before = i == 4;
+            e.stopped_after_s = i == 0 ? 45.678 : NAN;
+            e.reference_inside_m = -2.3456;
+            e.nav_status = i == 0 ? std::uint8_t{0} : i == 4 ? std::uint8_t{5} : track::nav_status_unknown;
+            e.reported_aground = i == 0;
+            if (kind == EventKind::contact_at_start) e.unseen_after = "gap";
+            if (kind == EventKind::expected_contact) {
+                e.area_kind = "berth";
+                e.area_name = "Pier 3";
+                e.structure = "pier";
+            }
+            t.events.push_back(e);
+            ++i;
+        }
+        s.groundings = 1;
+        s.close_passes = 1;
+        s.alongside = 1;
+        s.contacts_at_start = 1;
+        s.expected_contacts = 1;
+        r.tracks.push_back(std::move(t));
+    }
+    r.files.push_back({"a.csv", "csv", {}, "", 1});
+    r.files.back().read.skipped = 3;
+    r.files.back().read.messages = {"a.csv line 5: latitude 91 out of range; row skipped"};
+    r.files.push_back({"b.csv", "csv", {}, "", 1});
+    r.files.push_back({"c.nmea", "nmea", {}, "'c.nmea': cannot be read", 0});
+    r.errors.push_back({"b.csv", "235000999", "too few fixes"});
+    r.fixes = 241;
+    r.poses = 9134;
+    r.skipped_rows = 3;
+    r.uncovered_fixes = 6;
+    r.groundings = r.close_passes = r.alongside = r.contacts_at_start = r.expected_contacts = 2;
+    r.wild_fixes = 1;
+    r.jumps = 2;
+    r.unknown_heading_fixes = 14;
+    r.first_fix_s = t0;
+    r.last_fix_s = t0 + 3600.5;
+    r.has_encounters = true;
+    audit::Encounter enc;
+    enc.kind = audit::EncounterKind::collision;
+    enc.start_s = t0 + 100.25;
+    enc.end_s = t0 + 130.125;
+    enc.distance_m = 23.45678;
+    enc.point = {-1.305555555, 50.705555555};
+    enc.a = {0, {-1.3055, 50.7055}, 10.25, 4, ring_at({-1.3055, 50.7055})};
+    enc.b = {1, {-1.3056, 50.7056}, 190.06, 5, ring_at({-1.3056, 50.7056})};
+    r.encounters.events.push_back(enc);
+    r.encounters.approaches.push_back({0, 1, t0 + 100.25, 0.0, 23.45678, {-1.3055, 50.7055}, {-1.3056, 50.7056}});
+    r.collisions = 1;
+    return r;
+}
+
+RunInfo hand_info() {
+    RunInfo info;
+    info.coast = "coast.shp";
+    info.frame = "transverse Mercator at -1.3";
+    info.cell_m = 500;
+    info.limiting_depth_m = 5.5;
+    info.grid_fingerprint = "0123456789abcdef";
+    info.ship = "--dims 50,10,5,5";
+    info.berths = "berths.geojson";
+    info.ship_margin_m = 20;
+    return info;
+}
+
+/// What OGR read for one field, as JSON: null, or the value in the type of the GeoPackage's field.
+json ogr_value(const OGRFeature& f, int i, const OGRFieldDefn& as) {
+    if (!f.IsFieldSetAndNotNull(i)) return nullptr;
+    switch (as.GetType()) {
+        case OFTString: return f.GetFieldAsString(i);
+        case OFTInteger64: return f.GetFieldAsInteger64(i);
+        case OFTReal: return f.GetFieldAsDouble(i);
+        case OFTInteger:
+            if (as.GetSubType() == OFSTBoolean) return f.GetFieldAsInteger(i) != 0;
+            return f.GetFieldAsInteger(i);
+        default: ADD_FAILURE() << "unexpected field type of " << as.GetNameRef(); return nullptr;
+    }
+}
+
+json json_as(const json& v, const OGRFieldDefn& as) {
+    if (v.is_null()) return nullptr;
+    if (as.GetType() == OFTReal) return v.get<double>();
+    return v;
+}
+
+/// Every field of GeoPackage feature `g` equals the same field of the JSON object `j`, and
+/// `j` has no other keys except (when `omitted_null`) fields null in `g`.
+void expect_same(const OGRFeature& g, const json& j, const std::string& where, bool omitted_null = false) {
+    const OGRFeatureDefn& d = *g.GetDefnRef();
+    std::set<std::string> keys;
+    for (const auto& [k, v] : j.items()) keys.insert(k);
+    for (int i = 0; i < d.GetFieldCount(); ++i) {
+        const OGRFieldDefn& fd = *d.GetFieldDefn(i);
+        const std::string name = fd.GetNameRef();
+        const json gv = ogr_value(g, i, fd);
+        if (omitted_null && gv.is_null()) {
+            EXPECT_FALSE(j.contains(name)) << where << "." << name;
+            continue;
+        }
+        ASSERT_TRUE(j.contains(name)) << where << ": the GeoJSON lacks " << name;
+        EXPECT_EQ(json_as(j[name], fd), gv) << where << "." << name;
+        keys.erase(name);
+    }
+    EXPECT_TRUE(keys.empty()) << where << ": the GeoPackage lacks " << (keys.empty() ? "" : *keys.begin());
+}
+
+struct Reports {
+    test::TempDir dir;
+    audit::AuditResult result = hand_result();
+    RunInfo info = hand_info();
+    std::string geojson_path = dir.file("r.geojson"), gpkg_path = dir.file("r.gpkg");
+    GDALDatasetUniquePtr gj, gp;
+    json doc;
+    Reports() {
+        write_geojson(geojson_path, result, info);
+        write_gpkg(gpkg_path, result, info);
+        GDALAllRegister();
+        const char* only_gj[] = {"GeoJSON", nullptr};
+        const char* only_gp[] = {"GPKG", nullptr};
+        const char* list_contents[] = {"LIST_ALL_TABLES=NO", nullptr};
+        const char* as_written[] = {"DATE_AS_STRING=YES", nullptr};  // times compared as the text written
+        gj.reset(GDALDataset::Open(geojson_path.c_str(), GDAL_OF_VECTOR, only_gj, as_written));
+        gp.reset(GDALDataset::Open(gpkg_path.c_str(), GDAL_OF_VECTOR, only_gp, list_contents));
+        doc = json::parse(slurp(geojson_path));
+    }
+    std::vector<OGRFeatureUniquePtr> features(GDALDataset& ds, const char* layer) {
+        std::vector<OGRFeatureUniquePtr> out;
+        OGRLayer* l = ds.GetLayerByName(layer);
+        if (!l) {
+            ADD_FAILURE() << "no layer " << layer;
+            return out;
+        }
+        l->ResetReading();
+        while (OGRFeature* f = l->GetNextFeature()) out.emplace_back(f);
+        return out;
+    }
+};
+
+TEST(ReportFields, GeoJsonAndGeoPackageHoldTheSameLayersFieldsAndValues) {
+    Reports rep;
+    ASSERT_TRUE(rep.gj && rep.gp);
+    std::set<std::string> layers;
+    for (int i = 0; i < rep.gp->GetLayerCount(); ++i) layers.insert(rep.gp->GetLayer(i)->GetName());
+    EXPECT_EQ(layers, (std::set<std::string>{"events", "encounters", "tracks", "hulls", "problems", "closest_approaches", "run", "summary",
+                                           "layer_styles"}));
+
+    // Features: the GeoJSON's Point features are the GeoPackage's events, then its encounters.
+    const auto gj_features = rep.features(*rep.gj, rep.gj->GetLayer(0)->GetName());
+    const auto events = rep.features(*rep.gp, "events"), encounters = rep.features(*rep.gp, "encounters");
+    ASSERT_EQ(events.size(), 10u);
+    ASSERT_EQ(encounters.size(), 1u);
+    ASSERT_EQ(gj_features.size(), events.size() + encounters.size());
+    for (std::size_t k = 0; k < gj_features.size(); ++k) {
+        const OGRFeature& a = *gj_features[k];
+        const OGRFeature& b = k < events.size() ? *events[k] : *encounters[k - events.size()];
+        const std::string where = "feature " + std::to_string(k);
+        std::set<std::string> set_in_geojson, in_gpkg;
+        for (int i = 0; i < a.GetFieldCount(); ++i)
+            if (a.IsFieldSet(i)) set_in_geojson.insert(a.GetFieldDefnRef(i)->GetNameRef());
+        for (int i = 0; i < b.GetFieldCount(); ++i) {
+            const OGRFieldDefn& fd = *b.GetFieldDefnRef(i);
+            in_gpkg.insert(fd.GetNameRef());
+            const int ai = a.GetFieldIndex(fd.GetNameRef());
+            ASSERT_GE(ai, 0) << where << ": the GeoJSON lacks " << fd.GetNameRef();
+            EXPECT_EQ(ogr_value(a, ai, fd), ogr_value(b, i, fd)) << where << "." << fd.GetNameRef();
+        }
+        EXPECT_EQ(set_in_geojson, in_gpkg) << where;
+        const auto* pa = a.GetGeometryRef()->toPoint();
+        const auto* pb = b.GetGeometryRef()->toPoint();
+        EXPECT_EQ(pa->getX(), pb->getX()) << where;
+        EXPECT_EQ(pa->getY(), pb->getY()) << where;
+    }
+
+    // The other layers: members of "shoal" in the GeoJSON.
+    const json& shoal = rep.doc["shoal"];
+    const auto compare_rows = [&](const char* layer, const json& rows, bool omitted_null = false) {
+        const auto fs = rep.features(*rep.gp, layer);
+        ASSERT_EQ(fs.size(), rows.size()) << layer;
+        for (std::size_t k = 0; k < fs.size(); ++k) expect_same(*fs[k], rows[k], std::string(layer) + "[" + std::to_string(k) + "]", omitted_null);
+    };
+    compare_rows("tracks", shoal["tracks"]);
+    compare_rows("problems", shoal["problems"], true);
+    compare_rows("closest_approaches", shoal["closest_approaches"]);
+    compare_rows("summary", json::array({shoal["summary"]}));
+    json run = shoal;
+    for (const char* member : {"tracks", "problems", "closest_approaches", "summary"}) run.erase(member);
+    compare_rows("run", json::array({run}));
+    EXPECT_EQ(shoal["problems"].size(), 4u);
+
+    // Hulls (GeoPackage only): one per event, two per encounter.
+    EXPECT_EQ(rep.features(*rep.gp, "hulls").size(), events.size() + 2 * encounters.size());
+}
+
+TEST(ReportFields, ValuesAreRoundedAsTheTableSaysAndNotFiniteIsNull) {
+    Reports rep;
+    const json& p = rep.doc["features"][0]["properties"];
+    EXPECT_EQ(p["charted_depth_m"], 3.46);
+    EXPECT_EQ(p["duration_s"], 12.346);
+    EXPECT_EQ(p["heading"], 123.5);
+    EXPECT_EQ(p["stopped_after_s"], 45.7);
+    EXPECT_EQ(p["ship_lat"], 50.7123456);
+    const json& unknown = rep.doc["features"][1]["properties"];
+    EXPECT_TRUE(unknown["heading"].is_null());
+    EXPECT_TRUE(unknown["speed_kn"].is_null());
+    EXPECT_TRUE(unknown["penetration_m"].is_null());  // a close pass
+    EXPECT_TRUE(rep.doc["shoal"]["tracks"][1]["min_clearance_m"].is_null());
+    EXPECT_EQ(rep.doc["shoal"]["tracks"][0]["distance_m"], 12345.7);
+    const auto tracks = rep.features(*rep.gp, "tracks");
+    EXPECT_EQ(tracks[0]->GetFieldAsDouble("distance_m"), 12345.7);
+}
+
+TEST(ReportFields, TheGeoJsonMatchesItsSchemaAndTheSchemaListsEveryField) {
+    Reports rep;
+    const std::string schema_path = source_root() + "/schemas/report.schema.json";
+    const std::string cmd = "/usr/bin/python3 -c \"import json,sys,jsonschema; "
+                            "jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))\" '" +
+                            rep.geojson_path + "' '" + schema_path + "' 2>&1";
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    ASSERT_TRUE(pipe);
+    std::string out;
+    char buf[512];
+    while (std::fgets(buf, sizeof buf, pipe)) out += buf;
+    EXPECT_EQ(::pclose(pipe), 0) << out;
+
+    const json schema = json::parse(slurp(schema_path));
+    const json& shoal = schema["properties"]["shoal"]["properties"];
+    const auto listed = [](const json& props, const auto& table, const std::string& where) {
+        for (const auto& f : table) EXPECT_TRUE(props.contains(f.name)) << where << " lacks " << f.name;
+    };
+    const json& feature = schema["properties"]["features"]["items"]["properties"]["properties"]["properties"];
+    listed(feature, fields::event_fields(), "features");
+    listed(feature, fields::encounter_fields(), "features");
+    listed(shoal["tracks"]["items"]["properties"], fields::track_fields(), "tracks");
+    listed(shoal["problems"]["items"]["properties"], fields::problem_fields(), "problems");
+    listed(shoal["closest_approaches"]["items"]["properties"], fields::approach_fields(), "closest_approaches");
+    listed(shoal["summary"]["properties"], fields::summary_fields(), "summary");
+    listed(shoal, fields::run_fields(), "shoal");
+}
+
+TEST(ReportFields, TheUserGuideNamesEveryField) {
+    const std::string guide = slurp(source_root() + "/docs/user-guide.md");
+    const std::size_t from = guide.find("## The report"), to = guide.find("\n## ", from + 1);
+    ASSERT_NE(from, std::string::npos);
+    const std::string section = guide.substr(from, to - from);
+    const auto named = [&](const auto& table, const char* layer) {
+        for (const auto& f : table)
+            EXPECT_NE(section.find("`" + std::string(f.name) + "`"), std::string::npos) << layer << "." << f.name << " is not in the user guide";
+    };
+    named(fields::event_fields(), "events");
+    named(fields::encounter_fields(), "encounters");
+    named(fields::track_fields(), "tracks");
+    named(fields::hull_fields(), "hulls");
+    named(fields::problem_fields(), "problems");
+    named(fields::approach_fields(), "closest_approaches");
+    named(fields::run_fields(), "run");
+    named(fields::summary_fields(), "summary");
+}
+
+}  // namespace
+}  // namespace shoal::report
