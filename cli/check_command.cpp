@@ -20,6 +20,7 @@
 #include <shoal/track/reader.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
+#include <shoal/util/output_file.hpp>
 #include <shoal/util/printable.hpp>
 
 namespace shoal::cli {
@@ -102,15 +103,12 @@ public:
     int run() override {
         std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks));
         all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
-        check_output(m_output, all_inputs);
-        if (!m_plot.empty()) {
-            // The picture is an output too: never one of the inputs, nor the report itself.
-            check_output(m_plot, all_inputs);
-            std::error_code ec;
-            if (m_plot == m_output || (std::filesystem::exists(m_plot, ec) && std::filesystem::exists(m_output, ec) &&
-                                       std::filesystem::equivalent(m_plot, m_output, ec)))
-                throw UsageError("--plot '" + m_plot + "' is the report -o '" + m_output + "': choose another file for the picture");
-        }
+        const std::string format = !m_format.empty() ? m_format
+                                   : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
+        // Every output, checked before any work: none is an input or another output.
+        std::vector<OutputSpec> outputs = report::report_outputs(m_output, format);
+        if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
+        check_outputs(outputs, all_inputs);
         if (m_audit.sweep.step_m < min_step_m)
             throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(min_step_m) +
                              " m: a sweep that fine never ends");
@@ -119,14 +117,6 @@ public:
             const auto day = track::parse_date(m_date);
             if (!day) throw UsageError("--date '" + m_date + "' is not a date YYYY-MM-DD");
             m_audit.read.date_s = *day;
-        }
-        const std::string format = !m_format.empty() ? m_format
-                                   : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
-        for (const std::string& out : {m_output, m_plot}) {
-            if (out.empty()) continue;
-            const std::filesystem::path dir = std::filesystem::path(out).has_parent_path() ? std::filesystem::path(out).parent_path() : ".";
-            if (!std::filesystem::is_directory(dir))
-                throw InputError("cannot write '" + out + "': folder '" + dir.string() + "' does not exist");
         }
         const grid::CoastGrid g = m_opts.load_grid(hull);
         check_readable(m_berths);
@@ -161,38 +151,34 @@ public:
         if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
         for (const auto& e : r.errors)
             std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(e.message).c_str());
-        report::RunInfo info;
-        for (const auto& c : m_opts.coast) info.coast += (info.coast.empty() ? "" : ", ") + c;
-        info.frame = g.frame().description();
-        info.cell_m = g.cell_size();
-        info.limiting_depth_m = g.source().limiting_depth_m;
-        char fp[20];
-        std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(g.source().fingerprint));
-        info.grid_fingerprint = fp;
-        info.ship = m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name();
-        info.sweep = m_audit.sweep;
-        info.wild = m_audit.wild;
-        for (const auto& b : m_berths) info.berths += (info.berths.empty() ? "" : ", ") + b;
-        info.ship_margin_m = m_audit.encounter.ship_margin_m;
+        const report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
+                                                      m_audit, m_berths);
         const auto t0 = std::chrono::steady_clock::now();
-        if (format == "gpkg") report::write_gpkg(m_output, r, info);
-        else {
+        // The report, its style and its picture are staged, then put in place together: an
+        // interrupt before the end leaves every earlier file as it was.
+        std::vector<StagedOutput> staged;
+        if (format == "gpkg") {
+            staged.push_back(report::stage_gpkg(m_output, r, info));
+        } else {
             std::vector<std::string> style_warnings;
-            report::write_geojson(m_output, r, info, &style_warnings);
+            staged = report::stage_geojson(m_output, r, info, &style_warnings);
             print_warnings(style_warnings);
         }
-        // The report is written: a picture that cannot be written is an error said as such,
-        // but it must not hide the groundings the report holds (exit 1 stays 1).
+        // A picture that cannot be written is an error said as such, but it must not hide the
+        // groundings the report holds (exit 1 stays 1).
         bool plot_failed = false;
         if (!m_plot.empty()) {
             try {
-                report::write_plot_svg(m_plot, r, g);
+                StagedOutput picture(m_plot);
+                picture.write(report::plot_svg(r, g));
+                staged.push_back(std::move(picture));
             } catch (const InputError& e) {
                 std::fprintf(stderr, "shoal: error: the picture was not written: %s (the report %s was)\n", printable(e.what()).c_str(),
                              printable(m_output).c_str());
                 plot_failed = true;
             }
         }
+        commit_all(staged);
         const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         // With -o - the report is stdout: the table goes to stderr, so the JSON stays clean.
         std::FILE* table = m_output == "-" ? stderr : stdout;

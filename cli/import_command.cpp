@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include <shoal/grid/grid_cache.hpp>
+#include <shoal/util/output_file.hpp>
 
 namespace shoal::cli {
 
@@ -34,7 +35,7 @@ public:
         add_hazard_options(*m_sub, m_request.import);
     }
     int run() override {
-        check_output(m_output, m_inputs);
+        check_outputs({{m_output, "-o", "the grid"}}, m_inputs);
         check_readable(m_inputs);
         std::vector<std::string> warnings;
         grid::BuildStats stats;

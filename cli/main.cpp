@@ -24,7 +24,7 @@
 
 namespace {
 
-/// Ctrl-C (SIGINT) or SIGTERM: delete the temporary files being written (a report, a grid,
+/// Ctrl-C (SIGINT), SIGTERM, SIGHUP (the terminal closed) or SIGQUIT: delete the temporary files being written (a report, a grid,
 /// a cache entry: the targets are only ever replaced whole by a rename, so none is left
 /// half-written), say so, and exit with 128 + the signal number (130 for Ctrl-C).
 void on_interrupt(int sig) {
@@ -35,7 +35,7 @@ void on_interrupt(int sig) {
 }
 
 void handle_interrupts() {
-    for (const int sig : {SIGINT, SIGTERM}) {
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
         struct sigaction old{};
         // A signal ignored when we started (nohup, `cmd &` in a script) stays ignored.
         if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;

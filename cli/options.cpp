@@ -20,21 +20,6 @@ const CLI::Validator finite = CLI::Validator(
     },
     "FINITE");
 
-void check_output(const std::string& output, const std::vector<std::string>& inputs) {
-    namespace fs = std::filesystem;
-    if (output.empty() || output == "-") return;
-    std::error_code ec;
-    const fs::path dir = fs::path(output).has_parent_path() ? fs::path(output).parent_path() : ".";
-    if (!fs::is_directory(dir, ec))
-        throw InputError("cannot write '" + output + "': folder '" + dir.string() + "' does not exist");
-    if (fs::is_directory(output, ec)) throw InputError("cannot write '" + output + "': it is a directory");
-    if (!fs::exists(output, ec)) return;
-    for (const std::string& in : inputs)
-        if (!in.empty() && fs::equivalent(output, in, ec) && !ec)
-            throw UsageError("the output '" + output + "' is the input '" + in +
-                             "': writing it would destroy the input; choose another -o");
-}
-
 void check_readable(const std::vector<std::string>& paths) {
     for (const std::string& p : paths) {
         std::error_code ec;

@@ -21,11 +21,6 @@ inline constexpr double min_step_m = 0.01;
 /// (every comparison with it is false), and a NaN option would silently switch a rule off.
 extern const CLI::Validator finite;
 
-/// Before any work: the output can be written where it is asked for (its folder exists, it is
-/// not a folder), and it is none of the inputs (the same file by any path: writing the output
-/// would destroy the input it is made from).
-void check_output(const std::string& output, const std::vector<std::string>& inputs);
-
 /// Coastline sources and grids that exist but cannot be opened: said as such, not as "not a
 /// vector dataset" (which is what OGR makes of a file it may not read).
 void check_readable(const std::vector<std::string>& paths);

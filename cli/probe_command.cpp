@@ -9,6 +9,7 @@
 #include <shoal/check/detector.hpp>
 #include <shoal/io/pose_csv.hpp>
 #include <shoal/util/atomic_file.hpp>
+#include <shoal/util/output_file.hpp>
 #include <shoal/util/printable.hpp>
 
 namespace shoal::cli {
@@ -29,7 +30,7 @@ public:
         m_sub->add_option("-o,--output", m_output, "Write the CSV here instead of stdout (written atomically)");
     }
     int run() override {
-        check_output(m_output, m_opts.inputs({m_poses}));
+        check_outputs({{m_output, "-o", "the poses CSV"}}, m_opts.inputs({m_poses}));
         const hull::Hull hull = m_opts.load_hull();
         const io::PoseFile poses = io::read_pose_csv(m_poses);
         for (const auto& e : poses.errors) std::fprintf(stderr, "shoal: warning: %s\n", printable(e).c_str());

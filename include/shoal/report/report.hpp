@@ -33,6 +33,12 @@ struct RunInfo {
     double ship_margin_m = 0;  ///< exercise mode: close quarters under this
 };
 
+/// The run header of a check: the coast sources `coast` as given, the grid's frame, cell,
+/// limiting depth and fingerprint, the default hull `ship` (its name, or "--dims a,b,c,d"),
+/// the rules of `options`, the expected-contact sources `berths`.
+RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const std::string& ship,
+                 const audit::AuditOptions& options, const std::vector<std::string>& berths);
+
 /// The GeoJSON report as text (schemas/report.schema.json).
 std::string geojson(const audit::AuditResult& result, const RunInfo& info);
 
