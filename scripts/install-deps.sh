@@ -10,6 +10,7 @@ PACKAGES=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev libxxhash-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-jsonschema python3-gdal   # report schema validation in tests (/usr/bin/python3)
+  gpsd-clients python3-ais    # independent AIS decoders for tests/track/ais_test.cpp (gpsdecode, libais)
   clang libclang-rt-14-dev    # libFuzzer + sanitizers for scripts/fuzz.sh
 )
 missing=()

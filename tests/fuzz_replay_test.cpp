@@ -29,6 +29,7 @@ struct Target {
 const Target targets[] = {
     {"csv_tracks", shoal::fuzz::csv_tracks},
     {"nmea", shoal::fuzz::nmea},
+    {"aivdm", shoal::fuzz::aivdm},
     {"ship", shoal::fuzz::ship},
     {"grid_cache", shoal::fuzz::grid_cache},
 };

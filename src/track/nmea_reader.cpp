@@ -2,10 +2,13 @@
 
 #include <charconv>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "detail/parse_util.hpp"
+#include <shoal/track/ais.hpp>
 #include <shoal/track/time.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::track {
 
@@ -14,13 +17,6 @@ namespace {
 constexpr double kmh_per_kn = 1.852;
 
 bool is_alnum_upper(char c) noexcept { return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); }
-
-int hex_value(char c) noexcept {
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    return -1;
-}
 
 /// Digits only, as an int.
 bool parse_int(std::string_view s, int& out) noexcept {
@@ -88,7 +84,8 @@ void split_fields(std::string_view body, std::vector<std::string_view>& fields) 
 class NmeaReader {
 public:
     NmeaReader(std::string_view text, const std::string& file, const ReadOptions& options)
-        : m_text(text), m_file(file), m_options(options) {
+        : m_text(text), m_file(file), m_options(options),
+          m_ais([this](std::size_t line, const std::string& what) { skip_at(line, what); }) {
         m_out.format = "nmea";
         m_out.report.max_messages = options.max_messages;
         Track& t = m_out.tracks.emplace_back();
@@ -105,16 +102,19 @@ public:
             line(detail::trim(m_text.substr(pos, end - pos)));
             pos = end + 1;
         }
+        m_ais.finish();
         date_pending();
-        normalise(m_out.tracks.front(), m_out.report);
+        ais_summary();
+        for (Track& t : m_out.tracks) normalise(t, m_out.report);
         return std::move(m_out);
     }
 
 private:
     std::vector<Fix>& fixes() { return m_out.tracks.front().fixes; }
 
-    void skip(const std::string& what) {
-        m_out.report.skip(m_file + " line " + std::to_string(m_line) + ": " + what + "; sentence skipped");
+    void skip(const std::string& what) { skip_at(m_line, what); }
+    void skip_at(std::size_t line, const std::string& what) {
+        m_out.report.skip(m_file + " line " + std::to_string(line) + ": " + what + "; sentence skipped");
     }
 
     void line(std::string_view text) {
@@ -122,22 +122,21 @@ private:
         if (start == std::string_view::npos) return;
         std::string_view sentence = text.substr(start);
         ++m_out.report.rows;
-        if (sentence.front() == '!') return;  // AIS: other vessels, not this track
-        std::string_view body = sentence.substr(1);
-        if (const std::size_t star = sentence.find('*'); star != std::string_view::npos) {
-            body = sentence.substr(1, star - 1);
-            const int hi = star + 1 < sentence.size() ? hex_value(sentence[star + 1]) : -1;
-            const int lo = star + 2 < sentence.size() ? hex_value(sentence[star + 2]) : -1;
-            unsigned sum = 0;
-            for (const char c : body) sum ^= static_cast<unsigned char>(c);
-            if (hi < 0 || lo < 0 || static_cast<unsigned>(hi * 16 + lo) != sum) {
-                char expected[3] = {"0123456789ABCDEF"[sum >> 4], "0123456789ABCDEF"[sum & 15], '\0'};
-                skip("bad checksum " + detail::quoted(sentence.substr(star, 3)) + " (computed *" + expected + ")");
-                return;
-            }
+        if (sentence.front() == '!') {  // AIS: other vessels (VDM), or this one (VDO) as a track of its MMSI
+            if (ais::LineDecoder::is_ais(text)) ais_line(text);
+            return;
+        }
+        std::string_view body;
+        if (std::string problem; !ais::checksum_ok(sentence.substr(1), body, problem)) {
+            skip(problem);
+            return;
         }
         split_fields(body, m_f);
         const std::string_view address = m_f[0];
+        if (address == "PGHP") {
+            pghp();
+            return;
+        }
         if (address.size() < 5 || address.size() > 6 || address.front() == 'P') return;  // proprietary
         for (const char c : address)
             if (!is_alnum_upper(c)) return;
@@ -225,7 +224,8 @@ private:
         if (date.size() == 6 && parse_int(date.substr(0, 2), dd) && parse_int(date.substr(2, 2), mm) &&
             parse_int(date.substr(4, 2), yy) && valid_date(yy < 80 ? 2000 + yy : 1900 + yy, mm, dd)) {
             const int year = yy < 80 ? 2000 + yy : 1900 + yy;
-            day = m_clock.date_seen(static_cast<double>(days_from_civil(year, mm, dd)) * seconds_per_day + tod);
+            m_clock_s = static_cast<double>(days_from_civil(year, mm, dd)) * seconds_per_day + tod;
+            day = m_clock.date_seen(m_clock_s);
         } else {
             day = m_clock.day_of(tod);
         }
@@ -288,10 +288,84 @@ private:
         const bool ok = parse_int(field(2), d) && parse_int(field(3), m) && parse_int(field(4), y);
         if (ok && field(4).size() == 2) y += y < 80 ? 2000 : 1900;  // some devices write a 2-digit year
         if (ok && valid_date(y, m, d)) {
-            m_clock.date_seen(static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod);
+            m_clock_s = static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod;
+            m_clock.date_seen(m_clock_s);
             return;
         }
         m_clock.day_of(tod);
+    }
+
+    /// DMA's time header before each AIS sentence: `$PGHP,1,yyyy,mm,dd,hh,mm,ss,ms,...`.
+    void pghp() {
+        int v[7] = {};
+        for (std::size_t i = 0; i < 7; ++i)
+            if (!parse_int(field(i + 2), v[i])) return;  // not a time header: nothing to date with
+        if (const auto t = utc_seconds(v[0], v[1], v[2], v[3], v[4], v[5] + v[6] / 1000.0)) m_ghp_s = *t;
+    }
+
+    Track& vessel(std::uint32_t mmsi) {
+        const auto [it, added] = m_vessels.try_emplace(mmsi, m_out.tracks.size());
+        if (added) {
+            Track& t = m_out.tracks.emplace_back();
+            t.id = std::to_string(mmsi);
+            t.file = m_file;
+        }
+        return m_out.tracks[it->second];
+    }
+
+    /// A line holding an AIS sentence. Times: the line's own (tag block `c:`, receive time
+    /// before the sentence), else the latest `$PGHP`, else the log's clock (the last dated RMC
+    /// or ZDA).
+    void ais_line(std::string_view text) {
+        ais::Decoded d;
+        if (!m_ais.line(text, m_line, d)) return;
+        const ais::Message& m = d.message;
+        Track& t = vessel(m.mmsi);
+        if (t.name.empty() && !m.name.empty()) t.name = m.name;
+        if (!t.dims && m.dims) t.dims = m.dims;
+        if (std::isnan(t.draught_m) && std::isfinite(m.draught_m)) t.draught_m = m.draught_m;
+        if (!m.is_position_report()) return;
+        ++m_ais_reports;
+        const std::string what = "AIS type " + std::to_string(m.type) + " (MMSI " + t.id + ")";
+        if (!m.position) {
+            skip_at(d.line, what + ": position not available (lon 181, lat 91, or off the globe)");
+            return;
+        }
+        double time_s = d.time_s;
+        if (std::isnan(time_s)) time_s = m_ghp_s;
+        if (std::isnan(time_s)) time_s = m_clock_s;
+        if (std::isnan(time_s)) {
+            ++m_ais_undated;
+            skip_at(d.line, what + " without a time (no tag block c:, receive time, $PGHP or dated RMC/ZDA before it)");
+            return;
+        }
+        Fix f;
+        f.time_s = time_s;
+        f.position = *m.position;
+        f.sog_kn = m.sog_kn;
+        f.cog_deg = m.cog_deg;
+        f.heading_deg = m.heading_deg;
+        f.nav_status = m.nav_status;
+        f.line = d.line;
+        t.fixes.push_back(f);
+    }
+
+    /// Refuses a log of AIS positions none of which can be dated; notes the types not read.
+    void ais_summary() {
+        std::size_t fixes = 0;
+        for (const Track& t : m_out.tracks) fixes += t.fixes.size();
+        if (fixes == 0 && m_ais_undated > 0 && m_ais_undated == m_ais_reports)
+            throw InputError(m_file + ": AIS position reports without any time source (no tag block c:, receive time before "
+                                      "the sentences, $PGHP header or dated RMC/ZDA): the AIS second field alone cannot date a fix");
+        std::size_t skipped = 0;
+        std::string types;
+        for (const auto& [type, n] : m_ais.skipped_types()) {
+            skipped += n;
+            types += (types.empty() ? "" : ", ") + std::to_string(n) + " of type " + std::to_string(type);
+        }
+        if (skipped > 0)
+            m_out.report.messages.push_back(m_file + ": " + std::to_string(skipped) +
+                                            " AIS messages of types shoal does not read ignored (" + types + ")");
     }
 
     void date_pending() {
@@ -325,6 +399,11 @@ private:
     std::vector<Pending> m_pending;
     std::int64_t m_last_day = 0;
     double m_last_tod = NAN;
+    double m_clock_s = NAN;  ///< the last dated RMC or ZDA
+    double m_ghp_s = NAN;    ///< the last $PGHP
+    ais::LineDecoder m_ais;
+    std::unordered_map<std::uint32_t, std::size_t> m_vessels;  ///< MMSI -> index in m_out.tracks
+    std::size_t m_ais_reports = 0, m_ais_undated = 0;
 };
 
 }  // namespace

@@ -139,7 +139,7 @@ void keep_tracks_with_fixes(File& out, const std::string& path) {
         std::string msg = path + ": no usable fix (" + std::to_string(out.report.rows) + " rows read, " +
                           std::to_string(out.report.skipped) + " skipped)";
         if (out.format == "nmea" && out.report.skipped == 0)
-            msg += ": the log holds no RMC, GGA or GLL position (AIS !AIVDM sentences are not decoded)";
+            msg += ": the log holds no RMC, GGA or GLL position and no AIS position report";
         if (!out.report.messages.empty()) msg += "; first problem: " + out.report.messages.front();
         throw InputError(msg);
     }

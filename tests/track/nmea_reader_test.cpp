@@ -84,13 +84,14 @@ TEST(NmeaReader, DateFromTheFirstRmcDatesTheGgaBeforeIt) {
 TEST(NmeaReader, MergesTalkersSkipsVoidFixesAndAttachesHeadingAndCourse) {
     // mixed_talkers.nmea (15 sentences, each behind a receive-time prefix):
     //   GNGGA 09:59:59 before any date; ZDA 2014-08-15; GPRMC+GNRMC+GPGGA at 10:00:00 -> one fix,
-    //   then HDT 47.5; void RMC, GGA quality 0; !AIVDM and DBT ignored; RMC 10:00:02 COG 46 then a
+    //   then HDT 47.5; void RMC, GGA quality 0; !AIVDM with a bad checksum (python3: *27, not *24)
+    //   skipped, DBT ignored; RMC 10:00:02 COG 46 then a
     //   VTG 46.5 (the RMC's COG stays); INGLL 10:00:03 then VTG 47.0/6.2; INGLL status V.
     // date -u -d '2014-08-15T09:59:59Z' +%s -> 1408096799.
     const std::string path = data_path("tracks/mixed_talkers.nmea");
     const auto f = read_nmea(path);
     EXPECT_EQ(f.report.rows, 15u);
-    EXPECT_EQ(f.report.skipped, 3u);
+    EXPECT_EQ(f.report.skipped, 4u);
     const Track& t = f.tracks.at(0);
     EXPECT_THAT(times_since(t, 1408096799.0), ElementsAre(0, 1, 3, 4));
     EXPECT_DOUBLE_EQ(t.fixes[0].position.lon, 18.0);
@@ -102,10 +103,11 @@ TEST(NmeaReader, MergesTalkersSkipsVoidFixesAndAttachesHeadingAndCourse) {
     EXPECT_DOUBLE_EQ(t.fixes[3].position.lon, 18.0 + 0.030 / 60.0);
     EXPECT_DOUBLE_EQ(t.fixes[3].cog_deg, 47.0);
     EXPECT_DOUBLE_EQ(t.fixes[3].sog_kn, 6.2);
-    ASSERT_EQ(f.report.messages.size(), 3u);
+    ASSERT_EQ(f.report.messages.size(), 4u);
     EXPECT_EQ(f.report.messages[0], path + " line 8: RMC status 'V' (no valid fix); sentence skipped");
     EXPECT_EQ(f.report.messages[1], path + " line 9: GGA fix quality '0' (no fix); sentence skipped");
-    EXPECT_EQ(f.report.messages[2], path + " line 16: GLL status V (no valid fix); sentence skipped");
+    EXPECT_EQ(f.report.messages[2], path + " line 10: bad checksum '*24' (computed *27); sentence skipped");
+    EXPECT_EQ(f.report.messages[3], path + " line 16: GLL status V (no valid fix); sentence skipped");
 }
 
 TEST(NmeaReader, BadChecksumSkipsTheLineAndNoChecksumIsAccepted) {

@@ -206,9 +206,10 @@ TEST(ReadTracks, AFileWithoutAnyGoodRowSaysWhy) {
     EXPECT_THAT([&] { read_tracks(dir.file("bad.csv")); },
                 ThrowsMessage<InputError>(AllOf(HasSubstr("bad.csv: no usable fix (1 rows read, 1 skipped)"),
                                                 HasSubstr("first problem: "), HasSubstr("latitude 91"))));
-    write(dir.file("ais.nmea"), "!AIVDM,1,1,,B,13u?etPv2;0n:dDPwUM1U1Cb069D,0*24\n");
+    write(dir.file("ais.nmea"), "!AIVDM,1,1,,B,13u?etPv2;0n:dDPwUM1U1Cb069D,0*27\n");
     EXPECT_THAT([&] { read_tracks(dir.file("ais.nmea")); },
-                ThrowsMessage<InputError>(HasSubstr("AIS !AIVDM sentences are not decoded")));
+                ThrowsMessage<InputError>(AllOf(HasSubstr("ais.nmea: AIS position reports without any time source"),
+                                                HasSubstr("the AIS second field alone cannot date a fix"))));
 }
 
 TEST(ReadTracks, DropsVesselsLeftWithoutFixes) {

@@ -1,11 +1,19 @@
 #pragma once
-/// NMEA 0183 logs: one track per file, id = the file's stem.
+/// NMEA 0183 logs: the own ship's track (id = the file's stem), then one track per MMSI of the
+/// AIS messages in the log (id = the MMSI).
 ///
 /// Sentences used, from any talker (GP, GN, II, IN, ...): RMC (date, time, position, SOG, COG;
 /// status V skipped), GGA (time, position; fix quality 0 skipped), GLL (position, time; status V
 /// skipped), HDT (true heading), VTG (true COG, SOG), ZDA (date). Anything before the `$` on a
-/// line (a receive time, a tag block) is ignored; `!AIVDM` and other sentences are ignored; a
+/// line (a receive time, a tag block) is ignored for them; other sentences are ignored; a
 /// checksum `*hh` is verified when present (a mismatch skips the line, with a message).
+///
+/// AIS `!--VDM`/`!--VDO` (ais.hpp): position reports become fixes of their MMSI's track, static
+/// data (types 5, 19, 24) gives it its name, A/B/C/D and draught. A message's time is its line's
+/// tag block `c:` or receive time before the sentence, else the latest `$PGHP` header, else the
+/// log's own clock (the last dated RMC or ZDA before it); a report with none is skipped, and a
+/// log whose AIS reports have none and that has no other fix is refused (InputError). Types
+/// shoal does not read are counted in one note of ReadReport::messages.
 ///
 /// Dates: RMC and ZDA give them. Times of day from GGA/GLL take the latest date, with midnight
 /// rollover (the time of day falling by more than 12 h). Times met before the first date take

@@ -1,0 +1,147 @@
+// Raw AIS logs (AIVDM/AIVDO) through the public track reader: tracks per MMSI next to the own
+// ship's, their times (own clock, $PGHP, tag blocks, receive times), static data joining its
+// track, and bad input contained. Expected values come from gpsdecode (gpsd-clients) and
+// `date -u -d ... +%s`, as each test says.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+
+#include "test_support.hpp"
+#include <shoal/track/nmea_reader.hpp>
+#include <shoal/track/reader.hpp>
+#include <shoal/util/error.hpp>
+
+namespace {
+
+using namespace shoal;
+using namespace shoal::track;
+using test::data_path;
+using test::TempDir;
+using testing::AllOf;
+using testing::Contains;
+using testing::HasSubstr;
+using testing::ThrowsMessage;
+
+const Track* find(const TrackFile& f, const std::string& id) {
+    const auto it = std::find_if(f.tracks.begin(), f.tracks.end(), [&](const Track& t) { return t.id == id; });
+    return it == f.tracks.end() ? nullptr : &*it;
+}
+
+TEST(AivdmReader, MixedLogGivesTheOwnShipAndEveryAisVesselDatedByTheLogsClock) {
+    // gpsd_ait250.log: 34 RMC with status A (grep -c); gpsdecode -j: 61 position reports with a
+    // position of 20 MMSIs, 33 of them own ship !AIVDO of MMSI 244630386. Line 16 holds
+    // !AIVDM 13njCt031t0DA=lN2:jKmad60l1p: MMSI 258774000, lon 4.427830, lat 52.488015, speed
+    // 12.4, course 303.0, heading 310 (gpsdecode -u: lon 2656698, lat 31492809), after RMC
+    // 194907.00 of 010809: date -u -d '2009-08-01T19:49:07Z' +%s -> 1249156147.
+    const std::string path = data_path("tracks/ais_raw/gpsd_ait250.log");
+    const TrackFile f = read_tracks(path);
+    EXPECT_EQ(f.format, "nmea");
+    ASSERT_EQ(f.tracks.size(), 21u);
+    EXPECT_EQ(f.tracks[0].id, "gpsd_ait250");
+    EXPECT_EQ(f.tracks[0].fixes.size(), 34u);
+    std::size_t ais_fixes = 0;
+    for (std::size_t i = 1; i < f.tracks.size(); ++i) ais_fixes += f.tracks[i].fixes.size();
+    EXPECT_EQ(ais_fixes + f.report.duplicates, 61u);  // reports of one vessel within one RMC second are one time
+    const Track* own = find(f, "244630386");
+    ASSERT_NE(own, nullptr);
+    EXPECT_GE(own->fixes.size(), 30u);
+    const Track* t = find(f, "258774000");
+    ASSERT_NE(t, nullptr);
+    const Fix& x = t->fixes.at(0);
+    EXPECT_EQ(x.line, 16u);
+    EXPECT_EQ(x.time_s, 1249156147.0);
+    EXPECT_DOUBLE_EQ(x.position.lon, 2656698 / 600000.0);
+    EXPECT_DOUBLE_EQ(x.position.lat, 31492809 / 600000.0);
+    EXPECT_DOUBLE_EQ(x.sog_kn, 12.4);
+    EXPECT_DOUBLE_EQ(x.cog_deg, 303.0);
+    EXPECT_DOUBLE_EQ(x.heading_deg, 310.0);
+    EXPECT_EQ(x.nav_status, 0);
+    for (const Track& tr : f.tracks)
+        for (const Fix& fx : tr.fixes) {
+            EXPECT_GE(fx.time_s, 1249156147.0 - 1) << tr.id;  // 2009-08-01T19:49:07Z .. the last RMC
+            EXPECT_LE(fx.time_s, 1249156147.0 + 60) << tr.id;
+        }
+}
+
+TEST(AivdmReader, DmaLogIsDatedByItsPghpHeadersAndStaticDataJoinsItsTrack) {
+    // dma_replay_dump.txt: line 1 $PGHP,1,2013,3,18,9,19,9,499,... then line 2 !BSVDM of MMSI
+    // 309146000 at lon 12.459748, lat 56.216012 (gpsdecode); date -u -d '2013-03-18T09:19:09Z'
+    // +%s -> 1363598349, + 0.499 s.
+    const TrackFile f = read_tracks(data_path("tracks/ais_raw/dma_replay_dump.txt"));
+    const Track* t = find(f, "309146000");
+    ASSERT_NE(t, nullptr);
+    EXPECT_DOUBLE_EQ(t->fixes.at(0).time_s, 1363598349.499);
+    EXPECT_NEAR(t->fixes[0].position.lon, 12.459748, 1e-6);
+    EXPECT_NEAR(t->fixes[0].position.lat, 56.216012, 1e-6);
+    EXPECT_EQ(find(f, "dma_replay_dump"), nullptr);  // no own-ship sentence: no track of the file's own
+}
+
+TEST(AivdmReader, StaticDataGivesTheTrackItsNameDimensionsAndDraught) {
+    // The first lines of gpsd's ais-nmea.log: a type 5 in two sentences (here with NMEA 4.10
+    // tag-block groups), per gpsdecode -j MMSI 371255000, shipname "SEA ENTERPRISE", to_bow 13,
+    // to_stern 15, to_port 1, to_starboard 6, draught 1.4; its line 936, a type 3 of the same
+    // MMSI: status 5 (moored), lon 3427638, lat 31705155 (gpsdecode -u), heading 249. The report
+    // repeated with a tag-block time in milliseconds, an epoch receive time and an ISO 8601 one:
+    // date -u -d @1586295591 -> 2020-04-07T21:39:51Z.
+    TempDir dir;
+    std::ofstream(dir.file("tagged.nmea"))
+        << "\\g:1-2-77,c:1586295590*23\\!AIVDM,2,1,9,B,55R3Vn82=ILTQ3KKS>1<D60Dq@E918U<F222221J1`?164vc03S1CCAD,0*2A\n"
+        << "\\g:2-2-77*5D\\!AIVDM,2,2,9,B,`88888888888880,2*76\n"
+        << "\\c:1586295591500*65\\!AIVDM,1,1,,A,35R3Vn50000J9adN?8@siGjp0E1r,0*42\n"
+        << "1586295592 !AIVDM,1,1,,A,35R3Vn50000J9adN?8@siGjp0E1r,0*42\n"
+        << "2020-04-07T21:39:53Z !AIVDM,1,1,,A,35R3Vn50000J9adN?8@siGjp0E1r,0*42\n";
+    const TrackFile f = read_tracks(dir.file("tagged.nmea"));
+    EXPECT_THAT(f.report.messages, testing::IsEmpty());
+    ASSERT_EQ(f.tracks.size(), 1u);
+    const Track& t = f.tracks[0];
+    EXPECT_EQ(t.id, "371255000");
+    EXPECT_EQ(t.name, "SEA ENTERPRISE");
+    EXPECT_EQ(t.dims, (hull::Dimensions{13, 15, 1, 6}));
+    EXPECT_DOUBLE_EQ(t.draught_m, 1.4);
+    ASSERT_EQ(t.fixes.size(), 3u);
+    EXPECT_DOUBLE_EQ(t.fixes[0].time_s, 1586295591.5);
+    EXPECT_DOUBLE_EQ(t.fixes[1].time_s, 1586295592.0);
+    EXPECT_DOUBLE_EQ(t.fixes[2].time_s, 1586295593.0);
+    EXPECT_DOUBLE_EQ(t.fixes[0].position.lon, 3427638 / 600000.0);
+    EXPECT_DOUBLE_EQ(t.fixes[0].position.lat, 31705155 / 600000.0);
+    EXPECT_DOUBLE_EQ(t.fixes[0].heading_deg, 249.0);
+    EXPECT_EQ(t.fixes[0].nav_status, nav_status_moored);
+}
+
+TEST(AivdmReader, BadSentencesAreSkippedWithTheirLinesAndNeverFatal) {
+    TempDir dir;
+    const std::string path = dir.file("bad.nmea");
+    std::ofstream(path) << "1586295590 !AIVDM,1,1,,B,13aDp<PP000IwSlN?Wm@0?wN2<1T,0*28\n"                   // 1: bad checksum
+                        << "1586295591 !AIVDM,2,2,9,B,`88888888888880,2*76\n"                              // 2: fragment 2 alone
+                        << "1586295592 !AIVDM,2,1,9,B,55R3Vn82=ILTQ3KKS>1<D60Dq@E918U<F222221J1`?164vc03S1CCAD,0*2A\n"  // 3: never completed
+                        << "1586295593 !AIVDM,1,1,,A,402B4L0000Htt1Lg@6FV5vG01d7N,0*06\n"                  // 4: type 4, not read
+                        << "1586295594 !AIVDM,1,1,,B,13aDp<PP000IwSlN?Wm@0?wN2<1T,0*29\n"                  // 5: good
+                        << "1586295595 !AIVDM,1,1,,B,13aDp<PP000IwSlN?Wm@0?wN2<1T\n"                         // 6: too few fields
+                        << "1586295596 !AIVDM,1,1,,B,13aDp<PP000IwSlN?Wm@0?wN2<1T,7*2E\n";                 // 7: fill 7
+    const TrackFile f = read_tracks(path);
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].id, "244660274");
+    EXPECT_EQ(f.tracks[0].fixes.size(), 1u);
+    EXPECT_EQ(f.report.rows, 7u);
+    EXPECT_EQ(f.report.skipped, 5u);
+    EXPECT_THAT(f.report.messages, Contains(path + " line 1: bad checksum '*28' (computed *29); sentence skipped"));
+    EXPECT_THAT(f.report.messages, Contains(AllOf(HasSubstr("line 2: AIS fragment 2 of 2 without the fragments before it"), HasSubstr("half message"))));
+    EXPECT_THAT(f.report.messages, Contains(HasSubstr("line 3: AIS message of 2 fragments without fragment 2 (half message)")));
+    EXPECT_THAT(f.report.messages, Contains(HasSubstr("line 6: AIVDM with 6 fields")));
+    EXPECT_THAT(f.report.messages, Contains(HasSubstr("line 7: AIVDM fill bits '7' (0-5)")));
+    EXPECT_THAT(f.report.messages, Contains(path + ": 1 AIS messages of types shoal does not read ignored (1 of type 4)"));
+}
+
+TEST(AivdmReader, ALogWithoutATimeSourceIsRefusedNamingTheFile) {
+    // gpsd's ais-raw-messages.log: bare !AIVDM lines, nothing to date them with.
+    const std::string path = data_path("tracks/ais_raw/gpsd_ais_raw_messages.log");
+    EXPECT_THAT([&] { read_tracks(path); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(path + ": AIS position reports without any time source"),
+                                                HasSubstr("the AIS second field alone cannot date a fix"))));
+}
+
+}  // namespace
