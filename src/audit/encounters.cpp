@@ -1,14 +1,13 @@
-// Ship-to-ship encounters (see include/shoal/audit/encounters.hpp): the ships prepared, the
-// narrow phase of a pair at an instant (exact, or with bounds), and each pair's events over
-// the instants it is checked. The clock, the broad phase, the interval events and the
-// hull-to-hull contact have files of their own.
+// Ship-to-ship encounters (see include/shoal/audit/encounters.hpp): each pair's events and
+// closest approach over the instants it is checked, and the exercise put together from its
+// parts: the ships (exercise_ship), the clock (exercise_clock), the broad phase, the narrow
+// phase, the interval events, and the hull-to-hull contact (check/hull_contact).
 #include <shoal/audit/encounters.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -17,177 +16,34 @@
 #include <shoal/util/error.hpp>
 #include "audit/broad_phase.hpp"
 #include "audit/exercise_clock.hpp"
+#include "audit/exercise_ship.hpp"
 #include "audit/interval_events.hpp"
-#include "detail/hull_shape.hpp"
+#include "audit/narrow_phase.hpp"
 
 namespace shoal::audit {
 
 using geo::XY;
-using check::detail::bound_slack_m;
-using check::detail::EdgePair;
-using check::detail::HullShape;
 using check::detail::Placed;
-using check::detail::spectral_norm;
+using detail::PairSample;
 
 const char* to_string(EncounterKind k) noexcept { return k == EncounterKind::collision ? "collision" : "close_quarters"; }
 
 namespace {
 
-constexpr double deg = std::numbers::pi / 180.0;
 /// Verlet skin of the broad phase as a fraction of the largest threshold (and at least two
 /// steps): candidates are pairs within threshold + skin at the last build, rebuilt when some
 /// ship has moved half a skin.
 constexpr double skin_fraction = 0.5;
 
-double dist2(XY a, XY b) { return geo::norm2(b - a); }
-
-struct Ship {
-    const track::Track* track = nullptr;
-    std::vector<LocalFix> local;
-    std::optional<Motion> motion;
-    const hull::Hull* hull = nullptr;
-    HullShape shape;
-    double sigma_max = 1;       ///< largest stretch of the frame over the track's fixes
-    double reach = 0;           ///< sigma_max * hull radius + slack: a circle around the position holds the hull
-    std::vector<double> speed;  ///< per fix interval: bound on any hull point's speed, m/s; < 0 across a gap
-    /// Per fix: bound on how far any hull point has moved since the first fix (gaps count 0).
-    /// Between two moments, the difference bounds the motion of every hull point.
-    std::vector<double> odometer;
-
-    // At the current instant (while present).
-    std::size_t cur = 0;  ///< last fix at or before it
-    double f = 0;         ///< fraction of fix interval `cur`
-    XY pos;               ///< reference point
-    double odometer_now() const {
-        return f == 0 ? odometer[cur] : odometer[cur] + f * (odometer[cur + 1] - odometer[cur]);
-    }
-    std::uint64_t posed_at = UINT64_MAX;     ///< instant of placed's pose and chunks
-    std::uint64_t outlined_at = UINT64_MAX;  ///< instant of placed's outline
-    Placed placed;
-
-    /// The pose and chunk capsules at instant `now`.
-    const Placed& posed(std::uint64_t now) {
-        if (posed_at != now) {
-            check::detail::place_chunks(shape, motion->pose(cur, f), placed);
-            posed_at = now;
-        }
-        return placed;
-    }
-    /// The hull at instant `now`.
-    const Placed& outlined(std::uint64_t now) {
-        posed(now);
-        if (outlined_at != now) {
-            check::detail::place_outline(shape, placed);
-            outlined_at = now;
-        }
-        return placed;
-    }
-};
-
-/// What one check of a pair found.
-struct Sample {
-    double t = 0;
-    bool far = false;  ///< proved clearance > margin (and no better than the closest approach so far) without computing it
-    HullContact contact;
-    XY pos_a, pos_b;
-    bool touching() const noexcept { return !far && contact.collision; }
-};
-
-/// What the bounded narrow phase remembers of a pair between instants.
-struct PairMemo {
-    EdgePair hint;  ///< the nearest (or touching) edge pair at the last exact check
-    /// Clearance at the last exact check, the pair checked at every instant since, and both
-    /// ships' odometers then: the clearance can have shrunk by at most what they moved since.
-    bool clear_known = false;
-    double last_clear = 0;
-    double odometer_a = 0, odometer_b = 0;
-};
-
-/// What the narrow phase is asked of a pair at the current instant.
-struct PairQuery {
-    std::uint64_t instant = 0;
-    bool contiguous = false;  ///< the pair was checked at the instant before, both ships present
-    bool touch_only = false;  ///< a collision goes on: only "still touching?" matters
-    double margin_m = 0;      ///< close quarters under this
-    double best_m = INFINITY;  ///< the pair's closest approach so far
-};
-
-/// Hull to hull for a pair of ships: the contact (s.contact) or a proof that it is over the
-/// margin and no closer than the best so far (s.far). Each returns its exact hull computations.
-class NarrowPhase {
-public:
-    virtual ~NarrowPhase() = default;
-    /// At the current instant.
-    virtual std::size_t now(Ship& a, Ship& b, PairMemo& memo, const PairQuery& q, Sample& s) const = 0;
-    /// At another moment (bisection): the hulls placed in pa and pb; only touching matters.
-    virtual std::size_t at(const Ship& a, const Placed& pa, const Ship& b, const Placed& pb, Sample& s) const = 0;
-};
-
-/// Every edge pair at every check: the reference.
-class AllEdges final : public NarrowPhase {
-public:
-    std::size_t now(Ship& a, Ship& b, PairMemo&, const PairQuery& q, Sample& s) const override {
-        s.contact = check::detail::contact_all(a.outlined(q.instant).pts, b.outlined(q.instant).pts);
-        return 1;
-    }
-    std::size_t at(const Ship&, const Placed& pa, const Ship&, const Placed& pb, Sample& s) const override {
-        s.contact = check::detail::contact_all(pa.pts, pb.pts);
-        return 1;
-    }
-};
-
-/// A check is skipped when bounds (circles around the hulls, the last exact clearance minus
-/// how far both hulls can have moved since, chunk capsules) prove the clearance is over the
-/// margin and not under the best so far; else only the edge pairs capsules cannot rule out.
-class Bounded final : public NarrowPhase {
-public:
-    std::size_t now(Ship& a, Ship& b, PairMemo& m, const PairQuery& q, Sample& s) const override {
-        if (!q.contiguous) m.clear_known = false;
-        double lb = std::sqrt(dist2(a.pos, b.pos)) - a.reach - b.reach;
-        if (m.clear_known) {
-            const double moved = (a.odometer_now() - m.odometer_a) + (b.odometer_now() - m.odometer_b);
-            lb = std::max(lb, m.last_clear - moved * (1 + 1e-9) - bound_slack_m);
-        }
-        s.far = lb > q.margin_m && lb >= q.best_m;
-        std::size_t computed = 0;
-        // In a collision that goes on, only "still touching?" matters: the event has its
-        // first contact and the closest approach is 0 already.
-        if (!s.far && q.touch_only &&
-            check::detail::touching_pruned(a.shape, a.outlined(q.instant), b.shape, b.outlined(q.instant), &m.hint)) {
-            computed = 1;
-            s.contact.collision = true;
-            s.contact.clearance_m = 0;
-        } else if (!s.far) {
-            s.far = check::detail::chunks_apart(a.posed(q.instant), b.posed(q.instant), q.margin_m, q.best_m);
-            if (!s.far) {
-                check::detail::contact_pruned(a.shape, a.outlined(q.instant), b.shape, b.outlined(q.instant), INFINITY, INFINITY, s.contact,
-                                              &m.hint);
-                computed = 1;
-            }
-        }
-        if (!s.far) {
-            m.clear_known = true;
-            m.last_clear = s.contact.clearance_m;
-            m.odometer_a = a.odometer_now();
-            m.odometer_b = b.odometer_now();
-        }
-        return computed;
-    }
-    std::size_t at(const Ship& a, const Placed& pa, const Ship& b, const Placed& pb, Sample& s) const override {
-        s.far = !check::detail::contact_pruned(a.shape, pa, b.shape, pb, 0, 0, s.contact);
-        return !s.far;
-    }
-};
-
 struct PairState {
     std::uint32_t a = 0, b = 0;
     std::uint64_t last_instant = 0;
     bool checked = false, listed = false;
-    detail::IntervalEvents<Sample> intervals;  ///< collisions (contact) and close quarters (near)
+    detail::IntervalEvents<PairSample> intervals;  ///< collisions (contact) and close quarters (near)
     std::size_t collision_event = 0;  ///< index in the result's events of the open collision
     double best = INFINITY, best_t = 0;  ///< closest approach so far
     XY best_pos_a, best_pos_b;
-    PairMemo memo;
+    detail::PairMemo memo;
     bool open() const noexcept { return intervals.open(); }
 };
 
@@ -205,7 +61,7 @@ public:
         thresholds.base_m = m_opt.ship_margin_m + m_opt.step_m;
         std::vector<detail::ExerciseClock::Ship> timing;
         for (std::size_t k = 0; k < tracks.size(); ++k) {
-            prepare(m_ships[k], *tracks[k], hulls[k]);
+            detail::prepare_ship(m_ships[k], *tracks[k], hulls[k], m_frame, m_opt.max_gap_s);
             thresholds.radius.push_back(m_ships[k].shape.radius);
             timing.push_back({&tracks[k]->fixes, &m_ships[k].speed});
         }
@@ -215,10 +71,10 @@ public:
         const double skin = std::max(2 * m_opt.step_m, skin_fraction * m_result.threshold_m);
         if (method == Method::fast) {
             m_broad = detail::hash_grid(std::move(thresholds), skin);
-            m_narrow = std::make_unique<Bounded>();
+            m_narrow = detail::bounded();
         } else {
             m_broad = detail::all_pairs(std::move(thresholds));
-            m_narrow = std::make_unique<AllEdges>();
+            m_narrow = detail::all_edges();
         }
     }
 
@@ -252,49 +108,16 @@ private:
         }
     }
 
-    /// The ship's hull and motion, and the bounds on its hull points' motion.
-    void prepare(Ship& s, const track::Track& track, const hull::Hull& hull) const {
-        s.track = &track;
-        s.hull = &hull;
-        s.shape = check::detail::prepare(hull.contour());
-        s.local = project_fixes(track, m_frame);
-        s.motion.emplace(track, s.local);
-        for (const LocalFix& lf : s.local) {
-            const Eigen::Matrix2d& j = lf.jacobian;
-            s.sigma_max = std::max(s.sigma_max, spectral_norm(j(0, 0), j(0, 1), j(1, 0), j(1, 1)));
-        }
-        s.sigma_max *= 1 + 1e-9;
-        s.reach = s.sigma_max * s.shape.radius + bound_slack_m;
-        const auto& fx = track.fixes;
-        s.odometer.assign(1, 0.0);
-        for (std::size_t i = 0; i + 1 < fx.size(); ++i) {
-            const double dt = fx[i + 1].time_s - fx[i].time_s;
-            if (dt > m_opt.max_gap_s) {
-                s.speed.push_back(-1);
-                s.odometer.push_back(s.odometer.back());
-                continue;
-            }
-            const double rot = std::fabs(turn(fx[i].heading_used_deg, fx[i + 1].heading_used_deg)) * deg;
-            // Any hull point: the reference point's move, the turn, and the change of the
-            // frame's local map (scale and convergence) over the hull's radius.
-            const Eigen::Matrix2d dj = s.local[i + 1].jacobian - s.local[i].jacobian;
-            const double moved = geo::distance(s.local[i].position, s.local[i + 1].position) + s.sigma_max * s.shape.radius * rot +
-                                 spectral_norm(dj(0, 0), dj(0, 1), dj(1, 0), dj(1, 1)) * s.shape.radius;
-            s.speed.push_back(moved / dt);
-            s.odometer.push_back(s.odometer.back() + moved);
-        }
-    }
-
     /// The pair at an arbitrary moment (both ships present there), for bisection: whether
     /// the hulls touch, and where. The fast way may answer "far" (not touching) early.
-    Sample sample_at(std::uint32_t a, std::uint32_t b, double t) {
-        const Ship& sa = m_ships[a];
-        const Ship& sb = m_ships[b];
+    PairSample sample_at(std::uint32_t a, std::uint32_t b, double t) {
+        const detail::ExerciseShip& sa = m_ships[a];
+        const detail::ExerciseShip& sb = m_ships[b];
         const auto [ia, fa] = detail::locate(sa.track->fixes, t);
         const auto [ib, fb] = detail::locate(sb.track->fixes, t);
         check::detail::place(sa.shape, sa.motion->pose(ia, fa), m_scratch_a);
         check::detail::place(sb.shape, sb.motion->pose(ib, fb), m_scratch_b);
-        Sample s;
+        PairSample s;
         s.t = t;
         s.pos_a = m_scratch_a.position;
         s.pos_b = m_scratch_b.position;
@@ -306,7 +129,7 @@ private:
         ++m_result.instants;
         m_instant = m_clock->instant();
         for (const std::uint32_t k : m_clock->present()) {
-            Ship& s = m_ships[k];
+            detail::ExerciseShip& s = m_ships[k];
             s.cur = m_clock->fix(k);
             s.f = m_clock->fraction(k);
             s.pos = m_pos[k] = s.motion->position(s.cur, s.f);
@@ -325,30 +148,30 @@ private:
     struct PairEvents {
         Exercise& x;
         PairState& p;
-        static double time(const Sample& s) { return s.t; }
-        static bool contact(const Sample& s) { return s.touching(); }
-        bool near(const Sample& s) const { return s.touching() || (!s.far && s.contact.clearance_m < x.m_opt.ship_margin_m); }
-        static double clearance(const Sample& s) { return s.contact.clearance_m; }
+        static double time(const PairSample& s) { return s.t; }
+        static bool contact(const PairSample& s) { return s.touching(); }
+        bool near(const PairSample& s) const { return s.touching() || (!s.far && s.contact.clearance_m < x.m_opt.ship_margin_m); }
+        static double clearance(const PairSample& s) { return s.contact.clearance_m; }
         /// Between a moment without contact and one with, the moment of change, to the
         /// tolerance; the sample on the contact side.
-        Sample bisect(const Sample& clear, const Sample& hit, bool /*forward: either way in time*/) {
-            Sample found = hit;
+        PairSample bisect(const PairSample& clear, const PairSample& hit, bool /*forward: either way in time*/) {
+            PairSample found = hit;
             detail::bisect_change(clear.t, hit.t, 1.0, x.m_opt.time_tolerance_s, 60, [&](double mid) {
-                Sample m = x.sample_at(p.a, p.b, mid);
+                PairSample m = x.sample_at(p.a, p.b, mid);
                 if (!m.touching()) return false;
                 found = m;
                 return true;
             });
             return found;
         }
-        void contact_opened(const Sample& first, const Sample& /*s*/, bool /*seen_clear*/) {
+        void contact_opened(const PairSample& first, const PairSample& /*s*/, bool /*seen_clear*/) {
             p.collision_event = x.m_result.events.size();
             x.m_result.events.push_back(x.make_event(EncounterKind::collision, p, first.t, first.contact));
             x.offer(p, first);
         }
-        void contact_continues(const Sample&) {}
+        void contact_continues(const PairSample&) {}
         void contact_closed(double /*start_s*/, double end_s) { x.m_result.events[p.collision_event].end_s = end_s; }
-        void near_closed(double start_s, double end_s, const Sample& nearest) {
+        void near_closed(double start_s, double end_s, const PairSample& nearest) {
             HullContact c;
             c.clearance_m = nearest.contact.clearance_m;
             c.on_a = c.on_b = 0.5 * (nearest.contact.on_a + nearest.contact.on_b);
@@ -364,10 +187,10 @@ private:
     void check(std::uint32_t index, double t) {
         ++m_result.pairs_checked;
         PairState& p = m_states[index];
-        Ship& sa = m_ships[p.a];
-        Ship& sb = m_ships[p.b];
+        detail::ExerciseShip& sa = m_ships[p.a];
+        detail::ExerciseShip& sb = m_ships[p.b];
         PairEvents events{*this, p};
-        PairQuery q;
+        detail::PairQuery q;
         q.instant = m_instant;
         q.contiguous = p.checked && p.last_instant + 1 == m_instant && m_clock->entered(p.a) < m_instant && m_clock->entered(p.b) < m_instant;
         if (!q.contiguous) p.intervals.end(events);
@@ -375,7 +198,7 @@ private:
         q.margin_m = m_opt.ship_margin_m;
         q.best_m = p.best;
 
-        Sample s;
+        PairSample s;
         s.t = t;
         s.pos_a = sa.pos;
         s.pos_b = sb.pos;
@@ -391,7 +214,7 @@ private:
         }
     }
 
-    void offer(PairState& p, const Sample& s) {
+    void offer(PairState& p, const PairSample& s) {
         if (!(s.contact.clearance_m < p.best)) return;
         p.best = s.contact.clearance_m;
         p.best_t = s.t;
@@ -419,7 +242,7 @@ private:
     }
 
     ShipAt ship_at(std::uint32_t k, double t, XY* position) const {
-        const Ship& s = m_ships[k];
+        const detail::ExerciseShip& s = m_ships[k];
         const auto [i, f] = detail::locate(s.track->fixes, t);
         const check::LocalPose pose = s.motion->pose(i, f);
         ShipAt out;
@@ -474,10 +297,10 @@ private:
 
     const geo::LocalFrame& m_frame;
     EncounterOptions m_opt;
-    std::vector<Ship> m_ships;
+    std::vector<detail::ExerciseShip> m_ships;
     std::optional<detail::ExerciseClock> m_clock;
     std::unique_ptr<detail::BroadPhase> m_broad;
-    std::unique_ptr<NarrowPhase> m_narrow;
+    std::unique_ptr<detail::NarrowPhase> m_narrow;
     EncounterResult m_result;
 
     std::uint64_t m_instant = 0;
