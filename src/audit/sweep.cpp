@@ -7,6 +7,7 @@
 #include <shoal/audit/motion.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/util/error.hpp>
+#include "audit/interval_events.hpp"
 
 namespace shoal::audit {
 
@@ -76,62 +77,59 @@ public:
         m_piece_after = after;
     }
 
-    void add(const Sample& s, const Sample* prev) {
-        const check::Contact& c = s.contact;
-        // Contacts: intervals of contact, first and last contact refined by bisection.
-        if (c.collision && !m_in_ground) {
-            m_in_ground = true;
-            Sample first = s;
-            const bool seen_clear = prev && !prev->contact.collision;
-            if (seen_clear) first = bisect(*prev, s, true);
-            m_ground = make_event(EventKind::grounding, first);
-            m_ground.start_s = m_motion.time(first.i, first.f);
-            m_ground.end_s = m_ground.start_s;
-            m_ground.penetration_m = std::max(first.contact.penetration_m, c.penetration_m);
-            classify(m_ground, first, seen_clear);
-            note_status(s);
-        } else if (c.collision) {
-            note_status(s);
-            m_ground.end_s = m_motion.time(s.i, s.f);
-            m_ground.penetration_m = std::max(m_ground.penetration_m, c.penetration_m);
-        } else if (m_in_ground) {
-            const Sample last = prev ? bisect(s, *prev, false) : s;
-            m_ground.end_s = m_motion.time(last.i, last.f);
-            finish_ground();
-        }
-        // Close passes: intervals under the margin that never reach contact.
-        const bool near = c.collision || c.clearance_m < m_opt.margin_m;
-        if (near) {
-            if (!m_in_near) {
-                m_in_near = true;
-                m_near_contact = false;
-                m_near_min = INFINITY;
-                m_near_start = m_motion.time(s.i, s.f);
-            }
-            m_near_end = m_motion.time(s.i, s.f);
-            if (c.collision) {
-                m_near_contact = true;
-            } else if (c.clearance_m < m_near_min) {
-                m_near_min = c.clearance_m;
-                m_near = make_event(EventKind::close_pass, s);
-                m_near.min_clearance_m = c.clearance_m;
-                const track::Fix& fx = m_track.fixes[s.i];
-                m_near.speed_kn = fx.speed_used_kn;
-                m_near.speed_source = fx.speed_source;
-                m_near.nav_status = fx.nav_status;
-            }
-        } else if (m_in_near) {
-            finish_near();
-        }
-    }
+    /// The next checked sample of the current piece.
+    void add(const Sample& s) { m_intervals.add(s, *this); }
 
     /// Closes open intervals at the end of a piece of track.
-    void end_piece() {
-        if (m_in_ground) finish_ground();
-        if (m_in_near) finish_near();
-    }
+    void end_piece() { m_intervals.end(*this); }
 
 private:
+    friend class detail::IntervalEvents<Sample, true>;
+
+    // The interval events' handler (interval_events.hpp): contacts are groundings (of some
+    // kind), near intervals that never reach contact close passes.
+    double time(const Sample& s) const { return m_motion.time(s.i, s.f); }
+    static bool contact(const Sample& s) { return s.contact.collision; }
+    bool near(const Sample& s) const { return s.contact.collision || s.contact.clearance_m < m_opt.margin_m; }
+    static double clearance(const Sample& s) { return s.contact.clearance_m; }
+
+    void contact_opened(const Sample& first, const Sample& s, bool seen_clear) {
+        m_ground = make_event(EventKind::grounding, first);
+        m_ground.penetration_m = std::max(first.contact.penetration_m, s.contact.penetration_m);
+        classify(m_ground, first, seen_clear);
+        note_status(s);
+    }
+    void contact_continues(const Sample& s) {
+        note_status(s);
+        m_ground.penetration_m = std::max(m_ground.penetration_m, s.contact.penetration_m);
+    }
+    void contact_closed(double start_s, double end_s) {
+        m_ground.start_s = start_s;
+        m_ground.end_s = end_s;
+        m_ground.min_clearance_m = 0;
+        m_out.events.push_back(m_ground);
+        TrackSummary& sum = m_out.summary;
+        switch (m_ground.kind) {
+            case EventKind::grounding: ++sum.groundings; break;
+            case EventKind::alongside: ++sum.alongside; break;
+            case EventKind::contact_at_start: ++sum.contacts_at_start; break;
+            case EventKind::expected_contact: ++sum.expected_contacts; break;
+            case EventKind::close_pass: break;
+        }
+    }
+    void near_closed(double start_s, double end_s, const Sample& nearest) {
+        Event e = make_event(EventKind::close_pass, nearest);
+        e.min_clearance_m = nearest.contact.clearance_m;
+        const track::Fix& fx = m_track.fixes[nearest.i];
+        e.speed_kn = fx.speed_used_kn;
+        e.speed_source = fx.speed_source;
+        e.nav_status = fx.nav_status;
+        e.start_s = start_s;
+        e.end_s = end_s;
+        m_out.events.push_back(std::move(e));
+        ++m_out.summary.close_passes;
+    }
+
     /// The kind of a contact that begins at `first`, from what was observed, and its evidence.
     void classify(Event& e, const Sample& first, bool seen_clear) const {
         const auto& fx = m_track.fixes;
@@ -219,16 +217,11 @@ private:
             f_clear = 1.0;
         }
         const double duration = m_track.fixes[i + 1].time_s - m_track.fixes[i].time_s;
-        for (int it = 0; it < 50 && duration * std::fabs(f_hit - f_clear) > m_opt.time_tolerance_s; ++it) {
-            const double mid = (f_clear + f_hit) / 2;
+        f_hit = detail::bisect_change(f_clear, f_hit, duration, m_opt.time_tolerance_s, 50, [&](double mid) {
             const check::Contact c = check(i, mid, false);
-            if (c.collision) {
-                f_hit = mid;
-                hit.contact = c;
-            } else {
-                f_clear = mid;
-            }
-        }
+            if (c.collision) hit.contact = c;
+            return c.collision;
+        });
         if (f_hit >= 1.0) return Sample{i + 1, 0.0, hit.contact};
         hit.i = i;
         hit.f = f_hit;
@@ -260,29 +253,6 @@ private:
         return e;
     }
 
-    void finish_ground() {
-        m_in_ground = false;
-        m_ground.min_clearance_m = 0;
-        m_out.events.push_back(m_ground);
-        TrackSummary& sum = m_out.summary;
-        switch (m_ground.kind) {
-            case EventKind::grounding: ++sum.groundings; break;
-            case EventKind::alongside: ++sum.alongside; break;
-            case EventKind::contact_at_start: ++sum.contacts_at_start; break;
-            case EventKind::expected_contact: ++sum.expected_contacts; break;
-            case EventKind::close_pass: break;
-        }
-    }
-
-    void finish_near() {
-        m_in_near = false;
-        if (m_near_contact) return;  // it reached contact: the grounding tells it
-        m_near.start_s = m_near_start;
-        m_near.end_s = m_near_end;
-        m_out.events.push_back(m_near);
-        ++m_out.summary.close_passes;
-    }
-
     const track::Track& m_track;
     const geo::LocalFrame& m_frame;
     const Motion& m_motion;
@@ -293,9 +263,8 @@ private:
     TrackResult& m_out;
     std::size_t m_piece_first = 0;
     const char* m_piece_after = "track start";
-    bool m_in_ground = false, m_in_near = false, m_near_contact = false;
-    Event m_ground, m_near;
-    double m_near_min = INFINITY, m_near_start = 0, m_near_end = 0;
+    detail::IntervalEvents<Sample, true> m_intervals;
+    Event m_ground;  ///< the open contact, from its first contact
 };
 
 /// Gives the last answer again for the same pose and options (a pure function of them): a
@@ -356,7 +325,6 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         const double clear = std::isinf(c.clearance_m) ? opt.margin_m + opt.lookahead_m : c.clearance_m;
         budget_m = c.collision ? 0 : std::max(0.0, clear - opt.margin_m);
     };
-    Sample prev;
     bool have_prev = false;
     std::vector<geo::LonLat>* line = nullptr;
     for (std::size_t i = 0; i < t.fixes.size(); ++i) {
@@ -388,8 +356,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 Sample s{i - 1, static_cast<double>(k) / static_cast<double>(n), {}};
                 s.contact = events.check(s.i, s.f, false);
                 note(s.contact);
-                events.add(s, &prev);
-                prev = s;
+                events.add(s);
             }
         }
         Sample s{i, 0.0, {}};
@@ -397,8 +364,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         if (t.fixes[i].heading_source == track::HeadingSource::none && circle) ++sum.unknown_heading_fixes;
         if (!s.contact.covered) ++sum.uncovered_fixes;
         note(s.contact);
-        events.add(s, have_prev ? &prev : nullptr);
-        prev = s;
+        events.add(s);
         have_prev = true;
         line->push_back(t.fixes[i].position);
     }

@@ -27,11 +27,11 @@
 /// its closest approach. `find_encounters_brute` pairs every ship with every other at every
 /// instant and checks every edge pair: the reference the fast path must match exactly.
 
-#include <cmath>
 #include <cstddef>
 #include <vector>
 
 #include <shoal/check/detector.hpp>
+#include <shoal/check/hull_contact.hpp>
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/geo/point.hpp>
 #include <shoal/hull/hull.hpp>
@@ -108,22 +108,8 @@ EncounterResult find_encounters(const std::vector<const track::Track*>& tracks, 
 EncounterResult find_encounters_brute(const std::vector<const track::Track*>& tracks, const std::vector<hull::Hull>& hulls,
                                       const geo::LocalFrame& frame, const EncounterOptions& options);
 
-/// Contact between two hull outlines (simple polygons) in local metres.
-struct HullContact {
-    bool collision = false;         ///< the outlines touch or overlap, or one holds the other
-    double clearance_m = INFINITY;  ///< 0 on collision
-    geo::XY on_a, on_b;             ///< closest points (the same contact point on collision)
-};
-
-/// Exact contact of outlines `a` and `b` (open or closed rings): every edge pair, then
-/// containment of a vertex of one in the other. Of equally near edge pairs the first (in
-/// edge order of a, then b) gives the points.
-HullContact hull_contact(const std::vector<geo::XY>& a, const std::vector<geo::XY>& b);
-
-/// The same answer for two hulls at poses, as find_encounters computes it: only the edge
-/// pairs that capsule bounds (around chunks of edges, then single edges) cannot rule out are
-/// tested.
-HullContact hull_contact(const hull::Hull& a, const check::LocalPose& pose_a, const hull::Hull& b,
-                         const check::LocalPose& pose_b);
+/// Hull-to-hull contact, in check/ since it is geometry; here too for callers of old.
+using check::HullContact;
+using check::hull_contact;
 
 }  // namespace shoal::audit
