@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -81,6 +82,9 @@ public:
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
                           "BERTHS, HRBARE and ACHARE, and SLCONS as shore constructions");
+        m_sub->add_option("--vessels", m_vessel_files,
+                          "Vessels table(s), CSV: mmsi and any of name, A,B,C,D (to_bow_m, to_stern_m, to_port_m, to_stbd_m), "
+                          "draught_m, shiptype; joined to tracks by id, over what the track's own file says");
         m_sub->add_option("--berth-tolerance", m_berth_tolerance_m,
                           "Lines and points of --berths and S-57 berths / shore constructions count within this many metres (default 10)")
             ->check(finite)->check(CLI::PositiveNumber);
@@ -103,6 +107,7 @@ public:
     int run() override {
         std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks));
         all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
+        all_inputs.insert(all_inputs.end(), m_vessel_files.begin(), m_vessel_files.end());
         const std::string format = !m_format.empty() ? m_format
                                    : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
         // Every output, checked before any work: none is an input or another output.
@@ -129,6 +134,16 @@ public:
             std::fprintf(stderr, "shoal: %zu expected-contact areas (berths, harbours, anchorages) and %zu shore constructions\n",
                          areas.count(coast::AreaRole::expected), areas.count(coast::AreaRole::structure));
         m_audit.areas = &areas;
+        // Static data: the first table that names a vessel gives its data.
+        for (const std::string& f : m_vessel_files)
+            for (auto& [id, v] : track::read_vessels(f)) {
+                v.source = "vessels file " + f;
+                m_vessels.emplace(id, std::move(v));
+            }
+        if (!m_vessel_files.empty()) {
+            m_audit.vessels = &m_vessels;
+            std::fprintf(stderr, "shoal: static data of %zu vessels from --vessels\n", m_vessels.size());
+        }
         Progress bar(m_progress.value_or(::isatty(2) != 0));
         m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };
         const audit::AuditResult r = audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);
@@ -201,6 +216,8 @@ private:
     std::string m_date;
     std::string m_plot;
     std::vector<std::string> m_berths;
+    std::vector<std::string> m_vessel_files;
+    std::map<std::string, track::VesselInfo> m_vessels;
     double m_berth_tolerance_m = 10.0;
     audit::AuditOptions m_audit;
 };

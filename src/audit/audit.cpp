@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -72,6 +73,22 @@ struct TrackSource {
 
 AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
                   const AuditOptions& options);
+
+/// A vessels table's static data over the track's own: name, A,B,C,D, draught.
+void join_static_data(track::Track& t, const std::map<std::string, track::VesselInfo>& vessels) {
+    const auto it = vessels.find(t.id);
+    if (it == vessels.end()) return;
+    const track::VesselInfo& v = it->second;
+    if (!v.name.empty()) t.name = v.name;
+    if (v.dims) {
+        t.dims = v.dims;
+        t.dims_source = v.source;
+    }
+    if (std::isfinite(v.draught_m)) {
+        t.draught_m = v.draught_m;
+        t.draught_source = v.source;
+    }
+}
 
 std::string dims_label(const hull::Dimensions& d) {
     char buf[96];
@@ -174,6 +191,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
             swept[k].summary.id = t.id;
             swept[k].summary.file = t.file;
             try {
+                if (options.vessels) join_static_data(t, *options.vessels);
                 track::WildFixOptions wo = options.wild;
                 wo.max_gap_s = options.sweep.max_gap_s;
                 std::vector<track::WildFix> wild = track::drop_wild_fixes(t, wo);
@@ -183,7 +201,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 hull::Hull hull = default_hull;
                 if (t.dims) {
                     hull = hull::Hull::from_dimensions(*t.dims, t.name);
-                    label = dims_label(*t.dims);
+                    label = dims_label(*t.dims) + (t.dims_source.empty() ? "" : " (" + t.dims_source + ")");
                 }
                 const DetectorChecker detector(grid, hull);
                 const DetectorChecker circle(grid, circle_hull(hull));
@@ -194,6 +212,8 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 swept[k].summary.fixes += wild.size();  // fixes read, the wild ones among them
                 swept[k].summary.wild_fixes = std::move(wild);
                 swept[k].summary.hull = label;
+                swept[k].summary.draught_m = t.draught_m;
+                swept[k].summary.draught_source = t.draught_source;
                 if (options.encounters) {
                     kept[k] = t;
                     kept_hulls[k] = hull;

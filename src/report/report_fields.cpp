@@ -118,6 +118,8 @@ const std::vector<Field<TrackRow>>& track_fields() {
         {"name", text_t, none, -1, [](const T& x) { return text(x.track.name); }},
         {"file", text_t, none, -1, [](const T& x) { return text(x.track.file); }},
         {"hull", text_t, none, -1, [](const T& x) { return text(x.track.hull); }},
+        {"draught_m", real, metres, 2, [](const T& x) { return Value(x.track.draught_m); }},
+        {"draught_source", text_t, none, -1, [](const T& x) { return text(x.track.draught_source); }},
         {"fixes", integer, none, -1, [](const T& x) { return count(x.track.fixes); }},
         {"skipped_rows", integer, none, -1, [](const T& x) { return count(x.skipped_rows); }},
         {"uncovered_fixes", integer, none, -1, [](const T& x) { return count(x.track.uncovered_fixes); }},

@@ -213,6 +213,7 @@ struct Columns {
     std::size_t heading = absent, cog = absent, sog = absent;
     std::array<std::size_t, 4> dims{absent, absent, absent, absent};
     std::size_t draught = absent, mobile_type = absent, nav_status = absent;
+    std::size_t length = absent, width = absent;  ///< MarineCadastre's Length and Width, metres
     std::size_t required = 0;  ///< fields a row needs: 1 + the largest required index
 };
 
@@ -251,6 +252,8 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
               find_column(names, {"c", "to_port_m", "to_port"}), find_column(names, {"d", "to_stbd_m", "to_stbd", "to_starboard_m"})};
     if (std::find(c.dims.begin(), c.dims.end(), absent) != c.dims.end()) c.dims = {absent, absent, absent, absent};
     c.draught = find_column(names, {"draught", "draught_m", "draft", "draft_m"});
+    c.length = find_column(names, {"length", "length_m"});
+    c.width = find_column(names, {"width", "width_m", "beam", "beam_m"});
     c.mobile_type = find_column(names, {"type of mobile"});
     c.nav_status = find_column(names, {"navigational status", "navigational_status", "nav_status", "navstatus", "status"});
 
@@ -353,11 +356,26 @@ private:
                 d[k] = number(f, m_cols.dims[k]);
                 ok = ok && std::isfinite(d[k]) && d[k] > 0.0;
             }
-            if (ok) t.dims = hull::Dimensions{d[0], d[1], d[2], d[3]};
+            if (ok) {
+                t.dims = hull::Dimensions{d[0], d[1], d[2], d[3]};
+                t.dims_source = "A,B,C,D columns";
+            }
+        }
+        // Length and width alone (MarineCadastre): the reference point is not known; taken
+        // amidships, the hull reaches half the length fore and aft.
+        if (m_cols.length != absent && m_cols.width != absent && !t.dims) {
+            const double l = number(f, m_cols.length), w = number(f, m_cols.width);
+            if (std::isfinite(l) && std::isfinite(w) && l > 0.0 && w > 0.0) {
+                t.dims = hull::Dimensions{l / 2, l / 2, w / 2, w / 2};
+                t.dims_source = "Length and Width columns (reference point taken amidships)";
+            }
         }
         if (m_cols.draught != absent && std::isnan(t.draught_m)) {
             const double v = number(f, m_cols.draught);
-            if (std::isfinite(v) && v > 0.0) t.draught_m = v;
+            if (std::isfinite(v) && v > 0.0) {
+                t.draught_m = v;
+                t.draught_source = "draught column";
+            }
         }
     }
 

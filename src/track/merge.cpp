@@ -26,8 +26,14 @@ std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks) {
             const Track t = other.unpack();
             merged.fixes.insert(merged.fixes.end(), t.fixes.begin(), t.fixes.end());
             if (merged.name.empty()) merged.name = other.name;
-            if (!merged.dims) merged.dims = other.dims;
-            if (std::isnan(merged.draught_m)) merged.draught_m = other.draught_m;
+            if (!merged.dims) {
+                merged.dims = other.dims;
+                merged.dims_source = other.dims_source;
+            }
+            if (std::isnan(merged.draught_m)) {
+                merged.draught_m = other.draught_m;
+                merged.draught_source = other.draught_source;
+            }
             files += " + " + other.file;
             gone[ks[i]] = true;
         }

@@ -322,8 +322,14 @@ private:
         const ais::Message& m = d.message;
         Track& t = vessel(m.mmsi);
         if (t.name.empty() && !m.name.empty()) t.name = m.name;
-        if (!t.dims && m.dims) t.dims = m.dims;
-        if (std::isnan(t.draught_m) && std::isfinite(m.draught_m)) t.draught_m = m.draught_m;
+        if (!t.dims && m.dims) {
+            t.dims = m.dims;
+            t.dims_source = "AIS static data (message " + std::to_string(m.type) + ")";
+        }
+        if (std::isnan(t.draught_m) && std::isfinite(m.draught_m)) {
+            t.draught_m = m.draught_m;
+            t.draught_source = "AIS static data (message 5)";
+        }
         if (!m.is_position_report()) return;
         ++m_ais_reports;
         const std::string what = "AIS type " + std::to_string(m.type) + " (MMSI " + t.id + ")";

@@ -113,6 +113,8 @@ Track PackedTrack::unpack() const {
     t.file = file;
     t.dims = dims;
     t.draught_m = draught_m;
+    t.dims_source = dims_source;
+    t.draught_source = draught_source;
     t.fixes.reserve(fixes.size());
     for (std::size_t i = 0; i < fixes.size(); ++i) t.fixes.push_back(fix(i));
     return t;
@@ -131,6 +133,8 @@ PackedTrack PackedTrack::pack(Track&& t) {
     p.file = std::move(t.file);
     p.dims = t.dims;
     p.draught_m = t.draught_m;
+    p.dims_source = t.dims_source;
+    p.draught_source = t.draught_source;
     for (const Fix& f : t.fixes) p.push_back(f);
     t.fixes.clear();
     t.fixes.shrink_to_fit();

@@ -898,3 +898,55 @@ TEST_F(BadInput, OneVesselSplitAcrossTwoReceiversFilesIsOneTrack) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Static data: each vessel's own hull and draught, and where they came from
+
+namespace {
+
+const nlohmann::json* track_entry(const nlohmann::json& doc, const std::string& id) {
+    for (const auto& t : doc["shoal"]["tracks"])
+        if (t["track"] == id) return &t;
+    return nullptr;
+}
+
+TEST_F(BadInput, LengthAndWidthColumnsGiveAHullTakenAmidships) {
+    // MarineCadastre's columns: Length and Width, no A,B,C,D; Draft.
+    std::string text = "MMSI,BaseDateTime,LAT,LON,SOG,COG,Heading,Length,Width,Draft\n";
+    for (int i = 0; i <= 10; ++i) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "222222222,2024-05-01T10:%02d:00,50.7400,%.4f,11.9,90,90,12,4,1.8\n", i, -1.05 + 0.002 * i);
+        text += buf;
+    }
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("mc.csv", text)}, r);
+    EXPECT_EQ(o.status, 0) << o.err;
+    const auto doc = report(r);
+    const auto* t = track_entry(doc, "222222222");
+    ASSERT_NE(t, nullptr);
+    EXPECT_EQ((*t)["hull"], "AIS dimensions 6,6,2,2 (Length and Width columns (reference point taken amidships))");
+    EXPECT_EQ((*t)["draught_m"], 1.8);
+    EXPECT_EQ((*t)["draught_source"], "draught column");
+}
+
+TEST_F(BadInput, AVesselsTableGivesEachVesselItsOwnHullAndDraught) {
+    // Vessel B's hull from the table, vessel A's from --dims.
+    const std::string vessels = file("fleet_vessels.csv", "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n"
+                                                          "222222222,SMALL ONE,8,4,2,2,1.2\n");
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({good_tracks()}, r, {"--vessels", vessels});
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("static data of 1 vessels from --vessels"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    const auto* b = track_entry(doc, "222222222");
+    ASSERT_NE(b, nullptr);
+    EXPECT_EQ((*b)["name"], "SMALL ONE");
+    EXPECT_EQ((*b)["hull"], "AIS dimensions 8,4,2,2 (vessels file " + vessels + ")");
+    EXPECT_EQ((*b)["draught_m"], 1.2);
+    const auto* a = track_entry(doc, "111111111");
+    ASSERT_NE(a, nullptr);
+    EXPECT_EQ((*a)["hull"], "--dims 50,10,5,5");
+    EXPECT_TRUE((*a)["draught_m"].is_null());
+}
+
+}  // namespace

@@ -4,6 +4,7 @@
 /// not depend on the number of jobs.
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct AuditOptions {
     track::WildFixOptions wild;  ///< what makes a fix an outlier
     /// Areas where contact is expected, and shore constructions; may be null. Must outlive the run.
     const coast::ExpectedAreas* areas = nullptr;
+    /// Static data by vessel id (track::read_vessels: name, A,B,C,D, draught), may be null. What
+    /// it gives wins over what the track's own file says (the analyst's table over what a
+    /// vessel broadcast); what it lacks, the track keeps.
+    const std::map<std::string, track::VesselInfo>* vessels = nullptr;
 };
 
 /// One input file: how it read.

@@ -88,7 +88,9 @@ struct Event {
 /// Figures of one swept track.
 struct TrackSummary {
     std::string id, name, file;
-    std::string hull;                 ///< "ship file", "--dims" or "AIS dimensions a,b,c,d"
+    std::string hull;                 ///< "ship file", "--dims" or "AIS dimensions a,b,c,d (their source)"
+    double draught_m = NAN;           ///< the vessel's own draught (AIS, vessels file), NaN when not known
+    std::string draught_source;       ///< where it came from
     std::size_t fixes = 0;            ///< fixes in the track
     std::size_t uncovered_fixes = 0;  ///< fixes whose hull is (partly) outside the coastline's area
     std::size_t segments = 0;         ///< pieces after splitting at gaps

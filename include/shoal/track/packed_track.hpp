@@ -65,6 +65,7 @@ struct PackedTrack {
     std::string id, name, file;
     std::optional<hull::Dimensions> dims;
     double draught_m = NAN;
+    std::string dims_source, draught_source;  ///< as Track's
     PackedFixes fixes;
     std::vector<FixExtra> extras;
 

@@ -71,6 +71,7 @@ struct VesselInfo {
     std::optional<hull::Dimensions> dims;  ///< A,B,C,D when all four are > 0
     double draught_m = NAN;
     int ship_type = -1;                    ///< AIS ship and cargo type, -1 when not known
+    std::string source;                    ///< where it came from, for the report ("vessels file F")
 };
 
 /// Reads a vessels file (`*_vessels.csv`: mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,

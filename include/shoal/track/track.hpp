@@ -76,6 +76,8 @@ struct Track {
     std::vector<Fix> fixes;                 ///< sorted by time, duplicates dropped
     std::optional<hull::Dimensions> dims;   ///< AIS A,B,C,D when the source gives all four > 0
     double draught_m = NAN;
+    std::string dims_source;     ///< where `dims` came from ("AIS static messages", "vessels file F", ...)
+    std::string draught_source;  ///< where `draught_m` came from
 };
 
 /// What reading a file found, for the user: counts and the first few problems.
