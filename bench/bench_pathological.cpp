@@ -37,6 +37,7 @@
 #include <shoal/check/brute_force.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/coast/coastline.hpp>
+#include "detail/gdal_support.hpp"
 #include "detail/geos_context.hpp"
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/grid/grid_cache.hpp>
@@ -66,25 +67,24 @@ class GeosLand {
 public:
     explicit GeosLand(const std::vector<XY>& ring) {
         m_land = geo::make_polygon(m_ctx, {ring});
-        m_prepared = GEOSPrepare_r(m_ctx, m_land.get());
+        m_prepared = geo::PreparedPtr(GEOSPrepare_r(m_ctx, m_land.get()), {m_ctx.get()});
     }
-    ~GeosLand() { GEOSPreparedGeom_destroy_r(m_ctx, m_prepared); }
     GeosLand(const GeosLand&) = delete;
     GeosLand& operator=(const GeosLand&) = delete;
     check::Contact check(std::vector<XY> outline) const {
         outline.push_back(outline.front());
         const geo::GeomPtr hull = geo::make_polygon(m_ctx, {outline});
         check::Contact c;
-        c.collision = GEOSPreparedIntersects_r(m_ctx, m_prepared, hull.get()) == 1;
+        c.collision = GEOSPreparedIntersects_r(m_ctx, m_prepared.get(), hull.get()) == 1;
         c.clearance_m = 0;
-        if (!c.collision) GEOSPreparedDistance_r(m_ctx, m_prepared, hull.get(), &c.clearance_m);
+        if (!c.collision) GEOSPreparedDistance_r(m_ctx, m_prepared.get(), hull.get(), &c.clearance_m);
         return c;
     }
 
 private:
     geo::GeosContext m_ctx;
     geo::GeomPtr m_land{nullptr, {m_ctx.get()}};
-    const GEOSPreparedGeometry* m_prepared = nullptr;
+    geo::PreparedPtr m_prepared{nullptr, {m_ctx.get()}};
 };
 
 bool same(const check::Contact& a, const check::Contact& b) {
@@ -123,8 +123,8 @@ void time_poses(const char* label, const grid::CoastGrid& g, const std::vector<s
 }
 
 void write_gpkg(const std::string& path, const std::vector<XY>& ring, const geo::LocalFrame& frame) {
-    GDALAllRegister();
-    GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+    shoal::detail::register_drivers();
+    GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
     OGRSpatialReference wgs84;
     wgs84.SetWellKnownGeogCS("WGS84");
     OGRLayer* layer = ds->CreateLayer("land", &wgs84, wkbPolygon, nullptr);
@@ -139,7 +139,6 @@ void write_gpkg(const std::string& path, const std::vector<XY>& ring, const geo:
     OGRFeature f(layer->GetLayerDefn());
     f.SetGeometry(&poly);
     if (layer->CreateFeature(&f) != OGRERR_NONE) std::exit(2);
-    GDALClose(ds);
 }
 
 std::vector<check::LocalPose> poses_near(const std::vector<XY>& ring, double reach, std::size_t n, std::uint64_t seed) {

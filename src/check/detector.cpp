@@ -5,6 +5,8 @@
 #include <numbers>
 #include <span>
 
+#include "grid/outward.hpp"
+
 #if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)
 #include <emmintrin.h>
 #endif
@@ -12,6 +14,7 @@
 namespace shoal::check {
 
 using geo::XY;
+using grid::visit_chunks;
 
 LocalPose place(const geo::LocalFrame& frame, const Pose& pose) {
     const double h = pose.heading_deg * std::numbers::pi / 180.0;
@@ -242,31 +245,6 @@ struct AlignedHull {
     }
 };
 
-/// Calls visit(segment) for the segments of `segs` (a span of `grid`) in the chunks whose
-/// box passes keep(box) (see CoastGrid::chunk_boxes); keep is asked again for every chunk,
-/// so it may tighten as visit finds things.
-template <class Keep, class Visit>
-void visit_chunks(const grid::CoastGrid& grid, std::span<const grid::Segment> segs, Keep&& keep, Visit&& visit) {
-    if (segs.empty()) return;
-    constexpr std::size_t chunk = grid::CoastGrid::chunk_segments;
-    const std::size_t first = grid.index_of(segs), n = segs.size();
-    const std::span<const geo::Box> boxes = grid.chunk_boxes();
-    for (std::size_t k = 0; k < n;) {
-        const std::size_t g = first + k, end = std::min(n, k + (chunk - g % chunk));
-        if (keep(boxes[g / chunk]))
-            for (; k < end; ++k) visit(segs[k]);
-        else
-            k = end;
-    }
-}
-
-/// Squared distance from p to box b (0 inside).
-inline double box_point_dist2(const geo::Box& b, XY p) noexcept {
-    const double dx = std::max({b.minx - p.x, 0.0, p.x - b.maxx});
-    const double dy = std::max({b.miny - p.y, 0.0, p.y - b.maxy});
-    return dx * dx + dy * dy;
-}
-
 /// State of one check while cells are read.
 struct Search {
     AlignedHull& hull;
@@ -406,10 +384,9 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     out.covered = lb.minx >= ext.minx && lb.miny >= ext.miny && lb.maxx <= ext.maxx && lb.maxy <= ext.maxy;
 
     const int nx = m_grid.nx(), ny = m_grid.ny();
-    const double cell = m_grid.cell_size();
     // The block of cells under the hull's box: every segment that could touch the hull.
-    int i0 = std::max(0, m_grid.col_of(lb.minx)), i1 = std::min(nx - 1, m_grid.col_of(lb.maxx));
-    int j0 = std::max(0, m_grid.row_of(lb.miny)), j1 = std::min(ny - 1, m_grid.row_of(lb.maxy));
+    const int i0 = std::max(0, m_grid.col_of(lb.minx)), i1 = std::min(nx - 1, m_grid.col_of(lb.maxx));
+    const int j0 = std::max(0, m_grid.row_of(lb.miny)), j1 = std::min(ny - 1, m_grid.row_of(lb.maxy));
     auto read_cell = [&](int i, int j, bool collect) {
         const std::span<const grid::Segment> segs = m_grid.segments(i, j);
         if (!segs.empty()) search.read(m_grid, segs, collect);
@@ -477,51 +454,18 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         return out;
     }
 
-    // Clearance: rings of cells outward until no cell can hold a nearer segment.
-    if (!block_valid) {  // the hull is wholly outside the grid: start from the nearest cells
-        i0 = std::clamp(m_grid.col_of(lb.minx), 0, nx - 1);
-        i1 = std::clamp(m_grid.col_of(lb.maxx), 0, nx - 1);
-        j0 = std::clamp(m_grid.row_of(lb.miny), 0, ny - 1);
-        j1 = std::clamp(m_grid.row_of(lb.maxy), 0, ny - 1);
-        for (int j = j0; j <= j1; ++j)
-            for (int i = i0; i <= i1; ++i) read_cell(i, j, false);
-    }
-    const XY org = m_grid.origin();
-    for (;;) {
-        // Distance from the hull's box to the nearest point outside the block read so far.
-        const double gap = std::min({i0 > 0 ? lb.minx - (org.x + i0 * cell) : INFINITY,
-                                     i1 < nx - 1 ? (org.x + (i1 + 1) * cell) - lb.maxx : INFINITY,
-                                     j0 > 0 ? lb.miny - (org.y + j0 * cell) : INFINITY,
-                                     j1 < ny - 1 ? (org.y + (j1 + 1) * cell) - lb.maxy : INFINITY});
-        if (gap * gap >= search.best2 || gap > options.max_clearance_m || !std::isfinite(gap)) break;
-        const int ni0 = std::max(0, i0 - 1), ni1 = std::min(nx - 1, i1 + 1);
-        const int nj0 = std::max(0, j0 - 1), nj1 = std::min(ny - 1, j1 + 1);
-        // The new ring of cells, limited to those nearer the hull's box than the clearance
-        // found so far (and the limit): a cell farther away cannot hold a nearer segment.
-        // Rows and columns of the ring are cut to the cells within that reach (the cells'
-        // boxes grown by the clipping slack).
-        const double reach = std::min(search.best(), options.max_clearance_m) + 2e-6;
-        const double span = (nx + ny + 2) * cell;  // farther than any cell
-        // The cells [a, b] of a row (or column, `vertical`) of the ring spanning [lo, hi] across.
-        auto cut = [&](double lo, double hi, int i_lo, int i_hi, bool vertical, int& a, int& b) {
-            const double gap_across = vertical ? std::max({0.0, lo - lb.maxx, lb.minx - hi}) : std::max({0.0, lo - lb.maxy, lb.miny - hi});
-            if (gap_across > reach) return false;
-            const double along = std::min(span, std::sqrt(std::max(0.0, reach * reach - gap_across * gap_across)));
-            a = std::max(i_lo, vertical ? m_grid.row_of(lb.miny - along) : m_grid.col_of(lb.minx - along));
-            b = std::min(i_hi, vertical ? m_grid.row_of(lb.maxy + along) : m_grid.col_of(lb.maxx + along));
-            return a <= b;
-        };
-        int a, b;
-        if (nj0 < j0 && cut(org.y + nj0 * cell, org.y + (nj0 + 1) * cell, ni0, ni1, false, a, b))
-            for (int i = a; i <= b; ++i) read_cell(i, nj0, false);
-        if (nj1 > j1 && cut(org.y + nj1 * cell, org.y + (nj1 + 1) * cell, ni0, ni1, false, a, b))
-            for (int i = a; i <= b; ++i) read_cell(i, nj1, false);
-        if (ni0 < i0 && cut(org.x + ni0 * cell, org.x + (ni0 + 1) * cell, j0, j1, true, a, b))
-            for (int j = a; j <= b; ++j) read_cell(ni0, j, false);
-        if (ni1 > i1 && cut(org.x + ni1 * cell, org.x + (ni1 + 1) * cell, j0, j1, true, a, b))
-            for (int j = a; j <= b; ++j) read_cell(ni1, j, false);
-        i0 = ni0, i1 = ni1, j0 = nj0, j1 = nj1;
-    }
+    // Clearance: rings of cells outward until no cell can hold a nearer segment, each ring
+    // cut to the cells nearer the hull's box than the clearance found so far (or the limit).
+    // A hull wholly outside the grid starts from the nearest cells.
+    struct Clearance {
+        Search& search;
+        const grid::CoastGrid& grid;
+        double max_m;
+        void operator()(std::span<const grid::Segment> segs) { search.read(grid, segs, false); }
+        bool wants(double gap) const { return !(gap * gap >= search.best2 || gap > max_m); }
+        double reach() const { return std::min(search.best(), max_m); }
+    } clearance{search, m_grid, options.max_clearance_m};
+    grid::visit_outward(m_grid, lb, clearance, block_valid ? grid::FirstBlock::skip : grid::FirstBlock::read);
     if (search.found && search.best() <= options.max_clearance_m) {
         out.clearance_m = search.best();
         out.hull_point = h.to_local(search.hull_pt);
@@ -532,43 +476,10 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
 }
 
 double Detector::nearest_coast(XY p, double max_m, XY* on_coast) const {
-    const int nx = m_grid.nx(), ny = m_grid.ny();
-    const double cell = m_grid.cell_size();
-    int i0 = std::clamp(m_grid.col_of(p.x), 0, nx - 1), i1 = i0;
-    int j0 = std::clamp(m_grid.row_of(p.y), 0, ny - 1), j1 = j0;
-    double best2 = INFINITY;
-    XY best_pt{};
-    auto read_cell = [&](int i, int j) {
-        // A chunk is skipped only when its box is farther by a clear margin: a segment's distance
-        // as computed may lie a few ulps under its box's.
-        visit_chunks(m_grid, m_grid.segments(i, j), [&](const geo::Box& b) { return box_point_dist2(b, p) * (1 - 1e-9) < best2; },
-                     [&](const grid::Segment& sg) {
-                         double t;
-                         const double d2 = geo::point_segment_dist2(p, sg.a, sg.b, &t);
-                         if (d2 < best2) {
-                             best2 = d2;
-                             best_pt = sg.a + t * (sg.b - sg.a);
-                         }
-                     });
-    };
-    read_cell(i0, j0);
-    const XY org = m_grid.origin();
-    for (;;) {
-        const double gap = std::min({i0 > 0 ? p.x - (org.x + i0 * cell) : INFINITY,
-                                     i1 < nx - 1 ? (org.x + (i1 + 1) * cell) - p.x : INFINITY,
-                                     j0 > 0 ? p.y - (org.y + j0 * cell) : INFINITY,
-                                     j1 < ny - 1 ? (org.y + (j1 + 1) * cell) - p.y : INFINITY});
-        if (gap * gap >= best2 || gap > max_m || !std::isfinite(gap)) break;
-        const int ni0 = std::max(0, i0 - 1), ni1 = std::min(nx - 1, i1 + 1);
-        const int nj0 = std::max(0, j0 - 1), nj1 = std::min(ny - 1, j1 + 1);
-        for (int j = nj0; j <= nj1; ++j)
-            for (int i = ni0; i <= ni1; ++i)
-                if (j < j0 || j > j1 || i < i0 || i > i1) read_cell(i, j);
-        i0 = ni0, i1 = ni1, j0 = nj0, j1 = nj1;
-    }
-    const double d = std::sqrt(best2);
+    const grid::NearestSegment n = m_grid.nearest_segment(p, max_m);
+    const double d = std::sqrt(n.dist2);
     if (d > max_m) return INFINITY;
-    if (on_coast) *on_coast = best_pt;
+    if (on_coast) *on_coast = n.point;
     return d;
 }
 

@@ -1,4 +1,3 @@
-#include "detail/gdal_support.hpp"
 #include <shoal/coast/coastline.hpp>
 
 #include <cpl_error.h>
@@ -7,19 +6,16 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
-#include <cctype>
-#include <filesystem>
 #include <memory>
-#include <mutex>
 #include <numbers>
 
+#include "coast/ogr_source.hpp"
 #include "detail/geos_context.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/util/error.hpp>
 
 namespace shoal::coast {
 
-namespace fs = std::filesystem;
 using geo::LonLat;
 
 std::uint64_t Coastline::vertex_count() const noexcept {
@@ -66,10 +62,6 @@ namespace {
 
 using detail::QuietErrors;
 using detail::register_drivers;
-using detail::TransformDeleter;
-
-
-
 
 /// A polygon, line or (danger) point part as read, in source coordinates until transformed.
 struct RawPart {
@@ -88,13 +80,8 @@ struct LayerRole {
     std::string field;
 };
 
-std::string upper(std::string s) {
-    for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    return s;
-}
-
 LayerRole role_of(OGRLayer& layer, const ImportOptions& options) {
-    const std::string name = upper(layer.GetName());
+    const std::string name = ogr::upper(layer.GetName());
     if (name == "DEPARE" || name == "DRGARE") return {HazardKind::shallow, DangerKind::none, "DRVAL1"};
     if (name == "UWTROC") return {HazardKind::danger, DangerKind::rock, "VALSOU"};
     if (name == "WRECKS") return {HazardKind::danger, DangerKind::wreck, "VALSOU"};
@@ -140,15 +127,11 @@ public:
                     continue;
                 }
             }
-            const OGRGeometry* g = feature->GetGeometryRef();
+            const ogr::LinearGeometry linear = ogr::linear_geometry(*feature);
+            const OGRGeometry* g = linear.geometry;
             if (!g || g->IsEmpty()) {
                 ++stats.empty_skipped;
                 continue;
-            }
-            std::unique_ptr<OGRGeometry> linear;
-            if (g->hasCurveGeometry()) {
-                linear.reset(g->getLinearGeometry());
-                g = linear.get();
             }
             const std::size_t before = parts.size();
             const std::uint64_t points_before = stats.points_skipped;
@@ -182,15 +165,9 @@ public:
     }
 
 private:
-    std::string where(std::int64_t fid) const {
-        return "In '" + m_file + "' layer '" + m_layer.GetName() + "' feature " + std::to_string(fid);
-    }
+    std::string where(std::int64_t fid) const { return ogr::feature_where(m_file, m_layer.GetName(), fid); }
 
-    static std::vector<LonLat> points_of(const OGRSimpleCurve& c) {
-        std::vector<LonLat> pts(static_cast<std::size_t>(c.getNumPoints()));
-        for (int i = 0; i < c.getNumPoints(); ++i) pts[static_cast<std::size_t>(i)] = {c.getX(i), c.getY(i)};
-        return pts;
-    }
+    static std::vector<LonLat> points_of(const OGRSimpleCurve& c) { return ogr::points_of<LonLat>(c); }
 
     void collect(const OGRGeometry& g, std::int64_t fid, std::vector<RawPart>& parts, LayerStats& stats) {
         switch (wkbFlatten(g.getGeometryType())) {
@@ -253,75 +230,30 @@ private:
         for (const auto& part : parts)
             for (const auto& ring : part.rings)
                 for (const auto& p : ring)
-                    if (!(std::fabs(p.lon) <= max_lon && std::fabs(p.lat) <= 90.0)) {
-                        char buf[128];
-                        std::snprintf(buf, sizeof buf, " (e.g. %.3f, %.3f in feature %lld)", p.lon, p.lat,
-                                      static_cast<long long>(part.fid));
-                        return buf;
-                    }
+                    if (std::string bad = ogr::not_lonlat_note(p.lon, p.lat, part.fid, max_lon); !bad.empty()) return bad;
         return "";
     }
 
     /// Transforms every part to WGS84 lon/lat; returns the CRS description for the stats.
     std::string to_wgs84(std::vector<RawPart>& parts) {
-        const OGRSpatialReference* layer_srs = m_layer.GetSpatialRef();
-        OGRSpatialReference src;
-        std::string description;
-        if (layer_srs) {
-            src = *layer_srs;
-            const char* name = src.GetName();
-            description = name ? name : "unnamed CRS";
-        } else if (!m_options.source_crs.empty()) {
-            if (src.SetFromUserInput(m_options.source_crs.c_str()) != OGRERR_NONE)
-                throw UsageError("--source-crs '" + m_options.source_crs + "' is not a CRS GDAL understands");
-            description = "none in file; --source-crs " + m_options.source_crs;
-        } else {
-            if (const std::string bad = first_not_lonlat(parts, 180.0); !bad.empty())
-                throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file +
-                                 "' has no CRS and its coordinates are not longitude/latitude" + bad +
-                                 "; name its CRS with --source-crs");
-            m_out.warnings.push_back("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file +
-                                     "' has no CRS; assuming WGS84 longitude/latitude (every coordinate is a valid one)");
-            return "none in file; assumed WGS84 lon/lat";
-        }
-        src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-        OGRSpatialReference wgs84;
-        wgs84.SetWellKnownGeogCS("WGS84");
-        wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-        if (src.IsGeographic() && src.IsSame(&wgs84)) {
-            // GDAL reports WGS84 for every GeoJSON without a "crs" member (RFC 7946), even
-            // when its coordinates are metres: those must not pass as longitude/latitude
-            // (0..360 longitudes are accepted).
-            if (const std::string bad = first_not_lonlat(parts, 360.0); !bad.empty())
-                throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "' has the CRS " +
-                                 description + " but its coordinates are not longitude/latitude" + bad +
-                                 "; give the file its real CRS (e.g. convert it with ogr2ogr -s_srs ... -t_srs EPSG:4326)");
-            return description;
-        }
-        std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> ct(OGRCreateCoordinateTransformation(&src, &wgs84));
-        if (!ct)
-            throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "': no transformation from " +
-                             description + " to WGS84");
+        const ogr::LayerCrs crs =
+            ogr::layer_crs(m_layer, m_file, {m_options.source_crs, "; name its CRS with --source-crs", "none in file; assumed WGS84 lon/lat"},
+                           [&](double max_lon) { return first_not_lonlat(parts, max_lon); }, m_out.warnings);
+        if (!crs.to_wgs84) return crs.description;
         for (auto& part : parts) {
             for (auto& ring : part.rings) {
                 std::vector<double> xs(ring.size()), ys(ring.size());
                 for (std::size_t i = 0; i < ring.size(); ++i) { xs[i] = ring[i].lon; ys[i] = ring[i].lat; }
-                std::vector<int> ok(ring.size(), 0);
-                ct->Transform(ring.size(), xs.data(), ys.data(), nullptr, ok.data());
-                for (std::size_t i = 0; i < ring.size(); ++i) {
-                    if (!ok[i] || !std::isfinite(xs[i]) || !std::isfinite(ys[i]))
-                        throw InputError(where(part.fid) + ": vertex " + std::to_string(i) +
-                                         " cannot be transformed to WGS84 from " + description);
-                    ring[i] = {xs[i], ys[i]};
-                }
+                if (const std::size_t i = ogr::transform(*crs.to_wgs84, xs, ys); i < ring.size())
+                    throw InputError(where(part.fid) + ": vertex " + std::to_string(i) + " cannot be transformed to WGS84 from " +
+                                     crs.description);
+                for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = {xs[i], ys[i]};
             }
         }
-        return description;
+        return crs.description;
     }
 
-    static void drop_repeats(std::vector<LonLat>& pts) {
-        pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-    }
+    static void drop_repeats(std::vector<LonLat>& pts) { ogr::drop_repeats(pts); }
 
     static double signed_area(const std::vector<LonLat>& ring) {
         double a = 0;
@@ -413,12 +345,6 @@ private:
     LayerRole m_role;
 };
 
-std::string layer_names(GDALDataset& ds) {
-    std::string s;
-    for (OGRLayer* l : ds.GetLayers()) s += (s.empty() ? "" : ", ") + std::string(l->GetName());
-    return s.empty() ? "none" : s;
-}
-
 }  // namespace
 
 Coastline import_coastline(const std::vector<std::string>& paths, const ImportOptions& options) {
@@ -435,17 +361,7 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
     geo::GeosContext geos;
     std::vector<bool> found(options.layers.size(), false);
     for (const std::string& path : paths) {
-        std::error_code ec;
-        if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
-        GDALDatasetUniquePtr ds;
-        {
-            QuietErrors quiet;
-            ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-            if (!ds) {
-                const std::string why = QuietErrors::last();
-                throw InputError("'" + path + "': not a vector dataset OGR can read" + (why.empty() ? "" : " (" + why + ")"));
-            }
-        }
+        GDALDatasetUniquePtr ds = ogr::open_vector(path);
         if (char** files = ds->GetFileList()) {
             for (char** f = files; *f; ++f) out.files.emplace_back(*f);
             CSLDestroy(files);
@@ -460,18 +376,17 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
             if (chosen.empty())
                 throw InputError("'" + path + "' has no layer named " + options.layers.front() +
                                  (options.layers.size() > 1 ? " (nor the other --layer names)" : "") +
-                                 "; its layers: " + layer_names(*ds));
-        } else if (std::string(ds->GetDriver()->GetDescription()) == "S57") {
+                                 "; its layers: " + ogr::layer_names(*ds));
+        } else if (ogr::is_s57(*ds)) {
             // Land; with a limiting depth also depth areas, dredged areas and dangers.
             std::vector<const char*> names = {"LNDARE", "COALNE"};
             if (options.limiting_depth_m) names.insert(names.end(), {"DEPARE", "DRGARE", "UWTROC", "WRECKS", "OBSTRN"});
-            for (const char* name : names)
-                if (OGRLayer* l = ds->GetLayerByName(name)) chosen.push_back(l);
+            chosen = ogr::layers_named(*ds, names);
             if (chosen.empty())
                 throw InputError("S-57 chart '" + path + "' has none of the layers " +
                                  (options.limiting_depth_m ? "LNDARE, COALNE, DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN"
                                                            : "LNDARE, COALNE") +
-                                 "; pick layers with --layer (its layers: " + layer_names(*ds) + ")");
+                                 "; pick layers with --layer (its layers: " + ogr::layer_names(*ds) + ")");
         } else {
             for (OGRLayer* l : ds->GetLayers()) chosen.push_back(l);
             if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");

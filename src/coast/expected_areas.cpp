@@ -1,4 +1,3 @@
-#include "detail/gdal_support.hpp"
 #include <shoal/coast/expected_areas.hpp>
 
 #include <cpl_error.h>
@@ -19,6 +18,7 @@
 #include <optional>
 #include <set>
 
+#include "coast/ogr_source.hpp"
 #include "detail/geos_context.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/util/error.hpp>
@@ -42,20 +42,11 @@ namespace {
 
 using detail::QuietErrors;
 using detail::register_drivers;
-using detail::TransformDeleter;
 using geo::PreparedDeleter;
 using geo::PreparedPtr;
 using geo::TreeDeleter;
 using geo::TreePtr;
-
-
-
-
-
-std::string upper(std::string s) {
-    for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    return s;
-}
+using ogr::upper;
 
 std::string lower(std::string s) {
     for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -182,12 +173,8 @@ public:
             raw.area.file = m_file;
             raw.area.layer = m_layer.GetName();
             raw.area.fid = feature->GetFID();
-            const OGRGeometry* g = feature->GetGeometryRef();
-            std::unique_ptr<OGRGeometry> linear;
-            if (g && g->hasCurveGeometry()) {
-                linear.reset(g->getLinearGeometry());
-                g = linear.get();
-            }
+            const ogr::LinearGeometry linear = ogr::linear_geometry(*feature);
+            const OGRGeometry* g = linear.geometry;
             if (g && !g->IsEmpty()) collect(*g, raw);
             if (raw.empty()) {
                 ++unusable;
@@ -217,15 +204,9 @@ public:
 private:
     std::string layer_name() const { return m_layer.GetName(); }
 
-    std::string where(std::int64_t fid) const {
-        return "In '" + m_file + "' layer '" + layer_name() + "' feature " + std::to_string(fid);
-    }
+    std::string where(std::int64_t fid) const { return ogr::feature_where(m_file, layer_name(), fid); }
 
-    static std::vector<XY> points_of(const OGRSimpleCurve& c) {
-        std::vector<XY> pts(static_cast<std::size_t>(c.getNumPoints()));
-        for (int i = 0; i < c.getNumPoints(); ++i) pts[static_cast<std::size_t>(i)] = {c.getX(i), c.getY(i)};
-        return pts;
-    }
+    static std::vector<XY> points_of(const OGRSimpleCurve& c) { return ogr::points_of<XY>(c); }
 
     void collect(const OGRGeometry& g, RawFeature& raw) {
         if (g.IsEmpty()) return;
@@ -261,12 +242,7 @@ private:
         for (auto& raw : raws) {
             raw.for_each_sequence([&](const std::vector<XY>& seq) {
                 for (const XY& p : seq)
-                    if (bad.empty() && !(std::fabs(p.x) <= max_lon && std::fabs(p.y) <= 90.0)) {
-                        char buf[128];
-                        std::snprintf(buf, sizeof buf, " (e.g. %.3f, %.3f in feature %lld)", p.x, p.y,
-                                      static_cast<long long>(raw.area.fid));
-                        bad = buf;
-                    }
+                    if (bad.empty()) bad = ogr::not_lonlat_note(p.x, p.y, raw.area.fid, max_lon);
             });
             if (!bad.empty()) break;
         }
@@ -275,55 +251,20 @@ private:
 
     /// Transforms every coordinate from the layer's CRS to WGS84 lon/lat, then into the frame.
     void to_local(std::vector<RawFeature>& raws) {
-        const OGRSpatialReference* layer_srs = m_layer.GetSpatialRef();
-        OGRSpatialReference wgs84;
-        wgs84.SetWellKnownGeogCS("WGS84");
-        wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-        std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> ct;
-        std::string description;
-        if (!layer_srs) {
-            if (const std::string bad = first_not_lonlat(raws, 180.0); !bad.empty())
-                throw InputError("layer '" + layer_name() + "' in '" + m_file +
-                                 "' has no CRS and its coordinates are not longitude/latitude" + bad +
-                                 "; give the file its CRS (e.g. with ogr2ogr -a_srs EPSG:...)");
-            m_warnings.push_back("layer '" + layer_name() + "' in '" + m_file +
-                                 "' has no CRS; assuming WGS84 longitude/latitude (every coordinate is a valid one)");
-            description = "WGS84 (assumed)";
-        } else {
-            OGRSpatialReference src(*layer_srs);
-            src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-            const char* name = src.GetName();
-            description = name ? name : "unnamed CRS";
-            if (src.IsGeographic() && src.IsSame(&wgs84)) {
-                // GDAL reports WGS84 for every GeoJSON without a "crs" member, even when its
-                // coordinates are metres.
-                if (const std::string bad = first_not_lonlat(raws, 360.0); !bad.empty())
-                    throw InputError("layer '" + layer_name() + "' in '" + m_file + "' has the CRS " + description +
-                                     " but its coordinates are not longitude/latitude" + bad +
-                                     "; give the file its real CRS (e.g. convert it with ogr2ogr -s_srs ... -t_srs EPSG:4326)");
-            } else {
-                ct.reset(OGRCreateCoordinateTransformation(&src, &wgs84));
-                if (!ct)
-                    throw InputError("layer '" + layer_name() + "' in '" + m_file + "': no transformation from " +
-                                     description + " to WGS84");
-            }
-        }
+        const ogr::LayerCrs crs =
+            ogr::layer_crs(m_layer, m_file, {"", "; give the file its CRS (e.g. with ogr2ogr -a_srs EPSG:...)", "WGS84 (assumed)"},
+                           [&](double max_lon) { return first_not_lonlat(raws, max_lon); }, m_warnings);
+        const std::string& description = crs.description;
+        OGRCoordinateTransformation* ct = crs.to_wgs84.get();
         std::vector<double> xs, ys;
-        std::vector<int> ok;
         for (auto& raw : raws) {
             raw.for_each_sequence([&](std::vector<XY>& seq) {
                 if (seq.empty()) return;
                 xs.resize(seq.size());
                 ys.resize(seq.size());
                 for (std::size_t i = 0; i < seq.size(); ++i) { xs[i] = seq[i].x; ys[i] = seq[i].y; }
-                if (ct) {
-                    ok.assign(seq.size(), 0);
-                    ct->Transform(seq.size(), xs.data(), ys.data(), nullptr, ok.data());
-                    for (std::size_t i = 0; i < seq.size(); ++i)
-                        if (!ok[i] || !std::isfinite(xs[i]) || !std::isfinite(ys[i]))
-                            throw InputError(where(raw.area.fid) + ": a vertex cannot be transformed to WGS84 from " +
-                                             description);
-                }
+                if (ct && ogr::transform(*ct, xs, ys) < seq.size())
+                    throw InputError(where(raw.area.fid) + ": a vertex cannot be transformed to WGS84 from " + description);
                 const std::vector<double> lon = xs, lat = ys;
                 std::size_t bad = 0;
                 if (!m_frame.forward(xs, ys, &bad)) {
@@ -337,7 +278,7 @@ private:
         }
     }
 
-    static void drop_repeats(std::vector<XY>& pts) { pts.erase(std::unique(pts.begin(), pts.end()), pts.end()); }
+    static void drop_repeats(std::vector<XY>& pts) { ogr::drop_repeats(pts); }
 
     GeomPtr collection(int type, std::vector<GeomPtr> parts) const {
         std::vector<GEOSGeometry*> raw;
@@ -428,26 +369,6 @@ private:
     std::vector<std::string>& m_warnings;
 };
 
-std::string layer_names(GDALDataset& ds) {
-    std::string s;
-    for (OGRLayer* l : ds.GetLayers()) s += (s.empty() ? "" : ", ") + std::string(l->GetName());
-    return s.empty() ? "none" : s;
-}
-
-GDALDatasetUniquePtr open_dataset(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
-    QuietErrors quiet;
-    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-    if (!ds) {
-        const std::string why = QuietErrors::last();
-        throw InputError("'" + path + "': not a vector dataset OGR can read" + (why.empty() ? "" : " (" + why + ")"));
-    }
-    return ds;
-}
-
-bool is_s57(GDALDataset& ds) { return std::string(ds.GetDriver()->GetDescription()) == "S57"; }
-
 /// The same file, as far as the file system can tell (for skipping a chart also given as a user file).
 std::string file_key(const std::string& path) {
     std::error_code ec;
@@ -504,21 +425,21 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
     };
     auto s57_layers = [](GDALDataset& ds) {
         std::vector<std::pair<OGRLayer*, LayerRole>> chosen;
-        for (const char* name : s57_area_layers)
-            if (OGRLayer* l = ds.GetLayerByName(name)) chosen.emplace_back(l, *s57_role(name));
+        for (OGRLayer* l : ogr::layers_named(ds, {std::begin(s57_area_layers), std::end(s57_area_layers)}))
+            chosen.emplace_back(l, *s57_role(l->GetName()));
         return chosen;
     };
 
     std::set<std::string> user_keys;
     for (const std::string& path : user_files) {
-        GDALDatasetUniquePtr ds = open_dataset(path);
+        GDALDatasetUniquePtr ds = ogr::open_vector(path);
         user_keys.insert(file_key(path));
         std::vector<std::pair<OGRLayer*, LayerRole>> chosen;
-        if (is_s57(*ds)) {
+        if (ogr::is_s57(*ds)) {
             chosen = s57_layers(*ds);
             if (chosen.empty())
                 throw InputError("S-57 chart '" + path + "' has none of the layers " + s57_area_layer_list +
-                                 " (its layers: " + layer_names(*ds) + ")");
+                                 " (its layers: " + ogr::layer_names(*ds) + ")");
         } else {
             for (OGRLayer* l : ds->GetLayers()) chosen.emplace_back(l, s57_role(l->GetName()).value_or(LayerRole{}));
             if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");
@@ -527,8 +448,8 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
     }
     for (const std::string& path : charts) {
         if (user_keys.count(file_key(path))) continue;  // already read as a user file
-        GDALDatasetUniquePtr ds = open_dataset(path);
-        if (is_s57(*ds)) read_layers(path, s57_layers(*ds), false);
+        GDALDatasetUniquePtr ds = ogr::open_vector(path);
+        if (ogr::is_s57(*ds)) read_layers(path, s57_layers(*ds), false);
     }
 
     ExpectedAreas out;

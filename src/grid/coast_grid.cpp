@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "detail/geos_context.hpp"
+#include "grid/outward.hpp"
 #include <shoal/util/error.hpp>
 
 namespace shoal::grid {
@@ -94,32 +95,6 @@ void CoastGrid::compute_chunk_boxes() {
     }
 }
 
-template <typename Visit>
-void CoastGrid::visit_outward(XY p, Visit& visit) const {
-    if (m_segments.empty()) return;
-    int i0 = std::clamp(col_of(p.x), 0, m_nx - 1), i1 = i0;
-    int j0 = std::clamp(row_of(p.y), 0, m_ny - 1), j1 = j0;
-    auto read_cell = [&](int i, int j) {
-        const std::uint32_t s = slot(i, j);
-        if (s < land_slot)
-            for (std::uint32_t k = m_seg_offset[s]; k < m_seg_offset[s + 1]; ++k) visit(k);
-    };
-    read_cell(i0, j0);
-    for (;;) {
-        const double gap = std::min({i0 > 0 ? p.x - (m_x0 + i0 * m_cell) : INFINITY,
-                                     i1 < m_nx - 1 ? (m_x0 + (i1 + 1) * m_cell) - p.x : INFINITY,
-                                     j0 > 0 ? p.y - (m_y0 + j0 * m_cell) : INFINITY,
-                                     j1 < m_ny - 1 ? (m_y0 + (j1 + 1) * m_cell) - p.y : INFINITY});
-        if (!std::isfinite(gap) || !visit.wants(gap)) break;
-        const int ni0 = std::max(0, i0 - 1), ni1 = std::min(m_nx - 1, i1 + 1);
-        const int nj0 = std::max(0, j0 - 1), nj1 = std::min(m_ny - 1, j1 + 1);
-        for (int j = nj0; j <= nj1; ++j)
-            for (int i = ni0; i <= ni1; ++i)
-                if (j < j0 || j > j1 || i < i0 || i > i1) read_cell(i, j);
-        i0 = ni0, i1 = ni1, j0 = nj0, j1 = nj1;
-    }
-}
-
 namespace {
 
 /// The nearest point of segment ab to p: squared distance, and where it lies (-1: at a,
@@ -170,25 +145,36 @@ struct RingNear {
 
 }  // namespace
 
-std::uint32_t CoastGrid::nearest_polyline(XY p) const noexcept {
+NearestSegment CoastGrid::nearest_segment(XY p, double max_m) const noexcept {
+    // Cells outward from p while one not read yet may be nearer than the segment found (and
+    // within max_m); inside a cell, a chunk is skipped only when its box is farther by a clear
+    // margin: a segment's distance as computed may lie a few ulps under its box's.
     struct Visit {
         const CoastGrid& g;
         XY p;
-        double best2 = INFINITY;
-        std::uint32_t best = no_polyline;
-        void operator()(std::uint32_t k) {
-            int where;
-            const double d2 = nearest_on(p, g.m_segments[k].a, g.m_segments[k].b, &where);
-            if (d2 < best2) {
-                best2 = d2;
-                best = g.m_seg_info[k] & ~boundary_bit;
-            }
+        double max_m;
+        NearestSegment best{};
+        void operator()(std::span<const Segment> segs) {
+            visit_chunks(g, segs, [&](const geo::Box& b) { return box_point_dist2(b, p) * (1 - 1e-9) < best.dist2; },
+                         [&](const Segment& sg) {
+                             double t;
+                             const double d2 = geo::point_segment_dist2(p, sg.a, sg.b, &t);
+                             if (d2 < best.dist2) {
+                                 best.dist2 = d2;
+                                 best.point = sg.a + t * (sg.b - sg.a);
+                                 best.segment = &sg;
+                             }
+                         });
         }
-        bool wants(double gap) const { return gap <= 0 || gap * gap < best2; }
-    } visit{*this, p};
-    visit_outward(p, visit);
+        bool wants(double gap) const { return gap <= 0 || (gap * gap < best.dist2 && gap <= max_m); }
+        double reach() const { return std::min(std::sqrt(best.dist2), max_m); }
+    } visit{*this, p, max_m};
+    visit_outward(*this, point_box(p), visit);
+    if (visit.best.segment) visit.best.polyline = polyline_of(*visit.best.segment);
     return visit.best;
 }
+
+std::uint32_t CoastGrid::nearest_polyline(XY p) const noexcept { return nearest_segment(p).polyline; }
 
 std::uint32_t CoastGrid::enclosing_polyline(XY p) const {
     // A ring holds p exactly when p lies on its land side at the ring's nearest point. Rings
@@ -198,12 +184,14 @@ std::uint32_t CoastGrid::enclosing_polyline(XY p) const {
         const CoastGrid& g;
         XY p;
         std::vector<RingNear> rings;
-        void operator()(std::uint32_t k) {
-            if (!(g.m_seg_info[k] & boundary_bit)) return;
-            const std::uint32_t poly = g.m_seg_info[k] & ~boundary_bit;
-            auto it = std::find_if(rings.begin(), rings.end(), [&](const RingNear& r) { return r.polyline == poly; });
-            if (it == rings.end()) it = rings.insert(rings.end(), RingNear{poly});
-            it->add(g.m_segments[k], p);
+        void operator()(std::span<const Segment> segs) {
+            for (std::size_t k = g.index_of(segs), end = k + segs.size(); k < end; ++k) {
+                if (!(g.m_seg_info[k] & boundary_bit)) continue;
+                const std::uint32_t poly = g.m_seg_info[k] & ~boundary_bit;
+                auto it = std::find_if(rings.begin(), rings.end(), [&](const RingNear& r) { return r.polyline == poly; });
+                if (it == rings.end()) it = rings.insert(rings.end(), RingNear{poly});
+                it->add(g.m_segments[k], p);
+            }
         }
         const RingNear* best() const {
             const RingNear* b = nullptr;
@@ -215,8 +203,9 @@ std::uint32_t CoastGrid::enclosing_polyline(XY p) const {
             const RingNear* b = best();
             return gap <= 0 || !b || gap * gap < b->d2;
         }
+        double reach() const { return INFINITY; }  // whole rings: a ring's nearest point decides
     } visit{*this, p, {}};
-    visit_outward(p, visit);
+    visit_outward(*this, point_box(p), visit);
     const RingNear* b = visit.best();
     return b ? b->polyline : nearest_polyline(p);
 }

@@ -36,32 +36,29 @@ public:
                 if (!g || g->IsEmpty() || wkbFlatten(g->getGeometryType()) == wkbPoint) continue;
                 std::vector<unsigned char> wkb(static_cast<std::size_t>(g->WkbSize()));
                 g->exportToWkb(wkbNDR, wkb.data());
-                GEOSGeometry* lonlat = GEOSGeomFromWKB_buf_r(m_ctx, wkb.data(), wkb.size());
-                GEOSGeometry* local = GEOSGeom_transformXY_r(m_ctx, lonlat, &LandOracle::project, this);
-                GEOSGeom_destroy_r(m_ctx, lonlat);
-                if (GEOSGeomTypeId_r(m_ctx, local) == GEOS_POLYGON) {
-                    parts.push_back(local);
+                const geo::GeomPtr lonlat = geo::own(m_ctx, GEOSGeomFromWKB_buf_r(m_ctx, wkb.data(), wkb.size()), "reading WKB");
+                geo::GeomPtr local = geo::own(m_ctx, GEOSGeom_transformXY_r(m_ctx, lonlat.get(), &LandOracle::project, this), "projecting");
+                if (GEOSGeomTypeId_r(m_ctx, local.get()) == GEOS_POLYGON) {
+                    parts.push_back(local.release());
                     continue;
                 }
-                for (int i = 0; i < GEOSGetNumGeometries_r(m_ctx, local); ++i)
-                    parts.push_back(GEOSGeom_clone_r(m_ctx, GEOSGetGeometryN_r(m_ctx, local, i)));
-                GEOSGeom_destroy_r(m_ctx, local);
+                for (int i = 0; i < GEOSGetNumGeometries_r(m_ctx, local.get()); ++i)
+                    parts.push_back(GEOSGeom_clone_r(m_ctx, GEOSGetGeometryN_r(m_ctx, local.get(), i)));
             }
         // A MultiPolygon (prepared, indexed); made valid by a union where parts overlap.
         m_land = geo::own(m_ctx, GEOSGeom_createCollection_r(m_ctx, GEOS_MULTIPOLYGON, parts.data(),
                                                              static_cast<unsigned>(parts.size())), "multipolygon");
         if (GEOSisValid_r(m_ctx, m_land.get()) != 1)
             m_land = geo::own(m_ctx, GEOSUnaryUnion_r(m_ctx, m_land.get()), "union");
-        m_prepared = GEOSPrepare_r(m_ctx, m_land.get());
+        m_prepared = geo::PreparedPtr(GEOSPrepare_r(m_ctx, m_land.get()), {m_ctx.get()});
     }
-    ~LandOracle() { GEOSPreparedGeom_destroy_r(m_ctx, m_prepared); }
     LandOracle(const LandOracle&) = delete;
     LandOracle& operator=(const LandOracle&) = delete;
 
-    bool intersects(const std::vector<XY>& hull) const { return GEOSPreparedIntersects_r(m_ctx, m_prepared, polygon(hull).get()) == 1; }
+    bool intersects(const std::vector<XY>& hull) const { return GEOSPreparedIntersects_r(m_ctx, m_prepared.get(), polygon(hull).get()) == 1; }
     double distance(const std::vector<XY>& hull) const {
         double d = -1;
-        GEOSPreparedDistance_r(m_ctx, m_prepared, polygon(hull).get(), &d);
+        GEOSPreparedDistance_r(m_ctx, m_prepared.get(), polygon(hull).get(), &d);
         return d;
     }
 
@@ -79,7 +76,7 @@ private:
     geo::GeosContext m_ctx;
     const geo::LocalFrame& m_frame;
     geo::GeomPtr m_land{nullptr, {m_ctx.get()}};
-    const GEOSPreparedGeometry* m_prepared = nullptr;
+    geo::PreparedPtr m_prepared{nullptr, {m_ctx.get()}};
 };
 
 struct Disagreements {

@@ -8,6 +8,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "detail/gdal_support.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -194,7 +196,7 @@ TEST(LocalFrame, MetresPerDegreeMatchesGeodesicDistances) {
 }
 
 TEST(LocalFrame, GeographicOrUnknownCrsIsAUsageError) {
-    CPLPushErrorHandler(CPLQuietErrorHandler);  // GDAL would also print its own message to stderr
+    shoal::detail::QuietErrors quiet;  // GDAL would also print its own message to stderr
     EXPECT_THAT([] { LocalFrame::from_user_crs("EPSG:4326"); },
                 ThrowsMessage<UsageError>(AllOf(HasSubstr("EPSG:4326"), HasSubstr("not a projected CRS"))));
     EXPECT_THAT([] { LocalFrame::from_user_crs("+proj=longlat +datum=WGS84"); },
@@ -203,7 +205,6 @@ TEST(LocalFrame, GeographicOrUnknownCrsIsAUsageError) {
                 ThrowsMessage<UsageError>(AllOf(HasSubstr("no such crs, really"), HasSubstr("not one GDAL understands"))));
     EXPECT_THAT([] { LocalFrame::from_user_crs(""); }, ThrowsMessage<UsageError>(HasSubstr("CRS")));
     EXPECT_THAT([] { LocalFrame::from_definition("EPSG:999999"); }, ThrowsMessage<UsageError>(HasSubstr("EPSG:999999")));
-    CPLPopErrorHandler();
 }
 
 }  // namespace

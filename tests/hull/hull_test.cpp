@@ -3,7 +3,7 @@
 
 #include <shoal/hull/hull.hpp>
 
-#include <geos_c.h>
+#include "detail/geos_context.hpp"
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -38,22 +38,12 @@ using testing::ThrowsMessage;
 std::string data_path(const std::string& name) { return std::string{SHOAL_TEST_DATA} + name; }
 
 // ---------------------------------------------------------------------------------------------
-// GEOS helpers: one owner per handle kind.
+// GEOS helpers, on the library's owners (src/detail/geos_context.hpp).
 
-struct GeosContextDeleter {
-    void operator()(GEOSContextHandle_t h) const noexcept { GEOS_finish_r(h); }
-};
-using GeosContextPtr = std::unique_ptr<std::remove_pointer_t<GEOSContextHandle_t>, GeosContextDeleter>;
-
-struct GeosGeomDeleter {
-    GEOSContextHandle_t ctx;
-    void operator()(GEOSGeometry* g) const noexcept { GEOSGeom_destroy_r(ctx, g); }
-};
-using GeosGeomPtr = std::unique_ptr<GEOSGeometry, GeosGeomDeleter>;
+using GeosGeomPtr = shoal::geo::GeomPtr;
 
 class Geos {
 public:
-    Geos() : m_ctx{GEOS_init_r()} {}
 
     /// Polygon with the open ring `pts` as shell (GEOS needs it closed).
     GeosGeomPtr polygon(const std::vector<XY>& pts) const {
@@ -94,7 +84,7 @@ private:
         for (unsigned i = 0; i <= n; ++i) GEOSCoordSeq_setXY_r(ctx(), seq, i, pts[i % n].x, pts[i % n].y);
         return seq;
     }
-    GeosContextPtr m_ctx;
+    shoal::geo::GeosContext m_ctx;
 };
 
 std::string to_wkt(const std::vector<XY>& pts) {

@@ -11,6 +11,8 @@
 #include <cpl_error.h>
 #include <cpl_minixml.h>
 
+#include "detail/gdal_support.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -42,10 +44,8 @@ using XmlPtr = std::unique_ptr<CPLXMLNode, XmlDeleter>;
 
 /// The parsed document, or null (with GDAL's message in `error`) when it is not well-formed.
 XmlPtr parse(const std::string& svg, std::string* error) {
-    CPLErrorReset();
-    CPLPushErrorHandler(CPLQuietErrorHandler);
+    shoal::detail::QuietErrors quiet;
     XmlPtr doc(CPLParseXMLString(svg.c_str()));
-    CPLPopErrorHandler();
     if (!doc && error) *error = CPLGetLastErrorMsg();
     return doc;
 }

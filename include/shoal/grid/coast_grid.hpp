@@ -54,6 +54,14 @@ struct GridSource {
     std::uint64_t land_polylines = 0;      ///< of which with the land side known
 };
 
+/// The segment of a grid nearest to a point (CoastGrid::nearest_segment).
+struct NearestSegment {
+    double dist2 = INFINITY;            ///< squared distance; INFINITY when none was found
+    geo::XY point{};                    ///< the nearest point on the segment
+    const Segment* segment = nullptr;   ///< the segment (an element of some segments(i, j)), or null
+    std::uint32_t polyline = 0xFFFFFFFFu;  ///< the polyline it was clipped from (CoastGrid::no_polyline if none)
+};
+
 /// Figures of one build, for `shoal import` and the benchmark (seconds).
 struct BuildStats {
     double project_s = 0, clip_s = 0, state_s = 0, total_s = 0;
@@ -108,6 +116,10 @@ public:
     std::uint32_t polyline_of(const Segment& s) const noexcept {
         return m_seg_info[static_cast<std::size_t>(&s - m_segments.data())] & ~boundary_bit;
     }
+    /// The segment nearest to p (any segment), read outward from p's cell, skipping the cells
+    /// and chunks of segments farther than the nearest found; none farther than `max_m`
+    /// (one at max_m may be returned: compare the distance).
+    NearestSegment nearest_segment(geo::XY p, double max_m = INFINITY) const noexcept;
     /// The polyline nearest to p (any segment); no_polyline for a grid without segments.
     std::uint32_t nearest_polyline(geo::XY p) const noexcept;
     /// For p inside land or hazards: the nearest boundary ring that holds p (p lies on its
@@ -164,11 +176,6 @@ private:
     /// Fills m_chunk_box from m_segments (after a build or a load: it is not saved).
     void compute_chunk_boxes();
     bool reference_points_clear() const;
-    /// Calls visit(k) for the segments (k: index into m_segments) of the cell of p, then of
-    /// rings of cells outward while visit.wants(gap), gap being the distance from p to the
-    /// nearest cell not read yet.
-    template <typename Visit>
-    void visit_outward(geo::XY p, Visit& visit) const;
     std::uint32_t slot(int i, int j) const noexcept {
         return m_slot[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_nx) + static_cast<std::size_t>(i)];
     }

@@ -1,0 +1,36 @@
+#pragma once
+/// The `.shoalgrid` file format: a built CoastGrid saved so later runs skip the import.
+///
+/// Layout (little-endian): magic "SHOALGRD", u32 format version, u32 byte-order mark
+/// 0x01020304, u64 payload size, u64 XXH3-64 checksum of the payload, then the payload
+/// (parameters, frame, source fingerprint and hazard parameters, then the grid's flat arrays
+/// and the per-polyline table of what each bounds). Written to a
+/// temporary file in the same folder and renamed, so a reader never sees half a file.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <shoal/grid/coast_grid.hpp>
+
+namespace shoal::grid {
+
+inline constexpr char grid_magic[8] = {'S', 'H', 'O', 'A', 'L', 'G', 'R', 'D'};
+inline constexpr std::uint32_t grid_format_version = 2;  // 2: hazard fields and per-polyline kinds (depth hazards)
+
+class GridFile {
+public:
+    /// Writes atomically (temporary file + rename). Throws InputError naming the path.
+    static void save(const CoastGrid& grid, const std::string& path);
+    /// Reads and verifies a grid file. Throws InputError with one clear line for a file that
+    /// is missing, not a grid, from another format version, cut short or damaged.
+    static CoastGrid load(const std::string& path);
+    /// Parses a grid from bytes already in memory (`name` is used in messages).
+    static CoastGrid parse(const std::vector<char>& bytes, const std::string& name);
+    static std::vector<char> serialize(const CoastGrid& grid);
+};
+
+/// True when the file starts with the grid magic (it is a grid, perhaps a damaged one).
+bool looks_like_grid(const std::string& path);
+
+}  // namespace shoal::grid

@@ -1,0 +1,117 @@
+#include "coast/ogr_source.hpp"
+
+#include <ogr_spatialref.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <shoal/util/error.hpp>
+
+namespace shoal::coast::ogr {
+
+namespace fs = std::filesystem;
+
+GDALDatasetUniquePtr open_vector(const std::string& path) {
+    detail::register_drivers();
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
+    detail::QuietErrors quiet;
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    if (!ds) {
+        const std::string why = detail::QuietErrors::last();
+        throw InputError("'" + path + "': not a vector dataset OGR can read" + (why.empty() ? "" : " (" + why + ")"));
+    }
+    return ds;
+}
+
+bool is_s57(GDALDataset& ds) { return std::string(ds.GetDriver()->GetDescription()) == "S57"; }
+
+std::string layer_names(GDALDataset& ds) {
+    std::string s;
+    for (OGRLayer* l : ds.GetLayers()) s += (s.empty() ? "" : ", ") + std::string(l->GetName());
+    return s.empty() ? "none" : s;
+}
+
+std::vector<OGRLayer*> layers_named(GDALDataset& ds, const std::vector<const char*>& names) {
+    std::vector<OGRLayer*> out;
+    for (const char* name : names)
+        if (OGRLayer* l = ds.GetLayerByName(name)) out.push_back(l);
+    return out;
+}
+
+std::string upper(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return s;
+}
+
+std::string feature_where(const std::string& file, const std::string& layer, std::int64_t fid) {
+    return "In '" + file + "' layer '" + layer + "' feature " + std::to_string(fid);
+}
+
+LinearGeometry linear_geometry(const OGRFeature& feature) {
+    LinearGeometry out;
+    out.geometry = feature.GetGeometryRef();
+    if (out.geometry && out.geometry->hasCurveGeometry()) {
+        out.owned.reset(out.geometry->getLinearGeometry());
+        out.geometry = out.owned.get();
+    }
+    return out;
+}
+
+std::string not_lonlat_note(double x, double y, std::int64_t fid, double max_lon) {
+    if (std::fabs(x) <= max_lon && std::fabs(y) <= 90.0) return "";
+    char buf[128];
+    std::snprintf(buf, sizeof buf, " (e.g. %.3f, %.3f in feature %lld)", x, y, static_cast<long long>(fid));
+    return buf;
+}
+
+LayerCrs layer_crs(OGRLayer& layer, const std::string& file, const NoCrsRule& no_crs,
+                   const std::function<std::string(double max_lon)>& first_not_lonlat, std::vector<std::string>& warnings) {
+    const std::string what = "layer '" + std::string(layer.GetName()) + "' in '" + file + "'";
+    const OGRSpatialReference* layer_srs = layer.GetSpatialRef();
+    OGRSpatialReference src;
+    LayerCrs out;
+    if (layer_srs) {
+        src = *layer_srs;
+        const char* name = src.GetName();
+        out.description = name ? name : "unnamed CRS";
+    } else if (!no_crs.source_crs.empty()) {
+        if (src.SetFromUserInput(no_crs.source_crs.c_str()) != OGRERR_NONE)
+            throw UsageError("--source-crs '" + no_crs.source_crs + "' is not a CRS GDAL understands");
+        out.description = "none in file; --source-crs " + no_crs.source_crs;
+    } else {
+        if (const std::string bad = first_not_lonlat(180.0); !bad.empty())
+            throw InputError(what + " has no CRS and its coordinates are not longitude/latitude" + bad + no_crs.remedy);
+        warnings.push_back(what + " has no CRS; assuming WGS84 longitude/latitude (every coordinate is a valid one)");
+        out.description = no_crs.assumed;
+        return out;
+    }
+    src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    OGRSpatialReference wgs84;
+    wgs84.SetWellKnownGeogCS("WGS84");
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    if (src.IsGeographic() && src.IsSame(&wgs84)) {
+        // GDAL reports WGS84 for every GeoJSON without a "crs" member (RFC 7946), even when
+        // its coordinates are metres: those must not pass as longitude/latitude (0..360
+        // longitudes are accepted).
+        if (const std::string bad = first_not_lonlat(360.0); !bad.empty())
+            throw InputError(what + " has the CRS " + out.description + " but its coordinates are not longitude/latitude" + bad +
+                             "; give the file its real CRS (e.g. convert it with ogr2ogr -s_srs ... -t_srs EPSG:4326)");
+        return out;
+    }
+    out.to_wgs84.reset(OGRCreateCoordinateTransformation(&src, &wgs84));
+    if (!out.to_wgs84) throw InputError(what + ": no transformation from " + out.description + " to WGS84");
+    return out;
+}
+
+std::size_t transform(OGRCoordinateTransformation& ct, std::vector<double>& xs, std::vector<double>& ys) {
+    std::vector<int> ok(xs.size(), 0);
+    ct.Transform(xs.size(), xs.data(), ys.data(), nullptr, ok.data());
+    for (std::size_t i = 0; i < xs.size(); ++i)
+        if (!ok[i] || !std::isfinite(xs[i]) || !std::isfinite(ys[i])) return i;
+    return xs.size();
+}
+
+}  // namespace shoal::coast::ogr

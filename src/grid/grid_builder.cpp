@@ -1,0 +1,128 @@
+#include <shoal/grid/grid_builder.hpp>
+
+#include <gdal_priv.h>
+
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "detail/gdal_support.hpp"
+#include <shoal/grid/grid_file.hpp>
+#include <shoal/util/error.hpp>
+
+namespace shoal::grid {
+
+namespace fs = std::filesystem;
+
+std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const coast::ImportOptions& options,
+                                  const std::string& crs, double cell_m) {
+    detail::register_drivers();
+    XXH3_state_t* st = XXH3_createState();
+    XXH3_64bits_reset(st);
+    auto feed = [&](const std::string& s) {
+        const std::uint64_t n = s.size();
+        XXH3_64bits_update(st, &n, sizeof n);
+        XXH3_64bits_update(st, s.data(), s.size());
+    };
+    feed("shoal-grid-v" + std::to_string(grid_format_version));
+    std::vector<char> buf(1 << 20);
+    for (const std::string& path : paths) {
+        std::error_code ec;
+        if (!fs::exists(path, ec)) {
+            XXH3_freeState(st);
+            throw InputError("'" + path + "': no such file or directory");
+        }
+        std::vector<std::string> files;
+        GDALDatasetUniquePtr ds;
+        {
+            detail::QuietErrors quiet;
+            ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+        }
+        if (ds) {
+            if (char** list = ds->GetFileList()) {
+                for (char** f = list; *f; ++f) files.emplace_back(*f);
+                CSLDestroy(list);
+            }
+        }
+        if (files.empty()) files.push_back(path);
+        std::sort(files.begin(), files.end());
+        for (const std::string& f : files) {
+            if (fs::is_directory(f, ec)) continue;
+            feed(fs::path(f).filename().string());
+            std::ifstream in(f, std::ios::binary);
+            while (in) {
+                in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+                XXH3_64bits_update(st, buf.data(), static_cast<std::size_t>(in.gcount()));
+            }
+        }
+    }
+    for (const auto& l : options.layers) feed("layer:" + l);
+    feed("source_crs:" + options.source_crs);
+    // Hazards: the limiting depth, the danger radius and the depth field shape the grid.
+    char hazards[96];
+    if (options.limiting_depth_m)
+        std::snprintf(hazards, sizeof hazards, "limit:%.17g radius:%.17g", *options.limiting_depth_m, options.danger_radius_m);
+    else
+        std::snprintf(hazards, sizeof hazards, "limit:none");
+    feed(hazards);
+    feed("depth_field:" + options.depth_field);
+    feed("crs:" + crs);
+    XXH3_64bits_update(st, &cell_m, sizeof cell_m);
+    const std::uint64_t h = XXH3_64bits_digest(st);
+    XXH3_freeState(st);
+    return h;
+}
+
+CoastGrid build_grid(const std::vector<std::string>& paths, const BuildRequest& request, std::vector<std::string>* warnings,
+                     BuildStats* stats, std::string* cell_note) {
+    coast::Coastline coast = coast::import_coastline(paths, request.import);
+    if (warnings) warnings->insert(warnings->end(), coast.warnings.begin(), coast.warnings.end());
+    geo::LocalFrame frame = request.crs.empty()
+                                ? geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2})
+                                : geo::LocalFrame::from_user_crs(request.crs);
+    const double scale_error = frame.max_scale_error(coast.min, coast.max);
+    if (scale_error > 1e-4 && warnings) {
+        char buf[240];
+        std::snprintf(buf, sizeof buf,
+                      "the data spans %.2f x %.2f degrees: the local frame's scale error reaches %.2g (over 1 in 10,000); "
+                      "distances are off by up to that fraction (split the area or choose a CRS with --crs)",
+                      coast.max.lon - coast.min.lon, coast.max.lat - coast.min.lat, scale_error);
+        warnings->push_back(buf);
+    }
+    // Extent in local metres, for the default cell size.
+    geo::Box ext;
+    for (double fx : {0.0, 0.5, 1.0})
+        for (double fy : {0.0, 0.5, 1.0}) {
+            try {
+                ext.extend(frame.forward({coast.min.lon + fx * (coast.max.lon - coast.min.lon),
+                                          coast.min.lat + fy * (coast.max.lat - coast.min.lat)}));
+            } catch (const InputError&) {
+            }
+        }
+    const double cell = choose_cell_size(request.cell_m, request.ship_length_m, ext, cell_note);
+    CoastGrid g = CoastGrid::build(coast, std::move(frame), cell, stats);
+    g.source().inputs = paths;
+    g.source().layer_option = request.import.layers;
+    g.source().source_crs = request.import.source_crs;
+    g.source().limiting_depth_m = request.import.limiting_depth_m.value_or(NAN);
+    g.source().danger_radius_m = request.import.limiting_depth_m ? request.import.danger_radius_m : 0.0;
+    g.source().depth_field = request.import.depth_field;
+    g.source().fingerprint =
+        fingerprint_sources(paths, request.import, request.crs, request.cell_m > 0 ? request.cell_m : 2.5 * request.ship_length_m);
+    return g;
+}
+
+std::vector<std::string> coast_sources(const std::vector<std::string>& coast, const CoastGrid& g) {
+    if (!(coast.size() == 1 && looks_like_grid(coast[0]))) return coast;
+    std::vector<std::string> out;
+    for (const std::string& in : g.source().inputs)
+        if (std::error_code ec; fs::is_regular_file(in, ec)) out.push_back(in);
+    return out;
+}
+
+}  // namespace shoal::grid

@@ -1,0 +1,293 @@
+#include <shoal/grid/grid_file.hpp>
+
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <type_traits>
+
+#include <shoal/util/atomic_file.hpp>
+#include <shoal/util/error.hpp>
+
+namespace shoal::grid {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class Writer {
+public:
+    template <typename T>
+    void pod(const T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        const char* p = reinterpret_cast<const char*>(&v);
+        m_bytes.insert(m_bytes.end(), p, p + sizeof(T));
+    }
+    void str(const std::string& s) {
+        pod<std::uint64_t>(s.size());
+        m_bytes.insert(m_bytes.end(), s.begin(), s.end());
+    }
+    void strings(const std::vector<std::string>& v) {
+        pod<std::uint64_t>(v.size());
+        for (const auto& s : v) str(s);
+    }
+    template <typename T>
+    void vec(const std::vector<T>& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        pod<std::uint64_t>(v.size());
+        const char* p = reinterpret_cast<const char*>(v.data());
+        m_bytes.insert(m_bytes.end(), p, p + v.size() * sizeof(T));
+    }
+    std::vector<char>& bytes() { return m_bytes; }
+
+private:
+    std::vector<char> m_bytes;
+};
+
+class Reader {
+public:
+    Reader(const char* data, std::size_t size, const std::string& name) : m_p(data), m_end(data + size), m_name(name) {}
+    template <typename T>
+    T pod() {
+        T v;
+        need(sizeof(T));
+        std::memcpy(&v, m_p, sizeof(T));
+        m_p += sizeof(T);
+        return v;
+    }
+    std::string str() {
+        const auto n = count(1);
+        std::string s(m_p, n);
+        m_p += n;
+        return s;
+    }
+    std::vector<std::string> strings() {
+        const auto n = count(8);
+        std::vector<std::string> v;
+        for (std::size_t i = 0; i < n; ++i) v.push_back(str());
+        return v;
+    }
+    template <typename T>
+    std::vector<T> vec() {
+        const auto n = count(sizeof(T));
+        std::vector<T> v(n);
+        if (n) std::memcpy(v.data(), m_p, n * sizeof(T));
+        m_p += n * sizeof(T);
+        return v;
+    }
+    bool at_end() const { return m_p == m_end; }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError("grid file '" + m_name + "' is damaged: " + what + "; rebuild it with shoal import");
+    }
+
+private:
+    std::size_t count(std::size_t elem) {
+        const auto n = pod<std::uint64_t>();
+        if (n > static_cast<std::uint64_t>(m_end - m_p) / elem) fail("an array runs past the end of the file");
+        return static_cast<std::size_t>(n);
+    }
+    void need(std::size_t n) {
+        if (static_cast<std::size_t>(m_end - m_p) < n) fail("it ends early");
+    }
+    const char* m_p;
+    const char* m_end;
+    const std::string& m_name;
+};
+
+constexpr std::uint32_t byte_order_mark = 0x01020304u;
+constexpr std::size_t header_size = 8 + 4 + 4 + 8 + 8;
+
+std::vector<char> read_file(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a grid file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError("cannot open grid file '" + path + "': " + std::strerror(errno));
+    in.seekg(0, std::ios::end);
+    const auto size = in.tellg();
+    if (size < 0) throw InputError("cannot read grid file '" + path + "'");
+    in.seekg(0);
+    std::vector<char> bytes(static_cast<std::size_t>(size));
+    if (!in.read(bytes.data(), size)) throw InputError("cannot read grid file '" + path + "'");
+    return bytes;
+}
+
+}  // namespace
+
+std::vector<char> GridFile::serialize(const CoastGrid& g) {
+    Writer w;
+    w.pod(g.m_cell);
+    w.pod(g.m_x0);
+    w.pod(g.m_y0);
+    w.pod<std::int32_t>(g.m_nx);
+    w.pod<std::int32_t>(g.m_ny);
+    w.pod(g.m_ref_fx);
+    w.pod(g.m_ref_fy);
+    w.pod(g.m_clip_slack);
+    w.pod<std::uint8_t>(g.m_has_land_side ? 1 : 0);
+    w.str(g.m_frame.definition());
+    const GridSource& s = g.m_source;
+    w.strings(s.inputs);
+    w.strings(s.layers);
+    w.strings(s.layer_option);
+    w.str(s.source_crs);
+    w.pod(s.fingerprint);
+    w.pod(s.input_vertices);
+    w.pod(s.polylines);
+    w.pod(s.land_polylines);
+    w.pod(s.limiting_depth_m);
+    w.pod(s.danger_radius_m);
+    w.str(s.depth_field);
+    w.pod(s.shallow_polylines);
+    w.pod(s.danger_polylines);
+    w.pod(s.hazard_features);
+    w.pod(s.unknown_depth);
+    w.pod(s.deep_skipped);
+    w.vec(g.m_slot);
+    w.vec(g.m_seg_offset);
+    w.vec(g.m_ref_winding);
+    w.vec(g.m_segments);
+    w.vec(g.m_seg_info);
+    // Per polyline what it bounds: kind | danger << 4, and the charted depth (NaN unknown).
+    std::vector<std::uint8_t> kinds;
+    std::vector<double> depths;
+    for (const coast::Hazard& h : g.m_hazards) {
+        kinds.push_back(static_cast<std::uint8_t>(static_cast<unsigned>(h.kind) | static_cast<unsigned>(h.danger) << 4));
+        depths.push_back(h.depth_m);
+    }
+    w.vec(kinds);
+    w.vec(depths);
+    const std::vector<char>& payload = w.bytes();
+
+    Writer out;
+    for (char c : grid_magic) out.pod(c);
+    out.pod(grid_format_version);
+    out.pod(byte_order_mark);
+    out.pod<std::uint64_t>(payload.size());
+    out.pod<std::uint64_t>(XXH3_64bits(payload.data(), payload.size()));
+    out.bytes().insert(out.bytes().end(), payload.begin(), payload.end());
+    return std::move(out.bytes());
+}
+
+void GridFile::save(const CoastGrid& grid, const std::string& path) {
+    const std::vector<char> bytes = serialize(grid);
+    write_file_atomically(path, std::string_view(bytes.data(), bytes.size()));
+}
+
+CoastGrid GridFile::load(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
+    return parse(read_file(path), path);
+}
+
+CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& name) {
+    if (bytes.size() < 8 || std::memcmp(bytes.data(), grid_magic, 8) != 0)
+        throw InputError("'" + name + "' is not a shoal grid file (no SHOALGRD magic number)");
+    Reader h(bytes.data(), bytes.size(), name);
+    if (bytes.size() < header_size) h.fail("the header is cut short");
+    h.pod<std::uint64_t>();
+    const auto version = h.pod<std::uint32_t>();
+    const auto bom = h.pod<std::uint32_t>();
+    if (bom != byte_order_mark) h.fail("wrong byte order mark");
+    if (version != grid_format_version)
+        throw InputError("grid file '" + name + "' has format version " + std::to_string(version) + "; this shoal reads version " +
+                         std::to_string(grid_format_version) + ": rebuild it with shoal import");
+    const auto size = h.pod<std::uint64_t>();
+    const auto checksum = h.pod<std::uint64_t>();
+    if (size != bytes.size() - header_size)
+        h.fail("its length is " + std::to_string(bytes.size() - header_size) + " bytes, the header says " + std::to_string(size) +
+               " (cut short?)");
+    const char* payload = bytes.data() + header_size;
+    if (XXH3_64bits(payload, size) != checksum) h.fail("checksum mismatch");
+
+    Reader r(payload, size, name);
+    const auto cell = r.pod<double>();
+    const auto x0 = r.pod<double>();
+    const auto y0 = r.pod<double>();
+    const auto nx = r.pod<std::int32_t>();
+    const auto ny = r.pod<std::int32_t>();
+    const auto fx = r.pod<double>();
+    const auto fy = r.pod<double>();
+    const auto slack = r.pod<double>();
+    const bool land = r.pod<std::uint8_t>() != 0;
+    const std::string frame_def = r.str();
+    // The frame's CRS text goes to GDAL/PROJ, which may look a name up at length: only text does.
+    if (frame_def.empty() || frame_def.size() > 65536 ||
+        std::any_of(frame_def.begin(), frame_def.end(), [](char c) { return (c >= 0 && c < ' ' && c != '\n' && c != '\t') || c == 0x7F; }))
+        r.fail("bad frame definition");
+    CoastGrid g(geo::LocalFrame::from_definition(frame_def));
+    g.m_cell = cell;
+    g.m_x0 = x0;
+    g.m_y0 = y0;
+    g.m_nx = nx;
+    g.m_ny = ny;
+    g.m_ref_fx = fx;
+    g.m_ref_fy = fy;
+    g.m_clip_slack = slack;
+    g.m_has_land_side = land;
+    GridSource& s = g.m_source;
+    s.inputs = r.strings();
+    s.layers = r.strings();
+    s.layer_option = r.strings();
+    s.source_crs = r.str();
+    s.fingerprint = r.pod<std::uint64_t>();
+    s.input_vertices = r.pod<std::uint64_t>();
+    s.polylines = r.pod<std::uint64_t>();
+    s.land_polylines = r.pod<std::uint64_t>();
+    s.limiting_depth_m = r.pod<double>();
+    s.danger_radius_m = r.pod<double>();
+    s.depth_field = r.str();
+    s.shallow_polylines = r.pod<std::uint64_t>();
+    s.danger_polylines = r.pod<std::uint64_t>();
+    s.hazard_features = r.pod<std::uint64_t>();
+    s.unknown_depth = r.pod<std::uint64_t>();
+    s.deep_skipped = r.pod<std::uint64_t>();
+    g.m_slot = r.vec<std::uint32_t>();
+    g.m_seg_offset = r.vec<std::uint32_t>();
+    g.m_ref_winding = r.vec<std::int32_t>();
+    g.m_segments = r.vec<Segment>();
+    g.m_seg_info = r.vec<std::uint32_t>();
+    const auto kinds = r.vec<std::uint8_t>();
+    const auto depths = r.vec<double>();
+    if (!r.at_end()) r.fail("unexpected bytes after the arrays");
+    if (kinds.size() != depths.size()) r.fail("polyline table sizes");
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+        const unsigned kind = kinds[k] & 0x0Fu, danger = kinds[k] >> 4;
+        if (kind > static_cast<unsigned>(coast::HazardKind::danger) || danger > static_cast<unsigned>(coast::DangerKind::obstruction))
+            r.fail("bad polyline kind");
+        g.m_hazards.push_back({static_cast<coast::HazardKind>(kind), static_cast<coast::DangerKind>(danger), depths[k]});
+    }
+    for (std::uint32_t info : g.m_seg_info)
+        if ((info & ~CoastGrid::boundary_bit) >= kinds.size()) r.fail("segment of a polyline out of range");
+    // Consistency: a checksum protects against damage, these against a wrong writer.
+    if (!(cell > 0) || !std::isfinite(cell) || !std::isfinite(x0) || !std::isfinite(y0) || nx <= 0 || ny <= 0 ||
+        !(fx > 0 && fx < 1 && fy > 0 && fy < 1))
+        r.fail("bad grid parameters");
+    if (static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny) != g.m_slot.size()) r.fail("cell array size");
+    const std::size_t ncoast = g.m_ref_winding.size();
+    if (g.m_seg_offset.size() != ncoast + 1 || g.m_seg_offset.front() != 0 || g.m_seg_offset.back() != g.m_segments.size() ||
+        !std::is_sorted(g.m_seg_offset.begin(), g.m_seg_offset.end()) || g.m_seg_info.size() != g.m_segments.size())
+        r.fail("segment offsets");
+    for (std::uint32_t v : g.m_slot)
+        if (v < CoastGrid::land_slot && v >= ncoast) r.fail("cell slot out of range");
+    for (const Segment& sg : g.m_segments)
+        if (!std::isfinite(sg.a.x) || !std::isfinite(sg.a.y) || !std::isfinite(sg.b.x) || !std::isfinite(sg.b.y))
+            r.fail("non-finite segment");
+    g.compute_chunk_boxes();
+    return g;
+}
+
+bool looks_like_grid(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return false;
+    std::ifstream in(path, std::ios::binary);
+    char head[8] = {};
+    in.read(head, 8);
+    return in.gcount() == 8 && std::memcmp(head, grid_magic, 8) == 0;
+}
+
+}  // namespace shoal::grid
