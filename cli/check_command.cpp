@@ -85,6 +85,9 @@ public:
         m_sub->add_option("--vessels", m_vessel_files,
                           "Vessels table(s), CSV: mmsi and any of name, A,B,C,D (to_bow_m, to_stern_m, to_port_m, to_stbd_m), "
                           "draught_m, shiptype; joined to tracks by id, over what the track's own file says");
+        m_sub->add_flag("--hull-from-length-width", m_audit.read.hull_from_length_width,
+                        "A vessel with Length and Width but no A,B,C,D (MarineCadastre) is swept with a hull of that size, its "
+                        "position taken amidships (can miss a bow-first grounding when the antenna is aft; default: --ship/--dims)");
         m_sub->add_option("--berth-tolerance", m_berth_tolerance_m,
                           "Lines and points of --berths and S-57 berths / shore constructions count within this many metres (default 10)")
             ->check(finite)->check(CLI::PositiveNumber);
@@ -156,7 +159,7 @@ public:
             if (f.read.duplicates)
                 std::fprintf(stderr, "shoal: warning: %s: %zu fixes repeat an earlier time of their vessel (dropped)\n", printable(f.file).c_str(),
                              f.read.duplicates);
-            if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", printable(f.error).c_str());
+            if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", printable(in_cli_terms(f.error)).c_str());
         }
         std::size_t wild_said = 0;
         for (const auto& t : r.tracks)
@@ -165,7 +168,7 @@ public:
         print_warnings(r.warnings);
         if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
         for (const auto& e : r.errors)
-            std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(e.message).c_str());
+            std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(in_cli_terms(e.message)).c_str());
         const report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
                                                       m_audit, m_berths);
         const auto t0 = std::chrono::steady_clock::now();

@@ -43,7 +43,7 @@ public:
         grid::CoastGrid g = grid::build_grid(m_inputs, m_request, &warnings, &stats, &cell_note);
         print_warnings(warnings);
         grid::GridFile::save(g, m_output);
-        std::printf("%s\n", cell_note.c_str());
+        std::printf("%s\n", in_cli_terms(cell_note).c_str());
         print_grid(g);
         std::printf("build time:     %.3f s (project %.3f s, clip %.3f s with %llu GEOSClipByRect calls, cell states %.3f s)\n",
                     stats.total_s, stats.project_s, stats.clip_s, static_cast<unsigned long long>(stats.clip_calls), stats.state_s);

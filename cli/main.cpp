@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/printable.hpp>
 #include <shoal/version.hpp>
@@ -74,10 +75,10 @@ int main(int argc, char** argv) {
         for (auto& c : commands)
             if (c->parsed()) return c->run();
     } catch (const shoal::InputError& e) {
-        std::fprintf(stderr, "shoal: error: %s\n", shoal::printable(e.what()).c_str());
+        std::fprintf(stderr, "shoal: error: %s\n", shoal::printable(shoal::cli::in_cli_terms(e.what())).c_str());
         return shoal::cli::exit_usage;
     } catch (const shoal::UsageError& e) {
-        std::fprintf(stderr, "shoal: usage error: %s\n", shoal::printable(e.what()).c_str());
+        std::fprintf(stderr, "shoal: usage error: %s\n", shoal::printable(shoal::cli::in_cli_terms(e.what())).c_str());
         return shoal::cli::exit_usage;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "shoal: error: out of memory (try a larger --cell, or fewer inputs at once)\n");

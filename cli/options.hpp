@@ -25,7 +25,11 @@ extern const CLI::Validator finite;
 /// vector dataset" (which is what OGR makes of a file it may not read).
 void check_readable(const std::vector<std::string>& paths);
 
-/// "shoal: warning: ..." on stderr, one line each, terminal escapes shown as hex.
+/// A library message in the CLI's terms: the option fields it names (`SweepOptions::step_m`,
+/// `BuildRequest::crs`, ...) become the flags that set them (`--step`, `--crs`).
+std::string in_cli_terms(std::string message);
+
+/// "shoal: warning: ..." on stderr, one line each, in the CLI's terms, terminal escapes shown as hex.
 void print_warnings(const std::vector<std::string>& warnings);
 
 /// What a grid holds (import and info).

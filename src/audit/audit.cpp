@@ -269,8 +269,8 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         const TrackSummary& s = t.summary;
         if (s.jumps > 0 && s.fixes >= 4 && 2 * s.segments > s.fixes)
             result.warnings.push_back("track '" + s.id + "' in '" + s.file + "': " + std::to_string(s.segments) + " pieces of " +
-                                      std::to_string(s.fixes) + " fixes: jumps over --max-speed between most fixes, so almost nothing "
-                                      "of it was swept (two vessels on one id, or a --max-speed too low for it?)");
+                                      std::to_string(s.fixes) + " fixes: jumps over WildFixOptions::max_speed_kn between most fixes, so almost nothing "
+                                      "of it was swept (two vessels on one id, or a WildFixOptions::max_speed_kn too low for it?)");
     }
 
     // 3. Exercise mode: ship-to-ship encounters over all audited tracks, on one clock.

@@ -89,10 +89,10 @@ private:
         if (hulls.size() != tracks.size())
             throw UsageError("find_encounters: " + std::to_string(tracks.size()) + " tracks but " + std::to_string(hulls.size()) +
                              " hulls (one hull per track)");
-        if (!(m_opt.step_m > 0) || !std::isfinite(m_opt.step_m)) throw UsageError("--step must be > 0 metres");
-        if (!(m_opt.ship_margin_m >= 0) || !std::isfinite(m_opt.ship_margin_m)) throw UsageError("--ship-margin must be >= 0 metres");
+        if (!(m_opt.step_m > 0) || !std::isfinite(m_opt.step_m)) throw UsageError("EncounterOptions::step_m must be > 0 metres");
+        if (!(m_opt.ship_margin_m >= 0) || !std::isfinite(m_opt.ship_margin_m)) throw UsageError("EncounterOptions::ship_margin_m must be >= 0 metres");
         if (!(m_opt.threshold_m >= 0) || !std::isfinite(m_opt.threshold_m)) throw UsageError("the encounter threshold must be >= 0 metres (0 = automatic)");
-        if (!(m_opt.max_gap_s > 0)) throw UsageError("--max-gap must be > 0 seconds");
+        if (!(m_opt.max_gap_s > 0)) throw UsageError("EncounterOptions::max_gap_s must be > 0 seconds");
         if (!(m_opt.time_tolerance_s > 0)) throw UsageError("the time tolerance must be > 0 seconds");
         for (const track::Track* t : tracks) {
             if (!t) throw UsageError("find_encounters: null track");

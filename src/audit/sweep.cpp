@@ -299,7 +299,7 @@ private:
 
 TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, const PoseChecker& inner,
                         const SweepOptions& opt, const SweepContext& ctx) {
-    if (!(opt.step_m > 0)) throw UsageError("--step must be > 0 metres");
+    if (!(opt.step_m > 0)) throw UsageError("SweepOptions::step_m must be > 0 metres");
     const RepeatingChecker checker(inner);
     std::optional<RepeatingChecker> circle;
     if (ctx.unknown_heading) circle.emplace(*ctx.unknown_heading);

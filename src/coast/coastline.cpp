@@ -108,7 +108,7 @@ public:
             const char* what = m_role.kind == HazardKind::danger ? "dangers" : "depth areas";
             if (!m_options.limiting_depth_m)
                 throw UsageError("layer '" + stats.layer + "' in '" + m_file + "' holds " + what +
-                                 ": they need a limiting depth (--hazard-depth M, or a ship with a draught)");
+                                 ": they need a limiting depth (ImportOptions::limiting_depth_m, or a ship with a draught)");
             depth_index = m_layer.GetLayerDefn()->GetFieldIndex(m_role.field.c_str());
             if (depth_index < 0)
                 throw InputError("layer '" + stats.layer + "' in '" + m_file + "' holds " + what + " but has no field " +
@@ -237,7 +237,7 @@ private:
     /// Transforms every part to WGS84 lon/lat; returns the CRS description for the stats.
     std::string to_wgs84(std::vector<RawPart>& parts) {
         const ogr::LayerCrs crs =
-            ogr::layer_crs(m_layer, m_file, {m_options.source_crs, "; name its CRS with --source-crs", "none in file; assumed WGS84 lon/lat"},
+            ogr::layer_crs(m_layer, m_file, {m_options.source_crs, "; name its CRS with ImportOptions::source_crs", "none in file; assumed WGS84 lon/lat"},
                            [&](double max_lon) { return first_not_lonlat(parts, max_lon); }, m_out.warnings);
         if (!crs.to_wgs84) return crs.description;
         for (auto& part : parts) {
@@ -353,10 +353,10 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
     if (options.limiting_depth_m && !std::isfinite(*options.limiting_depth_m))
         throw UsageError("the limiting depth must be a finite number of metres");
     if (!(options.danger_radius_m > 0) || !std::isfinite(options.danger_radius_m))
-        throw UsageError("--danger-radius must be > 0 metres");
+        throw UsageError("ImportOptions::danger_radius_m must be > 0 metres");
     if (!options.depth_field.empty() && !options.limiting_depth_m)
-        throw UsageError("--depth-field " + options.depth_field +
-                         " needs a limiting depth (--hazard-depth M, or a ship with a draught)");
+        throw UsageError("ImportOptions::depth_field " + options.depth_field +
+                         " needs a limiting depth (ImportOptions::limiting_depth_m, or a ship with a draught)");
     Coastline out;
     geo::GeosContext geos;
     std::vector<bool> found(options.layers.size(), false);
@@ -375,7 +375,7 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
                 }
             if (chosen.empty())
                 throw InputError("'" + path + "' has no layer named " + options.layers.front() +
-                                 (options.layers.size() > 1 ? " (nor the other --layer names)" : "") +
+                                 (options.layers.size() > 1 ? " (nor the other ImportOptions::layers names)" : "") +
                                  "; its layers: " + ogr::layer_names(*ds));
         } else if (ogr::is_s57(*ds)) {
             // Land; with a limiting depth also depth areas, dredged areas and dangers.
@@ -386,7 +386,7 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
                 throw InputError("S-57 chart '" + path + "' has none of the layers " +
                                  (options.limiting_depth_m ? "LNDARE, COALNE, DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN"
                                                            : "LNDARE, COALNE") +
-                                 "; pick layers with --layer (its layers: " + ogr::layer_names(*ds) + ")");
+                                 "; pick layers with ImportOptions::layers (its layers: " + ogr::layer_names(*ds) + ")");
         } else {
             for (OGRLayer* l : ds->GetLayers()) chosen.push_back(l);
             if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");
@@ -398,7 +398,7 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
         if (!found[i]) throw InputError("no input has a layer named '" + options.layers[i] + "'");
     if (!options.depth_field.empty() &&
         std::none_of(out.layers.begin(), out.layers.end(), [&](const LayerStats& l) { return l.depth_field == options.depth_field; }))
-        throw InputError("no layer read has the field '" + options.depth_field + "' named by --depth-field");
+        throw InputError("no layer read has the field '" + options.depth_field + "' named by ImportOptions::depth_field");
     if (out.polylines.empty()) {
         std::string names;
         for (const auto& l : out.layers) names += (names.empty() ? "'" : ", '") + l.layer + "'";
@@ -427,7 +427,7 @@ std::vector<LocalPolyline> project(const Coastline& coast, const geo::LocalFrame
             std::snprintf(buf, sizeof buf, " (lon %.6f, lat %.6f)", pl.points[bad].lon, pl.points[bad].lat);
             throw InputError("In '" + l.file + "' layer '" + l.layer + "' feature " + std::to_string(pl.fid) +
                              ": a vertex" + buf + " cannot be projected into the local frame (" + frame.description() +
-                             "); choose a CRS that covers the data with --crs");
+                             "); choose a CRS that covers the data with BuildRequest::crs");
         }
         LocalPolyline lp;
         lp.land_left = pl.land_left;

@@ -79,8 +79,8 @@ LayerCrs layer_crs(OGRLayer& layer, const std::string& file, const NoCrsRule& no
         out.description = name ? name : "unnamed CRS";
     } else if (!no_crs.source_crs.empty()) {
         if (src.SetFromUserInput(no_crs.source_crs.c_str()) != OGRERR_NONE)
-            throw UsageError("--source-crs '" + no_crs.source_crs + "' is not a CRS GDAL understands");
-        out.description = "none in file; --source-crs " + no_crs.source_crs;
+            throw UsageError("ImportOptions::source_crs '" + no_crs.source_crs + "' is not a CRS GDAL understands");
+        out.description = "none in file; ImportOptions::source_crs " + no_crs.source_crs;
     } else {
         if (const std::string bad = first_not_lonlat(180.0); !bad.empty())
             throw InputError(what + " has no CRS and its coordinates are not longitude/latitude" + bad + no_crs.remedy);

@@ -116,7 +116,7 @@ XY LocalFrame::forward(LonLat p) const {
     if (!std::isfinite(c.xy.x) || !std::isfinite(c.xy.y) || std::fabs(c.xy.x) > 1e30) {
         char buf[160];
         std::snprintf(buf, sizeof buf, "point (lon %.7f, lat %.7f) cannot be projected into the local frame", p.lon, p.lat);
-        throw InputError(std::string(buf) + " (" + m_description + "); choose a frame that covers it with --crs");
+        throw InputError(std::string(buf) + " (" + m_description + "); choose a frame that covers it with BuildRequest::crs");
     }
     return {c.xy.x, c.xy.y};
 }

@@ -289,7 +289,7 @@ CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::
     if (fnx * fny > static_cast<double>(max_cells)) {
         char buf[200];
         std::snprintf(buf, sizeof buf,
-                      "a %.0f m cell over this %.0f x %.0f km extent needs %.3g cells, more than the limit of %llu; choose a larger --cell",
+                      "a %.0f m cell over this %.0f x %.0f km extent needs %.3g cells, more than the limit of %llu; choose a larger BuildRequest::cell_m",
                       cell_m, (ext.maxx - ext.minx) / 1000, (ext.maxy - ext.miny) / 1000, fnx * fny,
                       static_cast<unsigned long long>(max_cells));
         throw UsageError(buf);
@@ -486,12 +486,12 @@ double choose_cell_size(double cell_m, double ship_length_m, const geo::Box& ext
     auto say = [&](const std::string& s) { if (note) *note = s; };
     char buf[200];
     if (cell_m > 0) {
-        std::snprintf(buf, sizeof buf, "cell %.1f m (--cell)", cell_m);
+        std::snprintf(buf, sizeof buf, "cell %.1f m (BuildRequest::cell_m)", cell_m);
         say(buf);
         return cell_m;
     }
     if (ship_length_m > 0) {
-        std::snprintf(buf, sizeof buf, "cell %.1f m (2.5 x --ship-length %.1f m)", 2.5 * ship_length_m, ship_length_m);
+        std::snprintf(buf, sizeof buf, "cell %.1f m (2.5 x BuildRequest::ship_length_m %.1f m)", 2.5 * ship_length_m, ship_length_m);
         say(buf);
         return 2.5 * ship_length_m;
     }
@@ -499,7 +499,7 @@ double choose_cell_size(double cell_m, double ship_length_m, const geo::Box& ext
     const double area = (extent.maxx - extent.minx) * (extent.maxy - extent.miny);
     const double limit = static_cast<double>(CoastGrid::max_cells) / 4;  // keep the default grid well under the cap
     if (area / (cell * cell) > limit) cell = std::ceil(std::sqrt(area / limit) / 100) * 100;
-    std::snprintf(buf, sizeof buf, "cell %.1f m (default: 2.5 x a 200 m ship%s; set --cell or --ship-length)", cell,
+    std::snprintf(buf, sizeof buf, "cell %.1f m (default: 2.5 x a 200 m ship%s; set BuildRequest::cell_m or BuildRequest::ship_length_m)", cell,
                   cell > 500 ? ", raised to keep the grid small for this extent" : "");
     say(buf);
     return cell;

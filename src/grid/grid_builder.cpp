@@ -90,7 +90,7 @@ CoastGrid build_grid(const std::vector<std::string>& paths, const BuildRequest& 
         char buf[240];
         std::snprintf(buf, sizeof buf,
                       "the data spans %.2f x %.2f degrees: the local frame's scale error reaches %.2g (over 1 in 10,000); "
-                      "distances are off by up to that fraction (split the area or choose a CRS with --crs)",
+                      "distances are off by up to that fraction (split the area or choose a CRS with BuildRequest::crs)",
                       coast.max.lon - coast.min.lon, coast.max.lat - coast.min.lat, scale_error);
         warnings->push_back(buf);
     }

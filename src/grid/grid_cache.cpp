@@ -86,7 +86,7 @@ CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildReques
     std::string why;
     if (!private_to_user(dir, why) || !private_to_user(cache, why)) {
         rep.warnings.push_back("the grid cache is not private (" + why + "): not used; the grid is built for this run only "
-                               "(give --cache-dir a folder of your own)");
+                               "(give BuildRequest::cache_dir a folder of your own)");
         CoastGrid g = build_grid(paths, request, &rep.warnings, &rep.build);
         rep.how = "built (cache not private, not used)";
         return done(std::move(g));

@@ -127,7 +127,7 @@ StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& resul
     GDALAllRegister();
     StagedOutput out(path);  // removed (with SQLite's journal) if interrupted or if anything below fails
     if (out.direct())
-        throw InputError("cannot write '" + path + "': a GeoPackage must be a regular file (write it elsewhere, or use --format geojson)");
+        throw InputError("cannot write '" + path + "': a GeoPackage must be a regular file (write it elsewhere, or write GeoJSON)");
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
     if (!drv) throw LibraryError("GDAL has no GPKG driver");
     // A fixed "current date" in the GeoPackage's metadata tables: the same run writes the

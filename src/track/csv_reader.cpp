@@ -363,7 +363,7 @@ private:
         }
         // Length and width alone (MarineCadastre): the reference point is not known; taken
         // amidships, the hull reaches half the length fore and aft.
-        if (m_cols.length != absent && m_cols.width != absent && !t.dims) {
+        if (m_options.hull_from_length_width && m_cols.length != absent && m_cols.width != absent && !t.dims) {
             const double l = number(f, m_cols.length), w = number(f, m_cols.width);
             if (std::isfinite(l) && std::isfinite(w) && l > 0.0 && w > 0.0) {
                 t.dims = hull::Dimensions{l / 2, l / 2, w / 2, w / 2};

@@ -919,7 +919,7 @@ TEST_F(BadInput, LengthAndWidthColumnsGiveAHullTakenAmidships) {
         text += buf;
     }
     const std::string r = m_dir.file("r.geojson");
-    const Outcome o = check({file("mc.csv", text)}, r);
+    const Outcome o = check({file("mc.csv", text)}, r, {"--hull-from-length-width"});
     EXPECT_EQ(o.status, 0) << o.err;
     const auto doc = report(r);
     const auto* t = track_entry(doc, "222222222");
@@ -927,6 +927,11 @@ TEST_F(BadInput, LengthAndWidthColumnsGiveAHullTakenAmidships) {
     EXPECT_EQ((*t)["hull"], "AIS dimensions 6,6,2,2 (Length and Width columns (reference point taken amidships))");
     EXPECT_EQ((*t)["draught_m"], 1.8);
     EXPECT_EQ((*t)["draught_source"], "draught column");
+    // Without the flag the default hull serves it (its reference point is not known).
+    const std::string r2 = m_dir.file("r2.geojson");
+    EXPECT_EQ(check({file("mc2.csv", text)}, r2).status, 0);
+    const auto doc2 = report(r2);
+    EXPECT_EQ((*track_entry(doc2, "222222222"))["hull"], "--dims 50,10,5,5");
 }
 
 TEST_F(BadInput, AVesselsTableGivesEachVesselItsOwnHullAndDraught) {

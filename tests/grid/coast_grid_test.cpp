@@ -542,7 +542,7 @@ TEST(CoastGridBuild, BadParameters) {
     EXPECT_THAT([&] { CoastGrid::build(lines, any_frame(), NAN); }, ThrowsMessage<UsageError>(HasSubstr("cell size")));
     // 1000 km x 1000 km in 5 cm cells: 4e14 cells, over the limit.
     const std::vector<LocalPolyline> big = {{{{0, 0}, {1e6, 1e6}}, false}};
-    EXPECT_THAT([&] { CoastGrid::build(big, any_frame(), 0.05); }, ThrowsMessage<UsageError>(HasSubstr("--cell")));
+    EXPECT_THAT([&] { CoastGrid::build(big, any_frame(), 0.05); }, ThrowsMessage<UsageError>(HasSubstr("BuildRequest::cell_m")));
     EXPECT_THROW(CoastGrid::build(std::vector<LocalPolyline>{}, any_frame(), 100.0), InputError);
 }
 
@@ -550,9 +550,9 @@ TEST(CoastGridBuild, ChooseCellSize) {
     std::string note;
     const Box ext{0, 0, 50e3, 40e3};
     EXPECT_EQ(shoal::grid::choose_cell_size(250, 100, ext, &note), 250);
-    EXPECT_THAT(note, HasSubstr("--cell"));
+    EXPECT_THAT(note, HasSubstr("BuildRequest::cell_m"));
     EXPECT_EQ(shoal::grid::choose_cell_size(0, 100, ext, &note), 250);  // 2.5 x ship length
-    EXPECT_THAT(note, HasSubstr("--ship-length"));
+    EXPECT_THAT(note, HasSubstr("BuildRequest::ship_length_m"));
     EXPECT_EQ(shoal::grid::choose_cell_size(0, 0, ext, &note), 500);  // 2.5 x a 200 m ship
     // A continent-sized extent: the default cell grows so the grid stays well under the cap.
     const Box huge{0, 0, 5e6, 5e6};

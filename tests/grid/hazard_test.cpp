@@ -184,10 +184,10 @@ TEST(HazardImport, WithoutALimitOnlyLandIsReadAndDepthLayersAreRefused) {
                 ThrowsMessage<UsageError>(AllOf(HasSubstr("DEPARE"), HasSubstr("limiting depth"))));
     o = {};
     o.depth_field = "DRVAL1";
-    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<UsageError>(HasSubstr("--depth-field")));
+    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<UsageError>(HasSubstr("ImportOptions::depth_field")));
     o = with_limit(5);
     o.danger_radius_m = 0;
-    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<UsageError>(HasSubstr("--danger-radius")));
+    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<UsageError>(HasSubstr("ImportOptions::danger_radius_m")));
     o = with_limit(5);
     o.depth_field = "NO_SUCH_FIELD";
     EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<InputError>(HasSubstr("NO_SUCH_FIELD")));

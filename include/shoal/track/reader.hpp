@@ -26,6 +26,11 @@ struct ReadOptions {
     std::optional<double> date_s;
     /// Problems kept word for word in ReadReport::messages; the rest are only counted.
     std::size_t max_messages = 10;
+    /// A vessel with Length and Width but no A,B,C,D (MarineCadastre) gets a hull of that size
+    /// with the position reference taken amidships. Off by default: the reference is not known,
+    /// and an antenna aft of amidships puts the true bow up to half a length further ahead, so a
+    /// bow-first grounding can be missed (tests/data/tracks/ais_cases/aground_at_speed.csv).
+    bool hull_from_length_width = false;
 };
 
 /// All tracks of one file, what reading it found, and the format it was read as
