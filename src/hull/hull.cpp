@@ -418,8 +418,6 @@ Hull Hull::from_contour(std::vector<XY> contour, std::string name) {
         throw InputError{"a contour of " + std::to_string(contour.size()) + " points is more than the " +
                          std::to_string(max_points) + " supported; simplify the outline"};
     validate_contour(contour);
-    if (const std::string problem = size_problem(extent(contour)); !problem.empty())
-        throw InputError{"the contour's extent: " + problem};
     if (twice_signed_area(contour) < 0.0) std::reverse(std::next(contour.begin()), contour.end());
     const Dimensions dims = extent(contour);
     return Hull{std::move(name), std::move(contour), dims, 0.0};

@@ -223,7 +223,6 @@ TEST(Input, HullsLargerThanAnyShipAreRefused) {
                 ThrowsMessage<InputError>(HasSubstr("a length (a + b) of 510 m is more than the 500 m of any ship")));
     EXPECT_THAT([] { Hull::from_dims_string("100,60,50,51"); },
                 ThrowsMessage<InputError>(HasSubstr("a beam (c + d) of 101 m is more than the 100 m of any ship")));
-    EXPECT_THAT([] { Hull::from_contour({{600, 0}, {-1, 5}, {-1, -5}}); }, ThrowsMessage<InputError>(HasSubstr("length")));
     EXPECT_THAT([] { Hull::parse(R"({"name": "big", "a": 100000, "b": 10, "c": 5, "d": 5})", "big.json"); },
                 ThrowsMessage<InputError>(HasSubstr("In ship file 'big.json': a length (a + b) of 100010 m")));
 }

@@ -51,7 +51,7 @@ public:
 
     /// Custom outline (x forward, y starboard); validated: >= 3 points, finite, simple polygon
     /// (no self-intersection, no repeated consecutive points; a closing point equal to the first
-    /// is dropped), at most max_points points, reference point (0,0) strictly inside, its extent plausible(). Dimensions come from its extent.
+    /// is dropped), at most max_points points, reference point (0,0) strictly inside. Dimensions come from its extent (not bounded: the audit's circle around a hull is one).
     /// A clockwise outline is reversed, so contour() is always counter-clockwise (see below).
     static Hull from_contour(std::vector<geo::XY> contour, std::string name = {});
 
