@@ -64,7 +64,9 @@ public:
     const std::string& gdal_path() const noexcept { return m_gdal_path; }
 
 private:
+    void open_content(const std::string& path);
     void open(const std::string& gdal_path);
+    void close() noexcept;
     std::size_t read_raw(char* data, std::size_t n);
 
     std::string m_path;       ///< as given, for messages

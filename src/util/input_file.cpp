@@ -106,6 +106,22 @@ std::vector<std::string> zip_members(const std::string& path) {
 }
 
 InputFile::InputFile(const std::string& path) : m_path(path) {
+    try {
+        open_content(path);
+    } catch (...) {
+        close();
+        throw;
+    }
+}
+
+void InputFile::close() noexcept {
+    if (m_fp) VSIFCloseL(m_fp);
+    m_fp = nullptr;
+    if (!m_mem_name.empty()) VSIUnlink(m_mem_name.c_str());
+    m_mem_name.clear();
+}
+
+void InputFile::open_content(const std::string& path) {
     register_drivers();
     const bool stream = kind_of(path) == Kind::stream;
     open(is_stdin(path) ? std::string("/vsistdin/") : path);
@@ -151,10 +167,7 @@ InputFile::InputFile(const std::string& path) : m_path(path) {
     }
 }
 
-InputFile::~InputFile() {
-    if (m_fp) VSIFCloseL(m_fp);
-    if (!m_mem_name.empty()) VSIUnlink(m_mem_name.c_str());
-}
+InputFile::~InputFile() { close(); }
 
 void InputFile::open(const std::string& gdal_path) {
     QuietErrors quiet;
