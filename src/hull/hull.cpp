@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <numbers>
 #include <optional>
@@ -19,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include <shoal/util/error.hpp>
+#include "detail/input_file.hpp"
 
 namespace shoal::hull {
 
@@ -38,6 +38,17 @@ std::string fmt(XY p) { return "(" + fmt(p.x) + ", " + fmt(p.y) + ")"; }
 
 bool is_valid_extent(double v) noexcept { return std::isfinite(v) && v > 0.0; }
 
+/// What makes a hull of these dimensions larger than any ship ("" when none does).
+std::string size_problem(const Dimensions& dims) {
+    if (dims.a + dims.b > Hull::max_length_m)
+        return "a length (a + b) of " + fmt(dims.a + dims.b) + " m is more than the " + fmt(Hull::max_length_m) +
+               " m of any ship (a wrong unit?)";
+    if (dims.c + dims.d > Hull::max_beam_m)
+        return "a beam (c + d) of " + fmt(dims.c + dims.d) + " m is more than the " + fmt(Hull::max_beam_m) +
+               " m of any ship (a wrong unit?)";
+    return {};
+}
+
 void check_dimensions(const Dimensions& dims) {
     const std::array<std::pair<const char*, double>, 4> parts{
         {{"a", dims.a}, {"b", dims.b}, {"c", dims.c}, {"d", dims.d}}};
@@ -45,6 +56,7 @@ void check_dimensions(const Dimensions& dims) {
         if (!is_valid_extent(value))
             throw InputError{std::string{"AIS dimension '"} + key + "' must be a finite number > 0 (got " +
                              fmt(value) + ")"};
+    if (const std::string problem = size_problem(dims); !problem.empty()) throw InputError{"AIS dimensions: " + problem};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -440,20 +452,24 @@ Hull Hull::from_dims_string(const std::string& text) {
     return from_dimensions({v[0], v[1], v[2], v[3]});
 }
 
+bool Hull::plausible(const Dimensions& dims) noexcept { return dims.a + dims.b <= max_length_m && dims.c + dims.d <= max_beam_m; }
+
 Hull Hull::load(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw InputError{"Cannot open ship file '" + path + "': it is a folder"};
-    std::ifstream in{path, std::ios::binary};
-    if (!in) throw InputError{"Cannot open ship file '" + path + "': " + std::strerror(errno)};
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw InputError{"In ship file '" + path + "': cannot read the file"};
-    return parse(text.str(), path);
+    std::string text;
+    try {
+        text = detail::read_input(path, max_file_bytes, "a ship file");
+    } catch (const detail::InputOpenError& e) {
+        throw InputError{"Cannot open ship file '" + path + "': " + (e.reason == "is a folder" ? "it is a folder" : e.reason)};
+    }
+    return parse(text, path);
 }
 
 Hull Hull::parse(std::string_view text, const std::string& name) {
     const ShipFileReader reader{name, text};
     ShipSpec spec = reader.read();
+    if (const std::string problem = size_problem(spec.dims); !problem.empty()) reader.fail(problem);
     std::vector<XY> outline;
     if (spec.contour) {
         try {

@@ -5,14 +5,17 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include <shoal/util/error.hpp>
+#include "detail/input_file.hpp"
 
 namespace shoal::io {
 
 namespace {
+
+/// Most bytes a pose file may hold (some eight million poses).
+constexpr std::size_t max_pose_file_bytes = std::size_t{1} << 28;
 
 constexpr std::size_t max_messages = 10;
 
@@ -117,11 +120,13 @@ PoseFile read_pose_csv(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
     if (std::filesystem::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a CSV file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError("cannot open '" + path + "'");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parse_pose_csv(ss.str(), path);
+    std::string text;
+    try {
+        text = detail::read_input(path, max_pose_file_bytes, "a pose file");
+    } catch (const detail::InputOpenError& e) {
+        throw InputError("cannot open '" + path + "' (" + e.reason + ")");
+    }
+    return parse_pose_csv(text, path);
 }
 
 }  // namespace shoal::io

@@ -2,13 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
 #include <functional>
 #include <initializer_list>
-#include <memory>
 #include <optional>
 #include <unordered_map>
 
@@ -17,6 +13,7 @@
 #endif
 
 #include "detail/parse_util.hpp"
+#include "track/stream_readers.hpp"
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
 
@@ -311,6 +308,20 @@ public:
         return m_split->consumed();
     }
 
+    bool header_read() const noexcept { return m_header_read; }
+
+    char separator() const noexcept { return m_split ? m_split->separator() : ','; }
+
+    /// A record longer than the line limit, its fields cut short: a bad row, reported with its
+    /// first problem, else as too long (its line is the pending record's: the splitter stopped
+    /// before it).
+    void long_record(const std::vector<std::string>& fields) {
+        std::vector<std::string_view> f(fields.begin(), fields.end());
+        m_long_row = true;
+        row(f);
+        m_long_row = false;
+    }
+
     PackedTrackFile finish() {
         date_pending();
         for (PackedTrack& t : m_out.tracks) normalise(t, m_out.report);
@@ -432,6 +443,10 @@ private:
         if (m_cols.nav_status != absent && m_cols.nav_status < f.size()) fix.nav_status = parse_nav_status(f[m_cols.nav_status]);
         fix.line = m_split->line();
 
+        if (m_long_row) {
+            skip("longer than " + shoal::detail::size_text(shoal::detail::max_line_bytes) + ", the longest line shoal reads");
+            return;
+        }
         const std::size_t ti = track_for(id);
         PackedTrack& t = m_out.tracks[ti];
         vessel_data(t, f);
@@ -476,6 +491,7 @@ private:
 
     std::optional<CsvSplitter> m_split;
     std::vector<std::string_view> m_fields;
+    bool m_long_row = false;
     bool m_header_read = false;
     const std::string& m_file;
     const ReadOptions& m_options;
@@ -504,40 +520,131 @@ TrackFile read_csv_text(std::string_view text, const std::string& file, const Re
 
 namespace {
 
-struct FileCloser {
-    void operator()(std::FILE* f) const noexcept { std::fclose(f); }
+/// A record longer than the line limit, read to its end without holding it: the first bytes of
+/// each field (quoting as CsvSplitter reads it) and the line breaks it held.
+struct LongRecord {
+    std::vector<std::string> fields;
+    std::size_t newlines = 0;  ///< its line end included (none when the file ends in it)
 };
+
+/// Reads the record at the start of `buf` (then of what `more` appends to it, until `more`
+/// returns false at the end of the file); leaves in `buf` what follows the record.
+template <typename More>
+LongRecord read_long_record(std::string& buf, char sep, More&& more) {
+    constexpr std::size_t keep = 256, max_fields = 4096;  // enough for every check and message
+    LongRecord r;
+    std::string field;
+    bool quoted = false, quote_seen = false, after_quote = false, started = false;
+    auto end_field = [&] {
+        if (r.fields.size() < max_fields) r.fields.push_back(quoted || after_quote || quote_seen ? field : std::string(trim(field)));
+        field.clear();
+        quoted = quote_seen = after_quote = started = false;
+    };
+    for (;;) {
+        for (std::size_t i = 0; i < buf.size(); ++i) {
+            const char c = buf[i];
+            if (quote_seen) {  // after a quote inside quotes: "" is a quote, else the field's quotes end
+                quote_seen = false;
+                if (c == '"') {
+                    if (field.size() < keep) field += c;
+                    continue;
+                }
+                quoted = false;
+                after_quote = true;
+            }
+            if (quoted) {
+                if (c == '"') quote_seen = true;
+                else if (field.size() < keep) field += c;
+                if (c == '\n') ++r.newlines;
+                continue;
+            }
+            if (c == sep || c == '\n') {
+                end_field();
+                if (c == '\n') {
+                    ++r.newlines;
+                    buf.erase(0, i + 1);
+                    return r;
+                }
+                continue;
+            }
+            if (after_quote) continue;  // text after a closing quote is dropped, as CsvSplitter does
+            if (c == '"' && !started) {
+                quoted = true;
+                started = true;
+                continue;
+            }
+            if (c != ' ') started = true;
+            if (field.size() < keep) field += c;
+        }
+        buf.clear();
+        if (!more()) break;
+    }
+    end_field();
+    return r;
+}
 
 }  // namespace
 
-PackedTrackFile read_csv_packed(const std::string& path, const ReadOptions& options) {
-    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-    if (!file) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options) {
     constexpr std::size_t block = std::size_t{1} << 20;
+    constexpr std::size_t max_line = shoal::detail::max_line_bytes, max_first_line = shoal::detail::max_sniff_bytes;
+    const std::string& path = in.path();
+    // The head comes in blocks too, so that a long line in it is found as in the rest.
     std::string buf;
-    bool eof = false;
-    // Appends at least `want` bytes (fewer at the end of the file).
-    auto read_more = [&](std::size_t want) {
-        const std::size_t old = buf.size();
-        buf.resize(old + want);
-        const std::size_t got = std::fread(buf.data() + old, 1, want, file.get());
-        buf.resize(old + got);
-        if (got < want) {
-            if (std::ferror(file.get())) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
-            eof = true;
+    std::size_t head_pos = 0;
+    bool eof = false, in_done = whole;
+    auto read_more = [&] {
+        const std::size_t from_head = std::min(block, head.size() - head_pos);
+        buf.append(head, head_pos, from_head);
+        head_pos += from_head;
+        if (head_pos == head.size()) {  // freed once read
+            std::string().swap(head);
+            head_pos = 0;
+        }
+        if (from_head < block) {
+            const std::size_t want = block - from_head;
+            if (in_done || in.append(buf, want) < want) in_done = eof = true;
         }
     };
+    read_more();
+    const auto too_long = [&] {
+        return InputError(path + ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183): its first line is longer than " +
+                          shoal::detail::size_text(max_first_line) + ", the longest header shoal reads");
+    };
     CsvTrackReader reader(path, options);
-    do read_more(block);
-    while (!eof && !CsvSplitter::holds_first_line(buf));
+    while (!eof && !CsvSplitter::holds_first_line(buf)) {
+        if (buf.size() > max_first_line) throw too_long();
+        read_more();
+    }
     std::size_t taken = reader.feed(buf, eof);
     while (!eof) {
         buf.erase(0, taken);
-        // A record longer than a block: read as much again, so a huge line costs linear time.
-        read_more(std::max(block, buf.size()));
+        if (buf.size() > max_line) {  // a record that long: a bad row, read to its end but not held
+            if (!reader.header_read()) {
+                if (buf.size() > max_first_line) throw too_long();
+                read_more();
+                taken = reader.feed(buf, eof);
+                continue;
+            }
+            const LongRecord r = read_long_record(buf, reader.separator(), [&] {
+                if (eof) return false;
+                read_more();
+                return true;
+            });
+            reader.long_record(r.fields);
+            buf.insert(0, r.newlines, '\n');  // blank lines: the splitter counts the lines the record held
+        }
+        if (!eof) read_more();
         taken = reader.feed(buf, eof);
     }
     return reader.finish();
+}
+
+PackedTrackFile read_csv_packed(const std::string& path, const ReadOptions& options) {
+    shoal::detail::InputFile in(path);
+    std::string head;
+    const bool whole = in.append(head, std::size_t{1} << 20) < (std::size_t{1} << 20);
+    return detail::read_csv_stream(in, std::move(head), whole, options);
 }
 
 TrackFile read_csv(const std::string& path, const ReadOptions& options) { return unpack(read_csv_packed(path, options)); }

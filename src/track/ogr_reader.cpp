@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "detail/parse_util.hpp"
+#include "track/stream_readers.hpp"
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
 
@@ -67,7 +68,8 @@ struct GpxParent {
 
 class GpxReader {
 public:
-    GpxReader(const std::string& path, const ReadOptions& options) : m_file(path), m_set(m_out, m_file) {
+    GpxReader(const std::string& gdal_path, const std::string& file, const ReadOptions& options)
+        : m_gdal_path(gdal_path), m_file(file), m_set(m_out, m_file) {
         m_out.format = "gpx";
         m_out.report.max_messages = options.max_messages;
     }
@@ -76,7 +78,7 @@ public:
         register_drivers();
         QuietErrors quiet;
         const char* const drivers[] = {"GPX", nullptr};
-        GDALDatasetUniquePtr ds(GDALDataset::Open(m_file.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers));
+        GDALDatasetUniquePtr ds(GDALDataset::Open(m_gdal_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers));
         if (!ds) throw InputError(m_file + ": not a GPX file OGR can read (" + QuietErrors::last() + ")");
         auto tracks = parents(*ds, "tracks");
         auto routes = parents(*ds, "routes");
@@ -176,6 +178,7 @@ private:
                                  std::to_string(fid + 1) + ") has no times; shoal needs a time on every point");
     }
 
+    std::string m_gdal_path;
     std::string m_file;
     TrackFile m_out;
     TrackSet m_set;
@@ -454,7 +457,11 @@ private:
 
 }  // namespace
 
-TrackFile read_gpx(const std::string& path, const ReadOptions& options) { return GpxReader(path, options).read(); }
+TrackFile detail::read_gpx_at(const std::string& gdal_path, const std::string& file, const ReadOptions& options) {
+    return GpxReader(gdal_path, file, options).read();
+}
+
+TrackFile read_gpx(const std::string& path, const ReadOptions& options) { return detail::read_gpx_at(path, path, options); }
 
 TrackFile read_geojson_text(std::string_view text, const std::string& file, const ReadOptions& options) {
     try {

@@ -1,5 +1,7 @@
 #include <shoal/track/reader.hpp>
 
+#include <cpl_vsi.h>
+
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -7,11 +9,14 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/nmea_reader.hpp>
 #include <shoal/track/ogr_reader.hpp>
+#include "detail/input_file.hpp"
 #include "detail/parse_util.hpp"
+#include "track/stream_readers.hpp"
 #include <shoal/util/error.hpp>
 
 namespace shoal::track {
@@ -30,32 +35,27 @@ std::string lower_extension(const fs::path& p) {
     return ext;
 }
 
+constexpr std::array<std::string_view, 9> track_extensions{".csv", ".gpx", ".geojson", ".json", ".nmea", ".log", ".txt", ".zip", ".gz"};
+
 bool is_track_extension(const std::string& ext) {
-    static constexpr std::array<std::string_view, 7> exts{".csv", ".gpx", ".geojson", ".json", ".nmea", ".log", ".txt"};
-    return std::find(exts.begin(), exts.end(), ext) != exts.end();
+    return std::find(track_extensions.begin(), track_extensions.end(), ext) != track_extensions.end();
 }
 
-struct FileCloser {
-    void operator()(std::FILE* f) const noexcept { std::fclose(f); }
-};
+/// ".csv .gpx ... .gz", for messages.
+std::string track_extensions_text() {
+    std::string s;
+    for (const std::string_view e : track_extensions) (s += s.empty() ? "" : " ") += e;
+    return s;
+}
 
 }  // namespace
 
 std::string read_file(const std::string& path) {
-    std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
-    if (!f) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
-    std::string out;
-    std::error_code ec;
-    const auto size = fs::file_size(path, ec);
-    if (!ec && size > 0) out.reserve(static_cast<std::size_t>(size));
-    std::array<char, 1 << 16> buf;
-    for (;;) {
-        const std::size_t n = std::fread(buf.data(), 1, buf.size(), f.get());
-        out.append(buf.data(), n);
-        if (n < buf.size()) break;
+    try {
+        return shoal::detail::read_input(path);
+    } catch (const shoal::detail::InputOpenError& e) {
+        throw InputError(path + ": cannot read (" + e.reason + ")");
     }
-    if (std::ferror(f.get())) throw InputError(path + ": cannot read (read error)");
-    return out;
 }
 
 std::string sniff_format(std::string_view content, const std::string& path) {
@@ -97,22 +97,26 @@ struct Sniffed {
     bool whole = false; ///< head is the whole file
 };
 
-Sniffed sniff_file(const std::string& path) {
-    std::error_code ec;
-    const auto status = fs::status(path, ec);
-    if (!fs::exists(status)) throw InputError(path + ": no such file");
-    if (fs::is_directory(status)) throw InputError(path + ": is a folder, not a track file");
-    std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
-    if (!f) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+/// Opens `path` once, for the sniff and the reading. Throws InputError.
+std::unique_ptr<shoal::detail::InputFile> open_track_file(const std::string& path) {
+    try {
+        return std::make_unique<shoal::detail::InputFile>(path);
+    } catch (const shoal::detail::InputOpenError& e) {
+        if (e.reason == "is a folder") throw InputError(path + ": is a folder, not a track file");
+        if (e.reason == "no such file" || e.reason.starts_with("cannot read") || e.reason.starts_with("a zip")) throw;
+        throw InputError(path + ": cannot read (" + e.reason + ")");
+    }
+}
+
+/// Reads the file's beginning from `in` (at most shoal::detail::max_sniff_bytes).
+Sniffed sniff_file(shoal::detail::InputFile& in) {
+    const std::string& path = in.path();
     Sniffed out;
     std::size_t scanned = 0, lines = 0;  // complete lines looked at; those sniff_format counts
     for (;;) {
-        const std::size_t old = out.head.size(), want = std::max<std::size_t>(1 << 16, old);
-        out.head.resize(old + want);
-        const std::size_t got = std::fread(out.head.data() + old, 1, want, f.get());
-        out.head.resize(old + got);
-        if (got < want) {
-            if (std::ferror(f.get())) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+        const std::size_t old = out.head.size();
+        const std::size_t want = std::min(std::max<std::size_t>(1 << 16, old), shoal::detail::max_sniff_bytes - old);
+        if (in.append(out.head, want) < want) {
             out.whole = true;
             break;
         }
@@ -121,11 +125,54 @@ Sniffed sniff_file(const std::string& path) {
             if (!line.empty() && line.front() != '#') ++lines;
         }
         if (lines >= 20 && out.head.size() >= 4096 + 3) break;
+        if (out.head.size() >= shoal::detail::max_sniff_bytes) break;  // decided on what is there
+        // Binary, XML and JSON are told by the first 4 KB alone (so /dev/zero stops here).
+        const std::size_t first = out.head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+        if (out.head.size() >= 4096 + 3 && (std::string_view(out.head).substr(0, 4096 + 3).find('\0') != std::string_view::npos ||
+                                            (first != std::string::npos && (out.head[first] == '<' || out.head[first] == '{'))))
+            break;
     }
     const std::size_t bom = out.head.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
     if (out.whole && out.head.find_first_not_of(" \t\r\n", bom) == std::string::npos) throw InputError(path + ": empty file");
     out.format = sniff_format(out.head, path);
     if (out.format.empty()) throw InputError(path + not_a_track_format);
+    return out;
+}
+
+/// The rest of a line-based file after `head`, whole, with every line longer than
+/// shoal::detail::max_line_bytes left empty (never held whole); their line numbers go to `long_lines`.
+std::string read_lines(shoal::detail::InputFile& in, std::string&& head, bool whole, std::vector<std::size_t>& long_lines) {
+    constexpr std::size_t max_line = shoal::detail::max_line_bytes, block = std::size_t{1} << 20;
+    std::string out;
+    out.reserve(head.size());
+    std::size_t line = 1, length = 0;  // the current line, its bytes so far
+    bool dropping = false;
+    auto take = [&](std::string_view chunk) {
+        while (!chunk.empty()) {
+            const std::size_t nl = chunk.find('\n');
+            const std::size_t part = nl == std::string_view::npos ? chunk.size() : nl;
+            if (!dropping && length + part > max_line) {
+                out.resize(out.size() - length);
+                dropping = true;
+                long_lines.push_back(line);
+            }
+            if (!dropping) out.append(chunk.substr(0, part));
+            length += part;
+            if (nl == std::string_view::npos) return;
+            out += '\n';
+            ++line;
+            length = 0;
+            dropping = false;
+            chunk.remove_prefix(nl + 1);
+        }
+    };
+    take(head);
+    head.clear();
+    for (bool eof = whole; !eof;) {
+        head.clear();
+        eof = in.append(head, block) < block;
+        take(head);
+    }
     return out;
 }
 
@@ -146,11 +193,51 @@ void keep_tracks_with_fixes(File& out, const std::string& path) {
     std::erase_if(out.tracks, [](const auto& t) { return t.fixes.empty(); });
 }
 
-/// Every format but CSV, read whole.
-TrackFile read_whole(const std::string& path, Sniffed&& sniffed, const ReadOptions& options) {
-    const std::string content = sniffed.whole ? std::move(sniffed.head) : read_file(path);
-    if (sniffed.format == "nmea") return read_nmea_text(content, path, options);
-    if (sniffed.format == "gpx") return read_gpx(path, options);
+/// A track whose AIS dimensions no ship has loses them (it takes the default hull), said once
+/// for the file.
+template <typename File>
+void drop_impossible_dims(File& out, const std::string& path) {
+    std::size_t count = 0;
+    std::string example;
+    for (auto& t : out.tracks) {
+        if (!t.dims || hull::Hull::plausible(*t.dims)) continue;
+        if (count++ == 0) {
+            std::ostringstream os;
+            os << *t.dims;
+            example = t.id + " (" + os.str() + ")";
+        }
+        t.dims.reset();
+    }
+    if (count == 0) return;
+    out.report.messages.push_back(path + ": " + std::to_string(count) + (count == 1 ? " track gives" : " tracks give") +
+                                  " AIS dimensions larger than any ship (length A+B over " + detail::fmt(hull::Hull::max_length_m) +
+                                  " m or beam C+D over " + detail::fmt(hull::Hull::max_beam_m) + " m), e.g. " + example +
+                                  ": the default hull is used for them");
+}
+
+/// Every format but CSV, read whole (GeoJSON and GPX at most this much).
+constexpr std::size_t max_whole_bytes = std::size_t{1} << 30;
+
+TrackFile read_whole(shoal::detail::InputFile& in, Sniffed&& sniffed, const ReadOptions& options) {
+    const std::string& path = in.path();
+    if (sniffed.format == "nmea") {
+        std::vector<std::size_t> long_lines;
+        const std::string content = read_lines(in, std::move(sniffed.head), sniffed.whole, long_lines);
+        TrackFile out = read_nmea_text(content, path, options);
+        for (const std::size_t line : long_lines) {
+            ++out.report.rows;
+            out.report.skip(path + " line " + std::to_string(line) + ": longer than " +
+                            shoal::detail::size_text(shoal::detail::max_line_bytes) + ", the longest line shoal reads; line skipped");
+        }
+        return out;
+    }
+    std::string content = std::move(sniffed.head);
+    if (sniffed.format == "gpx" && !in.gdal_path().empty()) return detail::read_gpx_at(in.gdal_path(), path, options);
+    if (!sniffed.whole) in.append_all(content, max_whole_bytes, sniffed.format == "gpx" ? "a GPX file" : "a GeoJSON file", content.size());
+    if (sniffed.format == "gpx") {
+        const shoal::detail::MemoryFile memory(std::move(content), ".gpx");  // a stream: OGR needs a path
+        return detail::read_gpx_at(memory.path(), path, options);
+    }
     return read_geojson_text(content, path, options);
 }
 
@@ -169,48 +256,84 @@ TrackFile unpack(PackedTrackFile&& packed) {
 }
 
 TrackFile read_tracks(const std::string& path, const ReadOptions& options) {
-    Sniffed sniffed = sniff_file(path);
-    TrackFile out = sniffed.format == "csv" ? read_csv(path, options) : read_whole(path, std::move(sniffed), options);
+    const auto in = open_track_file(path);
+    Sniffed sniffed = sniff_file(*in);
+    TrackFile out = sniffed.format == "csv" ? unpack(detail::read_csv_stream(*in, std::move(sniffed.head), sniffed.whole, options))
+                                            : read_whole(*in, std::move(sniffed), options);
     keep_tracks_with_fixes(out, path);
+    drop_impossible_dims(out, path);
     return out;
 }
 
 PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& options) {
-    Sniffed sniffed = sniff_file(path);
+    const auto in = open_track_file(path);
+    Sniffed sniffed = sniff_file(*in);
     PackedTrackFile out;
     if (sniffed.format == "csv") {
-        out = read_csv_packed(path, options);
+        out = detail::read_csv_stream(*in, std::move(sniffed.head), sniffed.whole, options);
     } else {
-        TrackFile whole = read_whole(path, std::move(sniffed), options);
+        TrackFile whole = read_whole(*in, std::move(sniffed), options);
         out.report = std::move(whole.report);
         out.format = std::move(whole.format);
         for (Track& t : whole.tracks) out.tracks.push_back(PackedTrack::pack(std::move(t)));
     }
     keep_tracks_with_fixes(out, path);
+    drop_impossible_dims(out, path);
     return out;
 }
 
 std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings) {
     std::vector<std::string> out;
-    std::vector<fs::path> seen;  // the files taken so far, as canonical paths
+    std::vector<std::string> seen;  // the files taken so far: canonical paths, or virtual paths as given
     auto warn = [&](const std::string& w) {
         if (warnings) warnings->push_back(w);
     };
     // A file met again (named twice, or by a symlink, or in a folder also given) is read once.
     auto take = [&](const std::string& file) {
-        std::error_code ec;
-        const fs::path canonical = fs::weakly_canonical(file, ec);
-        if (!ec) {
+        std::string key = file;
+        if (!shoal::detail::is_virtual_path(file)) {
+            std::error_code ec;
+            const fs::path canonical = fs::weakly_canonical(file, ec);
+            if (!ec) key = canonical.string();
+        }
+        if (file != "-") {  // standard input named twice is an error the reader finds (empty)
             for (std::size_t i = 0; i < seen.size(); ++i)
-                if (seen[i] == canonical) {
+                if (seen[i] == key) {
                     warn("'" + file + "' is the file '" + out[i] + "' given before: read once");
                     return;
                 }
         }
-        seen.push_back(ec ? fs::path(file) : canonical);
+        seen.push_back(std::move(key));
         out.push_back(file);
     };
+    auto is_vessels_file = [](const std::string& name) {
+        return name.size() >= 12 && lower_extension(name) == ".csv" && name.compare(name.size() - 12, 12, "_vessels.csv") == 0;
+    };
+    // A zip of several files is a folder of them (its track files, in any sub-folder).
+    auto take_file = [&](const std::string& file) {
+        const std::vector<std::string> members = shoal::detail::zip_members(file);
+        if (members.size() <= 1) {
+            take(file);
+            return;
+        }
+        std::size_t found = 0;
+        for (const std::string& m : members) {
+            const std::string name = fs::path(m).filename().string();
+            if (!is_track_extension(lower_extension(m)) || is_vessels_file(name)) continue;
+            take(m);
+            ++found;
+        }
+        if (found == 0) throw InputError(file + ": zip holds no track files (" + track_extensions_text() + ")");
+    };
     for (const std::string& p : paths) {
+        if (shoal::detail::is_virtual_path(p)) {
+            VSIStatBufL st;
+            if (p == "-" || p.starts_with("/vsistdin")) take(p);  // never looked at before it is read
+            else if (VSIStatL(p.c_str(), &st) != 0) throw InputError(p + ": no such file or folder");
+            else if (VSI_ISDIR(st.st_mode)) throw InputError(p + ": is a folder inside a virtual file; name its files");
+            else take_file(p);
+            continue;
+        }
         std::error_code ec;
         const auto status = fs::status(p, ec);
         if (!fs::exists(status)) {
@@ -219,7 +342,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
             throw InputError(p + ": no such file or folder");
         }
         if (!fs::is_directory(status)) {
-            take(p);
+            take_file(p);
             continue;
         }
         std::vector<std::string> found;
@@ -235,22 +358,24 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
                 continue;
             }
             if (!regular) continue;
-            if (name.size() >= 12 && lower_extension(entry.path()) == ".csv" &&
-                name.compare(name.size() - 12, 12, "_vessels.csv") == 0)
-                continue;  // AIS static data, read with read_vessels
+            if (is_vessels_file(name)) continue;  // AIS static data, read with read_vessels
             found.push_back(entry.path().string());
         }
         if (ec) throw InputError(p + ": cannot list the folder (" + ec.message() + ")");
-        if (found.empty())
-            throw InputError(p + ": folder holds no track files (.csv .gpx .geojson .json .nmea .log .txt)");
+        if (found.empty()) throw InputError(p + ": folder holds no track files (" + track_extensions_text() + ")");
         std::sort(found.begin(), found.end());
-        for (const std::string& f : found) take(f);
+        for (const std::string& f : found) take_file(f);
     }
     return out;
 }
 
 std::map<std::string, VesselInfo> read_vessels(const std::string& path) {
-    const std::string text = read_file(path);
+    std::string text;
+    try {
+        text = shoal::detail::read_input(path, max_whole_bytes, "a vessels file");
+    } catch (const shoal::detail::InputOpenError& e) {
+        throw InputError(path + ": cannot read (" + e.reason + ")");
+    }
     CsvSplitter split(text);
     std::vector<std::string_view> f;
     if (split.separator() == '\0' || !split.next(f)) throw InputError(path + ": not a vessels CSV file (no header)");

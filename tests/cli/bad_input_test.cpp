@@ -952,6 +952,80 @@ TEST_F(BadInput, AVesselsTableGivesEachVesselItsOwnHullAndDraught) {
     ASSERT_NE(a, nullptr);
     EXPECT_EQ((*a)["hull"], "--dims 50,10,5,5");
     EXPECT_TRUE((*a)["draught_m"].is_null());
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Inputs through GDAL's virtual file layer (issue 19, issue 14): compressed, streamed, limited.
+// The independent answer is the report of the same tracks read from a plain file.
+
+/// The summary counts of a report, which do not name the input file.
+nlohmann::json summary_counts(const nlohmann::json& doc) {
+    nlohmann::json s = doc["shoal"]["summary"];
+    return {{"tracks", s["tracks"]}, {"fixes", s["fixes"]}, {"groundings", s["groundings"]}, {"collisions", s["collisions"]}};
+}
+
+TEST_F(BadInput, StandardInputDevStdinAFifoAZipAndAGzipGiveTheReportOfThePlainFile) {
+    const std::string good = good_tracks(), plain = m_dir.file("plain.geojson");
+    const Outcome base = check({good}, plain);
+    ASSERT_EQ(base.status, 1) << base.err;  // vessel A grounds
+    const nlohmann::json want = summary_counts(report(plain));
+    ASSERT_EQ(want["tracks"], 2);
+    const std::string cmd = std::string(SHOAL_BINARY) + " check --coast " + s_grid + " --dims 50,10,5,5 -o ";
+    const std::string fifo = m_dir.file("fifo.csv"), gz = m_dir.file("good.dat"), zip = m_dir.file("good.zip");
+    ASSERT_EQ(std::system(("gzip -c " + good + " > " + gz).c_str()), 0);
+    const bool have_zip = std::system(("zip -q -j " + zip + " " + good + " 2>/dev/null").c_str()) == 0;
+    const std::vector<std::pair<std::string, std::string>> runs{
+        {"stdin", cmd + m_dir.file("stdin.geojson") + " - < " + good},
+        {"dev-stdin", "cat " + good + " | " + cmd + m_dir.file("dev-stdin.geojson") + " /dev/stdin"},
+        {"gzip-pipe", "cat " + gz + " | " + cmd + m_dir.file("gzip-pipe.geojson") + " -"},
+        {"fifo", "mkfifo " + fifo + " && (cat " + good + " > " + fifo + " &) && " + cmd + m_dir.file("fifo.geojson") + " " + fifo},
+        {"gzip", cmd + m_dir.file("gzip.geojson") + " " + gz},
+        {"zip", have_zip ? cmd + m_dir.file("zip.geojson") + " " + zip : ""},
+        {"vsizip", have_zip ? cmd + m_dir.file("vsizip.geojson") + " /vsizip/" + zip + "/good.csv" : ""},
+    };
+    for (const auto& [name, line] : runs) {
+        if (line.empty()) continue;
+        const Outcome o = wait_for(spawn({"/bin/sh", "-c", line}, m_dir.path()), m_dir.path());
+        EXPECT_EQ(o.status, 1) << name << ": " << o.err;
+        EXPECT_EQ(o.err.find("not a track format"), std::string::npos) << name << ": " << o.err;
+        if (fs::exists(m_dir.file(name + ".geojson"))) {
+            EXPECT_EQ(summary_counts(report(m_dir.file(name + ".geojson"))), want) << name;
+        } else {
+            ADD_FAILURE() << name << ": no report; " << o.err;
+        }
+    }
+}
+
+TEST_F(BadInput, DevZeroAsShipOrTrackIsRefusedAtTheReadLimit) {
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome ship = shoal({"check", "--coast", s_grid, "--ship", "/dev/zero", good_tracks(), "-o", r});
+    EXPECT_EQ(ship.status, 2) << ship.err;
+    EXPECT_NE(ship.err.find("/dev/zero: larger than 1 MiB, the most a ship file may be"), std::string::npos) << ship.err;
+    const Outcome track = check({"/dev/zero"}, r);
+    EXPECT_EQ(track.status, 2) << track.err;
+    EXPECT_NE(track.err.find("/dev/zero: not a track format"), std::string::npos) << track.err;
+}
+
+TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = shoal({"check", "--coast", s_grid, "--dims", "100000,10,5,5", good_tracks(), "-o", r});
+    EXPECT_EQ(o.status, 2) << o.err;
+    EXPECT_NE(o.err.find("a length (a + b) of 100010 m is more than the 500 m of any ship"), std::string::npos) << o.err;
+}
+
+TEST_F(BadInput, AnOverLongLineIsOneBadRowAndTheRestIsRead) {
+    std::string rows = solent_rows();
+    const std::size_t cut = rows.find('\n', rows.size() / 2) + 1;
+    const std::string bytes = header + rows.substr(0, cut) + "111111111," + std::string(2 << 20, '5') + "\n" + rows.substr(cut);
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({file("long.csv", bytes)}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    // Its first problem is said (two fields, cut to their first bytes), the line never held whole.
+    const std::size_t line = 2 + static_cast<std::size_t>(std::count(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(cut), '\n'));
+    EXPECT_NE(o.err.find("long.csv line " + std::to_string(line) + ": has 2 fields, the header needs 4; row skipped"), std::string::npos)
+        << o.err;
+    EXPECT_LT(o.err.size(), 400u);
+    EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 32);
 }
 
 }  // namespace

@@ -30,10 +30,18 @@ public:
     /// Most points a custom outline may have: the check costs time in proportion to the points,
     /// and validating the outline compares every pair of edges.
     static constexpr std::size_t max_points = 10000;
+    /// Largest hull accepted, metres: the longest ships are about 400 m long and 70 m wide, so
+    /// more is a wrong unit or a corrupt value (and would make every check slow).
+    static constexpr double max_length_m = 500.0;
+    static constexpr double max_beam_m = 100.0;
+    /// Most bytes a ship file may hold.
+    static constexpr std::size_t max_file_bytes = std::size_t{1} << 20;
+    /// True when a + b <= max_length_m and c + d <= max_beam_m.
+    static bool plausible(const Dimensions& dims) noexcept;
 
     /// 36-point outline with a pointed bow that exactly fits the box x in [-b, a], y in [-c, d]
     /// (touches all four extents: bow tip at x=a, stern at x=-b, sides at y=-c and y=d).
-    /// Throws InputError unless a, b, c, d are finite and > 0.
+    /// Throws InputError unless a, b, c, d are finite and > 0 and the hull is plausible().
     static Hull from_dimensions(const Dimensions& dims, std::string name = {});
 
     /// The same outline with n points (n >= 3), e.g. coarser ones for benchmarks: a parabolic
@@ -43,7 +51,7 @@ public:
 
     /// Custom outline (x forward, y starboard); validated: >= 3 points, finite, simple polygon
     /// (no self-intersection, no repeated consecutive points; a closing point equal to the first
-    /// is dropped), at most max_points points, reference point (0,0) strictly inside. Dimensions come from its extent.
+    /// is dropped), at most max_points points, reference point (0,0) strictly inside. Dimensions come from its extent (not bounded: the audit's circle around a hull is one).
     /// A clockwise outline is reversed, so contour() is always counter-clockwise (see below).
     static Hull from_contour(std::vector<geo::XY> contour, std::string name = {});
 
@@ -51,7 +59,8 @@ public:
     static Hull from_dims_string(const std::string& text);
 
     /// Loads a ship file per schemas/ship.schema.json. Every error names the file and the field,
-    /// e.g. "In ship file 'x.json': 'beam' must be > 0 (got -3.5)".
+    /// e.g. "In ship file 'x.json': 'beam' must be > 0 (got -3.5)". Read through GDAL's virtual
+    /// file layer (a .gz, a zip of one file, `-` for standard input), at most max_file_bytes.
     static Hull load(const std::string& path);
     /// The same, from a ship file's text already in memory; `name` stands for the file in messages.
     static Hull parse(std::string_view text, const std::string& name);

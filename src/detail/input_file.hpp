@@ -1,0 +1,99 @@
+#pragma once
+/// Every input file (tracks, ship files, pose files) is read through GDAL's virtual file layer
+/// (VSIFOpenL / VSIFReadL), opened once and read front to back. Internal.
+///
+/// - `-` and `/vsistdin/` are standard input; other `/vsi...` paths are given to GDAL as they are.
+/// - Content that starts with the gzip magic bytes is read decompressed (`/vsigzip/`), and a zip
+///   (magic `PK\3\4`) of one member is read as that member (`/vsizip/FILE/MEMBER`), whatever the
+///   file's name; a zip of several members is refused here (expand_inputs lists its members).
+/// - A stream (a pipe, a FIFO, standard input, a terminal, a device) is never opened twice: the
+///   bytes looked at to recognise it are kept and read again from memory. A compressed stream is
+///   read whole into memory first (its compressed bytes: gzip and zip need them).
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <cpl_vsi.h>
+
+#include <shoal/util/error.hpp>
+
+namespace shoal::detail {
+
+/// The longest line a line-based reader (CSV, NMEA) holds; longer lines are bad rows.
+inline constexpr std::size_t max_line_bytes = std::size_t{1} << 20;
+/// The most bytes looked at to recognise a track format, and the longest CSV header line.
+inline constexpr std::size_t max_sniff_bytes = std::size_t{16} << 20;
+
+/// "1 MiB", "64 KiB", "1234 bytes".
+std::string size_text(std::size_t bytes);
+
+/// An input that could not be opened; `reason` says why ("no such file", "is a folder",
+/// "Permission denied", ...), what() is "PATH: REASON".
+struct InputOpenError : InputError {
+    InputOpenError(const std::string& path, std::string why) : InputError(path + ": " + why), reason(std::move(why)) {}
+    std::string reason;
+};
+
+/// True for `-` and the paths GDAL reads itself (`/vsi...`).
+bool is_virtual_path(const std::string& path) noexcept;
+
+/// The members of a zip file (its files, not its folders, in any sub-folder), each as the
+/// `/vsizip/` path GDAL reads it by, sorted; empty when `path` is not a zip (by its magic bytes).
+std::vector<std::string> zip_members(const std::string& path);
+
+class InputFile {
+public:
+    /// Opens `path` (see above). Throws InputOpenError.
+    explicit InputFile(const std::string& path);
+    ~InputFile();
+    InputFile(const InputFile&) = delete;
+    InputFile& operator=(const InputFile&) = delete;
+
+    /// Appends up to `n` bytes to `out` and returns how many: fewer than `n` only at the end.
+    /// Throws InputError "PATH: cannot read (...)".
+    std::size_t append(std::string& out, std::size_t n);
+    /// Appends the rest of the file; more than `limit` bytes in all (with what was read
+    /// before, `already`) throws InputError "PATH: larger than LIMIT, the most WHAT may be".
+    void append_all(std::string& out, std::size_t limit = static_cast<std::size_t>(-1), const char* what = "an input",
+                    std::size_t already = 0);
+
+    const std::string& path() const noexcept { return m_path; }
+    /// A path GDAL opens to read the same content again (for OGR drivers, which need a path),
+    /// or "" for a stream, which cannot be read twice.
+    const std::string& gdal_path() const noexcept { return m_gdal_path; }
+
+private:
+    void open_content(const std::string& path);
+    void open(const std::string& gdal_path);
+    void close() noexcept;
+    std::size_t read_raw(char* data, std::size_t n);
+
+    std::string m_path;       ///< as given, for messages
+    std::string m_gdal_path;  ///< what is open now, when it can be opened again
+    VSILFILE* m_fp = nullptr;
+    std::string m_kept;       ///< bytes read to recognise the content, given back first
+    std::size_t m_kept_pos = 0;
+    std::string m_memory;     ///< a compressed stream, read whole
+    std::string m_mem_name;   ///< its /vsimem/ name
+};
+
+/// The whole content of `path`, at most `limit` bytes (see InputFile::append_all).
+std::string read_input(const std::string& path, std::size_t limit = static_cast<std::size_t>(-1),
+                       const char* what = "an input");
+
+/// A /vsimem/ file holding `bytes` while it lives, for GDAL drivers that need a path.
+class MemoryFile {
+public:
+    explicit MemoryFile(std::string bytes, const std::string& extension);
+    ~MemoryFile();
+    MemoryFile(const MemoryFile&) = delete;
+    MemoryFile& operator=(const MemoryFile&) = delete;
+    const std::string& path() const noexcept { return m_name; }
+
+private:
+    std::string m_bytes;
+    std::string m_name;
+};
+
+}  // namespace shoal::detail

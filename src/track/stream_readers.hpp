@@ -1,0 +1,20 @@
+#pragma once
+/// The track readers' entry points for a file already opened (detail/input_file.hpp), used by
+/// read_tracks after it has recognised the format from the same handle. Internal to src/track.
+
+#include <string>
+
+#include <shoal/track/reader.hpp>
+#include "detail/input_file.hpp"
+
+namespace shoal::track::detail {
+
+/// Reads a CSV track file from `in` in blocks: `head` holds its first bytes already read
+/// (`whole`: all of them). A line over shoal::detail::max_line_bytes is a bad row, dropped
+/// without being held; a first line that long is an InputError.
+PackedTrackFile read_csv_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options);
+
+/// Reads the GPX file GDAL opens at `gdal_path`; `file` names it in messages and track ids.
+TrackFile read_gpx_at(const std::string& gdal_path, const std::string& file, const ReadOptions& options);
+
+}  // namespace shoal::track::detail

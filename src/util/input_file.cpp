@@ -1,0 +1,238 @@
+#include "detail/input_file.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include <cpl_error.h>
+#include <cpl_string.h>
+
+#include "detail/gdal_support.hpp"
+
+namespace shoal::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::size_t magic_bytes = 4;
+
+bool starts_with(const std::string& s, std::string_view prefix) noexcept { return s.compare(0, prefix.size(), prefix) == 0; }
+
+bool is_stdin(const std::string& path) noexcept { return path == "-" || starts_with(path, "/vsistdin"); }
+
+bool lower_ends_with(const std::string& s, std::string_view suffix) noexcept {
+    if (s.size() < suffix.size()) return false;
+    for (std::size_t i = 0; i < suffix.size(); ++i) {
+        char c = s[s.size() - suffix.size() + i];
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+        if (c != suffix[i]) return false;
+    }
+    return true;
+}
+
+bool is_gzip(const std::string& head) noexcept { return starts_with(head, "\x1f\x8b"); }
+
+bool is_zip(const std::string& head) noexcept {
+    return starts_with(head, std::string_view("PK\x03\x04", 4)) || starts_with(head, std::string_view("PK\x05\x06", 4));
+}
+
+/// What kind of thing `path` is; throws InputOpenError for none or a folder.
+enum class Kind { file, stream };
+Kind kind_of(const std::string& path) {
+    if (is_stdin(path)) return Kind::stream;
+    if (is_virtual_path(path)) {
+        VSIStatBufL st;
+        if (VSIStatL(path.c_str(), &st) != 0) throw InputOpenError(path, "no such file");
+        if (VSI_ISDIR(st.st_mode)) throw InputOpenError(path, "is a folder");
+        return Kind::file;
+    }
+    std::error_code ec;
+    const auto status = fs::status(path, ec);
+    if (!fs::exists(status)) {
+        if (ec && ec != std::errc::no_such_file_or_directory) throw InputOpenError(path, "cannot read (" + ec.message() + ")");
+        throw InputOpenError(path, "no such file");
+    }
+    if (fs::is_directory(status)) throw InputOpenError(path, "is a folder");
+    return fs::is_regular_file(status) ? Kind::file : Kind::stream;
+}
+
+std::string memory_name(const std::string& extension) {
+    static std::atomic<unsigned long> counter{0};
+    return "/vsimem/shoal-input-" + std::to_string(counter.fetch_add(1)) + extension;
+}
+
+}  // namespace
+
+std::string size_text(std::size_t bytes) {
+    if (bytes >= (std::size_t{1} << 20) && bytes % (std::size_t{1} << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+    if (bytes >= (std::size_t{1} << 10) && bytes % (std::size_t{1} << 10) == 0) return std::to_string(bytes >> 10) + " KiB";
+    return std::to_string(bytes) + " bytes";
+}
+
+bool is_virtual_path(const std::string& path) noexcept { return path == "-" || starts_with(path, "/vsi"); }
+
+std::vector<std::string> zip_members(const std::string& path) {
+    std::vector<std::string> out;
+    if (is_stdin(path)) return out;
+    if (!is_virtual_path(path)) {
+        std::error_code ec;
+        if (!fs::is_regular_file(path, ec)) return out;  // never open a pipe to look at it
+    }
+    register_drivers();
+    QuietErrors quiet;
+    {
+        VSILFILE* fp = VSIFOpenL(path.c_str(), "rb");
+        if (!fp) return out;
+        std::string head(magic_bytes, '\0');
+        head.resize(VSIFReadL(head.data(), 1, magic_bytes, fp));
+        VSIFCloseL(fp);
+        if (!is_zip(head)) return out;
+    }
+    // GDAL finds the archive in a /vsizip/ path by its .zip extension; braces name any other.
+    const std::string root = lower_ends_with(path, ".zip") ? "/vsizip/" + path : "/vsizip/{" + path + "}";
+    char** names = VSIReadDirRecursive(root.c_str());
+    for (char** n = names; n && *n; ++n) {
+        const std::string member = root + "/" + *n;
+        VSIStatBufL st;
+        if (VSIStatL(member.c_str(), &st) == 0 && VSI_ISREG(st.st_mode)) out.push_back(member);
+    }
+    CSLDestroy(names);
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+InputFile::InputFile(const std::string& path) : m_path(path) {
+    try {
+        open_content(path);
+    } catch (...) {
+        close();
+        throw;
+    }
+}
+
+void InputFile::close() noexcept {
+    if (m_fp) VSIFCloseL(m_fp);
+    m_fp = nullptr;
+    if (!m_mem_name.empty()) VSIUnlink(m_mem_name.c_str());
+    m_mem_name.clear();
+}
+
+void InputFile::open_content(const std::string& path) {
+    register_drivers();
+    const bool stream = kind_of(path) == Kind::stream;
+    open(is_stdin(path) ? std::string("/vsistdin/") : path);
+    if (stream) m_gdal_path.clear();
+    // Compressed content, recognised by its magic bytes: a zip in a zip or a gzip in a zip is
+    // unpacked too, up to three layers deep.
+    for (int depth = 0; depth < 3; ++depth) {
+        m_kept.clear();
+        m_kept_pos = 0;
+        while (m_kept.size() < magic_bytes) {
+            char c[magic_bytes];
+            const std::size_t got = read_raw(c, magic_bytes - m_kept.size());
+            if (got == 0) break;
+            m_kept.append(c, got);
+        }
+        if (!is_gzip(m_kept) && !is_zip(m_kept)) break;
+        std::string base = m_gdal_path;
+        if (base.empty()) {  // a stream: gzip and zip readers need it in memory
+            m_memory = m_kept;
+            m_kept.clear();
+            append_all(m_memory);
+            m_mem_name = memory_name(is_zip(m_memory) ? ".zip" : ".gz");
+            VSIFCloseL(VSIFileFromMemBuffer(m_mem_name.c_str(), reinterpret_cast<GByte*>(m_memory.data()),
+                                            static_cast<vsi_l_offset>(m_memory.size()), FALSE));
+            base = m_mem_name;
+        }
+        const bool zip = is_zip(m_kept.empty() ? m_memory : m_kept);
+        VSIFCloseL(m_fp);
+        m_fp = nullptr;
+        if (!zip) {
+            open("/vsigzip/" + base);
+            continue;
+        }
+        const std::vector<std::string> members = zip_members(base);
+        if (members.empty()) throw InputOpenError(path, "a zip file without any file in it");
+        if (members.size() > 1) {
+            const std::string shown = starts_with(base, "/vsimem/") ? std::string("/vsizip/FILE/") : "/vsizip/" + path + "/";
+            throw InputOpenError(path, "a zip of " + std::to_string(members.size()) + " files: name one (" + shown +
+                                           members.front().substr(members.front().rfind('/') + 1) +
+                                           "), or give the zip as an input folder");
+        }
+        open(members.front());
+    }
+}
+
+InputFile::~InputFile() { close(); }
+
+void InputFile::open(const std::string& gdal_path) {
+    QuietErrors quiet;
+    errno = 0;
+    m_fp = VSIFOpenL(gdal_path.c_str(), "rb");
+    if (!m_fp) {
+        const int err = errno;
+        const std::string gdal = QuietErrors::last();
+        throw InputOpenError(m_path, err ? std::string(std::strerror(err)) : gdal.empty() ? "cannot open" : gdal);
+    }
+    m_gdal_path = gdal_path;
+}
+
+std::size_t InputFile::read_raw(char* data, std::size_t n) {
+    QuietErrors quiet;
+    std::size_t total = 0;
+    while (total < n) {
+        const std::size_t got = VSIFReadL(data + total, 1, n - total, m_fp);
+        total += got;
+        if (got == 0) break;
+    }
+    if (total < n && CPLGetLastErrorType() >= CE_Failure)
+        throw InputError(m_path + ": cannot read (" + QuietErrors::last("read error") + ")");
+    return total;
+}
+
+std::size_t InputFile::append(std::string& out, std::size_t n) {
+    const std::size_t old = out.size();
+    const std::size_t from_kept = std::min(n, m_kept.size() - m_kept_pos);
+    out.append(m_kept, m_kept_pos, from_kept);
+    m_kept_pos += from_kept;
+    if (from_kept == n) return n;
+    out.resize(old + n);
+    const std::size_t got = read_raw(out.data() + old + from_kept, n - from_kept);
+    out.resize(old + from_kept + got);
+    return from_kept + got;
+}
+
+void InputFile::append_all(std::string& out, std::size_t limit, const char* what, std::size_t already) {
+    constexpr std::size_t block = std::size_t{1} << 20;
+    std::size_t total = already;
+    for (;;) {
+        // Never more than one byte past the limit: enough to know it is passed.
+        const std::size_t want = limit == static_cast<std::size_t>(-1) ? block : std::min(block, limit - std::min(limit, total) + 1);
+        const std::size_t got = append(out, want);
+        total += got;
+        if (total > limit)
+            throw InputError(m_path + ": larger than " + size_text(limit) + ", the most " + what + " may be; not read further");
+        if (got < want) return;
+    }
+}
+
+std::string read_input(const std::string& path, std::size_t limit, const char* what) {
+    InputFile in(path);
+    std::string out;
+    in.append_all(out, limit, what);
+    return out;
+}
+
+MemoryFile::MemoryFile(std::string bytes, const std::string& extension) : m_bytes(std::move(bytes)), m_name(memory_name(extension)) {
+    register_drivers();
+    VSIFCloseL(VSIFileFromMemBuffer(m_name.c_str(), reinterpret_cast<GByte*>(m_bytes.data()),
+                                    static_cast<vsi_l_offset>(m_bytes.size()), FALSE));
+}
+
+MemoryFile::~MemoryFile() { VSIUnlink(m_name.c_str()); }
+
+}  // namespace shoal::detail

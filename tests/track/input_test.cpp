@@ -1,0 +1,247 @@
+// Tests of reading inputs through GDAL's virtual file layer (detail/input_file.hpp, issue 19 and
+// issue 14): compressed files, virtual paths, pipes and FIFOs, and the read limits.
+//
+// The independent answer for every compressed or streamed input is the same file read plain
+// from disk; the zips and gzips are made here from tests/data files by the `zip` and `gzip`
+// tools (not by GDAL), the FIFOs written by a thread of the test.
+
+#include <shoal/track/reader.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "detail/input_file.hpp"
+#include "test_support.hpp"
+#include <shoal/hull/hull.hpp>
+#include <shoal/util/error.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using shoal::InputError;
+using shoal::test::data_path;
+using shoal::test::TempDir;
+using shoal::track::read_tracks;
+using shoal::track::TrackFile;
+using testing::HasSubstr;
+using testing::ThrowsMessage;
+
+bool have_tool(const std::string& tool) { return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0; }
+
+void run(const std::string& command) { ASSERT_EQ(std::system(command.c_str()), 0) << command; }
+
+void write(const std::string& path, const std::string& bytes) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << bytes;
+}
+
+std::string slurp(const std::string& path) {
+    const std::vector<char> b = shoal::test::read_bytes(path);
+    return {b.begin(), b.end()};
+}
+
+/// The same tracks (ids, names, dimensions, every fix) and the same counts.
+void expect_same(const TrackFile& got, const TrackFile& want) {
+    EXPECT_EQ(got.format, want.format);
+    EXPECT_EQ(got.report.rows, want.report.rows);
+    EXPECT_EQ(got.report.skipped, want.report.skipped);
+    EXPECT_EQ(got.report.duplicates, want.report.duplicates);
+    ASSERT_EQ(got.tracks.size(), want.tracks.size());
+    for (std::size_t i = 0; i < got.tracks.size(); ++i) {
+        const auto &g = got.tracks[i], &w = want.tracks[i];
+        EXPECT_EQ(g.id, w.id);
+        EXPECT_EQ(g.name, w.name);
+        EXPECT_EQ(g.dims, w.dims);
+        ASSERT_EQ(g.fixes.size(), w.fixes.size()) << g.id;
+        for (std::size_t k = 0; k < g.fixes.size(); ++k) {
+            EXPECT_EQ(g.fixes[k].time_s, w.fixes[k].time_s);
+            EXPECT_EQ(g.fixes[k].position.lat, w.fixes[k].position.lat);
+            EXPECT_EQ(g.fixes[k].position.lon, w.fixes[k].position.lon);
+            EXPECT_EQ(g.fixes[k].line, w.fixes[k].line);
+        }
+    }
+}
+
+/// Writes `bytes` into the FIFO `path` from a thread (joined by the destructor).
+class FifoWriter {
+public:
+    FifoWriter(const std::string& path, std::string bytes) {
+        if (::mkfifo(path.c_str(), 0600) != 0) throw std::runtime_error("mkfifo " + path);
+        m_thread = std::thread([path, bytes = std::move(bytes)] {
+            std::ofstream out(path, std::ios::binary);
+            out << bytes;
+        });
+    }
+    ~FifoWriter() { m_thread.join(); }
+    FifoWriter(const FifoWriter&) = delete;
+    FifoWriter& operator=(const FifoWriter&) = delete;
+
+private:
+    std::thread m_thread;
+};
+
+const std::string dma = "tracks/dma_export_dk_head200.csv";
+const std::string nmea = "tracks/plaka_head400.log";
+const std::string gpx = "tracks/track_and_route.gpx";
+
+TEST(Input, ZipOfOneCsvReadsAsTheCsv) {
+    if (!have_tool("zip")) GTEST_SKIP() << "no zip tool";
+    TempDir dir;
+    const std::string zip = dir.file("day.zip");
+    run("zip -q -j " + zip + " " + data_path(dma));
+    const TrackFile want = read_tracks(data_path(dma));
+    expect_same(read_tracks(zip), want);
+    expect_same(read_tracks("/vsizip/" + zip + "/" + fs::path(dma).filename().string()), want);
+    // Named by its magic bytes, not its name.
+    fs::copy_file(zip, dir.file("day.csv"));
+    expect_same(read_tracks(dir.file("day.csv")), want);
+    EXPECT_EQ(shoal::track::expand_inputs({zip}), std::vector<std::string>{zip});
+}
+
+TEST(Input, ZipOfSeveralFilesIsAFolderOfThem) {
+    if (!have_tool("zip")) GTEST_SKIP() << "no zip tool";
+    TempDir dir;
+    const std::string zip = dir.file("both.zip");
+    run("zip -q -j " + zip + " " + data_path(dma) + " " + data_path(nmea) + " " + data_path("tracks/gpsd_nl_vessels.csv"));
+    const std::vector<std::string> inputs = shoal::track::expand_inputs({zip});
+    const std::vector<std::string> want{"/vsizip/" + zip + "/dma_export_dk_head200.csv", "/vsizip/" + zip + "/plaka_head400.log"};
+    ASSERT_EQ(inputs, want) << "the vessels file is left out, as in a folder";
+    expect_same(read_tracks(inputs[0]), read_tracks(data_path(dma)));
+    // The log's own track is named after the file's stem, which the member keeps.
+    expect_same(read_tracks(inputs[1]), read_tracks(data_path(nmea)));
+    EXPECT_THAT([&] { read_tracks(zip); }, ThrowsMessage<InputError>(HasSubstr("a zip of 3 files: name one")));
+}
+
+TEST(Input, GzipReadsAsThePlainFileWhateverItsName) {
+    TempDir dir;
+    for (const std::string& name : {std::string("day.csv.gz"), std::string("day.csv"), std::string("day.dat")}) {
+        run("gzip -c " + data_path(dma) + " > " + dir.file(name));
+        expect_same(read_tracks(dir.file(name)), read_tracks(data_path(dma)));
+    }
+    run("gzip -c " + data_path(gpx) + " > " + dir.file("t.gpx.gz"));
+    expect_same(read_tracks(dir.file("t.gpx.gz")), read_tracks(data_path(gpx)));
+    expect_same(read_tracks("/vsigzip/" + dir.file("day.dat")), read_tracks(data_path(dma)));
+}
+
+TEST(Input, FoldersListZipAndGzipFiles) {
+    TempDir dir;
+    run("gzip -c " + data_path(dma) + " > " + dir.file("a.csv.gz"));
+    write(dir.file("b.csv"), slurp(data_path(dma)));
+    write(dir.file("notes.md"), "not a track\n");
+    EXPECT_EQ(shoal::track::expand_inputs({dir.path().string()}),
+              (std::vector<std::string>{dir.file("a.csv.gz"), dir.file("b.csv")}));
+}
+
+TEST(Input, FifoIsReadOnceAndWhole) {
+    TempDir dir;
+    for (const std::string& rel : {dma, nmea, gpx, std::string("tracks/points.geojson")}) {
+        fs::create_directory(dir.path() / "fifo");  // the same name: tracks are named after it
+        const std::string fifo = (dir.path() / "fifo" / fs::path(rel).filename()).string();
+        TrackFile got;
+        {
+            FifoWriter writer(fifo, slurp(data_path(rel)));
+            got = read_tracks(fifo);
+        }
+        expect_same(got, read_tracks(data_path(rel)));
+    }
+}
+
+TEST(Input, GzipOnAFifoReadsAsThePlainFile) {
+    TempDir dir;
+    run("gzip -c " + data_path(dma) + " > " + dir.file("day.csv.gz"));
+    TrackFile got;
+    {
+        FifoWriter writer(dir.file("fifo"), slurp(dir.file("day.csv.gz")));
+        got = read_tracks(dir.file("fifo"));
+    }
+    expect_same(got, read_tracks(data_path(dma)));
+}
+
+TEST(Input, FifoIsListedWithoutBeingOpened) {
+    TempDir dir;
+    const std::string fifo = dir.file("f.csv");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // No writer: opening it would block; expand_inputs must not.
+    EXPECT_EQ(shoal::track::expand_inputs({fifo, "-"}), (std::vector<std::string>{fifo, "-"}));
+}
+
+TEST(Input, DevZeroIsRefusedAfterTheSniffLimit) {
+    EXPECT_THAT([] { read_tracks("/dev/zero"); }, ThrowsMessage<InputError>(HasSubstr("/dev/zero: not a track format")));
+    EXPECT_THAT([] { shoal::hull::Hull::load("/dev/zero"); },
+                ThrowsMessage<InputError>(HasSubstr("/dev/zero: larger than 1 MiB, the most a ship file may be")));
+}
+
+TEST(Input, CsvLineOverTheLimitIsABadRow) {
+    TempDir dir;
+    const std::string header = "mmsi,timestamp,lat,lon\n";
+    const std::string a = "1,2024-05-01T10:00:00Z,50.1,-1.2\n", b = "1,2024-05-01T10:01:00Z,50.2,-1.2\n";
+    // Every field of the long row is fine but the last, which the header does not name.
+    const std::string huge = "1,2024-05-01T10:00:30Z,50.15,-1.2," + std::string(3 << 20, '7') + "\n";
+    write(dir.file("long.csv"), header + a + huge + b);
+    write(dir.file("short.csv"), header + a + "\n" + b);  // the independent answer: the line gone
+    const TrackFile got = read_tracks(dir.file("long.csv")), want = read_tracks(dir.file("short.csv"));
+    EXPECT_EQ(got.report.rows, 3u);
+    EXPECT_EQ(got.report.skipped, 1u);
+    ASSERT_EQ(got.report.messages.size(), 1u);
+    EXPECT_THAT(got.report.messages[0], HasSubstr("long.csv line 3: longer than 1 MiB, the longest line shoal reads; row skipped"));
+    ASSERT_EQ(got.tracks.size(), 1u);
+    EXPECT_EQ(got.tracks[0].fixes.size(), want.tracks[0].fixes.size());
+    EXPECT_EQ(got.tracks[0].fixes.back().line, want.tracks[0].fixes.back().line);
+    // A first line without end is refused at the limit, not read forever.
+    write(dir.file("commas.csv"), std::string(17 << 20, ','));
+    EXPECT_THAT([&] { read_tracks(dir.file("commas.csv")); },
+                ThrowsMessage<InputError>(HasSubstr("its first line is longer than 16 MiB")));
+}
+
+TEST(Input, NmeaLineOverTheLimitIsABadLine) {
+    TempDir dir;
+    const std::string log = slurp(data_path("tracks/mixed_talkers.nmea"));
+    write(dir.file("long.nmea"), log + std::string(2 << 20, 'x') + "\n" + log);
+    write(dir.file("short.nmea"), log + "\n" + log);
+    const TrackFile got = read_tracks(dir.file("long.nmea")), want = read_tracks(dir.file("short.nmea"));
+    EXPECT_EQ(got.report.rows, want.report.rows + 1);
+    EXPECT_EQ(got.report.skipped, want.report.skipped + 1);
+    const std::size_t line = static_cast<std::size_t>(std::count(log.begin(), log.end(), '\n')) + 1;
+    EXPECT_THAT(got.report.messages.back(), HasSubstr("long.nmea line " + std::to_string(line) + ": longer than 1 MiB"));
+    ASSERT_EQ(got.tracks.size(), want.tracks.size());
+    EXPECT_EQ(got.tracks[0].fixes.size(), want.tracks[0].fixes.size());
+}
+
+TEST(Input, HullsLargerThanAnyShipAreRefused) {
+    using shoal::hull::Hull;
+    EXPECT_NO_THROW(Hull::from_dims_string("400,50,30,30"));
+    EXPECT_THAT([] { Hull::from_dims_string("450,60,5,5"); },
+                ThrowsMessage<InputError>(HasSubstr("a length (a + b) of 510 m is more than the 500 m of any ship")));
+    EXPECT_THAT([] { Hull::from_dims_string("100,60,50,51"); },
+                ThrowsMessage<InputError>(HasSubstr("a beam (c + d) of 101 m is more than the 100 m of any ship")));
+    EXPECT_THAT([] { Hull::parse(R"({"name": "big", "a": 100000, "b": 10, "c": 5, "d": 5})", "big.json"); },
+                ThrowsMessage<InputError>(HasSubstr("In ship file 'big.json': a length (a + b) of 100010 m")));
+}
+
+TEST(Input, TrackWithImpossibleAisDimensionsKeepsItsFixesAndLosesTheDimensions) {
+    TempDir dir;
+    write(dir.file("dims.csv"),
+          "mmsi,timestamp,lat,lon,a,b,c,d\n"
+          "1,2024-05-01T10:00:00Z,50.1,-1.2,900,100,10,10\n"
+          "1,2024-05-01T10:01:00Z,50.2,-1.2,900,100,10,10\n"
+          "2,2024-05-01T10:00:00Z,50.1,-1.3,90,10,10,10\n");
+    const TrackFile got = read_tracks(dir.file("dims.csv"));
+    ASSERT_EQ(got.tracks.size(), 2u);
+    EXPECT_FALSE(got.tracks[0].dims);
+    EXPECT_EQ(got.tracks[0].fixes.size(), 2u);
+    EXPECT_EQ(got.tracks[1].dims, (shoal::hull::Dimensions{90, 10, 10, 10}));
+    ASSERT_EQ(got.report.messages.size(), 1u);
+    EXPECT_THAT(got.report.messages[0], HasSubstr("1 track gives AIS dimensions larger than any ship"));
+    EXPECT_THAT(got.report.messages[0], HasSubstr("e.g. 1 (a=900 b=100 c=10 d=10): the default hull is used"));
+}
+
+}  // namespace
