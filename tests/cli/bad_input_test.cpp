@@ -952,6 +952,10 @@ TEST_F(BadInput, AVesselsTableGivesEachVesselItsOwnHullAndDraught) {
     ASSERT_NE(a, nullptr);
     EXPECT_EQ((*a)["hull"], "--dims 50,10,5,5");
     EXPECT_TRUE((*a)["draught_m"].is_null());
+}
+
+}  // namespace
+
 namespace {
 
 // ---------------------------------------------------------------------------------------------
