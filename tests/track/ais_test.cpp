@@ -1,7 +1,7 @@
 // The AIS decoder (shoal/track/ais.hpp) against two independent decoders from Debian:
 // gpsd's `gpsdecode -u -j` (package gpsd-clients) and libais (python3-ais, under
 // /usr/bin/python3), run as subprocesses, on the committed raw logs (tests/data/tracks/ais_raw/)
-// and on messages bit-packed here from random fields by an encoder of this test's own.
+// and on messages bit-packed here from random fields by the tests' own encoder (ais_encoder.hpp).
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "test_support.hpp"
+#include "track/ais_encoder.hpp"
 #include <shoal/track/ais.hpp>
 
 namespace {
@@ -27,6 +28,8 @@ using namespace shoal::track;
 using json = nlohmann::json;
 using test::data_path;
 using test::TempDir;
+using test::Encoder;
+using test::with_checksum;
 
 const char* const gpsdecode_path = "/usr/bin/gpsdecode";
 const char* const python_path = "/usr/bin/python3";
@@ -84,8 +87,6 @@ std::vector<json> json_lines(const std::string& text) {
         if (!line.empty()) out.push_back(json::parse(line));
     return out;
 }
-
-std::string with_checksum(const std::string& body);
 
 /// gpsd's records, unscaled (the fields as sent), in the order the messages completed. gpsd
 /// reads only the talkers of IEC 61162-1 (AI, AB, BS, ...), not DMA's `!BYVDM`: every talker is
@@ -339,45 +340,6 @@ TEST(AisDecoder, RawLogsDecodeAsGpsdAndLibaisDecodeThem) {
 
 // ---------------------------------------------------------------------------------------------
 // Messages built here
-
-/// Packs fields most significant bit first and armours them (ITU-R M.1371 8.2.4).
-class Encoder {
-public:
-    void put(std::int64_t v, int bits) {
-        for (int i = bits - 1; i >= 0; --i) m_bits.push_back(((static_cast<std::uint64_t>(v) >> i) & 1U) != 0);
-    }
-    void text(const std::string& s, std::size_t chars) {
-        for (std::size_t i = 0; i < chars; ++i) {
-            const char c = i < s.size() ? s[i] : '@';
-            put(c >= 64 ? c - 64 : c, 6);
-        }
-    }
-    std::size_t size() const noexcept { return m_bits.size(); }
-    /// The payload and its fill bits.
-    std::pair<std::string, int> armour() const {
-        std::vector<bool> b = m_bits;
-        const int fill = static_cast<int>((6 - b.size() % 6) % 6);
-        b.resize(b.size() + fill, false);
-        std::string out;
-        for (std::size_t i = 0; i < b.size(); i += 6) {
-            int v = 0;
-            for (std::size_t k = 0; k < 6; ++k) v = v * 2 + (b[i + k] ? 1 : 0);
-            out += static_cast<char>(v < 40 ? v + 48 : v + 56);
-        }
-        return {out, fill};
-    }
-
-private:
-    std::vector<bool> m_bits;
-};
-
-std::string with_checksum(const std::string& body) {
-    unsigned x = 0;
-    for (const char c : body) x ^= static_cast<unsigned char>(c);
-    char buf[4];
-    std::snprintf(buf, sizeof buf, "*%02X", x);
-    return body + buf;
-}
 
 /// What the generator put in a message: shoal's values as ITU-R M.1371 defines them.
 struct Truth {
