@@ -80,7 +80,7 @@ void join_static_data(track::Track& t, const std::map<std::string, track::Vessel
     if (it == vessels.end()) return;
     const track::VesselInfo& v = it->second;
     if (!v.name.empty()) t.name = v.name;
-    if (v.dims) {
+    if (v.dims && hull::Hull::plausible(*v.dims)) {  // a ship over 500 m by 100 m is a typo: the track's own stay
         t.dims = v.dims;
         t.dims_source = v.source;
     }
@@ -199,7 +199,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 track::resolve_headings(t, 0.5, options.sweep.max_gap_s);
                 std::string label = hull_label;
                 hull::Hull hull = default_hull;
-                if (t.dims) {
+                if (t.dims && hull::Hull::plausible(*t.dims)) {
                     hull = hull::Hull::from_dimensions(*t.dims, t.name);
                     label = dims_label(*t.dims) + (t.dims_source.empty() ? "" : " (" + t.dims_source + ")");
                 }
