@@ -108,7 +108,11 @@ public:
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
     }
     int run() override {
-        std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks));
+        // Vessels files found in track folders join after the ones given with --vessels.
+        std::vector<std::string> folder_vessels;
+        std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks, nullptr, &folder_vessels));
+        std::sort(folder_vessels.begin(), folder_vessels.end());
+        m_vessel_files.insert(m_vessel_files.end(), folder_vessels.begin(), folder_vessels.end());
         all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
         all_inputs.insert(all_inputs.end(), m_vessel_files.begin(), m_vessel_files.end());
         const std::string format = !m_format.empty() ? m_format
@@ -145,7 +149,8 @@ public:
             }
         if (!m_vessel_files.empty()) {
             m_audit.vessels = &m_vessels;
-            std::fprintf(stderr, "shoal: static data of %zu vessels from --vessels\n", m_vessels.size());
+            std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, *_vessels.csv in track folders)\n",
+                         m_vessels.size(), m_vessel_files.size());
         }
         Progress bar(m_progress.value_or(::isatty(2) != 0));
         m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };

@@ -282,7 +282,8 @@ PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& o
     return out;
 }
 
-std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings) {
+std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings,
+                                       std::vector<std::string>* vessels_files) {
     std::vector<std::string> out;
     std::vector<std::string> seen;  // the files taken so far: canonical paths, or virtual paths as given
     auto warn = [&](const std::string& w) {
@@ -358,7 +359,10 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
                 continue;
             }
             if (!regular) continue;
-            if (is_vessels_file(name)) continue;  // AIS static data, read with read_vessels
+            if (is_vessels_file(name)) {  // AIS static data, read with read_vessels
+                if (vessels_files) vessels_files->push_back(entry.path().string());
+                continue;
+            }
             found.push_back(entry.path().string());
         }
         if (ec) throw InputError(p + ": cannot list the folder (" + ec.message() + ")");

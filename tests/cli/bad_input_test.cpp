@@ -941,7 +941,7 @@ TEST_F(BadInput, AVesselsTableGivesEachVesselItsOwnHullAndDraught) {
     const std::string r = m_dir.file("r.geojson");
     const Outcome o = check({good_tracks()}, r, {"--vessels", vessels});
     EXPECT_EQ(o.status, 1) << o.err;
-    EXPECT_NE(o.err.find("static data of 1 vessels from --vessels"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("static data of 1 vessels from 1 vessels files"), std::string::npos) << o.err;
     const auto doc = report(r);
     const auto* b = track_entry(doc, "222222222");
     ASSERT_NE(b, nullptr);
@@ -952,6 +952,17 @@ TEST_F(BadInput, AVesselsTableGivesEachVesselItsOwnHullAndDraught) {
     ASSERT_NE(a, nullptr);
     EXPECT_EQ((*a)["hull"], "--dims 50,10,5,5");
     EXPECT_TRUE((*a)["draught_m"].is_null());
+
+    // In a track folder, a *_vessels.csv is joined the same way (no --vessels needed).
+    const fs::path dir = fs::path(m_dir.path()) / "day";
+    fs::create_directory(dir);
+    write((dir / "tracks.csv").string(), header + solent_rows());
+    fs::copy_file(vessels, dir / "fleet_vessels.csv");
+    const std::string r2 = m_dir.file("r2.geojson");
+    const Outcome o2 = check({dir.string()}, r2);
+    EXPECT_EQ(o2.status, 1) << o2.err;
+    const auto doc2 = report(r2);
+    EXPECT_EQ((*track_entry(doc2, "222222222"))["hull"], "AIS dimensions 8,4,2,2 (vessels file " + (dir / "fleet_vessels.csv").string() + ")");
 }
 
 }  // namespace

@@ -63,12 +63,13 @@ TrackFile unpack(PackedTrackFile&& packed);
 std::string sniff_format(std::string_view content, const std::string& path = {});
 
 /// Files named on a command line, with each folder replaced by the track files directly in it
-/// (extensions .csv .gpx .geojson .json .nmea .log .txt, any case, not `*_vessels.csv`, sorted
-/// by name; not recursive). Files are kept as given, whatever their extension. A file met again
+/// (see track_extensions_text(); any case, not `*_vessels.csv`, sorted by name; not recursive). Files are kept as given, whatever their extension. A file met again
 /// (named twice, by a symlink to it, or inside a folder also given) is kept once; a folder entry
 /// that cannot be read (a symlink loop, a dangling link) is skipped; both are said in `warnings`.
 /// Throws InputError for a path that does not exist and for a folder without track files.
-std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr);
+/// The vessels files (`*_vessels.csv`) met in folders go to `vessels_files` when given.
+std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr,
+                                       std::vector<std::string>* vessels_files = nullptr);
 
 /// AIS static data of one vessel.
 struct VesselInfo {
