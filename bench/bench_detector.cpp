@@ -56,6 +56,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using shoal::geo::XY;
+using shoal::geo::GeomPtr;
+using shoal::geo::PreparedPtr;
+using shoal::geo::TreePtr;
 using Clock = std::chrono::steady_clock;
 
 double ns_since(Clock::time_point t0) { return std::chrono::duration<double, std::nano>(Clock::now() - t0).count(); }
@@ -153,40 +156,32 @@ public:
             for (std::size_t s = 0; s < nseg; s += chunk_segments) {
                 const std::size_t e = std::min(nseg, s + chunk_segments);
                 Piece p;
-                p.geom = shoal::geo::make_linestring(m_ctx, l.points.data() + s, e - s + 1).release();
+                p.geom = shoal::geo::make_linestring(m_ctx, l.points.data() + s, e - s + 1);
                 for (std::size_t k = s; k <= e; ++k) p.box.extend(l.points[k]);
-                m_pieces.push_back(p);
+                m_pieces.push_back(std::move(p));
             }
             if (l.land_left && l.points.size() >= 4 && l.points.front() == l.points.back()) {
                 Ring r;
-                r.geom = shoal::geo::make_polygon(m_ctx, {l.points}).release();
-                r.prepared = GEOSPrepare_r(m_ctx, r.geom);
+                r.geom = shoal::geo::make_polygon(m_ctx, {l.points});
+                r.prepared = PreparedPtr(GEOSPrepare_r(m_ctx, r.geom.get()), {m_ctx.get()});
                 r.sign = signed_area2(l.points) > 0 ? 1 : -1;  // shells counter-clockwise, holes clockwise
-                m_rings.push_back(r);
+                m_rings.push_back(std::move(r));
             }
         }
         shoal::geo::Box all;
         for (const Piece& p : m_pieces) all.extend(p.box);
         m_span = std::hypot(all.maxx - all.minx, all.maxy - all.miny);
-        m_piece_tree = GEOSSTRtree_create_r(m_ctx, 10);
-        for (Piece& p : m_pieces) GEOSSTRtree_insert_r(m_ctx, m_piece_tree, p.geom, &p);
-        m_ring_tree = GEOSSTRtree_create_r(m_ctx, 10);
-        for (Ring& r : m_rings) GEOSSTRtree_insert_r(m_ctx, m_ring_tree, r.geom, &r);
+        // The trees' items point into m_pieces and m_rings (not resized from here on), which
+        // own the geometries and outlive the trees (declared before them).
+        m_piece_tree = TreePtr(GEOSSTRtree_create_r(m_ctx, 10), {m_ctx.get()});
+        for (Piece& p : m_pieces) GEOSSTRtree_insert_r(m_ctx, m_piece_tree.get(), p.geom.get(), &p);
+        m_ring_tree = TreePtr(GEOSSTRtree_create_r(m_ctx, 10), {m_ctx.get()});
+        for (Ring& r : m_rings) GEOSSTRtree_insert_r(m_ctx, m_ring_tree.get(), r.geom.get(), &r);
         // Build the trees now, not in the first query (the rings' point-in-area indexes are
         // built on first use: the untimed warm-up pass does that).
-        GEOSGeometry* probe = GEOSGeom_createPointFromXY_r(m_ctx, 0, 0);
-        GEOSSTRtree_query_r(m_ctx, m_piece_tree, probe, [](void*, void*) {}, nullptr);
-        GEOSSTRtree_query_r(m_ctx, m_ring_tree, probe, [](void*, void*) {}, nullptr);
-        GEOSGeom_destroy_r(m_ctx, probe);
-    }
-    ~GeosTree() {
-        GEOSSTRtree_destroy_r(m_ctx, m_piece_tree);
-        GEOSSTRtree_destroy_r(m_ctx, m_ring_tree);
-        for (Piece& p : m_pieces) GEOSGeom_destroy_r(m_ctx, p.geom);
-        for (Ring& r : m_rings) {
-            GEOSPreparedGeom_destroy_r(m_ctx, r.prepared);
-            GEOSGeom_destroy_r(m_ctx, r.geom);
-        }
+        const GeomPtr probe(GEOSGeom_createPointFromXY_r(m_ctx, 0, 0), {m_ctx.get()});
+        GEOSSTRtree_query_r(m_ctx, m_piece_tree.get(), probe.get(), [](void*, void*) {}, nullptr);
+        GEOSSTRtree_query_r(m_ctx, m_ring_tree.get(), probe.get(), [](void*, void*) {}, nullptr);
     }
     GeosTree(const GeosTree&) = delete;
     GeosTree& operator=(const GeosTree&) = delete;
@@ -195,18 +190,20 @@ public:
     std::size_t rings() const noexcept { return m_rings.size(); }
 
     Answer check(const std::vector<XY>& outline, double max_clearance) {
-        GEOSGeometry* hull = m_hull.make(outline);
+        // The owners in the timed calls hold the context handle beside the pointer: no
+        // allocation, the same GEOS calls in the same order as destroying by hand.
+        const GeomPtr hull(m_hull.make(outline), {m_ctx.get()});
         const shoal::geo::Box hb = box_of(outline);
         Answer a;
         double best = INFINITY;
         if (std::isfinite(max_clearance)) {
-            best = nearest_within(hull, hb, max_clearance);
+            best = nearest_within(hull.get(), hb, max_clearance);
         } else {
             // Unlimited: the same search in envelopes grown 250 m, 1 km, 4 km, ... until a
             // piece lies within the searched distance (GEOSSTRtree_nearest_generic with
             // GEOSDistance as the metric was 10-20x slower than this in this benchmark).
             for (double r = 250;; r *= 4) {
-                best = nearest_within(hull, hb, r);
+                best = nearest_within(hull.get(), hb, r);
                 if (best <= r || r > m_span) break;
             }
         }
@@ -219,18 +216,17 @@ public:
         } else if (best <= max_clearance) {
             a.clearance = best;
         }
-        GEOSGeom_destroy_r(m_ctx, hull);
         return a;
     }
 
 private:
     struct Piece {
-        GEOSGeometry* geom = nullptr;
+        GeomPtr geom;
         shoal::geo::Box box;
     };
     struct Ring {
-        GEOSGeometry* geom = nullptr;
-        const GEOSPreparedGeometry* prepared = nullptr;
+        GeomPtr geom;
+        PreparedPtr prepared;  // of geom: declared after it, destroyed before it
         int sign = 1;
     };
 
@@ -239,20 +235,20 @@ private:
     /// envelope first, stopping as soon as no other piece can be nearer.
     double nearest_within(const GEOSGeometry* hull, const shoal::geo::Box& hb, double r) {
         const shoal::geo::Box q = hb.grown(r);
-        GEOSGeometry* rect = GEOSGeom_createRectangle_r(m_ctx, q.minx, q.miny, q.maxx, q.maxy);
+        GeomPtr rect(GEOSGeom_createRectangle_r(m_ctx, q.minx, q.miny, q.maxx, q.maxy), {m_ctx.get()});
         m_cand.clear();
         GEOSSTRtree_query_r(
-            m_ctx, m_piece_tree, rect,
+            m_ctx, m_piece_tree.get(), rect.get(),
             [](void* item, void* self) { static_cast<GeosTree*>(self)->m_cand.push_back({0.0, static_cast<const Piece*>(item)}); },
             this);
-        GEOSGeom_destroy_r(m_ctx, rect);
+        rect.reset();  // freed here, before the distances, as before
         for (auto& c : m_cand) c.first = hb.distance_to(c.second->box);
         std::sort(m_cand.begin(), m_cand.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
         double best = INFINITY;
         for (const auto& [env_d, piece] : m_cand) {
             if (env_d > r || env_d >= best) break;
             double d = INFINITY;
-            GEOSDistance_r(m_ctx, hull, piece->geom, &d);
+            GEOSDistance_r(m_ctx, hull, piece->geom.get(), &d);
             best = std::min(best, d);
             if (best == 0) break;
         }
@@ -260,24 +256,23 @@ private:
     }
 
     bool on_land(XY p) {
-        GEOSGeometry* pt = GEOSGeom_createPointFromXY_r(m_ctx, p.x, p.y);
+        const GeomPtr pt(GEOSGeom_createPointFromXY_r(m_ctx, p.x, p.y), {m_ctx.get()});
         m_ring_cand.clear();
         GEOSSTRtree_query_r(
-            m_ctx, m_ring_tree, pt, [](void* item, void* self) { static_cast<GeosTree*>(self)->m_ring_cand.push_back(static_cast<const Ring*>(item)); },
+            m_ctx, m_ring_tree.get(), pt.get(), [](void* item, void* self) { static_cast<GeosTree*>(self)->m_ring_cand.push_back(static_cast<const Ring*>(item)); },
             this);
         int winding = 0;
         for (const Ring* r : m_ring_cand)
-            if (GEOSPreparedIntersects_r(m_ctx, r->prepared, pt) == 1) winding += r->sign;
-        GEOSGeom_destroy_r(m_ctx, pt);
+            if (GEOSPreparedIntersects_r(m_ctx, r->prepared.get(), pt.get()) == 1) winding += r->sign;
         return winding > 0;
     }
 
     shoal::geo::GeosContext m_ctx;
     HullPolygon m_hull;
-    std::vector<Piece> m_pieces;
+    std::vector<Piece> m_pieces;  // own the trees' geometries: declared before the trees
     std::vector<Ring> m_rings;
-    GEOSSTRtree* m_piece_tree = nullptr;
-    GEOSSTRtree* m_ring_tree = nullptr;
+    TreePtr m_piece_tree{nullptr, {m_ctx.get()}};
+    TreePtr m_ring_tree{nullptr, {m_ctx.get()}};
     std::vector<std::pair<double, const Piece*>> m_cand;
     std::vector<const Ring*> m_ring_cand;
     double m_span = 0;  // diagonal of all pieces' envelope
@@ -289,6 +284,7 @@ class GeosPrepared {
 public:
     explicit GeosPrepared(const std::vector<shoal::coast::LocalPolyline>& lines) : m_hull(m_ctx.get()) {
         // The import writes each polygon as its shell (counter-clockwise) then its holes.
+        // The parts are released: GEOSGeom_createCollection_r takes them over.
         std::vector<GEOSGeometry*> polys, strings;
         std::vector<std::vector<XY>> rings;
         auto flush = [&] {
@@ -305,62 +301,55 @@ public:
         }
         flush();
         if (!polys.empty()) {
-            m_land = GEOSGeom_createCollection_r(m_ctx, GEOS_MULTIPOLYGON, polys.data(), static_cast<unsigned>(polys.size()));
-            if (GEOSisValid_r(m_ctx, m_land) != 1) {  // overlapping parts (S-57 LNDARE): dissolve them
-                GEOSGeometry* u = GEOSUnaryUnion_r(m_ctx, m_land);
-                GEOSGeom_destroy_r(m_ctx, m_land);
-                m_land = u;
+            m_land = GeomPtr(GEOSGeom_createCollection_r(m_ctx, GEOS_MULTIPOLYGON, polys.data(), static_cast<unsigned>(polys.size())),
+                             {m_ctx.get()});
+            if (GEOSisValid_r(m_ctx, m_land.get()) != 1) {  // overlapping parts (S-57 LNDARE): dissolve them
+                m_land = GeomPtr(GEOSUnaryUnion_r(m_ctx, m_land.get()), {m_ctx.get()});  // the union made, then the parts freed
                 m_unioned = true;
             }
-            m_land_prep = GEOSPrepare_r(m_ctx, m_land);
+            m_land_prep = PreparedPtr(GEOSPrepare_r(m_ctx, m_land.get()), {m_ctx.get()});
         }
         if (!strings.empty()) {
-            m_lines = GEOSGeom_createCollection_r(m_ctx, GEOS_MULTILINESTRING, strings.data(), static_cast<unsigned>(strings.size()));
-            m_lines_prep = GEOSPrepare_r(m_ctx, m_lines);
+            m_lines = GeomPtr(GEOSGeom_createCollection_r(m_ctx, GEOS_MULTILINESTRING, strings.data(), static_cast<unsigned>(strings.size())),
+                              {m_ctx.get()});
+            m_lines_prep = PreparedPtr(GEOSPrepare_r(m_ctx, m_lines.get()), {m_ctx.get()});
         }
         // Build the prepared indexes outside the timed calls.
         const std::vector<XY> tiny{{0, 0}, {1, 0}, {0, 1}};
         check(tiny, INFINITY);
         check(tiny, 1.0);
     }
-    ~GeosPrepared() {
-        if (m_land_prep) GEOSPreparedGeom_destroy_r(m_ctx, m_land_prep);
-        if (m_lines_prep) GEOSPreparedGeom_destroy_r(m_ctx, m_lines_prep);
-        if (m_land) GEOSGeom_destroy_r(m_ctx, m_land);
-        if (m_lines) GEOSGeom_destroy_r(m_ctx, m_lines);
-    }
     GeosPrepared(const GeosPrepared&) = delete;
     GeosPrepared& operator=(const GeosPrepared&) = delete;
     bool unioned() const noexcept { return m_unioned; }
 
     Answer check(const std::vector<XY>& outline, double max_clearance) {
-        GEOSGeometry* hull = m_hull.make(outline);
+        const GeomPtr hull(m_hull.make(outline), {m_ctx.get()});
         Answer a;
-        for (const GEOSPreparedGeometry* p : {m_land_prep, m_lines_prep})
-            if (p && GEOSPreparedIntersects_r(m_ctx, p, hull) == 1) a.collision = true;
+        for (const GEOSPreparedGeometry* p : {m_land_prep.get(), m_lines_prep.get()})
+            if (p && GEOSPreparedIntersects_r(m_ctx, p, hull.get()) == 1) a.collision = true;
         if (a.collision) {
             a.clearance = 0;
         } else {
             double best = INFINITY;
-            for (const GEOSPreparedGeometry* p : {m_land_prep, m_lines_prep}) {
+            for (const GEOSPreparedGeometry* p : {m_land_prep.get(), m_lines_prep.get()}) {
                 if (!p) continue;
                 double d = INFINITY;
-                GEOSPreparedDistance_r(m_ctx, p, hull, &d);
+                GEOSPreparedDistance_r(m_ctx, p, hull.get(), &d);
                 best = std::min(best, d);
             }
             if (best <= max_clearance) a.clearance = best;
         }
-        GEOSGeom_destroy_r(m_ctx, hull);
         return a;
     }
 
 private:
     shoal::geo::GeosContext m_ctx;
     HullPolygon m_hull;
-    GEOSGeometry* m_land = nullptr;
-    GEOSGeometry* m_lines = nullptr;
-    const GEOSPreparedGeometry* m_land_prep = nullptr;
-    const GEOSPreparedGeometry* m_lines_prep = nullptr;
+    GeomPtr m_land{nullptr, {m_ctx.get()}};  // the geometries before their prepared forms: destroyed after them
+    GeomPtr m_lines{nullptr, {m_ctx.get()}};
+    PreparedPtr m_land_prep{nullptr, {m_ctx.get()}};
+    PreparedPtr m_lines_prep{nullptr, {m_ctx.get()}};
     bool m_unioned = false;
 };
 
