@@ -63,7 +63,8 @@ TrackFile unpack(PackedTrackFile&& packed);
 std::string sniff_format(std::string_view content, const std::string& path = {});
 
 /// Files named on a command line, with each folder replaced by the track files directly in it
-/// (see track_extensions_text(); any case, not `*_vessels.csv`, sorted by name; not recursive). Files are kept as given, whatever their extension. A file met again
+/// (extensions .csv .gpx .geojson .json .nmea .log .txt .zip .gz, any case, not `*_vessels.csv`,
+/// sorted by name; not recursive). Files are kept as given, whatever their extension. A file met again
 /// (named twice, by a symlink to it, or inside a folder also given) is kept once; a folder entry
 /// that cannot be read (a symlink loop, a dangling link) is skipped; both are said in `warnings`.
 /// Throws InputError for a path that does not exist and for a folder without track files.
