@@ -25,6 +25,7 @@
 #include <shoal/track/ais.hpp>
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/nmea_reader.hpp>
+#include <shoal/track/ogr_reader.hpp>
 #include <shoal/track/packed_track.hpp>
 #include <shoal/track/reader.hpp>
 #include <shoal/track/track.hpp>
@@ -188,6 +189,19 @@ inline void nmea(const std::uint8_t* data, std::size_t size) {
         check_tracks("nmea", f);
     } catch (const InputError& e) {
         bounded("nmea", e.what());
+    }
+}
+
+/// GeoJSON tracks (Points with times, LineStrings with a times array, any nesting nlohmann
+/// accepts).
+inline void geojson_tracks(const std::uint8_t* data, std::size_t size) {
+    if (size < 1) return;
+    const std::string_view text(reinterpret_cast<const char*>(data) + 1, size - 1);
+    try {
+        track::TrackFile f = track::read_geojson_text(text, "fuzz.geojson", options_from(data[0]));
+        check_tracks("geojson_tracks", f);
+    } catch (const InputError& e) {
+        bounded("geojson_tracks", e.what());
     }
 }
 

@@ -30,6 +30,7 @@ const Target targets[] = {
     {"csv_tracks", shoal::fuzz::csv_tracks},
     {"nmea", shoal::fuzz::nmea},
     {"aivdm", shoal::fuzz::aivdm},
+    {"geojson_tracks", shoal::fuzz::geojson_tracks},
     {"ship", shoal::fuzz::ship},
     {"grid_cache", shoal::fuzz::grid_cache},
 };
