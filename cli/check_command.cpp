@@ -81,10 +81,12 @@ public:
         m_sub->add_option("--berths", m_berths,
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
-                          "BERTHS, HRBARE and ACHARE, and SLCONS as shore constructions");
+                          "BERTHS, HRBARE and ACHARE, and SLCONS as shore constructions")
+            ->allow_extra_args(false);
         m_sub->add_option("--vessels", m_vessel_files,
                           "Vessels table(s), CSV: mmsi and any of name, A,B,C,D (to_bow_m, to_stern_m, to_port_m, to_stbd_m), "
-                          "draught_m, shiptype; joined to tracks by id, over what the track's own file says");
+                          "draught_m, shiptype; joined to tracks by id, over what the track's own file says")
+            ->allow_extra_args(false);
         m_sub->add_flag("--hull-from-length-width", m_audit.read.hull_from_length_width,
                         "A vessel with Length and Width but no A,B,C,D (MarineCadastre) is swept with a hull of that size, its "
                         "position taken amidships (can miss a bow-first grounding when the antenna is aft; default: --ship/--dims)");
@@ -111,6 +113,7 @@ public:
         // Vessels files found in track folders join after the ones given with --vessels.
         std::vector<std::string> folder_vessels;
         std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks, nullptr, &folder_vessels));
+        all_inputs.insert(all_inputs.end(), m_tracks.begin(), m_tracks.end());  // a zip or folder as given, too
         std::sort(folder_vessels.begin(), folder_vessels.end());
         m_vessel_files.insert(m_vessel_files.end(), folder_vessels.begin(), folder_vessels.end());
         all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
@@ -204,7 +207,7 @@ public:
         commit_all(staged);
         const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         // With -o - the report is stdout: the table goes to stderr, so the JSON stays clean.
-        std::FILE* table = m_output == "-" ? stderr : stdout;
+        std::FILE* table = is_standard_output(m_output) || (!m_plot.empty() && is_standard_output(m_plot)) ? stderr : stdout;
         std::fputs(report::summary_table(r).c_str(), table);
         const double fps = r.sweep_s > 0 ? static_cast<double>(r.fixes) / r.sweep_s : 0;
         std::fprintf(table, "time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,

@@ -111,7 +111,7 @@ namespace {
 /// Where a GeoJSON report's QGIS style goes: REPORT.qml beside it (not beside stdout, a device or a pipe).
 std::string style_path(const std::string& report) {
     std::error_code ec;
-    if (report.empty() || report == "-") return {};
+    if (is_standard_output(report) || is_system_path(report)) return {};
     if (const auto st = std::filesystem::status(report, ec); std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) return {};
     return std::filesystem::path(report).replace_extension(".qml").string();
 }

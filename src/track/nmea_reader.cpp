@@ -345,6 +345,10 @@ private:
             skip_at(d.line, what + " without a time (no tag block c:, receive time, $PGHP or dated RMC/ZDA before it)");
             return;
         }
+        if (!plausible_fix_time(time_s)) {
+            skip_at(d.line, what + ": time " + format_iso8601(time_s, 0) + " is outside the years " + fix_time_range);
+            return;
+        }
         Fix f;
         f.time_s = time_s;
         f.position = *m.position;

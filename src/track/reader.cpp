@@ -292,18 +292,20 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
     // A file met again (named twice, or by a symlink, or in a folder also given) is read once.
     auto take = [&](const std::string& file) {
         std::string key = file;
-        if (!shoal::detail::is_virtual_path(file)) {
+        // Standard input by any of its names is one stream: read once (a second read would
+        // race the first for the same bytes).
+        if (file == "-" || file == "/dev/stdin" || file == "/vsistdin/" || file == "/vsistdin" || file == "/proc/self/fd/0") {
+            key = "standard input";
+        } else if (!shoal::detail::is_virtual_path(file)) {
             std::error_code ec;
             const fs::path canonical = fs::weakly_canonical(file, ec);
             if (!ec) key = canonical.string();
         }
-        if (file != "-") {  // standard input named twice is an error the reader finds (empty)
-            for (std::size_t i = 0; i < seen.size(); ++i)
-                if (seen[i] == key) {
-                    warn("'" + file + "' is the file '" + out[i] + "' given before: read once");
-                    return;
-                }
-        }
+        for (std::size_t i = 0; i < seen.size(); ++i)
+            if (seen[i] == key) {
+                warn("'" + file + "' is the file '" + out[i] + "' given before: read once");
+                return;
+            }
         seen.push_back(std::move(key));
         out.push_back(file);
     };

@@ -1,3 +1,4 @@
+#include <cctype>
 #include <shoal/util/output_file.hpp>
 
 #include <dirent.h>
@@ -19,6 +20,12 @@ namespace shoal {
 
 namespace fs = std::filesystem;
 
+bool is_standard_output(const std::string& path) noexcept {
+    return path.empty() || path == "-" || path == "/dev/stdout" || path == "/dev/fd/1" || path == "/proc/self/fd/1";
+}
+
+bool is_system_path(const std::string& path) noexcept { return path.rfind("/dev/", 0) == 0 || path.rfind("/proc/", 0) == 0; }
+
 namespace {
 
 constexpr std::string_view temp_mark = ".shoal.tmp-";
@@ -28,7 +35,7 @@ fs::path folder_of(const std::string& path) {
     return p.has_parent_path() ? p.parent_path() : fs::path(".");
 }
 
-bool is_stdout(const std::string& path) { return path.empty() || path == "-"; }
+bool is_stdout(const std::string& path) { return is_standard_output(path); }
 
 /// Writes all of `bytes` to the open file `f` and closes it; false (errno in `err`) on failure.
 bool write_and_close(std::FILE* f, std::string_view bytes, bool sync, int& err) {
@@ -42,9 +49,25 @@ bool write_and_close(std::FILE* f, std::string_view bytes, bool sync, int& err) 
     return ok;
 }
 
-/// The same file: equal paths once made absolute and normal, or (both existing) one inode.
-bool same_file(const std::string& a, const std::string& b) {
-    if (is_stdout(a) || is_stdout(b)) return is_stdout(a) && is_stdout(b);
+/// The real file behind a GDAL virtual path: `/vsigzip/d/t.csv.gz` is `d/t.csv.gz`,
+/// `/vsizip/d/a.zip/m.csv` is `d/a.zip`; other paths as they are.
+std::string behind_virtual(const std::string& path) {
+    if (path.rfind("/vsi", 0) != 0) return path;
+    const std::size_t slash = path.find('/', 1);
+    if (slash == std::string::npos) return path;
+    std::string rest = path.substr(slash + 1);
+    if (!rest.empty() && rest.front() == '{') return path;  // /vsizip/{...}: no plain file to name
+    std::string lower = rest;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (const std::size_t zip = lower.find(".zip/"); zip != std::string::npos) rest.resize(zip + 4);
+    return rest;
+}
+
+/// The same file: equal paths once made absolute and normal, or (both existing) one inode; a
+/// virtual path (/vsizip/, /vsigzip/) is the file behind it.
+bool same_file(const std::string& a_path, const std::string& b_path) {
+    if (is_stdout(a_path) || is_stdout(b_path)) return is_stdout(a_path) && is_stdout(b_path);
+    const std::string a = behind_virtual(a_path), b = behind_virtual(b_path);
     std::error_code ec1, ec2;
     const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec1), cb = fs::weakly_canonical(fs::absolute(b), ec2);
     if (!ec1 && !ec2 && ca == cb) return true;
@@ -118,9 +141,19 @@ std::size_t remove_stale_temporaries(const std::string& target) {
 
 StagedOutput::StagedOutput(std::string target) : m_target(std::move(target)) {
     if (is_stdout(m_target)) return;
+    // /dev/stdout, /dev/fd/N, /proc/self/fd/N: written straight to what they stand for, never
+    // replaced (renaming over /dev/stdout would replace the link itself).
+    if (is_system_path(m_target)) return;
     check_output_place(m_target);
     std::error_code ec;
     if (const auto st = fs::status(m_target, ec); fs::exists(st) && !fs::is_regular_file(st)) return;  // a device, a pipe
+    // A symlink is written through: its target is replaced, the link stays a link.
+    for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(m_target, ec)); ++hops) {
+        fs::path link = fs::read_symlink(m_target, ec);
+        if (ec) break;
+        if (link.is_relative()) link = folder_of(m_target) / link;
+        m_target = link.lexically_normal().string();
+    }
     remove_stale_temporaries(m_target);
     std::random_device rd;
     char suffix[40];

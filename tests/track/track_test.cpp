@@ -245,6 +245,13 @@ TEST(ExpandInputs, FoldersBecomeTheirTrackFilesSorted) {
                                    data_path("tracks/plaka_head400.log")));
 }
 
+TEST(ExpandInputs, StandardInputByAnyOfItsNamesIsReadOnce) {
+    std::vector<std::string> warnings;
+    const auto files = expand_inputs({"-", "/dev/stdin", "-", "/vsistdin/"}, &warnings);
+    EXPECT_EQ(files, std::vector<std::string>{"-"});
+    EXPECT_EQ(warnings.size(), 3u);
+}
+
 TEST(ExpandInputs, MissingPathsAndFoldersWithoutTracksAreInputErrors) {
     TempDir dir;
     write(dir.file("readme.md"), "x");

@@ -219,5 +219,47 @@ TEST(WriteFileAtomically, KeepsItsMessagesAndLeavesNoTemporary) {
     EXPECT_EQ(names_in(dir.path()), std::vector<std::string>{"x"});
 }
 
+TEST(CheckOutputs, AnOutputThatIsTheFileBehindAVirtualInputPathIsRefused) {
+    test::TempDir dir;
+    const std::string zip = dir.file("day.zip"), gz = dir.file("t.csv.gz");
+    put(zip, "PK");
+    put(gz, "gz");
+    EXPECT_THROW(check_outputs({{zip}}, {"/vsizip/" + zip + "/member.csv"}), UsageError);
+    EXPECT_THROW(check_outputs({{zip}}, {"/vsizip/" + zip + "/a/b.csv"}), UsageError);
+    EXPECT_THROW(check_outputs({{gz}}, {"/vsigzip/" + gz}), UsageError);
+    EXPECT_NO_THROW(check_outputs({{dir.file("r.geojson")}}, {"/vsizip/" + zip + "/member.csv"}));
+}
+
+TEST(StagedOutput, ASymlinkIsWrittenThroughAndStaysALink) {
+    test::TempDir dir;
+    fs::create_directory(fs::path(dir.path()) / "real");
+    fs::create_directory(fs::path(dir.path()) / "links");
+    const std::string target = (fs::path(dir.path()) / "real" / "r.geojson").string();
+    const std::string link = (fs::path(dir.path()) / "links" / "r.geojson").string();
+    put(target, "old");
+    fs::create_symlink("../real/r.geojson", link);
+    StagedOutput out(link);
+    out.write("new");
+    out.commit();
+    EXPECT_TRUE(fs::is_symlink(link));
+    EXPECT_EQ(read(target), "new");
+    fs::remove(target);  // a dangling link: the file it names is made
+    StagedOutput again(link);
+    again.write("made");
+    again.commit();
+    EXPECT_TRUE(fs::is_symlink(link));
+    EXPECT_EQ(read(target), "made");
+}
+
+TEST(StandardOutput, HasSeveralNamesAndSystemPathsAreNeverReplaced) {
+    for (const char* p : {"", "-", "/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"}) EXPECT_TRUE(is_standard_output(p)) << p;
+    for (const char* p : {"/dev/stderr", "stdout", "r.geojson"}) EXPECT_FALSE(is_standard_output(p)) << p;
+    EXPECT_TRUE(is_system_path("/dev/null"));
+    EXPECT_TRUE(is_system_path("/proc/self/fd/2"));
+    EXPECT_FALSE(is_system_path("/tmp/dev/r.geojson"));
+    const StagedOutput null_out("/dev/null");
+    EXPECT_TRUE(null_out.direct());
+}
+
 }  // namespace
 }  // namespace shoal

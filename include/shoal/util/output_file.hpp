@@ -25,6 +25,12 @@ struct OutputSpec {
     std::string role = "the output";   ///< what it is ("the report", "the picture")
 };
 
+/// Standard output by any of its names: "" and "-" (stdout), /dev/stdout, /dev/fd/1, /proc/self/fd/1.
+bool is_standard_output(const std::string& path) noexcept;
+/// A path under /dev/ or /proc/: written straight to what it stands for, never replaced, no
+/// companion file (a style) beside it.
+bool is_system_path(const std::string& path) noexcept;
+
 /// Throws InputError unless a file can be written at `path`: its folder exists and it is not
 /// itself a folder ("cannot write 'P': folder 'D' does not exist", "cannot write 'P': it is a
 /// directory"). "" and "-" (stdout) always pass.
