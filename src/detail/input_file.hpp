@@ -59,6 +59,9 @@ public:
                     std::size_t already = 0);
 
     const std::string& path() const noexcept { return m_path; }
+    /// Non-empty when a compressed stream (gzip, zip) broke off or was damaged part way: what
+    /// was decompressed before is what the readers saw, as if the file ended there.
+    const std::string& damage() const noexcept { return m_damage; }
     /// A path GDAL opens to read the same content again (for OGR drivers, which need a path),
     /// or "" for a stream, which cannot be read twice.
     const std::string& gdal_path() const noexcept { return m_gdal_path; }
@@ -69,7 +72,9 @@ private:
     void close() noexcept;
     std::size_t read_raw(char* data, std::size_t n);
 
-    std::string m_path;       ///< as given, for messages
+    std::string m_path;
+
+    std::string m_damage;       ///< as given, for messages
     std::string m_gdal_path;  ///< what is open now, when it can be opened again
     VSILFILE* m_fp = nullptr;
     std::string m_kept;       ///< bytes read to recognise the content, given back first

@@ -260,6 +260,7 @@ TrackFile read_tracks(const std::string& path, const ReadOptions& options) {
     Sniffed sniffed = sniff_file(*in);
     TrackFile out = sniffed.format == "csv" ? unpack(detail::read_csv_stream(*in, std::move(sniffed.head), sniffed.whole, options))
                                             : read_whole(*in, std::move(sniffed), options);
+    if (!in->damage().empty()) out.report.messages.push_back(path + ": " + in->damage() + "; the rows before it are kept");
     keep_tracks_with_fixes(out, path);
     drop_impossible_dims(out, path);
     return out;
@@ -277,6 +278,7 @@ PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& o
         out.format = std::move(whole.format);
         for (Track& t : whole.tracks) out.tracks.push_back(PackedTrack::pack(std::move(t)));
     }
+    if (!in->damage().empty()) out.report.messages.push_back(path + ": " + in->damage() + "; the rows before it are kept");
     keep_tracks_with_fixes(out, path);
     drop_impossible_dims(out, path);
     return out;

@@ -189,8 +189,20 @@ std::size_t InputFile::read_raw(char* data, std::size_t n) {
         total += got;
         if (got == 0) break;
     }
-    if (total < n && CPLGetLastErrorType() >= CE_Failure)
-        throw InputError(m_path + ": cannot read (" + QuietErrors::last("read error") + ")");
+    if (total < n && CPLGetLastErrorType() >= CE_Failure) {
+        const std::string why = QuietErrors::last("read error");
+        // A compressed stream cut short or damaged part way: keep what came before it (a bad
+        // row costs that row, not the file), and say so.
+        if (m_gdal_path.rfind("/vsigzip/", 0) == 0 || m_gdal_path.rfind("/vsizip/", 0) == 0) {
+            std::string said = why;  // GDAL prefixes its source location: "In file X, at line N, ..."
+            if (said.rfind("In file ", 0) == 0)
+                if (const std::size_t at = said.find(", at line "); at != std::string::npos)
+                    if (const std::size_t comma = said.find(", ", at + 10); comma != std::string::npos) said = said.substr(comma + 2);
+            if (m_damage.empty()) m_damage = "the compressed data break off or are damaged (" + said + ")";
+            return total;
+        }
+        throw InputError(m_path + ": cannot read (" + why + ")");
+    }
     return total;
 }
 

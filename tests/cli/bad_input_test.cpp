@@ -1044,3 +1044,30 @@ TEST_F(BadInput, AnOverLongLineIsOneBadRowAndTheRestIsRead) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(BadInput, AGzipCutShortKeepsTheRowsBeforeTheBreak) {
+    // Vessel A's grounding comes first; then enough rows of vessel C that the cut falls in them.
+    std::string text = header;
+    for (int i = 0; i <= 20; ++i) text += row("111111111", i, 50.78 - 0.01 * i, -1.30);
+    for (int k = 0; k < 3000; ++k) {
+        char buf[120];
+        std::snprintf(buf, sizeof buf, "333333333,2024-05-01T11:%02d:%02d.%03dZ,50.7400,-1.0000,0,0,511\n", k / 600, (k / 10) % 60, (k % 10) * 100);
+        text += buf;
+    }
+    const std::string csv = file("whole.csv", text), gz = m_dir.file("whole.csv.gz"), cut = m_dir.file("cut.csv.gz");
+    ASSERT_EQ(std::system(("gzip -c '" + csv + "' > '" + gz + "'").c_str()), 0);
+    const std::vector<char> bytes = shoal::test::read_bytes(gz);
+    shoal::test::write_bytes(cut, std::vector<char>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(bytes.size() * 2 / 3)));
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({cut}, r);
+    EXPECT_EQ(o.status, 1) << "vessel A's grounding is before the break\n" << o.err;
+    EXPECT_NE(o.err.find("cut.csv.gz: the compressed data break off or are damaged"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("the rows before it are kept"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_GT(doc["shoal"]["summary"]["fixes"].get<int>(), 21);
+}
+
+}  // namespace
