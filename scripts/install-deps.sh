@@ -12,6 +12,8 @@ PACKAGES=(
   python3 python3-jsonschema python3-gdal   # report schema validation in tests (/usr/bin/python3)
   gpsd-clients python3-ais    # independent AIS decoders for tests/track/ais_test.cpp (gpsdecode, libais)
   clang libclang-rt-14-dev    # libFuzzer + sanitizers for scripts/fuzz.sh
+  pybind11-dev python3-dev    # the Python module shoal (python/), built whenever both are found
+  python3-numpy python3-pandas python3-geopandas   # its arrays and DataFrames, and its tests (/usr/bin/python3)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -43,4 +43,24 @@ for exe in "$work/frame_check_pc" "$work/sim/frame_check_c"; do
   cat "$work/c.err"
 done
 "$work/sim/frame_check_cpp" "$work/helsinki.shoalgrid" 3000
+# The Python module, when this build has it: importable by Debian's python3 from the prefix, and
+# its Detector gives shoal probe's answers on the same poses.
+if [ -e "$build/python/shoal/__init__.py" ]; then
+  pydir="$prefix/lib/python3/dist-packages"
+  [ -e "$pydir/shoal/__init__.py" ] && ls "$pydir"/shoal/_shoal*.so > /dev/null || { echo "test-install: the Python module was not installed in $pydir"; exit 1; }
+  PYTHONPATH="$pydir" /usr/bin/python3 -c '
+import csv, sys, numpy as np, shoal
+assert shoal.__file__.startswith(sys.argv[1]), shoal.__file__
+grid = shoal.Grid.load(sys.argv[2])
+rows = list(csv.DictReader(open(sys.argv[4])))
+p = np.loadtxt(sys.argv[3], delimiter=",", ndmin=2, skiprows=1)
+r = shoal.Detector(grid, dims=(150, 35, 14, 15)).check(p[:, 0], p[:, 1], p[:, 2])
+for k, row in enumerate(rows):
+    assert (row["covered"] == "1") == bool(r["covered"][k]), k
+    if row["collision"]:
+        assert (row["collision"] == "1") == bool(r["contact"][k]), k
+        assert abs(float(row["clearance_m"]) - r["clearance_m"][k]) <= 0.0005 or np.isinf(r["clearance_m"][k]), k
+print("test-install: shoal %s imported from %s, %d poses agree with shoal probe" % (shoal.__version__, sys.argv[1], len(rows)))
+' "$pydir" "$work/helsinki.shoalgrid" "$work/poses.csv" "$work/probe.csv"
+fi
 echo "test-install: installed package OK ($(wc -l < "$work/probe.csv") poses agree with shoal probe)"

@@ -1,0 +1,244 @@
+"""shoal: ship tracks audited against chart coastlines, from Python.
+
+    import shoal
+    grid = shoal.Grid.build(["coast.geojson"])            # or shoal.Grid.load("coast.shoalgrid")
+    det = shoal.Detector(grid, dims=(100, 20, 8, 8))       # or ship="ship.json"
+    r = det.check(lat, lon, heading)                        # numpy arrays in, arrays out (GIL released)
+    result = shoal.audit(df, grid, dims=(100, 20, 8, 8))    # a pandas DataFrame of fixes
+    result.events, result.tracks, result.problems           # the report's layers as (Geo)DataFrames
+
+The C++ library does the work (the extension shoal._shoal); this file turns DataFrames into its
+columns and its layers back into DataFrames. `shoal.dask` drives the `shoal` executable and
+imports without the extension.
+"""
+
+try:
+    from ._shoal import Detector, Grid, InputError, UsageError, __version__, _audit
+except ImportError as _error:  # the extension is not built here (a sanitizer build) or not found
+    _import_error = _error
+
+    def __getattr__(name):
+        raise ImportError(
+            "shoal.%s needs the extension shoal._shoal, which did not import (%s); build shoal with pybind11-dev "
+            "and python3-dev installed and put the build's python folder (or <prefix>/lib/python3/dist-packages) "
+            "on PYTHONPATH" % (name, _import_error))
+
+__all__ = ["Grid", "Detector", "InputError", "UsageError", "audit", "AuditResult", "DEFAULT_COLUMNS"]
+
+# The column names shoal.audit looks for when `columns` does not say (case-insensitive, a leading
+# "#" and blanks ignored; the first present wins): the names the CSV reader knows.
+DEFAULT_COLUMNS = {
+    "id": ["track_id", "mmsi", "id", "vessel", "vessel_id"],
+    "time": ["time", "timestamp", "basedatetime", "time_utc", "datetime", "date_time", "utc"],
+    "lat": ["lat", "latitude"],
+    "lon": ["lon", "lng", "long", "longitude"],
+    "heading": ["heading", "hdg", "heading_deg", "true_heading", "trueheading"],
+    "cog": ["cog", "course", "cog_deg"],
+    "sog": ["sog", "speed", "sog_kn", "sog_knots"],
+    "a": ["a", "to_bow_m", "to_bow"],
+    "b": ["b", "to_stern_m", "to_stern"],
+    "c": ["c", "to_port_m", "to_port"],
+    "d": ["d", "to_stbd_m", "to_stbd", "to_starboard_m"],
+    "draught": ["draught", "draught_m", "draft", "draft_m"],
+    "name": ["vesselname", "vessel_name", "name", "shipname", "ship_name"],
+    "nav_status": ["navigational status", "navigational_status", "nav_status", "navstatus", "status"],
+    "line": [],
+}
+
+
+class AuditResult:
+    """What shoal.audit found: the report's layers.
+
+    events, tracks (GeoDataFrames in EPSG:4326 when geopandas imports, else DataFrames with
+    lon/lat columns), problems (DataFrame), run and summary (dicts); in exercise mode
+    (encounters=True) also encounters and closest_approaches. Field names, types, units and
+    rounding are the report's (docs/user-guide.md, "Report").
+    """
+
+    def __init__(self, layers):
+        self.__dict__.update(layers)
+
+    def __repr__(self):
+        s = self.summary
+        return "<shoal.AuditResult: %d tracks, %d fixes, %d events (%d groundings), %d problems>" % (
+            s["tracks"], s["fixes"], s["events"], s["groundings"], len(self.problems))
+
+
+def _normalise_name(name):
+    return str(name).strip().lstrip("#").strip().lower()
+
+
+def _find_columns(df, columns):
+    by_name = {}
+    for c in df.columns:
+        by_name.setdefault(_normalise_name(c), c)
+    found = {}
+    given = dict(columns or {})
+    unknown = set(given) - set(DEFAULT_COLUMNS)
+    if unknown:
+        raise ValueError("columns: unknown role(s) %s; roles are %s" % (sorted(unknown), ", ".join(DEFAULT_COLUMNS)))
+    for role, names in DEFAULT_COLUMNS.items():
+        if role in given:
+            if given[role] is None:
+                continue
+            if given[role] not in df.columns:
+                raise ValueError("columns: %s column %r is not in the DataFrame (its columns: %s)"
+                                 % (role, given[role], ", ".join(map(str, df.columns))))
+            found[role] = given[role]
+            continue
+        for n in names:
+            if n in by_name:
+                found[role] = by_name[n]
+                break
+    if "id" not in found and "name" in found:  # as the CSV reader: the vessel's name identifies it
+        found["id"] = found["name"]
+    for role in ("time", "lat", "lon"):
+        if role not in found:
+            raise ValueError("the fixes have no %s column (looked for %s; name it with columns={%r: ...})"
+                             % (role, ", ".join(DEFAULT_COLUMNS[role]), role))
+    if any(r in found for r in "abcd") and not all(r in found for r in "abcd"):
+        for r in "abcd":
+            found.pop(r, None)
+    return found
+
+
+def _texts(series):
+    """A column as strings: integral floats without ".0" (an MMSI read with NaN in it), missing as ""."""
+    import numpy as np
+    import pandas as pd
+    s = series
+    if pd.api.types.is_float_dtype(s):
+        v = s.to_numpy(dtype=float)
+        ok = np.isfinite(v)
+        if np.all(v[ok] == np.round(v[ok])):
+            s = s.astype("Int64")
+    out = s.astype("string").fillna("")
+    return out.tolist()
+
+
+def _numbers(series):
+    import pandas as pd
+    if pd.api.types.is_bool_dtype(series):
+        series = series.astype(float)
+    return pd.to_numeric(series, errors="coerce").to_numpy(dtype=float, na_value=float("nan"))
+
+
+def _times(series):
+    """("time", epoch seconds) for datetimes and numbers, ("time_text", strings) for text (read as the CSV reader reads it)."""
+    import numpy as np
+    import pandas as pd
+    if pd.api.types.is_datetime64_any_dtype(series):
+        s = series
+        if getattr(s.dt, "tz", None) is not None:
+            s = s.dt.tz_convert("UTC").dt.tz_localize(None)
+        ns = s.to_numpy(dtype="datetime64[ns]")
+        out = ns.astype("int64").astype(float) / 1e9
+        out[np.isnat(ns)] = np.nan
+        return "time", out
+    if pd.api.types.is_numeric_dtype(series):
+        return "time", _numbers(series)
+    return "time_text", _texts(series)
+
+
+def _columns_of(df, found):
+    cols = {}
+    for role, name in found.items():
+        s = df[name]
+        if role in ("id", "name", "nav_status"):
+            cols[role] = _texts(s)
+        elif role == "time":
+            key, values = _times(s)
+            cols[key] = values
+        else:
+            cols[role] = _numbers(s)
+    return cols
+
+
+def _frame(layer):
+    import pandas as pd
+    dtypes = {"integer": "Int64", "real": "float64", "boolean": "boolean", "text": "object"}
+    data = {}
+    for name, kind in zip(layer["names"], layer["types"]):
+        data[name] = pd.Series(layer["columns"][name], dtype=dtypes[kind])
+    df = pd.DataFrame(data, columns=layer["names"])
+    df.attrs["units"] = dict(zip(layer["names"], layer["units"]))
+    return df
+
+
+def _one_row(layer):
+    return {name: layer["columns"][name][0] for name in layer["names"]}
+
+
+def _with_points(df, points, use_geopandas):
+    if use_geopandas:
+        import geopandas as gpd
+        xs = [p[0] for p in points]
+        ys = [p[1] for p in points]
+        out = gpd.GeoDataFrame(df, geometry=gpd.points_from_xy(xs, ys, crs="EPSG:4326"), crs="EPSG:4326")
+        out.attrs.update(df.attrs)
+        return out
+    df = df.copy()
+    df["lon"] = [p[0] for p in points]
+    df["lat"] = [p[1] for p in points]
+    return df
+
+
+def _with_lines(df, lines, use_geopandas):
+    if not use_geopandas:
+        return df
+    import geopandas as gpd
+    from shapely.geometry import MultiLineString
+    geoms = [MultiLineString([[tuple(p) for p in piece] for piece in pieces if len(piece) >= 2]) for pieces in lines]
+    out = gpd.GeoDataFrame(df, geometry=gpd.GeoSeries(geoms, crs="EPSG:4326"), crs="EPSG:4326")
+    out.attrs.update(df.attrs)
+    return out
+
+
+def _geopandas_available():
+    try:
+        import geopandas  # noqa: F401
+        return True
+    except ImportError:
+        return False
+
+
+def audit(fixes, grid, *, ship=None, dims=None, columns=None, file="DataFrame", geo=None, **options):
+    """Audits the tracks in a DataFrame of fixes as `shoal check` audits a track file.
+
+    fixes: a pandas DataFrame, one fix per row: id (MMSI or track name; without one, the rows are
+    one track named after `file`), time (datetime64, epoch seconds, or text read as the CSV reader
+    reads it), lat, lon (WGS84 degrees), optionally heading, cog, sog (knots), a, b, c, d (AIS
+    dimensions, metres), draught (metres), name, nav_status (AIS number or text), line (the row's
+    line in its file; default the row number, 1-based). Columns are found by the CSV reader's
+    names (DEFAULT_COLUMNS) unless `columns` maps a role to a column ({"id": "MMSI", ...}; None: not
+    used). grid: a shoal.Grid. ship (a ship file) or dims (a, b, c, d): the hull of tracks without
+    their own dimensions. file: the name events and problems give for the rows' source.
+
+    options, as shoal check's: margin_m (50), step_m (5), max_gap_s (600), max_speed_kn (60),
+    berthing_speed_kn (1), stop_diameter_m (50), stop_time_s (120), jobs (0: all cores),
+    encounters (False), ship_margin_m (20), berths (paths), berth_tolerance_m (10), vessels
+    (vessels CSV paths), ukc, hazard_depth_m (the limiting depth wanted; a grid built for another
+    is warned about), progress (a callable(done, total) called about ten times a second).
+    geo: GeoDataFrames (True), DataFrames (False), or GeoDataFrames when geopandas imports (None).
+
+    A bad row (no position, an impossible time, ...) costs that row: it is listed in `problems`
+    and counted in the tracks' skipped_rows, and a warning says how many. Returns an AuditResult.
+    """
+    import pandas as pd
+    if not isinstance(fixes, pd.DataFrame):
+        raise TypeError("fixes must be a pandas DataFrame (got %s)" % type(fixes).__name__)
+    found = _find_columns(fixes, columns)
+    cols = _columns_of(fixes, found)
+    raw = _audit(grid, cols, str(file), ship=ship, dims=dims, **options)
+    use_geopandas = _geopandas_available() if geo is None else bool(geo)
+    layers = {
+        "events": _with_points(_frame(raw["events"]), raw["event_points"], use_geopandas),
+        "tracks": _with_lines(_frame(raw["tracks"]), raw["track_lines"], use_geopandas),
+        "problems": _frame(raw["problems"]),
+        "run": _one_row(raw["run"]),
+        "summary": _one_row(raw["summary"]),
+    }
+    if "encounters" in raw:
+        layers["encounters"] = _with_points(_frame(raw["encounters"]), raw["encounter_points"], use_geopandas)
+        layers["closest_approaches"] = _frame(raw["closest_approaches"])
+    return AuditResult(layers)

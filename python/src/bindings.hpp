@@ -1,0 +1,48 @@
+#pragma once
+// What the binding's files share: the grid as Python holds it, path arguments, warnings, and
+// library messages in Python terms. One file per Python concept: grid.cpp (shoal.Grid),
+// detector.cpp (shoal.Detector), audit.cpp (shoal._audit behind shoal.audit), module.cpp.
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>  // in every file of the module: the casters must agree
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <shoal/grid/coast_grid.hpp>
+#include <shoal/hull/hull.hpp>
+
+namespace shoal::python {
+
+namespace py = pybind11;
+
+/// A grid as Python holds it: shared by the detectors made from it (each keeps it alive), with
+/// the coast paths it came from (a grid file, or the sources built), as `--coast` names them.
+struct GridHandle {
+    std::shared_ptr<const grid::CoastGrid> grid;
+    std::vector<std::string> coast;
+};
+
+/// One path (str or os.PathLike) or an iterable of them, as strings.
+std::vector<std::string> paths_of(const py::handle& paths);
+
+/// A library message in Python terms: the option fields it names (`SweepOptions::step_m`,
+/// `BuildRequest::crs`, ...) become the keyword arguments that set them (`step_m`, `crs`).
+std::string in_python_terms(std::string message);
+
+/// Each message as a Python `UserWarning` (call with the GIL held).
+void warn_all(const std::vector<std::string>& messages);
+
+/// The hull of `ship` (a ship file path) or `dims` (a, b, c, d in metres), exactly one of them;
+/// `label` gets the report's name for its origin ("ship file", "--dims a,b,c,d", as the CLI).
+hull::Hull hull_of(const py::object& ship, const py::object& dims, std::string* label);
+
+/// Warns when the grid does not serve the ship's limiting depth (as `shoal check` does).
+void warn_depth_fit(const GridHandle& g, const hull::Hull& hull, const py::object& hazard_depth_m, const py::object& ukc);
+
+void bind_grid(py::module_& m);
+void bind_detector(py::module_& m);
+void bind_audit(py::module_& m);
+
+}  // namespace shoal::python

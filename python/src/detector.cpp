@@ -1,0 +1,121 @@
+// shoal.Detector: poses (numpy arrays of lat, lon, heading) against a grid, as `shoal probe`.
+#include "bindings.hpp"
+
+#include <pybind11/numpy.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include <shoal/check/detector.hpp>
+#include <shoal/util/error.hpp>
+
+#include "detail/parse_util.hpp"
+
+namespace shoal::python {
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+class PyDetector {
+public:
+    PyDetector(GridHandle grid, const py::object& ship, const py::object& dims, const py::object& ukc, const py::object& hazard_depth_m)
+        : m_grid(std::move(grid)), m_hull(hull_of(ship, dims, &m_label)), m_detector(*m_grid.grid, m_hull) {
+        warn_depth_fit(m_grid, m_hull, hazard_depth_m, ukc);
+    }
+
+    py::dict check(const Array& lat, const Array& lon, const Array& heading, double max_clearance_m) const {
+        if (!(max_clearance_m > 0)) throw py::value_error("max_clearance_m must be > 0 (metres; inf: no limit)");
+        // The inputs broadcast as numpy does (scalars, rows against columns, ...).
+        const py::module_ np = py::module_::import("numpy");
+        const py::tuple b = np.attr("broadcast_arrays")(lat, lon, heading);
+        const Array la = Array::ensure(b[0]), lo = Array::ensure(b[1]), he = Array::ensure(b[2]);
+        const std::vector<py::ssize_t> shape(la.shape(), la.shape() + la.ndim());
+        py::array_t<bool> contact(shape), covered(shape);
+        Array clearance(shape), penetration(shape);
+        const auto n = static_cast<std::size_t>(la.size());
+        const double *plat = la.data(), *plon = lo.data(), *phead = he.data();
+        bool* pc = contact.mutable_data();
+        bool* pv = covered.mutable_data();
+        double* pcl = clearance.mutable_data();
+        double* ppe = penetration.mutable_data();
+        std::size_t bad = 0;
+        std::string first_bad;
+        {
+            py::gil_scoped_release nogil;
+            // A frame of this call's own: PROJ transformations are not shared between threads.
+            const geo::LocalFrame frame(m_grid.grid->frame());
+            const check::CheckOptions options{max_clearance_m, true};
+            for (std::size_t k = 0; k < n; ++k) {
+                std::string what;
+                if (track::detail::position_problem(plat[k], plon[k], what) || !std::isfinite(phead[k])) {
+                    if (what.empty()) what = "heading " + track::detail::fmt(phead[k]) + " is not a number";
+                } else {
+                    try {
+                        const check::Contact c = m_detector.check(check::place(frame, check::Pose{{plon[k], plat[k]}, phead[k]}), options);
+                        // As `shoal probe`: a contact found is real, chart or not; outside the chart
+                        // no clearance is claimed.
+                        pc[k] = c.collision;
+                        pv[k] = c.covered;
+                        pcl[k] = c.collision ? 0.0 : c.covered ? c.clearance_m : NAN;
+                        ppe[k] = c.collision ? c.penetration_m : NAN;
+                        continue;
+                    } catch (const InputError& e) {
+                        what = e.what();
+                    }
+                }
+                pc[k] = false, pv[k] = false, pcl[k] = NAN, ppe[k] = NAN;
+                if (bad++ == 0) first_bad = "pose " + std::to_string(k) + ": " + what;
+            }
+        }
+        if (bad)
+            warn_all({std::to_string(bad) + " of " + std::to_string(n) + " poses are not valid (first: " + first_bad +
+                      "): covered False, clearance NaN"});
+        py::dict out;
+        out["contact"] = contact;
+        out["clearance_m"] = clearance;
+        out["covered"] = covered;
+        out["penetration_m"] = penetration;
+        return out;
+    }
+
+    const GridHandle& grid() const noexcept { return m_grid; }
+    const hull::Hull& hull() const noexcept { return m_hull; }
+    const std::string& label() const noexcept { return m_label; }
+
+private:
+    GridHandle m_grid;  // keeps the grid alive
+    std::string m_label;
+    hull::Hull m_hull;
+    check::Detector m_detector;
+};
+
+}  // namespace
+
+void bind_detector(py::module_& m) {
+    py::class_<PyDetector>(m, "Detector", "A ship's hull against a grid: Detector(grid, ship=PATH | dims=(a, b, c, d), ukc=None)")
+        .def(py::init<GridHandle, py::object, py::object, py::object, py::object>(), py::arg("grid"), py::kw_only(),
+             py::arg("ship") = py::none(), py::arg("dims") = py::none(), py::arg("ukc") = py::none(), py::arg("hazard_depth_m") = py::none(),
+             "ship: a ship file (schemas/ship.schema.json); dims: AIS a, b, c, d (metres from the position reference point to "
+             "bow, stern, port, starboard). ukc / hazard_depth_m: the limiting depth the run needs (the ship's draught + ukc, "
+             "or hazard_depth_m); a grid built for another depth is warned about.")
+        .def("check", &PyDetector::check, py::arg("lat"), py::arg("lon"), py::arg("heading"), py::kw_only(),
+             py::arg("max_clearance_m") = INFINITY,
+             "Checks poses (WGS84 degrees, true heading in degrees; arrays broadcast together) without the GIL. Returns a dict of "
+             "arrays: contact (bool: the hull touches or overlaps land or a hazard), clearance_m (0 on contact, NaN outside the "
+             "chart, inf beyond max_clearance_m), covered (bool: the hull's box lies inside the grid), penetration_m (on contact). "
+             "The same answers as `shoal probe` on the same poses. An invalid pose (NaN, |lat| > 90, ...) gets covered False, "
+             "clearance NaN, and one warning says how many there were.")
+        .def_property_readonly("grid", [](const PyDetector& d) { return d.grid(); })
+        .def_property_readonly("hull_label", &PyDetector::label, "where the hull came from, as the report's hull field says it")
+        .def_property_readonly("dims", [](const PyDetector& d) {
+            const auto x = d.hull().dimensions();
+            return py::make_tuple(x.a, x.b, x.c, x.d);
+        })
+        .def_property_readonly("draught_m", [](const PyDetector& d) -> py::object {
+            return d.hull().draught() > 0 ? py::cast(d.hull().draught()) : py::none();
+        });
+}
+
+}  // namespace shoal::python

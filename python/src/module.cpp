@@ -1,0 +1,143 @@
+// The extension module shoal._shoal: exceptions, and what the concept files share.
+#include "bindings.hpp"
+
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include <shoal/grid/limiting_depth.hpp>
+#include <shoal/util/error.hpp>
+#include <shoal/version.hpp>
+
+namespace shoal::python {
+
+std::vector<std::string> paths_of(const py::handle& paths) {
+    const py::module_ os = py::module_::import("os");
+    std::vector<std::string> out;
+    if (py::isinstance<py::str>(paths) || py::hasattr(paths, "__fspath__")) {
+        out.push_back(py::str(os.attr("fspath")(paths)));
+        return out;
+    }
+    if (py::isinstance<py::bytes>(paths)) throw py::type_error("paths must be str or os.PathLike (or a list of them), not bytes");
+    for (const py::handle p : paths) out.push_back(py::str(os.attr("fspath")(p)));
+    return out;
+}
+
+std::string in_python_terms(std::string message) {
+    static const std::pair<const char*, const char*> fields[] = {
+        {"SweepOptions::step_m", "step_m"},
+        {"EncounterOptions::step_m", "step_m"},
+        {"EncounterOptions::ship_margin_m", "ship_margin_m"},
+        {"EncounterOptions::max_gap_s", "max_gap_s"},
+        {"WildFixOptions::max_speed_kn", "max_speed_kn"},
+        {"ImportOptions::limiting_depth_m", "hazard_depth_m"},
+        {"ImportOptions::source_crs", "source_crs"},
+        {"ImportOptions::danger_radius_m", "danger_radius_m"},
+        {"ImportOptions::depth_field", "depth_field"},
+        {"ImportOptions::layers", "layers"},
+        {"BuildRequest::crs", "crs"},
+        {"BuildRequest::cell_m", "cell_m"},
+        {"BuildRequest::ship_length_m", "ship_length_m"},
+        {"BuildRequest::cache_dir", "cache_dir"},
+    };
+    for (const auto& [field, name] : fields)
+        for (std::size_t at; (at = message.find(field)) != std::string::npos;) message.replace(at, std::strlen(field), name);
+    return message;
+}
+
+void warn_all(const std::vector<std::string>& messages) {
+    for (const auto& w : messages)
+        if (PyErr_WarnEx(PyExc_UserWarning, in_python_terms(w).c_str(), 1) != 0) throw py::error_already_set();
+}
+
+namespace {
+
+std::string shortest(double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return {buf, r.ptr};
+}
+
+}  // namespace
+
+hull::Hull hull_of(const py::object& ship, const py::object& dims, std::string* label) {
+    if (!ship.is_none() && !dims.is_none()) throw py::value_error("give the ship as ship=PATH or dims=(a, b, c, d), not both");
+    if (!ship.is_none()) {
+        const std::vector<std::string> p = paths_of(ship);
+        if (p.size() != 1) throw py::value_error("ship: one ship file (schemas/ship.schema.json)");
+        hull::Hull h = hull::Hull::load(p[0]);
+        if (label) *label = "ship file";
+        return h;
+    }
+    if (dims.is_none()) throw py::value_error("give the ship as ship=PATH (a ship file) or dims=(a, b, c, d) (AIS dimensions, metres)");
+    const auto values = dims.cast<std::vector<double>>();
+    if (values.size() != 4)
+        throw py::value_error("dims: four numbers a, b, c, d (metres from the position reference point to bow, stern, port, starboard); got " +
+                              std::to_string(values.size()));
+    static const char* letters[] = {"a", "b", "c", "d"};
+    std::string text;
+    for (std::size_t i = 0; i < 4; ++i) {
+        if (!std::isfinite(values[i]) || values[i] <= 0)
+            throw InputError("dims: " + std::string(letters[i]) + " must be a finite number > 0 (got " + shortest(values[i]) + ")");
+        text += (i ? "," : "") + shortest(values[i]);
+    }
+    hull::Hull h = hull::Hull::from_dims_string(text);
+    // The report's name for the hull's origin, as the CLI writes it: DataFrames and reports compare.
+    if (label) *label = "--dims " + text;
+    return h;
+}
+
+void warn_depth_fit(const GridHandle& g, const hull::Hull& hull, const py::object& hazard_depth_m, const py::object& ukc) {
+    const std::optional<double> hazard = hazard_depth_m.is_none() ? std::nullopt : std::optional<double>(hazard_depth_m.cast<double>());
+    const std::optional<double> u = ukc.is_none() ? std::nullopt : std::optional<double>(ukc.cast<double>());
+    if (u && !(std::isfinite(*u) && *u >= 0)) throw py::value_error("ukc must be a finite number >= 0 (metres)");
+    if (hazard && !std::isfinite(*hazard)) throw py::value_error("hazard_depth_m must be a finite number (metres)");
+    const grid::DepthPlan plan = grid::plan_limiting_depth(hazard, hull.draught(), u);
+    std::vector<std::string> w;
+    if (plan.ukc_unused) w.push_back("ukc needs a ship with a draught (or give hazard_depth_m): checking against land only");
+    const double built = g.grid->source().limiting_depth_m, want = plan.depth_m.value_or(NAN);
+    char buf[400] = "";
+    switch (grid::depth_fit(*g.grid, plan)) {
+    case grid::DepthFit::fits: break;
+    case grid::DepthFit::land_only:
+        std::snprintf(buf, sizeof buf, "the grid holds land only (built without a limiting depth): shallow water and dangers are not "
+                      "checked for the limiting depth %.2f m; build it with Grid.build(..., hazard_depth_m=%.2f)", want, want);
+        break;
+    case grid::DepthFit::shallower:
+    case grid::DepthFit::deeper:
+        std::snprintf(buf, sizeof buf, "the grid was built for the limiting depth %.2f m, not %.2f m: %s; build it with "
+                      "Grid.build(..., hazard_depth_m=%.2f)", built, want,
+                      built < want ? "water between those depths is not seen as a hazard" : "more water counts as a hazard than needed", want);
+        break;
+    }
+    if (buf[0]) w.push_back(buf);
+    warn_all(w);
+}
+
+}  // namespace shoal::python
+
+PYBIND11_MODULE(_shoal, m) {
+    namespace sp = shoal::python;
+    namespace py = pybind11;
+    m.doc() = "shoal: ship tracks audited against chart coastlines (the C++ library, bound with pybind11)";
+    m.attr("__version__") = SHOAL_VERSION_STRING;
+    // Bad input is a ValueError (a file, row or value that cannot be used); so are contradictory options.
+    static py::exception<shoal::InputError> input_error(m, "InputError", PyExc_ValueError);
+    static py::exception<shoal::UsageError> usage_error(m, "UsageError", PyExc_ValueError);
+    input_error.attr("__module__") = "shoal";
+    usage_error.attr("__module__") = "shoal";
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const shoal::InputError& e) {
+            PyErr_SetString(input_error.ptr(), sp::in_python_terms(e.what()).c_str());
+        } catch (const shoal::UsageError& e) {
+            PyErr_SetString(usage_error.ptr(), sp::in_python_terms(e.what()).c_str());
+        }
+    });
+    sp::bind_grid(m);
+    sp::bind_detector(m);
+    sp::bind_audit(m);
+}

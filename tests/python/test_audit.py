@@ -1,0 +1,191 @@
+"""shoal.audit on DataFrames against `shoal check` on the same CSV files: every field of the
+report's events, tracks, problems and summary; bad rows; GeoDataFrames; errors."""
+import glob
+import math
+import os
+import unittest
+import warnings
+
+import numpy as np
+import pandas as pd
+
+import shoal
+import support
+
+DIMS = (100, 20, 8, 8)
+COLUMNS = {"id": "MMSI", "time": "BaseDateTime", "lat": "LAT", "lon": "LON", "sog": "SOG", "cog": "COG", "heading": "Heading",
+           "name": "VesselName", "draught": "Draft", "nav_status": "Status", "line": "line"}
+
+
+def plain(v):
+    """A DataFrame cell as the report's JSON has it: null for missing, Python numbers."""
+    if v is None or v is pd.NA or (isinstance(v, float) and math.isnan(v)):
+        return None
+    if isinstance(v, (np.bool_, bool)):
+        return bool(v)
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.floating):
+        return float(v)
+    return v
+
+
+def rows(df, names):
+    return [{n: plain(df[n].iloc[k]) for n in names} for k in range(len(df))]
+
+
+def read_fixes(path):
+    # round_trip: numbers parsed as the CLI parses them (correctly rounded), to the last bit.
+    df = pd.read_csv(path, float_precision="round_trip")
+    df["line"] = df.index + 2  # the header is line 1
+    return df
+
+
+class AuditAgainstCheck(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.grid_path = support.grid_file(support.HELSINKI, "helsinki.shoalgrid")
+        cls.grid = shoal.Grid.load(cls.grid_path)
+
+    def check_cli(self, track, *options):
+        out = support.tmp("report.geojson")
+        support.shoal("check", "--coast", self.grid_path, "--dims", ",".join(map(str, DIMS)), track, "-o", out, "--no-progress",
+                      *options, ok=(0, 1))
+        return support.read_json(out)
+
+    def assert_same(self, report, result, track):
+        names = list(result.events.columns.drop("geometry"))
+        features = report["features"]
+        self.assertEqual([list(f["properties"]) for f in features], [names] * len(features))
+        self.assertEqual([f["properties"] for f in features], rows(result.events, names), track)
+        self.assertEqual([f["geometry"]["coordinates"] for f in features],
+                         [[p.x, p.y] for p in result.events.geometry], track)
+        tnames = list(result.tracks.columns.drop("geometry"))
+        self.assertEqual(report["shoal"]["tracks"], rows(result.tracks, tnames), track)
+        problems = [{k: v for k, v in p.items() if v is not None} for p in rows(result.problems, list(result.problems.columns))]
+        self.assertEqual(report["shoal"]["problems"], problems, track)
+        self.assertEqual(report["shoal"]["summary"], {k: plain(v) for k, v in result.summary.items()}, track)
+        run = {k: v for k, v in report["shoal"].items() if k not in ("summary", "tracks", "problems", "closest_approaches")}
+        self.assertEqual(run, {k: plain(v) for k, v in result.run.items()}, track)
+
+    def test_every_ais_case_equals_the_cli(self):
+        files = sorted(glob.glob(os.path.join(support.AIS_CASES, "*.csv")))
+        self.assertEqual(len(files), 7)
+        kinds = set()
+        for track in files:
+            report = self.check_cli(track)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # wild fixes, as the CLI's stderr says them
+                result = shoal.audit(read_fixes(track), self.grid, dims=DIMS, columns=COLUMNS, file=track)
+            self.assert_same(report, result, track)
+            kinds.update(result.events["kind"])
+        # The cases hold groundings and other contacts: the comparison covers them.
+        self.assertIn("grounding", kinds)
+        self.assertGreater(len(kinds), 1)
+
+    def test_datetime_and_epoch_times_and_default_names(self):
+        track = os.path.join(support.AIS_CASES, "aground_at_speed.csv")
+        report = self.check_cli(track, "--margin", "80", "--step", "2")
+        df = read_fixes(track)
+        df["BaseDateTime"] = pd.to_datetime(df["BaseDateTime"], utc=True)
+        # Default column names (the CSV reader's): only the line column is named.
+        result = shoal.audit(df, self.grid, dims=DIMS, columns={"line": "line"}, file=track, margin_m=80, step_m=2)
+        self.assert_same(report, result, track)
+        self.assertEqual(list(result.events["kind"]).count("grounding"), 1)
+        df["BaseDateTime"] = df["BaseDateTime"].astype("int64") / 1e9
+        epoch = shoal.audit(df, self.grid, dims=DIMS, columns={"line": "line"}, file=track, margin_m=80, step_m=2)
+        self.assert_same(report, epoch, track)
+
+    def test_options_reach_the_audit(self):
+        track = os.path.join(support.AIS_CASES, "berthing_sideways.csv")
+        report = self.check_cli(track, "--berthing-speed", "0.1", "--stop-time", "60", "--stop-diameter", "30",
+                                "--max-gap", "300", "--max-speed", "40", "--jobs", "1")
+        result = shoal.audit(read_fixes(track), self.grid, dims=DIMS, columns=COLUMNS, file=track, berthing_speed_kn=0.1,
+                             stop_time_s=60, stop_diameter_m=30, max_gap_s=300, max_speed_kn=40, jobs=1)
+        self.assert_same(report, result, track)
+
+    def test_bad_rows_cost_the_row(self):
+        track = support.data("tracks/bad_coordinates.csv")
+        report = self.check_cli(track)
+        df = read_fixes(track)
+        with self.assertWarnsRegex(UserWarning, "8 bad rows skipped"):
+            result = shoal.audit(df, self.grid, dims=DIMS, columns={"line": "line"}, file=track)
+        self.assertEqual(result.summary["skipped_rows"], report["shoal"]["summary"]["skipped_rows"])
+        self.assertEqual(result.summary["fixes"], report["shoal"]["summary"]["fixes"])
+        self.assertEqual(result.tracks["skipped_rows"].tolist(), [t["skipped_rows"] for t in report["shoal"]["tracks"]])
+        lines = lambda ms: [int(m.split(" line ")[1].split(":")[0]) for m in ms]
+        cli = [p["message"] for p in report["shoal"]["problems"]]
+        self.assertEqual(lines(result.problems["message"]), lines(cli))
+        # Where the DataFrame holds what the file held, the message is the CLI's word for word.
+        for m in ("line 3: latitude nan is not a number; row skipped", "line 5: latitude 91 (AIS: not available); row skipped",
+                  "line 8: longitude -180.2 is outside [-180, 180]; row skipped"):
+            self.assertIn(track + " " + m, list(result.problems["message"]))
+            self.assertIn(track + " " + m, cli)
+
+    def test_bad_values_in_a_dataframe(self):
+        t0 = pd.Timestamp("2024-05-01T10:00:00Z")
+        df = pd.DataFrame({
+            "mmsi": [230990001, 230990001, None, 230990001, 230990001, 230990001],
+            "time": [t0, t0 + pd.Timedelta(seconds=10), t0 + pd.Timedelta(seconds=20), pd.NaT, pd.Timestamp("1970-01-02T00:00:00Z"),
+                     t0 + pd.Timedelta(seconds=30)],
+            "lat": [60.158306, np.nan, 60.16, 60.16, 60.16, 60.1590],
+            "lon": [25.327977, 25.33, 25.33, 25.33, 25.33, 25.3279],
+        })
+        with self.assertWarnsRegex(UserWarning, "DataFrame: 4 bad rows skipped"):
+            result = shoal.audit(df, self.grid, dims=DIMS)
+        self.assertEqual(result.summary["fixes"], 2)
+        self.assertEqual(result.tracks["track"].tolist(), ["230990001"])  # an MMSI with NaN beside it, not "230990001.0"
+        self.assertEqual(list(result.problems["message"]), [
+            "DataFrame line 2: latitude nan is not a number; row skipped",
+            "DataFrame line 3: no vessel id; row skipped",
+            "DataFrame line 4: no time; row skipped",
+            "DataFrame line 5: time 86400 (seconds since 1970) is outside the years 1980-2099 (a wrong unit, or a corrupt field?); row skipped",
+        ])
+
+    def test_geodataframes(self):
+        import geopandas as gpd
+        track = os.path.join(support.AIS_CASES, "aground_at_speed.csv")
+        result = shoal.audit(read_fixes(track), self.grid, dims=DIMS, columns=COLUMNS, file=track)
+        self.assertIsInstance(result.events, gpd.GeoDataFrame)
+        self.assertEqual(result.events.crs.to_epsg(), 4326)
+        self.assertEqual(set(result.events.geom_type), {"Point"})
+        self.assertIsInstance(result.tracks, gpd.GeoDataFrame)
+        self.assertEqual(set(result.tracks.geom_type), {"MultiLineString"})
+        self.assertGreater(result.tracks.geometry.iloc[0].length, 0)
+        self.assertEqual(str(result.events["nav_status"].dtype), "Int64")
+        self.assertEqual(result.events.attrs["units"]["min_clearance_m"], "m")
+        flat = shoal.audit(read_fixes(track), self.grid, dims=DIMS, columns=COLUMNS, file=track, geo=False)
+        self.assertNotIsInstance(flat.events, gpd.GeoDataFrame)
+        self.assertEqual(flat.events["lon"].tolist(), [p.x for p in result.events.geometry])
+
+    def test_errors(self):
+        df = read_fixes(os.path.join(support.AIS_CASES, "passes_clear.csv"))
+        with self.assertRaisesRegex(shoal.UsageError, "step_m 0.001 is under the smallest step"):
+            shoal.audit(df, self.grid, dims=DIMS, step_m=0.001)
+        with self.assertRaisesRegex(ValueError, "margin_m must be a finite number >= 0"):
+            shoal.audit(df, self.grid, dims=DIMS, margin_m=float("nan"))
+        with self.assertRaisesRegex(ValueError, "no lat column"):
+            shoal.audit(df.drop(columns=["LAT"]), self.grid, dims=DIMS)
+        with self.assertRaisesRegex(ValueError, "columns: id column 'mmsi_typo' is not in the DataFrame"):
+            shoal.audit(df, self.grid, dims=DIMS, columns={"id": "mmsi_typo"})
+        with self.assertRaises(TypeError):
+            shoal.audit(df, self.grid, dims=DIMS, no_such_option=1)
+        with self.assertRaisesRegex(shoal.InputError, "not_a_dataset.txt"):
+            shoal.audit(df, self.grid, dims=DIMS, berths=support.data("coast/not_a_dataset.txt"))
+
+    def test_progress_is_called(self):
+        df = read_fixes(os.path.join(support.AIS_CASES, "moored_then_leaves.csv"))
+        seen = []
+        shoal.audit(df, self.grid, dims=DIMS, progress=lambda done, total: seen.append((done, total)))
+        self.assertTrue(seen)
+        self.assertEqual(seen[-1], (len(df), len(df)))  # once at the end: every fix swept
+        self.assertTrue(all(t == len(df) and 0 <= d <= t for d, t in seen))
+
+        def fail(done, total):
+            raise KeyError("stop")
+        with self.assertRaises(KeyError):  # an error in the callback is raised once the audit is over
+            shoal.audit(df, self.grid, dims=DIMS, progress=fail)
+
+
+if __name__ == "__main__":
+    unittest.main()
