@@ -42,6 +42,7 @@ DEFAULT_COLUMNS = {
     "draught": ["draught", "draught_m", "draft", "draft_m"],
     "name": ["vesselname", "vessel_name", "name", "shipname", "ship_name"],
     "nav_status": ["navigational status", "navigational_status", "nav_status", "navstatus", "status"],
+    "mobile_type": ["type of mobile"],
     "line": [],
 }
 
@@ -144,7 +145,7 @@ def _columns_of(df, found):
     cols = {}
     for role, name in found.items():
         s = df[name]
-        if role in ("id", "name", "nav_status"):
+        if role in ("id", "name", "nav_status", "mobile_type"):
             cols[role] = _texts(s)
         elif role == "time":
             key, values = _times(s)
@@ -208,8 +209,9 @@ def audit(fixes, grid, *, ship=None, dims=None, columns=None, file="DataFrame", 
     fixes: a pandas DataFrame, one fix per row: id (MMSI or track name; without one, the rows are
     one track named after `file`), time (datetime64, epoch seconds, or text read as the CSV reader
     reads it), lat, lon (WGS84 degrees), optionally heading, cog, sog (knots), a, b, c, d (AIS
-    dimensions, metres), draught (metres), name, nav_status (AIS number or text), line (the row's
-    line in its file; default the row number, 1-based). Columns are found by the CSV reader's
+    dimensions, metres), draught (metres), name, nav_status (AIS number or text), mobile_type (DMA's
+    "Type of mobile": Base Station and AtoN rows are skipped), line (the row's line in its file;
+    default the row number, 1-based). Columns are found by the CSV reader's
     names (DEFAULT_COLUMNS) unless `columns` maps a role to a column ({"id": "MMSI", ...}; None: not
     used). grid: a shoal.Grid. ship (a ship file) or dims (a, b, c, d): the hull of tracks without
     their own dimensions. file: the name events and problems give for the rows' source.

@@ -67,6 +67,7 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
     const Numbers dims[4] = {numbers(cols, "a", n), numbers(cols, "b", n), numbers(cols, "c", n), numbers(cols, "d", n)};
     const Numbers draught = numbers(cols, "draught", n), line = numbers(cols, "line", n);
     const std::vector<std::string> ids = texts(cols, "id", n), names = texts(cols, "name", n), status = texts(cols, "nav_status", n);
+    const std::vector<std::string> mobile = texts(cols, "mobile_type", n);
     const bool has_id = !ids.empty(), has_dims = dims[0] && dims[1] && dims[2] && dims[3];
     py::gil_scoped_release nogil;
     std::vector<track::Track> tracks;
@@ -75,6 +76,10 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
         ++report.rows;
         const std::size_t row_line = line ? static_cast<std::size_t>(line.at(k)) : k + 1;
         const auto skip = [&](const std::string& what) { report.skip(file + " line " + std::to_string(row_line) + ": " + what + "; row skipped"); };
+        if (!mobile.empty() && (mobile[k] == "Base Station" || mobile[k] == "AtoN")) {  // DMA's export: not vessels
+            skip("not a vessel (Type of mobile " + track::detail::quoted(mobile[k]) + ")");
+            continue;
+        }
         if (has_id && ids[k].empty()) {
             skip("no vessel id");
             continue;

@@ -142,6 +142,28 @@ class AuditAgainstCheck(unittest.TestCase):
             "DataFrame line 5: time 86400 (seconds since 1970) is outside the years 1980-2099 (a wrong unit, or a corrupt field?); row skipped",
         ])
 
+    def test_dma_export_as_text_equals_the_cli(self):
+        # The Danish Maritime Authority's layout: "# Timestamp" day-first text, "Navigational
+        # status" as text, A,B,C,D columns, "Type of mobile"; found by the default names.
+        track = support.data("tracks/dma_export_dk_head200.csv")
+        out = support.tmp("dma.geojson")
+        support.shoal("check", "--coast", self.grid_path, "--dims", "100,20,8,8", track, "-o", out, "--no-progress")
+        report = support.read_json(out)
+        df = pd.read_csv(track, float_precision="round_trip", dtype={"# Timestamp": str})
+        df["line"] = df.index + 2
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the fixes lie outside the Helsinki grid, as the CLI warns too
+            result = shoal.audit(df, self.grid, dims=DIMS, columns={"line": "line"}, file=track)
+        self.assertEqual(len(report["shoal"]["tracks"]), len(result.tracks))
+        self.assertGreater(len(result.tracks), 10)
+        self.assert_same(report, result, track)
+        # A base station row is not a vessel, as the CLI's reader says.
+        df.loc[3, "Type of mobile"] = "Base Station"
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            fewer = shoal.audit(df, self.grid, dims=DIMS, columns={"line": "line"}, file=track)
+        self.assertEqual(list(fewer.problems["message"])[:1], [track + " line 5: not a vessel (Type of mobile 'Base Station'); row skipped"])
+
     def test_geodataframes(self):
         import geopandas as gpd
         track = os.path.join(support.AIS_CASES, "aground_at_speed.csv")

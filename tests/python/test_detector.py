@@ -130,6 +130,25 @@ class DetectorAgainstProbe(unittest.TestCase):
         self.assertEqual(result["r"]["contact"].shape, (n,))
         self.assertTrue(np.any(result["r"]["contact"]))
 
+    def test_threads_share_a_detector(self):
+        det = shoal.Detector(self.grid, dims=(150, 35, 14, 15))
+        _, lat, lon, heading = random_poses(self.grid, 3000, seed=77)
+        serial = det.check(lat, lon, heading)
+        parts = np.array_split(np.arange(len(lat)), 4)
+        out = [None] * len(parts)
+
+        def work(i):
+            idx = parts[i]
+            out[i] = det.check(lat[idx], lon[idx], heading[idx])
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(len(parts))]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        for key in ("contact", "covered", "clearance_m", "penetration_m"):
+            np.testing.assert_array_equal(np.concatenate([o[key] for o in out]), serial[key], err_msg=key)
+
     def test_bad_input_is_input_error(self):
         with self.assertRaises(shoal.InputError) as e:
             shoal.Detector(self.grid, dims=(150, 0, 14, 15))
