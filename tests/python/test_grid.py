@@ -77,5 +77,17 @@ class GridAgainstCli(unittest.TestCase):
             g.save(SOLENT)
 
 
+class WithoutTheExtension(unittest.TestCase):
+    def test_the_package_imports_and_says_what_is_missing(self):
+        # shoal.dask drives the executable and must import where the extension is not built.
+        import subprocess
+        import sys
+        env = dict(os.environ, PYTHONPATH=os.path.join(support.SOURCE, "python"))
+        p = subprocess.run([sys.executable, "-c", "import shoal\ntry:\n    shoal.Grid\nexcept ImportError as e:\n    print(e)"],
+                           capture_output=True, text=True, env=env)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("shoal.Grid needs the extension shoal._shoal", p.stdout)
+
+
 if __name__ == "__main__":
     unittest.main()
