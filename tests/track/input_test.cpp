@@ -202,6 +202,38 @@ TEST(Input, CsvLineOverTheLimitIsABadRow) {
                 ThrowsMessage<InputError>(HasSubstr("its first line is longer than 16 MiB")));
 }
 
+TEST(Input, TheLineLimitIsExactWhereverTheLineLies) {
+    // A row of exactly the limit is read; one byte more is a bad row: in the middle of the file,
+    // and as the last line without a line end (before: read up to about 2 MiB as a good row).
+    TempDir dir;
+    const std::string header = "mmsi,timestamp,lat,lon\n";
+    const std::string a = "1,2024-05-01T10:00:00Z,50.1,-1.2\n";
+    const std::string start = "1,2024-05-01T10:00:30Z,50.15,-1.2,";
+    auto padded = [&](std::size_t bytes) { return start + std::string(bytes - start.size(), '7'); };
+    const std::size_t limit = shoal::detail::max_line_bytes;
+    for (const bool last : {false, true}) {
+        for (const std::size_t bytes : {limit, limit + 1, limit + 100000}) {
+            const std::string tail = last ? "" : "\n1,2024-05-01T10:01:00Z,50.2,-1.2\n";
+            for (const char* end : {"\n", "\r\n"}) {
+                if (last && std::string(end) == "\r\n") continue;
+                const std::string body = header + a + padded(bytes) + (last ? "" : end) + tail.substr(last ? 0 : 1);
+                write(dir.file("long.csv"), body);
+                const TrackFile got = read_tracks(dir.file("long.csv"));
+                SCOPED_TRACE(std::to_string(bytes) + (last ? " last" : " middle") + (std::string(end) == "\r\n" ? " crlf" : ""));
+                const std::size_t want_fixes = (bytes <= limit ? 2u : 1u) + (last ? 0u : 1u);
+                ASSERT_EQ(got.tracks.size(), 1u);
+                EXPECT_EQ(got.tracks[0].fixes.size(), want_fixes);
+                if (bytes > limit) {
+                    ASSERT_EQ(got.report.messages.size(), 1u);
+                    EXPECT_THAT(got.report.messages[0], HasSubstr("long.csv line 3: longer than 1 MiB, the longest line shoal reads; row skipped"));
+                } else {
+                    EXPECT_TRUE(got.report.messages.empty());
+                }
+            }
+        }
+    }
+}
+
 TEST(Input, NmeaLineOverTheLimitIsABadLine) {
     TempDir dir;
     const std::string log = slurp(data_path("tracks/mixed_talkers.nmea"));
