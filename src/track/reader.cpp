@@ -401,7 +401,7 @@ std::string quoted(std::string_view v) {
 std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vector<std::string>* warnings) {
     std::string text;
     try {
-        text = shoal::detail::read_input(path, max_whole_bytes, "a vessels file");
+        text = shoal::detail::read_input(path, max_vessels_bytes, "a vessels file");
     } catch (const shoal::detail::InputOpenError& e) {
         throw InputError(path + ": cannot read (" + e.reason + ")");
     }

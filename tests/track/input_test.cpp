@@ -119,6 +119,14 @@ TEST(Input, ZipOfSeveralFilesIsAFolderOfThem) {
     // The log's own track is named after the file's stem, which the member keeps.
     expect_same(read_tracks(inputs[1]), read_tracks(data_path(nmea)));
     EXPECT_THAT([&] { read_tracks(zip); }, ThrowsMessage<InputError>(HasSubstr("a zip of 3 files: name one")));
+    // On a pipe the member names cannot be given: the message says what to do instead (before:
+    // "name one (/vsizip/FILE/...)", a path that does not exist for a pipe).
+    const std::string fifo = dir.file("zip.fifo");
+    FifoWriter writer(fifo, slurp(zip));
+    EXPECT_THAT([&] { read_tracks(fifo); },
+                ThrowsMessage<InputError>(HasSubstr("a zip of 3 files on a pipe or standard input: shoal reads one file from a stream; "
+                                                    "save the zip to a file and give that (its files are read as a folder), or pipe "
+                                                    "one file of it (unzip -p ZIP dma_export_dk_head200.csv)")));
 }
 
 TEST(Input, GzipReadsAsThePlainFileWhateverItsName) {

@@ -89,6 +89,10 @@ struct VesselInfo {
 /// (AIS gives at most 25.5); more is a wrong unit (decimetres) or a corrupt field.
 inline constexpr double max_draught_m = 30.0;
 
+/// The largest vessels file read (64 MiB: some 600,000 vessels' rows); a larger one, or an
+/// endless source such as /dev/zero, is refused at that limit.
+inline constexpr std::size_t max_vessels_bytes = std::size_t{64} << 20;
+
 /// Reads a vessels file (`*_vessels.csv`: mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,
 /// draught_m; also shiptype; A,B,C,D accepted for the dimensions), keyed by MMSI. A vessel named
 /// in several rows takes the first non-empty name, the first complete dimensions and the first
