@@ -144,12 +144,13 @@ public:
             std::fprintf(stderr, "shoal: %zu expected-contact areas (berths, harbours, anchorages) and %zu shore constructions\n",
                          areas.count(coast::AreaRole::expected), areas.count(coast::AreaRole::structure));
         m_audit.areas = &areas;
-        // Static data: the first table that names a vessel gives its data.
-        for (const std::string& f : m_vessel_files)
-            for (auto& [id, v] : track::read_vessels(f)) {
-                v.source = "vessels file " + f;
-                m_vessels.emplace(id, std::move(v));
-            }
+        // Static data: the first table that names a vessel gives its data (track::merge_vessels).
+        for (const std::string& f : m_vessel_files) {
+            std::vector<std::string> vessel_warnings;
+            auto table = track::read_vessels(f, &vessel_warnings);
+            track::merge_vessels(m_vessels, std::move(table), "vessels file " + f, &vessel_warnings);
+            print_warnings(vessel_warnings);
+        }
         if (!m_vessel_files.empty()) {
             m_audit.vessels = &m_vessels;
             std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, *_vessels.csv in track folders)\n",

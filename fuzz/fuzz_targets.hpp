@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,8 @@
 #include <shoal/track/reader.hpp>
 #include <shoal/track/track.hpp>
 #include <shoal/util/error.hpp>
+#include "detail/input_file.hpp"
+#include "track/stream_readers.hpp"
 
 namespace shoal::fuzz {
 
@@ -279,6 +282,49 @@ inline void ship(const std::uint8_t* data, std::size_t size) {
         } catch (const InputError& e) {
             bounded("ship", e.what());
         }
+    }
+}
+
+/// GPX tracks, as OGR's GPX driver reads them (tracks, routes, waypoints; times, names),
+/// from a /vsimem/ file: the reader shoal uses for a GPX file or a GPX on a pipe.
+inline void gpx_tracks(const std::uint8_t* data, std::size_t size) {
+    if (size < 1) return;
+    const shoal::detail::MemoryFile memory(std::string(reinterpret_cast<const char*>(data) + 1, size - 1), ".gpx");
+    try {
+        track::TrackFile f = track::detail::read_gpx_at(memory.path(), "fuzz.gpx", options_from(data[0]));
+        check_tracks("gpx_tracks", f);
+    } catch (const InputError& e) {
+        bounded("gpx_tracks", e.what());
+    }
+}
+
+/// Vessels tables (track::read_vessels, then merge_vessels of the table into itself read
+/// again): every vessel kept has an id, plausible dimensions and a draught in range; every
+/// warning is short and names the file; the table merged with itself disagrees about nothing.
+inline void vessels(const std::uint8_t* data, std::size_t size) {
+    const shoal::detail::MemoryFile memory(std::string(reinterpret_cast<const char*>(data), size), ".csv");
+    try {
+        std::vector<std::string> warnings;
+        auto table = track::read_vessels(memory.path(), &warnings);
+        if (warnings.size() > 11) broken("vessels", "more warnings than the first ten and a count");
+        for (const std::string& w : warnings) {
+            bounded("vessels", w);
+            if (w.rfind(memory.path(), 0) != 0) broken("vessels", "a warning that does not name the file");
+        }
+        for (const auto& [id, v] : table) {
+            if (id.empty()) broken("vessels", "a vessel without an id");
+            if (v.dims && !(v.dims->a > 0 && v.dims->b > 0 && v.dims->c > 0 && v.dims->d > 0 && hull::Hull::plausible(*v.dims)))
+                broken("vessels", "dimensions kept that no ship has");
+            if (!std::isnan(v.draught_m) && !(v.draught_m > 0 && v.draught_m <= track::max_draught_m)) broken("vessels", "draught out of range");
+        }
+        std::map<std::string, track::VesselInfo> all;
+        const std::size_t n = table.size();
+        track::merge_vessels(all, std::move(table), "a", &warnings);
+        track::merge_vessels(all, track::read_vessels(memory.path()), "b", &warnings);
+        if (all.size() != n) broken("vessels", "the same table merged twice gives other vessels");
+        if (warnings.size() > 11) broken("vessels", "the same table disagrees with itself");
+    } catch (const InputError& e) {
+        bounded("vessels", e.what());
     }
 }
 

@@ -31,6 +31,8 @@ const Target targets[] = {
     {"nmea", shoal::fuzz::nmea},
     {"aivdm", shoal::fuzz::aivdm},
     {"geojson_tracks", shoal::fuzz::geojson_tracks},
+    {"gpx_tracks", shoal::fuzz::gpx_tracks},
+    {"vessels", shoal::fuzz::vessels},
     {"ship", shoal::fuzz::ship},
     {"grid_cache", shoal::fuzz::grid_cache},
 };

@@ -82,11 +82,11 @@ void join_static_data(track::Track& t, const std::map<std::string, track::Vessel
     if (!v.name.empty()) t.name = v.name;
     if (v.dims && hull::Hull::plausible(*v.dims)) {  // a ship over 500 m by 100 m is a typo: the track's own stay
         t.dims = v.dims;
-        t.dims_source = v.source;
+        t.dims_source = v.dims_source.empty() ? v.source : v.dims_source;
     }
     if (std::isfinite(v.draught_m)) {
         t.draught_m = v.draught_m;
-        t.draught_source = v.source;
+        t.draught_source = v.draught_source.empty() ? v.source : v.draught_source;
     }
 }
 

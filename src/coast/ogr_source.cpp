@@ -17,6 +17,7 @@ GDALDatasetUniquePtr open_vector(const std::string& path) {
     detail::register_drivers();
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
+    detail::require_dataset_file(path, "a coastline, chart or areas file");
     detail::QuietErrors quiet;
     GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
     if (!ds) {

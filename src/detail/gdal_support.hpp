@@ -7,9 +7,13 @@
 #include <gdal.h>
 #include <ogr_spatialref.h>
 
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <system_error>
+
+#include <shoal/util/error.hpp>
 
 namespace shoal::detail {
 
@@ -35,6 +39,20 @@ public:
         return m && *m ? std::string(m) : std::string(none);
     }
 };
+
+/// Refuses a dataset path (a coastline, a chart, --berths) that is neither a file nor a folder:
+/// a device (/dev/zero, /dev/urandom), a pipe or a FIFO. OGR's drivers seek in and read again
+/// what they open, so a stream would be drained or read without end (before: /dev/zero as a
+/// coast was hashed for the grid cache for ever). Paths GDAL reads itself (/vsi...) and paths
+/// that do not exist (the caller says so) pass.
+inline void require_dataset_file(const std::string& path, const char* what) {
+    if (path.rfind("/vsi", 0) == 0) return;
+    std::error_code ec;
+    const auto st = std::filesystem::status(path, ec);
+    if (ec || !std::filesystem::exists(st) || std::filesystem::is_regular_file(st) || std::filesystem::is_directory(st)) return;
+    throw InputError("'" + path + "': not a regular file (a device, a pipe or a FIFO): " + what +
+                     " is read by OGR, which needs a file it can read again; save it to a file first");
+}
 
 struct TransformDeleter {
     void operator()(OGRCoordinateTransformation* t) const noexcept { OGRCoordinateTransformation::DestroyCT(t); }

@@ -25,6 +25,10 @@ inline constexpr std::size_t max_line_bytes = std::size_t{1} << 20;
 /// The most bytes looked at to recognise a track format, and the longest CSV header line.
 inline constexpr std::size_t max_sniff_bytes = std::size_t{16} << 20;
 
+/// The most compressed bytes read from a stream (a gzip or zip on a pipe or standard input is
+/// read whole into memory first: gzip and zip readers need it); a longer one is refused.
+inline constexpr std::size_t max_compressed_stream_bytes = std::size_t{1} << 30;
+
 /// "1 MiB", "64 KiB", "1234 bytes".
 std::string size_text(std::size_t bytes);
 

@@ -37,6 +37,12 @@ std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const c
             XXH3_freeState(st);
             throw InputError("'" + path + "': no such file or directory");
         }
+        try {
+            detail::require_dataset_file(path, "a coastline");
+        } catch (...) {
+            XXH3_freeState(st);
+            throw;
+        }
         std::vector<std::string> files;
         GDALDatasetUniquePtr ds;
         {

@@ -105,6 +105,8 @@ constexpr std::size_t header_size = 8 + 4 + 4 + 8 + 8;
 std::vector<char> read_file(const std::string& path) {
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a grid file");
+    if (const auto st = fs::status(path, ec); !ec && fs::exists(st) && !fs::is_regular_file(st))
+        throw InputError("'" + path + "' is not a regular file (a device, a pipe or a FIFO), not a grid file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError("cannot open grid file '" + path + "': " + std::strerror(errno));
     in.seekg(0, std::ios::end);

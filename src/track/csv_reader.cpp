@@ -304,7 +304,18 @@ public:
             m_decimal_comma = m_split->separator() != ',';
             m_header_read = true;
         }
-        while (m_split->next(f)) row(f);
+        // A record over the line limit is a bad row wherever it lies, whole in a block or at the
+        // end of the file without a line end (the stream reader catches longer ones unheld).
+        // (consumed() is the position in `text`; blank lines before a record are not its own.)
+        for (std::size_t from = m_split->consumed(); m_split->next(f); from = m_split->consumed()) {
+            std::string_view rec = text.substr(from, m_split->consumed() - from);
+            while (!rec.empty() && (rec.front() == '\n' || rec.front() == '\r')) rec.remove_prefix(1);
+            if (!rec.empty() && rec.back() == '\n') rec.remove_suffix(1);
+            if (!rec.empty() && rec.back() == '\r') rec.remove_suffix(1);
+            m_long_row = rec.size() > shoal::detail::max_line_bytes;
+            row(f);
+            m_long_row = false;
+        }
         return m_split->consumed();
     }
 

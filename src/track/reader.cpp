@@ -324,7 +324,11 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
         std::size_t found = 0;
         for (const std::string& m : members) {
             const std::string name = fs::path(m).filename().string();
-            if (!is_track_extension(lower_extension(m)) || is_vessels_file(name)) continue;
+            if (!is_track_extension(lower_extension(m))) continue;
+            if (is_vessels_file(name)) {  // AIS static data, joined as one in a folder is
+                if (vessels_files) vessels_files->push_back(m);
+                continue;
+            }
             take(m);
             ++found;
         }
@@ -377,19 +381,44 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
     return out;
 }
 
-std::map<std::string, VesselInfo> read_vessels(const std::string& path) {
+namespace {
+
+/// "a=88 b=12 c=10 d=6"
+std::string dims_text(const hull::Dimensions& d) {
+    std::ostringstream os;
+    os << d;
+    return os.str();
+}
+
+/// Up to 40 bytes of a field, for messages.
+std::string quoted(std::string_view v) {
+    const std::string s = to_utf8(v.substr(0, 40));
+    return "'" + s + (v.size() > 40 ? "...'" : "'");
+}
+
+}  // namespace
+
+std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vector<std::string>* warnings) {
     std::string text;
     try {
-        text = shoal::detail::read_input(path, max_whole_bytes, "a vessels file");
+        text = shoal::detail::read_input(path, max_vessels_bytes, "a vessels file");
     } catch (const shoal::detail::InputOpenError& e) {
         throw InputError(path + ": cannot read (" + e.reason + ")");
     }
-    CsvSplitter split(text);
+    // One row a line: a quote never closed costs its line, not the rest of the file. The
+    // header is split once for the separator and columns, then each line after it with it.
+    const std::size_t header_end = std::min(text.find('\n'), text.size());
+    const std::string header(text, 0, header_end);
     std::vector<std::string_view> f;
-    if (split.separator() == '\0' || !split.next(f)) throw InputError(path + ": not a vessels CSV file (no header)");
-    constexpr std::size_t absent = static_cast<std::size_t>(-1);
+    char sep = '\0';
     std::vector<std::string> names;
-    for (const auto h : f) names.push_back(normalise_column_name(h));
+    {
+        CsvSplitter split(header);
+        sep = split.separator();
+        if (sep == '\0' || !split.next(f)) throw InputError(path + ": not a vessels CSV file (no header)");
+        for (const auto h : f) names.push_back(normalise_column_name(h));
+    }
+    constexpr std::size_t absent = static_cast<std::size_t>(-1);
     auto col = [&](std::initializer_list<std::string_view> candidates) {
         for (const auto c : candidates)
             for (std::size_t i = 0; i < names.size(); ++i)
@@ -403,35 +432,112 @@ std::map<std::string, VesselInfo> read_vessels(const std::string& path) {
     const std::size_t draught = col({"draught_m", "draught", "draft"});
     const std::array<std::size_t, 4> dims{col({"to_bow_m", "to_bow", "a"}), col({"to_stern_m", "to_stern", "b"}),
                                           col({"to_port_m", "to_port", "c"}), col({"to_stbd_m", "to_stbd", "d"})};
-    auto number = [&](std::size_t c) -> double {
-        double v = NAN;
-        if (c == absent || c >= f.size() || !detail::parse_double(f[c], v)) return NAN;
-        return v;
-    };
+    const bool decimal_comma = sep != ',';
+    std::size_t said = 0, bad = 0;
+    std::string row_text;
     std::map<std::string, VesselInfo> out;
-    while (split.next(f)) {
-        if (mmsi >= f.size() || f[mmsi].empty()) continue;
-        VesselInfo& v = out[std::string(f[mmsi])];
-        if (v.name.empty() && name != absent && name < f.size()) v.name = to_utf8(f[name]);
-        if (!v.dims) {
-            std::array<double, 4> d{};
-            bool ok = true;
-            for (std::size_t k = 0; k < 4; ++k) {
-                d[k] = number(dims[k]);
-                ok = ok && std::isfinite(d[k]) && d[k] > 0.0;
+    std::size_t line = 1;
+    for (std::size_t at = header_end; at < text.size();) {
+        ++at;  // past the '\n'
+        const std::size_t nl = std::min(text.find('\n', at), text.size());
+        std::string_view raw(text.data() + at, nl - at);
+        at = nl;
+        ++line;
+        if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
+        if (detail::trim(raw).empty()) continue;
+        auto skip = [&](const std::string& why) {
+            ++bad;
+            if (warnings && said++ < 10) warnings->push_back(path + " line " + std::to_string(line) + ": " + why + "; row skipped");
+        };
+        if (std::count(raw.begin(), raw.end(), '"') % 2 != 0) {
+            skip("a quote is not closed on its line");
+            continue;
+        }
+        row_text.assign(header).append("\n").append(raw);
+        CsvSplitter split(row_text);
+        if (!split.next(f) || !split.next(f)) continue;
+        if (f.size() != names.size()) {
+            skip("has " + std::to_string(f.size()) + " fields, the header " + std::to_string(names.size()) +
+                 (decimal_comma ? std::string() : std::string(" (a decimal comma in a comma-separated file?)")));
+            continue;
+        }
+        const std::string id(detail::trim(f[mmsi]));
+        if (id.empty()) {
+            skip("no mmsi");
+            continue;
+        }
+        // A value given must be a number; empty (and AIS 0: not available) is unknown.
+        std::string problem;
+        auto number = [&](std::size_t c) -> double {
+            double v = NAN;
+            if (c == absent || detail::trim(f[c]).empty()) return NAN;
+            if (!detail::parse_double(f[c], v, decimal_comma) || !std::isfinite(v)) {
+                if (problem.empty()) problem = names[c] + " " + quoted(f[c]) + " is not a number";
+                return NAN;
             }
-            if (ok) v.dims = hull::Dimensions{d[0], d[1], d[2], d[3]};
+            if (v < 0 && problem.empty()) problem = names[c] + " " + quoted(f[c]) + " is negative";
+            return v;
+        };
+        std::array<double, 4> d{};
+        bool all_given = true;
+        for (std::size_t k = 0; k < 4; ++k) {
+            d[k] = number(dims[k]);
+            all_given = all_given && std::isfinite(d[k]) && d[k] > 0.0;
         }
-        if (std::isnan(v.draught_m)) {
-            const double d = number(draught);
-            if (std::isfinite(d) && d > 0.0) v.draught_m = d;
+        const double dr = number(draught);
+        const double t = type == absent ? NAN : [&] {
+            double v = NAN;
+            return detail::parse_double(f[type], v) ? v : NAN;  // a ship type may be text (DMA): not a number is unknown
+        }();
+        std::optional<hull::Dimensions> given;
+        if (all_given) given = hull::Dimensions{d[0], d[1], d[2], d[3]};
+        if (problem.empty() && given && !hull::Hull::plausible(*given))
+            problem = "dimensions " + dims_text(*given) + " are larger than any ship (length A+B over " + detail::fmt(hull::Hull::max_length_m) +
+                      " m or beam C+D over " + detail::fmt(hull::Hull::max_beam_m) + " m: a wrong unit?)";
+        if (problem.empty() && std::isfinite(dr) && dr > max_draught_m)
+            problem = "draught " + detail::fmt(dr) + " m is deeper than any ship draws (" + detail::fmt(max_draught_m) + " m)";
+        if (!problem.empty()) {
+            skip(problem);
+            continue;
         }
-        if (v.ship_type < 0) {
-            const double t = number(type);
-            if (std::isfinite(t) && t > 0.0 && t < 1000.0) v.ship_type = static_cast<int>(t);
-        }
+        VesselInfo& v = out[id];
+        if (v.name.empty() && name != absent) v.name = to_utf8(detail::trim(f[name]));
+        if (!v.dims) v.dims = given;
+        if (std::isnan(v.draught_m) && std::isfinite(dr) && dr > 0.0) v.draught_m = dr;
+        if (v.ship_type < 0 && std::isfinite(t) && t > 0.0 && t < 1000.0) v.ship_type = static_cast<int>(t);
     }
+    if (warnings && bad > said) warnings->push_back(path + ": " + std::to_string(bad - said) + " more bad rows skipped");
     return out;
+}
+
+void merge_vessels(std::map<std::string, VesselInfo>& into, std::map<std::string, VesselInfo>&& from, const std::string& source,
+                   std::vector<std::string>* warnings) {
+    for (auto& [id, v] : from) {
+        v.source = source;
+        auto [it, fresh] = into.try_emplace(id, std::move(v));
+        if (fresh) continue;
+        VesselInfo& kept = it->second;
+        const VesselInfo& other = v;
+        std::string differ;
+        if (kept.dims && other.dims && !(*kept.dims == *other.dims))
+            differ = "dimensions " + dims_text(*kept.dims) + " and " + dims_text(*other.dims);
+        if (!std::isnan(kept.draught_m) && !std::isnan(other.draught_m) && kept.draught_m != other.draught_m)
+            differ += (differ.empty() ? "draught " : ", draught ") + detail::fmt(kept.draught_m) + " m and " + detail::fmt(other.draught_m) + " m";
+        if (!differ.empty() && warnings)
+            warnings->push_back("vessel " + id + ": " + kept.source + " and " + source + " disagree (" + differ + "): those of " +
+                                kept.source + " (given first) are used");
+        // What the first source lacks, a later one gives.
+        if (kept.name.empty()) kept.name = other.name;
+        if (!kept.dims && other.dims) {
+            kept.dims = other.dims;
+            kept.dims_source = source;
+        }
+        if (std::isnan(kept.draught_m) && !std::isnan(other.draught_m)) {
+            kept.draught_m = other.draught_m;
+            kept.draught_source = source;
+        }
+        if (kept.ship_type < 0) kept.ship_type = other.ship_type;
+    }
 }
 
 }  // namespace shoal::track

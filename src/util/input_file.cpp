@@ -142,7 +142,7 @@ void InputFile::open_content(const std::string& path) {
         if (base.empty()) {  // a stream: gzip and zip readers need it in memory
             m_memory = m_kept;
             m_kept.clear();
-            append_all(m_memory);
+            append_all(m_memory, max_compressed_stream_bytes, "a compressed stream (gzip or zip on a pipe)", m_memory.size());
             m_mem_name = memory_name(is_zip(m_memory) ? ".zip" : ".gz");
             VSIFCloseL(VSIFileFromMemBuffer(m_mem_name.c_str(), reinterpret_cast<GByte*>(m_memory.data()),
                                             static_cast<vsi_l_offset>(m_memory.size()), FALSE));
@@ -157,6 +157,11 @@ void InputFile::open_content(const std::string& path) {
         }
         const std::vector<std::string> members = zip_members(base);
         if (members.empty()) throw InputOpenError(path, "a zip file without any file in it");
+        if (members.size() > 1 && starts_with(base, "/vsimem/"))
+            throw InputOpenError(path, "a zip of " + std::to_string(members.size()) +
+                                           " files on a pipe or standard input: shoal reads one file from a stream; save the zip "
+                                           "to a file and give that (its files are read as a folder), or pipe one file of it "
+                                           "(unzip -p ZIP " + members.front().substr(members.front().rfind('/') + 1) + ")");
         if (members.size() > 1) {
             const std::string shown = starts_with(base, "/vsimem/") ? std::string("/vsizip/FILE/") : "/vsizip/" + path + "/";
             throw InputOpenError(path, "a zip of " + std::to_string(members.size()) + " files: name one (" + shown +

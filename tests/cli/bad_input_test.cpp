@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -1019,6 +1020,77 @@ TEST_F(BadInput, DevZeroAsShipOrTrackIsRefusedAtTheReadLimit) {
     const Outcome track = check({"/dev/zero"}, r);
     EXPECT_EQ(track.status, 2) << track.err;
     EXPECT_NE(track.err.find("/dev/zero: not a track format"), std::string::npos) << track.err;
+}
+
+TEST_F(BadInput, ACoastBerthsOrGridOnADeviceOrAFifoIsRefusedNamingIt) {
+    // Before: /dev/zero as a coast was hashed for the grid cache for ever, a FIFO hung in OGR's
+    // open. A guard releases a reader left waiting on the FIFO, so a regression fails, not hangs.
+    const std::string fifo = m_dir.file("coast.fifo");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::atomic<bool> done{false};
+    std::thread guard([&] {
+        for (int i = 0; i < 400 && !done; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        if (!done)
+            if (const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+    });
+    const std::string r = m_dir.file("r.geojson"), g = m_dir.file("g.shoalgrid");
+    for (const std::string& source : {std::string("/dev/zero"), std::string("/dev/urandom"), fifo}) {
+        SCOPED_TRACE(source);
+        const std::string said = "'" + source + "': not a regular file (a device, a pipe or a FIFO)";
+        const Outcome import = shoal({"import", source, "-o", g});
+        EXPECT_EQ(import.status, 2) << import.err;
+        EXPECT_NE(import.err.find(said), std::string::npos) << import.err;
+        const Outcome coast = shoal({"check", "--coast", source, "--dims", "50,10,5,5", good_tracks(), "-o", r});
+        EXPECT_EQ(coast.status, 2) << coast.err;
+        EXPECT_NE(coast.err.find(said), std::string::npos) << coast.err;
+        const Outcome berths = check({good_tracks()}, r, {"--berths", source});
+        EXPECT_EQ(berths.status, 2) << berths.err;
+        EXPECT_NE(berths.err.find(said), std::string::npos) << berths.err;
+        const Outcome info = shoal({"info", source});
+        EXPECT_EQ(info.status, 2) << info.err;
+        EXPECT_NE(info.err.find(source), std::string::npos) << info.err;
+    }
+    done = true;
+    guard.join();
+    EXPECT_FALSE(fs::exists(r));
+    EXPECT_FALSE(fs::exists(g));
+}
+
+TEST_F(BadInput, DevZeroAsAVesselsTableIsRefusedAtItsLimit) {
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({good_tracks()}, r, {"--vessels", "/dev/zero"});
+    EXPECT_EQ(o.status, 2) << o.err;
+    EXPECT_NE(o.err.find("/dev/zero: larger than 64 MiB, the most a vessels file may be; not read further"), std::string::npos) << o.err;
+}
+
+TEST_F(BadInput, AVesselsTableInAZipIsJoinedAndItsBadRowsAndConflictsAreSaid) {
+    const std::string tracks = good_tracks();
+    const fs::path day = fs::path(m_dir.path()) / "day";
+    fs::create_directory(day);
+    fs::copy_file(tracks, day / "tracks.csv");
+    fs::copy_file(tracks, day / "more.csv");  // two track files: the zip is read as a folder
+    write((day / "fleet_vessels.csv").string(), "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n"
+                                                "222222222,SMALL ONE,8,4,2,2,1.2\n"
+                                                "111111111,\"TYPO,8,4,2,2,1.2\n"
+                                                "333333333,HUGE,8000,4,2,2,1.2\n");
+    const std::string zip = m_dir.file("day.zip");
+    if (std::system(("cd " + day.string() + " && zip -q " + zip + " tracks.csv more.csv fleet_vessels.csv 2>/dev/null").c_str()) != 0)
+        GTEST_SKIP() << "no zip";
+    const std::string other = file("other_vessels.csv", "mmsi,name,a,b,c,d,draught\n222222222,SMALL ONE,9,4,2,2,1.2\n");
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({zip}, r, {"--vessels", other});
+    EXPECT_EQ(o.status, 1) << o.err;
+    const std::string member = "/vsizip/" + zip + "/fleet_vessels.csv";
+    EXPECT_NE(o.err.find(member + " line 3: a quote is not closed on its line; row skipped"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find(member + " line 4: dimensions a=8000 b=4 c=2 d=2 are larger than any ship"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("vessel 222222222: vessels file " + other + " and vessels file " + member + " disagree (dimensions a=9 b=4 c=2 d=2 and "
+                         "a=8 b=4 c=2 d=2): those of vessels file " + other + " (given first) are used"),
+              std::string::npos)
+        << o.err;
+    const auto doc = report(r);
+    const auto* b = track_entry(doc, "222222222");
+    ASSERT_NE(b, nullptr);
+    EXPECT_EQ((*b)["hull"], "AIS dimensions 9,4,2,2 (vessels file " + other + ")");
 }
 
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {

@@ -273,6 +273,67 @@ TEST(PlotSvg, EmptyAuditStillDrawsTheOverviewOfTheChart) {
     EXPECT_TRUE(has_text_containing(root, "0 groundings, 0 close passes")) << "the other kinds only when there are some";
 }
 
+TEST(PlotSvg, AThousandsOfVesselsCrowdGetsLabelsThatNeverOverlapAndStayInThePanel) {
+    // The labels are placed with a grid of buckets (so that a crowd costs linear time); the
+    // independent answer is the brute-force test of every placed label against every other.
+    const test::TempDir dir;
+    const std::string path = dir.file("crowd.csv");
+    {
+        std::ofstream out(path);
+        out << "mmsi,timestamp,lat,lon,sog,cog,heading\n";
+        std::uint64_t state = 14;
+        auto uniform = [&] {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            return static_cast<double>(state >> 11) / 9007199254740992.0;
+        };
+        char row[160];
+        for (int k = 0; k < 2000; ++k) {
+            const double lat = 50.60 + 0.12 * uniform(), lon = -1.15 + 0.3 * uniform();
+            for (int i = 0; i < 3; ++i) {
+                std::snprintf(row, sizeof row, "%d,2024-05-01T10:%02d:00Z,%.5f,%.5f,5,0,0\n", 200000000 + k, i, lat + 0.0005 * i, lon);
+                out << row;
+            }
+        }
+    }
+    const grid::CoastGrid g = solent_grid();
+    audit::AuditOptions options;
+    options.jobs = 1;
+    const audit::AuditResult r = audit::run_audit({path}, g, hull::Hull::from_dimensions({20, 5, 4, 4}), "--dims 20,5,4,4", options);
+    ASSERT_EQ(r.tracks.size(), 2000u);
+    const std::string svg = plot_svg(r, g, PlotOptions{3, 1200});
+    std::string error;
+    const XmlPtr doc = parse(svg, &error);
+    ASSERT_TRUE(doc) << error;
+    const CPLXMLNode* root = root_element(doc.get());
+    const CPLXMLNode* overview = panel(root, "overview");
+    ASSERT_NE(overview, nullptr);
+    struct Box {
+        double x0, y0, x1, y1;
+    };
+    std::vector<Box> boxes;
+    for (const char* cls : {"label track-id", "label event-time"})
+        for (const CPLXMLNode* l : with_class(overview, cls)) {
+            const CPLXMLNode* rect = nullptr;
+            each_element(l, [&](const CPLXMLNode* n) {
+                if (!rect && std::string(n->pszValue) == "rect") rect = n;
+            });
+            ASSERT_NE(rect, nullptr);
+            const double x = std::stod(attr(rect, "x")), y = std::stod(attr(rect, "y"));
+            boxes.push_back({x, y, x + std::stod(attr(rect, "width")), y + std::stod(attr(rect, "height"))});
+        }
+    EXPECT_GT(boxes.size(), 100u) << "the crowd gets labels where they fit";
+    EXPECT_LT(boxes.size(), 2000u) << "and not where they do not";
+    std::size_t overlapping = 0;
+    for (std::size_t a = 0; a < boxes.size(); ++a)
+        for (std::size_t b = a + 1; b < boxes.size(); ++b) {
+            // Coordinates are rounded to 0.1 px in the SVG: a shared edge may look 0.1 px over.
+            const double e = 0.11;
+            if (boxes[a].x0 + e < boxes[b].x1 && boxes[b].x0 + e < boxes[a].x1 && boxes[a].y0 + e < boxes[b].y1 && boxes[b].y0 + e < boxes[a].y1)
+                ++overlapping;
+        }
+    EXPECT_EQ(overlapping, 0u);
+}
+
 TEST(PlotSvg, ZoomedPanelsStopAtTheLimitAndTheRestAreCounted) {
     const test::TempDir dir;
     const grid::CoastGrid g = solent_grid();

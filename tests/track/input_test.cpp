@@ -119,6 +119,14 @@ TEST(Input, ZipOfSeveralFilesIsAFolderOfThem) {
     // The log's own track is named after the file's stem, which the member keeps.
     expect_same(read_tracks(inputs[1]), read_tracks(data_path(nmea)));
     EXPECT_THAT([&] { read_tracks(zip); }, ThrowsMessage<InputError>(HasSubstr("a zip of 3 files: name one")));
+    // On a pipe the member names cannot be given: the message says what to do instead (before:
+    // "name one (/vsizip/FILE/...)", a path that does not exist for a pipe).
+    const std::string fifo = dir.file("zip.fifo");
+    FifoWriter writer(fifo, slurp(zip));
+    EXPECT_THAT([&] { read_tracks(fifo); },
+                ThrowsMessage<InputError>(HasSubstr("a zip of 3 files on a pipe or standard input: shoal reads one file from a stream; "
+                                                    "save the zip to a file and give that (its files are read as a folder), or pipe "
+                                                    "one file of it (unzip -p ZIP dma_export_dk_head200.csv)")));
 }
 
 TEST(Input, GzipReadsAsThePlainFileWhateverItsName) {
@@ -200,6 +208,38 @@ TEST(Input, CsvLineOverTheLimitIsABadRow) {
     write(dir.file("commas.csv"), std::string(17 << 20, ','));
     EXPECT_THAT([&] { read_tracks(dir.file("commas.csv")); },
                 ThrowsMessage<InputError>(HasSubstr("its first line is longer than 16 MiB")));
+}
+
+TEST(Input, TheLineLimitIsExactWhereverTheLineLies) {
+    // A row of exactly the limit is read; one byte more is a bad row: in the middle of the file,
+    // and as the last line without a line end (before: read up to about 2 MiB as a good row).
+    TempDir dir;
+    const std::string header = "mmsi,timestamp,lat,lon\n";
+    const std::string a = "1,2024-05-01T10:00:00Z,50.1,-1.2\n";
+    const std::string start = "1,2024-05-01T10:00:30Z,50.15,-1.2,";
+    auto padded = [&](std::size_t bytes) { return start + std::string(bytes - start.size(), '7'); };
+    const std::size_t limit = shoal::detail::max_line_bytes;
+    for (const bool last : {false, true}) {
+        for (const std::size_t bytes : {limit, limit + 1, limit + 100000}) {
+            const std::string tail = last ? "" : "\n1,2024-05-01T10:01:00Z,50.2,-1.2\n";
+            for (const char* end : {"\n", "\r\n"}) {
+                if (last && std::string(end) == "\r\n") continue;
+                const std::string body = header + a + padded(bytes) + (last ? "" : end) + tail.substr(last ? 0 : 1);
+                write(dir.file("long.csv"), body);
+                const TrackFile got = read_tracks(dir.file("long.csv"));
+                SCOPED_TRACE(std::to_string(bytes) + (last ? " last" : " middle") + (std::string(end) == "\r\n" ? " crlf" : ""));
+                const std::size_t want_fixes = (bytes <= limit ? 2u : 1u) + (last ? 0u : 1u);
+                ASSERT_EQ(got.tracks.size(), 1u);
+                EXPECT_EQ(got.tracks[0].fixes.size(), want_fixes);
+                if (bytes > limit) {
+                    ASSERT_EQ(got.report.messages.size(), 1u);
+                    EXPECT_THAT(got.report.messages[0], HasSubstr("long.csv line 3: longer than 1 MiB, the longest line shoal reads; row skipped"));
+                } else {
+                    EXPECT_TRUE(got.report.messages.empty());
+                }
+            }
+        }
+    }
 }
 
 TEST(Input, NmeaLineOverTheLimitIsABadLine) {

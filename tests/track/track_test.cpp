@@ -279,4 +279,71 @@ TEST(ReadVessels, ReadsStaticDataByMmsi) {
                 ThrowsMessage<InputError>(HasSubstr("without an 'mmsi' column")));
 }
 
+
+TEST(ReadVessels, EveryBadRowCostsThatRowWithAWarningNamingItsLine) {
+    TempDir dir;
+    // The independent answer: the good rows, read from a file that holds only them.
+    const std::string header = "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n";
+    const std::string good1 = "111,FIRST,10,5,2,2,3\n", good2 = "222,AFTER QUOTE,20,6,3,3,4\n", good3 = "888,LAST,30,7,4,4,5\n";
+    write(dir.file("bad_vessels.csv"), header + good1 +
+                                           "333,\"BROKEN,10,5,2,2,3\n"  // line 3: a quote never closed
+                                           + good2 +                    // line 4: read (before: swallowed)
+                                           "444,BIG,10000,10,5,5,3\n"   // line 5: a 10 km ship
+                                           "555,COMMA,10,5,2,2,3,5\n"   // line 6: decimal comma
+                                           "666,WORDS,ten,5,2,2,3\n"    // line 7: not a number
+                                           ",NONAME,10,5,2,2,3\n"       // line 8
+                                           "777,DEEP,10,5,2,2,80\n"     // line 9: draught in decimetres
+                                           "999,NEG,10,-5,2,2,3\n"      // line 10
+                                           + good3);
+    write(dir.file("good_vessels.csv"), header + good1 + good2 + good3);
+    std::vector<std::string> warnings;
+    const auto got = read_vessels(dir.file("bad_vessels.csv"), &warnings);
+    const auto want = read_vessels(dir.file("good_vessels.csv"));
+    ASSERT_EQ(got.size(), want.size());
+    for (const auto& [id, v] : want) {
+        ASSERT_TRUE(got.count(id)) << id;
+        EXPECT_EQ(got.at(id).name, v.name);
+        EXPECT_EQ(got.at(id).dims, v.dims);
+        EXPECT_EQ(got.at(id).draught_m, v.draught_m);
+    }
+    const std::string f = dir.file("bad_vessels.csv");
+    EXPECT_THAT(warnings, ElementsAre(f + " line 3: a quote is not closed on its line; row skipped",
+                                      HasSubstr(f + " line 5: dimensions a=10000 b=10 c=5 d=5 are larger than any ship"),
+                                      f + " line 6: has 8 fields, the header 7 (a decimal comma in a comma-separated file?); row skipped",
+                                      f + " line 7: to_bow_m 'ten' is not a number; row skipped", f + " line 8: no mmsi; row skipped",
+                                      HasSubstr(f + " line 9: draught 80 m is deeper than any ship draws"),
+                                      f + " line 10: to_stern_m '-5' is negative; row skipped"));
+    // Semicolons: decimal commas are numbers; AIS 0 and empty values are "not known", silently.
+    write(dir.file("semi_vessels.csv"), "mmsi;name;a;b;c;d;draught\n123;SEMI;12,5;4;2;2,5;3,2\n124;ZERO;0;0;0;0;0\n");
+    warnings.clear();
+    const auto semi = read_vessels(dir.file("semi_vessels.csv"), &warnings);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    EXPECT_EQ(*semi.at("123").dims, (shoal::hull::Dimensions{12.5, 4, 2, 2.5}));
+    EXPECT_DOUBLE_EQ(semi.at("123").draught_m, 3.2);
+    EXPECT_FALSE(semi.at("124").dims.has_value());
+    // The real table has no bad row.
+    warnings.clear();
+    EXPECT_EQ(read_vessels(data_path("tracks/gpsd_nl_vessels.csv"), &warnings).size(), 19u);
+    EXPECT_TRUE(warnings.empty());
+}
+
+TEST(ReadVessels, TwoTablesThatDisagreeAboutAVesselKeepTheFirstAndSaySoOnce) {
+    TempDir dir;
+    write(dir.file("a_vessels.csv"), "mmsi,name,a,b,c,d,draught\n111,ONE,10,5,2,2,\n222,TWO,20,5,3,3,4\n");
+    write(dir.file("b_vessels.csv"), "mmsi,name,a,b,c,d,draught\n111,ONE,12,5,2,2,3.5\n111,ONE,12,5,2,2,3.5\n222,TWO,20,5,3,3,4\n333,,8,2,1,1,1\n");
+    std::map<std::string, VesselInfo> all;
+    std::vector<std::string> warnings;
+    merge_vessels(all, read_vessels(dir.file("a_vessels.csv")), "vessels file A", &warnings);
+    merge_vessels(all, read_vessels(dir.file("b_vessels.csv")), "vessels file B", &warnings);
+    ASSERT_EQ(all.size(), 3u);
+    EXPECT_THAT(warnings, ElementsAre("vessel 111: vessels file A and vessels file B disagree (dimensions a=10 b=5 c=2 d=2 and "
+                                      "a=12 b=5 c=2 d=2): those of vessels file A (given first) are used"));
+    EXPECT_EQ(*all.at("111").dims, (shoal::hull::Dimensions{10, 5, 2, 2}));
+    EXPECT_EQ(all.at("111").source, "vessels file A");
+    // What the first lacked (the draught), the second gives, and says where it came from.
+    EXPECT_DOUBLE_EQ(all.at("111").draught_m, 3.5);
+    EXPECT_EQ(all.at("111").draught_source, "vessels file B");
+    EXPECT_EQ(all.at("333").source, "vessels file B");
+}
+
 }  // namespace

@@ -68,7 +68,8 @@ std::string sniff_format(std::string_view content, const std::string& path = {})
 /// (named twice, by a symlink to it, or inside a folder also given) is kept once; a folder entry
 /// that cannot be read (a symlink loop, a dangling link) is skipped; both are said in `warnings`.
 /// Throws InputError for a path that does not exist and for a folder without track files.
-/// The vessels files (`*_vessels.csv`) met in folders go to `vessels_files` when given.
+/// The vessels files (`*_vessels.csv`) met in folders and in zips read as folders go to
+/// `vessels_files` when given.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr,
                                        std::vector<std::string>* vessels_files = nullptr);
 
@@ -79,13 +80,38 @@ struct VesselInfo {
     double draught_m = NAN;
     int ship_type = -1;                    ///< AIS ship and cargo type, -1 when not known
     std::string source;                    ///< where it came from, for the report ("vessels file F")
+    /// Where the dimensions and the draught came from when not from `source` (merge_vessels
+    /// took them from a later table that gave what the first lacked); empty: `source`.
+    std::string dims_source, draught_source;
 };
+
+/// The deepest draught a vessels table may give (metres): the deepest ships draw about 25 m
+/// (AIS gives at most 25.5); more is a wrong unit (decimetres) or a corrupt field.
+inline constexpr double max_draught_m = 30.0;
+
+/// The largest vessels file read (64 MiB: some 600,000 vessels' rows); a larger one, or an
+/// endless source such as /dev/zero, is refused at that limit.
+inline constexpr std::size_t max_vessels_bytes = std::size_t{64} << 20;
 
 /// Reads a vessels file (`*_vessels.csv`: mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,
 /// draught_m; also shiptype; A,B,C,D accepted for the dimensions), keyed by MMSI. A vessel named
 /// in several rows takes the first non-empty name, the first complete dimensions and the first
-/// draught. Throws InputError when the file cannot be read or has no mmsi column.
-std::map<std::string, VesselInfo> read_vessels(const std::string& path);
+/// draught. One row a line. A bad row costs that row, with a warning in `warnings` naming the
+/// file, the line and what is wrong (the first ten, then a count): a quote not closed on its
+/// line, a number of fields other than the header's (a decimal comma in a comma-separated file),
+/// no mmsi, a value that is not a number or is negative, dimensions larger than any ship
+/// (hull::Hull::plausible), a draught over max_draught_m. Empty values and AIS 0 are "not
+/// known". With ';' or tab as separator, decimal commas are read. Throws InputError when the
+/// file cannot be read or has no mmsi column.
+std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vector<std::string>* warnings = nullptr);
+
+/// Joins the vessels of one table (`from`, read from `source`: "vessels file F") into `into`.
+/// The rule for one vessel in several tables: the first given keeps its values; a later table
+/// only fills what it lacks (name, dimensions, draught, ship type). When two tables give
+/// different dimensions or draughts for one vessel, one warning for that vessel names both
+/// sources and which one is used.
+void merge_vessels(std::map<std::string, VesselInfo>& into, std::map<std::string, VesselInfo>&& from, const std::string& source,
+                   std::vector<std::string>* warnings = nullptr);
 
 /// The whole file as bytes. Throws InputError "FILE: cannot read (reason)".
 std::string read_file(const std::string& path);
