@@ -69,11 +69,12 @@ struct Local {
         if (d > 180) d -= 360;
         return wrap360(heading[i] + f * d);
     }
-    double speed_at_fix(std::size_t j) const {
-        const std::size_t i = std::min(j, velocity.size() - 1);
-        return std::sqrt(geo::norm2(velocity[i]));
+    std::vector<XY> fix_velocity;  ///< per fix: from its speed and course over ground when given, else from positions
+    double speed_at_fix(std::size_t j) const { return std::sqrt(geo::norm2(fix_velocity[j])); }
+    VesselAt state(std::size_t i, double tt) const {
+        const double f = (tt - t[i]) / (t[i + 1] - t[i]);
+        return {at(i, tt), heading_at(i, tt), fix_velocity[i] + f * (fix_velocity[i + 1] - fix_velocity[i])};
     }
-    VesselAt state(std::size_t i, double tt) const { return {at(i, tt), heading_at(i, tt), velocity[i]}; }
 };
 
 Local prepare(const track::Track& tr, const geo::LocalFrame& frame, double max_gap_s) {
@@ -101,6 +102,23 @@ Local prepare(const track::Track& tr, const geo::LocalFrame& frame, double max_g
             h = geo::norm2(v) > 0 ? std::atan2(v.x, v.y) * deg : (j > 0 ? l.heading[j - 1] : 0.0);
         }
         l.heading.push_back(wrap360(h));
+    }
+    // Velocity at each fix: the speed and course over ground the source gives (smoother than
+    // positions a few seconds apart), else the motion between fixes around it.
+    for (std::size_t j = 0; j < n; ++j) {
+        const track::Fix& f = tr.fixes[j];
+        const double kn = std::isfinite(f.speed_used_kn) ? f.speed_used_kn : f.sog_kn;
+        if (std::isfinite(kn) && std::isfinite(f.cog_deg) && f.speed_source != track::SpeedSource::positions &&
+            f.speed_source != track::SpeedSource::positions_over_sog) {
+            const double a = f.cog_deg / deg;
+            l.fix_velocity.push_back((kn * 1852.0 / 3600.0) * XY{std::sin(a), std::cos(a)});
+        } else if (l.velocity.empty()) {
+            l.fix_velocity.push_back({});
+        } else if (j == 0 || j == n - 1) {
+            l.fix_velocity.push_back(l.velocity[std::min(j, l.velocity.size() - 1)]);
+        } else {
+            l.fix_velocity.push_back(0.5 * (l.velocity[j - 1] + l.velocity[j]));
+        }
     }
     if (n) {
         l.x0 = l.x1 = l.p[0].x;
@@ -296,6 +314,10 @@ std::vector<ColregEncounter> find_situations(const std::vector<const track::Trac
             if (!started) continue;
             if (!ended) e.end_s = last_present;
             e.at_start = classify(e.a_start, e.b_start, o.head_on_tolerance_deg);
+            const double slow_ms = o.under_way_kn * 1852.0 / 3600.0;
+            e.a_stopped = geo::norm2(e.a_start.velocity) < slow_ms * slow_ms;
+            e.b_stopped = geo::norm2(e.b_start.velocity) < slow_ms * slow_ms;
+            if (e.a_stopped || e.b_stopped) e.at_start.give_way = e.at_start.stand_on = Party::neither;
             e.cpa_start = cpa(e.a_start, e.b_start);
             e.action_a = action(A, e.start_s, e.end_s, e.a_start, o);
             e.action_b = action(B, e.start_s, e.end_s, e.b_start, o);

@@ -70,7 +70,9 @@ std::string summary_table(const audit::AuditResult& r) {
                 return p == audit::Party::a ? a : p == audit::Party::b ? b : p == audit::Party::both ? "both" : "neither";
             };
             const audit::Manoeuvre& act = c.at_start.give_way == audit::Party::b ? c.action_b : c.action_a;
-            std::string acted = "";
+            std::string acted = c.a_stopped || c.b_stopped ? std::string(", not under way: ") + (c.a_stopped ? a : "") +
+                                                                 (c.a_stopped && c.b_stopped ? ", " : "") + (c.b_stopped ? b : "")
+                                                           : "";
             if (c.at_start.give_way == audit::Party::a || c.at_start.give_way == audit::Party::b)
                 acted = std::isnan(act.time_s) ? ", give-way did not alter" : ", give-way altered " + iso_time(act.time_s).substr(11);
             std::snprintf(line, sizeof line, "  %-10s %s  [%s] %s x %s  give-way %s, CPA %.0f m in %.0f s, closest %.0f m at %s%s\n",

@@ -234,6 +234,20 @@ TEST(Colreg, TheGiveWayShipsAlterationIsFoundAndTimed) {
     EXPECT_TRUE(std::isnan(w[0].action_a.time_s));
 }
 
+TEST(Colreg, AShipNotUnderWayHasNoDutyAndGivesNoneToTheOther) {
+    // b lies stopped (0.2 knots) on a's starboard bow: the geometry is a crossing, but the
+    // rules give no give-way or stand-on ship.
+    const track::Track a = straight("a", {0, 0}, 0, 5, 0, 1000);
+    const track::Track b = straight("b", {1000, 3000}, 270, 0.1, 0, 1000);
+    const auto found = find_situations({&a, &b}, frame(), ColregOptions{}, 600);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].at_start.situation, Situation::crossing);
+    EXPECT_TRUE(found[0].b_stopped);
+    EXPECT_FALSE(found[0].a_stopped);
+    EXPECT_EQ(found[0].at_start.give_way, Party::neither);
+    EXPECT_EQ(found[0].at_start.stand_on, Party::neither);
+}
+
 TEST(Colreg, PairsNeverWithinRangeOrNotWantedOrApartInTimeAreNotReported) {
     const track::Track a = straight("a", {0, 0}, 0, 5, 0, 1000);
     const track::Track far = straight("far", {5000, 0}, 0, 5, 0, 1000);        // 5 km abeam throughout

@@ -46,6 +46,10 @@ struct ColregOptions {
     double course_change_deg = 10.0;    ///< an action: heading changed by at least this
     double speed_change = 0.2;          ///< or speed over ground by at least this fraction
     double sustain_s = 30.0;            ///< kept for at least this long
+    /// A ship slower than this over ground (knots) at the start is taken as not under way
+    /// (moored, at anchor, stopped): the rules give her no duty, so the pair has no give-way
+    /// and no stand-on ship (the situation is still the geometry's).
+    double under_way_kn = 0.5;
 };
 
 /// A ship at one moment, in local metres (x east, y north).
@@ -89,6 +93,7 @@ struct ColregEncounter {
     double closest_m = 0, closest_s = 0;  ///< least distance between the reference points while both are present
     geo::LonLat a_closest, b_closest;
     Manoeuvre action_a, action_b;
+    bool a_stopped = false, b_stopped = false;  ///< slower than ColregOptions::under_way_kn at the start
 };
 
 /// Every pair of `tracks` (fix times strictly increasing, headings resolved) that comes within
