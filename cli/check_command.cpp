@@ -78,6 +78,18 @@ public:
         m_sub->add_option("--ship-margin", m_audit.encounter.ship_margin_m,
                           "Exercise mode: close quarters when hulls come within this many metres (default 20)")
             ->check(finite)->check(CLI::NonNegativeNumber);
+        // Exercises, roles and COLREG situations (issue 18).
+        m_sub->add_option("--exercise-by", m_exercise_by,
+                          "Exercise mode: run (the whole run is one exercise, the default), file (each track file is one) or "
+                          "folder (the files of one folder are one); encounters only within an exercise. Implies --encounters")
+            ->check(CLI::IsMember({"run", "file", "folder"}));
+        m_sub->add_option("--roles", m_roles_file,
+                          "Exercise mode: exercise file (JSON, schemas/exercise.schema.json) giving each track's role, trainee or "
+                          "target; pairs of two targets are not reported. Default: every track is a trainee. Implies --encounters");
+        m_sub->add_option("--encounter-range", m_audit.colreg.range_m,
+                          "Exercise mode: a pair whose reference points come within this many metres is a COLREG situation "
+                          "(head-on, crossing, overtaking), classified when it first does (default 3704, 2 nm)")
+            ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--berths", m_berths,
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
@@ -118,6 +130,7 @@ public:
         m_vessel_files.insert(m_vessel_files.end(), folder_vessels.begin(), folder_vessels.end());
         all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
         all_inputs.insert(all_inputs.end(), m_vessel_files.begin(), m_vessel_files.end());
+        if (!m_roles_file.empty()) all_inputs.push_back(m_roles_file);
         const std::string format = !m_format.empty() ? m_format
                                    : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
         // Every output, checked before any work: none is an input or another output.
@@ -127,6 +140,17 @@ public:
         if (m_audit.sweep.step_m < min_step_m)
             throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(min_step_m) +
                              " m: a sweep that fine never ends");
+        // Exercises and roles (issue 18): either option turns exercise mode on.
+        if (!m_exercise_by.empty()) {
+            m_audit.exercise_by = audit::parse_exercise_by(m_exercise_by);
+            m_audit.encounters = true;
+        }
+        if (!m_roles_file.empty()) {
+            check_readable({m_roles_file});
+            m_roles = audit::Roles::load(m_roles_file);
+            m_audit.roles = &m_roles;
+            m_audit.encounters = true;
+        }
         const hull::Hull hull = m_opts.load_hull();
         if (!m_date.empty()) {
             const auto day = track::parse_date(m_date);
@@ -178,8 +202,9 @@ public:
         if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
         for (const auto& e : r.errors)
             std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(in_cli_terms(e.message)).c_str());
-        const report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
+        report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
                                                       m_audit, m_berths);
+        info.roles = m_roles_file;
         const auto t0 = std::chrono::steady_clock::now();
         // The report, its style and its picture are staged, then put in place together: an
         // interrupt before the end leaves every earlier file as it was.
@@ -232,6 +257,9 @@ private:
     std::map<std::string, track::VesselInfo> m_vessels;
     double m_berth_tolerance_m = 10.0;
     audit::AuditOptions m_audit;
+    std::string m_exercise_by;  // exercises and roles (issue 18)
+    std::string m_roles_file;
+    audit::Roles m_roles;
 };
 
 }  // namespace

@@ -7,8 +7,11 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <map>
 #include <optional>
+#include <set>
 #include <thread>
+#include <tuple>
 
 #include <shoal/track/merge.hpp>
 #include <shoal/util/error.hpp>
@@ -215,6 +218,10 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 swept[k].summary.draught_m = t.draught_m;
                 swept[k].summary.draught_source = t.draught_source;
                 if (options.encounters) {
+                    swept[k].summary.exercise = exercise_key(options.exercise_by, t);
+                    swept[k].summary.role = options.roles ? options.roles->role_of(swept[k].summary.exercise, t.id) : Role::trainee;
+                }
+                if (options.encounters) {
                     kept[k] = t;
                     kept_hulls[k] = hull;
                 }
@@ -273,23 +280,76 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                                       "of it was swept (two vessels on one id, or a WildFixOptions::max_speed_kn too low for it?)");
     }
 
-    // 3. Exercise mode: ship-to-ship encounters over all audited tracks, on one clock.
+    // 3. Exercise mode: ship-to-ship encounters and COLREG situations, each exercise on its own
+    // clock; pairs of two targets are not reported.
     if (options.encounters) {
         const auto t2 = Clock::now();
         EncounterOptions eo = options.encounter;
         eo.step_m = options.sweep.step_m;
         eo.max_gap_s = options.sweep.max_gap_s;
-        result.encounters = find_encounters(exercise, exercise_hulls, *frames[0], eo);
-        // Indices into the exercise become indices into result.tracks.
-        for (auto& e : result.encounters.events) {
-            e.a.track = exercise_index[e.a.track];
-            e.b.track = exercise_index[e.b.track];
-            (e.kind == EncounterKind::collision ? result.collisions : result.close_quarters) += 1;
+        std::map<std::string, std::vector<std::size_t>> by_exercise;  // exercise -> positions in `exercise`
+        for (std::size_t k = 0; k < exercise.size(); ++k) by_exercise[result.tracks[exercise_index[k]].summary.exercise].push_back(k);
+        std::set<std::string> named;
+        for (const auto& t : result.tracks) named.insert(t.summary.exercise);
+        result.exercises = named.size();
+        auto is_target = [&](std::size_t track_index) { return result.tracks[track_index].summary.role == Role::target; };
+        for (const auto& [name, members] : by_exercise) {
+            std::vector<const track::Track*> tracks;
+            std::vector<hull::Hull> hulls;
+            std::vector<std::size_t> index;  // position in this exercise -> index in result.tracks
+            for (const std::size_t k : members) {
+                tracks.push_back(exercise[k]);
+                hulls.push_back(exercise_hulls[k]);
+                index.push_back(exercise_index[k]);
+            }
+            auto wanted = [&](std::size_t a, std::size_t b) { return !(is_target(index[a]) && is_target(index[b])); };
+            EncounterResult er = find_encounters(tracks, hulls, *frames[0], eo);
+            for (auto& e : er.events) {
+                e.a.track = index[e.a.track];
+                e.b.track = index[e.b.track];
+                if (is_target(e.a.track) && is_target(e.b.track)) continue;
+                (e.kind == EncounterKind::collision ? result.collisions : result.close_quarters) += 1;
+                result.encounters.events.push_back(std::move(e));
+            }
+            std::set<std::pair<std::size_t, std::size_t>> approached;
+            for (auto& a : er.approaches) {
+                a.a = index[a.a];
+                a.b = index[a.b];
+                if (is_target(a.a) && is_target(a.b)) continue;
+                approached.insert({a.a, a.b});
+                result.encounters.approaches.push_back(a);
+            }
+            for (ColregEncounter& c : find_situations(tracks, *frames[0], options.colreg, options.sweep.max_gap_s, wanted)) {
+                c.a = index[c.a];
+                c.b = index[c.b];
+                if (!approached.count({c.a, c.b})) {  // never within the hull-to-hull threshold
+                    ClosestApproach a;
+                    a.a = c.a;
+                    a.b = c.b;
+                    a.time_s = c.closest_s;
+                    a.clearance_m = NAN;
+                    a.distance_m = c.closest_m;
+                    a.a_position = c.a_closest;
+                    a.b_position = c.b_closest;
+                    result.encounters.approaches.push_back(a);
+                }
+                result.situations.push_back(c);
+            }
+            result.encounters.instants += er.instants;
+            result.encounters.pairs_checked += er.pairs_checked;
+            result.encounters.hull_checks += er.hull_checks;
+            result.encounters.rebuilds += er.rebuilds;
+            result.encounters.threshold_m = std::max(result.encounters.threshold_m, er.threshold_m);
+            result.encounters.setup_s += er.setup_s;
+            result.encounters.sweep_s += er.sweep_s;
         }
-        for (auto& a : result.encounters.approaches) {
-            a.a = exercise_index[a.a];
-            a.b = exercise_index[a.b];
-        }
+        std::sort(result.encounters.approaches.begin(), result.encounters.approaches.end(),
+                  [](const ClosestApproach& x, const ClosestApproach& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+        std::sort(result.situations.begin(), result.situations.end(),
+                  [](const ColregEncounter& x, const ColregEncounter& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+        std::stable_sort(result.encounters.events.begin(), result.encounters.events.end(), [](const Encounter& x, const Encounter& y) {
+            return std::tie(x.start_s, x.a.track, x.b.track, x.kind) < std::tie(y.start_s, y.a.track, y.b.track, y.kind);
+        });
         result.has_encounters = true;
         result.encounters_s = std::chrono::duration<double>(Clock::now() - t2).count();
     }

@@ -1,6 +1,8 @@
 #include "report/report_fields.hpp"
 
+#include <algorithm>
 #include <map>
+#include <utility>
 
 #include <shoal/track/track.hpp>
 #include <shoal/version.hpp>
@@ -20,6 +22,32 @@ Value count(std::size_t n) { return static_cast<std::int64_t>(n); }
 const Value null{};
 
 bool exercise(const audit::AuditResult& r) { return r.has_encounters; }
+
+/// The COLREG situation of pair (a, b) (a < b), or null (AuditResult::situations is by (a, b)).
+const audit::ColregEncounter* situation_of(const audit::AuditResult& r, std::size_t a, std::size_t b) {
+    const auto it = std::lower_bound(r.situations.begin(), r.situations.end(), std::make_pair(a, b),
+                                     [](const audit::ColregEncounter& c, const std::pair<std::size_t, std::size_t>& k) {
+                                         return std::make_pair(c.a, c.b) < k;
+                                     });
+    return it != r.situations.end() && it->a == a && it->b == b ? &*it : nullptr;
+}
+/// A party of the pair as track ids: "both" is the two ids, "neither" null.
+Value party(const audit::AuditResult& r, const audit::ColregEncounter* c, audit::Party p) {
+    if (!c) return std::monostate{};
+    const std::string& a = r.tracks.at(c->a).summary.id;
+    const std::string& b = r.tracks.at(c->b).summary.id;
+    switch (p) {
+        case audit::Party::a: return Value(a);
+        case audit::Party::b: return Value(b);
+        case audit::Party::both: return Value(a + ", " + b);
+        case audit::Party::neither: break;
+    }
+    return std::monostate{};
+}
+Value action_text(const audit::Manoeuvre& m) {
+    if (std::isnan(m.time_s)) return Value(std::string("none"));
+    return Value(std::string(m.course && m.speed ? "course and speed" : m.course ? "course" : "speed"));
+}
 
 using audit::is_contact;
 using E = EventRow;
@@ -77,6 +105,8 @@ const std::vector<Field<EventRow>>& event_fields() {
         {"file", text_t, none, -1, [](const E& x) { return text(x.track.file); }},
         {"hull", text_t, none, -1, [](const E& x) { return text(x.track.hull); }},
         {"label", text_t, none, -1, [](const E& x) { return text(event_label(x.event)); }},
+        {"exercise", text_t, none, -1, [](const E& x) { return text(x.track.exercise); }, exercise},
+        {"role", text_t, none, -1, [](const E& x) { return text(audit::to_string(x.track.role)); }, exercise},
     };
     return f;
 }
@@ -108,6 +138,25 @@ const std::vector<Field<EncounterRow>>& encounter_fields() {
         {"other_fix_index", integer, none, -1, [](const C& x) { return count(x.encounter.b.fix_index); }},
         {"distance_m", real, metres, 3, [](const C& x) { return Value(x.encounter.distance_m); }},
         {"label", text_t, none, -1, [](const C& x) { return text(encounter_label(x.encounter)); }},
+        {"exercise", text_t, none, -1, [](const C& x) { return text(a(x).exercise); }, exercise},
+        {"situation", text_t, none, -1,
+         [](const C& x) {
+             const auto* c = situation_of(x.result, x.encounter.a.track, x.encounter.b.track);
+             return c ? text(audit::to_string(c->at_start.situation)) : null;
+         },
+         exercise},
+        {"give_way", text_t, none, -1,
+         [](const C& x) {
+             const auto* c = situation_of(x.result, x.encounter.a.track, x.encounter.b.track);
+             return party(x.result, c, c ? c->at_start.give_way : audit::Party::neither);
+         },
+         exercise},
+        {"stand_on", text_t, none, -1,
+         [](const C& x) {
+             const auto* c = situation_of(x.result, x.encounter.a.track, x.encounter.b.track);
+             return party(x.result, c, c ? c->at_start.stand_on : audit::Party::neither);
+         },
+         exercise},
     };
     return f;
 }
@@ -138,6 +187,8 @@ const std::vector<Field<TrackRow>>& track_fields() {
         {"distance_m", real, metres, 1, [](const T& x) { return Value(x.track.distance_m); }},
         {"start", text_t, utc, -1, [](const T& x) { return text(iso_time(x.track.start_s)); }},
         {"end", text_t, utc, -1, [](const T& x) { return text(iso_time(x.track.end_s)); }},
+        {"exercise", text_t, none, -1, [](const T& x) { return text(x.track.exercise); }, exercise},
+        {"role", text_t, none, -1, [](const T& x) { return text(audit::to_string(x.track.role)); }, exercise},
     };
     return f;
 }
@@ -164,6 +215,7 @@ const std::vector<Field<ProblemRow>>& problem_fields() {
 }
 
 const std::vector<Field<ApproachRow>>& approach_fields() {
+    static const auto sit = [](const A& x) { return situation_of(x.result, x.approach.a, x.approach.b); };
     static const std::vector<Field<ApproachRow>> f = {
         {"track", text_t, none, -1, [](const A& x) { return text(x.result.tracks.at(x.approach.a).summary.id); }},
         {"other_track", text_t, none, -1, [](const A& x) { return text(x.result.tracks.at(x.approach.b).summary.id); }},
@@ -174,6 +226,24 @@ const std::vector<Field<ApproachRow>>& approach_fields() {
         {"ship_lon", real, wgs84, coordinate_decimals, [](const A& x) { return Value(x.approach.a_position.lon); }},
         {"other_lat", real, wgs84, coordinate_decimals, [](const A& x) { return Value(x.approach.b_position.lat); }},
         {"other_lon", real, wgs84, coordinate_decimals, [](const A& x) { return Value(x.approach.b_position.lon); }},
+        {"exercise", text_t, none, -1, [](const A& x) { return text(x.result.tracks.at(x.approach.a).summary.exercise); }},
+        {"situation", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return c ? text(audit::to_string(c->at_start.situation)) : null; }},
+        {"give_way", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return party(x.result, c, c ? c->at_start.give_way : audit::Party::neither); }},
+        {"stand_on", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return party(x.result, c, c ? c->at_start.stand_on : audit::Party::neither); }},
+        {"situation_start", text_t, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->start_s)) : null; }},
+        {"situation_end", text_t, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->end_s)) : null; }},
+        {"bearing_deg", real, degrees, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->at_start.bearing_of_b_deg) : null; }},
+        {"other_bearing_deg", real, degrees, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->at_start.bearing_of_a_deg) : null; }},
+        {"cpa_m", real, metres, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->cpa_start.distance_m) : null; }},
+        {"tcpa_s", real, seconds, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->cpa_start.time_s) : null; }},
+        {"closest_distance_m", real, metres, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->closest_m) : null; }},
+        {"closest_time", text_t, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->closest_s)) : null; }},
+        {"track_action", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return c ? action_text(c->action_a) : null; }},
+        {"track_action_time", text_t, utc, -1,
+         [](const A& x) { const auto* c = sit(x); return c && !std::isnan(c->action_a.time_s) ? text(iso_time(c->action_a.time_s)) : null; }},
+        {"other_action", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return c ? action_text(c->action_b) : null; }},
+        {"other_action_time", text_t, utc, -1,
+         [](const A& x) { const auto* c = sit(x); return c && !std::isnan(c->action_b.time_s) ? text(iso_time(c->action_b.time_s)) : null; }},
     };
     return f;
 }
@@ -197,6 +267,9 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"max_speed_kn", real, knots, -1, [](const R& x) { return Value(x.info.wild.max_speed_kn); }},
         {"berths", text_t, none, -1, [](const R& x) { return text(x.info.berths); }},
         {"ship_margin_m", real, metres, -1, [](const R& x) { return Value(x.info.ship_margin_m); }, exercise},
+        {"exercise_by", text_t, none, -1, [](const R& x) { return text(x.info.exercise_by); }, exercise},
+        {"roles", text_t, none, -1, [](const R& x) { return text(x.info.roles); }, exercise},
+        {"encounter_range_m", real, metres, -1, [](const R& x) { return Value(x.info.encounter_range_m); }, exercise},
     };
     return f;
 }
@@ -230,6 +303,8 @@ const std::vector<Field<RunRow>>& summary_fields() {
         {"last_fix", text_t, utc, -1, [](const R& x) { return text(iso_time(x.result.last_fix_s)); }},
         {"collisions", integer, none, -1, [](const R& x) { return count(x.result.collisions); }, exercise},
         {"close_quarters", integer, none, -1, [](const R& x) { return count(x.result.close_quarters); }, exercise},
+        {"exercises", integer, none, -1, [](const R& x) { return count(x.result.exercises); }, exercise},
+        {"situations", integer, none, -1, [](const R& x) { return count(x.result.situations.size()); }, exercise},
     };
     return f;
 }

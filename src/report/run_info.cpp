@@ -30,6 +30,8 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.wild = options.wild;
     info.berths = joined(berths);
     info.ship_margin_m = options.encounter.ship_margin_m;
+    info.exercise_by = audit::to_string(options.exercise_by);
+    info.encounter_range_m = options.colreg.range_m;
     return info;
 }
 

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -55,9 +56,31 @@ std::string summary_table(const audit::AuditResult& r) {
             out += line;
         }
     if (r.has_encounters) {
-        std::snprintf(line, sizeof line, "encounters: %zu collisions, %zu close quarters, %zu pairs came within the threshold (%.0f m)\n",
-                      r.collisions, r.close_quarters, r.encounters.approaches.size(), r.encounters.threshold_m);
+        const auto within = static_cast<std::size_t>(std::count_if(r.encounters.approaches.begin(), r.encounters.approaches.end(),
+                                                                   [](const audit::ClosestApproach& a) { return std::isfinite(a.clearance_m); }));
+        std::snprintf(line, sizeof line, "encounters: %zu exercise%s, %zu collisions, %zu close quarters, %zu pairs came within the threshold (%.0f m)\n",
+                      r.exercises, r.exercises == 1 ? "" : "s", r.collisions, r.close_quarters, within, r.encounters.threshold_m);
         out += line;
+        std::snprintf(line, sizeof line, "situations: %zu pairs came within the encounter range\n", r.situations.size());
+        out += line;
+        for (const auto& c : r.situations) {
+            const std::string& a = r.tracks.at(c.a).summary.id;
+            const std::string& b = r.tracks.at(c.b).summary.id;
+            const auto who = [&](audit::Party p) -> std::string {
+                return p == audit::Party::a ? a : p == audit::Party::b ? b : p == audit::Party::both ? "both" : "neither";
+            };
+            const audit::Manoeuvre& act = c.at_start.give_way == audit::Party::b ? c.action_b : c.action_a;
+            std::string acted = c.a_stopped || c.b_stopped ? std::string(", not under way: ") + (c.a_stopped ? a : "") +
+                                                                 (c.a_stopped && c.b_stopped ? ", " : "") + (c.b_stopped ? b : "")
+                                                           : "";
+            if (c.at_start.give_way == audit::Party::a || c.at_start.give_way == audit::Party::b)
+                acted = std::isnan(act.time_s) ? ", give-way did not alter" : ", give-way altered " + iso_time(act.time_s).substr(11);
+            std::snprintf(line, sizeof line, "  %-10s %s  [%s] %s x %s  give-way %s, CPA %.0f m in %.0f s, closest %.0f m at %s%s\n",
+                          audit::to_string(c.at_start.situation), iso_time(c.start_s).c_str(), printable(r.tracks.at(c.a).summary.exercise).c_str(),
+                          printable(a).c_str(), printable(b).c_str(), printable(who(c.at_start.give_way)).c_str(), c.cpa_start.distance_m,
+                          c.cpa_start.time_s, c.closest_m, iso_time(c.closest_s).substr(11).c_str(), acted.c_str());
+            out += line;
+        }
         for (const auto& e : r.encounters.events) {
             std::snprintf(line, sizeof line, "  %-14s %s - %s  %s x %s  least %.1f m\n", audit::to_string(e.kind),
                           iso_time(e.start_s).c_str(), iso_time(e.end_s).c_str(), r.tracks.at(e.a.track).summary.id.c_str(),

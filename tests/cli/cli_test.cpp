@@ -247,6 +247,66 @@ TEST(CliCheck, EncountersFindTwoShipsCrossingAtTheSameSpot) {
     EXPECT_EQ(doc["shoal"]["closest_approaches"].size(), 1u);
 }
 
+TEST(CliCheck, ExercisesByFolderAreAuditedApartWithRolesAndSituations) {
+    // Two exercises, one folder each, sailed at the same time on the same water: in each, C
+    // sails east along 50.74N and D north along 1.04W, both reaching the crossing at 10:05.
+    const fs::path root = temp_dir() / "morning";
+    std::string ids[2][2] = {{"333333333", "444444444"}, {"555555555", "666666666"}};
+    for (int x = 0; x < 2; ++x) {
+        fs::create_directories(root / ("ex" + std::to_string(x + 1)));
+        std::ofstream out(root / ("ex" + std::to_string(x + 1)) / "bridges.csv");
+        out << "mmsi,timestamp,lat,lon,heading\n";
+        for (int i = 0; i <= 10; ++i) {
+            char row[160];
+            std::snprintf(row, sizeof row, "%s,2024-05-01T10:%02d:00Z,50.7400,%.5f,90\n", ids[x][0].c_str(), i, -1.05 + 0.002 * i);
+            out << row;
+            std::snprintf(row, sizeof row, "%s,2024-05-01T10:%02d:00Z,%.5f,-1.0400,0\n", ids[x][1].c_str(), i, 50.7335 + 0.0013 * i);
+            out << row;
+        }
+    }
+    const fs::path roles = temp_dir() / "roles.json";
+    {
+        std::ofstream out(roles);
+        out << R"({"default_role": "target", "tracks": [{"track": "333333333", "role": "trainee"}, {"track": "555555555", "role": "own ship"}]})";
+    }
+    const fs::path report = temp_dir() / "morning.geojson";
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + (root / "ex1").string() + "' '" +
+                            (root / "ex2").string() + "' -o '" + report.string() + "' --exercise-by folder --roles '" + roles.string() + "'");
+    EXPECT_EQ(r.status, 1) << r.err << r.out;  // a collision in each exercise
+    EXPECT_TRUE(validates_against_schema(report));
+    EXPECT_NE(r.out.find("situations: 2 pairs came within the encounter range"), std::string::npos) << r.out;
+    const auto doc = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(doc["shoal"]["exercise_by"], "folder");
+    EXPECT_EQ(doc["shoal"]["summary"]["exercises"], 2);
+    EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 2);  // never C of ex1 against C of ex2
+    for (const auto& t : doc["shoal"]["tracks"]) {
+        const std::string id = t["track"];
+        EXPECT_EQ(t["role"], id == "333333333" || id == "555555555" ? "trainee" : "target") << id;
+        EXPECT_EQ(t["exercise"], (root / (id == "333333333" || id == "444444444" ? "ex1" : "ex2")).string()) << id;
+    }
+    ASSERT_EQ(doc["shoal"]["closest_approaches"].size(), 2u);
+    for (const auto& a : doc["shoal"]["closest_approaches"]) {
+        // D comes from C's starboard side: C gives way (rule 15).
+        EXPECT_EQ(a["situation"], "crossing");
+        EXPECT_EQ(a["give_way"], a["track"]);
+        EXPECT_EQ(a["stand_on"], a["other_track"]);
+        EXPECT_EQ(a["clearance_m"], 0.0);
+    }
+    for (const auto& f : doc["features"])
+        if (f["properties"]["kind"] == "collision") {
+            EXPECT_EQ(f["properties"]["situation"], "crossing");
+            EXPECT_EQ(f["properties"]["give_way"], f["properties"]["track"]);
+        }
+
+    // A bad exercise file: exit 2, the file and the entry named.
+    std::ofstream(temp_dir() / "bad_roles.json") << R"({"tracks": [{"track": "333333333", "role": "pilot"}]})";
+    const Outcome bad = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + (root / "ex1").string() +
+                              "' -o '" + (temp_dir() / "bad.geojson").string() + "' --roles '" + (temp_dir() / "bad_roles.json").string() + "'");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.err.find("bad_roles.json"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("tracks[0] (track '333333333')"), std::string::npos) << bad.err;
+}
+
 TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
     const fs::path tracks = solent_tracks();
     std::string reports[2];

@@ -141,6 +141,25 @@ audit::AuditResult hand_result() {
     r.encounters.events.push_back(enc);
     r.encounters.approaches.push_back({0, 1, t0 + 100.25, 0.0, 23.45678, {-1.3055, 50.7055}, {-1.3056, 50.7056}});
     r.collisions = 1;
+    // Its COLREG situation: a crossing, the first ship giving way and altering course.
+    audit::ColregEncounter c;
+    c.a = 0;
+    c.b = 1;
+    c.start_s = t0 + 20.5;
+    c.end_s = t0 + 400.25;
+    c.at_start.situation = audit::Situation::crossing;
+    c.at_start.give_way = audit::Party::a;
+    c.at_start.stand_on = audit::Party::b;
+    c.at_start.bearing_of_b_deg = 45.04;
+    c.at_start.bearing_of_a_deg = 315.06;
+    c.cpa_start = {12.345, 80.25};
+    c.closest_m = 23.45678;
+    c.closest_s = t0 + 100.25;
+    c.action_a = {true, false, t0 + 60};
+    r.situations.push_back(c);
+    r.exercises = 1;
+    for (auto& t : r.tracks) t.summary.exercise = "run";
+    r.tracks.back().summary.role = audit::Role::target;
     return r;
 }
 

@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include <shoal/audit/colreg.hpp>
 #include <shoal/audit/encounters.hpp>
+#include <shoal/audit/exercise.hpp>
 #include <shoal/audit/sweep.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
@@ -25,6 +27,14 @@ struct AuditOptions {
     /// Exercise mode: the tracks of the run are one exercise; find ship-to-ship encounters.
     bool encounters = false;
     EncounterOptions encounter;  ///< step and max gap are taken from `sweep`
+    /// Exercise mode: how tracks are grouped into exercises (exercise.hpp); encounters are
+    /// found within an exercise only.
+    ExerciseBy exercise_by = ExerciseBy::run;
+    /// Exercise mode: roles of tracks (exercise.hpp); null: every track is a trainee. Pairs of
+    /// two targets are not reported. Must outlive the run.
+    const Roles* roles = nullptr;
+    /// Exercise mode: COLREG situations of the pairs that come within colreg.range_m (colreg.hpp).
+    ColregOptions colreg;
     track::WildFixOptions wild;  ///< what makes a fix an outlier
     /// Areas where contact is expected, and shore constructions; may be null. Must outlive the run.
     const coast::ExpectedAreas* areas = nullptr;
@@ -65,6 +75,13 @@ struct AuditResult {
     /// ClosestApproach::a/b index `tracks` above.
     bool has_encounters = false;
     EncounterResult encounters;
+    /// Exercise mode: every pair of an exercise (not two targets) that came within
+    /// AuditOptions::colreg.range_m, by (a, b) (indices in `tracks`). Each also has an entry in
+    /// encounters.approaches: one with a NaN clearance when the pair never came within the
+    /// hull-to-hull threshold (the time, distance and positions are then those of the least
+    /// distance between the reference points).
+    std::vector<ColregEncounter> situations;
+    std::size_t exercises = 0;  ///< exercise mode: exercises with at least one audited track
     std::size_t collisions = 0, close_quarters = 0;
     double encounters_s = 0;
 };

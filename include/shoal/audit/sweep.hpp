@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <shoal/audit/exercise.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/track/kinematics.hpp>
 #include <shoal/track/track.hpp>
@@ -105,6 +106,8 @@ struct TrackSummary {
     double start_s = NAN, end_s = NAN;
     double distance_m = 0;            ///< length sailed (local metres, gaps excluded)
     std::vector<std::vector<geo::LonLat>> lines;  ///< the swept pieces, for the report's tracks layer
+    std::string exercise;             ///< exercise mode: the track's exercise (exercise.hpp)
+    Role role = Role::trainee;        ///< exercise mode: trainee or target
 };
 
 struct TrackResult {

@@ -31,6 +31,9 @@ struct RunInfo {
     track::WildFixOptions wild;
     std::string berths;        ///< the --berths sources (expected-contact areas), comma-separated
     double ship_margin_m = 0;  ///< exercise mode: close quarters under this
+    std::string exercise_by = "run";  ///< exercise mode: how tracks are grouped (audit::ExerciseBy)
+    std::string roles;                ///< exercise mode: the exercise (roles) file, "" when none
+    double encounter_range_m = audit::ColregOptions{}.range_m;  ///< exercise mode: COLREG situations within this
 };
 
 /// The run header of a check: the coast sources `coast` as given, the grid's frame, cell,

@@ -1,0 +1,117 @@
+// Exercises and roles (see include/shoal/audit/exercise.hpp).
+#include <shoal/audit/exercise.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <shoal/util/error.hpp>
+
+namespace shoal::audit {
+
+const char* to_string(ExerciseBy by) noexcept {
+    switch (by) {
+        case ExerciseBy::file: return "file";
+        case ExerciseBy::folder: return "folder";
+        case ExerciseBy::run: break;
+    }
+    return "run";
+}
+
+ExerciseBy parse_exercise_by(const std::string& s) {
+    if (s == "run") return ExerciseBy::run;
+    if (s == "file") return ExerciseBy::file;
+    if (s == "folder") return ExerciseBy::folder;
+    throw UsageError("AuditOptions::exercise_by '" + s + "' is none of run, file, folder");
+}
+
+std::string exercise_key(ExerciseBy by, const std::string& file) {
+    switch (by) {
+        case ExerciseBy::file: return file;
+        case ExerciseBy::folder: {
+            const std::string folder = std::filesystem::path(file).parent_path().string();
+            return folder.empty() ? "." : folder;
+        }
+        case ExerciseBy::run: break;
+    }
+    return "run";
+}
+
+std::string exercise_key(ExerciseBy by, const track::Track& track) { return exercise_key(by, track.file); }
+
+const char* to_string(Role r) noexcept { return r == Role::target ? "target" : "trainee"; }
+
+bool parse_role(const std::string& s, Role& role) {
+    std::string v;
+    for (const char c : s) v += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (v == "trainee" || v == "own" || v == "own ship" || v == "own_ship") {
+        role = Role::trainee;
+        return true;
+    }
+    if (v == "target") {
+        role = Role::target;
+        return true;
+    }
+    return false;
+}
+
+Roles Roles::parse(const std::string& text, const std::string& source) {
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw InputError("exercise file '" + source + "': not JSON: " + e.what());
+    }
+    auto fail = [&](const std::string& what) { throw InputError("exercise file '" + source + "': " + what); };
+    if (!j.is_object()) fail("not a JSON object");
+    for (const auto& [key, _] : j.items())
+        if (key != "default_role" && key != "tracks" && key != "$schema" && key != "description") fail("unknown member '" + key + "'");
+    Roles r;
+    if (j.contains("default_role")) {
+        if (!j["default_role"].is_string() || !parse_role(j["default_role"].get<std::string>(), r.default_role))
+            fail("default_role must be \"trainee\" or \"target\"");
+    }
+    if (!j.contains("tracks") || !j["tracks"].is_array()) fail("no \"tracks\" array");
+    std::size_t n = 0;
+    for (const auto& e : j["tracks"]) {
+        const std::string where = "tracks[" + std::to_string(n++) + "]";
+        if (!e.is_object()) fail(where + " is not an object");
+        for (const auto& [key, _] : e.items())
+            if (key != "track" && key != "exercise" && key != "role") fail(where + ": unknown member '" + key + "'");
+        Entry entry;
+        if (!e.contains("track") || !e["track"].is_string() || e["track"].get<std::string>().empty()) fail(where + ": no \"track\" (a track id)");
+        entry.track = e["track"].get<std::string>();
+        if (e.contains("exercise")) {
+            if (!e["exercise"].is_string()) fail(where + ": \"exercise\" must be a string");
+            entry.exercise = e["exercise"].get<std::string>();
+        }
+        if (!e.contains("role") || !e["role"].is_string() || !parse_role(e["role"].get<std::string>(), entry.role))
+            fail(where + " (track '" + entry.track + "'): \"role\" must be \"trainee\" or \"target\"");
+        r.entries.push_back(std::move(entry));
+    }
+    return r;
+}
+
+Roles Roles::load(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError("exercise file '" + path + "': cannot be read");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse(text.str(), path);
+}
+
+Role Roles::role_of(const std::string& exercise, const std::string& track) const {
+    const Entry* any = nullptr;
+    for (const Entry& e : entries) {
+        if (e.track != track) continue;
+        if (e.exercise == exercise) return e.role;
+        if (e.exercise.empty() && !any) any = &e;
+    }
+    return any ? any->role : default_role;
+}
+
+}  // namespace shoal::audit
