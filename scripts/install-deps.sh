@@ -12,6 +12,8 @@ PACKAGES=(
   python3 python3-jsonschema python3-gdal   # report schema validation in tests (/usr/bin/python3)
   gpsd-clients python3-ais    # independent AIS decoders for tests/track/ais_test.cpp (gpsdecode, libais)
   clang libclang-rt-14-dev    # libFuzzer + sanitizers for scripts/fuzz.sh
+  zlib1g-dev                  # deflating the .qgz of the QGIS project stored in a GeoPackage report
+  python3-qgis                # tests/report/qgis_report_test.py: the report opened and rendered in a real QGIS 3.22 (headless, offscreen)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
