@@ -27,7 +27,7 @@
 namespace shoal::report {
 
 inline constexpr double chart_tile_deg = 0.05;
-inline constexpr double chart_margin_m = 2000.0;
+inline constexpr double chart_margin_m = 5000.0;
 
 /// A tile of the tiling: column (longitude) and row (latitude) numbers, both >= 0.
 struct ChartTile {
