@@ -40,9 +40,9 @@ struct SweepOptions {
     /// passed (a ship lying still is still seen), and always at the first and last fix of
     /// each piece and at every fix where the hull's state (clear, within the margin, in
     /// contact) changes. pose_interval_s <= 0: every fix.
-    double pose_interval_s = 30.0;
-    double pose_distance_m = 100.0;
-    double pose_max_interval_s = 600.0;
+    double pose_interval_s = 120.0;
+    double pose_distance_m = 300.0;
+    double pose_max_interval_s = 900.0;
 };
 
 /// What an event is, decided at the first contact of each interval from what was observed.
