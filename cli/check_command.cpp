@@ -205,6 +205,14 @@ public:
         report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
                                                       m_audit, m_berths);
         info.roles = m_roles_file;
+        // The chart under the run (the GeoPackage's coast layer): the grid's sources read again.
+        std::optional<coast::Coastline> chart;
+        if (format == "gpkg") {
+            std::string chart_warning;
+            chart = report::read_chart(m_opts.coast, g, chart_warning);
+            if (chart) info.chart = &*chart;
+            else print_warnings({chart_warning});
+        }
         const auto t0 = std::chrono::steady_clock::now();
         // The report, its style and its picture are staged, then put in place together: an
         // interrupt before the end leaves every earlier file as it was.

@@ -14,6 +14,8 @@ PACKAGES=(
   clang libclang-rt-14-dev    # libFuzzer + sanitizers for scripts/fuzz.sh
   pybind11-dev python3-dev    # the Python module shoal (python/), built whenever both are found
   python3-numpy python3-pandas python3-geopandas   # its arrays and DataFrames, and its tests (/usr/bin/python3)
+  zlib1g-dev                  # deflating the .qgz of the QGIS project stored in a GeoPackage report
+  python3-qgis                # tests/report/qgis_report_test.py: the report opened and rendered in a real QGIS 3.22 (headless, offscreen)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -15,7 +15,8 @@ os.environ.setdefault("XDG_RUNTIME_DIR", tempfile.mkdtemp(prefix="xdg-"))
 from qgis.core import (QgsApplication, QgsVectorLayer, QgsSymbol, QgsRendererCategory,
                        QgsCategorizedSymbolRenderer, QgsRuleBasedRenderer, QgsPalLayerSettings,
                        QgsVectorLayerSimpleLabeling, QgsTextFormat, QgsTextBufferSettings,
-                       QgsMarkerSymbol, QgsLineSymbol, QgsFillSymbol, QgsWkbTypes)
+                       QgsMarkerSymbol, QgsLineSymbol, QgsFillSymbol, QgsWkbTypes,
+                       QgsVectorLayerTemporalProperties, Qgis)
 from qgis.PyQt.QtGui import QColor, QFont
 
 out_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src", "report", "styles")
@@ -45,6 +46,21 @@ def labels(field, placement):
     return QgsVectorLayerSimpleLabeling(s)
 
 
+def temporal(layer, start, end=None, accumulate=False):
+    """The layer's temporal properties, so QGIS's temporal controller plays the run: features
+    from `start` to `end` (both included), or, with no end, from `start` on (accumulate) or at `start`."""
+    t = layer.temporalProperties()
+    t.setIsActive(True)
+    t.setStartField(start)
+    if end:
+        t.setMode(QgsVectorLayerTemporalProperties.ModeFeatureDateTimeStartAndEndFromFields)
+        t.setEndField(end)
+    else:
+        t.setMode(QgsVectorLayerTemporalProperties.ModeFeatureDateTimeInstantFromField)
+        t.setAccumulateFeatures(accumulate)
+    t.setLimitMode(Qgis.VectorTemporalLimitMode.IncludeBeginIncludeEnd)
+
+
 def save(layer, name):
     path = os.path.join(out_dir, name + ".qml")
     msg, ok = layer.saveNamedStyle(path)
@@ -57,7 +73,9 @@ def save(layer, name):
 # a danger (rock, wreck, obstruction); contacts that are not groundings small and muted (alongside
 # steel blue, in contact at the start grey, in an expected-contact area green); close passes amber
 # triangles; labelled with the time
-events = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=hit:string&field=label:string", "events", "memory")
+events = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=hit:string&field=label:string&field=start:datetime&field=end:datetime",
+                        "events", "memory")
+temporal(events, "start", accumulate=True)  # an event appears at its time and stays
 root = QgsRuleBasedRenderer.Rule(None)
 for expr, colour, shape, size, label in (
         ("\"kind\" = 'grounding' AND (\"hit\" IS NULL OR \"hit\" NOT IN ('shallow', 'danger'))", RED, "circle", "4.2", "aground on land"),
@@ -79,7 +97,8 @@ events.setLabelsEnabled(True)
 save(events, "events")
 
 # hulls: the hull footprint at each event, outlined in the event's colour
-hulls = QgsVectorLayer("Polygon?crs=EPSG:4326&field=kind:string&field=label:string", "hulls", "memory")
+hulls = QgsVectorLayer("Polygon?crs=EPSG:4326&field=kind:string&field=label:string&field=start:datetime", "hulls", "memory")
+temporal(hulls, "start", accumulate=True)
 cats = []
 for value, colour, fill, label in (("grounding", RED, "227,26,28,60", "hull aground"),
                                    ("alongside", STEEL, "74,127,168,40", "hull alongside (not a grounding)"),
@@ -95,7 +114,9 @@ hulls.setRenderer(QgsCategorizedSymbolRenderer("kind", cats))
 save(hulls, "hulls")
 
 # encounters (exercise mode): ship-to-ship collisions and close quarters, labelled with the time
-encounters = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=label:string", "encounters", "memory")
+encounters = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=label:string&field=start:datetime&field=end:datetime",
+                            "encounters", "memory")
+temporal(encounters, "start", accumulate=True)
 cats = []
 for value, colour, shape, label in (("collision", MAGENTA, "diamond", "ship-ship collision"),
                                     ("close_quarters", VIOLET, "pentagon", "ship-ship close quarters")):
@@ -108,8 +129,9 @@ encounters.setLabelsEnabled(True)
 save(encounters, "encounters")
 
 # tracks: coloured by least clearance (NULL: never within the search limit)
-tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double&field=groundings:integer",
-                        "tracks", "memory")
+tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double&field=groundings:integer"
+                        "&field=start:datetime&field=end:datetime", "tracks", "memory")
+temporal(tracks, "start", "end")  # a track is drawn while its vessel is on record
 root = QgsRuleBasedRenderer.Rule(None)
 for expr, colour, label in (('"groundings" > 0', RED, "aground"),
                             ('"min_clearance_m" = 0', VIOLET_TRACK, "in contact, not a grounding (alongside, at the start, expected)"),
@@ -125,4 +147,40 @@ tracks.setRenderer(QgsRuleBasedRenderer(root))
 tracks.setLabeling(labels("track", QgsPalLayerSettings.Line))
 tracks.setLabelsEnabled(True)
 save(tracks, "tracks")
+
+# poses: the hull at each kept fix, from its time until the next kept pose (the temporal
+# controller moves the hulls); red in contact, amber within 50 m, else dark slate
+poses = QgsVectorLayer("Polygon?crs=EPSG:4326&field=track:string&field=clearance_m:double&field=contact:boolean"
+                       "&field=time:datetime&field=until:datetime", "poses", "memory")
+root = QgsRuleBasedRenderer.Rule(None)
+for expr, fill, colour, label in (('"contact"', "227,26,28,150", RED, "hull in contact"),
+                                  ('"clearance_m" < 50', "255,159,0,130", AMBER, "hull within 50 m of a hazard"),
+                                  ("ELSE", "51,71,91,110", "#33475b", "hull")):
+    sym = QgsFillSymbol.createSimple({"color": fill, "outline_color": colour, "outline_width": "0.4", "style": "solid"})
+    rule = QgsRuleBasedRenderer.Rule(sym, 0, 0, "" if expr == "ELSE" else expr, label)
+    if expr == "ELSE":
+        rule.setIsElse(True)
+    root.appendChild(rule)
+poses.setRenderer(QgsRuleBasedRenderer(root))
+temporal(poses, "time", "until")
+save(poses, "poses")
+
+# coast: the chart under the run, coloured as on a paper chart: land buff, drying green,
+# shallow water in blues (darker the shallower), dangers purple hatched. Not temporal. No
+# outlines: the layer is cut into tiles, and outlined tiles would draw their seams.
+coast = QgsVectorLayer("MultiPolygon?crs=EPSG:4326&field=tile:string&field=kind:string&field=danger:string&field=depth_m:double",
+                       "coast", "memory")
+root = QgsRuleBasedRenderer.Rule(None)
+for expr, fill, colour, style, label in (
+        ("\"kind\" = 'land'", "#f3e3b5", "#9c8650", "solid", "land"),
+        ("\"kind\" = 'shallow' AND \"depth_m\" < 0", "#b9d3a0", "#6f8f5a", "solid", "dries"),
+        ("\"kind\" = 'shallow' AND \"depth_m\" < 2", "#6fa8d6", "#4a7fa8", "solid", "shallow, under 2 m"),
+        ("\"kind\" = 'shallow' AND \"depth_m\" < 5", "#98c2e4", "#4a7fa8", "solid", "shallow, 2 to 5 m"),
+        ("\"kind\" = 'shallow' AND \"depth_m\" >= 5", "#c3dcf0", "#4a7fa8", "solid", "shallow, 5 m or more (under the limiting depth)"),
+        ("\"kind\" = 'shallow'", "#98c2e4", "#4a7fa8", "dense4", "shallow, depth not charted"),
+        ("\"kind\" = 'danger'", "#6a3d9a", "#3f1f66", "bdiagonal", "danger (rock, wreck, obstruction)")):
+    sym = QgsFillSymbol.createSimple({"color": fill, "outline_color": colour, "outline_style": "no", "style": style})
+    root.appendChild(QgsRuleBasedRenderer.Rule(sym, 0, 0, expr, label))
+coast.setRenderer(QgsRuleBasedRenderer(root))
+save(coast, "coast")
 app.exitQgis()

@@ -253,6 +253,27 @@ private:
         return e;
     }
 
+public:
+    /// The hull at fix i, with what the check there found.
+    Pose pose_at(std::size_t i, const check::Contact& c) const {
+        Pose p;
+        const track::Fix& fix = m_track.fixes[i];
+        p.time_s = p.until_s = fix.time_s;
+        p.speed_kn = fix.speed_used_kn;
+        const PoseChecker& used = checker_at(i, 0.0);
+        p.heading_deg = &used != &m_checker ? NAN : m_motion.heading(i, 0.0);
+        p.contact = c.collision;
+        p.clearance_m = c.collision ? 0.0 : c.clearance_m;
+        p.covered = c.covered;
+        p.fix_index = i;
+        p.fix_line = fix.line;
+        for (const XY& q : check::hull_outline(used.hull(), m_motion.pose(i, 0.0))) p.hull.push_back(m_frame.inverse(q));
+        if (!p.hull.empty()) p.hull.push_back(p.hull.front());
+        return p;
+    }
+
+private:
+
     const track::Track& m_track;
     const geo::LocalFrame& m_frame;
     const Motion& m_motion;
@@ -327,11 +348,27 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     };
     bool have_prev = false;
     std::vector<geo::LonLat>* line = nullptr;
+    // Poses for the report (SweepOptions::pose_interval_s): the last kept one of this piece,
+    // and the fix before (kept when the piece ends or the state changes).
+    std::size_t piece_poses = 0;  ///< index in out.poses of this piece's first pose
+    int last_state = -1;
+    std::optional<std::pair<std::size_t, check::Contact>> pending;  ///< the previous fix, not kept (yet)
+    auto state_of = [&](const check::Contact& c) { return c.collision ? 2 : c.clearance_m < opt.margin_m ? 1 : 0; };
+    auto keep = [&](Pose p) {
+        if (out.poses.size() > piece_poses) out.poses.back().until_s = p.time_s;
+        out.poses.push_back(std::move(p));
+    };
+    auto end_poses = [&] {
+        if (pending) keep(events.pose_at(pending->first, pending->second));
+        pending.reset();
+        piece_poses = out.poses.size();
+    };
     for (std::size_t i = 0; i < t.fixes.size(); ++i) {
         const bool gap = have_prev && t.fixes[i].time_s - t.fixes[i - 1].time_s > opt.max_gap_s;
         const bool jump = have_prev && t.fixes[i].jump_before;
         if (!have_prev || gap || jump) {
             if (have_prev) {
+                end_poses();
                 events.end_piece();
                 ++(gap ? sum.gaps : sum.jumps);
             }
@@ -365,9 +402,26 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         if (!s.contact.covered) ++sum.uncovered_fixes;
         note(s.contact);
         events.add(s);
+        {
+            const int state = state_of(s.contact);
+            const bool first = out.poses.size() == piece_poses;
+            bool take = first || state != last_state || !(opt.pose_interval_s > 0);
+            if (!take) {
+                const Pose& last = out.poses.back();
+                const double dt = t.fixes[i].time_s - last.time_s;
+                const XY d = local[i].position - local[last.fix_index].position;
+                take = (dt >= opt.pose_interval_s && std::hypot(d.x, d.y) >= opt.pose_distance_m) || dt >= opt.pose_max_interval_s;
+            }
+            if (state != last_state && !first && pending) keep(events.pose_at(pending->first, pending->second));  // the fix before the change
+            pending.reset();
+            if (take) keep(events.pose_at(i, s.contact));
+            else pending.emplace(i, s.contact);
+            last_state = state;
+        }
         have_prev = true;
         line->push_back(t.fixes[i].position);
     }
+    end_poses();
     events.end_piece();
     std::stable_sort(out.events.begin(), out.events.end(), [](const Event& a, const Event& b) { return a.start_s < b.start_s; });
     return out;

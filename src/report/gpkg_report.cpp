@@ -1,9 +1,12 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <filesystem>
 #include <variant>
 
 #include "detail/qgis_styles.hpp"
+#include "report/chart_layer.hpp"
+#include "report/qgis_project.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/util/error.hpp>
@@ -21,6 +24,7 @@ OGRFieldType ogr_type(fields::Type t) {
         case fields::Type::integer: return OFTInteger64;
         case fields::Type::real: return OFTReal;
         case fields::Type::boolean: return OFTInteger;
+        case fields::Type::datetime: return OFTDateTime;
     }
     return OFTString;
 }
@@ -78,6 +82,8 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
     OGRLayer& events = make_layer(ds, "events", wkbPoint, fields::event_fields(), r);
     OGRLayer& tracks = make_layer(ds, "tracks", wkbMultiLineString, fields::track_fields(), r);
     OGRLayer& hulls = make_layer(ds, "hulls", wkbPolygon, fields::hull_fields(), r);
+    OGRLayer& poses = make_layer(ds, "poses", wkbPolygon, fields::pose_fields(), r);
+    OGRLayer* coast = info.chart ? &make_layer(ds, "coast", wkbMultiPolygon, fields::coast_fields(), r) : nullptr;
     // Exercise mode: ship-to-ship encounters, their own layer (hull footprints of both ships
     // go into `hulls` with kind collision / close_quarters).
     OGRLayer* encounters = r.has_encounters ? &make_layer(ds, "encounters", wkbPoint, fields::encounter_fields(), r) : nullptr;
@@ -113,6 +119,33 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
         poly.addRing(&ring);
         put(hulls, fields::hull_fields(), h, r, &poly);
     }
+    for (const auto& t : r.tracks)
+        for (const auto& p : t.poses) {
+            OGRLinearRing ring;
+            for (const auto& q : p.hull) ring.addPoint(q.lon, q.lat);
+            OGRPolygon poly;
+            poly.addRing(&ring);
+            put(poses, fields::pose_fields(), fields::PoseRow{t.summary, p}, r, &poly);
+        }
+    if (coast) {
+        std::vector<std::vector<geo::LonLat>> lines;
+        for (const auto& t : r.tracks) lines.insert(lines.end(), t.summary.lines.begin(), t.summary.lines.end());
+        for (const ChartFeature& c : chart_features(*info.chart, tiles_near(lines))) {
+            OGRMultiPolygon mp;
+            for (const auto& rings : c.polygons) {
+                OGRPolygon poly;
+                for (const auto& ring : rings) {
+                    OGRLinearRing lr;
+                    for (const auto& q : ring) lr.addPoint(q.lon, q.lat);
+                    poly.addRing(&lr);
+                }
+                mp.addGeometry(&poly);
+            }
+            const fields::CoastRow row{tile_key(c.tile), coast::to_string(c.kind), coast::to_string(c.danger),
+                                       c.kind == coast::HazardKind::land ? NAN : c.depth_m};
+            put(*coast, fields::coast_fields(), row, r, &mp);
+        }
+    }
     for (const auto& p : fields::problem_rows(r)) put(problems, fields::problem_fields(), p, r, nullptr);
     if (approaches)
         for (const auto& a : r.encounters.approaches) put(*approaches, fields::approach_fields(), fields::ApproachRow{r, a}, r, nullptr);
@@ -137,6 +170,7 @@ StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& resul
     if (!ds) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
     write_layers(*ds, result, info);
     add_layer_styles(*ds);
+    add_qgis_project(*ds, std::filesystem::path(path).filename().string(), result);
     CPLErrorReset();
     ds.reset();  // GDALClose: flushes and closes the SQLite file
     if (CPLGetLastErrorType() == CE_Failure) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());

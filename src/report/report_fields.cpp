@@ -57,7 +57,7 @@ using H = HullRow;
 using P = ProblemRow;
 using A = ApproachRow;
 using R = RunRow;
-constexpr Type text_t = Type::text, integer = Type::integer, real = Type::real, boolean = Type::boolean;
+constexpr Type text_t = Type::text, integer = Type::integer, real = Type::real, boolean = Type::boolean, datetime = Type::datetime;
 constexpr const char *none = "", *metres = "m", *seconds = "s", *knots = "kn", *degrees = "deg", *wgs84 = "degrees (WGS84)",
                       *utc = "ISO 8601 UTC";
 
@@ -76,8 +76,8 @@ const std::vector<Field<EventRow>>& event_fields() {
         {"charted_depth_m", real, metres, 2,
          [](const E& x) { return x.event.hit != coast::HazardKind::land ? Value(x.event.charted_depth_m) : null; }},
         {"danger", text_t, none, -1, [](const E& x) { return text(coast::to_string(x.event.danger)); }},
-        {"start", text_t, utc, -1, [](const E& x) { return text(iso_time(x.event.start_s)); }},
-        {"end", text_t, utc, -1, [](const E& x) { return text(iso_time(x.event.end_s)); }},
+        {"start", datetime, utc, -1, [](const E& x) { return text(iso_time(x.event.start_s)); }},
+        {"end", datetime, utc, -1, [](const E& x) { return text(iso_time(x.event.end_s)); }},
         {"duration_s", real, seconds, 3, [](const E& x) { return Value(x.event.end_s - x.event.start_s); }},
         {"min_clearance_m", real, metres, 3, [](const E& x) { return Value(x.event.min_clearance_m); }},
         {"penetration_m", real, metres, 3, [](const E& x) { return is_contact(x.event.kind) ? Value(x.event.penetration_m) : null; }},
@@ -121,8 +121,8 @@ const std::vector<Field<EncounterRow>>& encounter_fields() {
         {"hit", text_t, none, -1, [](const C&) { return text("ship"); }},
         {"charted_depth_m", real, metres, 2, [](const C&) { return null; }},
         {"danger", text_t, none, -1, [](const C&) { return text(""); }},
-        {"start", text_t, utc, -1, [](const C& x) { return text(iso_time(x.encounter.start_s)); }},
-        {"end", text_t, utc, -1, [](const C& x) { return text(iso_time(x.encounter.end_s)); }},
+        {"start", datetime, utc, -1, [](const C& x) { return text(iso_time(x.encounter.start_s)); }},
+        {"end", datetime, utc, -1, [](const C& x) { return text(iso_time(x.encounter.end_s)); }},
         {"duration_s", real, seconds, 3, [](const C& x) { return Value(x.encounter.end_s - x.encounter.start_s); }},
         {"min_clearance_m", real, metres, 3, [](const C& x) { return Value(x.encounter.min_clearance_m); }},
         {"penetration_m", real, metres, 3, [](const C&) { return null; }},
@@ -185,8 +185,8 @@ const std::vector<Field<TrackRow>>& track_fields() {
         {"unknown_heading_fixes", integer, none, -1, [](const T& x) { return count(x.track.unknown_heading_fixes); }},
         {"min_clearance_m", real, metres, 3, [](const T& x) { return Value(x.track.min_clearance_m); }},
         {"distance_m", real, metres, 1, [](const T& x) { return Value(x.track.distance_m); }},
-        {"start", text_t, utc, -1, [](const T& x) { return text(iso_time(x.track.start_s)); }},
-        {"end", text_t, utc, -1, [](const T& x) { return text(iso_time(x.track.end_s)); }},
+        {"start", datetime, utc, -1, [](const T& x) { return text(iso_time(x.track.start_s)); }},
+        {"end", datetime, utc, -1, [](const T& x) { return text(iso_time(x.track.end_s)); }},
         {"exercise", text_t, none, -1, [](const T& x) { return text(x.track.exercise); }, exercise},
         {"role", text_t, none, -1, [](const T& x) { return text(audit::to_string(x.track.role)); }, exercise},
     };
@@ -198,8 +198,37 @@ const std::vector<Field<HullRow>>& hull_fields() {
         {"track", text_t, none, -1, [](const H& x) { return text(x.track); }},
         {"kind", text_t, none, -1, [](const H& x) { return text(x.kind); }},
         {"hit", text_t, none, -1, [](const H& x) { return x.hit ? text(x.hit) : null; }},
-        {"start", text_t, utc, -1, [](const H& x) { return text(iso_time(x.start_s)); }},
+        {"start", datetime, utc, -1, [](const H& x) { return text(iso_time(x.start_s)); }},
         {"label", text_t, none, -1, [](const H& x) { return text(x.label); }},
+    };
+    return f;
+}
+
+const std::vector<Field<PoseRow>>& pose_fields() {
+    using X = PoseRow;
+    static const std::vector<Field<PoseRow>> f = {
+        {"track", text_t, none, -1, [](const X& x) { return text(x.track.id); }},
+        {"name", text_t, none, -1, [](const X& x) { return text(x.track.name); }},
+        {"time", datetime, utc, -1, [](const X& x) { return text(iso_time(x.pose.time_s)); }},
+        {"until", datetime, utc, -1, [](const X& x) { return text(iso_time(x.pose.until_s)); }},
+        {"speed_kn", real, knots, 2, [](const X& x) { return Value(x.pose.speed_kn); }},
+        {"heading", real, degrees, 1, [](const X& x) { return Value(x.pose.heading_deg); }},
+        {"clearance_m", real, metres, 3, [](const X& x) { return x.pose.covered ? Value(x.pose.clearance_m) : null; }},
+        {"contact", boolean, none, -1, [](const X& x) { return Value(x.pose.contact); }},
+        {"covered", boolean, none, -1, [](const X& x) { return Value(x.pose.covered); }},
+        {"fix_index", integer, none, -1, [](const X& x) { return count(x.pose.fix_index); }},
+        {"fix_line", integer, none, -1, [](const X& x) { return count(x.pose.fix_line); }},
+    };
+    return f;
+}
+
+const std::vector<Field<CoastRow>>& coast_fields() {
+    using X = CoastRow;
+    static const std::vector<Field<CoastRow>> f = {
+        {"tile", text_t, none, -1, [](const X& x) { return text(x.tile); }},
+        {"kind", text_t, none, -1, [](const X& x) { return text(x.kind); }},
+        {"danger", text_t, none, -1, [](const X& x) { return text(x.danger); }},
+        {"depth_m", real, metres, 2, [](const X& x) { return Value(x.depth_m); }},
     };
     return f;
 }
@@ -219,7 +248,7 @@ const std::vector<Field<ApproachRow>>& approach_fields() {
     static const std::vector<Field<ApproachRow>> f = {
         {"track", text_t, none, -1, [](const A& x) { return text(x.result.tracks.at(x.approach.a).summary.id); }},
         {"other_track", text_t, none, -1, [](const A& x) { return text(x.result.tracks.at(x.approach.b).summary.id); }},
-        {"time", text_t, utc, -1, [](const A& x) { return text(iso_time(x.approach.time_s)); }},
+        {"time", datetime, utc, -1, [](const A& x) { return text(iso_time(x.approach.time_s)); }},
         {"clearance_m", real, metres, 3, [](const A& x) { return Value(x.approach.clearance_m); }},
         {"distance_m", real, metres, 3, [](const A& x) { return Value(x.approach.distance_m); }},
         {"ship_lat", real, wgs84, coordinate_decimals, [](const A& x) { return Value(x.approach.a_position.lat); }},
@@ -230,14 +259,14 @@ const std::vector<Field<ApproachRow>>& approach_fields() {
         {"situation", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return c ? text(audit::to_string(c->at_start.situation)) : null; }},
         {"give_way", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return party(x.result, c, c ? c->at_start.give_way : audit::Party::neither); }},
         {"stand_on", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return party(x.result, c, c ? c->at_start.stand_on : audit::Party::neither); }},
-        {"situation_start", text_t, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->start_s)) : null; }},
-        {"situation_end", text_t, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->end_s)) : null; }},
+        {"situation_start", datetime, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->start_s)) : null; }},
+        {"situation_end", datetime, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->end_s)) : null; }},
         {"bearing_deg", real, degrees, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->at_start.bearing_of_b_deg) : null; }},
         {"other_bearing_deg", real, degrees, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->at_start.bearing_of_a_deg) : null; }},
         {"cpa_m", real, metres, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->cpa_start.distance_m) : null; }},
         {"tcpa_s", real, seconds, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->cpa_start.time_s) : null; }},
         {"closest_distance_m", real, metres, 1, [](const A& x) { const auto* c = sit(x); return c ? Value(c->closest_m) : null; }},
-        {"closest_time", text_t, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->closest_s)) : null; }},
+        {"closest_time", datetime, utc, -1, [](const A& x) { const auto* c = sit(x); return c ? text(iso_time(c->closest_s)) : null; }},
         {"track_action", text_t, none, -1, [](const A& x) { const auto* c = sit(x); return c ? action_text(c->action_a) : null; }},
         {"track_action_time", text_t, utc, -1,
          [](const A& x) { const auto* c = sit(x); return c && !std::isnan(c->action_a.time_s) ? text(iso_time(c->action_a.time_s)) : null; }},
@@ -299,8 +328,8 @@ const std::vector<Field<RunRow>>& summary_fields() {
         {"wild_fixes", integer, none, -1, [](const R& x) { return count(x.result.wild_fixes); }},
         {"jumps", integer, none, -1, [](const R& x) { return count(x.result.jumps); }},
         {"unknown_heading_fixes", integer, none, -1, [](const R& x) { return count(x.result.unknown_heading_fixes); }},
-        {"first_fix", text_t, utc, -1, [](const R& x) { return text(iso_time(x.result.first_fix_s)); }},
-        {"last_fix", text_t, utc, -1, [](const R& x) { return text(iso_time(x.result.last_fix_s)); }},
+        {"first_fix", datetime, utc, -1, [](const R& x) { return text(iso_time(x.result.first_fix_s)); }},
+        {"last_fix", datetime, utc, -1, [](const R& x) { return text(iso_time(x.result.last_fix_s)); }},
         {"collisions", integer, none, -1, [](const R& x) { return count(x.result.collisions); }, exercise},
         {"close_quarters", integer, none, -1, [](const R& x) { return count(x.result.close_quarters); }, exercise},
         {"exercises", integer, none, -1, [](const R& x) { return count(x.result.exercises); }, exercise},

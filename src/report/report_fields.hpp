@@ -12,6 +12,8 @@
 ///   encounters          Point features (exercise mode)           Point layer `encounters` (exercise mode)
 ///   tracks              `shoal.tracks[]`                         MultiLineString layer `tracks`
 ///   hulls               (none: one geometry per feature)         Polygon layer `hulls`
+///   poses               (none: one geometry per feature)         Polygon layer `poses`
+///   coast               (none)                                   MultiPolygon layer `coast` (when the chart is readable)
 ///   problems            `shoal.problems[]` (null keys left out)  table `problems`
 ///   closest_approaches  `shoal.closest_approaches[]`             table `closest_approaches` (exercise mode)
 ///   run                 members of `shoal`                       table `run` (one row)
@@ -29,7 +31,8 @@
 
 namespace shoal::report::fields {
 
-enum class Type { text, integer, real, boolean };
+/// datetime: a UTC time, ISO 8601 text in GeoJSON and a DateTime field in the GeoPackage.
+enum class Type { text, integer, real, boolean, datetime };
 
 /// A field's value; std::monostate is null.
 using Value = std::variant<std::monostate, std::string, std::int64_t, double, bool>;
@@ -83,6 +86,17 @@ struct HullRow {
     std::string label;
     const std::vector<geo::LonLat>& ring;
 };
+struct PoseRow {
+    const audit::TrackSummary& track;
+    const audit::Pose& pose;
+};
+/// One feature of the `coast` layer: the chart's land, shallow areas or dangers in one tile.
+struct CoastRow {
+    std::string tile;   ///< the tile's key (report/chart_layer.hpp)
+    const char* kind;   ///< "land", "shallow", "danger"
+    const char* danger; ///< the danger's kind ("rock", ...), "" otherwise
+    double depth_m;     ///< the charted depth (least depth of the areas, danger's sounding); NaN unknown or land
+};
 struct ProblemRow {
     std::string file, track;  ///< track "": none (null)
     std::size_t line = 0;     ///< 0: none (null)
@@ -102,6 +116,8 @@ const std::vector<Field<EncounterRow>>& encounter_fields();
 const std::vector<Field<TrackRow>>& track_fields();
 const std::vector<Field<HullRow>>& hull_fields();
 const std::vector<Field<ProblemRow>>& problem_fields();
+const std::vector<Field<PoseRow>>& pose_fields();
+const std::vector<Field<CoastRow>>& coast_fields();
 const std::vector<Field<ApproachRow>>& approach_fields();
 const std::vector<Field<RunRow>>& run_fields();
 const std::vector<Field<RunRow>>& summary_fields();

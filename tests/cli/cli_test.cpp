@@ -357,7 +357,7 @@ TEST(CliCheck, GeoPackageHasStyledLayersInWgs84) {
         EXPECT_NE(std::string(f->GetFieldAsString(4)).find("<renderer-v2"), std::string::npos);
     }
     ds->ReleaseResultSet(styles);
-    EXPECT_EQ(styled, (std::set<std::string>{"events", "tracks", "hulls"}));
+    EXPECT_EQ(styled, (std::set<std::string>{"events", "tracks", "hulls", "poses", "coast"}));
 }
 
 TEST(CliCheck, UnreadableTrackFileIsReportedAndTheBatchGoesOn) {

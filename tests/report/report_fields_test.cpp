@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <ctime>
+
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
@@ -186,6 +188,16 @@ json ogr_value(const OGRFeature& f, int i, const OGRFieldDefn& as) {
         case OFTInteger:
             if (as.GetSubType() == OFSTBoolean) return f.GetFieldAsInteger(i) != 0;
             return f.GetFieldAsInteger(i);
+        case OFTDateTime: {
+            // A UTC DateTime, as the ISO 8601 text the GeoJSON holds.
+            int y, mo, d, h, mi, tz;
+            float sec;
+            f.GetFieldAsDateTime(i, &y, &mo, &d, &h, &mi, &sec, &tz);
+            EXPECT_EQ(tz, 100) << as.GetNameRef() << " is not UTC";
+            std::tm tm{};
+            tm.tm_year = y - 1900, tm.tm_mon = mo - 1, tm.tm_mday = d, tm.tm_hour = h, tm.tm_min = mi;
+            return iso_time(static_cast<double>(timegm(&tm)) + std::round(sec * 1000.0) / 1000.0);
+        }
         default: ADD_FAILURE() << "unexpected field type of " << as.GetNameRef(); return nullptr;
     }
 }
@@ -254,8 +266,8 @@ TEST(ReportFields, GeoJsonAndGeoPackageHoldTheSameLayersFieldsAndValues) {
     ASSERT_TRUE(rep.gj && rep.gp);
     std::set<std::string> layers;
     for (int i = 0; i < rep.gp->GetLayerCount(); ++i) layers.insert(rep.gp->GetLayer(i)->GetName());
-    EXPECT_EQ(layers, (std::set<std::string>{"events", "encounters", "tracks", "hulls", "problems", "closest_approaches", "run", "summary",
-                                           "layer_styles"}));
+    EXPECT_EQ(layers, (std::set<std::string>{"events", "encounters", "tracks", "hulls", "poses", "problems", "closest_approaches", "run",
+                                           "summary", "layer_styles"}));
 
     // Features: the GeoJSON's Point features are the GeoPackage's events, then its encounters.
     const auto gj_features = rep.features(*rep.gj, rep.gj->GetLayer(0)->GetName());
@@ -367,6 +379,8 @@ TEST(ReportFields, TheUserGuideNamesEveryField) {
     named(fields::approach_fields(), "closest_approaches");
     named(fields::run_fields(), "run");
     named(fields::summary_fields(), "summary");
+    named(fields::pose_fields(), "poses");
+    named(fields::coast_fields(), "coast");
 }
 
 }  // namespace

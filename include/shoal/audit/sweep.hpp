@@ -35,6 +35,15 @@ struct SweepOptions {
     double stop_diameter_m = 50.0;
     double stop_duration_s = 120.0;
     track::MotionOptions motion() const noexcept { return {speed_window_s, stop_diameter_m, stop_duration_s, max_gap_s}; }
+    /// The poses kept for the report's `poses` layer (the hull at a fix, for replaying the
+    /// voyage): a fix is kept when at least pose_interval_s have passed and the reference
+    /// point has moved pose_distance_m since the last kept one, or pose_max_interval_s have
+    /// passed (a ship lying still is still seen), and always at the first and last fix of
+    /// each piece and at every fix where the hull's state (clear, within the margin, in
+    /// contact) changes. pose_interval_s <= 0: every fix.
+    double pose_interval_s = 120.0;
+    double pose_distance_m = 300.0;
+    double pose_max_interval_s = 900.0;
 };
 
 /// What an event is, decided at the first contact of each interval from what was observed.
@@ -110,9 +119,23 @@ struct TrackSummary {
     Role role = Role::trainee;        ///< exercise mode: trainee or target
 };
 
+/// The hull at a fix, kept for the report's `poses` layer (thinned: SweepOptions::pose_interval_s).
+struct Pose {
+    double time_s = 0;
+    double until_s = 0;             ///< time of the next kept pose of the piece (its own time for the last)
+    double speed_kn = NAN;          ///< the speed used at the fix (SOG, else from positions)
+    double heading_deg = NAN;       ///< the heading the hull was placed at; NaN: unknown (the hull's circle)
+    double clearance_m = INFINITY;  ///< the detector's clearance at the fix (0 in contact; INFINITY: beyond the search limit)
+    bool contact = false;           ///< the hull touched land or a hazard at the fix
+    bool covered = true;            ///< the hull lay inside the coastline's area
+    std::size_t fix_index = 0, fix_line = 0;
+    std::vector<geo::LonLat> hull;  ///< hull outline (closed ring)
+};
+
 struct TrackResult {
     TrackSummary summary;
     std::vector<Event> events;
+    std::vector<Pose> poses;  ///< in time order
 };
 
 /// Anything that checks a pose: the grid Detector, or the brute-force traversal in tests.

@@ -11,10 +11,12 @@
 /// `commit_all`: an interrupt before then leaves every earlier file as it was.
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <shoal/audit/audit.hpp>
+#include <shoal/coast/coastline.hpp>
 #include <shoal/util/output_file.hpp>
 
 namespace shoal::report {
@@ -34,7 +36,16 @@ struct RunInfo {
     std::string exercise_by = "run";  ///< exercise mode: how tracks are grouped (audit::ExerciseBy)
     std::string roles;                ///< exercise mode: the exercise (roles) file, "" when none
     double encounter_range_m = audit::ColregOptions{}.range_m;  ///< exercise mode: COLREG situations within this
+    /// The chart for the GeoPackage's `coast` layer (read_chart); null: no coast layer.
+    const coast::Coastline* chart = nullptr;
 };
+
+/// The chart the run was checked against, for the report's `coast` layer: the grid's sources
+/// (`coast` as given, or the files a .shoalgrid records) read again through the coast reader
+/// with the options the grid was built with (layers, source CRS, limiting depth, danger
+/// radius, depth field). Nothing, with the reason in `warning`, when they cannot be read (a
+/// grid whose sources have moved or are bad now): the report then has no coast layer.
+std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& grid, std::string& warning);
 
 /// The run header of a check: the coast sources `coast` as given, the grid's frame, cell,
 /// limiting depth and fingerprint, the default hull `ship` (its name, or "--dims a,b,c,d"),
