@@ -157,7 +157,8 @@ def _columns_of(df, found):
 
 def _frame(layer):
     import pandas as pd
-    dtypes = {"integer": "Int64", "real": "float64", "boolean": "boolean", "text": "object"}
+    dtypes = {"integer": "Int64", "real": "float64", "boolean": "boolean", "text": "object",
+              "datetime": "object"}  # ISO 8601 text, as in the GeoJSON report
     data = {}
     for name, kind in zip(layer["names"], layer["types"]):
         data[name] = pd.Series(layer["columns"][name], dtype=dtypes[kind])

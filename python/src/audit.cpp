@@ -171,6 +171,7 @@ const char* type_name(fields::Type t) {
     case fields::Type::integer: return "integer";
     case fields::Type::real: return "real";
     case fields::Type::boolean: return "boolean";
+    case fields::Type::datetime: return "datetime";
     }
     return "text";
 }
