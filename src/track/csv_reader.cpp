@@ -396,10 +396,10 @@ private:
 
     std::size_t track_for(std::string_view id) {
         if (m_last_track != absent && id == m_last_id) return m_last_track;
-        const std::optional<std::uint64_t> number = integer_id(id);
+        const std::optional<std::uint64_t> mmsi = integer_id(id);
         std::size_t idx = absent;
-        if (number) {
-            idx = m_integer_index.find(*number);
+        if (mmsi) {
+            idx = m_integer_index.find(*mmsi);
         } else if (auto it = m_index.find(id); it != m_index.end()) {
             idx = it->second;
         }
@@ -408,7 +408,7 @@ private:
             PackedTrack& t = m_out.tracks.emplace_back();
             t.id = m_cols.id == absent ? detail::file_stem(m_file) : to_utf8(id);
             t.file = m_file;
-            if (number) m_integer_index.insert(*number, idx);
+            if (mmsi) m_integer_index.insert(*mmsi, idx);
             else m_index.emplace(std::string(id), idx);
         }
         m_last_id.assign(id);
