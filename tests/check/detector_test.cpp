@@ -318,7 +318,7 @@ TEST(DetectorOptions, AskingLessChangesNothingElse) {
             pos = on + XY{r * std::cos(a), r * std::sin(a)};
         }
         const LocalPose pose = place(frame, Pose{frame.inverse(pos), 360 * unit(rng)});
-        for (const double limit : {100.0, INFINITY}) {
+        for (const double limit : {100.0, static_cast<double>(INFINITY)}) {
             const Contact full = det.check(pose, {limit, true, true});
             const Contact lean = det.check(pose, {limit, false, false});
             ASSERT_EQ(lean.collision, full.collision) << k;
