@@ -240,8 +240,10 @@ private:
         const PoseChecker& used = checker_at(s.i, s.f);
         if (const grid::CoastGrid* g = m_checker.grid()) {
             std::uint32_t polyline = s.contact.polyline;
-            if (s.contact.collision && polyline == grid::CoastGrid::no_polyline)  // not searched by check()
-                polyline = used.check(pose, {m_opt.margin_m + m_opt.lookahead_m, false, true}).polyline;
+            // Not searched by check(): asked again as the sample was checked (penetration at
+            // fixes), so that the same pose at the next fixes is answered from the last check.
+            if (s.contact.collision && polyline == grid::CoastGrid::no_polyline)
+                polyline = used.check(pose, {m_opt.margin_m + m_opt.lookahead_m, s.f == 0.0, true}).polyline;
             if (polyline < g->polyline_count()) {
                 const coast::Hazard& hit = g->hazard(polyline);
                 e.hit = hit.kind;
@@ -282,8 +284,11 @@ class RepeatingChecker final : public PoseChecker {
 public:
     explicit RepeatingChecker(const PoseChecker& inner) : m_inner(inner) {}
     check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
+        // An answer with the polyline also serves a question without it (make_event asks for
+        // the polyline of an event's first sample; the same pose at the next fixes costs nothing).
         if (!(m_have && pose.position == m_pose.position && pose.ship_to_local == m_pose.ship_to_local &&
-              options.max_clearance_m == m_options.max_clearance_m && options.want_penetration == m_options.want_penetration && options.want_polyline == m_options.want_polyline)) {
+              options.max_clearance_m == m_options.max_clearance_m && options.want_penetration == m_options.want_penetration &&
+              (m_options.want_polyline || !options.want_polyline))) {
             m_contact = m_inner.check(pose, options);
             m_pose = pose;
             m_options = options;
