@@ -4,7 +4,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <system_error>
 
 #include <shoal/check/detector.hpp>
 #include <shoal/io/pose_csv.hpp>
@@ -15,6 +19,14 @@
 namespace shoal::cli {
 
 namespace {
+
+/// Appends `v` as printf's "%.<precision>f" would (std::to_chars is exact, as glibc's printf is).
+void append_fixed(std::string& out, double v, int precision) {
+    char buf[400];  // enough for any double in fixed notation with 7 decimals
+    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, precision);
+    if (ec != std::errc()) throw std::logic_error("probe: a number too long to write");
+    out.append(buf, end);
+}
 
 class ProbeCommand final : public Command {
 public:
@@ -39,18 +51,28 @@ public:
         const grid::CoastGrid g = m_opts.load_grid(hull);
         const check::Detector detector(g, hull);
         std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
-        char line[160];
+        out.reserve(out.size() + poses.poses.size() * 48);
+        // Only what is written: no penetration depth, no enclosing polyline.
+        check::CheckOptions asked;
+        asked.want_penetration = false;
+        asked.want_polyline = false;
         std::size_t uncovered = 0;
         for (const auto& p : poses.poses) {
-            const check::Contact c = detector.check(check::Pose{{p.lon, p.lat}, p.heading_deg});
+            const check::Contact c = detector.check(check::Pose{{p.lon, p.lat}, p.heading_deg}, asked);
+            append_fixed(out, p.lat, 7);
+            out += ',';
+            append_fixed(out, p.lon, 7);
+            out += ',';
+            append_fixed(out, p.heading_deg, 1);
             // Outside the chart nothing is claimed: no collision found there means nothing.
-            if (c.covered || c.collision)
-                std::snprintf(line, sizeof line, "%.7f,%.7f,%.1f,%d,%.3f,%d\n", p.lat, p.lon, p.heading_deg, c.collision ? 1 : 0,
-                              c.collision ? 0.0 : c.clearance_m, c.covered ? 1 : 0);
-            else
-                std::snprintf(line, sizeof line, "%.7f,%.7f,%.1f,,,0\n", p.lat, p.lon, p.heading_deg);
+            if (c.covered || c.collision) {
+                out += c.collision ? ",1," : ",0,";
+                append_fixed(out, c.collision ? 0.0 : c.clearance_m, 3);
+                out += c.covered ? ",1\n" : ",0\n";
+            } else {
+                out += ",,,0\n";
+            }
             uncovered += c.covered ? 0 : 1;
-            out += line;
         }
         if (uncovered)
             std::fprintf(stderr, "shoal: warning: %zu of %zu poses lie (partly) outside the chart's area: covered 0, collision and clearance unknown\n",

@@ -67,8 +67,11 @@ public:
         return unknown ? *m_circle : m_checker;
     }
 
+    /// The pose check at fix interval i, fraction f. The polyline of a hull wholly inside land
+    /// (a search of the grid's rings) is left out: only an event's first sample needs it, and
+    /// make_event asks for it then.
     check::Contact check(std::size_t i, double f, bool penetration) const {
-        return checker_at(i, f).check(m_motion.pose(i, f), {m_opt.margin_m + m_opt.lookahead_m, penetration});
+        return checker_at(i, f).check(m_motion.pose(i, f), {m_opt.margin_m + m_opt.lookahead_m, penetration, false});
     }
 
     /// A new piece of track starts at fix i; `after` is "track start", "gap" or "jump".
@@ -234,17 +237,24 @@ private:
         e.start_s = e.end_s = m_motion.time(s.i, s.f);
         const check::LocalPose pose = m_motion.pose(s.i, s.f);
         e.point = m_frame.inverse(s.contact.coast_point);
-        if (const grid::CoastGrid* g = m_checker.grid(); g && s.contact.polyline < g->polyline_count()) {
-            const coast::Hazard& hit = g->hazard(s.contact.polyline);
-            e.hit = hit.kind;
-            e.charted_depth_m = hit.depth_m;
-            e.danger = hit.danger;
+        const PoseChecker& used = checker_at(s.i, s.f);
+        if (const grid::CoastGrid* g = m_checker.grid()) {
+            std::uint32_t polyline = s.contact.polyline;
+            // Not searched by check(): asked again as the sample was checked (penetration at
+            // fixes), so that the same pose at the next fixes is answered from the last check.
+            if (s.contact.collision && polyline == grid::CoastGrid::no_polyline)
+                polyline = used.check(pose, {m_opt.margin_m + m_opt.lookahead_m, s.f == 0.0, true}).polyline;
+            if (polyline < g->polyline_count()) {
+                const coast::Hazard& hit = g->hazard(polyline);
+                e.hit = hit.kind;
+                e.charted_depth_m = hit.depth_m;
+                e.danger = hit.danger;
+            }
         }
         e.ship = m_frame.inverse(pose.position);
         const std::size_t fix = s.f >= 1.0 ? s.i + 1 : s.i;
         e.fix_index = fix;
         e.fix_line = m_track.fixes[fix].line;
-        const PoseChecker& used = checker_at(s.i, s.f);
         e.orientation_unknown = &used != &m_checker;
         e.heading_source = e.orientation_unknown ? track::HeadingSource::none : m_track.fixes[fix].heading_source;
         e.heading_deg = e.orientation_unknown ? NAN : m_motion.heading(s.i, s.f);
@@ -295,8 +305,11 @@ class RepeatingChecker final : public PoseChecker {
 public:
     explicit RepeatingChecker(const PoseChecker& inner) : m_inner(inner) {}
     check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
+        // An answer with the polyline also serves a question without it (make_event asks for
+        // the polyline of an event's first sample; the same pose at the next fixes costs nothing).
         if (!(m_have && pose.position == m_pose.position && pose.ship_to_local == m_pose.ship_to_local &&
-              options.max_clearance_m == m_options.max_clearance_m && options.want_penetration == m_options.want_penetration)) {
+              options.max_clearance_m == m_options.max_clearance_m && options.want_penetration == m_options.want_penetration &&
+              (m_options.want_polyline || !options.want_polyline))) {
             m_contact = m_inner.check(pose, options);
             m_pose = pose;
             m_options = options;

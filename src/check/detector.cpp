@@ -404,13 +404,13 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
             out.collision = true;
             out.hull_point = p0;
             out.coast_point = p0;
-            out.polyline = m_grid.enclosing_polyline(p0);
+            if (options.want_polyline) out.polyline = m_grid.enclosing_polyline(p0);
         } else {
             for (const XY& q : s.inside_candidates)  // each lies in the hull's box
                 if (h.contains(q)) {
                     out.collision = true;
                     out.hull_point = out.coast_point = h.to_local(q);
-                    out.polyline = m_grid.nearest_polyline(out.coast_point);
+                    if (options.want_polyline) out.polyline = m_grid.nearest_polyline(out.coast_point);
                     break;
                 }
         }

@@ -5,7 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <sstream>
+#include <string_view>
 
 #include <shoal/util/error.hpp>
 #include "detail/input_file.hpp"
@@ -19,35 +19,43 @@ constexpr std::size_t max_pose_file_bytes = std::size_t{1} << 28;
 
 constexpr std::size_t max_messages = 10;
 
-std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> out;
-    std::string cur;
-    for (char c : line) {
+/// The fields of `line` (separated by ',', ';' or a tab, quotes dropped, each trimmed of
+/// blanks) as views into `line`, or into `unquoted` when the line holds quotes.
+void split(std::string_view line, std::string& unquoted, std::vector<std::string_view>& out) {
+    out.clear();
+    if (line.find('"') != std::string_view::npos) {
+        unquoted.clear();
+        for (char c : line)
+            if (c != '"') unquoted += c;
+        line = unquoted;
+    }
+    auto trimmed = [](std::string_view f) {
+        const auto b = f.find_first_not_of(" \t");
+        if (b == std::string_view::npos) return std::string_view{};
+        return f.substr(b, f.find_last_not_of(" \t") - b + 1);
+    };
+    std::size_t from = 0;
+    for (std::size_t k = 0; k < line.size(); ++k) {
+        const char c = line[k];
         if (c == ',' || c == ';' || c == '\t') {
-            out.push_back(cur);
-            cur.clear();
-        } else if (c != '"') {
-            cur += c;
+            out.push_back(trimmed(line.substr(from, k - from)));
+            from = k + 1;
         }
     }
-    out.push_back(cur);
-    for (auto& s : out) {
-        const auto b = s.find_first_not_of(" \t");
-        const auto e = s.find_last_not_of(" \t");
-        s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
-    }
-    return out;
+    out.push_back(trimmed(line.substr(from)));
 }
 
-bool parse_double(const std::string& s, double& v) {
+bool parse_double(std::string_view s, double& v) {
     if (s.empty()) return false;
     const char* first = s.data();
+    const char* last = s.data() + s.size();
     if (*first == '+') ++first;
-    const auto [p, ec] = std::from_chars(first, s.data() + s.size(), v);
-    return ec == std::errc() && p == s.data() + s.size();
+    const auto [p, ec] = std::from_chars(first, last, v);
+    return ec == std::errc() && p == last;
 }
 
-std::string lower(std::string s) {
+std::string lower(std::string_view v) {
+    std::string s(v);
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return s;
 }
@@ -58,19 +66,24 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
     PoseFile out;
     int col_lat = 0, col_lon = 1, col_hdg = 2;
     bool first = true;
-    std::istringstream in(text);
-    std::string line;
     std::size_t lineno = 0;
     auto bad = [&](const std::string& why) {
         ++out.skipped;
         if (out.errors.size() < max_messages) out.errors.push_back(name + " line " + std::to_string(lineno) + ": " + why + "; row skipped");
     };
-    while (std::getline(in, line)) {
+    std::string unquoted;
+    std::vector<std::string_view> f;
+    const std::string_view all(text);
+    for (std::size_t pos = 0; pos < all.size();) {
+        const std::size_t nl = all.find('\n', pos);
+        std::string_view line = all.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+        pos = nl == std::string_view::npos ? all.size() : nl + 1;
         ++lineno;
-        if (lineno == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 BOM
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
-        const std::vector<std::string> f = split(line);
+        if (lineno == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // UTF-8 BOM
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        const std::size_t lead = line.find_first_not_of(" \t");
+        if (lead == std::string_view::npos || line[lead] == '#') continue;
+        split(line, unquoted, f);
         if (first) {
             first = false;
             const bool header = std::any_of(line.begin(), line.end(), [](unsigned char c) { return std::isalpha(c) && c != 'e' && c != 'E'; });
@@ -83,7 +96,7 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
                     else if (h == "heading" || h == "hdg" || h == "heading_deg") col_hdg = i;
                 }
                 if (col_lat < 0 || col_lon < 0 || col_hdg < 0)
-                    throw InputError(name + " line 1: the header needs columns lat, lon and heading (got '" + line + "')");
+                    throw InputError(name + " line 1: the header needs columns lat, lon and heading (got '" + std::string(line) + "')");
                 continue;
             }
         }
@@ -94,19 +107,19 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
         }
         PoseRow r;
         r.line = lineno;
-        const std::string& slat = f[static_cast<std::size_t>(col_lat)];
-        const std::string& slon = f[static_cast<std::size_t>(col_lon)];
-        const std::string& shdg = f[static_cast<std::size_t>(col_hdg)];
+        const std::string_view slat = f[static_cast<std::size_t>(col_lat)];
+        const std::string_view slon = f[static_cast<std::size_t>(col_lon)];
+        const std::string_view shdg = f[static_cast<std::size_t>(col_hdg)];
         if (!parse_double(slat, r.lat) || !std::isfinite(r.lat) || std::fabs(r.lat) > 90) {
-            bad("latitude '" + slat + "' is not a number in [-90, 90]");
+            bad("latitude '" + std::string(slat) + "' is not a number in [-90, 90]");
             continue;
         }
         if (!parse_double(slon, r.lon) || !std::isfinite(r.lon) || std::fabs(r.lon) > 180) {
-            bad("longitude '" + slon + "' is not a number in [-180, 180]");
+            bad("longitude '" + std::string(slon) + "' is not a number in [-180, 180]");
             continue;
         }
         if (!parse_double(shdg, r.heading_deg) || !std::isfinite(r.heading_deg)) {
-            bad("heading '" + shdg + "' is not a number of degrees");
+            bad("heading '" + std::string(shdg) + "' is not a number of degrees");
             continue;
         }
         r.heading_deg = std::fmod(r.heading_deg, 360.0);

@@ -3,8 +3,10 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string_view>
 #include <type_traits>
 #include <variant>
+#include <vector>
 
 #include "detail/qgis_styles.hpp"
 #include "report/report_fields.hpp"
@@ -76,34 +78,144 @@ json point_feature(geo::LonLat p, json properties) {
     return f;
 }
 
+/// Writes the report to a sink as nlohmann's dump(1) of the whole document would, one
+/// member or element at a time (only one feature is ever held as JSON), in pieces of about
+/// a mebibyte.
+class Stream {
+public:
+    explicit Stream(const StagedOutput::Sink& sink) : m_sink(sink) { m_buf.reserve(chunk + 4096); }
+    ~Stream() = default;
+    Stream(const Stream&) = delete;
+    Stream& operator=(const Stream&) = delete;
+
+    void put(std::string_view s) {
+        m_buf += s;
+        if (m_buf.size() >= chunk) flush();
+    }
+    void flush() {
+        if (!m_buf.empty()) m_sink(m_buf);
+        m_buf.clear();
+    }
+    /// A value nested `depth` levels deep: its dump(1) with every line after the first
+    /// indented by `depth` (JSON strings hold no raw newline).
+    void value(const json& j, int depth) {
+        const std::string d = j.dump(1);
+        std::size_t from = 0;
+        for (std::size_t nl; (nl = d.find('\n', from)) != std::string::npos; from = nl + 1) {
+            put(std::string_view(d).substr(from, nl + 1 - from));
+            put(std::string_view(spaces, static_cast<std::size_t>(depth)));
+        }
+        put(std::string_view(d).substr(from));
+    }
+
+    /// An object or an array nested `depth` levels deep, its members or elements written by
+    /// the caller between open and close: item() before each.
+    void open(char bracket) {
+        m_first.push_back(true);
+        put(std::string_view(&bracket, 1));
+    }
+    void item(int depth) {
+        put(m_first.back() ? "\n" : ",\n");
+        m_first.back() = false;
+        put(std::string_view(spaces, static_cast<std::size_t>(depth + 1)));
+    }
+    void key(int depth, const char* name) {
+        item(depth);
+        put(json(name).dump());
+        put(": ");
+    }
+    void close(char bracket, int depth) {
+        if (!m_first.back()) {  // nlohmann writes an empty object or array as {} or []
+            put("\n");
+            put(std::string_view(spaces, static_cast<std::size_t>(depth)));
+        }
+        m_first.pop_back();
+        put(std::string_view(&bracket, 1));
+    }
+
+private:
+    static constexpr std::size_t chunk = std::size_t{1} << 20;
+    static constexpr const char* spaces = "        ";  // deep enough for the report's nesting (4)
+    const StagedOutput::Sink& m_sink;
+    std::string m_buf;
+    std::vector<bool> m_first;
+};
+
+/// The members of one row (every field of the table, in order) into an open object.
+template <class Row>
+void members_of(Stream& out, int depth, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r,
+                bool omit_null = false) {
+    for (const auto& f : table) {
+        if (f.present && !f.present(r)) continue;
+        fields::Value v = fields::value_of(f, row);
+        if (omit_null && std::holds_alternative<std::monostate>(v)) continue;
+        out.key(depth, f.name);
+        out.value(to_json(v), depth + 1);
+    }
+}
+
+/// An array of rows as objects at `depth`.
+template <class Row, class Rows>
+void array_of(Stream& out, int depth, const std::vector<fields::Field<Row>>& table, const Rows& rows, const audit::AuditResult& r,
+              bool omit_null = false) {
+    out.open('[');
+    for (const auto& row : rows) {
+        out.item(depth);
+        out.open('{');
+        members_of(out, depth + 1, table, row, r, omit_null);
+        out.close('}', depth + 1);
+    }
+    out.close(']', depth);
+}
+
+void write_report(const audit::AuditResult& r, const RunInfo& info, const StagedOutput::Sink& sink) {
+    const fields::RunRow run{r, info};
+    Stream out(sink);
+    out.open('{');
+    out.key(0, "type");
+    out.put("\"FeatureCollection\"");
+    out.key(0, "shoal");
+    out.open('{');
+    members_of(out, 1, fields::run_fields(), run, r);
+    if (r.has_encounters) {
+        std::vector<fields::ApproachRow> rows;
+        rows.reserve(r.encounters.approaches.size());
+        for (const auto& a : r.encounters.approaches) rows.push_back({r, a});
+        out.key(1, "closest_approaches");
+        array_of(out, 2, fields::approach_fields(), rows, r);
+    }
+    out.key(1, "summary");
+    out.open('{');
+    members_of(out, 2, fields::summary_fields(), run, r);
+    out.close('}', 2);
+    out.key(1, "tracks");
+    array_of(out, 2, fields::track_fields(), fields::track_rows(r), r);
+    out.key(1, "problems");
+    array_of(out, 2, fields::problem_fields(), fields::problem_rows(r), r, true);
+    out.close('}', 1);
+    out.key(0, "features");
+    out.open('[');
+    for (const auto& t : r.tracks)
+        for (const auto& e : t.events) {
+            out.item(1);
+            out.value(point_feature(e.point, object_of(fields::event_fields(), fields::EventRow{t.summary, e}, r)), 2);
+        }
+    for (const auto& e : r.encounters.events) {
+        out.item(1);
+        out.value(point_feature(e.point, object_of(fields::encounter_fields(), fields::EncounterRow{r, e}, r)), 2);
+    }
+    out.close(']', 1);
+    out.close('}', 0);
+    out.put("\n");
+    out.flush();
+}
+
 }  // namespace
 
 std::string geojson(const audit::AuditResult& r, const RunInfo& info) {
-    const fields::RunRow run{r, info};
-    json doc;
-    doc["type"] = "FeatureCollection";
-    json shoal = object_of(fields::run_fields(), run, r);
-    if (r.has_encounters) {
-        json approaches = json::array();
-        for (const auto& a : r.encounters.approaches) approaches.push_back(object_of(fields::approach_fields(), fields::ApproachRow{r, a}, r));
-        shoal["closest_approaches"] = approaches;
-    }
-    shoal["summary"] = object_of(fields::summary_fields(), run, r);
-    json tracks = json::array();
-    for (const auto& t : fields::track_rows(r)) tracks.push_back(object_of(fields::track_fields(), t, r));
-    shoal["tracks"] = tracks;
-    json problems = json::array();
-    for (const auto& p : fields::problem_rows(r)) problems.push_back(object_of(fields::problem_fields(), p, r, true));
-    shoal["problems"] = problems;
-    doc["shoal"] = shoal;
-
-    json features = json::array();
-    for (const auto& t : r.tracks)
-        for (const auto& e : t.events) features.push_back(point_feature(e.point, object_of(fields::event_fields(), fields::EventRow{t.summary, e}, r)));
-    for (const auto& e : r.encounters.events)
-        features.push_back(point_feature(e.point, object_of(fields::encounter_fields(), fields::EncounterRow{r, e}, r)));
-    doc["features"] = features;
-    return doc.dump(1) + "\n";
+    std::string text;
+    write_report(r, info, [&](std::string_view piece) { text += piece; });
+    return text;
 }
 
 namespace {
@@ -129,7 +241,7 @@ std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::Au
                                         std::vector<std::string>* warnings) {
     std::vector<StagedOutput> out;
     out.emplace_back(path);
-    out.back().write(geojson(result, info));
+    out.back().write_streamed([&](const StagedOutput::Sink& sink) { write_report(result, info, sink); });
     if (const std::string style = style_path(path); !style.empty()) {
         std::string warning;
         if (std::optional<StagedOutput> s = stage_sidecar_style(style, "events", warning)) out.push_back(std::move(*s));

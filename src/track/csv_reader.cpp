@@ -271,6 +271,61 @@ struct SvHash {
     std::size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
 };
 
+/// An id of 1 to 18 decimal digits without a leading zero (an MMSI) as its number; such ids
+/// and only they are looked up by number, so "0123" and "123" stay two vessels.
+std::optional<std::uint64_t> integer_id(std::string_view id) noexcept {
+    if (id.empty() || id.size() > 18 || (id[0] == '0' && id.size() > 1)) return std::nullopt;
+    std::uint64_t v = 0;
+    for (const char c : id) {
+        if (c < '0' || c > '9') return std::nullopt;
+        v = v * 10 + static_cast<std::uint64_t>(c - '0');
+    }
+    return v;
+}
+
+/// Track indexes by integer id: open addressing with linear probing (a daily export has a few
+/// thousand vessels, and rows interleaved across them defeat the last-id shortcut).
+class IntegerIndex {
+public:
+    /// The index of `key`, or `absent_index` (then `insert` it).
+    std::size_t find(std::uint64_t key) const noexcept {
+        if (m_slots.empty()) return absent_index;
+        for (std::size_t i = slot_of(key);; i = (i + 1) & (m_slots.size() - 1)) {
+            const Slot& s = m_slots[i];
+            if (s.index == absent_index) return absent_index;
+            if (s.key == key) return s.index;
+        }
+    }
+    void insert(std::uint64_t key, std::size_t index) {
+        if ((m_count + 1) * 2 > m_slots.size()) grow();
+        place(key, index);
+        ++m_count;
+    }
+    static constexpr std::size_t absent_index = static_cast<std::size_t>(-1);
+
+private:
+    struct Slot {
+        std::uint64_t key = 0;
+        std::size_t index = absent_index;
+    };
+    std::size_t slot_of(std::uint64_t key) const noexcept {
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & (m_slots.size() - 1);
+    }
+    void place(std::uint64_t key, std::size_t index) noexcept {
+        std::size_t i = slot_of(key);
+        while (m_slots[i].index != absent_index) i = (i + 1) & (m_slots.size() - 1);
+        m_slots[i] = {key, index};
+    }
+    void grow() {
+        std::vector<Slot> old(std::max<std::size_t>(64, m_slots.size() * 2));
+        old.swap(m_slots);
+        for (const Slot& s : old)
+            if (s.index != absent_index) place(s.key, s.index);
+    }
+    std::vector<Slot> m_slots;
+    std::size_t m_count = 0;
+};
+
 /// A fix waiting for a date: its time of day and day number.
 struct Pending {
     std::size_t track, fix;
@@ -352,16 +407,20 @@ private:
 
     std::size_t track_for(std::string_view id) {
         if (m_last_track != absent && id == m_last_id) return m_last_track;
-        auto it = m_index.find(id);
-        std::size_t idx;
-        if (it == m_index.end()) {
+        const std::optional<std::uint64_t> mmsi = integer_id(id);
+        std::size_t idx = absent;
+        if (mmsi) {
+            idx = m_integer_index.find(*mmsi);
+        } else if (auto it = m_index.find(id); it != m_index.end()) {
+            idx = it->second;
+        }
+        if (idx == absent) {
             idx = m_out.tracks.size();
             PackedTrack& t = m_out.tracks.emplace_back();
             t.id = m_cols.id == absent ? detail::file_stem(m_file) : to_utf8(id);
             t.file = m_file;
-            m_index.emplace(std::string(id), idx);
-        } else {
-            idx = it->second;
+            if (mmsi) m_integer_index.insert(*mmsi, idx);
+            else m_index.emplace(std::string(id), idx);
         }
         m_last_id.assign(id);
         m_last_track = idx;
@@ -509,7 +568,8 @@ private:
     Columns m_cols;
     bool m_decimal_comma = false;
     PackedTrackFile m_out;
-    std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;
+    std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;  ///< ids that are not integer_id()s
+    IntegerIndex m_integer_index;
     std::string m_last_id;
     std::size_t m_last_track = absent;
     std::vector<DayClock> m_clocks;  ///< per track: rows of one vessel come from one recording

@@ -209,6 +209,39 @@ void StagedOutput::write(std::string_view bytes) {
     }
 }
 
+void StagedOutput::write_streamed(const std::function<void(const Sink&)>& produce) {
+    if (is_stdout(m_target)) {
+        produce([](std::string_view bytes) {
+            if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size())
+                throw InputError(std::string("cannot write to stdout: ") + std::strerror(errno));
+        });
+        if (std::fflush(stdout) != 0) throw InputError(std::string("cannot write to stdout: ") + std::strerror(errno));
+        return;
+    }
+    const std::string& path = direct() ? m_target : m_temp;
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    int err = 0;
+    if (!f) {
+        err = errno;
+        discard();
+        throw InputError("cannot write '" + m_target + "': " + std::strerror(err));
+    }
+    try {
+        produce([&](std::string_view bytes) {
+            if (std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size())
+                throw InputError("cannot write '" + m_target + "': " + std::strerror(errno));
+        });
+    } catch (...) {
+        std::fclose(f);
+        discard();
+        throw;
+    }
+    if (!write_and_close(f, {}, !direct(), err)) {
+        discard();
+        throw InputError("cannot write '" + m_target + "': " + std::strerror(err));
+    }
+}
+
 void StagedOutput::commit() {
     if (direct()) return;
     std::error_code ec;

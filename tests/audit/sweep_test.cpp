@@ -202,11 +202,13 @@ TEST(Sweep, StandingStillForADayCostsOneCheckPerFix) {
     EXPECT_EQ(clear.summary.poses, 8640u);
     EXPECT_EQ(clear.summary.distance_m, 0.0);
     // Still and aground from the first fix: one contact lasting the whole day (not a
-    // grounding: it was never seen begin), and one real check (a pose deep in land costs a
-    // penetration search; an unchanged pose reuses the last answer).
+    // grounding: it was never seen begin), and two real checks, not one per fix (a pose deep in
+    // land costs a penetration search; an unchanged pose reuses the last answer): the fix's,
+    // and the event's first sample again for the polyline that holds the hull (what it hit),
+    // which the sweep's checks leave out.
     const CountingChecker counted(w.grid, w.hull);
     const TrackResult aground = sweep_track(day_at_anchor({500, 20}, 90, 0, 0, 2), frame(), counted, {});
-    EXPECT_EQ(counted.calls, 1u);
+    EXPECT_EQ(counted.calls, 2u);
     ASSERT_EQ(aground.events.size(), 1u);
     EXPECT_EQ(aground.events[0].kind, EventKind::contact_at_start);
     EXPECT_EQ(aground.events[0].unseen_after, "track start");

@@ -291,6 +291,55 @@ TEST(DetectorShapes, ClearanceSearchStopsAtTheLimit) {
     EXPECT_TRUE(std::isinf(limited.clearance_m));
 }
 
+/// Asking for less (no penetration, no enclosing polyline: what probe and the sweep ask)
+/// changes nothing else: the same flags, clearance and points as the full check on random
+/// poses near the coast and deep inland, and the same polyline wherever one is given.
+TEST(DetectorOptions, AskingLessChangesNothingElse) {
+    const std::string path = test_data("coast/uk_solent_land.geojson");
+    const coast::Coastline coast = coast::import_coastline({path});
+    const geo::LocalFrame frame =
+        geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+    const auto lines = coast::project(coast, frame);
+    const grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
+    const Detector det(grid, hull);
+    std::mt19937_64 rng(15);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const geo::Box ext = grid.extent();
+    int left_out = 0, deep = 0;
+    for (int k = 0; k < 4000; ++k) {
+        XY pos;
+        if (k % 4 == 0) {  // anywhere: deep inland (hull wholly on land), open water
+            pos = {ext.minx + unit(rng) * (ext.maxx - ext.minx), ext.miny + unit(rng) * (ext.maxy - ext.miny)};
+        } else {
+            const auto& l = lines[rng() % lines.size()];
+            const XY on = l.points[rng() % l.points.size()];
+            const double r = 2.5 * hull.radius() * unit(rng), a = 2 * std::numbers::pi * unit(rng);
+            pos = on + XY{r * std::cos(a), r * std::sin(a)};
+        }
+        const LocalPose pose = place(frame, Pose{frame.inverse(pos), 360 * unit(rng)});
+        for (const double limit : {100.0, static_cast<double>(INFINITY)}) {
+            const Contact full = det.check(pose, {limit, true, true});
+            const Contact lean = det.check(pose, {limit, false, false});
+            ASSERT_EQ(lean.collision, full.collision) << k;
+            ASSERT_EQ(lean.covered, full.covered) << k;
+            ASSERT_EQ(lean.clearance_m, full.clearance_m) << k;
+            ASSERT_EQ(lean.hull_point, full.hull_point) << k;
+            ASSERT_EQ(lean.coast_point, full.coast_point) << k;
+            EXPECT_EQ(lean.penetration_m, 0.0) << k;
+            deep += full.penetration_m > 0;
+            if (lean.polyline != full.polyline) {
+                // Only the enclosing polyline of a contact without a crossing edge is left out.
+                ASSERT_TRUE(full.collision) << k;
+                ASSERT_EQ(lean.polyline, grid::CoastGrid::no_polyline) << k;
+                ++left_out;
+            }
+        }
+    }
+    EXPECT_GT(left_out, 50) << "too few hulls wholly on land to mean anything";
+    EXPECT_GT(deep, 500);
+}
+
 TEST(Placement, BowLandsWhereTheGeodesicPutsIt) {
     // Checked in depth in geo tests; here: place() gives the frame's scale and convergence.
     const geo::LocalFrame frame = geo::LocalFrame::transverse_mercator({24.5, 60.0});

@@ -316,6 +316,34 @@ TEST(ReportFields, GeoJsonAndGeoPackageHoldTheSameLayersFieldsAndValues) {
     EXPECT_EQ(rep.features(*rep.gp, "hulls").size(), events.size() + 2 * encounters.size());
 }
 
+/// The report is written piece by piece (not built as one document): it must still be exactly
+/// what nlohmann's dump(1) of the whole document makes, its indentation, separators and empty
+/// arrays included. Reading it back and dumping the document again is that answer.
+TEST(ReportFields, TheStreamedGeoJsonIsTheDocumentsDump) {
+    audit::AuditResult full = hand_result();
+    const RunInfo info = hand_info();
+    const std::string text = geojson(full, info);
+    EXPECT_EQ(nlohmann::ordered_json::parse(text).dump(1) + "\n", text);
+    // The same with nothing to list: empty arrays are written [] as dump writes them.
+    audit::AuditResult empty;
+    const std::string none = geojson(empty, info);
+    EXPECT_EQ(nlohmann::ordered_json::parse(none).dump(1) + "\n", none);
+    EXPECT_NE(none.find("\"features\": []"), std::string::npos);
+    // Many events: more than one piece of a mebibyte, the file the same as the text.
+    audit::AuditResult many = hand_result();
+    for (int k = 0; k < 12; ++k) many.tracks.push_back(many.tracks.front());
+    for (auto& t : many.tracks) {
+        const std::vector<audit::Event> one = t.events;
+        for (int k = 0; k < 100; ++k) t.events.insert(t.events.end(), one.begin(), one.end());
+    }
+    const std::string big = geojson(many, info);
+    ASSERT_GT(big.size(), std::size_t{3} << 19) << "more than one piece of a mebibyte";
+    EXPECT_EQ(nlohmann::ordered_json::parse(big).dump(1) + "\n", big);
+    test::TempDir dir;
+    write_geojson(dir.file("big.geojson"), many, info);
+    EXPECT_EQ(slurp(dir.file("big.geojson")), big);
+}
+
 TEST(ReportFields, ValuesAreRoundedAsTheTableSaysAndNotFiniteIsNull) {
     Reports rep;
     const json& p = rep.doc["features"][0]["properties"];

@@ -14,9 +14,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "detail/parse_util.hpp"
 #include "test_support.hpp"
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
@@ -78,6 +81,35 @@ TEST(CsvReader, DecodedFixesLayoutSplitsVesselsInFirstAppearanceOrder) {
     for (const auto& t : f.tracks) {
         EXPECT_TRUE(sorted_by_time(t)) << t.id;
         EXPECT_EQ(t.file, data_path("tracks/aava_n2k_fixes_head300.csv"));
+    }
+}
+
+/// Vessel ids are looked up by number when they are MMSIs (digits, no leading zero, up to 18)
+/// and as text otherwise: rows interleaved across thousands of vessels, with ids that read as
+/// the same number but are different text, must still make one track per distinct id text, in
+/// order of first appearance (the answer here is a map of strings).
+TEST(CsvReader, InterleavedIdsOfEveryKindMakeOneTrackPerIdText) {
+    std::mt19937_64 rng(15);
+    std::vector<std::string> ids;
+    for (int k = 0; k < 2500; ++k) ids.push_back(std::to_string(200000000 + k * 7));
+    for (const char* odd : {"0", "00", "0123", "123", "123 ", "999999999999999999", "1000000000000000000", "18446744073709551616",
+                            "18446744073709551617", "abc", "-5", "+5", "5", "1e3", "1000"})
+        ids.push_back(odd);
+    std::string text = "mmsi,time,lat,lon\n";
+    std::vector<std::string> first_seen;
+    std::map<std::string, std::size_t> count;
+    for (int k = 0; k < 30000; ++k) {
+        const std::string& id = ids[rng() % ids.size()];
+        // Times unique per row: no fix is a duplicate of another.
+        text += id + "," + std::to_string(1700000000 + k) + ",60.0,24.0\n";
+        const std::string key(shoal::track::detail::trim(id));
+        if (count[key]++ == 0) first_seen.push_back(key);
+    }
+    const TrackFile f = read_csv_text(text, "ids.csv");
+    ASSERT_EQ(f.tracks.size(), first_seen.size());
+    for (std::size_t i = 0; i < f.tracks.size(); ++i) {
+        EXPECT_EQ(f.tracks[i].id, first_seen[i]);
+        EXPECT_EQ(f.tracks[i].fixes.size(), count[first_seen[i]]) << first_seen[i];
     }
 }
 

@@ -59,6 +59,10 @@ struct CheckOptions {
     double max_clearance_m = INFINITY;
     /// Compute penetration depth on collision (extra nearest-segment searches).
     bool want_penetration = true;
+    /// Find `Contact::polyline` for a hull wholly inside land or over an islet (a search of
+    /// the grid's rings); when false it is left no_polyline in those two cases. The polyline
+    /// of a crossing edge or of the clearance costs nothing and is always given.
+    bool want_polyline = true;
 };
 
 /// Where the hull of `hull` lies for `pose` in `frame`: heading corrected for meridian

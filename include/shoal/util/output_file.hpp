@@ -9,6 +9,7 @@
 /// was killed outright (SIGKILL, the OOM killer, a power cut) is recognised by its name and
 /// dead PID and removed the next time an output is staged beside the same target.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -67,6 +68,12 @@ public:
     /// Writes all of `bytes`: to the temporary (flushed to disk), or straight to a direct
     /// target. Throws InputError naming the target (disk full, ...), removing the temporary.
     void write(std::string_view bytes);
+    /// A sink that takes the contents piece by piece.
+    using Sink = std::function<void(std::string_view)>;
+    /// Writes what `produce` hands to its sink, in order, as `write` writes one string, without
+    /// holding it all in memory. If `produce` throws, the temporary is removed and the
+    /// exception goes on (a direct target keeps what was written).
+    void write_streamed(const std::function<void(const Sink&)>& produce);
     /// Puts the temporary in place of the target (a rename); nothing for a direct target.
     /// Throws InputError naming the target, removing the temporary.
     void commit();

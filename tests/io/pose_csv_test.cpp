@@ -1,0 +1,200 @@
+// The pose file of `shoal probe`, read on string views: against the reader it replaced (kept
+// here as the reference: std::getline, one std::string per field) on many random files with
+// every kind of line the format allows or refuses, and on hand-made cases.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <shoal/io/pose_csv.hpp>
+#include <shoal/util/error.hpp>
+
+namespace shoal::io {
+namespace {
+
+// ---- the reference: the previous reader, as it was ----
+
+std::vector<std::string> ref_split(const std::string& line) {
+    std::vector<std::string> out;
+    std::string cur;
+    for (char c : line) {
+        if (c == ',' || c == ';' || c == '\t') {
+            out.push_back(cur);
+            cur.clear();
+        } else if (c != '"') {
+            cur += c;
+        }
+    }
+    out.push_back(cur);
+    for (auto& s : out) {
+        const auto b = s.find_first_not_of(" \t");
+        const auto e = s.find_last_not_of(" \t");
+        s = b == std::string::npos ? "" : s.substr(b, e - b + 1);
+    }
+    return out;
+}
+
+bool ref_double(const std::string& s, double& v) {
+    if (s.empty()) return false;
+    const char* first = s.data();
+    if (*first == '+') ++first;
+    const auto [p, ec] = std::from_chars(first, s.data() + s.size(), v);
+    return ec == std::errc() && p == s.data() + s.size();
+}
+
+PoseFile reference(const std::string& text, const std::string& name) {
+    PoseFile out;
+    int col_lat = 0, col_lon = 1, col_hdg = 2;
+    bool first = true;
+    std::istringstream in(text);
+    std::string line;
+    std::size_t lineno = 0;
+    auto bad = [&](const std::string& why) {
+        ++out.skipped;
+        if (out.errors.size() < 10) out.errors.push_back(name + " line " + std::to_string(lineno) + ": " + why + "; row skipped");
+    };
+    while (std::getline(in, line)) {
+        ++lineno;
+        if (lineno == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
+        const std::vector<std::string> f = ref_split(line);
+        if (first) {
+            first = false;
+            if (std::any_of(line.begin(), line.end(), [](unsigned char c) { return std::isalpha(c) && c != 'e' && c != 'E'; })) {
+                col_lat = col_lon = col_hdg = -1;
+                for (int i = 0; i < static_cast<int>(f.size()); ++i) {
+                    std::string h = f[static_cast<std::size_t>(i)];
+                    for (char& c : h) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+                    if (h == "lat" || h == "latitude") col_lat = i;
+                    else if (h == "lon" || h == "lng" || h == "long" || h == "longitude") col_lon = i;
+                    else if (h == "heading" || h == "hdg" || h == "heading_deg") col_hdg = i;
+                }
+                if (col_lat < 0 || col_lon < 0 || col_hdg < 0)
+                    throw InputError(name + " line 1: the header needs columns lat, lon and heading (got '" + line + "')");
+                continue;
+            }
+        }
+        const int need = std::max({col_lat, col_lon, col_hdg});
+        if (static_cast<int>(f.size()) <= need) {
+            bad("expected at least " + std::to_string(need + 1) + " fields, got " + std::to_string(f.size()));
+            continue;
+        }
+        PoseRow r;
+        r.line = lineno;
+        const std::string& slat = f[static_cast<std::size_t>(col_lat)];
+        const std::string& slon = f[static_cast<std::size_t>(col_lon)];
+        const std::string& shdg = f[static_cast<std::size_t>(col_hdg)];
+        if (!ref_double(slat, r.lat) || !std::isfinite(r.lat) || std::fabs(r.lat) > 90) {
+            bad("latitude '" + slat + "' is not a number in [-90, 90]");
+            continue;
+        }
+        if (!ref_double(slon, r.lon) || !std::isfinite(r.lon) || std::fabs(r.lon) > 180) {
+            bad("longitude '" + slon + "' is not a number in [-180, 180]");
+            continue;
+        }
+        if (!ref_double(shdg, r.heading_deg) || !std::isfinite(r.heading_deg)) {
+            bad("heading '" + shdg + "' is not a number of degrees");
+            continue;
+        }
+        r.heading_deg = std::fmod(r.heading_deg, 360.0);
+        if (r.heading_deg < 0) r.heading_deg += 360.0;
+        out.poses.push_back(r);
+    }
+    return out;
+}
+
+// ---- random files ----
+
+std::string random_file(std::mt19937_64& rng) {
+    auto pick = [&](std::initializer_list<const char*> l) { return std::string(l.begin()[rng() % l.size()]); };
+    std::string t;
+    if (rng() % 8 == 0) t += "\xEF\xBB\xBF";
+    if (rng() % 2) t += pick({"lat,lon,heading", "Latitude;Longitude;HDG", "heading,lat,lon", "x,lat,lon,heading_deg", "lat,lon",
+                              "\"lat\",\"lon\",\"heading\"", " lat\t lon \theading "}) + pick({"\n", "\r\n"});
+    const int rows = static_cast<int>(rng() % 40);
+    for (int k = 0; k < rows; ++k) {
+        std::string line;
+        const int fields = 1 + static_cast<int>(rng() % 5);
+        for (int i = 0; i < fields; ++i) {
+            if (i) line += pick({",", ";", "\t", ", "});
+            line += pick({"60.1", "-59.25", "+24.5", "1e1", "  12.5 ", "\"33.3\"", "3\"4", "", "abc", "nan", "inf", "95", "-181",
+                          "720.5", "-45", "0x10", "1.5e400", "7.", ".5", "#", " "});
+        }
+        if (rng() % 10 == 0) line = pick({"", "   ", "# a comment", "\t", "  # indented comment"});
+        t += line;
+        if (k + 1 < rows || rng() % 2) t += pick({"\n", "\r\n", "\n\n"});
+    }
+    return t;
+}
+
+void expect_same(const std::string& text) {
+    PoseFile want, got;
+    std::string want_error, got_error;
+    try {
+        want = reference(text, "f.csv");
+    } catch (const InputError& e) {
+        want_error = e.what();
+    }
+    try {
+        got = parse_pose_csv(text, "f.csv");
+    } catch (const InputError& e) {
+        got_error = e.what();
+    }
+    ASSERT_EQ(got_error, want_error) << text;
+    ASSERT_EQ(got.poses.size(), want.poses.size()) << text;
+    for (std::size_t i = 0; i < got.poses.size(); ++i) {
+        EXPECT_EQ(got.poses[i].line, want.poses[i].line);
+        // Bit for bit (NaN never gets here: rows with one are skipped).
+        EXPECT_EQ(got.poses[i].lat, want.poses[i].lat);
+        EXPECT_EQ(got.poses[i].lon, want.poses[i].lon);
+        EXPECT_EQ(got.poses[i].heading_deg, want.poses[i].heading_deg);
+    }
+    EXPECT_EQ(got.skipped, want.skipped) << text;
+    EXPECT_EQ(got.errors, want.errors) << text;
+}
+
+TEST(PoseCsv, SameAsTheLineByLineReaderOnRandomFiles) {
+    std::mt19937_64 rng(15);
+    std::size_t poses = 0, skipped = 0;
+    for (int k = 0; k < 3000; ++k) {
+        const std::string text = random_file(rng);
+        expect_same(text);
+        if (HasFatalFailure()) return;
+        try {
+            const PoseFile f = parse_pose_csv(text, "f.csv");
+            poses += f.poses.size();
+            skipped += f.skipped;
+        } catch (const InputError&) {
+        }
+    }
+    EXPECT_GT(poses, 2000u) << "too few good rows to mean anything";
+    EXPECT_GT(skipped, 2000u) << "too few bad rows to mean anything";
+}
+
+TEST(PoseCsv, HandMadeCases) {
+    const PoseFile f = parse_pose_csv("\xEF\xBB\xBFlat;lon;heading\r\n\"60.5\" ; 24.25;-90\r\n\n# c\n61,25,725", "p.csv");
+    ASSERT_EQ(f.poses.size(), 2u);
+    EXPECT_EQ(f.poses[0].line, 2u);
+    EXPECT_EQ(f.poses[0].lat, 60.5);
+    EXPECT_EQ(f.poses[0].lon, 24.25);
+    EXPECT_EQ(f.poses[0].heading_deg, 270.0);
+    EXPECT_EQ(f.poses[1].line, 5u);
+    EXPECT_EQ(f.poses[1].heading_deg, 5.0);
+    const PoseFile b = parse_pose_csv("60,24\n60,x,1\n", "p.csv");
+    EXPECT_TRUE(b.poses.empty());
+    ASSERT_EQ(b.errors.size(), 2u);
+    EXPECT_EQ(b.errors[0], "p.csv line 1: expected at least 3 fields, got 2; row skipped");
+    EXPECT_EQ(b.errors[1], "p.csv line 2: longitude 'x' is not a number in [-180, 180]; row skipped");
+    EXPECT_THROW(parse_pose_csv("lat,lon\n1,2\n", "p.csv"), InputError);
+}
+
+}  // namespace
+}  // namespace shoal::io
