@@ -609,7 +609,7 @@ TEST(HazardLevels, ALevelGridEqualsAGridBuiltFromItsHazardsAlone) {
         std::uniform_real_distribution<double> ux(g.extent().minx, g.extent().maxx), uy(g.extent().miny, g.extent().maxy);
         std::uniform_real_distribution<double> uh(0, 360);
         const hull::Hull ship = hull::Hull::from_dimensions({60, 20, 8, 8}, "ship");
-        const check::Detector on_view(view, ship), on_alone(alone, ship);
+        const check::Detector on_view(view, ship), on_alone(alone, ship, limit);  // alone: everything it holds
         double worst = 0;
         for (int k = 0; k < 5000; ++k) {
             const XY p{ux(rng), uy(rng)};
