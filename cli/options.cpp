@@ -158,6 +158,14 @@ grid::CoastGrid CoastAndShip::load_grid(const hull::Hull& hull) const {
     grid::LoadReport report;
     grid::CoastGrid g = grid::load_or_build(coast, request, &report);
     print_warnings(report.warnings);
+    if (plan.depth_m && g.charted_depths().empty()) {  // with a draught too: a shallow grounding would be missed without a word
+        char buf[400];
+        std::snprintf(buf, sizeof buf, "the grid '%s' holds land only (no depth areas or dangers): shallow water is not checked for "
+                      "the limiting depth %.2f m (%s); give a chart with depth areas (S-57 DEPARE, or --depth-field)",
+                      coast.size() == 1 ? coast[0].c_str() : "of the coastline sources", *plan.depth_m,
+                      plan.source == grid::DepthPlan::Source::draught ? "ship file draught + --ukc" : "--hazard-depth");
+        print_warnings({buf});
+    }
     if (verbose)
         std::fprintf(stderr, "shoal: %s%s%s in %.3f s\n", printable(report.how).c_str(), report.cache_path.empty() ? "" : " ",
                      printable(report.cache_path).c_str(), report.seconds);

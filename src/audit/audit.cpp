@@ -272,7 +272,14 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                                   " fixes lie outside the chart's area (uncovered: nothing is claimed there). Are latitude and "
                                   "longitude swapped, or is it the wrong coast?");
     // Vessels without a draught of their own: say what they were checked against.
-    if (!grid.charted_depths().empty()) {
+    if (grid.charted_depths().empty()) {
+        std::size_t own = 0;
+        for (const auto& t : result.tracks)
+            own += t.summary.limiting_depth_source == grid::to_string(grid::DepthPlan::Source::vessel_draught);
+        if (own > 0)
+            result.warnings.push_back(std::to_string(own) + " tracks have a draught of their own, but the grid holds land only (no depth "
+                                      "areas or dangers): shallow water was not checked for them");
+    } else {
         std::size_t own = 0, fallback = 0;
         std::string fallback_source;
         for (const auto& t : result.tracks) {

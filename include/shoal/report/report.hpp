@@ -28,7 +28,7 @@ struct RunInfo {
     /// every vessel, else the default ship's draught + ukc, else the grid's default); NaN:
     /// land only for them. Each track says its own (TrackSummary::limiting_depth_m).
     double limiting_depth_m = NAN;
-    std::string limiting_depth_source;  ///< where that came from (grid::to_string(DepthPlan::Source))
+    std::string limiting_depth_source = "land_only";  ///< where that came from (grid::to_string(DepthPlan::Source))
     double ukc_m = 0;                   ///< under-keel clearance added to every draught
     std::string grid_fingerprint;
     std::string ship;         ///< the default hull: ship name or "--dims a,b,c,d"
