@@ -56,7 +56,8 @@ public:
         m_sub = app.add_subcommand("check", "Audit voyage tracks: sweep the hull along them, report groundings and close passes");
         m_sub->footer("Usage: shoal check --coast COAST_OR_GRID --ship SHIP.json TRACK... -o REPORT.geojson [--margin M] [--step M] [--jobs N]\n"
                       "Tracks: CSV with a header (AIS exports too), GPX, GeoJSON, NMEA 0183 logs; folders are searched.\n"
-                      "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc.\n"
+                      "Shallow water and dangers count as hazards for each vessel's limiting depth: its draught (AIS, --vessels) + --ukc,\n"
+                      "else the ship file's draught + --ukc, else the grid's default; --hazard-depth sets one for every vessel.\n"
                       "Contacts are groundings only when they begin under way after the vessel was seen clear; contacts of a\n"
                       "vessel stopped or under --berthing-speed are alongside, those at a track's first fix in_contact_at_start,\n"
                       "those inside --berths areas expected_contact. Wild fixes (over --max-speed) are dropped and listed.\n"
@@ -158,6 +159,8 @@ public:
             m_audit.read.date_s = *day;
         }
         const grid::CoastGrid g = m_opts.load_grid(hull);
+        m_audit.hazard_depth_m = m_opts.request.import.limiting_depth_m;
+        m_audit.ukc_m = m_opts.ukc;
         check_readable(m_berths);
         // Expected-contact areas: --berths, and the S-57 charts the coast came from.
         std::vector<std::string> area_warnings;
@@ -203,7 +206,7 @@ public:
         for (const auto& e : r.errors)
             std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(in_cli_terms(e.message)).c_str());
         report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
-                                                      m_audit, m_berths);
+                                                      m_audit, m_berths, hull.draught());
         info.roles = m_roles_file;
         // The chart under the run (the GeoPackage's coast layer): the grid's sources read again.
         std::optional<coast::Coastline> chart;

@@ -38,6 +38,8 @@ std::string in_cli_terms(std::string message) {
         {"EncounterOptions::max_gap_s", "--max-gap"},
         {"WildFixOptions::max_speed_kn", "--max-speed"},
         {"ImportOptions::limiting_depth_m", "--hazard-depth"},
+        {"AuditOptions::hazard_depth_m", "--hazard-depth"},
+        {"AuditOptions::ukc_m", "--ukc"},
         {"ImportOptions::source_crs", "--source-crs"},
         {"ImportOptions::danger_radius_m", "--danger-radius"},
         {"ImportOptions::depth_field", "--depth-field"},
@@ -75,15 +77,22 @@ void print_grid(const grid::CoastGrid& g) {
                 static_cast<unsigned long long>(s.land_polylines), g.segment_count());
     std::printf("memory:         %.2f MB (%.1f bytes per vertex)\n", g.memory_bytes() / 1e6,
                 s.input_vertices ? static_cast<double>(g.memory_bytes()) / static_cast<double>(s.input_vertices) : 0.0);
-    if (std::isnan(s.limiting_depth_m)) {
-        std::printf("hazards:        land only (no limiting depth)\n");
+    const auto depths = g.charted_depths();
+    if (depths.empty()) {
+        std::printf("hazards:        land only (no depth areas or dangers)\n");
     } else {
-        std::printf("hazards:        limiting depth %.2f m: %llu depth areas and dangers kept (%llu with unknown depth), "
-                    "%llu at or deeper skipped;\n                %llu shallow-water and %llu danger polylines; point dangers as %.1f m circles%s%s\n",
-                    s.limiting_depth_m, static_cast<unsigned long long>(s.hazard_features),
-                    static_cast<unsigned long long>(s.unknown_depth), static_cast<unsigned long long>(s.deep_skipped),
+        const bool unknown = std::isnan(depths.front());
+        const std::size_t known = depths.size() - (unknown ? 1 : 0);
+        std::printf("hazards:        %llu depth areas and dangers kept with their depth (%llu with unknown depth), "
+                    "%zu distinct charted depths (%.1f to %.1f m);\n                %llu shallow-water and %llu danger polylines; "
+                    "point dangers as %.1f m circles%s%s\n",
+                    static_cast<unsigned long long>(s.hazard_features), static_cast<unsigned long long>(s.unknown_depth), known,
+                    known ? depths[unknown ? 1 : 0] : NAN, known ? depths.back() : NAN,
                     static_cast<unsigned long long>(s.shallow_polylines), static_cast<unsigned long long>(s.danger_polylines),
                     s.danger_radius_m, s.depth_field.empty() ? "" : "; depth field ", s.depth_field.c_str());
+        char dflt[64] = "none (land only)";
+        if (!std::isnan(s.limiting_depth_m)) std::snprintf(dflt, sizeof dflt, "%.2f m (--hazard-depth)", s.limiting_depth_m);
+        std::printf("limiting depth: chosen per vessel at check time (draught + --ukc, or --hazard-depth); default %s\n", dflt);
     }
     if (!g.has_land_side())
         std::printf("note:           only lines, no land polygons: a ship inside land, away from the coastline, is not seen\n");
@@ -93,7 +102,8 @@ void print_grid(const grid::CoastGrid& g) {
 void add_hazard_options(CLI::App& sub, coast::ImportOptions& import) {
     sub.add_option("--hazard-depth", import.limiting_depth_m,
                    "Limiting depth in metres: depth areas shallower and dangers with a sounding under it (or unknown) are "
-                   "hazards like land (default: none, land only; for probe and check the ship's draught + --ukc when it has one)")
+                   "hazards like land. check and probe: for every vessel (default: each vessel's own draught + --ukc, else the "
+                   "ship file's, else the grid's default, else land only); import: the grid's default")
         ->check(finite);
     sub.add_option("--depth-field", import.depth_field,
                    "Attribute holding a polygon's least depth in sources other than S-57 (DEPARE/DRGARE use DRVAL1)");
@@ -135,40 +145,26 @@ hull::Hull CoastAndShip::load_hull() const {
 std::string CoastAndShip::hull_label() const { return ship_file.empty() ? "--dims " + dims : "ship file"; }
 
 grid::CoastGrid CoastAndShip::load_grid(const hull::Hull& hull) const {
+    // One grid serves every limiting depth: it is built (or cached) the same whatever the
+    // draught; the limit is chosen per vessel at check time.
     const grid::DepthPlan plan = grid::plan_limiting_depth(request.import.limiting_depth_m, hull.draught(), ukc);
-    grid::BuildRequest req = request;
-    req.import.limiting_depth_m = plan.depth_m;
-    char why[160] = "--hazard-depth";
-    if (plan.source == grid::DepthPlan::Source::draught)
-        std::snprintf(why, sizeof why, "draught %.2f m + under-keel clearance %.2f m", plan.draught_m, plan.ukc_m);
-    if (plan.ukc_unused) print_warnings({"--ukc needs a ship with a draught (or give --hazard-depth): checking against land only"});
-    const bool is_grid = coast.size() == 1 && grid::looks_like_grid(coast[0]);
-    if (!is_grid && plan.depth_m)
+    if (plan.depth_m) {
+        char why[160] = "--hazard-depth, for every vessel";
+        if (plan.source == grid::DepthPlan::Source::draught)
+            std::snprintf(why, sizeof why, "ship file draught %.2f m + under-keel clearance %.2f m", plan.draught_m, plan.ukc_m);
         std::fprintf(stderr, "shoal: limiting depth %.2f m (%s): shallower depth areas and dangers are hazards\n", *plan.depth_m, why);
+    }
     check_readable(coast);
     grid::LoadReport report;
-    grid::CoastGrid g = grid::load_or_build(coast, req, &report);
+    grid::CoastGrid g = grid::load_or_build(coast, request, &report);
     print_warnings(report.warnings);
-    if (is_grid) {
-        const double built = g.source().limiting_depth_m;
-        const double want = plan.depth_m.value_or(NAN);
-        char buf[400] = "";
-        switch (grid::depth_fit(g, plan)) {
-        case grid::DepthFit::fits: break;
-        case grid::DepthFit::land_only:  // with a draught too: a shallow grounding would be missed without a word
-            std::snprintf(buf, sizeof buf, "the grid '%s' holds land only (built without a limiting depth): shallow water and dangers "
-                          "are not checked for the limiting depth %.2f m (%s); rebuild it with shoal import --hazard-depth",
-                          coast[0].c_str(), want, why);
-            break;
-        case grid::DepthFit::shallower:
-        case grid::DepthFit::deeper:
-            std::snprintf(buf, sizeof buf, "the grid '%s' was built for the limiting depth %.2f m, not %.2f m (%s): %s; rebuild it with "
-                          "shoal import --hazard-depth %.2f", coast[0].c_str(), built, want, why,
-                          built < want ? "water between those depths is not seen as a hazard" : "more water counts as a hazard than needed",
-                          want);
-            break;
-        }
-        if (buf[0]) print_warnings({buf});
+    if (plan.depth_m && g.charted_depths().empty()) {  // with a draught too: a shallow grounding would be missed without a word
+        char buf[400];
+        std::snprintf(buf, sizeof buf, "the grid '%s' holds land only (no depth areas or dangers): shallow water is not checked for "
+                      "the limiting depth %.2f m (%s); give a chart with depth areas (S-57 DEPARE, or --depth-field)",
+                      coast.size() == 1 ? coast[0].c_str() : "of the coastline sources", *plan.depth_m,
+                      plan.source == grid::DepthPlan::Source::draught ? "ship file draught + --ukc" : "--hazard-depth");
+        print_warnings({buf});
     }
     if (verbose)
         std::fprintf(stderr, "shoal: %s%s%s in %.3f s\n", printable(report.how).c_str(), report.cache_path.empty() ? "" : " ",

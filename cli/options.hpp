@@ -53,9 +53,9 @@ struct CoastAndShip {
     hull::Hull load_hull() const;
     /// Where the default hull came from, for the report: "ship file" or "--dims A,B,C,D".
     std::string hull_label() const;
-    /// The grid for `hull`: a grid file as it is, or coastline sources built for the limiting
-    /// depth (grid::plan_limiting_depth: --hazard-depth, else the ship's draught + --ukc, else
-    /// land only), with a warning when a grid file does not serve that depth.
+    /// The grid: a grid file as it is, or coastline sources built (or taken from the cache)
+    /// with every depth area and danger; says on stderr the limiting depth `hull` gives
+    /// (--hazard-depth, else its draught + --ukc) when it has one.
     grid::CoastGrid load_grid(const hull::Hull& hull) const;
 };
 

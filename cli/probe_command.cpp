@@ -5,12 +5,14 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 
 #include <shoal/check/detector.hpp>
+#include <shoal/grid/limiting_depth.hpp>
 #include <shoal/io/pose_csv.hpp>
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/output_file.hpp>
@@ -49,7 +51,13 @@ public:
         if (poses.skipped > poses.errors.size())
             std::fprintf(stderr, "shoal: warning: %zu more bad rows skipped\n", poses.skipped - poses.errors.size());
         const grid::CoastGrid g = m_opts.load_grid(hull);
-        const check::Detector detector(g, hull);
+        const grid::DepthPlan depth =
+            grid::plan_vessel_depth(m_opts.request.import.limiting_depth_m, NAN, hull.draught(), m_opts.ukc, g);
+        if (depth.ukc_unused && !depth.depth_m)
+            print_warnings({"--ukc needs a ship with a draught (or give --hazard-depth): checking against land only"});
+        if (depth.source == grid::DepthPlan::Source::grid_default)
+            std::fprintf(stderr, "shoal: limiting depth %.2f m (the grid's default, import --hazard-depth)\n", *depth.depth_m);
+        const check::Detector detector(g, hull, depth.depth_m);
         std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
         out.reserve(out.size() + poses.poses.size() * 48);
         // Only what is written: no penetration depth, no enclosing polyline.

@@ -52,10 +52,22 @@ SHOAL_C_API shoal_grid* shoal_grid_load(const char* path);
 SHOAL_C_API void shoal_grid_free(shoal_grid* grid);
 
 /* A detector for a hull of AIS dimensions a, b, c, d (metres from the position reference
- * point to bow, stern, port, starboard; each > 0). NULL on error. */
+ * point to bow, stern, port, starboard; each > 0). It checks against land and, when the grid
+ * has a default limiting depth (`shoal import --hazard-depth`), the depth areas and dangers
+ * charted shallower than it; else land only. NULL on error. */
 SHOAL_C_API shoal_detector* shoal_detector_new(const shoal_grid* grid, double a, double b, double c, double d);
-/* A detector for the hull of a ship file (schemas/ship.schema.json). NULL on error. */
+/* The same for the vessel's own limiting depth (its draught + the under-keel clearance, in
+ * metres): depth areas and dangers charted shallower than it (or of unknown depth) are
+ * hazards like land. NAN: land only. One grid serves every depth. NULL on error. */
+SHOAL_C_API shoal_detector* shoal_detector_new_at_depth(const shoal_grid* grid, double a, double b, double c, double d,
+                                                        double limiting_depth_m);
+/* A detector for the hull of a ship file (schemas/ship.schema.json), at the grid's default
+ * limiting depth as shoal_detector_new. NULL on error. */
 SHOAL_C_API shoal_detector* shoal_detector_from_ship_file(const shoal_grid* grid, const char* ship_json);
+/* The same at the limiting depth limiting_depth_m (NAN: land only); for the ship file's own
+ * draught, pass it plus the under-keel clearance. NULL on error. */
+SHOAL_C_API shoal_detector* shoal_detector_from_ship_file_at_depth(const shoal_grid* grid, const char* ship_json,
+                                                                   double limiting_depth_m);
 SHOAL_C_API void shoal_detector_free(shoal_detector* detector);
 
 /* Checks the hull with its reference point at lat, lon (WGS84 degrees) and its bow at

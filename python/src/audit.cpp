@@ -210,8 +210,10 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
                    const py::object& progress) {
     std::string label;
     const hull::Hull hull = hull_of(ship, dims, &label);
-    warn_depth_fit(g, hull, hazard_depth_m, ukc);
+    plan_depth(g, hull, hazard_depth_m, ukc);  // validates and warns as the CLI does
     audit::AuditOptions options;
+    options.hazard_depth_m = depth_or_none(hazard_depth_m, "hazard_depth_m", false);
+    options.ukc_m = depth_or_none(ukc, "ukc", true);
     options.sweep.margin_m = positive("margin_m", margin_m, true);
     options.sweep.step_m = positive("step_m", step_m);
     if (step_m < 0.01)
@@ -268,7 +270,7 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
         fr.tracks = n_tracks;
         r.files.push_back(std::move(fr));
         r.skipped_rows += read.skipped;
-        info = report::run_info(g.coast, *g.grid, ship.is_none() ? label : hull.name(), options, berth_files);
+        info = report::run_info(g.coast, *g.grid, ship.is_none() ? label : hull.name(), options, berth_files, hull.draught());
         options.areas = nullptr;
     }
     if (progress_error) std::rethrow_exception(progress_error);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <shoal/grid/limiting_depth.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
 
@@ -39,7 +40,11 @@ void warn_all(const std::vector<std::string>& messages);
 hull::Hull hull_of(const py::object& ship, const py::object& dims, std::string* label);
 
 /// Warns when the grid does not serve the ship's limiting depth (as `shoal check` does).
-void warn_depth_fit(const GridHandle& g, const hull::Hull& hull, const py::object& hazard_depth_m, const py::object& ukc);
+/// The limiting depth a Detector or an audit's default uses (grid::plan_vessel_depth, as the
+/// CLI): `hazard_depth_m`, else the ship's draught + `ukc`, else the grid's default; warns
+/// when `ukc` cannot be used. Throws ValueError for a value that is not a depth.
+grid::DepthPlan plan_depth(const GridHandle& g, const hull::Hull& hull, const py::object& hazard_depth_m, const py::object& ukc);
+std::optional<double> depth_or_none(const py::object& o, const char* name, bool non_negative);
 
 void bind_grid(py::module_& m);
 void bind_detector(py::module_& m);

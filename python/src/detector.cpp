@@ -21,9 +21,8 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 class PyDetector {
 public:
     PyDetector(GridHandle grid, const py::object& ship, const py::object& dims, const py::object& ukc, const py::object& hazard_depth_m)
-        : m_grid(std::move(grid)), m_hull(hull_of(ship, dims, &m_label)), m_detector(*m_grid.grid, m_hull) {
-        warn_depth_fit(m_grid, m_hull, hazard_depth_m, ukc);
-    }
+        : m_grid(std::move(grid)), m_hull(hull_of(ship, dims, &m_label)),
+          m_detector(*m_grid.grid, m_hull, plan_depth(m_grid, m_hull, hazard_depth_m, ukc).depth_m) {}
 
     py::dict check(const Array& lat, const Array& lon, const Array& heading, double max_clearance_m) const {
         if (!(max_clearance_m > 0)) throw py::value_error("max_clearance_m must be > 0 (metres; inf: no limit)");

@@ -89,31 +89,22 @@ hull::Hull hull_of(const py::object& ship, const py::object& dims, std::string* 
     return h;
 }
 
-void warn_depth_fit(const GridHandle& g, const hull::Hull& hull, const py::object& hazard_depth_m, const py::object& ukc) {
-    const std::optional<double> hazard = hazard_depth_m.is_none() ? std::nullopt : std::optional<double>(hazard_depth_m.cast<double>());
-    const std::optional<double> u = ukc.is_none() ? std::nullopt : std::optional<double>(ukc.cast<double>());
-    if (u && !(std::isfinite(*u) && *u >= 0)) throw py::value_error("ukc must be a finite number >= 0 (metres)");
-    if (hazard && !std::isfinite(*hazard)) throw py::value_error("hazard_depth_m must be a finite number (metres)");
-    const grid::DepthPlan plan = grid::plan_limiting_depth(hazard, hull.draught(), u);
-    std::vector<std::string> w;
-    if (plan.ukc_unused) w.push_back("ukc needs a ship with a draught (or give hazard_depth_m): checking against land only");
-    const double built = g.grid->source().limiting_depth_m, want = plan.depth_m.value_or(NAN);
-    char buf[400] = "";
-    switch (grid::depth_fit(*g.grid, plan)) {
-    case grid::DepthFit::fits: break;
-    case grid::DepthFit::land_only:
-        std::snprintf(buf, sizeof buf, "the grid holds land only (built without a limiting depth): shallow water and dangers are not "
-                      "checked for the limiting depth %.2f m; build it with Grid.build(..., hazard_depth_m=%.2f)", want, want);
-        break;
-    case grid::DepthFit::shallower:
-    case grid::DepthFit::deeper:
-        std::snprintf(buf, sizeof buf, "the grid was built for the limiting depth %.2f m, not %.2f m: %s; build it with "
-                      "Grid.build(..., hazard_depth_m=%.2f)", built, want,
-                      built < want ? "water between those depths is not seen as a hazard" : "more water counts as a hazard than needed", want);
-        break;
-    }
-    if (buf[0]) w.push_back(buf);
-    warn_all(w);
+std::optional<double> depth_or_none(const py::object& o, const char* name, bool non_negative) {
+    if (o.is_none()) return std::nullopt;
+    const double v = o.cast<double>();
+    if (!std::isfinite(v) || (non_negative && v < 0))
+        throw py::value_error(std::string(name) + (non_negative ? " must be a finite number >= 0 (metres)" : " must be a finite number (metres)"));
+    return v;
+}
+
+grid::DepthPlan plan_depth(const GridHandle& g, const hull::Hull& hull, const py::object& hazard_depth_m, const py::object& ukc) {
+    const std::optional<double> hazard = depth_or_none(hazard_depth_m, "hazard_depth_m", false);
+    const std::optional<double> u = depth_or_none(ukc, "ukc", true);
+    // As `shoal probe`: hazard_depth_m, else the ship's draught + ukc, else the grid's default.
+    const grid::DepthPlan plan = grid::plan_vessel_depth(hazard, NAN, hull.draught(), u, *g.grid);
+    if (plan.ukc_unused && !plan.depth_m)
+        warn_all({"ukc needs a ship with a draught (or give hazard_depth_m): checking against land only"});
+    return plan;
 }
 
 }  // namespace shoal::python

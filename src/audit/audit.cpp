@@ -13,6 +13,7 @@
 #include <thread>
 #include <tuple>
 
+#include <shoal/grid/limiting_depth.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/util/error.hpp>
 
@@ -206,8 +207,11 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                     hull = hull::Hull::from_dimensions(*t.dims, t.name);
                     label = dims_label(*t.dims) + (t.dims_source.empty() ? "" : " (" + t.dims_source + ")");
                 }
-                const DetectorChecker detector(grid, hull);
-                const DetectorChecker circle(grid, circle_hull(hull));
+                // This vessel's own limiting depth: what is a hazard for it.
+                const grid::DepthPlan depth = grid::plan_vessel_depth(options.hazard_depth_m, t.draught_m, default_hull.draught(),
+                                                                      options.ukc_m, grid);
+                const DetectorChecker detector(grid, hull, depth.depth_m);
+                const DetectorChecker circle(grid, circle_hull(hull), depth.depth_m);
                 SweepContext context;
                 context.unknown_heading = &circle;
                 context.areas = options.areas;
@@ -217,6 +221,8 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 swept[k].summary.hull = label;
                 swept[k].summary.draught_m = t.draught_m;
                 swept[k].summary.draught_source = t.draught_source;
+                swept[k].summary.limiting_depth_m = depth.depth_m.value_or(NAN);
+                swept[k].summary.limiting_depth_source = grid::to_string(depth.source);
                 if (options.encounters) {
                     swept[k].summary.exercise = exercise_key(options.exercise_by, t);
                     swept[k].summary.role = options.roles ? options.roles->role_of(swept[k].summary.exercise, t.id) : Role::trainee;
@@ -272,6 +278,36 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         result.warnings.push_back(std::to_string(result.uncovered_fixes) + " of " + std::to_string(result.fixes) +
                                   " fixes lie outside the chart's area (uncovered: nothing is claimed there). Are latitude and "
                                   "longitude swapped, or is it the wrong coast?");
+    // Vessels without a draught of their own: say what they were checked against.
+    if (grid.charted_depths().empty()) {
+        std::size_t own = 0;
+        for (const auto& t : result.tracks)
+            own += t.summary.limiting_depth_source == grid::to_string(grid::DepthPlan::Source::vessel_draught);
+        if (own > 0)
+            result.warnings.push_back(std::to_string(own) + " tracks have a draught of their own, but the grid holds land only (no depth "
+                                      "areas or dangers): shallow water was not checked for them");
+    } else {
+        std::size_t own = 0, fallback = 0;
+        std::string fallback_source;
+        for (const auto& t : result.tracks) {
+            if (t.summary.limiting_depth_source == grid::to_string(grid::DepthPlan::Source::vessel_draught)) {
+                ++own;
+            } else if (t.summary.limiting_depth_source != grid::to_string(grid::DepthPlan::Source::hazard_depth)) {
+                ++fallback;
+                fallback_source = t.summary.limiting_depth_source;
+            }
+        }
+        if (fallback > 0) {
+            const std::string what = fallback_source == grid::to_string(grid::DepthPlan::Source::land_only)
+                                         ? "were checked against land only: shallow water and dangers were not checked for them "
+                                           "(give the default ship a draught, AuditOptions::hazard_depth_m, or their draughts in a vessels table)"
+                                         : "were checked at the default limiting depth (" + fallback_source + ")";
+            result.warnings.push_back(std::to_string(fallback) + " of " + std::to_string(own + fallback) +
+                                      " tracks have no draught of their own and " + what);
+        }
+        if (options.ukc_m && !options.hazard_depth_m && own == 0 && !(default_hull.draught() > 0))
+            result.warnings.push_back("AuditOptions::ukc_m needs a draught (a vessel's own, or the default ship's): no track had one");
+    }
     for (const auto& t : result.tracks) {
         const TrackSummary& s = t.summary;
         if (s.jumps > 0 && s.fixes >= 4 && 2 * s.segments > s.fixes)

@@ -8,6 +8,7 @@
 #include <exception>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 
 #include <shoal/check/detector.hpp>
@@ -55,6 +56,14 @@ shoal_detector* make_detector(const shoal_grid* grid, shoal::hull::Hull hull) {
     return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull))};
 }
 
+/// At limiting depth `depth_m` (NaN: land only; infinite is refused).
+shoal_detector* make_detector_at(const shoal_grid* grid, shoal::hull::Hull hull, double depth_m) {
+    if (!grid) throw std::invalid_argument("shoal_detector: the grid is NULL");
+    if (std::isinf(depth_m)) throw std::invalid_argument("shoal_detector: the limiting depth must be finite (or NAN: land only)");
+    const std::optional<double> limit = std::isnan(depth_m) ? std::nullopt : std::optional<double>(depth_m);
+    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull), limit)};
+}
+
 }  // namespace
 
 extern "C" {
@@ -84,6 +93,20 @@ shoal_detector* shoal_detector_from_ship_file(const shoal_grid* grid, const char
         [&] {
             if (!ship_json) throw std::invalid_argument("shoal_detector_from_ship_file: the path is NULL");
             return make_detector(grid, shoal::hull::Hull::load(ship_json));
+        },
+        static_cast<shoal_detector*>(nullptr));
+}
+
+shoal_detector* shoal_detector_new_at_depth(const shoal_grid* grid, double a, double b, double c, double d, double limiting_depth_m) {
+    return execute([&] { return make_detector_at(grid, shoal::hull::Hull::from_dimensions({a, b, c, d}), limiting_depth_m); },
+                   static_cast<shoal_detector*>(nullptr));
+}
+
+shoal_detector* shoal_detector_from_ship_file_at_depth(const shoal_grid* grid, const char* ship_json, double limiting_depth_m) {
+    return execute(
+        [&] {
+            if (!ship_json) throw std::invalid_argument("shoal_detector_from_ship_file_at_depth: the path is NULL");
+            return make_detector_at(grid, shoal::hull::Hull::load(ship_json), limiting_depth_m);
         },
         static_cast<shoal_detector*>(nullptr));
 }

@@ -362,7 +362,17 @@ Scratch& scratch() {
 
 }  // namespace
 
-Detector::Detector(const grid::CoastGrid& grid, const hull::Hull& hull) : m_grid(grid), m_hull(hull) {}
+namespace {
+std::optional<double> default_limit(const grid::CoastGrid& grid) {
+    const double d = grid.source().limiting_depth_m;
+    return std::isnan(d) ? std::nullopt : std::optional<double>(d);
+}
+}  // namespace
+
+Detector::Detector(const grid::CoastGrid& grid, const hull::Hull& hull) : Detector(grid, hull, default_limit(grid)) {}
+
+Detector::Detector(const grid::CoastGrid& grid, const hull::Hull& hull, std::optional<double> limiting_depth_m)
+    : m_grid(grid.for_depth(limiting_depth_m)), m_hull(hull) {}
 
 Contact Detector::check(const Pose& pose, const CheckOptions& options) const {
     return check(place(m_grid.frame(), pose), options);

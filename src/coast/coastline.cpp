@@ -106,9 +106,6 @@ public:
         int depth_index = -1;
         if (m_role.kind != HazardKind::land) {
             const char* what = m_role.kind == HazardKind::danger ? "dangers" : "depth areas";
-            if (!m_options.limiting_depth_m)
-                throw UsageError("layer '" + stats.layer + "' in '" + m_file + "' holds " + what +
-                                 ": they need a limiting depth (ImportOptions::limiting_depth_m, or a ship with a draught)");
             depth_index = m_layer.GetLayerDefn()->GetFieldIndex(m_role.field.c_str());
             if (depth_index < 0)
                 throw InputError("layer '" + stats.layer + "' in '" + m_file + "' holds " + what + " but has no field " +
@@ -120,12 +117,11 @@ public:
         for (auto& feature : m_layer) {
             ++stats.features;
             double depth = NAN;
+            // Every depth area and danger is kept with its charted depth: which of them is a
+            // hazard is decided at check time, for each vessel's own limiting depth.
             if (depth_index >= 0 && feature->IsFieldSetAndNotNull(depth_index)) {
                 depth = feature->GetFieldAsDouble(depth_index);
-                if (depth >= *m_options.limiting_depth_m) {  // deep enough: not a hazard
-                    ++stats.deep_skipped;
-                    continue;
-                }
+                if (!std::isfinite(depth)) depth = NAN;
             }
             const ogr::LinearGeometry linear = ogr::linear_geometry(*feature);
             const OGRGeometry* g = linear.geometry;
@@ -354,9 +350,6 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
         throw UsageError("the limiting depth must be a finite number of metres");
     if (!(options.danger_radius_m > 0) || !std::isfinite(options.danger_radius_m))
         throw UsageError("ImportOptions::danger_radius_m must be > 0 metres");
-    if (!options.depth_field.empty() && !options.limiting_depth_m)
-        throw UsageError("ImportOptions::depth_field " + options.depth_field +
-                         " needs a limiting depth (ImportOptions::limiting_depth_m, or a ship with a draught)");
     Coastline out;
     geo::GeosContext geos;
     std::vector<bool> found(options.layers.size(), false);
@@ -378,14 +371,11 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
                                  (options.layers.size() > 1 ? " (nor the other ImportOptions::layers names)" : "") +
                                  "; its layers: " + ogr::layer_names(*ds));
         } else if (ogr::is_s57(*ds)) {
-            // Land; with a limiting depth also depth areas, dredged areas and dangers.
-            std::vector<const char*> names = {"LNDARE", "COALNE"};
-            if (options.limiting_depth_m) names.insert(names.end(), {"DEPARE", "DRGARE", "UWTROC", "WRECKS", "OBSTRN"});
+            // Land, depth areas, dredged areas and dangers (each kept with its charted depth).
+            const std::vector<const char*> names = {"LNDARE", "COALNE", "DEPARE", "DRGARE", "UWTROC", "WRECKS", "OBSTRN"};
             chosen = ogr::layers_named(*ds, names);
             if (chosen.empty())
-                throw InputError("S-57 chart '" + path + "' has none of the layers " +
-                                 (options.limiting_depth_m ? "LNDARE, COALNE, DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN"
-                                                           : "LNDARE, COALNE") +
+                throw InputError("S-57 chart '" + path + "' has none of the layers LNDARE, COALNE, DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN"
                                  "; pick layers with ImportOptions::layers (its layers: " + ogr::layer_names(*ds) + ")");
         } else {
             for (OGRLayer* l : ds->GetLayers()) chosen.push_back(l);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <numeric>
 
 #include "detail/geos_context.hpp"
@@ -84,7 +86,119 @@ std::size_t CoastGrid::memory_bytes() const noexcept {
     return m_slot.size() * sizeof(std::uint32_t) + m_seg_offset.size() * sizeof(std::uint32_t) +
            m_ref_winding.size() * sizeof(std::int32_t) + m_segments.size() * sizeof(Segment) +
            m_seg_info.size() * sizeof(std::uint32_t) + m_hazards.size() * sizeof(coast::Hazard) +
-           m_chunk_box.size() * sizeof(geo::Box);
+           m_chunk_box.size() * sizeof(geo::Box) + m_level_depth.size() * sizeof(double) +
+           m_lw_offset.size() * sizeof(std::uint32_t) + m_lw_level.size() * sizeof(std::uint16_t) +
+           m_lw_winding.size() * sizeof(std::int32_t) + (m_land_level.size() + m_poly_level.size()) * sizeof(std::uint16_t);
+}
+
+// --- levels: one grid, each vessel's own limiting depth ---
+
+struct CoastGrid::Levels {
+    std::mutex mutex;
+    std::map<std::size_t, std::unique_ptr<CoastGrid>> grids;  // by level; nodes stay put
+};
+CoastGrid::LevelCache::LevelCache() : p(std::make_shared<Levels>()) {}
+CoastGrid::LevelCache::LevelCache(const LevelCache&) : p(std::make_shared<Levels>()) {}
+CoastGrid::LevelCache& CoastGrid::LevelCache::operator=(const LevelCache&) {
+    p = std::make_shared<Levels>();
+    return *this;
+}
+CoastGrid::LevelCache::~LevelCache() = default;
+
+namespace {
+/// Depth keys compare with unknown (NaN) first, then ascending.
+bool depth_before(double a, double b) { return std::isnan(a) ? !std::isnan(b) : !std::isnan(b) && a < b; }
+}  // namespace
+
+void CoastGrid::assign_levels() {
+    m_level_depth.clear();
+    for (const coast::Hazard& h : m_hazards)
+        if (h.kind != coast::HazardKind::land) m_level_depth.push_back(h.depth_m);
+    std::sort(m_level_depth.begin(), m_level_depth.end(), depth_before);
+    m_level_depth.erase(std::unique(m_level_depth.begin(), m_level_depth.end(),
+                                    [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }),
+                        m_level_depth.end());
+    if (m_level_depth.size() >= 0xFFFFu)
+        throw UsageError("the depth areas and dangers have " + std::to_string(m_level_depth.size()) +
+                         " distinct charted depths, more than 65534: round the depth field (ImportOptions::depth_field)");
+    m_poly_level.clear();
+    if (m_level_depth.empty()) return;
+    m_poly_level.reserve(m_hazards.size());
+    for (const coast::Hazard& h : m_hazards) {
+        if (h.kind == coast::HazardKind::land) {
+            m_poly_level.push_back(0);
+            continue;
+        }
+        const auto it = std::lower_bound(m_level_depth.begin(), m_level_depth.end(), h.depth_m, depth_before);
+        m_poly_level.push_back(static_cast<std::uint16_t>(it - m_level_depth.begin() + 1));
+    }
+}
+
+std::size_t CoastGrid::level_of(std::optional<double> limit_m) const noexcept {
+    if (!limit_m) return 0;
+    // Unknown depth is a hazard for any limit; a charted depth when it is under the limit.
+    std::size_t n = 0;
+    for (double d : m_level_depth)
+        if (std::isnan(d) || d < *limit_m) ++n;
+    return n;
+}
+
+std::int32_t CoastGrid::level_winding(std::uint32_t s, std::size_t level) const noexcept {
+    std::int32_t w = 0;
+    for (std::uint32_t k = m_lw_offset[s]; k < m_lw_offset[s + 1] && m_lw_level[k] <= level; ++k) w = m_lw_winding[k];
+    return w;
+}
+
+const CoastGrid& CoastGrid::for_depth(std::optional<double> limit_m) const {
+    const std::size_t level = level_of(limit_m);
+    if (level >= m_level_depth.size()) return *this;  // every hazard held (or none held)
+    Levels& cache = *m_levels.p;
+    const std::lock_guard<std::mutex> lock(cache.mutex);
+    std::unique_ptr<CoastGrid>& g = cache.grids[level];
+    if (!g) g = std::make_unique<CoastGrid>(make_level(level));
+    return *g;
+}
+
+CoastGrid CoastGrid::make_level(std::size_t level) const {
+    CoastGrid v(m_frame);
+    v.m_cell = m_cell;
+    v.m_x0 = m_x0;
+    v.m_y0 = m_y0;
+    v.m_nx = m_nx;
+    v.m_ny = m_ny;
+    v.m_clip_slack = m_clip_slack;
+    v.m_ref_fx = m_ref_fx;
+    v.m_ref_fy = m_ref_fy;
+    v.m_has_land_side = m_has_land_side;
+    v.m_hazards = m_hazards;
+    v.m_source = m_source;
+    v.m_source.limiting_depth_m = NAN;
+    v.m_slot.assign(m_slot.size(), water_slot);
+    v.m_seg_offset.push_back(0);
+    for (std::size_t c = 0; c < m_slot.size(); ++c) {
+        const std::uint32_t s = m_slot[c];
+        if (s == water_slot) continue;
+        if (s == land_slot) {
+            if (m_land_level[c] <= level) v.m_slot[c] = land_slot;
+            continue;
+        }
+        const std::size_t before = v.m_segments.size();
+        for (std::uint32_t k = m_seg_offset[s]; k < m_seg_offset[s + 1]; ++k)
+            if (m_poly_level[m_seg_info[k] & ~boundary_bit] <= level) {
+                v.m_segments.push_back(m_segments[k]);
+                v.m_seg_info.push_back(m_seg_info[k]);
+            }
+        const std::int32_t w = level_winding(s, level);
+        if (v.m_segments.size() > before) {
+            v.m_slot[c] = static_cast<std::uint32_t>(v.m_ref_winding.size());
+            v.m_ref_winding.push_back(w);
+            v.m_seg_offset.push_back(static_cast<std::uint32_t>(v.m_segments.size()));
+        } else if (w > 0) {
+            v.m_slot[c] = land_slot;
+        }
+    }
+    v.compute_chunk_boxes();
+    return v;
 }
 
 void CoastGrid::compute_chunk_boxes() {
@@ -254,7 +368,6 @@ CoastGrid CoastGrid::build(const coast::Coastline& coast, geo::LocalFrame frame,
         g.m_source.layers.push_back(l.file + ":" + l.layer);
         g.m_source.hazard_features += l.hazards;
         g.m_source.unknown_depth += l.unknown_depth;
-        g.m_source.deep_skipped += l.deep_skipped;
     }
     return g;
 }
@@ -367,8 +480,10 @@ CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::
     const double clip_s = seconds_since(t0);
 
     // 3. Land or water: winding numbers along each row of reference points, from the west
-    //    edge (outside every ring), counting signed crossings of land boundary segments.
+    //    edge (outside every ring), counting signed crossings of land boundary segments;
+    //    with depth areas and dangers, at every level of charted depth.
     const auto t1 = Clock::now();
+    g.assign_levels();
     g.m_ref_winding.assign(g.m_seg_offset.size() - 1, 0);
     bool settled = false;
     for (const auto& cand : ref_candidates) {
@@ -396,7 +511,15 @@ void CoastGrid::assign_windings(const std::vector<coast::LocalPolyline>& lines) 
     struct Crossing {
         double x;
         int sign;
+        std::uint16_t level;
     };
+    const std::size_t top = m_level_depth.size();  // the level of every hazard
+    std::vector<std::int32_t> per_level(top + 1, 0), prefix(top + 1, 0);
+    m_lw_offset.assign(top ? m_ref_winding.size() + 1 : 0, 0);
+    m_lw_level.clear();
+    m_lw_winding.clear();
+    m_land_level.assign(top ? m_slot.size() : 0, 0);
+
     std::vector<std::uint32_t> row_start(static_cast<std::size_t>(m_ny) + 1, 0);
     auto row_y = [&](int j) { return m_y0 + (j + m_ref_fy) * m_cell; };
     // Rows j whose line y_j satisfies min(ya,yb) <= y_j < max(ya,yb) (half-open rule).
@@ -410,8 +533,10 @@ void CoastGrid::assign_windings(const std::vector<coast::LocalPolyline>& lines) 
     for (int pass = 0; pass < 2; ++pass) {
         std::vector<Crossing> crossings(pass ? row_start.back() : 0);
         std::vector<std::uint32_t> fill(row_start.begin(), row_start.end() - 1);
-        for (const auto& l : lines) {
+        for (std::size_t li = 0; li < lines.size(); ++li) {
+            const auto& l = lines[li];
             if (!l.land_left) continue;
+            const std::uint16_t level = polyline_level(static_cast<std::uint32_t>(li));
             for (std::size_t k = 0; k + 1 < l.points.size(); ++k) {
                 const XY a = l.points[k], b = l.points[k + 1];
                 if (a.y == b.y) continue;
@@ -423,7 +548,7 @@ void CoastGrid::assign_windings(const std::vector<coast::LocalPolyline>& lines) 
                     } else {
                         const double y = row_y(j);
                         const double x = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
-                        crossings[fill[static_cast<std::size_t>(j)]++] = {x, b.y < a.y ? 1 : -1};
+                        crossings[fill[static_cast<std::size_t>(j)]++] = {x, b.y < a.y ? 1 : -1, level};
                     }
                 }
             }
@@ -437,15 +562,37 @@ void CoastGrid::assign_windings(const std::vector<coast::LocalPolyline>& lines) 
             auto last = crossings.begin() + row_start[static_cast<std::size_t>(j) + 1];
             std::sort(first, last, [](const Crossing& p, const Crossing& q) { return p.x < q.x; });
             int w = 0;
+            std::fill(per_level.begin(), per_level.end(), 0);
             auto it = first;
             for (int i = 0; i < m_nx; ++i) {
                 const double rx = m_x0 + (i + m_ref_fx) * m_cell;
-                while (it != last && it->x < rx) w += (it++)->sign;
-                std::uint32_t& s = m_slot[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_nx) + static_cast<std::size_t>(i)];
+                for (; it != last && it->x < rx; ++it) {
+                    w += it->sign;
+                    if (top) per_level[it->level] += it->sign;
+                }
+                const std::size_t c = static_cast<std::size_t>(j) * static_cast<std::size_t>(m_nx) + static_cast<std::size_t>(i);
+                std::uint32_t& s = m_slot[c];
                 if (s < land_slot)
                     m_ref_winding[s] = w;
                 else
                     s = w > 0 ? land_slot : water_slot;
+                if (!top || (s >= land_slot && w <= 0)) continue;
+                // The winding at each level: the crossings of polylines of that level or below.
+                std::partial_sum(per_level.begin(), per_level.end(), prefix.begin());
+                if (s < land_slot) {  // coast cells come in row order: their levels are appended
+                    std::int32_t last_w = 0;
+                    for (std::size_t lv = 0; lv < top; ++lv)
+                        if (prefix[lv] != last_w) {
+                            m_lw_level.push_back(static_cast<std::uint16_t>(lv));
+                            m_lw_winding.push_back(prefix[lv]);
+                            last_w = prefix[lv];
+                        }
+                    m_lw_offset[s + 1] = static_cast<std::uint32_t>(m_lw_level.size());
+                } else {
+                    std::size_t lv = 0;
+                    while (lv < top && prefix[lv] <= 0) ++lv;
+                    m_land_level[c] = static_cast<std::uint16_t>(lv);
+                }
             }
         }
     }
@@ -469,6 +616,11 @@ bool operator==(const CoastGrid& a, const CoastGrid& b) {
            a.m_y0 == b.m_y0 && a.m_nx == b.m_nx && a.m_ny == b.m_ny && a.m_ref_fx == b.m_ref_fx &&
            a.m_ref_fy == b.m_ref_fy && a.m_clip_slack == b.m_clip_slack && a.m_has_land_side == b.m_has_land_side && a.m_slot == b.m_slot &&
            a.m_seg_offset == b.m_seg_offset && a.m_ref_winding == b.m_ref_winding &&
+           a.m_level_depth.size() == b.m_level_depth.size() &&
+           std::equal(a.m_level_depth.begin(), a.m_level_depth.end(), b.m_level_depth.begin(),
+                      [](double p, double q) { return p == q || (std::isnan(p) && std::isnan(q)); }) &&
+           a.m_lw_offset == b.m_lw_offset && a.m_lw_level == b.m_lw_level && a.m_lw_winding == b.m_lw_winding &&
+           a.m_land_level == b.m_land_level &&
            a.m_seg_info == b.m_seg_info && a.m_segments.size() == b.m_segments.size() &&
            std::equal(a.m_hazards.begin(), a.m_hazards.end(), b.m_hazards.begin(), b.m_hazards.end(),
                       [](const coast::Hazard& p, const coast::Hazard& q) {

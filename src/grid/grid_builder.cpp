@@ -69,12 +69,10 @@ std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const c
     }
     for (const auto& l : options.layers) feed("layer:" + l);
     feed("source_crs:" + options.source_crs);
-    // Hazards: the limiting depth, the danger radius and the depth field shape the grid.
+    // Hazards: the danger radius and the depth field shape the grid. The limiting depth does
+    // not: the grid holds every depth area and danger, for every vessel's limit.
     char hazards[96];
-    if (options.limiting_depth_m)
-        std::snprintf(hazards, sizeof hazards, "limit:%.17g radius:%.17g", *options.limiting_depth_m, options.danger_radius_m);
-    else
-        std::snprintf(hazards, sizeof hazards, "limit:none");
+    std::snprintf(hazards, sizeof hazards, "radius:%.17g", options.danger_radius_m);
     feed(hazards);
     feed("depth_field:" + options.depth_field);
     feed("crs:" + crs);
@@ -116,7 +114,7 @@ CoastGrid build_grid(const std::vector<std::string>& paths, const BuildRequest& 
     g.source().layer_option = request.import.layers;
     g.source().source_crs = request.import.source_crs;
     g.source().limiting_depth_m = request.import.limiting_depth_m.value_or(NAN);
-    g.source().danger_radius_m = request.import.limiting_depth_m ? request.import.danger_radius_m : 0.0;
+    g.source().danger_radius_m = request.import.danger_radius_m;
     g.source().depth_field = request.import.depth_field;
     g.source().fingerprint =
         fingerprint_sources(paths, request.import, request.crs, request.cell_m > 0 ? request.cell_m : 2.5 * request.ship_length_m);

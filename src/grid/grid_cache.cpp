@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -95,6 +96,8 @@ CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildReques
         try {
             CoastGrid g = GridFile::load(cache.string());
             if (g.source().fingerprint == fp) {
+                // One cached grid serves every limiting depth: the default is this request's.
+                g.source().limiting_depth_m = request.import.limiting_depth_m.value_or(NAN);
                 rep.how = "reused cached grid";
                 return done(std::move(g));
             }

@@ -148,7 +148,6 @@ std::vector<char> GridFile::serialize(const CoastGrid& g) {
     w.pod(s.danger_polylines);
     w.pod(s.hazard_features);
     w.pod(s.unknown_depth);
-    w.pod(s.deep_skipped);
     w.vec(g.m_slot);
     w.vec(g.m_seg_offset);
     w.vec(g.m_ref_winding);
@@ -163,6 +162,11 @@ std::vector<char> GridFile::serialize(const CoastGrid& g) {
     }
     w.vec(kinds);
     w.vec(depths);
+    // Levels of charted depth (the depths themselves follow from the polylines').
+    w.vec(g.m_lw_offset);
+    w.vec(g.m_lw_level);
+    w.vec(g.m_lw_winding);
+    w.vec(g.m_land_level);
     const std::vector<char>& payload = w.bytes();
 
     Writer out;
@@ -247,7 +251,6 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     s.danger_polylines = r.pod<std::uint64_t>();
     s.hazard_features = r.pod<std::uint64_t>();
     s.unknown_depth = r.pod<std::uint64_t>();
-    s.deep_skipped = r.pod<std::uint64_t>();
     g.m_slot = r.vec<std::uint32_t>();
     g.m_seg_offset = r.vec<std::uint32_t>();
     g.m_ref_winding = r.vec<std::int32_t>();
@@ -255,6 +258,10 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     g.m_seg_info = r.vec<std::uint32_t>();
     const auto kinds = r.vec<std::uint8_t>();
     const auto depths = r.vec<double>();
+    g.m_lw_offset = r.vec<std::uint32_t>();
+    g.m_lw_level = r.vec<std::uint16_t>();
+    g.m_lw_winding = r.vec<std::int32_t>();
+    g.m_land_level = r.vec<std::uint16_t>();
     if (!r.at_end()) r.fail("unexpected bytes after the arrays");
     if (kinds.size() != depths.size()) r.fail("polyline table sizes");
     for (std::size_t k = 0; k < kinds.size(); ++k) {
@@ -265,6 +272,11 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     }
     for (std::uint32_t info : g.m_seg_info)
         if ((info & ~CoastGrid::boundary_bit) >= kinds.size()) r.fail("segment of a polyline out of range");
+    try {
+        g.assign_levels();
+    } catch (const UsageError&) {
+        r.fail("too many levels of charted depth");
+    }
     // Consistency: a checksum protects against damage, these against a wrong writer.
     if (!(cell > 0) || !std::isfinite(cell) || !std::isfinite(x0) || !std::isfinite(y0) || nx <= 0 || ny <= 0 ||
         !(fx > 0 && fx < 1 && fy > 0 && fy < 1))
@@ -276,6 +288,20 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
         r.fail("segment offsets");
     for (std::uint32_t v : g.m_slot)
         if (v < CoastGrid::land_slot && v >= ncoast) r.fail("cell slot out of range");
+    const std::size_t top = g.m_level_depth.size();
+    if (top == 0) {
+        if (!g.m_lw_offset.empty() || !g.m_lw_level.empty() || !g.m_lw_winding.empty() || !g.m_land_level.empty())
+            r.fail("levels of charted depth in a grid without depth areas or dangers");
+    } else {
+        if (g.m_lw_offset.size() != ncoast + 1 || g.m_lw_offset.front() != 0 || g.m_lw_offset.back() != g.m_lw_level.size() ||
+            !std::is_sorted(g.m_lw_offset.begin(), g.m_lw_offset.end()) || g.m_lw_winding.size() != g.m_lw_level.size() ||
+            g.m_land_level.size() != g.m_slot.size())
+            r.fail("level offsets");
+        for (std::uint16_t lv : g.m_lw_level)
+            if (lv >= top) r.fail("level out of range");
+        for (std::uint16_t lv : g.m_land_level)
+            if (lv > top) r.fail("land level out of range");
+    }
     for (const Segment& sg : g.m_segments)
         if (!std::isfinite(sg.a.x) || !std::isfinite(sg.a.y) || !std::isfinite(sg.b.x) || !std::isfinite(sg.b.y))
             r.fail("non-finite segment");

@@ -1,7 +1,10 @@
 // The run header of a report (report::run_info): what was checked, against what, by which rules.
 #include <shoal/report/report.hpp>
 
+#include <cmath>
 #include <cstdio>
+
+#include <shoal/grid/limiting_depth.hpp>
 
 namespace shoal::report {
 
@@ -16,12 +19,15 @@ std::string joined(const std::vector<std::string>& parts) {
 }  // namespace
 
 RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const std::string& ship,
-                 const audit::AuditOptions& options, const std::vector<std::string>& berths) {
+                 const audit::AuditOptions& options, const std::vector<std::string>& berths, double default_draught_m) {
     RunInfo info;
     info.coast = joined(coast);
     info.frame = grid.frame().description();
     info.cell_m = grid.cell_size();
-    info.limiting_depth_m = grid.source().limiting_depth_m;
+    const grid::DepthPlan depth = grid::plan_vessel_depth(options.hazard_depth_m, NAN, default_draught_m, options.ukc_m, grid);
+    info.limiting_depth_m = depth.depth_m.value_or(NAN);
+    info.limiting_depth_source = grid::to_string(depth.source);
+    info.ukc_m = options.ukc_m.value_or(0.0);
     char fp[20];
     std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(grid.source().fingerprint));
     info.grid_fingerprint = fp;

@@ -135,4 +135,36 @@ TEST(CApi, ErrorsAreNullWithAMessageOfThisThread) {
     shoal_detector_free(nullptr);
 }
 
+/// One grid of the S-57 cut (depth areas kept with their depths, no default limit): detectors
+/// at two limiting depths off it. The 3.6 m depth area at (-76.45138, 38.92249) is water at
+/// 3.5 m and a hazard at 4.5 m (tests/grid/hazard_test.cpp checks the same against GEOS).
+TEST(CApi, DetectorsAtTheirOwnLimitingDepthShareOneGrid) {
+    const std::string g = (temp_dir() / "cut.shoalgrid").string();
+    ASSERT_EQ(run("'" SHOAL_BINARY "' import '" SHOAL_TEST_DATA "coast/US4MD81M_hazard_cut.000' --cell 300 -o '" + g + "' > /dev/null"), 0);
+    shoal_grid* grid = shoal_grid_load(g.c_str());
+    ASSERT_NE(grid, nullptr) << shoal_last_error();
+    shoal_detector* shallow = shoal_detector_new_at_depth(grid, 45, 15, 5, 5, 3.5);
+    shoal_detector* deep = shoal_detector_new_at_depth(grid, 45, 15, 5, 5, 4.5);
+    shoal_detector* land = shoal_detector_new_at_depth(grid, 45, 15, 5, 5, NAN);
+    shoal_detector* dflt = shoal_detector_new(grid, 45, 15, 5, 5);
+    shoal_detector* ship = shoal_detector_from_ship_file_at_depth(grid, SHOAL_TEST_DATA "../../examples/ship.json", 4.5);
+    ASSERT_TRUE(shallow && deep && land && dflt && ship) << shoal_last_error();
+    shoal_contact c{};
+    ASSERT_EQ(shoal_check(shallow, 38.92249, -76.45138, 30, 500, &c), 0);
+    EXPECT_EQ(c.contact, 0);
+    EXPECT_GT(c.clearance_m, 100);
+    ASSERT_EQ(shoal_check(deep, 38.92249, -76.45138, 30, 500, &c), 0);
+    EXPECT_EQ(c.contact, 1);
+    ASSERT_EQ(shoal_check(ship, 38.92249, -76.45138, 30, 500, &c), 0);
+    EXPECT_EQ(c.contact, 1);
+    ASSERT_EQ(shoal_check(land, 38.92249, -76.45138, 30, 500, &c), 0);
+    EXPECT_EQ(c.contact, 0);
+    ASSERT_EQ(shoal_check(dflt, 38.92249, -76.45138, 30, 500, &c), 0);
+    EXPECT_EQ(c.contact, 0) << "a grid without a default limiting depth: land only";
+    EXPECT_EQ(shoal_detector_new_at_depth(grid, 45, 15, 5, 5, INFINITY), nullptr);
+    EXPECT_NE(std::string(shoal_last_error()).find("finite"), std::string::npos);
+    for (shoal_detector* d : {shallow, deep, land, dflt, ship}) shoal_detector_free(d);
+    shoal_grid_free(grid);
+}
+
 }  // namespace

@@ -17,17 +17,22 @@
 
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <numbers>
 #include <random>
 #include <sys/wait.h>
 
 #include <nlohmann/json.hpp>
+#define XXH_INLINE_ALL
+#include <xxhash.h>
 
+#include <shoal/audit/audit.hpp>
 #include <shoal/audit/sweep.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/coast/coastline.hpp>
 #include <shoal/grid/grid_cache.hpp>
+#include <shoal/grid/limiting_depth.hpp>
 #include <shoal/hull/hull.hpp>
 #include "test_support.hpp"
 #include <shoal/util/error.hpp>
@@ -128,12 +133,13 @@ std::uint64_t ogr_rings_and_points(const std::string& layer, const std::string& 
     return n;
 }
 
-TEST(HazardImport, CountsPerLayerAndKindEqualOgrAttributeFilters) {
-    for (double d : {0.0, 2.0, 3.0, 6.0, 11.0}) {
-        SCOPED_TRACE("limiting depth " + std::to_string(d));
+TEST(HazardImport, CountsPerLayerAndKindEqualOgr) {
+    // Every depth area and danger is kept with its depth, whatever the grid's default limit
+    // (which no longer changes what is read: a one-depth import was the old limitation).
+    for (std::optional<double> d : {std::optional<double>(), std::optional<double>(3.0), std::optional<double>(11.0)}) {
+        SCOPED_TRACE("default limit " + (d ? std::to_string(*d) : std::string("none")));
         const coast::Coastline c = coast::import_coastline({cut()}, with_limit(d));
-        ASSERT_EQ(c.layers.size(), 7u) << "with a limit the default S-57 set has seven layers";
-        char lt[64], ge[64];
+        ASSERT_EQ(c.layers.size(), 7u) << "the default S-57 set has seven layers";
         std::uint64_t shallow_rings = 0, danger_rings = 0;
         for (const auto& l : c.layers) {
             SCOPED_TRACE(l.layer);
@@ -141,54 +147,42 @@ TEST(HazardImport, CountsPerLayerAndKindEqualOgrAttributeFilters) {
             const bool danger = l.layer == "UWTROC" || l.layer == "WRECKS" || l.layer == "OBSTRN";
             if (!area && !danger) {
                 EXPECT_EQ(l.kind, HazardKind::land);
-                EXPECT_EQ(l.hazards + l.deep_skipped, 0u);
+                EXPECT_EQ(l.hazards, 0u);
                 continue;
             }
             const std::string f = area ? "DRVAL1" : "VALSOU";
-            std::snprintf(lt, sizeof lt, "%s < %.3f", f.c_str(), d);
-            std::snprintf(ge, sizeof ge, "%s >= %.3f", f.c_str(), d);
             const std::string unknown = f + " IS NULL";
             EXPECT_EQ(l.kind, area ? HazardKind::shallow : HazardKind::danger);
             EXPECT_EQ(l.features, ogr_count(l.layer, ""));
-            EXPECT_EQ(l.hazards, ogr_count(l.layer, lt) + ogr_count(l.layer, unknown));
+            EXPECT_EQ(l.hazards, ogr_count(l.layer, ""));
             EXPECT_EQ(l.unknown_depth, ogr_count(l.layer, unknown));
-            EXPECT_EQ(l.deep_skipped, ogr_count(l.layer, ge));
-            const std::uint64_t rings = ogr_rings_and_points(l.layer, "(" + std::string(lt) + ") OR " + unknown);
-            (area ? shallow_rings : danger_rings) += rings;
+            (area ? shallow_rings : danger_rings) += ogr_rings_and_points(l.layer, "");
         }
         EXPECT_EQ(c.count(HazardKind::shallow), shallow_rings);
         EXPECT_EQ(c.count(HazardKind::danger), danger_rings);
         EXPECT_EQ(c.count(HazardKind::land), ogr_rings_and_points("LNDARE", "") + ogr_count("COALNE", ""));
-        // Every polyline carries its feature's depth: shallow ones under the limit (or unknown).
-        for (const auto& p : c.polylines)
+        for (const auto& p : c.polylines) {
             if (p.hazard.kind != HazardKind::land) {
                 EXPECT_TRUE(p.land_left);
-                EXPECT_TRUE(std::isnan(p.hazard.depth_m) || p.hazard.depth_m < d) << p.hazard.depth_m;
             }
+        }
     }
     // The cut's own figures, as a sanity check of the filters (tests/data/README.md).
     EXPECT_EQ(ogr_count("DEPARE", "DRVAL1 < 3"), 4u);
     EXPECT_EQ(ogr_count("WRECKS", "VALSOU IS NULL"), 2u);
 }
 
-TEST(HazardImport, WithoutALimitOnlyLandIsReadAndDepthLayersAreRefused) {
-    const coast::Coastline c = coast::import_coastline({cut()});
-    ASSERT_EQ(c.layers.size(), 2u);
-    EXPECT_EQ(c.layers[0].layer, "LNDARE");
-    EXPECT_EQ(c.layers[1].layer, "COALNE");
-    EXPECT_EQ(c.count(HazardKind::shallow) + c.count(HazardKind::danger), 0u);
-
+TEST(HazardImport, DepthLayersAndFieldsNeedNoLimitAndBadOptionsAreRefused) {
     coast::ImportOptions o;
     o.layers = {"LNDARE", "DEPARE"};
-    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); },
-                ThrowsMessage<UsageError>(AllOf(HasSubstr("DEPARE"), HasSubstr("limiting depth"))));
+    const coast::Coastline c = coast::import_coastline({cut()}, o);
+    ASSERT_EQ(c.layers.size(), 2u);
+    EXPECT_EQ(c.layers[1].kind, HazardKind::shallow);
+    EXPECT_EQ(c.layers[1].hazards, ogr_count("DEPARE", ""));
     o = {};
-    o.depth_field = "DRVAL1";
-    EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<UsageError>(HasSubstr("ImportOptions::depth_field")));
-    o = with_limit(5);
     o.danger_radius_m = 0;
     EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<UsageError>(HasSubstr("ImportOptions::danger_radius_m")));
-    o = with_limit(5);
+    o = {};
     o.depth_field = "NO_SUCH_FIELD";
     EXPECT_THAT([&] { coast::import_coastline({cut()}, o); }, ThrowsMessage<InputError>(HasSubstr("NO_SUCH_FIELD")));
 }
@@ -214,67 +208,80 @@ TEST(HazardImport, DepthFieldMakesDepthAreasOfOtherSources) {
     ASSERT_EQ(c.layers.size(), 2u);
     EXPECT_EQ(c.layers[0].kind, HazardKind::land);
     EXPECT_EQ(c.layers[1].kind, HazardKind::shallow);
-    EXPECT_EQ(c.layers[1].hazards, 2u);
+    EXPECT_EQ(c.layers[1].hazards, 3u) << "all kept, the 8 m one too: the limit is chosen at check time";
     EXPECT_EQ(c.layers[1].unknown_depth, 1u);
-    EXPECT_EQ(c.layers[1].deep_skipped, 1u);
-    ASSERT_EQ(c.polylines.size(), 3u);
+    ASSERT_EQ(c.polylines.size(), 4u);
     EXPECT_EQ(c.polylines[0].hazard.kind, HazardKind::land);
     EXPECT_EQ(c.polylines[1].hazard.kind, HazardKind::shallow);
     EXPECT_EQ(c.polylines[1].hazard.depth_m, 2.0);
-    EXPECT_TRUE(std::isnan(c.polylines[2].hazard.depth_m));
+    EXPECT_EQ(c.polylines[2].hazard.depth_m, 8.0);
+    EXPECT_TRUE(std::isnan(c.polylines[3].hazard.depth_m));
 }
 
 // ---------------------------------------------------------------- single poses
 
-check::Contact check_at(const grid::CoastGrid& g, const hull::Hull& hull, LonLat where, double heading_deg) {
-    return check::Detector(g, hull).check(check::Pose{where, heading_deg});
+check::Contact check_at(const grid::CoastGrid& g, const hull::Hull& hull, LonLat where, double heading_deg,
+                        std::optional<double> limit_m) {
+    return check::Detector(g, hull, limit_m).check(check::Pose{where, heading_deg});
 }
 
-TEST(HazardPoses, DeeperDraughtGroundsWhereAShallowerOneDoesNot) {
+/// One grid of the cut with every depth area and danger (no default limit), built once.
+const grid::CoastGrid& one_grid() {
+    static const grid::CoastGrid g = grid_for(std::nullopt);
+    return g;
+}
+
+TEST(HazardPoses, DeeperDraughtGroundsWhereAShallowerOneDoesNotOnOneGrid) {
     // Inside the 3.6 m depth area: a ship of draught 3.0 m floats, one of 3.5 m with 0.5 m
-    // under-keel clearance (limiting depth 4.0 m) is aground.
+    // under-keel clearance (limiting depth 4.0 m) is aground; both on the same grid.
     const hull::Hull shallow = ship_with_draught(3.0), deep = ship_with_draught(3.5);
-    const grid::CoastGrid g3 = grid_for(coast::limiting_depth(std::nullopt, shallow.draught(), 0.0));
-    const grid::CoastGrid g4 = grid_for(coast::limiting_depth(std::nullopt, deep.draught(), 0.5));
-    EXPECT_EQ(g3.source().limiting_depth_m, 3.0);
-    EXPECT_EQ(g4.source().limiting_depth_m, 4.0);
+    const grid::CoastGrid& g = one_grid();
+    const auto l3 = coast::limiting_depth(std::nullopt, shallow.draught(), 0.0);
+    const auto l4 = coast::limiting_depth(std::nullopt, deep.draught(), 0.5);
+    ASSERT_EQ(l3, 3.0);
+    ASSERT_EQ(l4, 4.0);
     for (double heading : {0.0, 30.0, 145.0, 270.0}) {
-        const check::Contact afloat = check_at(g3, shallow, in_depth_3_6, heading);
+        const check::Contact afloat = check_at(g, shallow, in_depth_3_6, heading, l3);
         EXPECT_FALSE(afloat.collision);
         EXPECT_GT(afloat.clearance_m, 150);
-        const check::Contact aground = check_at(g4, deep, in_depth_3_6, heading);
+        const check::Contact aground = check_at(g, deep, in_depth_3_6, heading, l4);
         ASSERT_TRUE(aground.collision);
         // Wholly inside the area: the contact names the area holding the hull.
-        ASSERT_LT(aground.polyline, g4.polyline_count());
-        EXPECT_EQ(g4.hazard(aground.polyline).kind, HazardKind::shallow);
-        EXPECT_EQ(g4.hazard(aground.polyline).depth_m, 3.6);
+        ASSERT_LT(aground.polyline, g.polyline_count());
+        EXPECT_EQ(g.hazard(aground.polyline).kind, HazardKind::shallow);
+        EXPECT_EQ(g.hazard(aground.polyline).depth_m, 3.6);
     }
     // A charted obstruction of 5.9 m: clear at 5.0 m, a hazard at 6.0 m.
-    const grid::CoastGrid g5 = grid_for(5.0), g6 = grid_for(6.0);
-    EXPECT_FALSE(check_at(g5, shallow, obstruction_5_9, 0).collision);
-    const check::Contact hit = check_at(g6, deep, obstruction_5_9, 0);
+    EXPECT_FALSE(check_at(g, shallow, obstruction_5_9, 0, 5.0).collision);
+    const check::Contact hit = check_at(g, deep, obstruction_5_9, 0, 6.0);
     ASSERT_TRUE(hit.collision);
-    EXPECT_EQ(g6.hazard(hit.polyline).kind, HazardKind::danger);
-    EXPECT_EQ(g6.hazard(hit.polyline).danger, DangerKind::obstruction);
-    EXPECT_EQ(g6.hazard(hit.polyline).depth_m, 5.9);
+    EXPECT_EQ(g.hazard(hit.polyline).kind, HazardKind::danger);
+    EXPECT_EQ(g.hazard(hit.polyline).danger, DangerKind::obstruction);
+    EXPECT_EQ(g.hazard(hit.polyline).depth_m, 5.9);
+    // A limit equal to a charted depth: that depth is not under it (DRVAL1 3.6 is no hazard at 3.6).
+    EXPECT_FALSE(check_at(g, deep, in_depth_3_6, 0, 3.6).collision);
+    EXPECT_TRUE(check_at(g, deep, in_depth_3_6, 0, std::nextafter(3.6, 10.0)).collision);
+    // A grid built with a default limit (import --hazard-depth) checks at it when no limit is given.
+    const grid::CoastGrid g4 = grid_for(4.0);
+    EXPECT_TRUE(check::Detector(g4, deep).check(check::Pose{in_depth_3_6, 0}).collision);
+    EXPECT_FALSE(check::Detector(g, deep).check(check::Pose{in_depth_3_6, 0}).collision) << "no default: land only";
 }
 
 TEST(HazardPoses, WreckWithAnUnknownSoundingIsAHazardAtAnyLimit) {
     const hull::Hull ship = ship_with_draught(1.0);
+    const grid::CoastGrid& g = one_grid();
     for (double limit : {0.5, 5.0, 30.0}) {
-        const grid::CoastGrid g = grid_for(limit);
-        const check::Contact c = check_at(g, ship, wreck_unknown, 90);
+        const check::Contact c = check_at(g, ship, wreck_unknown, 90, limit);
         ASSERT_TRUE(c.collision) << "limit " << limit;
         EXPECT_EQ(g.hazard(c.polyline).kind, HazardKind::danger);
         EXPECT_EQ(g.hazard(c.polyline).danger, DangerKind::wreck);
         EXPECT_TRUE(std::isnan(g.hazard(c.polyline).depth_m));
     }
-    EXPECT_FALSE(check_at(grid_for(std::nullopt), ship, wreck_unknown, 90).collision) << "land only: the wreck is not there";
+    EXPECT_FALSE(check_at(g, ship, wreck_unknown, 90, std::nullopt).collision) << "land only: the wreck is not there";
     // 25 m east of the wreck, heading north: the port side (c = 5 m) is 20 m from it, and
     // the wreck's 16-gon reaches 10 m / cos(pi / 16) = 10.196 m east (a vertex).
-    const grid::CoastGrid g = grid_for(5.0);
     const Eigen::Vector2d mpd = geo::metres_per_degree(wreck_unknown.lat);
-    const check::Contact beside = check_at(g, ship, {wreck_unknown.lon + 25 / mpd.x(), wreck_unknown.lat}, 0);
+    const check::Contact beside = check_at(g, ship, {wreck_unknown.lon + 25 / mpd.x(), wreck_unknown.lat}, 0, 5.0);
     EXPECT_FALSE(beside.collision);
     EXPECT_NEAR(beside.clearance_m, 20 - 10 / std::cos(std::numbers::pi / 16), 0.02);
     EXPECT_EQ(g.hazard(beside.polyline).danger, DangerKind::wreck);
@@ -415,13 +422,15 @@ double box_distance(const geo::Box& a, const geo::Box& b) {
 
 /// Random poses near the hazards and anywhere in the grid, checked by the detector and by
 /// GEOS on every feature (prepared) that may be nearest: collision, clearance and what was hit.
-Disagreements compare_with_geos(double limit_m, double cell_m, int n_poses, const std::string& chart = cut()) {
-    const grid::CoastGrid g = grid_for(limit_m, cell_m, chart);
+/// Random poses checked at `limit_m` on grid `g` (one grid for every limit), against GEOS on
+/// the chart's features shallower than the limit.
+Disagreements compare_with_geos(const grid::CoastGrid& g, double limit_m, int n_poses, const std::string& chart = cut(),
+                                std::uint64_t seed = 4242) {
     const HazardOracle oracle(chart, limit_m, 10.0, g.frame());
     const auto& features = oracle.features();
     const hull::Hull hull = hull::Hull::from_dimensions({90, 30, 14, 16}, "test ship");
-    const check::Detector det(g, hull);
-    std::mt19937_64 rng(4242);
+    const check::Detector det(g, hull, limit_m);
+    std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0, 1);
     const auto& vs = oracle.vertices();
     const geo::Box ext = g.extent();
@@ -502,6 +511,10 @@ Disagreements compare_with_geos(double limit_m, double cell_m, int n_poses, cons
     return d;
 }
 
+Disagreements compare_with_geos(double limit_m, double cell_m, int n_poses, const std::string& chart = cut()) {
+    return compare_with_geos(grid_for(std::nullopt, cell_m, chart), limit_m, n_poses, chart);
+}
+
 TEST(HazardVsGeos, RandomPosesAgreeForALimitOf2Point5Metres) {
     const Disagreements d = compare_with_geos(2.5, 150, 10000);
     EXPECT_EQ(d.flag, 0);
@@ -540,15 +553,170 @@ TEST(HazardVsGeos, WholeSharedS57CellAgrees) {
                 d.poses, d.collisions, d.flag + d.clearance + d.hit, d.flag, d.clearance, d.hit, d.ties, d.worst_clearance_error);
 }
 
+track::Track track_through(const geo::LocalFrame& frame, const std::vector<XY>& pts);
+
+/// One grid, many vessels: random limiting depths (and one exactly at a charted depth),
+/// each checked on the same grid against GEOS on the features shallower than it.
+TEST(HazardVsGeos, RandomLimitsOnOneGridAgree) {
+    const grid::CoastGrid g = grid_for(std::nullopt, 300);
+    std::mt19937_64 rng(77);
+    std::uniform_real_distribution<double> depth(-1.0, 12.0);
+    int poses = 0, collisions = 0;
+    std::set<std::size_t> levels;
+    for (int k = 0; k < 8; ++k) {
+        const double limit = k == 0 ? 3.6 : k == 1 ? 5.4 : depth(rng);
+        SCOPED_TRACE("limit " + std::to_string(limit));
+        levels.insert(g.level_of(limit));
+        const Disagreements d = compare_with_geos(g, limit, 1000, cut(), 100 + static_cast<std::uint64_t>(k));
+        EXPECT_EQ(d.flag, 0);
+        EXPECT_EQ(d.clearance, 0);
+        EXPECT_EQ(d.hit, 0);
+        poses += d.poses;
+        collisions += d.collisions;
+    }
+    EXPECT_GE(levels.size(), 5u) << "the limits span several levels of charted depth";
+    EXPECT_GT(collisions, poses / 5);
+    std::printf("one grid, 8 limits: %d poses, %d collisions, %zu levels of %zu\n", poses, collisions, levels.size(),
+                g.charted_depths().size() + 1);
+}
+
+TEST(HazardLevels, ALevelGridEqualsAGridBuiltFromItsHazardsAlone) {
+    // The grid for a limit, derived from the grid of everything, is the grid built from only
+    // the polylines that are hazards at that limit (cells, segments, windings), as a build
+    // with a one-depth import gave before.
+    const coast::Coastline all = coast::import_coastline({cut()});
+    const geo::LocalFrame frame =
+        geo::LocalFrame::transverse_mercator({(all.min.lon + all.max.lon) / 2, (all.min.lat + all.max.lat) / 2});
+    const std::vector<coast::LocalPolyline> lines = coast::project(all, frame);
+    const grid::CoastGrid g = grid::CoastGrid::build(lines, frame, 250);
+    for (std::optional<double> limit : {std::optional<double>(), std::optional<double>(1.0), std::optional<double>(3.7),
+                                        std::optional<double>(9.0)}) {
+        SCOPED_TRACE(limit ? std::to_string(*limit) : "land only");
+        const grid::CoastGrid& view = g.for_depth(limit);
+        EXPECT_EQ(&view, &g.for_depth(limit)) << "built once, then kept";
+        // The polylines of that limit alone (others replaced by an empty placeholder keeps
+        // their indices out of the picture: compare cell by cell instead).
+        std::vector<coast::LocalPolyline> kept;
+        for (const auto& l : lines) {
+            const bool hazard = l.hazard.kind == HazardKind::land ||
+                                (limit && (std::isnan(l.hazard.depth_m) || l.hazard.depth_m < *limit));
+            if (hazard) kept.push_back(l);
+        }
+        const grid::CoastGrid alone = grid::CoastGrid::build(kept, frame, 250);  // its own extent and cells
+        EXPECT_LE(view.segment_count(), g.segment_count());
+        int differ = 0;
+        std::mt19937_64 rng(5);
+        std::uniform_real_distribution<double> ux(g.extent().minx, g.extent().maxx), uy(g.extent().miny, g.extent().maxy);
+        std::uniform_real_distribution<double> uh(0, 360);
+        const hull::Hull ship = hull::Hull::from_dimensions({60, 20, 8, 8}, "ship");
+        const check::Detector on_view(view, ship), on_alone(alone, ship, limit);  // alone: everything it holds
+        double worst = 0;
+        for (int k = 0; k < 5000; ++k) {
+            const XY p{ux(rng), uy(rng)};
+            differ += view.is_land(p) != alone.is_land(p);
+            const check::LocalPose pose = check::LocalPose::at(p, uh(rng));
+            const check::Contact c1 = on_view.check(pose, {400, false}), c2 = on_alone.check(pose, {400, false});
+            if (!c2.covered) continue;
+            differ += c1.collision != c2.collision;
+            if (!c1.collision && std::isfinite(c2.clearance_m)) worst = std::max(worst, std::fabs(c1.clearance_m - c2.clearance_m));
+            else differ += std::isfinite(c1.clearance_m) != std::isfinite(c2.clearance_m);
+        }
+        EXPECT_LT(worst, 1e-6);
+        EXPECT_EQ(differ, 0);
+    }
+    EXPECT_EQ(&g.for_depth(1000.0), &g) << "a limit under which every hazard lies is the grid itself";
+}
+
+TEST(HazardLevels, AGridFileOfVersion2IsRefused) {
+    std::vector<char> bytes = grid::GridFile::serialize(one_grid());
+    std::vector<char> old = bytes;
+    const std::uint32_t v2 = 2;
+    std::memcpy(old.data() + 8, &v2, sizeof v2);
+    EXPECT_THAT([&] { grid::GridFile::parse(old, "old.shoalgrid"); },
+                ThrowsMessage<InputError>(HasSubstr("has format version 2; this shoal reads version 3: rebuild it with shoal import")));
+    // A level out of range (the last land level), the checksum made right: damaged, said so.
+    const std::uint16_t bad = 0xFFFF;
+    std::memcpy(bytes.data() + bytes.size() - sizeof bad, &bad, sizeof bad);
+    const std::uint64_t sum = XXH3_64bits(bytes.data() + 32, bytes.size() - 32);
+    std::memcpy(bytes.data() + 24, &sum, sizeof sum);
+    EXPECT_THAT([&] { grid::GridFile::parse(bytes, "bad.shoalgrid"); }, ThrowsMessage<InputError>(HasSubstr("land level out of range")));
+}
+
+/// Two vessels of different draughts in one audit, on one grid: the deep one grounds in the
+/// 3.6 m area where the shallow one floats; GEOS on the depth areas shallower than each
+/// vessel's limit says the same of the hull at the event and along the shallow one's path.
+TEST(HazardFleet, TwoDraughtsInOneRunFromOneGrid) {
+    const grid::CoastGrid& g = one_grid();
+    auto make = [&](const std::string& id, double draught) {
+        std::vector<XY> local{g.frame().forward(in_depth_5_4), g.frame().forward(in_depth_3_6)};
+        track::Track t = track_through(g.frame(), local);
+        t.id = id;
+        t.draught_m = draught;
+        t.draught_source = "test";
+        return t;
+    };
+    audit::AuditOptions o;
+    o.ukc_m = 0.5;
+    o.jobs = 2;
+    const hull::Hull dflt = hull::Hull::from_dimensions({45, 15, 5, 5}, "default");  // no draught
+    const audit::AuditResult r = audit::audit_tracks({make("shallow", 3.0), make("deep", 4.0), make("unknown", NAN)}, g, dflt, "--dims", o);
+    ASSERT_EQ(r.tracks.size(), 3u);
+    const audit::TrackResult& shallow = r.tracks[0];
+    const audit::TrackResult& deep = r.tracks[1];
+    EXPECT_EQ(shallow.summary.limiting_depth_m, 3.5);
+    EXPECT_EQ(shallow.summary.limiting_depth_source, "vessel_draught");
+    EXPECT_EQ(deep.summary.limiting_depth_m, 4.5);
+    EXPECT_TRUE(std::isnan(r.tracks[2].summary.limiting_depth_m));
+    EXPECT_EQ(r.tracks[2].summary.limiting_depth_source, "land_only");
+    EXPECT_THAT(r.warnings, ::testing::Contains(HasSubstr("1 of 3 tracks have no draught of their own and were checked against land only")));
+    EXPECT_EQ(shallow.summary.groundings, 0u);
+    ASSERT_EQ(deep.summary.groundings, 1u);
+    const audit::Event& e = deep.events.front();
+    EXPECT_EQ(e.kind, audit::EventKind::grounding);
+    EXPECT_EQ(e.hit, HazardKind::shallow);
+    EXPECT_EQ(e.charted_depth_m, 3.6);
+
+    // GEOS: the deep vessel's hull at first contact touches a feature shallower than 4.5 m
+    // (within a millimetre: the contact is refined by bisection), that feature is the 3.6 m area.
+    const HazardOracle deep_oracle(cut(), 4.5, 10.0, g.frame());
+    std::vector<XY> ring;
+    for (const LonLat& q : e.hull) ring.push_back(g.frame().forward(q));
+    ring.pop_back();
+    const geo::GeomPtr hp = deep_oracle.hull_polygon(ring);
+    double least = INFINITY;
+    double least_depth = NAN;
+    for (const auto& f : deep_oracle.features()) {
+        const double d = deep_oracle.distance(f, hp.get());
+        if (d < least) least = d, least_depth = f.depth_m;
+    }
+    EXPECT_LT(least, 1e-3);
+    EXPECT_EQ(least_depth, 3.6);
+    // GEOS: the shallow vessel's hull, every 5 m along the same path, touches nothing shallower than 3.5 m.
+    const HazardOracle shallow_oracle(cut(), 3.5, 10.0, g.frame());
+    const hull::Hull& hull = dflt;
+    const XY a = g.frame().forward(in_depth_5_4), b = g.frame().forward(in_depth_3_6);
+    const double heading = std::fmod(std::atan2(b.x - a.x, b.y - a.y) * 180 / std::numbers::pi + 360, 360);
+    const int n = static_cast<int>(geo::distance(a, b) / 5);
+    int touching = 0;
+    for (int k = 0; k <= n; ++k) {
+        const XY p = a + (static_cast<double>(k) / n) * (b - a);
+        const check::LocalPose pose = check::place(g.frame(), check::Pose{g.frame().inverse(p), heading});
+        const geo::GeomPtr h = shallow_oracle.hull_polygon(check::hull_outline(hull, pose));
+        for (const auto& f : shallow_oracle.features()) touching += shallow_oracle.intersects(f, h.get());
+    }
+    EXPECT_EQ(touching, 0);
+}
+
 // ---------------------------------------------------------------- cache
 
-TEST(HazardCache, RoundTripKeepsTheHazardTableAndTheKeyIncludesTheLimit) {
+TEST(HazardCache, RoundTripKeepsTheHazardTableAndLevelsAndTheKeyIgnoresTheLimit) {
     test::TempDir dir;
     const grid::CoastGrid g = grid_for(4.0);
     EXPECT_EQ(g.source().limiting_depth_m, 4.0);
     EXPECT_EQ(g.source().danger_radius_m, 10.0);
     EXPECT_GT(g.source().shallow_polylines, 0u);
     EXPECT_GT(g.source().danger_polylines, 0u);
+    EXPECT_GT(g.charted_depths().size(), 3u);
     grid::GridFile::save(g, dir.file("h.shoalgrid"));
     const grid::CoastGrid back = grid::GridFile::load(dir.file("h.shoalgrid"));
     EXPECT_TRUE(back == g);
@@ -558,25 +726,30 @@ TEST(HazardCache, RoundTripKeepsTheHazardTableAndTheKeyIncludesTheLimit) {
         EXPECT_EQ(back.hazard(k).danger, g.hazard(k).danger);
         EXPECT_TRUE(same_depth(back.hazard(k).depth_m, g.hazard(k).depth_m));
     }
+    // Every level of the loaded grid is the same grid as the built one's.
+    for (double limit : {0.5, 3.7, 6.0})
+        EXPECT_TRUE(back.for_depth(limit) == g.for_depth(limit)) << limit;
     EXPECT_EQ(back.source().shallow_polylines, g.source().shallow_polylines);
     EXPECT_EQ(back.source().unknown_depth, g.source().unknown_depth);
     EXPECT_TRUE(std::isnan(grid_for(std::nullopt).source().limiting_depth_m));
 
-    // The cache key: every hazard option changes it.
+    // The cache key: the danger radius and the depth field change it; the limit does not
+    // (one grid serves every draught).
     std::set<std::uint64_t> keys;
     auto key = [&](coast::ImportOptions o) { keys.insert(grid::fingerprint_sources({cut()}, o, "", 300)); };
     key(with_limit(std::nullopt));
     key(with_limit(4.0));
     key(with_limit(4.5));
+    EXPECT_EQ(keys.size(), 1u);
     coast::ImportOptions o = with_limit(4.0);
     o.danger_radius_m = 20;
     key(o);
     o = with_limit(4.0);
     o.depth_field = "DEPTH";
     key(o);
-    EXPECT_EQ(keys.size(), 5u);
+    EXPECT_EQ(keys.size(), 3u);
 
-    // load_or_build: one cached grid per limit, each reused.
+    // load_or_build: one build, reused for every limit; the default limit is the request's.
     grid::BuildRequest r;
     r.cell_m = 300;
     r.cache_dir = dir.file("cache");
@@ -586,12 +759,12 @@ TEST(HazardCache, RoundTripKeepsTheHazardTableAndTheKeyIncludesTheLimit) {
     EXPECT_EQ(rep.how, "built and cached");
     r.import.limiting_depth_m = 5.0;
     const grid::CoastGrid g5 = grid::load_or_build({cut()}, r, &rep);
-    EXPECT_EQ(rep.how, "built and cached");
-    EXPECT_EQ(g5.source().limiting_depth_m, 5.0);
-    r.import.limiting_depth_m = 4.0;
-    const grid::CoastGrid g4 = grid::load_or_build({cut()}, r, &rep);
     EXPECT_EQ(rep.how, "reused cached grid");
-    EXPECT_EQ(g4.source().limiting_depth_m, 4.0);
+    EXPECT_EQ(g5.source().limiting_depth_m, 5.0);
+    r.import.limiting_depth_m = std::nullopt;
+    const grid::CoastGrid g0 = grid::load_or_build({cut()}, r, &rep);
+    EXPECT_EQ(rep.how, "reused cached grid");
+    EXPECT_TRUE(std::isnan(g0.source().limiting_depth_m));
 }
 
 // ---------------------------------------------------------------- events
@@ -715,9 +888,15 @@ TEST(HazardCli, CheckReportsWhatWasHitAndTheReportValidates) {
     const Outcome r = shoal_run(dir, "check --coast '" + cut() + "' --ship '" + ship + "' --ukc 0.5 --cell 300 '" + tracks +
                                          "' -o '" + report + "'");
     ASSERT_EQ(r.status, 1) << r.err << r.out;
-    EXPECT_THAT(r.err, HasSubstr("limiting depth 5.00 m (draught 4.50 m + under-keel clearance 0.50 m)"));
+    EXPECT_THAT(r.err, HasSubstr("limiting depth 5.00 m (ship file draught 4.50 m + under-keel clearance 0.50 m)"));
     const auto doc = nlohmann::json::parse(std::string(test::read_bytes(report).data(), test::read_bytes(report).size()));
     EXPECT_EQ(doc["shoal"]["limiting_depth_m"], 5.0);
+    EXPECT_EQ(doc["shoal"]["limiting_depth_source"], "ship_draught");
+    EXPECT_EQ(doc["shoal"]["ukc_m"], 0.5);
+    for (const auto& t : doc["shoal"]["tracks"]) {
+        EXPECT_EQ(t["limiting_depth_m"], 5.0);
+        EXPECT_EQ(t["limiting_depth_source"], "ship_draught");
+    }
     std::map<std::string, nlohmann::json> first;  // track -> properties of its first event
     for (const auto& f : doc["features"])
         if (!first.count(f["properties"]["track"])) first[f["properties"]["track"]] = f["properties"];
@@ -766,7 +945,7 @@ TEST(HazardCli, ImportInfoAndProbeWithAHazardDepth) {
     ASSERT_EQ(imp.status, 0) << imp.err;
     const Outcome info = shoal_run(dir, "info '" + g + "'");
     ASSERT_EQ(info.status, 0) << info.err;
-    EXPECT_THAT(info.out, HasSubstr("limiting depth 4.00 m"));
+    EXPECT_THAT(info.out, HasSubstr("default 4.00 m (--hazard-depth)"));
     const std::string poses = dir.file("poses.csv");
     char row[120];
     std::snprintf(row, sizeof row, "%.7f,%.7f,30\n", in_depth_3_6.lat, in_depth_3_6.lon);
@@ -778,9 +957,60 @@ TEST(HazardCli, ImportInfoAndProbeWithAHazardDepth) {
     const Outcome shallow = shoal_run(dir, "probe --coast '" + cut() + "' --hazard-depth 3 --cell 300 --dims 45,15,5,5 '" + poses + "'");
     ASSERT_EQ(shallow.status, 0) << shallow.err;
     EXPECT_THAT(shallow.out, HasSubstr(",30.0,0,"));
-    // A grid built for another limit than asked for: a warning says so.
-    const Outcome mismatch = shoal_run(dir, "probe --coast '" + g + "' --hazard-depth 5 --dims 45,15,5,5 '" + poses + "'");
-    EXPECT_THAT(mismatch.err, HasSubstr("built for the limiting depth 4.00 m, not 5.00 m"));
+    // The same grid file at another limit (was: a warning that the grid served one depth only).
+    const Outcome at3 = shoal_run(dir, "probe --coast '" + g + "' --hazard-depth 3 --dims 45,15,5,5 '" + poses + "'");
+    ASSERT_EQ(at3.status, 0) << at3.err;
+    EXPECT_THAT(at3.out, HasSubstr(",30.0,0,"));
+    EXPECT_THAT(deep.err, HasSubstr("limiting depth 4.00 m (the grid's default"));
+}
+
+/// `shoal check` of a fleet with two draughts (a draught column) from one grid: the deep
+/// vessel grounds in the 3.6 m area, the shallow one floats; each track says its limit.
+TEST(HazardCli, FleetWithTwoDraughtsInOneCheck) {
+    test::TempDir dir;
+    const std::string tracks = dir.file("fleet.csv");
+    {
+        std::ofstream out(tracks);
+        out << "mmsi,timestamp,lat,lon,heading,draught\n";
+        char row[240];
+        for (const auto& [id, draught] : {std::pair<int, double>{1, 3.0}, {2, 4.0}}) {
+            std::snprintf(row, sizeof row, "%d,2024-05-01T10:00:00Z,%.7f,%.7f,263,%.1f\n%d,2024-05-01T10:04:00Z,%.7f,%.7f,263,%.1f\n", id,
+                          in_depth_5_4.lat, in_depth_5_4.lon, draught, id, in_depth_3_6.lat, in_depth_3_6.lon, draught);
+            out << row;
+        }
+    }
+    const std::string report = dir.file("fleet.geojson");
+    const Outcome r = shoal_run(dir, "check -v --coast '" + cut() + "' --dims 45,15,5,5 --ukc 0.5 --cell 300 '" + tracks + "' -o '" + report + "'");
+    ASSERT_EQ(r.status, 1) << r.err << r.out;
+    EXPECT_THAT(r.err, HasSubstr("built and cached"));
+    const auto bytes = test::read_bytes(report);
+    const auto doc = nlohmann::json::parse(std::string(bytes.data(), bytes.size()));
+    std::map<std::string, nlohmann::json> tr;
+    for (const auto& t : doc["shoal"]["tracks"]) tr[t["track"]] = t;
+    ASSERT_EQ(tr.size(), 2u);
+    EXPECT_EQ(tr["1"]["limiting_depth_m"], 3.5);
+    EXPECT_EQ(tr["2"]["limiting_depth_m"], 4.5);
+    EXPECT_EQ(tr["1"]["limiting_depth_source"], "vessel_draught");
+    EXPECT_EQ(tr["1"]["groundings"], 0);
+    EXPECT_EQ(tr["2"]["groundings"], 1);
+    EXPECT_TRUE(doc["shoal"]["limiting_depth_m"].is_null()) << "the default hull has no draught";
+    EXPECT_EQ(doc["shoal"]["limiting_depth_source"], "land_only");
+    int shallow_groundings = 0;
+    for (const auto& f : doc["features"])
+        if (f["properties"]["kind"] == "grounding") {
+            EXPECT_EQ(f["properties"]["track"], "2");
+            shallow_groundings += f["properties"]["hit"] == "shallow" && f["properties"]["charted_depth_m"] == 3.6;
+        }
+    EXPECT_EQ(shallow_groundings, 1);
+    const std::string schema = std::filesystem::path(SHOAL_TEST_DATA).parent_path().parent_path().parent_path().string() +
+                               "/schemas/report.schema.json";
+    const std::string validate = "/usr/bin/python3 -c \"import json,sys,jsonschema; jsonschema.validate(json.load(open(sys.argv[1])), "
+                                 "json.load(open(sys.argv[2])))\" '" + report + "' '" + schema + "'";
+    EXPECT_EQ(std::system(validate.c_str()), 0);
+    // Run again: the cached grid serves it (no second build), the same report.
+    const Outcome again = shoal_run(dir, "check -v --coast '" + cut() + "' --dims 45,15,5,5 --ukc 0.5 --cell 300 '" + tracks + "' -o '" +
+                                             dir.file("again.geojson") + "'");
+    EXPECT_THAT(again.err, HasSubstr("reused cached grid"));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct AuditOptions {
     /// it gives wins over what the track's own file says (the analyst's table over what a
     /// vessel broadcast); what it lacks, the track keeps.
     const std::map<std::string, track::VesselInfo>* vessels = nullptr;
+    /// Limiting depth for every vessel (`--hazard-depth`); none: each vessel's own
+    /// (grid::plan_vessel_depth: its draught + ukc_m, else the default hull's draught + ukc_m,
+    /// else the grid's default, else land only).
+    std::optional<double> hazard_depth_m;
+    std::optional<double> ukc_m;  ///< under-keel clearance added to a draught (`--ukc`; none: 0)
 };
 
 /// One input file: how it read.

@@ -101,6 +101,11 @@ struct TrackSummary {
     std::string hull;                 ///< "ship file", "--dims" or "AIS dimensions a,b,c,d (their source)"
     double draught_m = NAN;           ///< the vessel's own draught (AIS, vessels file), NaN when not known
     std::string draught_source;       ///< where it came from
+    /// The limiting depth the track was checked at (metres; NaN: land only) and where it came
+    /// from (grid::to_string(DepthPlan::Source): vessel_draught, ship_draught, hazard_depth,
+    /// grid_default, land_only).
+    double limiting_depth_m = NAN;
+    std::string limiting_depth_source;
     std::size_t fixes = 0;            ///< fixes in the track
     std::size_t uncovered_fixes = 0;  ///< fixes whose hull is (partly) outside the coastline's area
     std::size_t segments = 0;         ///< pieces after splitting at gaps
@@ -153,7 +158,11 @@ public:
 
 class DetectorChecker final : public PoseChecker {
 public:
+    /// At the grid's default limiting depth (check::Detector(grid, hull)).
     DetectorChecker(const grid::CoastGrid& grid, const hull::Hull& hull) : m_detector(grid, hull) {}
+    /// At the vessel's limiting depth (none: land only).
+    DetectorChecker(const grid::CoastGrid& grid, const hull::Hull& hull, std::optional<double> limiting_depth_m)
+        : m_detector(grid, hull, limiting_depth_m) {}
     check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
         return m_detector.check(pose, options);
     }

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include <shoal/geo/point.hpp>
@@ -73,9 +74,16 @@ std::vector<geo::XY> hull_outline(const hull::Hull& hull, const LocalPose& pose)
 
 class Detector {
 public:
-    /// Keeps a reference to `grid`, which must outlive the detector (a temporary grid is refused).
+    /// Checks against the hazards of `grid` for its default limiting depth
+    /// (GridSource::limiting_depth_m, `shoal import --hazard-depth`; none: land only). Keeps a
+    /// reference to `grid`, which must outlive the detector (a temporary grid is refused).
     Detector(const grid::CoastGrid& grid, const hull::Hull& hull);
+    /// Checks against the hazards for the vessel's own limiting depth `limiting_depth_m`
+    /// (draught + under-keel clearance; CoastGrid::for_depth): land, and the depth areas and
+    /// dangers charted shallower or of unknown depth. None: land only.
+    Detector(const grid::CoastGrid& grid, const hull::Hull& hull, std::optional<double> limiting_depth_m);
     Detector(grid::CoastGrid&& grid, const hull::Hull& hull) = delete;
+    Detector(grid::CoastGrid&& grid, const hull::Hull& hull, std::optional<double> limiting_depth_m) = delete;
 
     Contact check(const Pose& pose, const CheckOptions& options = {}) const;
     Contact check(const LocalPose& pose, const CheckOptions& options = {}) const;
@@ -83,6 +91,7 @@ public:
     /// Nearest coastline segment to p within `max_m` (INFINITY if none): distance, and the point.
     double nearest_coast(geo::XY p, double max_m, geo::XY* on_coast) const;
 
+    /// The grid checked against: the hazards for the detector's limiting depth.
     const grid::CoastGrid& grid() const noexcept { return m_grid; }
     const hull::Hull& hull() const noexcept { return m_hull; }
 

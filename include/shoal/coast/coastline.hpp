@@ -4,11 +4,11 @@
 /// Supported: any OGR vector source (Shapefile, GeoJSON, GeoPackage, FlatGeobuf, S-57 ENC
 /// cells: layers LNDARE and COALNE by default).
 ///
-/// With a *limiting depth* (the ship's draught plus the under-keel clearance required), shallow
-/// water and dangers are hazards too, read and kept exactly like land: depth areas (S-57
-/// DEPARE, DRGARE, or polygons with a `depth_field`) whose least depth is under the limit,
-/// and dangers (UWTROC, WRECKS, OBSTRN) whose sounding VALSOU is under it or unknown; a
-/// point danger becomes a small polygon around it.
+/// Depth areas (S-57 DEPARE, DRGARE, or polygons with a `depth_field`) and dangers (UWTROC,
+/// WRECKS, OBSTRN) are read too, every one of them, and kept exactly like land with their
+/// charted depth (least depth DRVAL1 or the depth field; sounding VALSOU, or unknown); a point
+/// danger becomes a small polygon around it. Which of them is a hazard is decided at check
+/// time for each vessel's limiting depth (grid::CoastGrid::for_depth).
 
 #include <cmath>
 #include <cstdint>
@@ -20,7 +20,8 @@
 
 namespace shoal::coast {
 
-/// What a polyline bounds: land, water shallower than the limiting depth, or a danger.
+/// What a polyline bounds: land, a depth area (shallow water for a vessel whose limiting depth
+/// exceeds its charted depth), or a danger.
 enum class HazardKind : std::uint8_t { land, shallow, danger };
 /// The kind of a danger: S-57 UWTROC (rock), WRECKS (wreck), OBSTRN (obstruction).
 enum class DangerKind : std::uint8_t { none, rock, wreck, obstruction };
@@ -63,9 +64,8 @@ struct LayerStats {
     /// What the layer holds: land (also lines such as COALNE), depth areas or dangers.
     HazardKind kind = HazardKind::land;
     std::string depth_field;          ///< the attribute holding the depth ("" for land layers)
-    std::uint64_t hazards = 0;        ///< depth areas / dangers kept as hazards (features)
-    std::uint64_t unknown_depth = 0;  ///< of which with no depth in the data (kept: unknown is a hazard)
-    std::uint64_t deep_skipped = 0;   ///< depth areas / dangers at or deeper than the limiting depth, skipped
+    std::uint64_t hazards = 0;        ///< depth areas / dangers kept (features)
+    std::uint64_t unknown_depth = 0;  ///< of which with no depth in the data (a hazard for every vessel with a limit)
 };
 
 struct ImportOptions {
@@ -74,10 +74,10 @@ struct ImportOptions {
     /// CRS to assume for sources that carry none (otherwise lon/lat is assumed only when
     /// every coordinate is a valid longitude/latitude).
     std::string source_crs;
-    /// Limiting depth in metres (draught + under-keel clearance): depth areas with a least
-    /// depth under it, and dangers with a sounding under it or unknown, are hazards. None:
-    /// land only (then S-57 depth areas and dangers are not read by default, and asking for
-    /// them with `layers` or `depth_field` is an error).
+    /// The grid's default limiting depth in metres (`shoal import --hazard-depth`), kept in
+    /// the grid (GridSource::limiting_depth_m) for checks that give no depth of their own
+    /// (a Detector made without one, the C API's shoal_detector_new). It does not change what
+    /// is read: every depth area and danger is kept with its depth.
     std::optional<double> limiting_depth_m;
     /// Radius in metres of the polygon a point danger becomes (a 16-gon around the circle).
     double danger_radius_m = 10.0;

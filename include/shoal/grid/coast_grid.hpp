@@ -7,12 +7,21 @@
 /// reference point inside it is kept, so a point's side (land or water) is exact from that
 /// one cell's segments: count the signed crossings of the path from the reference point.
 ///
-/// "Land" here is anything the hull must not touch: land, and, in a grid built for a limiting
-/// depth, shallow water and dangers, stored exactly like land. Which one a segment bounds is
-/// kept per polyline (`hazard`).
+/// "Land" here is anything the hull must not touch: land, and shallow water and dangers,
+/// stored exactly like land. Which one a segment bounds is kept per polyline (`hazard`).
+///
+/// A grid built from a chart holds every depth area and danger with its charted depth; its
+/// own queries (state, segments, winding) see all of them. What is a hazard for one vessel
+/// depends on its limiting depth: `for_depth(limit)` gives the grid of exactly the hazards
+/// for that limit (land, and the depth areas and dangers charted shallower, or of unknown
+/// depth), derived from this one without clipping again (each distinct charted depth is a
+/// *level*: per coast cell the winding number of its reference point at every level where it
+/// changes, per land cell the first level that covers it). One build serves a whole fleet.
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,16 +43,16 @@ struct Segment {
 
 /// Where the grid came from: the sources and how they were read. Kept in the cache.
 struct GridSource {
-    /// Limiting depth (metres) the hazards were chosen for: shallower depth areas and dangers
-    /// are hazards like land. NaN: land only.
+    /// The grid's default limiting depth (metres; `shoal import --hazard-depth`): the one a
+    /// Detector made without a depth of its own uses. NaN: none (land only), and in a grid
+    /// made by CoastGrid::for_depth.
     double limiting_depth_m = NAN;
-    double danger_radius_m = 0;            ///< radius of the polygons point dangers became (with a limit)
+    double danger_radius_m = 0;            ///< radius of the polygons point dangers became
     std::string depth_field;               ///< --depth-field ("" = none)
     std::uint64_t shallow_polylines = 0;   ///< polylines bounding shallow water
     std::uint64_t danger_polylines = 0;    ///< polylines bounding dangers
-    std::uint64_t hazard_features = 0;     ///< depth areas and dangers kept as hazards
-    std::uint64_t unknown_depth = 0;       ///< of which with no depth in the chart (unknown is a hazard)
-    std::uint64_t deep_skipped = 0;        ///< depth areas and dangers at or deeper than the limit, skipped
+    std::uint64_t hazard_features = 0;     ///< depth areas and dangers kept (features)
+    std::uint64_t unknown_depth = 0;       ///< of which with no depth in the chart (a hazard for any limit)
     std::vector<std::string> inputs;       ///< paths as given to import
     std::vector<std::string> layers;       ///< "file:layer" of every layer read
     std::vector<std::string> layer_option; ///< --layer names ("" = default set)
@@ -153,6 +162,18 @@ public:
     /// Bytes the grid's arrays occupy in memory.
     std::size_t memory_bytes() const noexcept;
 
+    /// The grid of the hazards for a vessel of limiting depth `limit_m` (metres): land, and the
+    /// depth areas and dangers whose charted depth is under it or unknown; none: land only.
+    /// Exact (the same segments, cut the same way) and built once per level, then kept: the
+    /// reference stays valid while this grid lives, and calls from several threads are safe.
+    /// This grid itself when the limit covers every hazard it holds (or it holds none).
+    const CoastGrid& for_depth(std::optional<double> limit_m) const;
+    /// Distinct charted depths of the depth areas and dangers held (NaN first when some have
+    /// none), ascending: limits between two of them give the same hazards.
+    std::span<const double> charted_depths() const noexcept { return m_level_depth; }
+    /// Which level a limit selects: 0 land only, else how many charted depths are hazards.
+    std::size_t level_of(std::optional<double> limit_m) const noexcept;
+
     GridSource& source() noexcept { return m_source; }
     const GridSource& source() const noexcept { return m_source; }
 
@@ -180,6 +201,25 @@ private:
         return m_slot[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_nx) + static_cast<std::size_t>(i)];
     }
 
+    /// Levels: the level of a polyline (0 land, k the k-th charted depth) and the grid of one level.
+    void assign_levels();
+    CoastGrid make_level(std::size_t level) const;
+    std::uint16_t polyline_level(std::uint32_t k) const noexcept { return m_poly_level.empty() ? 0 : m_poly_level[k]; }
+    /// Reference winding of coast cell `s` at `level` (< the top level).
+    std::int32_t level_winding(std::uint32_t s, std::size_t level) const noexcept;
+
+    /// Grids made by for_depth, by level; a copy of the grid starts with none.
+    struct Levels;
+    struct LevelCache {
+        std::shared_ptr<Levels> p;
+        LevelCache();
+        LevelCache(const LevelCache&);
+        LevelCache& operator=(const LevelCache&);
+        LevelCache(LevelCache&&) noexcept = default;
+        LevelCache& operator=(LevelCache&&) noexcept = default;
+        ~LevelCache();
+    };
+
     geo::LocalFrame m_frame;
     double m_cell = 0;
     double m_x0 = 0, m_y0 = 0;
@@ -194,7 +234,15 @@ private:
     std::vector<std::uint32_t> m_seg_info;    ///< per segment: polyline index | boundary_bit
     std::vector<coast::Hazard> m_hazards;     ///< per polyline: what it bounds
     std::vector<geo::Box> m_chunk_box;        ///< per chunk of chunk_segments segments: its box
+    // Levels (empty for a grid of land only, or one made by for_depth):
+    std::vector<double> m_level_depth;        ///< charted depth of level k + 1 (NaN: unknown), ascending
+    std::vector<std::uint32_t> m_lw_offset;   ///< per coast cell + 1: CSR offsets into m_lw_level / m_lw_winding
+    std::vector<std::uint16_t> m_lw_level;    ///< level where the reference winding changes (below the top level)
+    std::vector<std::int32_t> m_lw_winding;   ///< the winding from that level on
+    std::vector<std::uint16_t> m_land_level;  ///< per cell: for a land cell, the first level it is land at
+    std::vector<std::uint16_t> m_poly_level;  ///< per polyline: its level (derived, not saved)
     GridSource m_source;
+    LevelCache m_levels;
 };
 
 /// The cell size for `shoal import`: `cell_m` if > 0, else 2.5 x `ship_length_m` if > 0,

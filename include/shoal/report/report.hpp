@@ -26,7 +26,12 @@ struct RunInfo {
     std::string coast;        ///< the --coast inputs
     std::string frame;        ///< description of the local frame
     double cell_m = 0;
-    double limiting_depth_m = NAN;  ///< the grid's limiting depth; NaN: land only
+    /// The limiting depth of the vessels with no draught of their own (`--hazard-depth` for
+    /// every vessel, else the default ship's draught + ukc, else the grid's default); NaN:
+    /// land only for them. Each track says its own (TrackSummary::limiting_depth_m).
+    double limiting_depth_m = NAN;
+    std::string limiting_depth_source = "land_only";  ///< where that came from (grid::to_string(DepthPlan::Source))
+    double ukc_m = 0;                   ///< under-keel clearance added to every draught
     std::string grid_fingerprint;
     std::string ship;         ///< the default hull: ship name or "--dims a,b,c,d"
     audit::SweepOptions sweep;
@@ -47,11 +52,12 @@ struct RunInfo {
 /// grid whose sources have moved or are bad now): the report then has no coast layer.
 std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& grid, std::string& warning);
 
-/// The run header of a check: the coast sources `coast` as given, the grid's frame, cell,
-/// limiting depth and fingerprint, the default hull `ship` (its name, or "--dims a,b,c,d"),
-/// the rules of `options`, the expected-contact sources `berths`.
+/// The run header of a check: the coast sources `coast` as given, the grid's frame, cell and
+/// fingerprint, the default hull `ship` (its name, or "--dims a,b,c,d") and its draught
+/// `default_draught_m` (0: none), the rules of `options` (limiting depth too), the
+/// expected-contact sources `berths`.
 RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const std::string& ship,
-                 const audit::AuditOptions& options, const std::vector<std::string>& berths);
+                 const audit::AuditOptions& options, const std::vector<std::string>& berths, double default_draught_m = 0);
 
 /// The GeoJSON report as text (schemas/report.schema.json).
 std::string geojson(const audit::AuditResult& result, const RunInfo& info);
