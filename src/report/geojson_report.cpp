@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "detail/qgis_styles.hpp"
+#include "report/geojson_output.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/version.hpp>
@@ -95,13 +96,33 @@ std::string geojson(const audit::AuditResult& r, const RunInfo& info) {
     json problems = json::array();
     for (const auto& p : fields::problem_rows(r)) problems.push_back(object_of(fields::problem_fields(), p, r, true));
     shoal["problems"] = problems;
-    doc["shoal"] = shoal;
 
+    // A shard's report (--shard) also says where each of its rows goes in one run's order,
+    // for `merge`: each track's position among the run's tracks, each feature's track
+    // position (-1: a feature of the run, after the tracks'), each problem's group and
+    // position (report_fields.hpp: ProblemRow).
+    const bool part = r.shard.active();
+    json order_tracks = json::array(), order_features = json::array(), order_problems = json::array(), inputs = json::array();
+    const auto position = [&](std::size_t k) { return k < r.track_positions.size() ? r.track_positions[k] : k; };
     json features = json::array();
-    for (const auto& t : r.tracks)
-        for (const auto& e : t.events) features.push_back(point_feature(e.point, object_of(fields::event_fields(), fields::EventRow{t.summary, e}, r)));
-    for (const auto& e : r.encounters.events)
+    for (std::size_t k = 0; k < r.tracks.size(); ++k) {
+        const auto& t = r.tracks[k];
+        if (part) order_tracks.push_back(position(k));
+        for (const auto& e : t.events) {
+            features.push_back(point_feature(e.point, object_of(fields::event_fields(), fields::EventRow{t.summary, e}, r)));
+            if (part) order_features.push_back(position(k));
+        }
+    }
+    for (const auto& e : r.encounters.events) {
         features.push_back(point_feature(e.point, object_of(fields::encounter_fields(), fields::EncounterRow{r, e}, r)));
+        if (part) order_features.push_back(-1);
+    }
+    if (part) {
+        for (const auto& p : fields::problem_rows(r)) order_problems.push_back(json::array({p.group, p.position}));
+        for (const auto& f : r.files) inputs.push_back(f.file);
+        shoal["part"] = {{"inputs", inputs}, {"tracks", order_tracks}, {"features", order_features}, {"problems", order_problems}};
+    }
+    doc["shoal"] = shoal;
     doc["features"] = features;
     return doc.dump(1) + "\n";
 }
@@ -127,9 +148,13 @@ std::vector<OutputSpec> report_outputs(const std::string& path, const std::strin
 
 std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
                                         std::vector<std::string>* warnings) {
+    return stage_geojson_text(path, geojson(result, info), warnings);
+}
+
+std::vector<StagedOutput> stage_geojson_text(const std::string& path, std::string_view text, std::vector<std::string>* warnings) {
     std::vector<StagedOutput> out;
     out.emplace_back(path);
-    out.back().write(geojson(result, info));
+    out.back().write(text);
     if (const std::string style = style_path(path); !style.empty()) {
         std::string warning;
         if (std::optional<StagedOutput> s = stage_sidecar_style(style, "events", warning)) out.push_back(std::move(*s));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <shoal/audit/encounters.hpp>
+#include <shoal/audit/shard.hpp>
 #include <shoal/audit/sweep.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
@@ -32,6 +33,10 @@ struct AuditOptions {
     /// it gives wins over what the track's own file says (the analyst's table over what a
     /// vessel broadcast); what it lacks, the track keeps.
     const std::map<std::string, track::VesselInfo>* vessels = nullptr;
+    /// Only the tracks of this shard (shard_of(shard_key(id, encounters)) == shard.index) are
+    /// audited; every file is still read (one vessel in several files is one track first).
+    /// count 0: every track.
+    Shard shard;
 };
 
 /// One input file: how it read.
@@ -67,6 +72,11 @@ struct AuditResult {
     EncounterResult encounters;
     std::size_t collisions = 0, close_quarters = 0;
     double encounters_s = 0;
+    /// The shard audited (count 0: the whole run), and for merging shards back in the order of
+    /// one run: each track's (and each failed track's) position among all the tracks read, in
+    /// file order before sharding; aligned with `tracks` and `errors`.
+    Shard shard;
+    std::vector<std::size_t> track_positions, error_positions;
 };
 
 /// The tracks of `inputs` (files or folders, see track::expand_inputs) read in parallel on
