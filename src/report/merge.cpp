@@ -148,16 +148,18 @@ json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_
             }
             case fields::Merge::min_time:
             case fields::Merge::max_time: {
-                json best = nullptr;
+                json best = value(parts[0]);  // when no part has a time: what they all say (no fix: "")
                 double best_s = 0;
+                bool found = false;
                 for (const Part& p : parts) {
                     const json& v = value(p);
-                    if (v.is_null()) continue;
+                    if (v.is_null() || v == "") continue;
                     const auto t = v.is_string() ? track::parse_iso8601(v.get<std::string>()) : std::nullopt;
                     if (!t) throw InputError(p.path + ": summary field " + named(name) + " is not an ISO 8601 time: " + v.dump());
-                    if (best.is_null() || (f->merge == fields::Merge::min_time ? *t < best_s : *t > best_s)) {
+                    if (!found || (f->merge == fields::Merge::min_time ? *t < best_s : *t > best_s)) {
                         best = v;
                         best_s = *t;
+                        found = true;
                     }
                 }
                 out[name] = best;

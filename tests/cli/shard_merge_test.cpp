@@ -177,8 +177,8 @@ TEST(ShardMerge, MismatchedIncompleteOrForeignPartsAreRefusedNamingWhy) {
     const std::string split_a = part("split_a", "--shard 0/1 " + q(temp_dir() / "moored_a.csv"));
     const std::string split_b = part("split_b", "--shard 0/1 " + q(temp_dir() / "moored_b.csv"));
     for (const Case& c : std::vector<Case>{
-             {a + " " + b_step, "'step_m' is 5"},
-             {a + " " + b_step, "but 2 in"},
+             {a + " " + b_step, "'step_m' is 5.0"},
+             {a + " " + b_step, "but 2.0 in"},
              {a, "shard 1/2 is missing"},
              {a + " " + b + " " + b, "shard 1/2 is given twice"},
              {a + " " + c3, "different shard counts"},
