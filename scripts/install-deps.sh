@@ -12,6 +12,8 @@ PACKAGES=(
   python3 python3-jsonschema python3-gdal   # report schema validation in tests (/usr/bin/python3)
   gpsd-clients python3-ais    # independent AIS decoders for tests/track/ais_test.cpp (gpsdecode, libais)
   clang libclang-rt-14-dev    # libFuzzer + sanitizers for scripts/fuzz.sh
+  python3-distributed         # python3 -m shoal.dask: Dask/distributed 2022.12 (LocalCluster, scheduler) and its tests
+  python3-dask                # the Dask core python3-distributed runs on
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
