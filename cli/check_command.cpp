@@ -219,10 +219,10 @@ public:
         std::fprintf(table, "time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
                      printable(m_output).c_str());
         bool unreadable = r.tracks.empty() && (!r.errors.empty() || std::any_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); }));
-        // A shard may hold no track while the others do: it failed only if no file could be read.
-        if (r.shard.active())
-            unreadable = r.errors.size() > 0 && r.tracks.empty() ? true
-                         : !r.files.empty() && std::all_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); });
+        // A shard's report is a part of a run: files and tracks it could not read are listed
+        // in it (problems) for the merge, and are no failure of the shard (a driver would
+        // retry it, or give up on the run, for a file a single run would skip).
+        if (r.shard.active()) unreadable = false;
         if (unreadable) return exit_usage;
         if (r.groundings > 0 || r.collisions > 0) return exit_found;
         return plot_failed ? exit_usage : exit_ok;

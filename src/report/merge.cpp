@@ -36,6 +36,8 @@ std::string named(const std::string& s) { return "'" + s + "'"; }
 Part read_part(const std::string& path) {
     Part p;
     p.path = path;
+    if (std::filesystem::path(path).extension() == ".gpkg")
+        throw InputError(path + ": a GeoPackage part; merge reads the GeoJSON reports of shards (check --shard I/N -o PART.geojson)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot be read (" + (std::filesystem::exists(path) ? "not readable" : "no such file") + ")");
     std::ostringstream text;

@@ -62,7 +62,8 @@ std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 const std::string helsinki = "--coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 --no-progress";
 
 /// The hand-made AIS cases (groundings, alongside, wild fixes) and one vessel split over two
-/// files (one run merges it into one track), and a file with bad rows (problems of a file).
+/// files (one run merges it into one track), a file with bad rows and one that cannot be read
+/// (problems of files).
 std::string case_files() {
     static const std::string files = [] {
         const std::string dir = std::string(SHOAL_TEST_DATA) + "tracks/ais_cases/";
@@ -83,7 +84,8 @@ std::string case_files() {
                "230990009,2024-05-01T10:00:00Z,60.10,24.90,5,0,0\n"
                "230990009,2024-05-01T10:01:00Z,not-a-latitude,24.90,5,0,0\n"
                "230990009,2024-05-01T10:02:00Z,60.103,24.90,5,0,0\n";
-        return list + " " + q(temp_dir() / "moored_a.csv") + " " + q(temp_dir() / "moored_b.csv") + " " + q(temp_dir() / "bad_rows.csv");
+        return list + " " + q(temp_dir() / "moored_a.csv") + " " + q(temp_dir() / "moored_b.csv") + " " + q(temp_dir() / "bad_rows.csv") +
+               " '" + SHOAL_TEST_DATA + "tracks/unknown_format.txt'";  // a file that cannot be read: a problem of the run
     }();
     return files;
 }
@@ -121,6 +123,7 @@ TEST(ShardMerge, EveryShardThenMergeIsTheSingleRunByteForByte) {
     ASSERT_NE(one.find("moored_a.csv + "), std::string::npos) << "the split vessel is one track";
     ASSERT_NE(one.find("dropped as an outlier"), std::string::npos);
     ASSERT_NE(one.find("not-a-latitude"), std::string::npos) << "a file's problem";
+    ASSERT_NE(one.find("unknown_format.txt"), std::string::npos) << "a file that cannot be read";
     for (unsigned n : {1u, 2u, 3u, 5u}) EXPECT_EQ(sharded_run(n, "n" + std::to_string(n)), one) << n << " shards";
     EXPECT_EQ(sharded_run(4, "shuffled", "", true), one) << "parts in any order";
 }
@@ -186,6 +189,7 @@ TEST(ShardMerge, MismatchedIncompleteOrForeignPartsAreRefusedNamingWhy) {
              {split_a + " " + split_b, "vessel 230990003 has tracks in"},
              {a + " " + b + " " + a, "given twice"},
              {q(temp_dir() / "no-such.geojson"), "no-such.geojson: cannot be read"},
+             {q(temp_dir() / "part.gpkg"), "a GeoPackage part"},
          }) {
         fs::remove(out);
         const Outcome r = shoal("merge " + c.parts + " -o " + q(out));
@@ -193,6 +197,9 @@ TEST(ShardMerge, MismatchedIncompleteOrForeignPartsAreRefusedNamingWhy) {
         EXPECT_NE(r.err.find(c.says), std::string::npos) << "wanted '" << c.says << "' in: " << r.err;
         EXPECT_FALSE(fs::exists(out)) << "nothing written";
     }
+    const Outcome gpkg = shoal("merge " + a + " " + b + " -o " + q(temp_dir() / "merged.gpkg"));
+    EXPECT_EQ(gpkg.status, 2) << gpkg.err;
+    EXPECT_NE(gpkg.err.find("merge writes GeoJSON reports"), std::string::npos) << gpkg.err;
     // A part given as the output would be destroyed.
     const Outcome self = shoal("merge " + a + " " + b + " -o " + a);
     EXPECT_EQ(self.status, 2) << self.err;
