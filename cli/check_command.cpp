@@ -15,6 +15,7 @@
 #include <string>
 
 #include <shoal/audit/audit.hpp>
+#include <shoal/audit/shard.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/report/plot.hpp>
 #include <shoal/report/report.hpp>
@@ -74,6 +75,10 @@ public:
         m_sub->add_option("--max-gap", m_audit.sweep.max_gap_s, "A gap between fixes longer than this (seconds) splits the track (default 600)")
             ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--jobs,-j", m_audit.jobs, "Tracks checked in parallel (default: all cores)");
+        m_sub->add_option("--shard", m_shard,
+                          "Audit only shard I of N (0 <= I < N): the tracks whose id hashes there (XXH3); every file is still "
+                          "read, so files and lines stay true. `shoal merge` puts the N reports together as one run's. With "
+                          "--encounters a shard is a whole exercise");
         m_sub->add_flag("--encounters", m_audit.encounters,
                         "Exercise mode: the tracks are one exercise; also report ship-to-ship collisions and close quarters");
         m_sub->add_option("--ship-margin", m_audit.encounter.ship_margin_m,
@@ -138,6 +143,7 @@ public:
         std::vector<OutputSpec> outputs = report::report_outputs(m_output, format);
         if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
         check_outputs(outputs, all_inputs);
+        if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
         if (m_audit.sweep.step_m < min_step_m)
             throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(min_step_m) +
                              " m: a sweep that fine never ends");
@@ -250,6 +256,10 @@ public:
         std::fprintf(table, "time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
                      printable(m_output).c_str());
         bool unreadable = r.tracks.empty() && (!r.errors.empty() || std::any_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); }));
+        // A shard's report is a part of a run: files and tracks it could not read are listed
+        // in it (problems) for the merge, and are no failure of the shard (a driver would
+        // retry it, or give up on the run, for a file a single run would skip).
+        if (r.shard.active()) unreadable = false;
         if (unreadable) return exit_usage;
         if (r.groundings > 0 || r.collisions > 0) return exit_found;
         return plot_failed ? exit_usage : exit_ok;
@@ -263,6 +273,7 @@ private:
     std::optional<bool> m_progress;
     std::string m_date;
     std::string m_plot;
+    std::string m_shard;
     std::vector<std::string> m_berths;
     std::vector<std::string> m_vessel_files;
     std::map<std::string, track::VesselInfo> m_vessels;

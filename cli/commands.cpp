@@ -12,6 +12,7 @@ std::vector<std::unique_ptr<Command>> make_commands() {
     v.push_back(make_info_command());
     v.push_back(make_probe_command());
     v.push_back(make_check_command());
+    v.push_back(make_merge_command());
     return v;
 }
 

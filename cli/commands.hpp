@@ -33,6 +33,7 @@ std::unique_ptr<Command> make_import_command();
 std::unique_ptr<Command> make_info_command();
 std::unique_ptr<Command> make_probe_command();
 std::unique_ptr<Command> make_check_command();
+std::unique_ptr<Command> make_merge_command();
 
 /// Every command, in the order `shoal --help` lists them.
 std::vector<std::unique_ptr<Command>> make_commands();

@@ -48,6 +48,7 @@ std::string in_cli_terms(std::string message) {
         {"BuildRequest::cell_m", "--cell"},
         {"BuildRequest::ship_length_m", "--ship-length"},
         {"BuildRequest::cache_dir", "--cache-dir"},
+        {"AuditOptions::shard", "--shard"},
     };
     for (const auto& [field, flag] : flags)
         for (std::size_t at; (at = message.find(field)) != std::string::npos;) message.replace(at, std::strlen(field), flag);

@@ -16,6 +16,8 @@ PACKAGES=(
   python3-numpy python3-pandas python3-geopandas   # its arrays and DataFrames, and its tests (/usr/bin/python3)
   zlib1g-dev                  # deflating the .qgz of the QGIS project stored in a GeoPackage report
   python3-qgis                # tests/report/qgis_report_test.py: the report opened and rendered in a real QGIS 3.22 (headless, offscreen)
+  python3-distributed         # python3 -m shoal.dask: Dask/distributed 2022.12 (LocalCluster, scheduler) and its tests
+  python3-dask                # the Dask core python3-distributed runs on
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

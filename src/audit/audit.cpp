@@ -73,6 +73,7 @@ struct TrackSource {
     std::size_t count = 0;
     std::function<std::size_t(std::size_t)> fixes;  ///< fixes of track k, for the progress
     std::function<track::Track(std::size_t)> take;  ///< track k, once
+    std::function<std::size_t(std::size_t)> position;  ///< position of track k among the run's (null: k)
 };
 
 AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
@@ -146,12 +147,25 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
 AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
                          const AuditOptions& options) {
     std::vector<track::PackedTrack>& packed = read.tracks;
-    TrackSource source{packed.size(), [&](std::size_t k) { return packed[k].size(); },
+    // --shard: the tracks of this shard, by their position among all the tracks read.
+    std::vector<std::size_t> chosen;
+    for (std::size_t k = 0; k < packed.size(); ++k)
+        if (!options.shard.active() ||
+            shard_of(shard_key(packed[k].id, options.encounters ? std::optional<std::string>(exercise_key(options.exercise_by, packed[k].file))
+                                                                : std::nullopt),
+                     options.shard.count) == options.shard.index)
+            chosen.push_back(k);
+    for (std::size_t k = 0, c = 0; k < packed.size(); ++k) {  // the others are never unpacked: freed now
+        if (c < chosen.size() && chosen[c] == k) ++c;
+        else packed[k].release_fixes();
+    }
+    TrackSource source{chosen.size(), [&](std::size_t k) { return packed[chosen[k]].size(); },
                        [&](std::size_t k) {
-                           track::Track t = packed[k].unpack();
-                           packed[k].release_fixes();
+                           track::Track t = packed[chosen[k]].unpack();
+                           packed[chosen[k]].release_fixes();
                            return t;
-                       }};
+                       },
+                       [&](std::size_t k) { return chosen[k]; }};
     AuditResult result = audit(source, grid, default_hull, hull_label, options);
     result.files = std::move(read.files);
     result.read_s = read.read_s;
@@ -163,7 +177,7 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
 AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                          const std::string& hull_label, const AuditOptions& options) {
     TrackSource source{tracks.size(), [&](std::size_t k) { return tracks[k].fixes.size(); },
-                       [&](std::size_t k) { return std::move(tracks[k]); }};
+                       [&](std::size_t k) { return std::move(tracks[k]); }, {}};
     return audit(source, grid, default_hull, hull_label, options);
 }
 
@@ -172,6 +186,8 @@ namespace {
 AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
                   const AuditOptions& options) {
     AuditResult result;
+    result.shard = options.shard;
+    const auto position = [&](std::size_t k) { return source.position ? source.position(k) : k; };
     const unsigned jobs = thread_count(options.jobs);
     // 2. Sweep every track.
     std::size_t total_fixes = 0;
@@ -249,6 +265,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
     for (std::size_t k = 0; k < source.count; ++k) {
         if (!errors[k].empty()) {
             result.errors.push_back({swept[k].summary.file, swept[k].summary.id, errors[k]});
+            result.error_positions.push_back(position(k));
             continue;
         }
         if (options.encounters && kept_hulls[k] && !kept[k].fixes.empty()) {
@@ -273,6 +290,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
             result.last_fix_s = std::isnan(result.last_fix_s) ? s.end_s : std::max(result.last_fix_s, s.end_s);
         }
         result.tracks.push_back(std::move(swept[k]));
+        result.track_positions.push_back(position(k));
     }
     if (result.fixes >= 10 && 2 * result.uncovered_fixes > result.fixes)
         result.warnings.push_back(std::to_string(result.uncovered_fixes) + " of " + std::to_string(result.fixes) +

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "detail/qgis_styles.hpp"
+#include "report/geojson_output.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/version.hpp>
@@ -168,6 +169,23 @@ void array_of(Stream& out, int depth, const std::vector<fields::Field<Row>>& tab
     out.close(']', depth);
 }
 
+/// A shard's report (--shard) also says where each of its rows goes in one run's order, for
+/// `merge`: the inputs read, each track's position among the run's tracks, each feature's
+/// track position (-1: a feature of the run, after the tracks'), each problem's group and
+/// position (report_fields.hpp: ProblemRow).
+json part_member(const audit::AuditResult& r) {
+    json order_tracks = json::array(), order_features = json::array(), order_problems = json::array(), inputs = json::array();
+    const auto position = [&](std::size_t k) { return k < r.track_positions.size() ? r.track_positions[k] : k; };
+    for (std::size_t k = 0; k < r.tracks.size(); ++k) {
+        order_tracks.push_back(position(k));
+        for (std::size_t e = 0; e < r.tracks[k].events.size(); ++e) order_features.push_back(position(k));
+    }
+    for (std::size_t e = 0; e < r.encounters.events.size(); ++e) order_features.push_back(-1);
+    for (const auto& p : fields::problem_rows(r)) order_problems.push_back(json::array({p.group, p.position}));
+    for (const auto& f : r.files) inputs.push_back(f.file);
+    return {{"inputs", inputs}, {"tracks", order_tracks}, {"features", order_features}, {"problems", order_problems}};
+}
+
 void write_report(const audit::AuditResult& r, const RunInfo& info, const StagedOutput::Sink& sink) {
     const fields::RunRow run{r, info};
     Stream out(sink);
@@ -192,6 +210,10 @@ void write_report(const audit::AuditResult& r, const RunInfo& info, const Staged
     array_of(out, 2, fields::track_fields(), fields::track_rows(r), r);
     out.key(1, "problems");
     array_of(out, 2, fields::problem_fields(), fields::problem_rows(r), r, true);
+    if (r.shard.active()) {
+        out.key(1, "part");
+        out.value(part_member(r), 2);
+    }
     out.close('}', 1);
     out.key(0, "features");
     out.open('[');
@@ -237,16 +259,34 @@ std::vector<OutputSpec> report_outputs(const std::string& path, const std::strin
     return out;
 }
 
-std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
-                                        std::vector<std::string>* warnings) {
-    std::vector<StagedOutput> out;
-    out.emplace_back(path);
-    out.back().write_streamed([&](const StagedOutput::Sink& sink) { write_report(result, info, sink); });
+namespace {
+
+/// The QGIS style REPORT.qml staged beside a GeoJSON report at `path`, unless a file of that
+/// name exists that shoal did not write (a warning then), or `path` is not a regular file.
+void stage_style_beside(const std::string& path, std::vector<StagedOutput>& out, std::vector<std::string>* warnings) {
     if (const std::string style = style_path(path); !style.empty()) {
         std::string warning;
         if (std::optional<StagedOutput> s = stage_sidecar_style(style, "events", warning)) out.push_back(std::move(*s));
         else if (warnings) warnings->push_back(std::move(warning));
     }
+}
+
+}  // namespace
+
+std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
+                                        std::vector<std::string>* warnings) {
+    std::vector<StagedOutput> out;
+    out.emplace_back(path);
+    out.back().write_streamed([&](const StagedOutput::Sink& sink) { write_report(result, info, sink); });
+    stage_style_beside(path, out, warnings);
+    return out;
+}
+
+std::vector<StagedOutput> stage_geojson_text(const std::string& path, std::string_view text, std::vector<std::string>* warnings) {
+    std::vector<StagedOutput> out;
+    out.emplace_back(path);
+    out.back().write(text);
+    stage_style_beside(path, out, warnings);
     return out;
 }
 

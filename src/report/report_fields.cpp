@@ -22,6 +22,7 @@ Value count(std::size_t n) { return static_cast<std::int64_t>(n); }
 const Value null{};
 
 bool exercise(const audit::AuditResult& r) { return r.has_encounters; }
+bool sharded(const audit::AuditResult& r) { return r.shard.active(); }
 
 /// The COLREG situation of pair (a, b) (a < b), or null (AuditResult::situations is by (a, b)).
 const audit::ColregEncounter* situation_of(const audit::AuditResult& r, std::size_t a, std::size_t b) {
@@ -303,6 +304,7 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"exercise_by", text_t, none, -1, [](const R& x) { return text(x.info.exercise_by); }, exercise},
         {"roles", text_t, none, -1, [](const R& x) { return text(x.info.roles); }, exercise},
         {"encounter_range_m", real, metres, -1, [](const R& x) { return Value(x.info.encounter_range_m); }, exercise},
+        {"shard", text_t, none, -1, [](const R& x) { return text(x.result.shard.text()); }, sharded},
     };
     return f;
 }
@@ -312,12 +314,12 @@ const std::vector<Field<RunRow>>& summary_fields() {
         return r.groundings + r.alongside + r.contacts_at_start + r.expected_contacts;
     };
     static const std::vector<Field<RunRow>> f = {
-        {"files", integer, none, -1, [](const R& x) { return count(x.result.files.size()); }},
+        {"files", integer, none, -1, [](const R& x) { return count(x.result.files.size()); }, nullptr, Merge::per_input},
         {"tracks", integer, none, -1, [](const R& x) { return count(x.result.tracks.size()); }},
         {"tracks_failed", integer, none, -1, [](const R& x) { return count(x.result.errors.size()); }},
         {"fixes", integer, none, -1, [](const R& x) { return count(x.result.fixes); }},
         {"poses", integer, none, -1, [](const R& x) { return count(x.result.poses); }},
-        {"skipped_rows", integer, none, -1, [](const R& x) { return count(x.result.skipped_rows); }},
+        {"skipped_rows", integer, none, -1, [](const R& x) { return count(x.result.skipped_rows); }, nullptr, Merge::per_input},
         {"uncovered_fixes", integer, none, -1, [](const R& x) { return count(x.result.uncovered_fixes); }},
         {"events", integer, none, -1,
          [](const R& x) {
@@ -332,8 +334,8 @@ const std::vector<Field<RunRow>>& summary_fields() {
         {"wild_fixes", integer, none, -1, [](const R& x) { return count(x.result.wild_fixes); }},
         {"jumps", integer, none, -1, [](const R& x) { return count(x.result.jumps); }},
         {"unknown_heading_fixes", integer, none, -1, [](const R& x) { return count(x.result.unknown_heading_fixes); }},
-        {"first_fix", datetime, utc, -1, [](const R& x) { return text(iso_time(x.result.first_fix_s)); }},
-        {"last_fix", datetime, utc, -1, [](const R& x) { return text(iso_time(x.result.last_fix_s)); }},
+        {"first_fix", datetime, utc, -1, [](const R& x) { return text(iso_time(x.result.first_fix_s)); }, nullptr, Merge::min_time},
+        {"last_fix", datetime, utc, -1, [](const R& x) { return text(iso_time(x.result.last_fix_s)); }, nullptr, Merge::max_time},
         {"collisions", integer, none, -1, [](const R& x) { return count(x.result.collisions); }, exercise},
         {"close_quarters", integer, none, -1, [](const R& x) { return count(x.result.close_quarters); }, exercise},
         {"exercises", integer, none, -1, [](const R& x) { return count(x.result.exercises); }, exercise},
@@ -363,14 +365,21 @@ std::vector<HullRow> hull_rows(const audit::AuditResult& r) {
 }
 
 std::vector<ProblemRow> problem_rows(const audit::AuditResult& r) {
+    const auto at = [](const std::vector<std::size_t>& positions, std::size_t k) { return k < positions.size() ? positions[k] : k; };
     std::vector<ProblemRow> rows;
     for (const auto& f : r.files) {
         if (!f.error.empty()) rows.push_back({f.file, "", 0, f.error});
         for (const auto& m : f.read.messages) rows.push_back({f.file, "", 0, m});
     }
-    for (const auto& e : r.errors) rows.push_back({e.file, e.track, 0, e.message});
-    for (const auto& t : r.tracks)
-        for (const auto& w : t.summary.wild_fixes) rows.push_back({t.summary.file, t.summary.id, w.line, wild_fix_message(t.summary, w)});
+    for (std::size_t k = 0; k < r.errors.size(); ++k) {
+        const auto& e = r.errors[k];
+        rows.push_back({e.file, e.track, 0, e.message, 1, at(r.error_positions, k)});
+    }
+    for (std::size_t k = 0; k < r.tracks.size(); ++k) {
+        const auto& t = r.tracks[k];
+        for (const auto& w : t.summary.wild_fixes)
+            rows.push_back({t.summary.file, t.summary.id, w.line, wild_fix_message(t.summary, w), 2, at(r.track_positions, k)});
+    }
     return rows;
 }
 

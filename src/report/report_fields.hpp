@@ -37,6 +37,14 @@ enum class Type { text, integer, real, boolean, datetime };
 /// A field's value; std::monostate is null.
 using Value = std::variant<std::monostate, std::string, std::int64_t, double, bool>;
 
+/// How report::merge combines a summary field of the parts into one run's.
+enum class Merge {
+    sum,        ///< added up (tracks, fixes, events)
+    per_input,  ///< a figure of the files read, which every shard of the same inputs reads: counted once per set of inputs
+    min_time,   ///< the earliest (ISO 8601 UTC; null when none)
+    max_time,   ///< the latest
+};
+
 template <class Row>
 struct Field {
     const char* name;
@@ -46,6 +54,8 @@ struct Field {
     Value (*get)(const Row&);
     /// The field exists only when this holds (exercise-mode fields); null: always.
     bool (*present)(const audit::AuditResult&) = nullptr;
+    /// Summary fields: how `merge` combines the parts' values into one run's.
+    Merge merge = Merge::sum;
 };
 
 /// `v` rounded to `decimals` decimal places (half away from zero).
@@ -101,6 +111,11 @@ struct ProblemRow {
     std::string file, track;  ///< track "": none (null)
     std::size_t line = 0;     ///< 0: none (null)
     std::string message;
+    /// Where it goes in one run's order (merge): `group` 0 a file's (every shard of a run
+    /// lists them), 1 a failed track's, 2 a track's (wild fixes); `position` the track's
+    /// position among the run's tracks (AuditResult::track_positions), 0 for group 0.
+    int group = 0;
+    std::size_t position = 0;
 };
 struct ApproachRow {
     const audit::AuditResult& result;

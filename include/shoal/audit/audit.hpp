@@ -12,6 +12,7 @@
 #include <shoal/audit/colreg.hpp>
 #include <shoal/audit/encounters.hpp>
 #include <shoal/audit/exercise.hpp>
+#include <shoal/audit/shard.hpp>
 #include <shoal/audit/sweep.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
@@ -48,6 +49,10 @@ struct AuditOptions {
     /// else the grid's default, else land only).
     std::optional<double> hazard_depth_m;
     std::optional<double> ukc_m;  ///< under-keel clearance added to a draught (`--ukc`; none: 0)
+    /// Only the tracks of this shard (shard_of(shard_key(id, exercise in exercise mode)) == shard.index) are
+    /// audited; every file is still read (one vessel in several files is one track first).
+    /// count 0: every track.
+    Shard shard;
 };
 
 /// One input file: how it read.
@@ -90,6 +95,11 @@ struct AuditResult {
     std::size_t exercises = 0;  ///< exercise mode: exercises with at least one audited track
     std::size_t collisions = 0, close_quarters = 0;
     double encounters_s = 0;
+    /// The shard audited (count 0: the whole run), and for merging shards back in the order of
+    /// one run: each track's (and each failed track's) position among all the tracks read, in
+    /// file order before sharding; aligned with `tracks` and `errors`.
+    Shard shard;
+    std::vector<std::size_t> track_positions, error_positions;
 };
 
 /// The tracks of `inputs` (files or folders, see track::expand_inputs) read in parallel on

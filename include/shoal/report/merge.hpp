@@ -1,0 +1,44 @@
+#pragma once
+/// Merging the reports of a run's shards (`check --shard I/N`) into the report one run would
+/// have written, byte for byte.
+///
+/// Parts are grouped by the inputs they read (every shard of a run reads every file): each
+/// group must be a complete set of shards (each I of one N exactly once); several groups (one
+/// per file, as the Dask driver runs them) are put one after another in the order given, and
+/// must not share a file or a vessel (one run would have merged the vessel's tracks).
+///
+/// The rules, generic over the report's members so that new fields and layers merge too:
+/// - the top level and the run header (every member of `shoal` that is not an object or an
+///   array) must be equal in every part, except `shard`, which the merged report drops;
+/// - `summary`: each field combined as its table says (report_fields.hpp: Merge: added up,
+///   counted once per set of inputs, earliest, latest);
+/// - `tracks`, `features`, `problems`: rows put back in one run's order by the positions each
+///   part lists in its `shoal.part` member (tracks in the order they were read, a track's
+///   features after the earlier tracks', features of the run after every track's; a file's
+///   problems once per set of inputs, then failed tracks', then tracks' in track order);
+/// - any other array of `shoal` (a layer of the run, e.g. closest_approaches) concatenated in
+///   part order.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace shoal::report {
+
+/// What a merge gave, for the exit status and the table.
+struct MergeSummary {
+    std::size_t parts = 0, tracks = 0, events = 0, groundings = 0, collisions = 0;
+};
+
+/// The merged GeoJSON report of the GeoJSON part reports at `parts` (in that order). Throws
+/// InputError naming the part and what is wrong: unreadable, not a shard's report, a run
+/// header field that differs ("'step_m' is 5 in 'a' but 2 in 'b'"), a shard missing or given
+/// twice, two sets of inputs sharing a file or a vessel.
+std::string merge_geojson(const std::vector<std::string>& parts, MergeSummary* summary = nullptr);
+
+/// merge_geojson written at `output` (.geojson, with its QGIS style beside it): the outputs are
+/// checked against the parts first (none may be a part), staged and put in place together.
+/// Warnings (a style not replaced) go into `warnings` when given.
+MergeSummary merge_reports(const std::vector<std::string>& parts, const std::string& output, std::vector<std::string>* warnings = nullptr);
+
+}  // namespace shoal::report

@@ -1,0 +1,284 @@
+"""Run a ``shoal check`` as tasks on a Dask cluster, then ``shoal merge`` the parts.
+
+    python3 -m shoal.dask [--scheduler tcp://HOST:PORT | --local N] [--shards K] [--retries R]
+                          [--shoal PATH] [--parts-dir DIR] check ARGS...
+
+ARGS are those of ``shoal check`` (see ``shoal check --help``). One task per track input
+(file or folder) as given, each ``shoal check ... INPUT --shard 0/1``; or, with ``--shards K``,
+one task per shard ``--shard i/K`` over all the inputs. Each task runs the ``shoal``
+executable, which writes its part atomically; a task that fails (a non-zero exit other than 1,
+"a grounding was found", or a process killed by a signal) is retried R times and, if it still
+fails, named on stderr, and the exit status is 2: a part is never silently missing. The parts
+are then merged (``shoal merge``) into the report one ``shoal check`` of the same arguments
+writes, byte for byte, and the exit status is check's (0 no grounding, 1 a grounding).
+
+One run per input equals one run over all inputs only when no vessel has fixes in two inputs
+(one run merges them into one track): ``shoal merge`` detects that case and refuses, naming
+the vessel; use ``--shards K`` then (every task reads every file). Exercise mode
+(``--encounters``) is one exercise: it needs ``--shards``.
+
+The grid: coastline sources given to ``--coast`` are built into a grid once, here (``shoal
+probe`` into a private cache folder), its bytes scattered to the workers and written once per
+worker under its local directory, named by fingerprint; each task finds it there (the grid
+cache, SHOAL_CACHE_DIR). A ``.shoalgrid`` given to ``--coast`` is read from its path by every
+task (a shared path). Workers must see the inputs, the coast sources and the parts folder
+at the same paths as this process (a shared file system), and run from the same folder.
+
+Needs only Debian's python3-distributed (2022.12) and the ``shoal`` executable, not the
+compiled module. No dashboard is started (bokeh is not in Debian 12).
+"""
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+# check's options that take no value; every other option takes one, and those listed in
+# MULTI take every value up to the next option (as the shoal CLI parses them).
+FLAGS = {"--encounters", "--hull-from-length-width", "--progress", "--no-progress", "-v", "--verbose"}
+MULTI = {"--coast", "--layer"}
+# Options a task sets itself; given by the user they are refused or replaced.
+REFUSED = {"--shard": "the driver sets --shard itself", "--plot": "a picture cannot be merged: draw it with one shoal check",
+           "--format": "merge writes GeoJSON: give -o REPORT.geojson"}
+
+
+class UsageError(Exception):
+    pass
+
+
+def split_check_args(args):
+    """check's ARGS as (options: list of [flag, values...], tracks: list, output: str)."""
+    options, tracks, output = [], [], None
+    i = 0
+    while i < len(args):
+        a = args[i]
+        if a == "--":
+            tracks.extend(args[i + 1:])
+            break
+        if a.startswith("-") and a != "-":
+            name, eq, value = a.partition("=")
+            if name in REFUSED:
+                raise UsageError(f"check option {name}: {REFUSED[name]}")
+            if name in FLAGS:
+                options.append([a])
+                i += 1
+                continue
+            if eq:
+                values = [value]
+                i += 1
+            elif name in MULTI:
+                j = i + 1
+                while j < len(args) and not (args[j].startswith("-") and args[j] != "-"):
+                    j += 1
+                values = args[i + 1:j]
+                i = j
+            else:
+                if i + 1 >= len(args):
+                    raise UsageError(f"check option {name} needs a value")
+                values = [args[i + 1]]
+                i += 2
+            if name in ("-o", "--output"):
+                output = values[0]
+            else:
+                options.append([name] + values)
+            continue
+        tracks.append(a)
+        i += 1
+    if output is None:
+        raise UsageError("check needs -o REPORT.geojson")
+    if output.endswith(".gpkg"):
+        raise UsageError(f"-o {output}: merge writes GeoJSON; give -o REPORT.geojson")
+    if not tracks:
+        raise UsageError("check needs at least one TRACK file or folder")
+    return options, tracks, output
+
+
+def option_values(options, name):
+    for o in options:
+        if o[0] == name:
+            return o[1:]
+    return None
+
+
+def flat(options):
+    return [x for o in options for x in o]
+
+
+def find_shoal(given):
+    if given:
+        return os.path.abspath(given)
+    here = os.path.dirname(os.path.abspath(__file__))
+    for candidate in (os.path.join(here, "..", "..", "cli", "shoal"),               # build/python/shoal -> build/cli
+                      os.path.join(here, "..", "..", "build", "cli", "shoal")):     # python/shoal -> build/cli
+        if os.access(candidate, os.X_OK):
+            return os.path.abspath(candidate)
+    found = shutil.which("shoal")
+    if found:
+        return found
+    raise UsageError("no shoal executable: give --shoal PATH, or put shoal on PATH")
+
+
+def build_grid(shoal, options, workdir):
+    """Builds the grid of --coast (with the ship and build options) into a private cache
+    folder, as check would; returns (file name, bytes), or None for a .shoalgrid given."""
+    coast = option_values(options, "--coast") or []
+    if len(coast) == 1 and coast[0].endswith(".shoalgrid"):
+        return None
+    keep = {"--coast", "--ship", "--dims", "--cell", "--ship-length", "--crs", "--layer", "--source-crs", "--ukc",
+            "--hazard-depth", "--depth-field", "--danger-radius"}
+    cache = os.path.join(workdir, "grid-cache")
+    os.makedirs(cache, exist_ok=True)
+    poses = os.path.join(workdir, "no-poses.csv")
+    with open(poses, "w") as f:
+        f.write("lat,lon,heading\n")
+    cmd = [shoal, "probe"] + flat([o for o in options if o[0] in keep]) + [poses, "-o", os.devnull]
+    env = dict(os.environ, SHOAL_CACHE_DIR=cache)
+    p = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        sys.stderr.write(p.stderr)
+        raise UsageError("building the grid failed (shoal probe exit status %d)" % p.returncode)
+    grids = [n for n in os.listdir(cache) if n.endswith(".shoalgrid")]
+    if len(grids) != 1:
+        raise RuntimeError("expected one grid in %s, found %s" % (cache, grids))
+    with open(os.path.join(cache, grids[0]), "rb") as f:
+        return grids[0], f.read()
+
+
+def _grid_cache_on_worker(grid):
+    """The worker's cache folder holding `grid` (name, bytes), written once per worker."""
+    from distributed import get_worker
+    name, data = grid
+    folder = os.path.join(get_worker().local_directory, "shoal-grid-cache")
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, name)
+    if not (os.path.exists(path) and os.path.getsize(path) == len(data)):
+        fd, tmp = tempfile.mkstemp(dir=folder, prefix="." + name + ".tmp-")
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)  # atomic: tasks on other threads see the whole file or none
+    return folder
+
+
+def run_task(name, cmd, cwd, grid):
+    """One task: runs `cmd` (a shoal check writing its part); raises on failure (Dask retries)."""
+    env = dict(os.environ)
+    if grid is not None:
+        env["SHOAL_CACHE_DIR"] = _grid_cache_on_worker(grid)
+    t0 = time.monotonic()
+    p = subprocess.run(cmd, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if p.returncode not in (0, 1):
+        why = "killed by signal %d" % -p.returncode if p.returncode < 0 else "exit status %d" % p.returncode
+        tail = p.stderr.strip().splitlines()[-3:]
+        raise RuntimeError("%s: shoal check %s%s" % (name, why, (": " + " | ".join(tail)) if tail else ""))
+    return name, p.returncode, time.monotonic() - t0
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python3 -m shoal.dask", description=__doc__.split("\n\n")[0])
+    where = ap.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", help="address of a running Dask scheduler, tcp://HOST:PORT")
+    where.add_argument("--local", type=int, metavar="N", help="a LocalCluster of N worker processes (default 2)")
+    ap.add_argument("--shards", type=int, metavar="K", help="K tasks, --shard i/K over all inputs (default: one task per input)")
+    ap.add_argument("--retries", type=int, default=2, metavar="R", help="retries of a failed task (default 2)")
+    ap.add_argument("--shoal", help="the shoal executable (default: the build tree's, else PATH)")
+    ap.add_argument("--parts-dir", help="folder for the parts (default: a temporary folder beside the report); kept only if given")
+    ap.add_argument("command", choices=["check"])
+    ap.add_argument("args", nargs=argparse.REMAINDER, help="shoal check's arguments")
+    a = ap.parse_args(argv)
+    try:
+        return run(a)
+    except UsageError as e:
+        print("shoal.dask: usage error: %s" % e, file=sys.stderr)
+        return 2
+
+
+def run(a):
+    if a.local is not None and a.local < 1:
+        raise UsageError("--local N needs N >= 1")
+    if a.shards is not None and a.shards < 1:
+        raise UsageError("--shards K needs K >= 1")
+    if a.retries < 0:
+        raise UsageError("--retries R needs R >= 0")
+    options, tracks, output = split_check_args(a.args)
+    if option_values(options, "--encounters") is not None and a.shards is None:
+        raise UsageError("--encounters: an exercise is checked whole; give --shards K (the exercise is one shard)")
+    shoal = find_shoal(a.shoal)
+    options = [o for o in options if o[0] not in ("--cache-dir", "--progress", "--no-progress")]
+    options.append(["--no-progress"])
+    cwd = os.getcwd()
+    out_dir = os.path.dirname(os.path.abspath(output))
+    if not os.path.isdir(out_dir):
+        raise UsageError("cannot write '%s': folder '%s' does not exist" % (output, out_dir))
+    workdir = tempfile.mkdtemp(prefix=".shoal-dask-", dir=out_dir)
+    parts_dir = os.path.abspath(a.parts_dir) if a.parts_dir else workdir
+    os.makedirs(parts_dir, exist_ok=True)
+    try:
+        return drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir)
+    finally:
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
+    from distributed import Client, LocalCluster, as_completed
+
+    grid = build_grid(shoal, options, workdir)
+    if a.local is None and a.scheduler is None:
+        a.local = 2
+    if a.local is not None and option_values(options, "--jobs") is None and option_values(options, "-j") is None:
+        options.append(["--jobs", str(max(1, (os.cpu_count() or 1) // a.local))])
+    tasks = []  # (name, part path, command)
+    if a.shards:
+        for i in range(a.shards):
+            part = os.path.join(parts_dir, "part-%05d-of-%05d.geojson" % (i, a.shards))
+            tasks.append(("shard %d/%d" % (i, a.shards), part,
+                          [shoal, "check"] + flat(options) + ["--shard", "%d/%d" % (i, a.shards), "-o", part, "--"] + tracks))
+    else:
+        for i, t in enumerate(tracks):
+            part = os.path.join(parts_dir, "part-%05d.geojson" % i)
+            tasks.append((t, part, [shoal, "check"] + flat(options) + ["--shard", "0/1", "-o", part, "--", t]))
+
+    if a.local is not None:
+        cluster = LocalCluster(n_workers=a.local, threads_per_worker=1, processes=True, dashboard_address=None,
+                               local_directory=workdir, silence_logs=40)
+        client = Client(cluster)
+    else:
+        cluster = None
+        client = Client(a.scheduler)
+    failed = []
+    try:
+        grid_future = client.scatter(grid, broadcast=True) if grid is not None else None
+        futures = {}
+        for k, (name, part, cmd) in enumerate(tasks):
+            f = client.submit(run_task, name, cmd, cwd, grid_future, retries=a.retries, pure=False, key="shoal-check-%d-%s" % (k, os.getpid()))
+            futures[f] = name
+        done = 0
+        print("shoal.dask: %d tasks on %d workers" % (len(tasks), len(client.scheduler_info()["workers"])), file=sys.stderr)
+        for f in as_completed(futures):
+            done += 1
+            try:
+                name, status, seconds = f.result()
+                print("shoal.dask: [%d/%d] %s done in %.1f s%s" % (done, len(tasks), name, seconds, " (groundings)" if status == 1 else ""),
+                      file=sys.stderr)
+            except Exception as e:  # noqa: BLE001 - reported by name, then the run fails
+                failed.append(futures[f])
+                print("shoal.dask: [%d/%d] %s FAILED after %d retries: %s" % (done, len(tasks), futures[f], a.retries, e), file=sys.stderr)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    if failed:
+        print("shoal.dask: error: %d of %d tasks failed (%s); no report written" % (len(failed), len(tasks), ", ".join(failed)),
+              file=sys.stderr)
+        return 2
+    p = subprocess.run([shoal, "merge"] + [t[1] for t in tasks] + ["-o", output], cwd=cwd)
+    return p.returncode
+
+
+if __name__ == "__main__":
+    # Run as shoal.dask (not __main__), so the workers unpickle the task as shoal.dask.run_task.
+    from shoal import dask as _module
+
+    sys.exit(_module.main())

@@ -1,0 +1,217 @@
+// `check --shard I/N` over every shard, then `merge`: the report of one run, byte for byte;
+// and merge refusing parts that are not one run's complete set.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+    int status = -1;
+    std::string out, err;
+};
+
+struct TempDir {
+    fs::path path = fs::temp_directory_path() / ("shoal-shard-test-" + std::to_string(::getpid()));
+    TempDir() { fs::create_directories(path); }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+fs::path temp_dir() {
+    static const TempDir d;
+    return d.path;
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+Outcome shoal(const std::string& args) {
+    const fs::path err = temp_dir() / "stderr.txt";
+    const std::string cmd = "SHOAL_CACHE_DIR='" + (temp_dir() / "cache").string() + "' '" + SHOAL_BINARY + "' " + args + " 2>'" + err.string() + "'";
+    Outcome r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf;
+    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
+    const int st = ::pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    r.err = slurp(err);
+    return r;
+}
+
+std::string source_root() { return fs::path(SHOAL_TEST_DATA).parent_path().parent_path().parent_path().string(); }
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+const std::string helsinki = "--coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson' --dims 100,20,8,8 --no-progress";
+
+/// The hand-made AIS cases (groundings, alongside, wild fixes) and one vessel split over two
+/// files (one run merges it into one track), a file with bad rows and one that cannot be read
+/// (problems of files).
+std::string case_files() {
+    static const std::string files = [] {
+        const std::string dir = std::string(SHOAL_TEST_DATA) + "tracks/ais_cases/";
+        std::string list;
+        for (const char* f : {"aground_at_speed.csv", "berthing_sideways.csv", "jump_and_null_island.csv", "still_no_heading.csv",
+                              "passes_clear.csv", "aground_at_speed_no_sog.csv"})
+            list += " '" + dir + f + "'";
+        // moored_then_leaves.csv cut in two files after its 40th fix.
+        std::ifstream in(dir + "moored_then_leaves.csv");
+        std::ofstream a(temp_dir() / "moored_a.csv"), b(temp_dir() / "moored_b.csv");
+        std::string header, line;
+        std::getline(in, header);
+        a << header << "\n";
+        b << header << "\n";
+        for (int i = 0; std::getline(in, line); ++i) (i < 40 ? a : b) << line << "\n";
+        std::ofstream bad(temp_dir() / "bad_rows.csv");
+        bad << "mmsi,timestamp,lat,lon,sog,cog,heading\n"
+               "230990009,2024-05-01T10:00:00Z,60.10,24.90,5,0,0\n"
+               "230990009,2024-05-01T10:01:00Z,not-a-latitude,24.90,5,0,0\n"
+               "230990009,2024-05-01T10:02:00Z,60.103,24.90,5,0,0\n";
+        return list + " " + q(temp_dir() / "moored_a.csv") + " " + q(temp_dir() / "moored_b.csv") + " " + q(temp_dir() / "bad_rows.csv") +
+               " '" + SHOAL_TEST_DATA + "tracks/unknown_format.txt'";  // a file that cannot be read: a problem of the run
+    }();
+    return files;
+}
+
+std::string single_run(const std::string& name, const std::string& extra = "") {
+    const fs::path out = temp_dir() / (name + ".geojson");
+    const Outcome r = shoal("check " + helsinki + extra + " " + case_files() + " -o " + q(out));
+    EXPECT_EQ(r.status, 1) << r.err;
+    return slurp(out);
+}
+
+/// Every shard of N, then merge (parts in `order` when given); the merged report's text.
+std::string sharded_run(unsigned n, const std::string& name, const std::string& extra = "", bool shuffle = false) {
+    std::vector<std::string> parts;
+    for (unsigned i = 0; i < n; ++i) {
+        const fs::path part = temp_dir() / (name + "-part" + std::to_string(i) + ".geojson");
+        const Outcome r = shoal("check " + helsinki + extra + " --jobs 1 --shard " + std::to_string(i) + "/" + std::to_string(n) + " " +
+                                case_files() + " -o " + q(part));
+        EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
+        parts.push_back(q(part));
+    }
+    if (shuffle) std::shuffle(parts.begin(), parts.end(), std::mt19937(n));
+    std::string list;
+    for (const auto& p : parts) list += " " + p;
+    const fs::path out = temp_dir() / (name + "-merged.geojson");
+    const Outcome m = shoal("merge" + list + " -o " + q(out));
+    EXPECT_EQ(m.status, 1) << "a grounding in the merged report: " << m.err << m.out;
+    EXPECT_TRUE(fs::exists(temp_dir() / (name + "-merged.qml"))) << "the QGIS style beside it, as check writes";
+    return slurp(out);
+}
+
+TEST(ShardMerge, EveryShardThenMergeIsTheSingleRunByteForByte) {
+    const std::string one = single_run("single");
+    ASSERT_NE(one.find("\"grounding\""), std::string::npos);
+    ASSERT_NE(one.find("moored_a.csv + "), std::string::npos) << "the split vessel is one track";
+    ASSERT_NE(one.find("dropped as an outlier"), std::string::npos);
+    ASSERT_NE(one.find("not-a-latitude"), std::string::npos) << "a file's problem";
+    ASSERT_NE(one.find("unknown_format.txt"), std::string::npos) << "a file that cannot be read";
+    for (unsigned n : {1u, 2u, 3u, 5u}) EXPECT_EQ(sharded_run(n, "n" + std::to_string(n)), one) << n << " shards";
+    EXPECT_EQ(sharded_run(4, "shuffled", "", true), one) << "parts in any order";
+}
+
+TEST(ShardMerge, AShardHoldsOnlyItsTracksAndSaysWhichShardItIs) {
+    const fs::path part = temp_dir() / "say.geojson";
+    const Outcome r = shoal("check " + helsinki + " --shard 1/3 " + case_files() + " -o " + q(part));
+    ASSERT_TRUE(r.status == 0 || r.status == 1) << r.err;
+    const std::string text = slurp(part);
+    EXPECT_NE(text.find("\"shard\": \"1/3\""), std::string::npos);
+    EXPECT_LT(text.find("\"track\": \""), text.size());
+}
+
+TEST(ShardMerge, AnExerciseIsNeverSplit) {
+    const std::string one = single_run("exercise", " --encounters");
+    EXPECT_EQ(sharded_run(3, "exercise", " --encounters"), one);
+}
+
+TEST(ShardMerge, OneRunPerFileMergesToTheSingleRunWhenNoVesselSpansFiles) {
+    const std::string dir = std::string(SHOAL_TEST_DATA) + "tracks/ais_cases/";
+    std::string all, parts;
+    int k = 0;
+    for (const char* f : {"aground_at_speed.csv", "jump_and_null_island.csv", "berthing_sideways.csv"}) {
+        all += " '" + dir + f + "'";
+        const fs::path part = temp_dir() / ("file" + std::to_string(k++) + ".geojson");
+        const Outcome r = shoal("check " + helsinki + " --shard 0/1 '" + dir + f + "' -o " + q(part));
+        ASSERT_TRUE(r.status == 0 || r.status == 1) << r.err;
+        parts += " " + q(part);
+    }
+    const fs::path single = temp_dir() / "files-single.geojson", merged = temp_dir() / "files-merged.geojson";
+    EXPECT_EQ(shoal("check " + helsinki + all + " -o " + q(single)).status, 1);
+    const Outcome m = shoal("merge" + parts + " -o " + q(merged));
+    EXPECT_EQ(m.status, 1) << m.err;
+    EXPECT_EQ(slurp(merged), slurp(single));
+}
+
+TEST(ShardMerge, MismatchedIncompleteOrForeignPartsAreRefusedNamingWhy) {
+    const auto part = [](const std::string& name, const std::string& args) {
+        const fs::path p = temp_dir() / (name + ".geojson");
+        const Outcome r = shoal("check " + helsinki + " " + args + " -o " + q(p));
+        EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
+        return q(p);
+    };
+    const std::string a = part("r0", "--shard 0/2 " + case_files());
+    const std::string b = part("r1", "--shard 1/2 " + case_files());
+    const std::string b_step = part("r1step", "--step 2 --shard 1/2 " + case_files());
+    const std::string c3 = part("r1of3", "--shard 1/3 " + case_files());
+    const std::string whole = part("whole", case_files());
+    const fs::path out = temp_dir() / "refused.geojson";
+    struct Case {
+        std::string parts, says;
+    };
+    const std::string dir = std::string(SHOAL_TEST_DATA) + "tracks/ais_cases/";
+    const std::string split_a = part("split_a", "--shard 0/1 " + q(temp_dir() / "moored_a.csv"));
+    const std::string split_b = part("split_b", "--shard 0/1 " + q(temp_dir() / "moored_b.csv"));
+    for (const Case& c : std::vector<Case>{
+             {a + " " + b_step, "'step_m' is 5.0"},
+             {a + " " + b_step, "but 2.0 in"},
+             {a, "shard 1/2 is missing"},
+             {a + " " + b + " " + b, "shard 1/2 is given twice"},
+             {a + " " + c3, "different shard counts"},
+             {a + " " + b + " " + whole, "not the report of a shard"},
+             {split_a + " " + split_b, "vessel 230990003 has tracks in"},
+             {a + " " + b + " " + a, "given twice"},
+             {q(temp_dir() / "no-such.geojson"), "no-such.geojson: cannot be read"},
+             {q(temp_dir() / "part.gpkg"), "a GeoPackage part"},
+         }) {
+        fs::remove(out);
+        const Outcome r = shoal("merge " + c.parts + " -o " + q(out));
+        EXPECT_EQ(r.status, 2) << c.parts << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.says), std::string::npos) << "wanted '" << c.says << "' in: " << r.err;
+        EXPECT_FALSE(fs::exists(out)) << "nothing written";
+    }
+    const Outcome gpkg = shoal("merge " + a + " " + b + " -o " + q(temp_dir() / "merged.gpkg"));
+    EXPECT_EQ(gpkg.status, 2) << gpkg.err;
+    EXPECT_NE(gpkg.err.find("merge writes GeoJSON reports"), std::string::npos) << gpkg.err;
+    // A part given as the output would be destroyed.
+    const Outcome self = shoal("merge " + a + " " + b + " -o " + a);
+    EXPECT_EQ(self.status, 2) << self.err;
+    EXPECT_NE(self.err.find("would destroy the input"), std::string::npos) << self.err;
+}
+
+TEST(ShardMerge, BadShardTextIsAUsageErrorNamingTheOption) {
+    for (const char* bad : {"2/2", "x/3", "1"}) {
+        const Outcome r = shoal("check " + helsinki + " --shard " + bad + " " + case_files() + " -o " + q(temp_dir() / "bad.geojson"));
+        EXPECT_EQ(r.status, 2) << bad;
+        EXPECT_NE(r.err.find("--shard '" + std::string(bad) + "'"), std::string::npos) << r.err;
+    }
+}
+
+}  // namespace

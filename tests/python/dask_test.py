@@ -1,0 +1,101 @@
+"""python3 -m shoal.dask against shoal check: the same report, byte for byte, with tasks
+killed and retried, and failures named. Run by ctest with /usr/bin/python3:
+
+    dask_test.py SHOAL_BINARY SOURCE_ROOT CASE    (CASE: per_file, shards, killed, failing)
+"""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+shoal, root, case = sys.argv[1], sys.argv[2], sys.argv[3]
+cases = os.path.join(root, "tests", "data", "tracks", "ais_cases")
+coast = ["--coast", os.path.join(root, "examples", "data", "gof_helsinki_land.geojson"), "--dims", "100,20,8,8"]
+tmp = tempfile.mkdtemp(prefix="shoal-dask-test-")
+env = dict(os.environ, SHOAL_CACHE_DIR=os.path.join(tmp, "cache"),
+           PYTHONPATH=os.path.join(root, "python") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+failures = []
+
+
+def expect(ok, what):
+    if not ok:
+        failures.append(what)
+        print("FAILED: " + what, file=sys.stderr)
+
+
+def run(cmd):
+    p = subprocess.run(cmd, env=env, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+def read(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+files = [os.path.join(cases, f) for f in ("aground_at_speed.csv", "jump_and_null_island.csv", "berthing_sideways.csv",
+                                          "passes_clear.csv", "moored_then_leaves.csv")]
+single = os.path.join(tmp, "single.geojson")
+status, _, err = run([shoal, "check"] + coast + files + ["-o", single, "--no-progress"])
+expect(status == 1, "single run exit 1 (a grounding): %d %s" % (status, err))
+
+
+def dask(args, out, shoal_exe=shoal):
+    return run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "2", "--shoal", shoal_exe] + args +
+               ["check"] + coast + files + ["-o", out])
+
+
+try:
+    if case in ("per_file", "shards"):
+        out = os.path.join(tmp, "dask.geojson")
+        status, _, err = dask(["--shards", "3"] if case == "shards" else [], out)
+        expect(status == 1, "dask exit 1 as check's: %d\n%s" % (status, err))
+        expect(os.path.exists(out) and read(out) == read(single), "dask report == shoal check report, byte for byte")
+        expect(os.path.exists(os.path.join(tmp, "dask.qml")), "the QGIS style beside it")
+        expect("[5/5]" in err or "[3/3]" in err, "progress on stderr: " + err)
+        expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
+    elif case == "killed":
+        # A real process death: the wrapper SIGKILLs itself the first time it runs each part.
+        wrapper = os.path.join(tmp, "dies-once.sh")
+        with open(wrapper, "w") as f:
+            f.write('#!/bin/sh\n'
+                    'if [ "$1" = check ]; then\n'
+                    '  for a; do case $a in *.geojson) out=$a;; esac; done\n'
+                    '  marker="%s/killed-$(basename "$out")"\n'
+                    '  if [ ! -e "$marker" ]; then : > "$marker"; kill -9 $$; fi\n'
+                    'fi\n'
+                    'exec "%s" "$@"\n' % (tmp, shoal))
+        os.chmod(wrapper, 0o755)
+        out = os.path.join(tmp, "killed.geojson")
+        status, _, err = dask(["--retries", "2"], out, wrapper)
+        killed = [n for n in os.listdir(tmp) if n.startswith("killed-")]
+        expect(len(killed) == len(files), "every task was killed once: %s" % killed)
+        expect(status == 1, "exit 1 after retries: %d\n%s" % (status, err))
+        expect(os.path.exists(out) and read(out) == read(single), "the report of killed-and-retried tasks == shoal check's")
+    elif case == "failing":
+        # A task that always dies is named, the exit status is 2, and no report is written.
+        wrapper = os.path.join(tmp, "always-dies.sh")
+        with open(wrapper, "w") as f:
+            f.write('#!/bin/sh\ncase "$*" in *jump_and_null_island*) kill -9 $$;; esac\nexec "%s" "$@"\n' % shoal)
+        os.chmod(wrapper, 0o755)
+        out = os.path.join(tmp, "failing.geojson")
+        status, _, err = dask(["--retries", "1"], out, wrapper)
+        expect(status == 2, "exit 2 when a task fails after its retries: %d" % status)
+        expect("jump_and_null_island.csv FAILED after 1 retries" in err, "the failed task named: " + err)
+        expect("killed by signal 9" in err, "how it failed: " + err)
+        expect(not os.path.exists(out), "no report written")
+        # One run per file, a vessel in two files: merge refuses (one run would merge the tracks).
+        half = os.path.join(tmp, "again.csv")
+        shutil.copy(os.path.join(cases, "passes_clear.csv"), half)
+        files.append(half)
+        status, _, err = dask([], out)
+        expect(status == 2 and "vessel 230990007 has tracks in" in err, "a vessel spanning files is refused: %d %s" % (status, err))
+        status, _, err = dask(["--shards", "2"], out)
+        expect(status in (0, 1), "with --shards it is one run: %d %s" % (status, err))
+    else:
+        expect(False, "unknown case " + case)
+finally:
+    shutil.rmtree(tmp, ignore_errors=True)
+
+sys.exit(1 if failures else 0)
