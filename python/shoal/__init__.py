@@ -18,6 +18,9 @@ except ImportError as _error:  # the extension is not built here (a sanitizer bu
     _import_error = _error
 
     def __getattr__(name):
+        if name.startswith("__") or name not in ("Detector", "Grid", "InputError", "UsageError", "__version__", "_audit", "audit"):
+            # Not the extension's: the ordinary AttributeError, so `from shoal import dask` imports the submodule.
+            raise AttributeError("module 'shoal' has no attribute %r" % name)
         raise ImportError(
             "shoal.%s needs the extension shoal._shoal, which did not import (%s); build shoal with pybind11-dev "
             "and python3-dev installed and put the build's python folder (or <prefix>/lib/python3/dist-packages) "
