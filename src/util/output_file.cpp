@@ -39,7 +39,8 @@ bool is_stdout(const std::string& path) { return is_standard_output(path); }
 
 /// Writes all of `bytes` to the open file `f` and closes it; false (errno in `err`) on failure.
 bool write_and_close(std::FILE* f, std::string_view bytes, bool sync, int& err) {
-    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0 &&
+    // fwrite's buffer must not be null, even for no bytes (an empty string_view may hold null).
+    bool ok = (bytes.empty() || std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size()) && std::fflush(f) == 0 &&
               (!sync || ::fsync(::fileno(f)) == 0);
     err = ok ? 0 : errno;
     if (std::fclose(f) != 0 && ok) {
@@ -192,7 +193,7 @@ void StagedOutput::discard() noexcept {
 void StagedOutput::write(std::string_view bytes) {
     int err = 0;
     if (is_stdout(m_target)) {
-        if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0)
+        if ((!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size()) || std::fflush(stdout) != 0)
             throw InputError(std::string("cannot write to stdout: ") + std::strerror(errno));
         return;
     }
@@ -212,7 +213,7 @@ void StagedOutput::write(std::string_view bytes) {
 void StagedOutput::write_streamed(const std::function<void(const Sink&)>& produce) {
     if (is_stdout(m_target)) {
         produce([](std::string_view bytes) {
-            if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size())
+            if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size())
                 throw InputError(std::string("cannot write to stdout: ") + std::strerror(errno));
         });
         if (std::fflush(stdout) != 0) throw InputError(std::string("cannot write to stdout: ") + std::strerror(errno));
@@ -228,7 +229,7 @@ void StagedOutput::write_streamed(const std::function<void(const Sink&)>& produc
     }
     try {
         produce([&](std::string_view bytes) {
-            if (std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size())
+            if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size())
                 throw InputError("cannot write '" + m_target + "': " + std::strerror(errno));
         });
     } catch (...) {
