@@ -111,7 +111,9 @@ std::size_t position_of(const json& v, const Part& p, const char* what) {
 json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_t>& first_of_set) {
     const json& s0 = parts[0].doc["shoal"]["summary"];
     json out = json::object();
-    for (const auto& [name, v0] : s0.items()) {
+    for (const auto& item : s0.items()) {
+        // Not a structured binding: clang 14 cannot capture one in the lambda below.
+        const std::string& name = item.key();
         const auto& table = fields::summary_fields();
         const auto f = std::find_if(table.begin(), table.end(), [&](const auto& x) { return name == x.name; });
         if (f == table.end())
