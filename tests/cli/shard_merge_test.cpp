@@ -15,14 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "run_shoal.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Outcome {
-    int status = -1;
-    std::string out, err;
-};
 
 struct TempDir {
     fs::path path = fs::temp_directory_path() / ("shoal-shard-test-" + std::to_string(::getpid()));
@@ -43,18 +40,9 @@ std::string slurp(const fs::path& p) {
     return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-Outcome shoal(const std::string& args) {
-    const fs::path err = temp_dir() / "stderr.txt";
-    const std::string cmd = "SHOAL_CACHE_DIR='" + (temp_dir() / "cache").string() + "' '" + SHOAL_BINARY + "' " + args + " 2>'" + err.string() + "'";
-    Outcome r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf;
-    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
-    const int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    r.err = slurp(err);
-    return r;
-}
+using shoal::test::Outcome;
+
+Outcome shoal(const std::string& args) { return shoal::test::run_shoal(args, temp_dir() / "cache", temp_dir() / "stderr.txt"); }
 
 std::string source_root() { return fs::path(SHOAL_TEST_DATA).parent_path().parent_path().parent_path().string(); }
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }

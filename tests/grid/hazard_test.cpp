@@ -34,6 +34,7 @@
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/grid/limiting_depth.hpp>
 #include <shoal/hull/hull.hpp>
+#include "run_shoal.hpp"
 #include "test_support.hpp"
 #include <shoal/util/error.hpp>
 
@@ -850,24 +851,9 @@ TEST(HazardEvents, EventsSayWhatWasHit) {
 
 // ---------------------------------------------------------------- the executable
 
-struct Outcome {
-    int status = -1;
-    std::string out, err;
-};
+using test::Outcome;
 
-Outcome shoal_run(const test::TempDir& dir, const std::string& args) {
-    const std::string err = dir.file("stderr.txt");
-    const std::string cmd = "SHOAL_CACHE_DIR='" + dir.file("cache") + "' '" + SHOAL_BINARY + "' " + args + " 2>'" + err + "'";
-    Outcome r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf;
-    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
-    const int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    const std::vector<char> e = test::read_bytes(err);
-    r.err.assign(e.begin(), e.end());
-    return r;
-}
+Outcome shoal_run(const test::TempDir& dir, const std::string& args) { return test::run_shoal(args, dir.file("cache"), dir.file("stderr.txt")); }
 
 TEST(HazardCli, CheckReportsWhatWasHitAndTheReportValidates) {
     test::TempDir dir;
