@@ -45,7 +45,7 @@ public:
             py::gil_scoped_release nogil;
             // A frame of this call's own: PROJ transformations are not shared between threads.
             const geo::LocalFrame frame(m_grid.grid->frame());
-            const check::CheckOptions options{max_clearance_m, true};
+            const check::CheckOptions options{.max_clearance_m = max_clearance_m, .want_penetration = true, .want_polyline = false};
             for (std::size_t k = 0; k < n; ++k) {
                 std::string what;
                 if (track::detail::position_problem(plat[k], plon[k], what) || !std::isfinite(phead[k])) {

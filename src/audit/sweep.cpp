@@ -71,7 +71,7 @@ public:
     /// (a search of the grid's rings) is left out: only an event's first sample needs it, and
     /// make_event asks for it then.
     check::Contact check(std::size_t i, double f, bool penetration) const {
-        return checker_at(i, f).check(m_motion.pose(i, f), {m_opt.margin_m + m_opt.lookahead_m, penetration, false});
+        return checker_at(i, f).check(m_motion.pose(i, f), {.max_clearance_m = m_opt.margin_m + m_opt.lookahead_m, .want_penetration = penetration, .want_polyline = false});
     }
 
     /// A new piece of track starts at fix i; `after` is "track start", "gap" or "jump".
@@ -243,7 +243,7 @@ private:
             // Not searched by check(): asked again as the sample was checked (penetration at
             // fixes), so that the same pose at the next fixes is answered from the last check.
             if (s.contact.collision && polyline == grid::CoastGrid::no_polyline)
-                polyline = used.check(pose, {m_opt.margin_m + m_opt.lookahead_m, s.f == 0.0, true}).polyline;
+                polyline = used.check(pose, {.max_clearance_m = m_opt.margin_m + m_opt.lookahead_m, .want_penetration = s.f == 0.0, .want_polyline = true}).polyline;
             if (polyline < g->polyline_count()) {
                 const coast::Hazard& hit = g->hazard(polyline);
                 e.hit = hit.kind;

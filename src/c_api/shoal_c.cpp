@@ -51,17 +51,22 @@ R execute(F&& f, R error_value) noexcept {
     return error_value;
 }
 
+/// At limiting depth `limit` (none: land only).
+shoal_detector* make_detector(const shoal_grid* grid, shoal::hull::Hull hull, std::optional<double> limit) {
+    if (!grid) throw std::invalid_argument("shoal_detector: the grid is NULL");
+    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull), limit)};
+}
+
+/// At the grid's default limiting depth.
 shoal_detector* make_detector(const shoal_grid* grid, shoal::hull::Hull hull) {
     if (!grid) throw std::invalid_argument("shoal_detector: the grid is NULL");
     return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull))};
 }
 
-/// At limiting depth `depth_m` (NaN: land only; infinite is refused).
+/// At limiting depth `depth_m` as the C API gives it (NaN: land only; infinite is refused).
 shoal_detector* make_detector_at(const shoal_grid* grid, shoal::hull::Hull hull, double depth_m) {
-    if (!grid) throw std::invalid_argument("shoal_detector: the grid is NULL");
     if (std::isinf(depth_m)) throw std::invalid_argument("shoal_detector: the limiting depth must be finite (or NAN: land only)");
-    const std::optional<double> limit = std::isnan(depth_m) ? std::nullopt : std::optional<double>(depth_m);
-    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull), limit)};
+    return make_detector(grid, std::move(hull), std::isnan(depth_m) ? std::nullopt : std::optional<double>(depth_m));
 }
 
 }  // namespace
@@ -121,7 +126,8 @@ int shoal_check(const shoal_detector* detector, double lat, double lon, double h
                 throw std::invalid_argument("shoal_check: lat must be in [-90, 90], lon in [-180, 180] and the heading finite");
             if (!(max_clearance_m > 0)) throw std::invalid_argument("shoal_check: max_clearance_m must be > 0");
             const shoal::check::Contact c =
-                detector->detector.check(shoal::check::Pose{{lon, lat}, heading_deg}, {max_clearance_m, false});
+                detector->detector.check(shoal::check::Pose{{lon, lat}, heading_deg},
+                                         {.max_clearance_m = max_clearance_m, .want_penetration = false, .want_polyline = false});
             out->covered = c.covered ? 1 : 0;
             out->contact = c.collision ? 1 : 0;  // a contact found is real, chart or not
             out->clearance_m = c.collision ? 0.0 : !c.covered ? -1.0 : std::min(c.clearance_m, max_clearance_m);
