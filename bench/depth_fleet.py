@@ -6,6 +6,7 @@ cell's box (-76.6223,38.3468,-75.9975,39.0532), each with its own draught drawn 
 
     /usr/bin/python3 bench/depth_fleet.py OUT.csv [N] [F]
 """
+import datetime
 import math
 import random
 import sys
@@ -38,7 +39,7 @@ def main():
     with open(out, "w") as f:
         f.write("mmsi,timestamp,lat,lon,sog,cog,heading,draught\n")
         for t, m, lat, lon, sog, cog, d in rows:
-            ts = __import__("datetime").datetime.utcfromtimestamp(t).strftime("%Y-%m-%dT%H:%M:%SZ")
+            ts = datetime.datetime.fromtimestamp(t, datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
             f.write(f"{m},{ts},{lat:.6f},{lon:.6f},{sog:.1f},{cog:.1f},{cog:.0f},{d}\n")
 
 

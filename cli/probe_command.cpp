@@ -38,7 +38,8 @@ public:
                       "Writes lat,lon,heading,collision,clearance_m,covered per pose (collision 0/1; clearance 0 when touching;\n"
                       "covered 0 for a pose outside the chart, whose collision and clearance are then empty).\n"
                       "A bad row is reported on stderr with its line number and skipped.\n"
-                      "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc.");
+                      "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc,\n"
+                      "else the grid's default (import --hazard-depth), else land only.");
         m_opts.add(*m_sub);
         m_sub->add_option("poses", m_poses, "CSV of poses: lat,lon,heading (a header line is optional)")->required();
         m_sub->add_option("-o,--output", m_output, "Write the CSV here instead of stdout (written atomically)");

@@ -97,12 +97,14 @@ struct CoastGrid::Levels {
     std::mutex mutex;
     std::map<std::size_t, std::unique_ptr<CoastGrid>> grids;  // by level; nodes stay put
 };
-CoastGrid::LevelCache::LevelCache() : p(std::make_shared<Levels>()) {}
-CoastGrid::LevelCache::LevelCache(const LevelCache&) : p(std::make_shared<Levels>()) {}
+CoastGrid::LevelCache::LevelCache() : p(std::make_unique<Levels>()) {}
+CoastGrid::LevelCache::LevelCache(const LevelCache&) : p(std::make_unique<Levels>()) {}
 CoastGrid::LevelCache& CoastGrid::LevelCache::operator=(const LevelCache&) {
-    p = std::make_shared<Levels>();
+    p = std::make_unique<Levels>();
     return *this;
 }
+CoastGrid::LevelCache::LevelCache(LevelCache&&) noexcept = default;
+CoastGrid::LevelCache& CoastGrid::LevelCache::operator=(LevelCache&&) noexcept = default;
 CoastGrid::LevelCache::~LevelCache() = default;
 
 namespace {

@@ -35,11 +35,8 @@ DepthPlan plan_limiting_depth(std::optional<double> hazard_depth_m, double draug
 DepthPlan plan_vessel_depth(std::optional<double> hazard_depth_m, double vessel_draught_m, double default_draught_m,
                             std::optional<double> ukc_m, const CoastGrid& grid) noexcept {
     if (!hazard_depth_m && vessel_draught_m > 0) {  // false for NaN
-        DepthPlan plan;
-        plan.ukc_m = ukc_m.value_or(0.0);
-        plan.depth_m = vessel_draught_m + plan.ukc_m;
+        DepthPlan plan = plan_limiting_depth(std::nullopt, vessel_draught_m, ukc_m);
         plan.source = DepthPlan::Source::vessel_draught;
-        plan.draught_m = vessel_draught_m;
         return plan;
     }
     DepthPlan plan = plan_limiting_depth(hazard_depth_m, default_draught_m, ukc_m);

@@ -595,8 +595,7 @@ TEST(HazardLevels, ALevelGridEqualsAGridBuiltFromItsHazardsAlone) {
         SCOPED_TRACE(limit ? std::to_string(*limit) : "land only");
         const grid::CoastGrid& view = g.for_depth(limit);
         EXPECT_EQ(&view, &g.for_depth(limit)) << "built once, then kept";
-        // The polylines of that limit alone (others replaced by an empty placeholder keeps
-        // their indices out of the picture: compare cell by cell instead).
+        // The polylines that are hazards at that limit, alone in a grid of their own.
         std::vector<coast::LocalPolyline> kept;
         for (const auto& l : lines) {
             const bool hazard = l.hazard.kind == HazardKind::land ||

@@ -211,12 +211,12 @@ private:
     /// Grids made by for_depth, by level; a copy of the grid starts with none.
     struct Levels;
     struct LevelCache {
-        std::shared_ptr<Levels> p;
+        std::unique_ptr<Levels> p;
         LevelCache();
         LevelCache(const LevelCache&);
         LevelCache& operator=(const LevelCache&);
-        LevelCache(LevelCache&&) noexcept = default;
-        LevelCache& operator=(LevelCache&&) noexcept = default;
+        LevelCache(LevelCache&&) noexcept;
+        LevelCache& operator=(LevelCache&&) noexcept;
         ~LevelCache();
     };
 
