@@ -15,7 +15,7 @@
 # join its tracks): use --shard I/N over all the files then (docs/scale-out.md).
 set -eu
 if [ $# -lt 4 ]; then
-    sed -n '2,18p' "$0" >&2
+    sed -n '2,15p' "$0" >&2
     exit 2
 fi
 days=$1 grid=$2 parts=$3 report=$4

@@ -92,8 +92,6 @@ void check_same_run(const Part& a, const Part& b) {
     compare(a.doc["shoal"], b.doc["shoal"], "", false);
 }
 
-std::string shard_name(unsigned i, unsigned n) { return std::to_string(i) + "/" + std::to_string(n); }
-
 /// Sorts rows by key (stable), as one run orders them.
 template <class Key>
 json in_order(std::vector<std::pair<Key, json>> rows) {
@@ -203,15 +201,15 @@ std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* s
             if (p.set != s) continue;
             if (p.shard.count != n)
                 throw InputError("the parts of the same inputs have different shard counts: " + named(first.path) + " is shard " +
-                                 shard_name(first.shard.index, n) + ", " + named(p.path) + " is shard " + shard_name(p.shard.index, p.shard.count));
+                                 audit::Shard{first.shard.index, n}.text() + ", " + named(p.path) + " is shard " + audit::Shard{p.shard.index, p.shard.count}.text());
             if (seen[p.shard.index])
-                throw InputError("shard " + shard_name(p.shard.index, n) + " is given twice: " + named(seen[p.shard.index]->path) + " and " +
+                throw InputError("shard " + audit::Shard{p.shard.index, n}.text() + " is given twice: " + named(seen[p.shard.index]->path) + " and " +
                                  named(p.path));
             seen[p.shard.index] = &p;
         }
         for (unsigned i = 0; i < n; ++i)
             if (!seen[i])
-                throw InputError("shard " + shard_name(i, n) + " is missing: the parts of the inputs of " + named(first.path) +
+                throw InputError("shard " + audit::Shard{i, n}.text() + " is missing: the parts of the inputs of " + named(first.path) +
                                  " must be every shard 0 to " + std::to_string(n - 1) + " of " + std::to_string(n) + ", each once");
         if (set_inputs.size() > 1 && first.doc["shoal"]["part"].value("exercise", false))
             throw InputError(named(first.path) + " is an exercise (--encounters), which one run checks whole: its parts must be shards of the same inputs, not of separate files");

@@ -1,4 +1,3 @@
-#include <cctype>
 #include <shoal/util/output_file.hpp>
 
 #include <dirent.h>
@@ -6,6 +5,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -35,13 +35,10 @@ fs::path folder_of(const std::string& path) {
     return p.has_parent_path() ? p.parent_path() : fs::path(".");
 }
 
-bool is_stdout(const std::string& path) { return is_standard_output(path); }
-
-/// Writes all of `bytes` to the open file `f` and closes it; false (errno in `err`) on failure.
-bool write_and_close(std::FILE* f, std::string_view bytes, bool sync, int& err) {
-    // fwrite's buffer must not be null, even for no bytes (an empty string_view may hold null).
-    bool ok = (bytes.empty() || std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size()) && std::fflush(f) == 0 &&
-              (!sync || ::fsync(::fileno(f)) == 0);
+/// Flushes the open file `f` (and fsyncs it when `sync`), then closes it; false (errno in
+/// `err`) on failure.
+bool flush_and_close(std::FILE* f, bool sync, int& err) {
+    bool ok = std::fflush(f) == 0 && (!sync || ::fsync(::fileno(f)) == 0);
     err = ok ? 0 : errno;
     if (std::fclose(f) != 0 && ok) {
         ok = false;
@@ -67,7 +64,7 @@ std::string behind_virtual(const std::string& path) {
 /// The same file: equal paths once made absolute and normal, or (both existing) one inode; a
 /// virtual path (/vsizip/, /vsigzip/) is the file behind it.
 bool same_file(const std::string& a_path, const std::string& b_path) {
-    if (is_stdout(a_path) || is_stdout(b_path)) return is_stdout(a_path) && is_stdout(b_path);
+    if (is_standard_output(a_path) || is_standard_output(b_path)) return is_standard_output(a_path) && is_standard_output(b_path);
     const std::string a = behind_virtual(a_path), b = behind_virtual(b_path);
     std::error_code ec1, ec2;
     const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec1), cb = fs::weakly_canonical(fs::absolute(b), ec2);
@@ -95,7 +92,7 @@ std::string temporary_prefix(const std::string& target) {
 }
 
 void check_output_place(const std::string& path) {
-    if (is_stdout(path)) return;
+    if (is_standard_output(path)) return;
     const fs::path dir = folder_of(path);
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) throw InputError("cannot write '" + path + "': folder '" + dir.string() + "' does not exist");
@@ -107,7 +104,7 @@ void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std
         const OutputSpec& o = outputs[i];
         check_output_place(o.path);
         std::error_code ec;
-        if (!is_stdout(o.path) && fs::exists(o.path, ec))
+        if (!is_standard_output(o.path) && fs::exists(o.path, ec))
             for (const std::string& in : inputs)
                 if (!in.empty() && same_file(o.path, in))
                     throw UsageError("the output '" + o.path + "' is the input '" + in + "': writing it would destroy the input; choose another " +
@@ -120,7 +117,7 @@ void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std
 }
 
 std::size_t remove_stale_temporaries(const std::string& target) {
-    if (is_stdout(target)) return 0;
+    if (is_standard_output(target)) return 0;
     const std::string prefix = temporary_prefix(target);
     const fs::path dir = folder_of(target);
     std::size_t removed = 0;
@@ -141,7 +138,7 @@ std::size_t remove_stale_temporaries(const std::string& target) {
 }
 
 StagedOutput::StagedOutput(std::string target) : m_target(std::move(target)) {
-    if (is_stdout(m_target)) return;
+    if (is_standard_output(m_target)) return;
     // /dev/stdout, /dev/fd/N, /proc/self/fd/N: written straight to what they stand for, never
     // replaced (renaming over /dev/stdout would replace the link itself).
     if (is_system_path(m_target)) return;
@@ -191,27 +188,11 @@ void StagedOutput::discard() noexcept {
 }
 
 void StagedOutput::write(std::string_view bytes) {
-    int err = 0;
-    if (is_stdout(m_target)) {
-        if ((!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size()) || std::fflush(stdout) != 0)
-            throw InputError(std::string("cannot write to stdout: ") + std::strerror(errno));
-        return;
-    }
-    const std::string& path = direct() ? m_target : m_temp;
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) {
-        err = errno;
-        discard();
-        throw InputError("cannot write '" + m_target + "': " + std::strerror(err));
-    }
-    if (!write_and_close(f, bytes, !direct(), err)) {
-        discard();
-        throw InputError("cannot write '" + m_target + "': " + std::strerror(err));
-    }
+    write_streamed([bytes](const Sink& sink) { sink(bytes); });
 }
 
 void StagedOutput::write_streamed(const std::function<void(const Sink&)>& produce) {
-    if (is_stdout(m_target)) {
+    if (is_standard_output(m_target)) {
         produce([](std::string_view bytes) {
             if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size())
                 throw InputError(std::string("cannot write to stdout: ") + std::strerror(errno));
@@ -237,7 +218,7 @@ void StagedOutput::write_streamed(const std::function<void(const Sink&)>& produc
         discard();
         throw;
     }
-    if (!write_and_close(f, {}, !direct(), err)) {
+    if (!flush_and_close(f, !direct(), err)) {
         discard();
         throw InputError("cannot write '" + m_target + "': " + std::strerror(err));
     }

@@ -5,8 +5,9 @@
 ///
 /// The key is the track's id once every file is read and one vessel met in several files is
 /// one track (track::merge_same_vessels), so a vessel is never split between shards. In
-/// exercise mode (--encounters) a shard is a whole exercise: today a run is one exercise, so
-/// one shard holds every track and the others none.
+/// exercise mode (--encounters) the key is the track's exercise (exercise_key), so a shard
+/// holds whole exercises: with --exercise-by run the run is one exercise, one shard holds
+/// every track and the others none.
 
 #include <cstdint>
 #include <optional>
@@ -29,7 +30,7 @@ struct Shard {
 Shard parse_shard(std::string_view text);
 
 /// The key that decides a track's shard: its id; in exercise mode its exercise (exercise_key:
-/// "" for the whole run, else its file or folder), so an exercise is never split.
+/// "run" for the whole run, else its file or folder), so an exercise is never split.
 std::string shard_key(const std::string& track_id, const std::optional<std::string>& exercise);
 
 /// The shard of `key` among `count`: XXH3_64bits of the key's bytes, modulo count. The same on

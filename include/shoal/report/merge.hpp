@@ -32,7 +32,7 @@ struct MergeSummary {
 
 /// The merged GeoJSON report of the GeoJSON part reports at `parts` (in that order). Throws
 /// InputError naming the part and what is wrong: unreadable, not a shard's report, a run
-/// header field that differs ("'step_m' is 5 in 'a' but 2 in 'b'"), a shard missing or given
+/// header field that differs ("the parts are not of one run: 'step_m' is 5.0 in 'a' but 2.0 in 'b'"), a shard missing or given
 /// twice, two sets of inputs sharing a file or a vessel.
 std::string merge_geojson(const std::vector<std::string>& parts, MergeSummary* summary = nullptr);
 

@@ -34,7 +34,7 @@ bool is_system_path(const std::string& path) noexcept;
 
 /// Throws InputError unless a file can be written at `path`: its folder exists and it is not
 /// itself a folder ("cannot write 'P': folder 'D' does not exist", "cannot write 'P': it is a
-/// directory"). "" and "-" (stdout) always pass.
+/// directory"). Standard output (is_standard_output) always passes.
 void check_output_place(const std::string& path);
 
 /// Before any work: every output can be written where asked (check_output_place); none is one
@@ -48,7 +48,8 @@ void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std
 /// One output file being written. The constructor checks the place (check_output_place),
 /// removes stale temporaries of dead processes beside the target, and picks the temporary's
 /// name; `write` (or a library such as GDAL writing to `temp_path()`) fills it; `commit`
-/// renames it over the target. Stdout ("" or "-") and an existing target that is neither a
+/// renames it over the target. Standard output (is_standard_output) and an existing target
+/// under /dev/ or /proc/ (is_system_path) or that is neither a
 /// regular file nor a folder (a device such as /dev/null, a pipe) are *direct*: `write` writes
 /// to them at once and `commit` has nothing to do. An output destroyed before its commit
 /// removes its temporary (with SQLite's -journal, -wal and -shm companions): the target keeps
