@@ -8,6 +8,7 @@
 
 #include <shoal/grid/limiting_depth.hpp>
 #include <shoal/util/error.hpp>
+#include <shoal/util/option_names.hpp>
 #include <shoal/util/printable.hpp>
 
 namespace shoal::cli {
@@ -29,31 +30,7 @@ void check_readable(const std::vector<std::string>& paths) {
     }
 }
 
-std::string in_cli_terms(std::string message) {
-    // The library names the fields of its option structs; each is set by one flag.
-    static const std::pair<const char*, const char*> flags[] = {
-        {"SweepOptions::step_m", "--step"},
-        {"EncounterOptions::step_m", "--step"},
-        {"EncounterOptions::ship_margin_m", "--ship-margin"},
-        {"EncounterOptions::max_gap_s", "--max-gap"},
-        {"WildFixOptions::max_speed_kn", "--max-speed"},
-        {"ImportOptions::limiting_depth_m", "--hazard-depth"},
-        {"AuditOptions::hazard_depth_m", "--hazard-depth"},
-        {"AuditOptions::ukc_m", "--ukc"},
-        {"ImportOptions::source_crs", "--source-crs"},
-        {"ImportOptions::danger_radius_m", "--danger-radius"},
-        {"ImportOptions::depth_field", "--depth-field"},
-        {"ImportOptions::layers", "--layer"},
-        {"BuildRequest::crs", "--crs"},
-        {"BuildRequest::cell_m", "--cell"},
-        {"BuildRequest::ship_length_m", "--ship-length"},
-        {"BuildRequest::cache_dir", "--cache-dir"},
-        {"AuditOptions::shard", "--shard"},
-    };
-    for (const auto& [field, flag] : flags)
-        for (std::size_t at; (at = message.find(field)) != std::string::npos;) message.replace(at, std::strlen(field), flag);
-    return message;
-}
+std::string in_cli_terms(std::string message) { return in_terms_of(std::move(message), FrontEnd::cli); }
 
 void print_warnings(const std::vector<std::string>& warnings) {
     for (const auto& w : warnings) std::fprintf(stderr, "shoal: warning: %s\n", printable(in_cli_terms(w)).c_str());

@@ -9,6 +9,7 @@
 
 #include <shoal/grid/limiting_depth.hpp>
 #include <shoal/util/error.hpp>
+#include <shoal/util/option_names.hpp>
 #include <shoal/version.hpp>
 
 namespace shoal::python {
@@ -25,27 +26,7 @@ std::vector<std::string> paths_of(const py::handle& paths) {
     return out;
 }
 
-std::string in_python_terms(std::string message) {
-    static const std::pair<const char*, const char*> fields[] = {
-        {"SweepOptions::step_m", "step_m"},
-        {"EncounterOptions::step_m", "step_m"},
-        {"EncounterOptions::ship_margin_m", "ship_margin_m"},
-        {"EncounterOptions::max_gap_s", "max_gap_s"},
-        {"WildFixOptions::max_speed_kn", "max_speed_kn"},
-        {"ImportOptions::limiting_depth_m", "hazard_depth_m"},
-        {"ImportOptions::source_crs", "source_crs"},
-        {"ImportOptions::danger_radius_m", "danger_radius_m"},
-        {"ImportOptions::depth_field", "depth_field"},
-        {"ImportOptions::layers", "layers"},
-        {"BuildRequest::crs", "crs"},
-        {"BuildRequest::cell_m", "cell_m"},
-        {"BuildRequest::ship_length_m", "ship_length_m"},
-        {"BuildRequest::cache_dir", "cache_dir"},
-    };
-    for (const auto& [field, name] : fields)
-        for (std::size_t at; (at = message.find(field)) != std::string::npos;) message.replace(at, std::strlen(field), name);
-    return message;
-}
+std::string in_python_terms(std::string message) { return in_terms_of(std::move(message), FrontEnd::python); }
 
 void warn_all(const std::vector<std::string>& messages) {
     for (const auto& w : messages)
