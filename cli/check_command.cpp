@@ -144,8 +144,8 @@ public:
         if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
         check_outputs(outputs, all_inputs);
         if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
-        if (m_audit.sweep.step_m < min_step_m)
-            throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(min_step_m) +
+        if (m_audit.sweep.step_m < audit::min_step_m)
+            throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(audit::min_step_m) +
                              " m: a sweep that fine never ends");
         // Exercises and roles (issue 18): either option turns exercise mode on.
         if (!m_exercise_by.empty()) {
@@ -178,12 +178,9 @@ public:
                          areas.count(coast::AreaRole::expected), areas.count(coast::AreaRole::structure));
         m_audit.areas = &areas;
         // Static data: the first table that names a vessel gives its data (track::merge_vessels).
-        for (const std::string& f : m_vessel_files) {
-            std::vector<std::string> vessel_warnings;
-            auto table = track::read_vessels(f, &vessel_warnings);
-            track::merge_vessels(m_vessels, std::move(table), "vessels file " + f, &vessel_warnings);
-            print_warnings(vessel_warnings);
-        }
+        std::vector<std::string> vessel_warnings;
+        m_vessels = track::read_vessels_files(m_vessel_files, &vessel_warnings);
+        print_warnings(vessel_warnings);
         if (!m_vessel_files.empty()) {
             m_audit.vessels = &m_vessels;
             std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, *_vessels.csv in track folders)\n",

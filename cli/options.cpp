@@ -43,7 +43,7 @@ void print_grid(const grid::CoastGrid& g) {
     for (std::size_t i = 0; i < s.inputs.size(); ++i) std::printf("%s%s", i ? ", " : "", s.inputs[i].c_str());
     std::printf("\nlayers:         ");
     for (std::size_t i = 0; i < s.layers.size(); ++i) std::printf("%s%s", i ? ", " : "", s.layers[i].c_str());
-    std::printf("\nfingerprint:    %016llx\n", static_cast<unsigned long long>(s.fingerprint));
+    std::printf("\nfingerprint:    %s\n", s.fingerprint_hex().c_str());
     std::printf("frame:          %s\n", g.frame().description().c_str());
     std::printf("cell size:      %.1f m\n", g.cell_size());
     std::printf("grid:           %d x %d cells, %.1f x %.1f km, origin (%.1f, %.1f) m\n", g.nx(), g.ny(),

@@ -14,9 +14,6 @@
 
 namespace shoal::cli {
 
-/// The smallest --step: a centimetre (a hull point moves at most this between checks).
-inline constexpr double min_step_m = 0.01;
-
 /// Numbers that must be finite: CLI11's PositiveNumber and NonNegativeNumber let NaN through
 /// (every comparison with it is false), and a NaN option would silently switch a rule off.
 extern const CLI::Validator finite;

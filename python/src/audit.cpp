@@ -216,8 +216,9 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
     options.ukc_m = depth_or_none(ukc, "ukc", true);
     options.sweep.margin_m = positive("margin_m", margin_m, true);
     options.sweep.step_m = positive("step_m", step_m);
-    if (step_m < 0.01)
-        throw UsageError("step_m " + track::detail::fmt(step_m) + " is under the smallest step, 0.01 m: a sweep that fine never ends");
+    if (step_m < audit::min_step_m)
+        throw UsageError("step_m " + track::detail::fmt(step_m) + " is under the smallest step, " + track::detail::fmt(audit::min_step_m) +
+                         " m: a sweep that fine never ends");
     options.sweep.max_gap_s = positive("max_gap_s", max_gap_s);
     options.wild.max_speed_kn = positive("max_speed_kn", max_speed_kn);
     options.sweep.berthing_speed_kn = positive("berthing_speed_kn", berthing_speed_kn, true);
@@ -243,11 +244,8 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
         const coast::ExpectedAreas areas = coast::ExpectedAreas::load(berth_files, grid::coast_sources(g.coast, *g.grid), g.grid->frame(),
                                                                       berth_tolerance_m, &warnings);
         options.areas = &areas;
-        for (const std::string& f : vessel_files)
-            for (auto& [id, v] : track::read_vessels(f)) {
-                v.source = "vessels file " + f;
-                vessel_info.emplace(id, std::move(v));
-            }
+        // As the CLI: the first table that names a vessel gives its data (track::merge_vessels).
+        vessel_info = track::read_vessels_files(vessel_files, &warnings);
         if (!vessel_files.empty()) options.vessels = &vessel_info;
         if (!progress.is_none())
             options.progress = [&](std::size_t done, std::size_t total) {

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>  // in every file of the module: the casters must agree
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,11 +40,12 @@ void warn_all(const std::vector<std::string>& messages);
 /// `label` gets the report's name for its origin ("ship file", "--dims a,b,c,d", as the CLI).
 hull::Hull hull_of(const py::object& ship, const py::object& dims, std::string* label);
 
-/// Warns when the grid does not serve the ship's limiting depth (as `shoal check` does).
 /// The limiting depth a Detector or an audit's default uses (grid::plan_vessel_depth, as the
 /// CLI): `hazard_depth_m`, else the ship's draught + `ukc`, else the grid's default; warns
 /// when `ukc` cannot be used. Throws ValueError for a value that is not a depth.
 grid::DepthPlan plan_depth(const GridHandle& g, const hull::Hull& hull, const py::object& hazard_depth_m, const py::object& ukc);
+/// A depth keyword's value: none for None; ValueError "NAME must be a finite number (metres)"
+/// for one that is not (or, `non_negative`, is under 0).
 std::optional<double> depth_or_none(const py::object& o, const char* name, bool non_negative);
 
 void bind_grid(py::module_& m);

@@ -13,6 +13,12 @@
 
 namespace shoal::grid {
 
+std::string GridSource::fingerprint_hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(fingerprint));
+    return buf;
+}
+
 using geo::XY;
 
 const char* to_string(CellState s) noexcept {

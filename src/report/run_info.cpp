@@ -28,9 +28,7 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.limiting_depth_m = depth.depth_m.value_or(NAN);
     info.limiting_depth_source = grid::to_string(depth.source);
     info.ukc_m = options.ukc_m.value_or(0.0);
-    char fp[20];
-    std::snprintf(fp, sizeof fp, "%016llx", static_cast<unsigned long long>(grid.source().fingerprint));
-    info.grid_fingerprint = fp;
+    info.grid_fingerprint = grid.source().fingerprint_hex();
     info.ship = ship;
     info.sweep = options.sweep;
     info.wild = options.wild;

@@ -510,6 +510,12 @@ std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vec
     return out;
 }
 
+std::map<std::string, VesselInfo> read_vessels_files(const std::vector<std::string>& paths, std::vector<std::string>* warnings) {
+    std::map<std::string, VesselInfo> all;
+    for (const std::string& f : paths) merge_vessels(all, read_vessels(f, warnings), "vessels file " + f, warnings);
+    return all;
+}
+
 void merge_vessels(std::map<std::string, VesselInfo>& into, std::map<std::string, VesselInfo>&& from, const std::string& source,
                    std::vector<std::string>* warnings) {
     for (auto& [id, v] : from) {

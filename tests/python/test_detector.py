@@ -86,7 +86,6 @@ class DetectorAgainstProbe(unittest.TestCase):
 
     def test_broadcast_and_shape(self):
         det = shoal.Detector(self.grid, dims=(150, 35, 14, 15))
-        lat, lon, _, _ = self.grid.bounds[1], self.grid.bounds[0], 0, 0
         headings = np.arange(0, 360, 10.0).reshape(6, 6)
         r = det.check(50.75, -1.3, headings)
         self.assertEqual(r["contact"].shape, (6, 6))

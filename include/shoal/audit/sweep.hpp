@@ -18,6 +18,10 @@ namespace shoal::coast { class ExpectedAreas; }
 
 namespace shoal::audit {
 
+/// The smallest SweepOptions::step_m front ends accept: a centimetre (a sweep finer than
+/// that never ends on a long voyage).
+inline constexpr double min_step_m = 0.01;
+
 struct SweepOptions {
     double step_m = 5.0;          ///< no hull point moves more than this between two checks
     double margin_m = 50.0;       ///< clearance under this (and no contact) is a close pass

@@ -61,6 +61,9 @@ struct GridSource {
     std::uint64_t input_vertices = 0;      ///< vertices read
     std::uint64_t polylines = 0;           ///< boundary polylines made of them
     std::uint64_t land_polylines = 0;      ///< of which with the land side known
+
+    /// `fingerprint` as 16 hex digits, as reports, `info` and the cache's file names show it.
+    std::string fingerprint_hex() const;
 };
 
 /// The segment of a grid nearest to a point (CoastGrid::nearest_segment).

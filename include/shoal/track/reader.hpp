@@ -113,6 +113,10 @@ std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vec
 void merge_vessels(std::map<std::string, VesselInfo>& into, std::map<std::string, VesselInfo>&& from, const std::string& source,
                    std::vector<std::string>* warnings = nullptr);
 
+/// Every table of `paths` read (read_vessels) and joined in that order (merge_vessels, each
+/// the source "vessels file F"), their warnings into `warnings`.
+std::map<std::string, VesselInfo> read_vessels_files(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr);
+
 /// The whole file as bytes. Throws InputError "FILE: cannot read (reason)".
 std::string read_file(const std::string& path);
 
