@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <shoal/audit/assessment.hpp>
 #include <shoal/audit/colreg.hpp>
 #include <shoal/audit/encounters.hpp>
 #include <shoal/audit/exercise.hpp>
@@ -95,6 +96,9 @@ struct AuditResult {
     std::size_t exercises = 0;  ///< exercise mode: exercises with at least one audited track
     std::size_t collisions = 0, close_quarters = 0;
     double encounters_s = 0;
+    /// `--assess`: the trainees' scores and their breaches (has_assessment false: not asked).
+    bool has_assessment = false;
+    AssessmentResult assessment;
     /// The shard audited (count 0: the whole run), and for merging shards back in the order of
     /// one run: each track's (and each failed track's) position among all the tracks read, in
     /// file order before sharding; aligned with `tracks` and `errors`.
