@@ -1,8 +1,12 @@
 #include <shoal/geo/local_frame.hpp>
 
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numbers>
+#include <thread>
 #include <cpl_error.h>
 #include <ogr_spatialref.h>
 #include <proj.h>
@@ -20,21 +24,71 @@ std::string format_centre(LonLat c) {
     return buf;
 }
 
-}  // namespace
+/// WGS84 lon/lat (degrees) -> local x/y (metres) in `ctx`, or null.
+PJ* make_operation(PJ_CONTEXT* ctx, const std::string& local_wkt) {
+    PJ* op = proj_create_crs_to_crs(ctx, "EPSG:4326", local_wkt.c_str(), nullptr);
+    if (!op) return nullptr;
+    PJ* normalised = proj_normalize_for_visualization(ctx, op);  // lon, lat order in; x, y out
+    proj_destroy(op);
+    return normalised;
+}
 
-/// GDAL reads the user's CRS; the transformations themselves run in PROJ directly, with a
-/// PROJ context of this frame's own, so that copies of a frame used on different threads
-/// share no lock (GDAL's transformation objects are neither cheap per point nor lock-free).
-struct LocalFrame::Impl {
-    OGRSpatialReference local;
+/// A PROJ context and operation of one thread's own.
+struct Projection {
     PJ_CONTEXT* ctx = nullptr;
-    PJ* op = nullptr;  // WGS84 lon/lat (degrees) <-> local x/y (metres)
-    Impl() = default;
-    Impl(const Impl&) = delete;
-    Impl& operator=(const Impl&) = delete;
-    ~Impl() {
+    PJ* op = nullptr;
+    Projection() = default;
+    Projection(const Projection&) = delete;
+    Projection& operator=(const Projection&) = delete;
+    ~Projection() { reset(); }
+    void reset() noexcept {
         if (op) proj_destroy(op);
         if (ctx) proj_context_destroy(ctx);
+        op = nullptr;
+        ctx = nullptr;
+    }
+    /// Makes the operation to `local_wkt` in a new context; false if PROJ cannot.
+    bool make(const std::string& local_wkt) {
+        reset();
+        ctx = proj_context_create();
+        proj_log_level(ctx, PJ_LOG_NONE);
+        op = make_operation(ctx, local_wkt);
+        return op != nullptr;
+    }
+};
+
+std::atomic<std::uint64_t> next_frame_serial{1};
+
+}  // namespace
+
+/// GDAL reads the user's CRS; the transformations themselves run in PROJ directly. A PROJ
+/// object must not be used by two threads at once, so the thread that made the frame uses the
+/// frame's own, and any other thread a copy of its own, made on its first use there and kept in
+/// a small per-thread cache keyed by the frame's serial number (never reused). A frame (and the
+/// grid or detector holding it) may then be used by several threads at once, with no lock.
+struct LocalFrame::Impl {
+    OGRSpatialReference local;
+    std::string local_wkt;
+    Projection own;
+    std::thread::id owner = std::this_thread::get_id();
+    std::uint64_t serial = next_frame_serial.fetch_add(1, std::memory_order_relaxed);
+
+    /// The operation for the calling thread.
+    PJ* op() const {
+        if (std::this_thread::get_id() == owner) return own.op;
+        struct Slot {
+            std::uint64_t serial = 0;
+            Projection projection;
+        };
+        thread_local std::array<Slot, 4> slots;
+        thread_local unsigned next = 0;
+        for (Slot& s : slots)
+            if (s.serial == serial) return s.projection.op;
+        Slot& s = slots[next++ % slots.size()];
+        s.serial = 0;
+        if (!s.projection.make(local_wkt)) throw InputError("PROJ cannot make the transformation to the local frame on this thread");
+        s.serial = serial;
+        return s.projection.op;
     }
 };
 
@@ -65,17 +119,9 @@ LocalFrame::LocalFrame(std::string definition, std::string description)
     char* wkt = nullptr;
     const char* options[] = {"FORMAT=WKT2_2019", nullptr};
     m_impl->local.exportToWkt(&wkt, options);
-    const std::string local_wkt = wkt ? wkt : "";
+    m_impl->local_wkt = wkt ? wkt : "";
     CPLFree(wkt);
-    Impl& im = *m_impl;
-    im.ctx = proj_context_create();
-    proj_log_level(im.ctx, PJ_LOG_NONE);
-    PJ* op = proj_create_crs_to_crs(im.ctx, "EPSG:4326", local_wkt.c_str(), nullptr);
-    if (op) {
-        im.op = proj_normalize_for_visualization(im.ctx, op);  // lon, lat order in; x, y out
-        proj_destroy(op);
-    }
-    if (!im.op) throw UsageError("no transformation between WGS84 and CRS '" + m_definition + "'");
+    if (!m_impl->own.make(m_impl->local_wkt)) throw UsageError("no transformation between WGS84 and CRS '" + m_definition + "'");
 }
 
 LocalFrame LocalFrame::transverse_mercator(LonLat centre) {
@@ -112,7 +158,7 @@ LocalFrame& LocalFrame::operator=(LocalFrame&&) noexcept = default;
 LocalFrame::~LocalFrame() = default;
 
 XY LocalFrame::forward(LonLat p) const {
-    const PJ_COORD c = proj_trans(m_impl->op, PJ_FWD, proj_coord(p.lon, p.lat, 0, 0));
+    const PJ_COORD c = proj_trans(m_impl->op(), PJ_FWD, proj_coord(p.lon, p.lat, 0, 0));
     if (!std::isfinite(c.xy.x) || !std::isfinite(c.xy.y) || std::fabs(c.xy.x) > 1e30) {
         char buf[160];
         std::snprintf(buf, sizeof buf, "point (lon %.7f, lat %.7f) cannot be projected into the local frame", p.lon, p.lat);
@@ -122,7 +168,7 @@ XY LocalFrame::forward(LonLat p) const {
 }
 
 LonLat LocalFrame::inverse(XY p) const {
-    const PJ_COORD c = proj_trans(m_impl->op, PJ_INV, proj_coord(p.x, p.y, 0, 0));
+    const PJ_COORD c = proj_trans(m_impl->op(), PJ_INV, proj_coord(p.x, p.y, 0, 0));
     if (!std::isfinite(c.lp.lam) || !std::isfinite(c.lp.phi) || std::fabs(c.lp.lam) > 1e30) {
         char buf[160];
         std::snprintf(buf, sizeof buf, "local point (%.3f, %.3f) m has no WGS84 position", p.x, p.y);
@@ -134,7 +180,7 @@ LonLat LocalFrame::inverse(XY p) const {
 bool LocalFrame::forward(std::vector<double>& xs, std::vector<double>& ys, std::size_t* failed_index) const {
     const std::size_t n = xs.size();
     if (n == 0) return true;
-    proj_trans_generic(m_impl->op, PJ_FWD, xs.data(), sizeof(double), n, ys.data(), sizeof(double), n, nullptr, 0, 0,
+    proj_trans_generic(m_impl->op(), PJ_FWD, xs.data(), sizeof(double), n, ys.data(), sizeof(double), n, nullptr, 0, 0,
                        nullptr, 0, 0);
     for (std::size_t i = 0; i < n; ++i) {
         if (!std::isfinite(xs[i]) || !std::isfinite(ys[i]) || std::fabs(xs[i]) > 1e30 || std::fabs(ys[i]) > 1e30) {

@@ -14,6 +14,8 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -104,6 +106,54 @@ TEST(CApi, AgreesWithShoalProbeOnThousandsOfPoses) {
     EXPECT_GT(clear, 100u);
     EXPECT_GT(uncovered, 10u);
     shoal_detector_free(det);
+}
+
+// The header promises that one detector may serve several threads at once. PROJ objects may
+// not be shared between threads, so this is true only because each thread projects with its
+// own copy: four threads checking at once give, pose for pose, what one thread gives alone.
+TEST(CApi, ThreadsShareOneDetector) {
+    shoal_grid* grid = shoal_grid_load(solent_grid().c_str());
+    ASSERT_NE(grid, nullptr) << shoal_last_error();
+    shoal_detector* det = shoal_detector_new(grid, 100, 20, 8, 8);
+    ASSERT_NE(det, nullptr) << shoal_last_error();
+    constexpr int threads = 4, per_thread = 3000;
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> lat(50.60, 50.85), lon(-1.60, -1.00), hdg(0, 360);
+    struct Query {
+        double lat, lon, hdg;
+        shoal_contact alone;
+    };
+    std::vector<Query> queries(threads * per_thread);
+    for (Query& q : queries) {
+        q = {lat(rng), lon(rng), hdg(rng), {}};
+        ASSERT_EQ(shoal_check(det, q.lat, q.lon, q.hdg, 500, &q.alone), 0) << shoal_last_error();
+    }
+    std::vector<int> mismatches(threads, 0), failures(threads, 0);
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {
+            for (int i = t * per_thread; i < (t + 1) * per_thread; ++i) {
+                const Query& q = queries[i];
+                shoal_contact c{};
+                if (shoal_check(det, q.lat, q.lon, q.hdg, 500, &c) != 0) {
+                    ++failures[t];
+                    continue;
+                }
+                if (c.covered != q.alone.covered || c.contact != q.alone.contact || c.clearance_m != q.alone.clearance_m)
+                    ++mismatches[t];
+            }
+        });
+    for (std::thread& th : pool) th.join();
+    for (int t = 0; t < threads; ++t) {
+        EXPECT_EQ(failures[t], 0) << "thread " << t;
+        EXPECT_EQ(mismatches[t], 0) << "thread " << t;
+    }
+    int contacts = 0;
+    for (const Query& q : queries) contacts += q.alone.contact;
+    EXPECT_GT(contacts, 100);  // the poses reach land, not only open water
+    EXPECT_LT(contacts, threads * per_thread - 100);
+    shoal_detector_free(det);
+    shoal_grid_free(grid);
 }
 
 TEST(CApi, ErrorsAreNullWithAMessageOfThisThread) {
