@@ -1,6 +1,7 @@
 // COLREG situations (see include/shoal/audit/colreg.hpp): the classification at the moment a
 // pair comes within range, CPA/TCPA then, the actual closest approach and each ship's action.
 #include <shoal/audit/colreg.hpp>
+#include <shoal/audit/motion.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -35,17 +36,13 @@ double wrap360(double a) {
     return a >= 360.0 ? 0.0 : a;
 }
 /// |a - b| on the circle, in [0, 180].
-double angle_between(double a, double b) {
-    const double d = wrap360(a - b);
-    return d > 180 ? 360 - d : d;
-}
+double angle_between(double a, double b) { return std::fabs(turn(b, a)); }
 bool abaft_the_beam(double bearing) { return bearing > abaft_from_deg && bearing < 360.0 - abaft_from_deg; }
 bool right_ahead(double bearing, double tol) { return bearing <= tol || bearing >= 360.0 - tol; }
 bool on_starboard(double bearing) { return bearing > 0 && bearing < 180; }
 
 /// One track in local metres, with per fix interval presence and velocity.
 struct Local {
-    const track::Track* track = nullptr;
     std::vector<double> t;
     std::vector<XY> p;
     std::vector<double> heading;  ///< per fix
@@ -65,9 +62,7 @@ struct Local {
     }
     double heading_at(std::size_t i, double tt) const {
         const double f = (tt - t[i]) / (t[i + 1] - t[i]);
-        double d = wrap360(heading[i + 1] - heading[i]);
-        if (d > 180) d -= 360;
-        return wrap360(heading[i] + f * d);
+        return wrap360(heading[i] + f * turn(heading[i], heading[i + 1]));
     }
     std::vector<XY> fix_velocity;  ///< per fix: from its speed and course over ground when given, else from positions
     double speed_at_fix(std::size_t j) const { return std::sqrt(geo::norm2(fix_velocity[j])); }
@@ -79,7 +74,6 @@ struct Local {
 
 Local prepare(const track::Track& tr, const geo::LocalFrame& frame, double max_gap_s) {
     Local l;
-    l.track = &tr;
     const std::size_t n = tr.fixes.size();
     for (const track::Fix& f : tr.fixes) {
         if (!std::isfinite(f.time_s)) throw InputError("track '" + tr.id + "' in '" + tr.file + "', fix at line " + std::to_string(f.line) + ": no time");
