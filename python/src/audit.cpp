@@ -197,12 +197,6 @@ py::tuple point(geo::LonLat p) {
     return py::make_tuple(fields::round_to(p.lon, fields::coordinate_decimals), fields::round_to(p.lat, fields::coordinate_decimals));
 }
 
-double positive(const char* name, double v, bool zero_ok = false) {
-    if (!std::isfinite(v) || v < 0 || (!zero_ok && v == 0))
-        throw py::value_error(std::string(name) + " must be a finite number " + (zero_ok ? ">= 0" : "> 0") + " (got " + track::detail::fmt(v) + ")");
-    return v;
-}
-
 py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string& file, const py::object& ship, const py::object& dims,
                    double margin_m, double step_m, double max_gap_s, double max_speed_kn, double berthing_speed_kn, double stop_diameter_m,
                    double stop_time_s, unsigned jobs, bool encounters, double ship_margin_m, const py::object& berths,

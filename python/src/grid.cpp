@@ -19,10 +19,6 @@ std::optional<T> opt(const py::object& o) {
     return o.is_none() ? std::nullopt : std::optional<T>(o.cast<T>());
 }
 
-void require_positive(const char* name, const std::optional<double>& v) {
-    if (v && !(std::isfinite(*v) && *v > 0)) throw py::value_error(std::string(name) + " must be a finite number > 0");
-}
-
 GridHandle load(const py::object& path) {
     GridHandle h;
     h.coast = paths_of(path);
@@ -41,15 +37,12 @@ GridHandle build(const py::object& coast_paths, const py::object& crs, const py:
     grid::BuildRequest req;
     if (auto v = opt<std::string>(crs)) req.crs = *v;
     const auto cell = opt<double>(cell_m), length = opt<double>(ship_length_m), danger = opt<double>(danger_radius_m);
-    require_positive("cell_m", cell);
-    require_positive("ship_length_m", length);
-    require_positive("danger_radius_m", danger);
+    for (const auto& [name, v] : {std::pair{"cell_m", cell}, {"ship_length_m", length}, {"danger_radius_m", danger}})
+        if (v) positive(name, *v);
     if (cell && length) throw py::value_error("give cell_m or ship_length_m, not both");
     req.cell_m = cell.value_or(0);
     req.ship_length_m = length.value_or(0);
-    req.import.limiting_depth_m = opt<double>(hazard_depth_m);
-    if (req.import.limiting_depth_m && !std::isfinite(*req.import.limiting_depth_m))
-        throw py::value_error("hazard_depth_m must be a finite number (metres)");
+    req.import.limiting_depth_m = depth_or_none(hazard_depth_m, "hazard_depth_m", false);
     if (!layers.is_none()) req.import.layers = py::isinstance<py::str>(layers) ? std::vector<std::string>{layers.cast<std::string>()}
                                                                               : layers.cast<std::vector<std::string>>();
     if (auto v = opt<std::string>(source_crs)) req.import.source_crs = *v;

@@ -12,6 +12,8 @@
 #include <shoal/util/option_names.hpp>
 #include <shoal/version.hpp>
 
+#include "detail/parse_util.hpp"
+
 namespace shoal::python {
 
 std::vector<std::string> paths_of(const py::handle& paths) {
@@ -75,6 +77,12 @@ std::optional<double> depth_or_none(const py::object& o, const char* name, bool 
     const double v = o.cast<double>();
     if (!std::isfinite(v) || (non_negative && v < 0))
         throw py::value_error(std::string(name) + (non_negative ? " must be a finite number >= 0 (metres)" : " must be a finite number (metres)"));
+    return v;
+}
+
+double positive(const char* name, double v, bool zero_ok) {
+    if (!std::isfinite(v) || v < 0 || (!zero_ok && v == 0))
+        throw py::value_error(std::string(name) + " must be a finite number " + (zero_ok ? ">= 0" : "> 0") + " (got " + track::detail::fmt(v) + ")");
     return v;
 }
 
