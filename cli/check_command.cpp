@@ -167,6 +167,11 @@ public:
         const grid::CoastGrid g = m_opts.load_grid(hull);
         m_audit.hazard_depth_m = m_opts.request.import.limiting_depth_m;
         m_audit.ukc_m = m_opts.ukc;
+        {  // the default ship's limit; whether an --ukc is used is the vessels' affair (the audit says)
+            grid::DepthPlan plan = grid::plan_vessel_depth(m_audit.hazard_depth_m, NAN, hull.draught(), m_audit.ukc_m, g);
+            plan.ukc_unused = false;
+            m_opts.warn_depth(plan, g);
+        }
         check_readable(m_berths);
         // Expected-contact areas: --berths, and the S-57 charts the coast came from.
         std::vector<std::string> area_warnings;

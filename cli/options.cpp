@@ -6,7 +6,6 @@
 #include <cstring>
 #include <filesystem>
 
-#include <shoal/grid/limiting_depth.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/option_names.hpp>
 #include <shoal/util/printable.hpp>
@@ -122,6 +121,10 @@ hull::Hull CoastAndShip::load_hull() const {
 
 std::string CoastAndShip::hull_label() const { return ship_file.empty() ? "--dims " + dims : "ship file"; }
 
+void CoastAndShip::warn_depth(const grid::DepthPlan& plan, const grid::CoastGrid& g) const {
+    print_warnings(grid::depth_warnings(plan, g, coast.size() == 1 ? coast[0] : ""));
+}
+
 grid::CoastGrid CoastAndShip::load_grid(const hull::Hull& hull) const {
     // One grid serves every limiting depth: it is built (or cached) the same whatever the
     // draught; the limit is chosen per vessel at check time.
@@ -136,14 +139,6 @@ grid::CoastGrid CoastAndShip::load_grid(const hull::Hull& hull) const {
     grid::LoadReport report;
     grid::CoastGrid g = grid::load_or_build(coast, request, &report);
     print_warnings(report.warnings);
-    if (plan.depth_m && g.charted_depths().empty()) {  // with a draught too: a shallow grounding would be missed without a word
-        char buf[400];
-        std::snprintf(buf, sizeof buf, "the grid '%s' holds land only (no depth areas or dangers): shallow water is not checked for "
-                      "the limiting depth %.2f m (%s); give a chart with depth areas (S-57 DEPARE, or --depth-field)",
-                      coast.size() == 1 ? coast[0].c_str() : "of the coastline sources", *plan.depth_m,
-                      plan.source == grid::DepthPlan::Source::draught ? "ship file draught + --ukc" : "--hazard-depth");
-        print_warnings({buf});
-    }
     if (verbose)
         std::fprintf(stderr, "shoal: %s%s%s in %.3f s\n", printable(report.how).c_str(), report.cache_path.empty() ? "" : " ",
                      printable(report.cache_path).c_str(), report.seconds);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <shoal/grid/coast_grid.hpp>
+#include <shoal/grid/limiting_depth.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
 
@@ -54,6 +55,8 @@ struct CoastAndShip {
     /// with every depth area and danger; says on stderr the limiting depth `hull` gives
     /// (--hazard-depth, else its draught + --ukc) when it has one.
     grid::CoastGrid load_grid(const hull::Hull& hull) const;
+    /// Warns about the limiting depth `plan` on grid `g` (grid::depth_warnings), naming the coast.
+    void warn_depth(const grid::DepthPlan& plan, const grid::CoastGrid& g) const;
 };
 
 }  // namespace shoal::cli

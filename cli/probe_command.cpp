@@ -12,7 +12,6 @@
 #include <system_error>
 
 #include <shoal/check/detector.hpp>
-#include <shoal/grid/limiting_depth.hpp>
 #include <shoal/io/pose_csv.hpp>
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/output_file.hpp>
@@ -54,8 +53,7 @@ public:
         const grid::CoastGrid g = m_opts.load_grid(hull);
         const grid::DepthPlan depth =
             grid::plan_vessel_depth(m_opts.request.import.limiting_depth_m, NAN, hull.draught(), m_opts.ukc, g);
-        if (depth.ukc_unused && !depth.depth_m)
-            print_warnings({"--ukc needs a ship with a draught (or give --hazard-depth): checking against land only"});
+        m_opts.warn_depth(depth, g);
         if (depth.source == grid::DepthPlan::Source::grid_default)
             std::fprintf(stderr, "shoal: limiting depth %.2f m (the grid's default, import --hazard-depth)\n", *depth.depth_m);
         const check::Detector detector(g, hull, depth.depth_m);

@@ -91,14 +91,7 @@ grid::DepthPlan plan_depth(const GridHandle& g, const hull::Hull& hull, const py
     const std::optional<double> u = depth_or_none(ukc, "ukc", true);
     // As `shoal probe`: hazard_depth_m, else the ship's draught + ukc, else the grid's default.
     const grid::DepthPlan plan = grid::plan_vessel_depth(hazard, NAN, hull.draught(), u, *g.grid);
-    std::vector<std::string> w;
-    if (plan.ukc_unused && !plan.depth_m) w.push_back("ukc needs a ship with a draught (or give hazard_depth_m): checking against land only");
-    if (plan.depth_m && g.grid->charted_depths().empty()) {  // as the CLI: a shallow grounding would be missed without a word
-        char buf[300];
-        std::snprintf(buf, sizeof buf, "the grid holds land only (no depth areas or dangers): shallow water is not checked for the "
-                      "limiting depth %.2f m; build it from a chart with depth areas (S-57 DEPARE, or depth_field)", *plan.depth_m);
-        w.push_back(buf);
-    }
+    const std::vector<std::string> w = grid::depth_warnings(plan, *g.grid);
     warn_all(w);
     return plan;
 }

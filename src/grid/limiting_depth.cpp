@@ -1,6 +1,7 @@
 #include <shoal/grid/limiting_depth.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 #include <shoal/coast/coastline.hpp>
 
@@ -45,6 +46,24 @@ DepthPlan plan_vessel_depth(std::optional<double> hazard_depth_m, double vessel_
         plan.source = DepthPlan::Source::grid_default;
     }
     return plan;
+}
+
+std::vector<std::string> depth_warnings(const DepthPlan& plan, const CoastGrid& grid, const std::string& grid_name) {
+    std::vector<std::string> w;
+    if (plan.ukc_unused && !plan.depth_m)
+        w.push_back("AuditOptions::ukc_m needs a ship with a draught (or give AuditOptions::hazard_depth_m): checking against land only");
+    if (plan.depth_m && grid.charted_depths().empty()) {
+        const char* why = plan.source == DepthPlan::Source::hazard_depth     ? "AuditOptions::hazard_depth_m"
+                          : plan.source == DepthPlan::Source::grid_default   ? "the grid's default"
+                          : plan.source == DepthPlan::Source::vessel_draught ? "the vessel's draught + AuditOptions::ukc_m"
+                                                                             : "the ship's draught + AuditOptions::ukc_m";
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%.2f m (%s)", *plan.depth_m, why);
+        w.push_back((grid_name.empty() ? std::string("the grid") : "the grid '" + grid_name + "'") +
+                    " holds land only (no depth areas or dangers): shallow water is not checked for the limiting depth " + buf +
+                    "; build it from a chart with depth areas (S-57 DEPARE, or ImportOptions::depth_field)");
+    }
+    return w;
 }
 
 }  // namespace shoal::grid

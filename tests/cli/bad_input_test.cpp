@@ -821,7 +821,7 @@ TEST_F(BadInput, ALandOnlyGridWithAShipThatHasADraughtIsSaid) {
     const Outcome o = shoal({"check", "--coast", s_grid, "--ship", ship, "-o", m_dir.file("deep.geojson"), good_tracks()});
     EXPECT_EQ(o.status, 1) << o.err;
     EXPECT_NE(o.err.find("holds land only"), std::string::npos) << o.err;
-    EXPECT_NE(o.err.find("limiting depth 6.80 m (ship file draught"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("limiting depth 6.80 m (the ship's draught"), std::string::npos) << o.err;
 }
 
 }  // namespace

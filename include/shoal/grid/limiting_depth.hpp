@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <shoal/grid/coast_grid.hpp>
 
@@ -44,5 +46,11 @@ DepthPlan plan_limiting_depth(std::optional<double> hazard_depth_m, double draug
 /// `default_draught_m` (0: none) + `ukc_m`; else `grid`'s default limiting depth; else land only.
 DepthPlan plan_vessel_depth(std::optional<double> hazard_depth_m, double vessel_draught_m, double default_draught_m,
                             std::optional<double> ukc_m, const CoastGrid& grid) noexcept;
+
+/// What the user should hear about `plan` for checks against `grid` (named `grid_name` in the
+/// message; "": "the grid"): an under-keel clearance that nothing uses, and a limiting depth
+/// on a grid that holds land only (a shallow grounding would be missed without a word). Option
+/// fields are named as the library names them (AuditOptions::ukc_m): see in_terms_of().
+std::vector<std::string> depth_warnings(const DepthPlan& plan, const CoastGrid& grid, const std::string& grid_name = "");
 
 }  // namespace shoal::grid
