@@ -332,17 +332,30 @@ json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_
 }
 
 
+bool is_gpkg(const std::string& path) { return std::filesystem::path(path).extension() == ".gpkg"; }
+
+/// Parts must be of the format of the report they are merged into.
+void check_formats(const std::vector<Part>& parts, bool gpkg) {
+    for (const Part& p : parts)
+        if ((p.gpkg != nullptr) != gpkg)
+            throw InputError(p.path + (gpkg ? ": a GeoJSON part; a GeoPackage report (-o REPORT.gpkg) is merged from GeoPackage parts (check --shard I/N -o PART.gpkg)"
+                                            : ": a GeoPackage part; a GeoJSON report is merged from GeoJSON parts (check --shard I/N -o PART.geojson), "
+                                              "or write the merged report as .gpkg"));
+}
+
 /// The parts, read and checked: one run's, complete sets of shards.
 struct Plan {
     std::vector<Part> parts;
     std::vector<std::size_t> first_of_set;  ///< the first part of each set of inputs
 };
 
-Plan plan_merge(const std::vector<std::string>& paths) {
+/// The parts at `paths`, of the format of the output (`gpkg`), checked.
+Plan plan_merge(const std::vector<std::string>& paths, bool gpkg) {
     if (paths.empty()) throw UsageError("merge: no parts given");
     Plan plan;
     std::vector<Part>& parts = plan.parts;
     for (const auto& p : paths) parts.push_back(read_part(p));
+    check_formats(parts, gpkg);
     for (std::size_t k = 1; k < parts.size(); ++k) check_same_run(parts[0], parts[k]);
 
     // Sets of inputs, in the order first met; each a complete set of shards.
@@ -591,22 +604,10 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
     return stage_gpkg_with(output, fill, view);
 }
 
-bool is_gpkg(const std::string& path) { return std::filesystem::path(path).extension() == ".gpkg"; }
-
-/// Parts must be of the format of the report they are merged into.
-void check_formats(const Plan& plan, bool gpkg) {
-    for (const Part& p : plan.parts)
-        if ((p.gpkg != nullptr) != gpkg)
-            throw InputError(p.path + (gpkg ? ": a GeoJSON part; a GeoPackage report (-o REPORT.gpkg) is merged from GeoPackage parts (check --shard I/N -o PART.gpkg)"
-                                            : ": a GeoPackage part; a GeoJSON report is merged from GeoJSON parts (check --shard I/N -o PART.geojson), "
-                                              "or write the merged report as .gpkg"));
-}
-
 }  // namespace
 
 std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* summary) {
-    Plan plan = plan_merge(paths);
-    check_formats(plan, false);
+    Plan plan = plan_merge(paths, false);
     return merged_geojson(plan, summary);
 }
 
@@ -614,8 +615,7 @@ MergeSummary merge_reports(const std::vector<std::string>& parts, const std::str
     const bool gpkg = is_gpkg(output);
     check_outputs(report_outputs(output, gpkg ? "gpkg" : "geojson"), parts);
     MergeSummary summary;
-    Plan plan = plan_merge(parts);
-    check_formats(plan, gpkg);
+    Plan plan = plan_merge(parts, gpkg);
     std::vector<StagedOutput> staged;
     if (gpkg) staged.push_back(staged_merged_gpkg(plan, output, &summary));
     else staged = stage_geojson_text(output, merged_geojson(plan, &summary), warnings);
