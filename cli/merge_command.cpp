@@ -20,13 +20,13 @@ class MergeCommand final : public Command {
 public:
     void setup(CLI::App& app) override {
         m_sub = app.add_subcommand("merge", "Merge the reports of a run's shards (check --shard I/N) into the report one run would write");
-        m_sub->footer("Usage: shoal merge PART.geojson... -o REPORT.geojson\n"
+        m_sub->footer("Usage: shoal merge PART.geojson... -o REPORT.geojson | shoal merge PART.gpkg... -o REPORT.gpkg\n"
                       "Parts of the same inputs must be every shard 0..N-1 once; parts of different inputs (one run per file)\n"
                       "follow one another in the order given and must share no file and no vessel. Parts whose run header\n"
                       "differs (version, grid, ship, rules) are refused, naming the field.\n"
                       "Exit status: as check's for the merged report: 0 no grounding, 1 a grounding (or ship collision), 2 bad parts.");
-        m_sub->add_option("parts", m_parts, "Shard reports (GeoJSON, written by shoal check --shard I/N)")->required();
-        m_sub->add_option("-o,--output", m_output, "Report to write (.geojson; its QGIS style beside it)")->required();
+        m_sub->add_option("parts", m_parts, "Shard reports (written by shoal check --shard I/N -o PART.geojson or PART.gpkg)")->required();
+        m_sub->add_option("-o,--output", m_output, "Report to write: .gpkg from GeoPackage parts, else GeoJSON (its QGIS style beside it)")->required();
     }
     int run() override {
         std::vector<std::string> warnings;

@@ -10,7 +10,8 @@ executable, which writes its part atomically; a task that fails (a non-zero exit
 "a grounding was found", or a process killed by a signal) is retried R times and, if it still
 fails, named on stderr, and the exit status is 2: a part is never silently missing. The parts
 are then merged (``shoal merge``) into the report one ``shoal check`` of the same arguments
-writes, byte for byte, and the exit status is check's (0 no grounding, 1 a grounding).
+writes, byte for byte, and the exit status is check's (0 no grounding, 1 a grounding). The
+report is GeoJSON, or a GeoPackage for ``-o REPORT.gpkg`` (the parts are then GeoPackages).
 
 One run per input equals one run over all inputs only when no vessel has fixes in two inputs
 (one run merges them into one track): ``shoal merge`` detects that case and refuses, naming
@@ -42,7 +43,7 @@ FLAGS = {"--encounters", "--hull-from-length-width", "--progress", "--no-progres
 MULTI = {"--coast", "--layer"}
 # Options a task sets itself; given by the user they are refused or replaced.
 REFUSED = {"--shard": "the driver sets --shard itself", "--plot": "a picture cannot be merged: draw it with one shoal check",
-           "--format": "merge writes GeoJSON: give -o REPORT.geojson"}
+           "--format": "the report's format is -o's extension: -o REPORT.geojson or -o REPORT.gpkg"}
 
 
 class UsageError(Exception):
@@ -88,9 +89,7 @@ def split_check_args(args):
         tracks.append(a)
         i += 1
     if output is None:
-        raise UsageError("check needs -o REPORT.geojson")
-    if output.endswith(".gpkg"):
-        raise UsageError(f"-o {output}: merge writes GeoJSON; give -o REPORT.geojson")
+        raise UsageError("check needs -o REPORT.geojson or -o REPORT.gpkg")
     if not tracks:
         raise UsageError("check needs at least one TRACK file or folder")
     return options, tracks, output
@@ -230,14 +229,15 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
     if a.local is not None and option_values(options, "--jobs") is None and option_values(options, "-j") is None:
         options.append(["--jobs", str(max(1, (os.cpu_count() or 1) // a.local))])
     tasks = []  # (name, part path, command)
+    ext = ".gpkg" if output.endswith(".gpkg") else ".geojson"  # parts of the report's format: merge reads those
     if a.shards:
         for i in range(a.shards):
-            part = os.path.join(parts_dir, "part-%05d-of-%05d.geojson" % (i, a.shards))
+            part = os.path.join(parts_dir, "part-%05d-of-%05d%s" % (i, a.shards, ext))
             tasks.append(("shard %d/%d" % (i, a.shards), part,
                           [shoal, "check"] + flat(options) + ["--shard", "%d/%d" % (i, a.shards), "-o", part, "--"] + tracks))
     else:
         for i, t in enumerate(tracks):
-            part = os.path.join(parts_dir, "part-%05d.geojson" % i)
+            part = os.path.join(parts_dir, "part-%05d%s" % (i, ext))
             tasks.append((t, part, [shoal, "check"] + flat(options) + ["--shard", "0/1", "-o", part, "--", t]))
 
     if a.local is not None:

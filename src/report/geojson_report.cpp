@@ -10,6 +10,7 @@
 
 #include "detail/qgis_styles.hpp"
 #include "report/geojson_output.hpp"
+#include "report/part_order.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/version.hpp>
@@ -169,23 +170,6 @@ void array_of(Stream& out, int depth, const std::vector<fields::Field<Row>>& tab
     out.close(']', depth);
 }
 
-/// A shard's report (--shard) also says where each of its rows goes in one run's order, for
-/// `merge`: the inputs read, each track's position among the run's tracks, each feature's
-/// track position (-1: a feature of the run, after the tracks'), each problem's group and
-/// position (report_fields.hpp: ProblemRow).
-json part_member(const audit::AuditResult& r) {
-    json order_tracks = json::array(), order_features = json::array(), order_problems = json::array(), inputs = json::array();
-    const auto position = [&](std::size_t k) { return k < r.track_positions.size() ? r.track_positions[k] : k; };
-    for (std::size_t k = 0; k < r.tracks.size(); ++k) {
-        order_tracks.push_back(position(k));
-        for (std::size_t e = 0; e < r.tracks[k].events.size(); ++e) order_features.push_back(position(k));
-    }
-    for (std::size_t e = 0; e < r.encounters.events.size(); ++e) order_features.push_back(-1);
-    for (const auto& p : fields::problem_rows(r)) order_problems.push_back(json::array({p.group, p.position}));
-    for (const auto& f : r.files) inputs.push_back(f.file);
-    return {{"inputs", inputs}, {"tracks", order_tracks}, {"features", order_features}, {"problems", order_problems}};
-}
-
 void write_report(const audit::AuditResult& r, const RunInfo& info, const StagedOutput::Sink& sink) {
     const fields::RunRow run{r, info};
     Stream out(sink);
@@ -212,7 +196,7 @@ void write_report(const audit::AuditResult& r, const RunInfo& info, const Staged
     array_of(out, 2, fields::problem_fields(), fields::problem_rows(r), r, true);
     if (r.shard.active()) {
         out.key(1, "part");
-        out.value(part_member(r), 2);
+        out.value(part_order(r, false), 2);  // where its rows go, for merge
     }
     out.close('}', 1);
     out.key(0, "features");

@@ -6,6 +6,8 @@
 
 #include "detail/qgis_styles.hpp"
 #include "report/chart_layer.hpp"
+#include "report/gpkg_output.hpp"
+#include "report/part_order.hpp"
 #include "report/qgis_project.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
@@ -79,18 +81,10 @@ OGRPoint point(geo::LonLat p) {
 }
 
 void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& info) {
-    OGRLayer& events = make_layer(ds, "events", wkbPoint, fields::event_fields(), r);
-    OGRLayer& tracks = make_layer(ds, "tracks", wkbMultiLineString, fields::track_fields(), r);
-    OGRLayer& hulls = make_layer(ds, "hulls", wkbPolygon, fields::hull_fields(), r);
-    OGRLayer& poses = make_layer(ds, "poses", wkbPolygon, fields::pose_fields(), r);
-    OGRLayer* coast = info.chart ? &make_layer(ds, "coast", wkbMultiPolygon, fields::coast_fields(), r) : nullptr;
-    // Exercise mode: ship-to-ship encounters, their own layer (hull footprints of both ships
-    // go into `hulls` with kind collision / close_quarters).
-    OGRLayer* encounters = r.has_encounters ? &make_layer(ds, "encounters", wkbPoint, fields::encounter_fields(), r) : nullptr;
-    OGRLayer& problems = make_layer(ds, "problems", wkbNone, fields::problem_fields(), r);
-    OGRLayer* approaches = r.has_encounters ? &make_layer(ds, "closest_approaches", wkbNone, fields::approach_fields(), r) : nullptr;
-    OGRLayer& run = make_layer(ds, "run", wkbNone, fields::run_fields(), r);
-    OGRLayer& summary = make_layer(ds, "summary", wkbNone, fields::summary_fields(), r);
+    const GpkgLayers layers = make_gpkg_layers(ds, r, info.chart != nullptr);
+    OGRLayer &events = *layers.events, &tracks = *layers.tracks, &hulls = *layers.hulls, &poses = *layers.poses, &problems = *layers.problems,
+             &run = *layers.run, &summary = *layers.summary;
+    OGRLayer *coast = layers.coast, *encounters = layers.encounters, *approaches = layers.approaches;
 
     if (ds.StartTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage transaction failed");
     for (const auto& t : r.tracks)
@@ -151,12 +145,39 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
         for (const auto& a : r.encounters.approaches) put(*approaches, fields::approach_fields(), fields::ApproachRow{r, a}, r, nullptr);
     put(run, fields::run_fields(), fields::RunRow{r, info}, r, nullptr);
     put(summary, fields::summary_fields(), fields::RunRow{r, info}, r, nullptr);
+    if (layers.part) {
+        OGRFeature f(layers.part->GetLayerDefn());
+        f.SetField(0, part_order(r, true).dump().c_str());
+        if (layers.part->CreateFeature(&f) != OGRERR_NONE) throw LibraryError(std::string("writing the part table: ") + CPLGetLastErrorMsg());
+    }
     if (ds.CommitTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage commit failed: " + std::string(CPLGetLastErrorMsg()));
 }
 
 }  // namespace
 
-StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info) {
+GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& r, bool chart) {
+    GpkgLayers l;
+    l.events = &make_layer(ds, "events", wkbPoint, fields::event_fields(), r);
+    l.tracks = &make_layer(ds, "tracks", wkbMultiLineString, fields::track_fields(), r);
+    l.hulls = &make_layer(ds, "hulls", wkbPolygon, fields::hull_fields(), r);
+    l.poses = &make_layer(ds, "poses", wkbPolygon, fields::pose_fields(), r);
+    if (chart) l.coast = &make_layer(ds, "coast", wkbMultiPolygon, fields::coast_fields(), r);
+    // Exercise mode: ship-to-ship encounters, their own layer (hull footprints of both ships
+    // go into `hulls` with kind collision / close_quarters).
+    if (r.has_encounters) l.encounters = &make_layer(ds, "encounters", wkbPoint, fields::encounter_fields(), r);
+    l.problems = &make_layer(ds, "problems", wkbNone, fields::problem_fields(), r);
+    if (r.has_encounters) l.approaches = &make_layer(ds, "closest_approaches", wkbNone, fields::approach_fields(), r);
+    l.run = &make_layer(ds, "run", wkbNone, fields::run_fields(), r);
+    l.summary = &make_layer(ds, "summary", wkbNone, fields::summary_fields(), r);
+    if (r.shard.active()) {
+        l.part = ds.CreateLayer("part", nullptr, wkbNone, nullptr);
+        OGRFieldDefn d("order", OFTString);
+        if (!l.part || l.part->CreateField(&d) != OGRERR_NONE) throw LibraryError(std::string("creating the GeoPackage table part: ") + CPLGetLastErrorMsg());
+    }
+    return l;
+}
+
+StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(GDALDataset&)>& fill, const ProjectView& view) {
     GDALAllRegister();
     StagedOutput out(path);  // removed (with SQLite's journal) if interrupted or if anything below fails
     if (out.direct())
@@ -164,17 +185,21 @@ StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& resul
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GPKG");
     if (!drv) throw LibraryError("GDAL has no GPKG driver");
     // A fixed "current date" in the GeoPackage's metadata tables: the same run writes the
-    // same bytes (whatever --jobs is).
+    // same bytes (whatever --jobs is, and merged from shards).
     CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
     GDALDatasetUniquePtr ds(drv->Create(out.temp_path().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
     if (!ds) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
-    write_layers(*ds, result, info);
+    fill(*ds);
     add_layer_styles(*ds);
-    add_qgis_project(*ds, std::filesystem::path(path).filename().string(), result);
+    add_qgis_project(*ds, std::filesystem::path(path).filename().string(), view);
     CPLErrorReset();
     ds.reset();  // GDALClose: flushes and closes the SQLite file
     if (CPLGetLastErrorType() == CE_Failure) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
     return out;
+}
+
+StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info) {
+    return stage_gpkg_with(path, [&](GDALDataset& ds) { write_layers(ds, result, info); }, project_view(result));
 }
 
 void write_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info) { stage_gpkg(path, result, info).commit(); }

@@ -1,15 +1,21 @@
 // Merging shard reports into one run's report (report/merge.hpp).
 #include <shoal/report/merge.hpp>
 
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "report/geojson_output.hpp"
+#include "report/gpkg_output.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/audit/shard.hpp>
 #include <shoal/report/report.hpp>
@@ -24,49 +30,152 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
+/// A part: a GeoJSON report of a shard, or a GeoPackage one, whose tables `doc` holds as a
+/// GeoJSON part would (its run header, summary, tracks and problems, and the `part` table's
+/// positions in `shoal`), so that both are checked by the same rules.
 struct Part {
     std::string path;
     json doc;
+    GDALDatasetUniquePtr gpkg;  ///< a GeoPackage part, open (null: GeoJSON)
     audit::Shard shard;
     std::size_t set = 0;  ///< which set of inputs
 };
 
+/// A row's place in one run's order: compared element by element (positions are whole
+/// numbers under 2^53, exact as doubles; an encounter's start time is a double).
+using Key = std::vector<double>;
+
 std::string named(const std::string& s) { return "'" + s + "'"; }
 
-Part read_part(const std::string& path) {
-    Part p;
-    p.path = path;
-    if (std::filesystem::path(path).extension() == ".gpkg")
-        throw InputError(path + ": a GeoPackage part; merge reads the GeoJSON reports of shards (check --shard I/N -o PART.geojson)");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot be read (" + (std::filesystem::exists(path) ? "not readable" : "no such file") + ")");
-    std::ostringstream text;
-    text << in.rdbuf();
-    try {
-        p.doc = json::parse(text.str());
-    } catch (const json::exception& e) {
-        throw InputError(path + ": not a GeoJSON report (" + e.what() + ")");
-    }
-    const auto not_part = [&](const std::string& why) {
-        return InputError(path + ": not the report of a shard (" + why + "); `shoal check --shard I/N` writes those");
-    };
-    if (!p.doc.is_object() || !p.doc.contains("shoal") || !p.doc["shoal"].is_object()) throw not_part("no \"shoal\" member");
+InputError not_a_part(const std::string& path, const std::string& why) {
+    return InputError(path + ": not the report of a shard (" + why + "); `shoal check --shard I/N` writes those");
+}
+
+/// The shard and the positions every part has (shoal.shard, shoal.part with `keys`).
+void read_shard(Part& p, std::initializer_list<const char*> keys) {
     const json& s = p.doc["shoal"];
-    if (!s.contains("shard") || !s["shard"].is_string() || !s.contains("part") || !s["part"].is_object()) throw not_part("no shard in its run header");
+    if (!s.contains("shard") || !s["shard"].is_string() || !s.contains("part") || !s["part"].is_object()) throw not_a_part(p.path, "no shard in its run header");
     try {
         p.shard = audit::parse_shard(s["shard"].get<std::string>());
     } catch (const InputError& e) {
-        throw not_part(std::string("its run header field 'shard': ") + e.what());
+        throw not_a_part(p.path, std::string("its run header field 'shard': ") + e.what());
     }
     const json& order = s["part"];
-    for (const char* k : {"inputs", "tracks", "features", "problems"})
-        if (!order.contains(k) || !order[k].is_array()) throw not_part(std::string("no part.") + k);
+    for (const char* k : keys)
+        if (!order.contains(k) || !order[k].is_array()) throw not_a_part(p.path, std::string("no part.") + k);
     for (const char* k : {"tracks", "problems"})
         if (!s.contains(k) || !s[k].is_array() || s[k].size() != order[k].size())
-            throw InputError(path + ": its shoal." + k + " and the positions in shoal.part." + k + " do not match (was it edited?)");
-    if (!p.doc.contains("features") || !p.doc["features"].is_array() || p.doc["features"].size() != order["features"].size())
+            throw InputError(p.path + ": its shoal." + k + " and the positions in shoal.part." + k + " do not match (was it edited?)");
+}
+
+Part read_geojson_part(const std::string& path, const std::string& text) {
+    Part p;
+    p.path = path;
+    try {
+        p.doc = json::parse(text);
+    } catch (const json::exception& e) {
+        if (std::filesystem::path(path).extension() == ".gpkg") throw InputError(path + ": not a GeoPackage (not an SQLite file)");
+        throw InputError(path + ": not a GeoJSON report (" + e.what() + ")");
+    }
+    if (!p.doc.is_object() || !p.doc.contains("shoal") || !p.doc["shoal"].is_object()) throw not_a_part(path, "no \"shoal\" member");
+    read_shard(p, {"inputs", "tracks", "features", "problems", "approaches"});
+    if (!p.doc.contains("features") || !p.doc["features"].is_array() || p.doc["features"].size() != p.doc["shoal"]["part"]["features"].size())
         throw InputError(path + ": its features and the positions in shoal.part.features do not match (was it edited?)");
     return p;
+}
+
+/// A feature's fields as JSON (DateTime as ISO 8601 text); null fields as null, or left out when `omit_null`.
+json attributes(const OGRFeature& f, bool omit_null) {
+    json j = json::object();
+    const OGRFeatureDefn& d = *f.GetDefnRef();
+    for (int i = 0; i < d.GetFieldCount(); ++i) {
+        const OGRFieldDefn& fd = *d.GetFieldDefn(i);
+        if (!f.IsFieldSetAndNotNull(i)) {
+            if (!omit_null) j[fd.GetNameRef()] = nullptr;
+            continue;
+        }
+        json& v = j[fd.GetNameRef()];
+        switch (fd.GetType()) {
+            case OFTInteger: case OFTInteger64: v = static_cast<std::int64_t>(f.GetFieldAsInteger64(i)); break;
+            case OFTReal: v = f.GetFieldAsDouble(i); break;
+            case OFTDateTime: {  // as the writer wrote it (iso_time), for merge's rules that read times
+                int y = 0, mo = 0, day = 0, h = 0, mi = 0, tz = 0;
+                float sec = 0;
+                f.GetFieldAsDateTime(i, &y, &mo, &day, &h, &mi, &sec, &tz);
+                const std::optional<double> t = track::utc_seconds(y, mo, day, h, mi, sec);
+                v = t ? json(iso_time(*t)) : json(f.GetFieldAsString(i));
+                break;
+            }
+            default: v = std::string(f.GetFieldAsString(i)); break;
+        }
+    }
+    return j;
+}
+
+/// The rows of table `name` of a part as JSON objects.
+json rows_of(Part& p, const char* name, bool omit_null) {
+    OGRLayer* l = p.gpkg->GetLayerByName(name);
+    if (!l) throw not_a_part(p.path, std::string("no layer ") + name);
+    json rows = json::array();
+    l->ResetReading();
+    while (OGRFeatureUniquePtr f{l->GetNextFeature()}) rows.push_back(attributes(*f, omit_null));
+    return rows;
+}
+
+Part read_gpkg_part(const std::string& path) {
+    Part p;
+    p.path = path;
+    GDALAllRegister();
+    const char* const drivers[] = {"GPKG", nullptr};
+    CPLErrorReset();
+    p.gpkg.reset(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers, nullptr, nullptr));
+    if (!p.gpkg) throw InputError(path + ": not a GeoPackage report (" + CPLGetLastErrorMsg() + ")");
+    OGRLayer* part = p.gpkg->GetLayerByName("part");
+    if (!part) throw not_a_part(path, "no table part");
+    const OGRFeatureUniquePtr order{part->GetNextFeature()};
+    const int field = order ? order->GetFieldIndex("order") : -1;
+    json& s = p.doc["shoal"];
+    try {
+        s = field < 0 ? json() : json::parse(order->GetFieldAsString(field));
+    } catch (const json::exception& e) {
+        throw InputError(path + ": its table part is not JSON (" + e.what() + "; was it edited?)");
+    }
+    if (!s.is_object()) throw not_a_part(path, "no positions in its table part");
+    s = json{{"part", std::move(s)}};
+    const json run = rows_of(p, "run", false), summary = rows_of(p, "summary", false);
+    if (run.size() != 1 || summary.size() != 1) throw not_a_part(path, "its tables run and summary are not one row each");
+    json header = json::object();
+    for (const auto& [k, v] : run[0].items()) header[k] = v;
+    // Which layers it has (coast: the chart was readable; encounters: exercise mode) is part of the run.
+    std::set<std::string> names;
+    for (OGRLayer* l : p.gpkg->GetLayers())
+        if (std::string(l->GetName()) != "part") names.insert(l->GetName());
+    std::string layers;
+    for (const auto& n : names) layers += (layers.empty() ? "" : ",") + n;
+    header["layers"] = layers;
+    header["summary"] = summary[0];
+    header["tracks"] = rows_of(p, "tracks", true);
+    header["problems"] = rows_of(p, "problems", true);
+    header["part"] = std::move(s["part"]);
+    s = std::move(header);
+    read_shard(p, {"inputs", "tracks", "problems", "approaches", "events", "encounters", "hulls", "poses"});
+    if (!s["part"].contains("project") || !s["part"]["project"].is_object()) throw not_a_part(path, "no part.project");
+    return p;
+}
+
+/// A part, GeoJSON or GeoPackage (an SQLite file).
+Part read_part(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot be read (" + (std::filesystem::exists(path) ? "not readable" : "no such file") + ")");
+    static const char sqlite[] = "SQLite format 3";  // and its NUL: the first 16 bytes of every SQLite file
+    char head[sizeof sqlite] = {};
+    in.read(head, sizeof head);
+    if (in.gcount() == sizeof head && std::equal(head, head + sizeof head, sqlite)) return read_gpkg_part(path);
+    in.clear();
+    in.seekg(0);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return read_geojson_part(path, text.str());
 }
 
 bool is_layer_or_table(const std::string& key) { return key == "summary" || key == "tracks" || key == "problems"; }
@@ -92,18 +201,68 @@ void check_same_run(const Part& a, const Part& b) {
     compare(a.doc["shoal"], b.doc["shoal"], "", false);
 }
 
-/// Sorts rows by key (stable), as one run orders them.
-template <class Key>
-json in_order(std::vector<std::pair<Key, json>> rows) {
+/// Sorts rows by key (stable: rows of equal keys stay in part order), as one run orders them.
+template <class Row>
+void sort_rows(std::vector<std::pair<Key, Row>>& rows) {
     std::stable_sort(rows.begin(), rows.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+}
+json in_order(std::vector<std::pair<Key, json>> rows) {
+    sort_rows(rows);
     json out = json::array();
     for (auto& r : rows) out.push_back(std::move(r.second));
     return out;
 }
 
+InputError edited(const Part& p, const char* what, const std::string& is_not) {
+    return InputError(p.path + ": an entry of shoal.part." + what + " is not " + is_not + " (was it edited?)");
+}
+
 std::size_t position_of(const json& v, const Part& p, const char* what) {
-    if (!v.is_number_unsigned()) throw InputError(p.path + ": a position in shoal.part." + what + " is not a whole number (was it edited?)");
+    if (!v.is_number_unsigned()) throw edited(p, what, "a whole number");
     return v.get<std::size_t>();
+}
+double as_key(std::size_t n) { return static_cast<double>(n); }
+
+/// A track's, or a row of a track's: its track's position.
+Key track_key(const json& o, const Part& p, const char* what) { return {as_key(p.set), as_key(position_of(o, p, what))}; }
+
+/// A feature's (GeoJSON features, GeoPackage events, encounters, hulls): a track's position
+/// (its events first, in track order), or an encounter's key [start_s, position of a,
+/// position of b, kind] (after every track's, in the order one run sorts encounters).
+Key feature_key(const json& o, const Part& p, const char* what) {
+    if (!o.is_array()) return {0, as_key(p.set), as_key(position_of(o, p, what))};
+    if (o.size() != 4 || !o[0].is_number() || !o[3].is_number_unsigned()) throw edited(p, what, "a track position or [start, a, b, kind]");
+    return {1, o[0].get<double>(), as_key(p.set), as_key(position_of(o[1], p, what)), as_key(position_of(o[2], p, what)), o[3].get<double>()};
+}
+
+/// A closest approach's: [position of a, position of b].
+Key approach_key(const json& o, const Part& p, const char* what) {
+    if (!o.is_array() || o.size() != 2) throw edited(p, what, "[a, b]");
+    return {as_key(p.set), as_key(position_of(o[0], p, what)), as_key(position_of(o[1], p, what))};
+}
+
+/// The keys of part k's problems: a file's problems once per set of inputs (nullopt in the
+/// other parts of the set, which must list the same), then failed tracks', then tracks'.
+std::vector<std::optional<Key>> problem_keys(const std::vector<Part>& parts, std::size_t k, const std::vector<std::size_t>& first_of_set) {
+    const Part& p = parts[k];
+    const json& s = p.doc["shoal"];
+    const Part& first = parts[first_of_set[p.set]];
+    std::vector<std::optional<Key>> keys;
+    for (std::size_t i = 0; i < s["problems"].size(); ++i) {
+        const json& o = s["part"]["problems"][i];
+        if (!o.is_array() || o.size() != 2 || !o[0].is_number_unsigned() || o[0].get<std::size_t>() > 2) throw edited(p, "problems", "[group, position]");
+        const auto group = o[0].get<std::size_t>();
+        if (group == 0) {
+            if (&first == &p) keys.push_back(Key{0, as_key(p.set), 0, as_key(i)});
+            else if (s["problems"][i] != first.doc["shoal"]["problems"][i])
+                throw InputError(named(p.path) + " and " + named(first.path) +
+                                 " read the same inputs but list different problems with them: were the files changed between them?");
+            else keys.push_back(std::nullopt);
+            continue;
+        }
+        keys.push_back(Key{as_key(group), as_key(p.set), as_key(position_of(o[1], p, "problems")), as_key(i)});
+    }
+    return keys;
 }
 
 json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_t>& first_of_set) {
@@ -172,17 +331,36 @@ json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_
     return out;
 }
 
-}  // namespace
 
-std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* summary) {
-    if (paths.empty()) throw UsageError("merge: no parts given");
+bool is_gpkg(const std::string& path) { return std::filesystem::path(path).extension() == ".gpkg"; }
+
+/// Parts must be of the format of the report they are merged into.
+void check_formats(const std::vector<Part>& parts, bool gpkg) {
+    for (const Part& p : parts)
+        if ((p.gpkg != nullptr) != gpkg)
+            throw InputError(p.path + (gpkg ? ": a GeoJSON part; a GeoPackage report (-o REPORT.gpkg) is merged from GeoPackage parts (check --shard I/N -o PART.gpkg)"
+                                            : ": a GeoPackage part; a GeoJSON report is merged from GeoJSON parts (check --shard I/N -o PART.geojson), "
+                                              "or write the merged report as .gpkg"));
+}
+
+/// The parts, read and checked: one run's, complete sets of shards.
+struct Plan {
     std::vector<Part> parts;
+    std::vector<std::size_t> first_of_set;  ///< the first part of each set of inputs
+};
+
+/// The parts at `paths`, of the format of the output (`gpkg`), checked.
+Plan plan_merge(const std::vector<std::string>& paths, bool gpkg) {
+    if (paths.empty()) throw UsageError("merge: no parts given");
+    Plan plan;
+    std::vector<Part>& parts = plan.parts;
     for (const auto& p : paths) parts.push_back(read_part(p));
+    check_formats(parts, gpkg);
     for (std::size_t k = 1; k < parts.size(); ++k) check_same_run(parts[0], parts[k]);
 
     // Sets of inputs, in the order first met; each a complete set of shards.
     std::vector<std::string> set_inputs;
-    std::vector<std::size_t> first_of_set;
+    std::vector<std::size_t>& first_of_set = plan.first_of_set;
     for (std::size_t k = 0; k < parts.size(); ++k) {
         const std::string key = parts[k].doc["shoal"]["part"]["inputs"].dump();
         const auto it = std::find(set_inputs.begin(), set_inputs.end(), key);
@@ -211,8 +389,9 @@ std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* s
             if (!seen[i])
                 throw InputError("shard " + audit::Shard{i, n}.text() + " is missing: the parts of the inputs of " + named(first.path) +
                                  " must be every shard 0 to " + std::to_string(n - 1) + " of " + std::to_string(n) + ", each once");
-        if (set_inputs.size() > 1 && first.doc["shoal"]["part"].value("exercise", false))
-            throw InputError(named(first.path) + " is an exercise (--encounters), which one run checks whole: its parts must be shards of the same inputs, not of separate files");
+        if (const json by = first.doc["shoal"].value("exercise_by", json()); set_inputs.size() > 1 && by.is_string() && by != "file")
+            throw InputError(named(first.path) + " is of exercises by " + by.get<std::string>() +
+                             " (--encounters), which one run of separate files would group otherwise: its parts must be shards of the same inputs");
         for (const auto& f : first.doc["shoal"]["part"]["inputs"]) {
             const std::string file = f.is_string() ? f.get<std::string>() : f.dump();
             const auto [it, fresh] = file_set.emplace(file, s);
@@ -236,49 +415,53 @@ std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* s
                                  ", which read different files: one run would have merged them into one track. Check those files in one run "
                                  "(shards of all of them: --shard I/N) instead of one run per file");
         }
-
-    // The rows, in one run's order.
-    using Key = std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>;
-    std::vector<std::pair<Key, json>> tracks, features, problems;
     std::set<std::pair<std::size_t, std::size_t>> track_seen;
+    for (const Part& p : parts)
+        for (const json& o : p.doc["shoal"]["part"]["tracks"]) {
+            const std::size_t pos = position_of(o, p, "tracks");
+            if (!track_seen.emplace(p.set, pos).second)
+                throw InputError(p.path + ": the track at position " + std::to_string(pos) + " is in another part as well (shards of different runs?)");
+        }
+    return plan;
+}
+
+std::size_t count_of(const json& summary, const char* name) {
+    return summary.contains(name) && summary[name].is_number_integer() ? summary[name].get<std::size_t>() : 0;
+}
+
+MergeSummary summary_of(std::size_t parts, std::size_t tracks, const json& s) {
+    return {parts, tracks, count_of(s, "events"), count_of(s, "groundings"), count_of(s, "collisions")};
+}
+
+/// The merged GeoJSON report of GeoJSON parts.
+std::string merged_geojson(Plan& plan, MergeSummary* summary) {
+    std::vector<Part>& parts = plan.parts;
+    std::vector<std::pair<Key, json>> tracks, features, problems, approaches;
     std::map<std::string, json> run_layers;  // other arrays of `shoal`, in part order
     for (std::size_t k = 0; k < parts.size(); ++k) {
         Part& p = parts[k];
         json& s = p.doc["shoal"];
         const json& order = s["part"];
-        for (std::size_t i = 0; i < s["tracks"].size(); ++i) {
-            const std::size_t pos = position_of(order["tracks"][i], p, "tracks");
-            if (!track_seen.emplace(p.set, pos).second)
-                throw InputError(p.path + ": the track at position " + std::to_string(pos) + " is in another part as well (shards of different runs?)");
-            tracks.push_back({Key{p.set, pos, 0, 0}, std::move(s["tracks"][i])});
-        }
-        for (std::size_t i = 0; i < p.doc["features"].size(); ++i) {
-            const json& o = order["features"][i];
-            const bool of_run = o.is_number_integer() && o.get<std::int64_t>() < 0;
-            Key key = of_run ? Key{1, k, i, 0} : Key{0, p.set, position_of(o, p, "features"), 0};
-            features.push_back({key, std::move(p.doc["features"][i])});
-        }
-        for (std::size_t i = 0; i < s["problems"].size(); ++i) {
-            const json& o = order["problems"][i];
-            if (!o.is_array() || o.size() != 2 || !o[0].is_number_unsigned() || o[0].get<std::size_t>() > 2)
-                throw InputError(p.path + ": an entry of shoal.part.problems is not [group, position] (was it edited?)");
-            const auto group = o[0].get<std::size_t>();
-            if (group == 0) {
-                if (first_of_set[p.set] == k) problems.push_back({Key{0, p.set, 0, i}, s["problems"][i]});
-                else if (s["problems"][i] != parts[first_of_set[p.set]].doc["shoal"]["problems"][i])
-                    throw InputError(named(p.path) + " and " + named(parts[first_of_set[p.set]].path) +
-                                     " read the same inputs but list different problems with them: were the files changed between them?");
+        for (std::size_t i = 0; i < s["tracks"].size(); ++i) tracks.push_back({track_key(order["tracks"][i], p, "tracks"), std::move(s["tracks"][i])});
+        for (std::size_t i = 0; i < p.doc["features"].size(); ++i)
+            features.push_back({feature_key(order["features"][i], p, "features"), std::move(p.doc["features"][i])});
+        const auto keys = problem_keys(parts, k, plan.first_of_set);
+        for (std::size_t i = 0; i < keys.size(); ++i)
+            if (keys[i]) problems.push_back({*keys[i], s["problems"][i]});
+        for (auto& [name, v] : s.items()) {
+            if (!v.is_array() || is_layer_or_table(name) || is_merge_only(name)) continue;
+            if (name == "closest_approaches") {
+                if (v.size() != order["approaches"].size())
+                    throw InputError(p.path + ": its shoal.closest_approaches and the positions in shoal.part.approaches do not match (was it edited?)");
+                for (std::size_t i = 0; i < v.size(); ++i) approaches.push_back({approach_key(order["approaches"][i], p, "approaches"), std::move(v[i])});
                 continue;
             }
-            problems.push_back({Key{group, p.set, position_of(o[1], p, "problems"), i}, std::move(s["problems"][i])});
+            json& all = run_layers[name];
+            if (all.is_null()) all = json::array();
+            for (auto& row : v) all.push_back(std::move(row));
         }
-        for (auto& [name, v] : s.items())
-            if (v.is_array() && !is_layer_or_table(name) && !is_merge_only(name)) {
-                json& all = run_layers[name];
-                if (all.is_null()) all = json::array();
-                for (auto& row : v) all.push_back(std::move(row));
-            }
     }
+    const std::size_t n_tracks = tracks.size();
 
     // The report: part 0's members, in its order, merged.
     json doc = json::object();
@@ -289,35 +472,153 @@ std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* s
             json s = json::object();
             for (const auto& [name, value] : v.items()) {
                 if (is_merge_only(name)) continue;
-                if (name == "summary") s[name] = merged_summary(parts, first_of_set);
+                if (name == "summary") s[name] = merged_summary(parts, plan.first_of_set);
                 else if (name == "tracks") s[name] = in_order(std::move(tracks));
                 else if (name == "problems") s[name] = in_order(std::move(problems));
+                else if (name == "closest_approaches") s[name] = in_order(std::move(approaches));
                 else if (value.is_array()) s[name] = std::move(run_layers[name]);
                 else s[name] = value;
             }
             doc[k] = std::move(s);
         }
     }
-    if (summary) {
-        const json& s = doc["shoal"]["summary"];
-        const auto count = [&](const char* name) { return s.contains(name) && s[name].is_number_integer() ? s[name].get<std::size_t>() : 0; };
-        summary->parts = parts.size();
-        summary->tracks = doc["shoal"]["tracks"].size();
-        summary->events = count("events");
-        summary->groundings = count("groundings");
-        summary->collisions = count("collisions");
-    }
+    if (summary) *summary = summary_of(parts.size(), n_tracks, doc["shoal"]["summary"]);
     return doc.dump(1) + "\n";
 }
 
+/// The features of layer `name` of every part, each with its key (`key` of the part's
+/// positions `what`), in one run's order.
+template <class KeyOf>
+std::vector<std::pair<Key, OGRFeatureUniquePtr>> gpkg_rows(std::vector<Part>& parts, const char* name, const char* what, KeyOf key) {
+    std::vector<std::pair<Key, OGRFeatureUniquePtr>> rows;
+    for (Part& p : parts) {
+        OGRLayer* in = p.gpkg->GetLayerByName(name);
+        if (!in) throw not_a_part(p.path, std::string("no layer ") + name);
+        const json* order = what ? &p.doc["shoal"]["part"][what] : nullptr;
+        if (order && static_cast<std::size_t>(in->GetFeatureCount()) != order->size())
+            throw InputError(p.path + ": its layer " + name + " and the positions in its table part (" + what + ") do not match (was it edited?)");
+        in->ResetReading();
+        for (std::size_t i = 0; OGRFeatureUniquePtr f{in->GetNextFeature()}; ++i) rows.push_back({key(p, order ? (*order)[i] : json(), f.get()), std::move(f)});
+    }
+    sort_rows(rows);
+    return rows;
+}
+
+/// Writes `rows` (features of parts) into `out`, as the single run's writer would: the same
+/// fields by name (fields a part has that the report has not, e.g. run.shard, are left out).
+void put_rows(OGRLayer* out, const std::vector<std::pair<Key, OGRFeatureUniquePtr>>& rows) {
+    for (const auto& [key, f] : rows) {
+        OGRFeature g(out->GetLayerDefn());
+        g.SetFrom(f.get(), TRUE);
+        if (out->CreateFeature(&g) != OGRERR_NONE)
+            throw LibraryError(std::string("writing a feature to layer ") + out->GetName() + ": " + CPLGetLastErrorMsg());
+    }
+}
+
+/// The tile of a coast feature, from its key ("RrrrrCcccc", report/chart_layer.hpp: tile_key).
+Key tile_key_of(const Part& p, const OGRFeature& f) {
+    int row = 0, col = 0;
+    const char* key = f.GetFieldAsString("tile");
+    if (std::sscanf(key, "R%dC%d", &row, &col) != 2) throw InputError(p.path + ": coast tile '" + key + "' is not RrrrrCcccc (was it edited?)");
+    return {as_key(static_cast<std::size_t>(col)), as_key(static_cast<std::size_t>(row))};
+}
+
+/// The merged GeoPackage report of GeoPackage parts, staged at `output`, written by the
+/// GeoPackage writer's own frame and layers (report/gpkg_output.hpp).
+StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSummary* summary) {
+    std::vector<Part>& parts = plan.parts;
+    GDALDataset& first = *parts[0].gpkg;
+    audit::AuditResult shape;  // what decides which layers and fields the report has
+    shape.has_encounters = first.GetLayerByName("encounters") != nullptr;
+    const bool chart = first.GetLayerByName("coast") != nullptr;
+    ProjectView view;
+    for (const Part& p : parts) {
+        const json& v = p.doc["shoal"]["part"]["project"];
+        const auto number = [&](const json& x, double none) { return x.is_number() ? x.get<double>() : none; };
+        const json& e = v.value("extent", json::array());
+        if (!e.is_array() || e.size() != 4) throw edited(p, "project", "{extent: [x0, y0, x1, y1], ...}");
+        view.add({number(e[0], INFINITY), number(e[1], INFINITY), number(e[2], -INFINITY), number(e[3], -INFINITY),
+                  number(v.value("first_fix_s", json()), NAN), number(v.value("last_fix_s", json()), NAN)});
+    }
+    const json merged = merged_summary(parts, plan.first_of_set);
+
+    const auto by_track = [](const char* what) { return [what](const Part& p, const json& o, const OGRFeature*) { return track_key(o, p, what); }; };
+    const auto by_feature = [](const char* what) { return [what](const Part& p, const json& o, const OGRFeature*) { return feature_key(o, p, what); }; };
+    const auto fill = [&](GDALDataset& ds) {
+        const GpkgLayers out = make_gpkg_layers(ds, shape, chart);
+        if (ds.StartTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage transaction failed");
+        put_rows(out.events, gpkg_rows(parts, "events", "events", by_feature("events")));
+        if (out.encounters) put_rows(out.encounters, gpkg_rows(parts, "encounters", "encounters", by_feature("encounters")));
+        const auto tracks = gpkg_rows(parts, "tracks", "tracks", by_track("tracks"));
+        if (summary) *summary = summary_of(parts.size(), tracks.size(), merged);
+        put_rows(out.tracks, tracks);
+        put_rows(out.hulls, gpkg_rows(parts, "hulls", "hulls", by_feature("hulls")));
+        put_rows(out.poses, gpkg_rows(parts, "poses", "poses", by_track("poses")));
+        if (out.coast) {
+            // A tile's features are the same in every part that has the tile: taken from the first.
+            std::map<Key, const Part*> tile_part;
+            auto rows = gpkg_rows(parts, "coast", nullptr, [&](const Part& p, const json&, const OGRFeature* f) {
+                Key tile = tile_key_of(p, *f);
+                const Part*& owner = tile_part.emplace(tile, &p).first->second;
+                tile.push_back(owner == &p ? 0 : 1);  // 1: a copy, dropped below
+                return tile;
+            });
+            rows.erase(std::remove_if(rows.begin(), rows.end(), [](const auto& r) { return r.first.back() != 0; }), rows.end());
+            put_rows(out.coast, rows);
+        }
+        {
+            std::vector<std::pair<Key, OGRFeatureUniquePtr>> rows;
+            for (std::size_t k = 0; k < parts.size(); ++k) {
+                const auto keys = problem_keys(parts, k, plan.first_of_set);
+                OGRLayer* in = parts[k].gpkg->GetLayerByName("problems");
+                in->ResetReading();
+                for (std::size_t i = 0; OGRFeatureUniquePtr f{in->GetNextFeature()}; ++i)
+                    if (i < keys.size() && keys[i]) rows.push_back({*keys[i], std::move(f)});
+            }
+            sort_rows(rows);
+            put_rows(out.problems, rows);
+        }
+        if (out.approaches)
+            put_rows(out.approaches, gpkg_rows(parts, "closest_approaches", "approaches",
+                                               [](const Part& p, const json& o, const OGRFeature*) { return approach_key(o, p, "approaches"); }));
+        // The run: part 0's row (without its shard); the summary: part 0's row, merged.
+        std::vector<std::pair<Key, OGRFeatureUniquePtr>> run, sum;
+        OGRLayer* run_in = first.GetLayerByName("run");
+        OGRLayer* sum_in = first.GetLayerByName("summary");
+        run_in->ResetReading();
+        sum_in->ResetReading();
+        run.push_back({Key{}, OGRFeatureUniquePtr{run_in->GetNextFeature()}});
+        sum.push_back({Key{}, OGRFeatureUniquePtr{sum_in->GetNextFeature()}});
+        put_rows(out.run, run);
+        OGRFeature& s = *sum[0].second;
+        for (const auto& [name, v] : merged.items()) {
+            const int i = s.GetFieldIndex(name.c_str());
+            if (i < 0 || v.is_null()) continue;  // null in every part: part 0's, as it is
+            if (v.is_number_integer()) s.SetField(i, static_cast<GIntBig>(v.get<std::int64_t>()));
+            else if (v.is_number()) s.SetField(i, v.get<double>());
+            else if (v.is_string()) s.SetField(i, v.get<std::string>().c_str());
+        }
+        put_rows(out.summary, sum);
+        if (ds.CommitTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage commit failed: " + std::string(CPLGetLastErrorMsg()));
+    };
+    return stage_gpkg_with(output, fill, view);
+}
+
+}  // namespace
+
+std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* summary) {
+    Plan plan = plan_merge(paths, false);
+    return merged_geojson(plan, summary);
+}
+
 MergeSummary merge_reports(const std::vector<std::string>& parts, const std::string& output, std::vector<std::string>* warnings) {
-    if (std::filesystem::path(output).extension() == ".gpkg")
-        throw UsageError("merge writes GeoJSON reports (from the GeoJSON reports of shards): -o " + named(output) +
-                         " is a GeoPackage; write the merged report as .geojson");
-    check_outputs(report_outputs(output, "geojson"), parts);
+    const bool gpkg = is_gpkg(output);
+    check_outputs(report_outputs(output, gpkg ? "gpkg" : "geojson"), parts);
     MergeSummary summary;
-    const std::string text = merge_geojson(parts, &summary);
-    std::vector<StagedOutput> staged = stage_geojson_text(output, text, warnings);
+    Plan plan = plan_merge(parts, gpkg);
+    std::vector<StagedOutput> staged;
+    if (gpkg) staged.push_back(staged_merged_gpkg(plan, output, &summary));
+    else staged = stage_geojson_text(output, merged_geojson(plan, &summary), warnings);
     commit_all(staged);
     return summary;
 }

@@ -71,20 +71,33 @@ const char* geometry_of(OGRLayer& l) {
 
 }  // namespace
 
-std::string qgis_project_xml(GDALDataset& ds, const std::string& file_name, const audit::AuditResult& r) {
+void ProjectView::add(const ProjectView& o) {
+    x0 = std::min(x0, o.x0), y0 = std::min(y0, o.y0), x1 = std::max(x1, o.x1), y1 = std::max(y1, o.y1);
+    if (!std::isnan(o.first_fix_s)) first_fix_s = std::isnan(first_fix_s) ? o.first_fix_s : std::min(first_fix_s, o.first_fix_s);
+    if (!std::isnan(o.last_fix_s)) last_fix_s = std::isnan(last_fix_s) ? o.last_fix_s : std::max(last_fix_s, o.last_fix_s);
+}
+
+ProjectView project_view(const audit::AuditResult& r) {
+    ProjectView v;
+    for (const auto& t : r.tracks)
+        for (const auto& line : t.summary.lines)
+            for (const auto& p : line) {
+                v.x0 = std::min(v.x0, p.lon), v.y0 = std::min(v.y0, p.lat);
+                v.x1 = std::max(v.x1, p.lon), v.y1 = std::max(v.y1, p.lat);
+            }
+    v.first_fix_s = r.first_fix_s;
+    v.last_fix_s = r.last_fix_s;
+    return v;
+}
+
+std::string qgis_project_xml(GDALDataset& ds, const std::string& file_name, const ProjectView& view) {
     // Top of the map first (QGIS's layer tree order).
     std::vector<std::pair<std::string, std::string>> layers;  // name, geometry
     for (const char* name : {"events", "encounters", "hulls", "poses", "tracks", "coast"})
         if (OGRLayer* l = ds.GetLayerByName(name)) layers.emplace_back(name, geometry_of(*l));
 
     // The run's extent (its tracks), and the UTM zone of its centre.
-    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-    for (const auto& t : r.tracks)
-        for (const auto& line : t.summary.lines)
-            for (const auto& p : line) {
-                x0 = std::min(x0, p.lon), y0 = std::min(y0, p.lat);
-                x1 = std::max(x1, p.lon), y1 = std::max(y1, p.lat);
-            }
+    const double x0 = view.x0, y0 = view.y0, x1 = view.x1, y1 = view.y1;
     const bool have_extent = x0 <= x1 && y0 <= y1;
     const double lon_c = have_extent ? (x0 + x1) / 2 : 0, lat_c = have_extent ? (y0 + y1) / 2 : 0;
     const int zone = std::clamp(static_cast<int>(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
@@ -132,12 +145,12 @@ std::string qgis_project_xml(GDALDataset& ds, const std::string& file_name, cons
         x += "  <ProjectViewSettings UseProjectScales=\"0\" rotation=\"0\"><Scales/><DefaultViewExtent " + std::string(box) + ">" +
              srs_xml(epsg) + "</DefaultViewExtent></ProjectViewSettings>\n";
     }
-    if (std::isfinite(r.first_fix_s) && std::isfinite(r.last_fix_s)) {
+    if (std::isfinite(view.first_fix_s) && std::isfinite(view.last_fix_s)) {
         // Frames of a minute for a run of up to two hours, five minutes up to a day, else an hour.
-        const double span = r.last_fix_s - r.first_fix_s;
+        const double span = view.last_fix_s - view.first_fix_s;
         const char* step = span <= 7200 ? "timeStep=\"1\" timeStepUnit=\"min\"" : span <= 86400 ? "timeStep=\"5\" timeStepUnit=\"min\"" : "timeStep=\"1\" timeStepUnit=\"h\"";
         x += "  <ProjectTimeSettings " + std::string(step) + " cumulativeTemporalRange=\"0\" frameRate=\"1\"><TemporalRange><start>" +
-             iso_time(r.first_fix_s) + "</start><end>" + iso_time(r.last_fix_s) + "</end></TemporalRange></ProjectTimeSettings>\n";
+             iso_time(view.first_fix_s) + "</start><end>" + iso_time(view.last_fix_s) + "</end></TemporalRange></ProjectTimeSettings>\n";
     }
     x += "</qgis>\n";
     return x;
@@ -210,8 +223,8 @@ std::string zip_one(const std::string& name, const std::string& content) {
     return out;
 }
 
-void add_qgis_project(GDALDataset& ds, const std::string& file_name, const audit::AuditResult& r) {
-    const std::string qgz = zip_one("shoal.qgs", qgis_project_xml(ds, file_name, r));
+void add_qgis_project(GDALDataset& ds, const std::string& file_name, const ProjectView& view) {
+    const std::string qgz = zip_one("shoal.qgs", qgis_project_xml(ds, file_name, view));
     static const char hex[] = "0123456789abcdef";
     std::string h;
     h.reserve(qgz.size() * 2);

@@ -15,6 +15,9 @@
 #include <string>
 #include <vector>
 
+#include <gdal_priv.h>
+#include <nlohmann/json.hpp>
+
 #include "run_shoal.hpp"
 
 namespace {
@@ -78,30 +81,41 @@ std::string case_files() {
     return files;
 }
 
-std::string single_run(const std::string& name, const std::string& extra = "") {
-    const fs::path out = temp_dir() / (name + ".geojson");
-    const Outcome r = shoal("check " + helsinki + extra + " " + case_files() + " -o " + q(out));
+/// Where run `name` writes its report: REPORT.EXT in a folder of its own, so that the reports
+/// of a single run and of a merge have the same file name (a GeoPackage's QGIS project names
+/// its file).
+fs::path report_of(const std::string& name, const std::string& ext) {
+    fs::create_directories(temp_dir() / name);
+    return temp_dir() / name / ("report." + ext);
+}
+
+/// One run over `files`; the report's bytes.
+std::string single_run(const std::string& name, const std::string& extra = "", const std::string& ext = "geojson",
+                       const std::string& files = case_files()) {
+    const fs::path out = report_of(name, ext);
+    const Outcome r = shoal("check " + helsinki + extra + " " + files + " -o " + q(out));
     EXPECT_EQ(r.status, 1) << r.err;
     return slurp(out);
 }
 
-/// Every shard of N, then merge (parts in `order` when given); the merged report's text.
-std::string sharded_run(unsigned n, const std::string& name, const std::string& extra = "", bool shuffle = false) {
+/// Every shard of N, then merge (parts shuffled when `shuffle`); the merged report's bytes.
+std::string sharded_run(unsigned n, const std::string& name, const std::string& extra = "", bool shuffle = false,
+                        const std::string& ext = "geojson", const std::string& files = case_files()) {
     std::vector<std::string> parts;
     for (unsigned i = 0; i < n; ++i) {
-        const fs::path part = temp_dir() / (name + "-part" + std::to_string(i) + ".geojson");
-        const Outcome r = shoal("check " + helsinki + extra + " --jobs 1 --shard " + std::to_string(i) + "/" + std::to_string(n) + " " +
-                                case_files() + " -o " + q(part));
+        const fs::path part = temp_dir() / (name + "-part" + std::to_string(i) + "." + ext);
+        const Outcome r = shoal("check " + helsinki + extra + " --jobs 1 --shard " + std::to_string(i) + "/" + std::to_string(n) + " " + files +
+                                " -o " + q(part));
         EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
         parts.push_back(q(part));
     }
     if (shuffle) std::shuffle(parts.begin(), parts.end(), std::mt19937(n));
     std::string list;
     for (const auto& p : parts) list += " " + p;
-    const fs::path out = temp_dir() / (name + "-merged.geojson");
+    const fs::path out = report_of(name + "-merged", ext);
     const Outcome m = shoal("merge" + list + " -o " + q(out));
     EXPECT_EQ(m.status, 1) << "a grounding in the merged report: " << m.err << m.out;
-    EXPECT_TRUE(fs::exists(temp_dir() / (name + "-merged.qml"))) << "the QGIS style beside it, as check writes";
+    EXPECT_EQ(fs::exists(temp_dir() / (name + "-merged") / "report.qml"), ext == "geojson") << "a QGIS style beside a GeoJSON report, as check writes";
     return slurp(out);
 }
 
@@ -128,6 +142,62 @@ TEST(ShardMerge, AShardHoldsOnlyItsTracksAndSaysWhichShardItIs) {
 TEST(ShardMerge, AnExerciseIsNeverSplit) {
     const std::string one = single_run("exercise", " --encounters");
     EXPECT_EQ(sharded_run(3, "exercise", " --encounters"), one);
+}
+
+/// Exercises one file each (--exercise-by file): in file x, two ships cross (a collision and
+/// close quarters) at 10:05 + (4 - x) * 20 s, so that one run's encounters, sorted by time,
+/// are in the reverse order of the files and of their tracks.
+std::string exercise_files() {
+    static const std::string files = [] {
+        std::string list;
+        for (int x = 0; x < 5; ++x) {
+            const fs::path f = temp_dir() / ("exercise" + std::to_string(x) + ".csv");
+            std::ofstream out(f);
+            out << "mmsi,timestamp,lat,lon,heading\n";
+            for (int i = 0; i <= 10; ++i) {
+                const int t = i * 60 + (4 - x) * 20;
+                char row[160];
+                std::snprintf(row, sizeof row, "23099%04d,2024-05-01T10:%02d:%02dZ,60.1000,%.5f,90\n", 10 * x, t / 60, t % 60, 24.90 + 0.002 * i);
+                out << row;
+                std::snprintf(row, sizeof row, "23099%04d,2024-05-01T10:%02d:%02dZ,%.5f,24.9100,0\n", 10 * x + 1, t / 60, t % 60, 60.0955 + 0.0009 * i);
+                out << row;
+            }
+            list += " " + q(f);
+        }
+        return list;
+    }();
+    return files;
+}
+
+TEST(ShardMerge, ExercisesByFileInShuffledShardsMergeToTheSingleRun) {
+    const std::string by_file = " --encounters --exercise-by file";
+    const std::string one = single_run("exercises", by_file, "geojson", exercise_files());
+    const auto doc = nlohmann::json::parse(one);
+    ASSERT_EQ(doc["shoal"]["summary"]["exercises"], 5);
+    ASSERT_GE(doc["shoal"]["summary"]["collisions"], 5) << "a collision in each exercise";
+    ASSERT_GE(doc["shoal"]["closest_approaches"].size(), 5u);
+    EXPECT_EQ(sharded_run(3, "exercises3", by_file, true, "geojson", exercise_files()), one);
+    const std::string gpkg = single_run("exercises-gpkg", by_file, "gpkg", exercise_files());
+    EXPECT_EQ(sharded_run(3, "exercises3-gpkg", by_file, true, "gpkg", exercise_files()), gpkg) << "GeoPackage parts";
+}
+
+/// Whether `gpkg` (a GeoPackage) has a layer or table `name`: GDAL's answer.
+bool has_table(const fs::path& gpkg, const std::string& name) {
+    GDALAllRegister();
+    const GDALDatasetUniquePtr ds(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    return ds && ds->GetLayerByName(name.c_str()) != nullptr;
+}
+
+TEST(ShardMerge, GeoPackageShardsMergeToTheSingleRunsGeoPackageByteForByte) {
+    const std::string one = single_run("single-gpkg", "", "gpkg");
+    ASSERT_EQ(one.compare(0, 15, "SQLite format 3"), 0);
+    EXPECT_EQ(single_run("single-gpkg-again", " --jobs 2", "gpkg"), one) << "two runs write the same bytes";
+    for (const char* table : {"events", "tracks", "hulls", "poses", "coast", "problems", "run", "summary"})
+        EXPECT_TRUE(has_table(report_of("single-gpkg", "gpkg"), table)) << table;
+    EXPECT_FALSE(has_table(report_of("single-gpkg", "gpkg"), "part"));
+    for (unsigned n : {1u, 2u, 3u}) EXPECT_EQ(sharded_run(n, "gpkg" + std::to_string(n), "", false, "gpkg"), one) << n << " shards";
+    EXPECT_EQ(sharded_run(4, "gpkg-shuffled", "", true, "gpkg"), one) << "parts in any order";
+    EXPECT_TRUE(has_table(temp_dir() / "gpkg-shuffled-part0.gpkg", "part")) << "a part says where its rows go";
 }
 
 TEST(ShardMerge, OneRunPerFileMergesToTheSingleRunWhenNoVesselSpansFiles) {
@@ -177,7 +247,7 @@ TEST(ShardMerge, MismatchedIncompleteOrForeignPartsAreRefusedNamingWhy) {
              {split_a + " " + split_b, "vessel 230990003 has tracks in"},
              {a + " " + b + " " + a, "given twice"},
              {q(temp_dir() / "no-such.geojson"), "no-such.geojson: cannot be read"},
-             {q(temp_dir() / "part.gpkg"), "a GeoPackage part"},
+             {q(temp_dir() / "part.gpkg"), "part.gpkg: cannot be read (no such file)"},
          }) {
         fs::remove(out);
         const Outcome r = shoal("merge " + c.parts + " -o " + q(out));
@@ -187,8 +257,69 @@ TEST(ShardMerge, MismatchedIncompleteOrForeignPartsAreRefusedNamingWhy) {
     }
     const Outcome gpkg = shoal("merge " + a + " " + b + " -o " + q(temp_dir() / "merged.gpkg"));
     EXPECT_EQ(gpkg.status, 2) << gpkg.err;
-    EXPECT_NE(gpkg.err.find("merge writes GeoJSON reports"), std::string::npos) << gpkg.err;
+    EXPECT_NE(gpkg.err.find("a GeoJSON part; a GeoPackage report (-o REPORT.gpkg) is merged from GeoPackage parts"), std::string::npos) << gpkg.err;
+    EXPECT_FALSE(fs::exists(temp_dir() / "merged.gpkg"));
     // A part given as the output would be destroyed.
+    const Outcome self = shoal("merge " + a + " " + b + " -o " + a);
+    EXPECT_EQ(self.status, 2) << self.err;
+    EXPECT_NE(self.err.find("would destroy the input"), std::string::npos) << self.err;
+}
+
+TEST(ShardMerge, MismatchedIncompleteOrForeignGeoPackagePartsAreRefusedNamingWhy) {
+    const auto part = [](const std::string& name, const std::string& args) {
+        const fs::path p = temp_dir() / (name + ".gpkg");
+        const Outcome r = shoal("check " + helsinki + " " + args + " -o " + q(p));
+        EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
+        return q(p);
+    };
+    const std::string a = part("g0", "--shard 0/2 " + case_files());
+    const std::string b = part("g1", "--shard 1/2 " + case_files());
+    const std::string b_step = part("g1step", "--step 2 --shard 1/2 " + case_files());
+    const std::string c3 = part("g1of3", "--shard 1/3 " + case_files());
+    const std::string whole = part("gwhole", case_files());
+    const fs::path geojson_b = temp_dir() / "g1.geojson";
+    ASSERT_LE(shoal("check " + helsinki + " --shard 1/2 " + case_files() + " -o " + q(geojson_b)).status, 1);
+    const fs::path text = temp_dir() / "notes.gpkg";
+    std::ofstream(text) << "not a report\n";
+    // A GeoPackage that is not shoal's: GDAL's own, with one layer.
+    const fs::path foreign = temp_dir() / "foreign.gpkg";
+    {
+        GDALAllRegister();
+        GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GPKG")->Create(foreign.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+        ASSERT_TRUE(ds && ds->CreateLayer("roads", nullptr, wkbLineString, nullptr));
+    }
+    struct Case {
+        std::string parts, output, says;
+    };
+    const std::string out_gpkg = q(temp_dir() / "refused.gpkg"), out_geojson = q(temp_dir() / "refused.geojson");
+    for (const Case& c : std::vector<Case>{
+             {a + " " + b_step, out_gpkg, "'step_m' is 5.0"},
+             {a + " " + b_step, out_gpkg, "but 2.0 in"},
+             {a, out_gpkg, "shard 1/2 is missing"},
+             {a + " " + b + " " + b, out_gpkg, "shard 1/2 is given twice"},
+             {a + " " + c3, out_gpkg, "different shard counts"},
+             {a + " " + b + " " + whole, out_gpkg, "gwhole.gpkg: not the report of a shard (no table part)"},
+             {a + " " + q(foreign), out_gpkg, "foreign.gpkg: not the report of a shard (no table part)"},
+             {a + " " + q(text), out_gpkg, "notes.gpkg: not a GeoPackage (not an SQLite file)"},
+             {a + " " + q(geojson_b), out_gpkg, "g1.geojson: a GeoJSON part; a GeoPackage report"},
+             {a + " " + b, out_geojson, "g0.gpkg: a GeoPackage part; a GeoJSON report is merged from GeoJSON parts"},
+         }) {
+        fs::remove(temp_dir() / "refused.gpkg");
+        fs::remove(temp_dir() / "refused.geojson");
+        const Outcome r = shoal("merge " + c.parts + " -o " + c.output);
+        EXPECT_EQ(r.status, 2) << c.parts << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.says), std::string::npos) << "wanted '" << c.says << "' in: " << r.err;
+        EXPECT_FALSE(fs::exists(temp_dir() / "refused.gpkg")) << "nothing written";
+        EXPECT_FALSE(fs::exists(temp_dir() / "refused.geojson")) << "nothing written";
+        for (const auto& e : fs::directory_iterator(temp_dir()))
+            EXPECT_EQ(e.path().filename().string().find(".shoal.tmp"), std::string::npos) << "a temporary left: " << e.path();
+    }
+    // A refused merge leaves a report already there as it was.
+    const fs::path kept = temp_dir() / "kept.gpkg";
+    fs::copy_file(foreign, kept, fs::copy_options::overwrite_existing);
+    const std::string before = slurp(kept);
+    EXPECT_EQ(shoal("merge " + a + " -o " + q(kept)).status, 2);
+    EXPECT_EQ(slurp(kept), before);
     const Outcome self = shoal("merge " + a + " " + b + " -o " + a);
     EXPECT_EQ(self.status, 2) << self.err;
     EXPECT_NE(self.err.find("would destroy the input"), std::string::npos) << self.err;

@@ -1,7 +1,7 @@
 """python3 -m shoal.dask against shoal check: the same report, byte for byte, with tasks
 killed and retried, and failures named. Run by ctest with /usr/bin/python3:
 
-    dask_test.py SHOAL_BINARY SOURCE_ROOT CASE    (CASE: per_file, shards, killed, failing)
+    dask_test.py SHOAL_BINARY SOURCE_ROOT CASE    (CASE: per_file, shards, gpkg, killed, failing)
 """
 import os
 import shutil
@@ -55,6 +55,17 @@ try:
         expect(os.path.exists(os.path.join(tmp, "dask.qml")), "the QGIS style beside it")
         expect("[5/5]" in err or "[3/3]" in err, "progress on stderr: " + err)
         expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
+    elif case == "gpkg":
+        # -o REPORT.gpkg: GeoPackage parts, merged into the GeoPackage one check writes (the
+        # same file name: its QGIS project names the file).
+        for d in ("single-gpkg", "dask-gpkg"):
+            os.makedirs(os.path.join(tmp, d))
+        single_gpkg, out = os.path.join(tmp, "single-gpkg", "report.gpkg"), os.path.join(tmp, "dask-gpkg", "report.gpkg")
+        status, _, err = run([shoal, "check"] + coast + files + ["-o", single_gpkg, "--no-progress"])
+        expect(status == 1, "single run to .gpkg exit 1: %d %s" % (status, err))
+        status, _, err = dask(["--shards", "3"], out)
+        expect(status == 1, "dask to .gpkg exit 1 as check's: %d\n%s" % (status, err))
+        expect(os.path.exists(out) and read(out) == read(single_gpkg), "dask GeoPackage == shoal check's, byte for byte")
     elif case == "killed":
         # A real process death: the wrapper SIGKILLs itself the first time it runs each part.
         wrapper = os.path.join(tmp, "dies-once.sh")

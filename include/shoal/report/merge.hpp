@@ -1,6 +1,8 @@
 #pragma once
 /// Merging the reports of a run's shards (`check --shard I/N`) into the report one run would
-/// have written, byte for byte.
+/// have written, byte for byte: GeoJSON parts into a GeoJSON report, GeoPackage parts into a
+/// GeoPackage (the same file as `check -o` of the same file name writes: the rows copied into
+/// the GeoPackage writer's own layers, in the same order, with the same QGIS project).
 ///
 /// Parts are grouped by the inputs they read (every shard of a run reads every file): each
 /// group must be a complete set of shards (each I of one N exactly once); several groups (one
@@ -12,12 +14,15 @@
 ///   array) must be equal in every part, except `shard`, which the merged report drops;
 /// - `summary`: each field combined as its table says (report_fields.hpp: Merge: added up,
 ///   counted once per set of inputs, earliest, latest);
-/// - `tracks`, `features`, `problems`: rows put back in one run's order by the positions each
-///   part lists in its `shoal.part` member (tracks in the order they were read, a track's
-///   features after the earlier tracks', features of the run after every track's; a file's
-///   problems once per set of inputs, then failed tracks', then tracks' in track order);
-/// - any other array of `shoal` (a layer of the run, e.g. closest_approaches) concatenated in
-///   part order.
+/// - `tracks`, `features`, `problems`, `closest_approaches` (and the GeoPackage's events,
+///   encounters, hulls, poses): rows put back in one run's order by the positions each part
+///   lists in its `shoal.part` member or `part` table (report/part_order.hpp: tracks in the
+///   order they were read, a track's rows after the earlier tracks', encounters after every
+///   track's in one run's order; a file's problems once per set of inputs, then failed
+///   tracks', then tracks' in track order);
+/// - the GeoPackage's `coast`: each tile's features once (from the first part that has it), in
+///   tile order; `run`: part 0's row without its `shard`;
+/// - any other array of `shoal` concatenated in part order.
 
 #include <cstddef>
 #include <string>
@@ -31,14 +36,16 @@ struct MergeSummary {
 };
 
 /// The merged GeoJSON report of the GeoJSON part reports at `parts` (in that order). Throws
-/// InputError naming the part and what is wrong: unreadable, not a shard's report, a run
+/// InputError naming the part and what is wrong: unreadable, not a shard's report (or a
+/// GeoPackage one), a run
 /// header field that differs ("the parts are not of one run: 'step_m' is 5.0 in 'a' but 2.0 in 'b'"), a shard missing or given
 /// twice, two sets of inputs sharing a file or a vessel.
 std::string merge_geojson(const std::vector<std::string>& parts, MergeSummary* summary = nullptr);
 
-/// merge_geojson written at `output` (.geojson, with its QGIS style beside it): the outputs are
-/// checked against the parts first (none may be a part), staged and put in place together.
-/// Warnings (a style not replaced) go into `warnings` when given.
+/// The merged report written at `output`: a GeoPackage (.gpkg) from GeoPackage parts, else
+/// merge_geojson's (with its QGIS style beside it); parts of the other format are refused. The
+/// outputs are checked against the parts first (none may be a part), staged and put in place
+/// together. Warnings (a style not replaced) go into `warnings` when given.
 MergeSummary merge_reports(const std::vector<std::string>& parts, const std::string& output, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace shoal::report

@@ -1,0 +1,47 @@
+// Where a shard's rows go in one run's report (report/part_order.hpp).
+#include "report/part_order.hpp"
+
+#include "report/qgis_project.hpp"
+#include "report/report_fields.hpp"
+
+namespace shoal::report {
+
+using json = nlohmann::ordered_json;
+
+json part_order(const audit::AuditResult& r, bool gpkg) {
+    const auto position = [&](std::size_t k) { return k < r.track_positions.size() ? r.track_positions[k] : k; };
+    const auto encounter_key = [&](const audit::Encounter& e) {
+        return json::array({e.start_s, position(e.a.track), position(e.b.track), static_cast<int>(e.kind)});
+    };
+    json inputs = json::array(), tracks = json::array(), features = json::array(), problems = json::array(), approaches = json::array();
+    json events = json::array(), encounters = json::array(), hulls = json::array(), poses = json::array();
+    for (const auto& f : r.files) inputs.push_back(f.file);
+    for (std::size_t k = 0; k < r.tracks.size(); ++k) {
+        tracks.push_back(position(k));
+        for (std::size_t e = 0; e < r.tracks[k].events.size(); ++e) events.push_back(position(k));
+        for (std::size_t p = 0; p < r.tracks[k].poses.size(); ++p) poses.push_back(position(k));
+    }
+    for (const auto& e : r.encounters.events) encounters.push_back(encounter_key(e));
+    // hull_rows' order: each track event's hull, then both ships' hulls of each encounter.
+    hulls = events;
+    for (const auto& k : encounters) hulls.insert(hulls.end(), 2, k);
+    features = events;
+    features.insert(features.end(), encounters.begin(), encounters.end());
+    for (const auto& p : fields::problem_rows(r)) problems.push_back(json::array({p.group, p.position}));
+    for (const auto& a : r.encounters.approaches) approaches.push_back(json::array({position(a.a), position(a.b)}));
+    json out = {{"inputs", inputs}, {"tracks", tracks}};
+    if (!gpkg) out["features"] = std::move(features);
+    out["problems"] = std::move(problems);
+    out["approaches"] = std::move(approaches);
+    if (gpkg) {
+        const ProjectView v = project_view(r);
+        out["events"] = std::move(events);
+        out["encounters"] = std::move(encounters);
+        out["hulls"] = std::move(hulls);
+        out["poses"] = std::move(poses);
+        out["project"] = {{"extent", json::array({v.x0, v.y0, v.x1, v.y1})}, {"first_fix_s", v.first_fix_s}, {"last_fix_s", v.last_fix_s}};
+    }
+    return out;
+}
+
+}  // namespace shoal::report
