@@ -17,6 +17,7 @@
 #include <shoal/audit/audit.hpp>
 #include <shoal/audit/shard.hpp>
 #include <shoal/coast/expected_areas.hpp>
+#include <shoal/report/debrief.hpp>
 #include <shoal/report/plot.hpp>
 #include <shoal/report/report.hpp>
 #include <shoal/track/reader.hpp>
@@ -124,6 +125,9 @@ public:
                           "outlier, a jump that persists starts a new piece of track (default 60)")
             ->check(finite)->check(CLI::PositiveNumber);
         m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and zoomed panels, groundings first");
+        m_sub->add_option("--debrief", m_debrief,
+                          "Also write the instructor's debrief: FOLDER (created if missing) receives one self-contained HTML page "
+                          "per exercise, <exercise>.html (the picture, scores, events in time order with zoomed panels, encounters)");
         m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
     }
@@ -143,6 +147,7 @@ public:
         std::vector<OutputSpec> outputs = report::report_outputs(m_output, format);
         if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
         check_outputs(outputs, all_inputs);
+        if (!m_debrief.empty()) report::check_debrief_folder(m_debrief);
         if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
         if (m_audit.sweep.step_m < audit::min_step_m)
             throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(audit::min_step_m) +
@@ -249,6 +254,26 @@ public:
                 plot_failed = true;
             }
         }
+        // The debrief pages: named by the exercises, so checked against the inputs and the
+        // other outputs only now (stage_debrief); like the picture, a failure is said and the
+        // report is kept.
+        bool debrief_failed = false;
+        std::size_t debrief_pages = 0;
+        if (!m_debrief.empty()) {
+            try {
+                std::vector<std::string> debrief_warnings;
+                std::vector<StagedOutput> sheets = report::stage_debrief(m_debrief, r, g, info, all_inputs, outputs, {}, &debrief_warnings);
+                print_warnings(debrief_warnings);
+                debrief_failed = !debrief_warnings.empty();
+                debrief_pages = sheets.size();
+                for (auto& s : sheets) staged.push_back(std::move(s));
+            } catch (const std::runtime_error& e) {
+                if (!dynamic_cast<const InputError*>(&e) && !dynamic_cast<const UsageError*>(&e)) throw;
+                std::fprintf(stderr, "shoal: error: the debrief was not written: %s (the report %s was)\n", printable(in_cli_terms(e.what())).c_str(),
+                             printable(m_output).c_str());
+                debrief_failed = true;
+            }
+        }
         commit_all(staged);
         const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         // With -o - the report is stdout: the table goes to stderr, so the JSON stays clean.
@@ -257,6 +282,7 @@ public:
         const double fps = r.sweep_s > 0 ? static_cast<double>(r.fixes) / r.sweep_s : 0;
         std::fprintf(table, "time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
                      printable(m_output).c_str());
+        if (!m_debrief.empty()) std::fprintf(table, "debrief: %zu page%s in %s\n", debrief_pages, debrief_pages == 1 ? "" : "s", printable(m_debrief).c_str());
         bool unreadable = r.tracks.empty() && (!r.errors.empty() || std::any_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); }));
         // A shard's report is a part of a run: files and tracks it could not read are listed
         // in it (problems) for the merge, and are no failure of the shard (a driver would
@@ -264,7 +290,7 @@ public:
         if (r.shard.active()) unreadable = false;
         if (unreadable) return exit_usage;
         if (r.groundings > 0 || r.collisions > 0) return exit_found;
-        return plot_failed ? exit_usage : exit_ok;
+        return plot_failed || debrief_failed ? exit_usage : exit_ok;
     }
 
 private:
@@ -275,6 +301,7 @@ private:
     std::optional<bool> m_progress;
     std::string m_date;
     std::string m_plot;
+    std::string m_debrief;
     std::string m_shard;
     std::vector<std::string> m_berths;
     std::vector<std::string> m_vessel_files;

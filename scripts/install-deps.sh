@@ -18,6 +18,7 @@ PACKAGES=(
   python3-qgis                # tests/report/qgis_report_test.py: the report opened and rendered in a real QGIS 3.22 (headless, offscreen)
   python3-distributed         # python3 -m shoal.dask: Dask/distributed 2022.12 (LocalCluster, scheduler) and its tests
   python3-dask                # the Dask core python3-distributed runs on
+  chromium                    # tests/report/debrief_test.cpp: the debrief sheet opened in a real headless browser (skipped without it)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <iterator>
 #include <optional>
 #include <string_view>
 #include <unordered_map>
@@ -407,6 +408,8 @@ double round_length(double m) {
 enum class Status { clear, close, contact, aground };
 
 struct TrackDraw {
+    const audit::TrackResult* result = nullptr;
+    std::size_t index = 0;  ///< in AuditResult::tracks
     const audit::TrackSummary* summary = nullptr;
     std::vector<std::vector<XY>> lines;
     Box box;
@@ -462,11 +465,23 @@ struct Scene {
     Box data;  ///< tracks and events, local metres
 };
 
-Scene project_scene(const audit::AuditResult& result, const geo::LocalFrame& frame) {
+/// The tracks `only` names (indices in result.tracks; empty: every track) and their events.
+Scene project_scene(const audit::AuditResult& result, const geo::LocalFrame& frame, const std::vector<std::size_t>& only = {}) {
+    std::vector<std::size_t> chosen = only;
+    if (chosen.empty())
+        for (std::size_t ti = 0; ti < result.tracks.size(); ++ti) chosen.push_back(ti);
+    std::sort(chosen.begin(), chosen.end());
+    chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+    if (!chosen.empty() && chosen.back() >= result.tracks.size())
+        throw UsageError("PlotOptions::tracks names track " + std::to_string(chosen.back()) + " of a result with " +
+                         std::to_string(result.tracks.size()));
     Scene s;
-    s.tracks.reserve(result.tracks.size());
-    for (const auto& t : result.tracks) {
+    s.tracks.reserve(chosen.size());  // events point into it: never reallocated after
+    for (const std::size_t ti : chosen) {
+        const auto& t = result.tracks[ti];
         TrackDraw& d = s.tracks.emplace_back();
+        d.result = &t;
+        d.index = ti;
         d.summary = &t.summary;
         const std::size_t contacts = t.summary.alongside + t.summary.contacts_at_start + t.summary.expected_contacts;
         d.status = t.summary.groundings > 0 ? Status::aground
@@ -480,11 +495,11 @@ Scene project_scene(const audit::AuditResult& result, const geo::LocalFrame& fra
         }
         s.data.extend(d.box);
     }
-    for (std::size_t ti = 0; ti < result.tracks.size(); ++ti) {
-        for (const auto& e : result.tracks[ti].events) {
+    for (const TrackDraw& td : s.tracks) {
+        for (const auto& e : td.result->events) {
             EventDraw& d = s.events.emplace_back();
-            d.track = &result.tracks[ti].summary;
-            d.drawn_track = &s.tracks[ti];
+            d.track = td.summary;
+            d.drawn_track = &td;
             d.event = &e;
             if (auto p = project(frame, e.point)) {
                 d.point = *p;
@@ -838,9 +853,8 @@ void draw_lonely_fixes(std::string& out, const TrackDraw& t, const View& v, cons
 
 /// The event's full description (tooltips): track, kind, times, speed, depth or clearance,
 /// heading, and the evidence for the kind.
-std::string event_title(const EventDraw& e) {
-    const Event& ev = *e.event;
-    std::string s = "track " + e.track->id + (e.track->name.empty() || e.track->name == e.track->id ? "" : " (" + e.track->name + ")");
+std::string describe_event(const audit::TrackSummary& t, const Event& ev) {
+    std::string s = "track " + t.id + (t.name.empty() || t.name == t.id ? "" : " (" + t.name + ")");
     s += ": " + kind_words(ev);
     const std::string hazard = audit::is_contact(ev.kind) ? hazard_text(ev) : "";
     if (!hazard.empty()) s += ", " + hazard;
@@ -851,6 +865,8 @@ std::string event_title(const EventDraw& e) {
     if (!evidence.empty()) s += "; " + evidence;
     return s;
 }
+
+std::string event_title(const EventDraw& e) { return describe_event(*e.track, *e.event); }
 
 /// The hull footprint; dashed when the heading was unknown (the hull's circle is drawn then).
 void draw_hull(std::string& out, const EventDraw& e, const View& v, bool focus) {
@@ -1088,66 +1104,140 @@ std::vector<TitleLine> zoom_title(const EventDraw& e) {
 /// Height (px) the title of a zoomed panel takes above it.
 constexpr double zoom_title_px = 76;
 
-void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, const EventDraw& focus, const View& v) {
-    open_panel(out, v, "zoom", "zoom-" + std::to_string(focus.zoom));
+/// What a zoomed panel is about: a track event (drawn as plot_svg draws it), or a moment of
+/// one or more tracks (an encounter, a breach) with their hulls then and over a time window.
+struct Focus {
+    std::string id;                      ///< the panel's id
+    XY point;                            ///< the marker, and where north and scale are measured
+    bool point_ok = false;
+    const EventDraw* event = nullptr;    ///< a track event, or null
+    std::vector<const TrackDraw*> own;   ///< tracks drawn in colour, with their fixes
+    std::vector<std::vector<XY>> hulls;  ///< hull outlines at the moment, one per track of `own` (or fewer)
+    std::vector<std::vector<XY>> window_hulls;  ///< the hulls of `own` at their poses in the time window (faint)
+    std::vector<std::size_t> window_owner;      ///< for each of window_hulls, its track's place in `own`
+    std::string cls;                     ///< marker class: an EventKind name, "collision", "close_quarters", "breach"
+    KindStyle style{red, red_dark};
+    std::string time_text;               ///< the label at the marker
+    std::string tooltip;                 ///< the marker's <title>
+    std::vector<TitleLine> title;        ///< above the panel (none: the panel starts at its top)
+};
+
+/// Colours of the second, third, ... track of a moment (the first has the kind's).
+constexpr const char* other_track_colours[] = {"#1f5fa8", "#7b3fa0", "#0f7d6b", "#8c564b"};
+
+const char* own_colour(const Focus& f, std::size_t k) {
+    if (f.event) return status_colour(f.own[0]->status);
+    return k == 0 ? f.style.dark : other_track_colours[(k - 1) % std::size(other_track_colours)];
+}
+
+void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, const Focus& focus, const View& v) {
+    open_panel(out, v, "zoom", focus.id);
     draw_chart(out, g, v, 1, 1.3);
     for (const TrackDraw& t : scene.tracks)
-        if (&t != focus.drawn_track) draw_track(out, t, v, clear_grey, 1.0, 0.8);
-    const TrackDraw& own = *focus.drawn_track;
-    draw_track(out, own, v, status_colour(own.status), 2.0, 0.95);
-    std::string dots;  // the track's fixes: how often the ship was seen
-    for (const auto& line : own.lines)
-        for (const XY& p : line) {
-            const XY q = v.to_px(p);
-            if (!Rect{q.x, q.y, q.x, q.y}.overlaps(v.px.grown(4))) continue;
-            dots += "<circle cx=\"" + num(q.x) + "\" cy=\"" + num(q.y) + "\" r=\"2.2\"/>";
-        }
-    if (!dots.empty())
-        out += "<g class=\"fixes\" fill=\"" + std::string(status_colour(own.status)) + "\" stroke=\"#ffffff\" stroke-width=\"0.6\">" +
-               dots + "</g>\n";
+        if (std::find(focus.own.begin(), focus.own.end(), &t) == focus.own.end()) draw_track(out, t, v, clear_grey, 1.0, 0.8);
+    for (std::size_t k = 0; k < focus.own.size(); ++k) {
+        const TrackDraw& own = *focus.own[k];
+        const char* colour = own_colour(focus, k);
+        draw_track(out, own, v, colour, 2.0, 0.95);
+        std::string dots;  // the track's fixes: how often the ship was seen
+        for (const auto& line : own.lines)
+            for (const XY& p : line) {
+                const XY q = v.to_px(p);
+                if (!Rect{q.x, q.y, q.x, q.y}.overlaps(v.px.grown(4))) continue;
+                dots += "<circle cx=\"" + num(q.x) + "\" cy=\"" + num(q.y) + "\" r=\"2.2\"/>";
+            }
+        if (!dots.empty())
+            out += "<g class=\"fixes\" fill=\"" + std::string(colour) + "\" stroke=\"#ffffff\" stroke-width=\"0.6\">" + dots + "</g>\n";
+    }
+    for (std::size_t k = 0; k < focus.window_hulls.size(); ++k)
+        out += "<polygon class=\"hull window\" points=\"" + points_attr(focus.window_hulls[k], v) + "\" fill=\"none\" stroke=\"" +
+               own_colour(focus, focus.window_owner[k]) + "\" stroke-width=\"0.8\" stroke-opacity=\"0.6\"/>\n";
     Labels labels(v.px.grown(-2));
     for (const EventDraw& e : scene.events)
-        if (&e != &focus && !e.box.empty() && v.world.distance_to(e.box) == 0) {
+        if (&e != focus.event && !e.box.empty() && v.world.distance_to(e.box) == 0) {
             draw_hull(out, e, v, false);
             labels.block(hull_rect(e, v));
         }
-    draw_hull(out, focus, v, true);
-    labels.block(hull_rect(focus, v));
+    if (focus.event) {
+        draw_hull(out, *focus.event, v, true);
+        labels.block(hull_rect(*focus.event, v));
+    }
+    for (std::size_t k = 0; k < focus.hulls.size(); ++k) {
+        if (focus.hulls[k].size() < 3) continue;
+        const char* colour = own_colour(focus, k);
+        out += "<polygon class=\"hull " + focus.cls + "\" points=\"" + points_attr(focus.hulls[k], v) + "\" fill=\"" + colour +
+               "\" fill-opacity=\"0.3\" stroke=\"" + colour + "\" stroke-width=\"1.6\" stroke-linejoin=\"round\"/>\n";
+    }
     for (const EventDraw& e : scene.events)
-        if (&e != &focus && e.point_ok && v.world.distance_to(e.box) == 0) labels.block(draw_contact(out, e, v, 3));
-    labels.block(draw_contact(out, focus, v, 4.5));
+        if (&e != focus.event && e.point_ok && v.world.distance_to(e.box) == 0) labels.block(draw_contact(out, e, v, 3));
+    if (focus.event) labels.block(draw_contact(out, *focus.event, v, 4.5));
+    else if (focus.point_ok) {
+        const XY p = v.to_px(focus.point);
+        out += "<g class=\"contact " + focus.cls + "\"><title>" + xml(focus.tooltip) + "</title><circle cx=\"" + num(p.x) +
+               "\" cy=\"" + num(p.y) + "\" r=\"4.5\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"3.5\"/><circle cx=\"" + num(p.x) +
+               "\" cy=\"" + num(p.y) + "\" r=\"4.5\" fill=\"none\" stroke=\"" + focus.style.dark +
+               "\" stroke-width=\"1.8\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"1.2\" fill=\"" + focus.style.dark +
+               "\"/></g>\n";
+        labels.block({p.x - 7, p.y - 7, p.x + 7, p.y + 7});
+    }
     out += "</g>\n";
     const Bearing b = bearing_at(g.frame(), focus.point);
     std::string texts;
     labels.block(draw_scale_bar(texts, v, b));
     labels.block(draw_north_arrow(texts, v, b));
-    const Event& ev = *focus.event;
-    const char* dark = kind_style(ev.kind).dark;
-    if (ev.orientation_unknown) {  // said in the picture as well as in the title
+    if (focus.event && focus.event->event->orientation_unknown) {  // said in the picture as well as in the title
         const std::string s = "heading unknown (hull circle)";
         const Rect r{v.px.x0 + 6, v.px.y0 + 6, v.px.x0 + 10 + text_width(s, 10.5), v.px.y0 + 21};
         labels.block(r);
         label(texts, r, s, 10.5, slate_dark, "label heading-unknown");
     }
-    const std::string s = (ev.kind == EventKind::contact_at_start ? "in contact at first fix "
-                           : ev.kind == EventKind::close_pass     ? "close pass from "
-                                                                  : "first contact ") +
-                          clock(ev.start_s);
     const XY at = v.to_px(focus.point);
-    if (auto r = labels.place(at, text_width(s, 11) + 4, 15, 7, v.px.w() / 3)) {
-        leader(texts, at, *r, 14, dark);
-        label(texts, *r, s, 11, dark, "label event-time", true);
+    if (focus.point_ok && !focus.time_text.empty())
+        if (auto r = labels.place(at, text_width(focus.time_text, 11) + 4, 15, 7, v.px.w() / 3)) {
+            leader(texts, at, *r, 14, focus.style.dark);
+            label(texts, *r, focus.time_text, 11, focus.style.dark, "label event-time", true);
+        }
+    // Which ship is which: the ids beside the hulls of a moment.
+    for (std::size_t k = 0; k < focus.hulls.size() && k < focus.own.size(); ++k) {
+        if (focus.hulls[k].empty()) continue;
+        Box hb;
+        for (const XY& p : focus.hulls[k]) hb.extend(p);
+        const XY c = v.to_px({(hb.minx + hb.maxx) / 2, (hb.miny + hb.maxy) / 2});
+        const std::string& id = focus.own[k]->summary->id;
+        if (auto r = labels.place(c, text_width(id, 10) + 4, 14, 8, v.px.w() / 4)) {
+            leader(texts, c, *r, 10, own_colour(focus, k));
+            label(texts, *r, id, 10, own_colour(focus, k), "label track-id", true);
+        }
     }
     out += texts;
     // The title above the panel (inside the panel's group, outside its clip).
-    const auto lines = zoom_title(focus);
     double ty = v.px.y0 - zoom_title_px;
-    for (std::size_t k = 0; k < lines.size(); ++k) {
+    for (std::size_t k = 0; k < focus.title.size(); ++k) {
+        const TitleLine& line = focus.title[k];
         ty += k == 0 ? 12 : 14.5;
-        text(out, v.px.x0, ty, fit_text(lines[k].text, lines[k].size, v.px.w()), lines[k].size, lines[k].colour,
-             k == 0 ? " class=\"zoom-title\" font-weight=\"bold\"" : lines[k].bold ? " font-weight=\"bold\"" : "");
+        text(out, v.px.x0, ty, fit_text(line.text, line.size, v.px.w()), line.size, line.colour,
+             k == 0 ? " class=\"zoom-title\" font-weight=\"bold\"" : line.bold ? " font-weight=\"bold\"" : "");
     }
     close_panel(out, v);
+}
+
+/// The focus of a track event's panel, titled as plot_svg titles it.
+Focus event_focus(const EventDraw& e) {
+    Focus f;
+    f.id = "zoom-" + std::to_string(e.zoom);
+    f.point = e.point;
+    f.point_ok = e.point_ok;
+    f.event = &e;
+    f.own = {e.drawn_track};
+    f.cls = audit::to_string(e.event->kind);
+    f.style = kind_style(e.event->kind);
+    const Event& ev = *e.event;
+    f.time_text = (ev.kind == EventKind::contact_at_start ? "in contact at first fix "
+                   : ev.kind == EventKind::close_pass     ? "close pass from "
+                                                          : "first contact ") +
+                  clock(ev.start_s);
+    f.title = zoom_title(e);
+    return f;
 }
 
 // ---------------------------------------------------------------- legend
@@ -1250,16 +1340,56 @@ std::vector<EventDraw*> order_events(Scene& scene) {
     return order;
 }
 
+/// The legend and the overview panel from `y` (px) down, `inner` px wide at `x0`: the tracks
+/// and events, padded by at least 2 km, kept within the chart (unless the data reach beyond
+/// it). Returns the y below them.
+double draw_overview_section(std::string& body, const Scene& scene, const grid::CoastGrid& grid, const std::vector<EventDraw*>& order,
+                             double x0, double y, double inner) {
+    y = draw_legend(body, x0, y, inner, legend_items(grid, scene)) + 8;
+    Box want = scene.data;
+    if (want.empty()) want = grid.extent();
+    else {
+        const double pad = std::max(2000.0, 0.05 * std::max(want.maxx - want.minx, want.maxy - want.miny));
+        Box allowed = grid.extent();
+        allowed.extend(want);
+        want = intersection(want.grown(pad), allowed);
+    }
+    const double ww = std::max(want.maxx - want.minx, 1.0), wh = std::max(want.maxy - want.miny, 1.0);
+    const double oh = std::clamp(inner * wh / ww, 0.4 * inner, 1.0 * inner);
+    text(body, x0, y + 14, "Overview", 14, ink, " font-weight=\"bold\"");
+    y += 22;
+    const View overview = fit(want, {x0, y, x0 + inner, y + oh});
+    draw_overview(body, scene, grid, overview, order);
+    return y + oh + 12;
+}
+
+/// An <svg> element of `width` x `height` px around `body`, titled `title`.
+std::string svg_element(const std::string& body, double width, double height, const std::string& title) {
+    std::string out;
+    out.reserve(body.size() + 600);
+    out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + num(width) + "\" height=\"" + num(height) +
+           "\" viewBox=\"0 0 " + num(width) + " " + num(height) + "\" font-family=\"" + font_family + "\">\n";
+    out += "<title>" + xml(title) + "</title>\n";
+    out += "<rect width=\"" + num(width) + "\" height=\"" + num(height) + "\" fill=\"#ffffff\"/>\n";
+    out += body;
+    out += "</svg>\n";
+    return out;
+}
+
+void check_width(double width) {
+    if (!std::isfinite(width) || width < 400 || width > 20000)
+        throw UsageError("plot width must be between 400 and 20000 px (got " + num(width) + ")");
+}
+
 }  // namespace
 
 std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const PlotOptions& options) {
     const double width = options.width_px;
-    if (!std::isfinite(width) || width < 400 || width > 20000)
-        throw UsageError("plot width must be between 400 and 20000 px (got " + num(width) + ")");
+    check_width(width);
     const double margin = 16;
     const double inner = width - 2 * margin;
 
-    Scene scene = project_scene(result, grid.frame());
+    Scene scene = project_scene(result, grid.frame(), options.tracks);
     const std::vector<EventDraw*> order = order_events(scene);
     // Zoomed panels in that order, up to the limit; what is left out is counted by kind.
     std::size_t zoom_count = 0;
@@ -1295,25 +1425,7 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
     } else {
         text(body, margin, y, fit_text(when.empty() ? how : when + "; " + how, 11, inner), 11, "#555555");
     }
-    y = draw_legend(body, margin, y + 10, inner, legend_items(grid, scene)) + 8;
-
-    // Overview: the tracks and events, padded by at least 2 km, kept within the chart (unless
-    // the data reach beyond it).
-    Box want = scene.data;
-    if (want.empty()) want = grid.extent();
-    else {
-        const double pad = std::max(2000.0, 0.05 * std::max(want.maxx - want.minx, want.maxy - want.miny));
-        Box allowed = grid.extent();
-        allowed.extend(want);
-        want = intersection(want.grown(pad), allowed);
-    }
-    const double ww = std::max(want.maxx - want.minx, 1.0), wh = std::max(want.maxy - want.miny, 1.0);
-    const double oh = std::clamp(inner * wh / ww, 0.4 * inner, 1.0 * inner);
-    text(body, margin, y + 14, "Overview", 14, ink, " font-weight=\"bold\"");
-    y += 22;
-    const View overview = fit(want, {margin, y, margin + inner, y + oh});
-    draw_overview(body, scene, grid, overview, order);
-    y += oh + 12;
+    y = draw_overview_section(body, scene, grid, order, margin, y + 10, inner);
 
     // Zoomed panels in three sections: groundings, the other contacts, close passes.
     struct Section {
@@ -1349,7 +1461,7 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
             const double size_m = std::max(8 * (e.hull_length_m > 0 ? e.hull_length_m : 100.0), 100.0);
             const Rect px{x, y + zoom_title_px, x + zw, y + zoom_title_px + zh};
             const View v = fit({e.point.x - size_m / 2, e.point.y - size_m / 2, e.point.x + size_m / 2, e.point.y + size_m / 2}, px);
-            draw_zoom(body, scene, grid, e, v);
+            draw_zoom(body, scene, grid, event_focus(e), v);
             if ((n + 1) % static_cast<std::size_t>(cols) == 0 || n + 1 == drawn.size()) y += zoom_title_px + zh + 16;
         }
     }
@@ -1368,16 +1480,103 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
     }
     const double height = std::ceil(y + margin);
 
-    std::string out;
-    out.reserve(body.size() + 600);
-    out += "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n";
-    out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + num(width) + "\" height=\"" + num(height) +
-           "\" viewBox=\"0 0 " + num(width) + " " + num(height) + "\" font-family=\"" + font_family + "\">\n";
-    out += "<title>shoal audit: " + xml(summary) + "</title>\n";
-    out += "<rect width=\"" + num(width) + "\" height=\"" + num(height) + "\" fill=\"#ffffff\"/>\n";
-    out += body;
-    out += "</svg>\n";
-    return out;
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n" +
+           svg_element(body, width, height, "shoal audit: " + summary);
+}
+
+std::string overview_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const PlotOptions& options) {
+    const double width = options.width_px;
+    check_width(width);
+    const double margin = 8;
+    Scene scene = project_scene(result, grid.frame(), options.tracks);
+    const std::vector<EventDraw*> order = order_events(scene);
+    std::string body;
+    const double height = std::ceil(draw_overview_section(body, scene, grid, order, margin, margin, width - 2 * margin));
+    return svg_element(body, width, height, "shoal: overview of " + plural(scene.tracks.size(), "track", "tracks"));
+}
+
+namespace {
+
+KindStyle named_style(const std::string& kind) noexcept {
+    for (EventKind k : kinds_by_severity)
+        if (kind == audit::to_string(k)) return kind_style(k);
+    if (kind == "collision") return {red, red_dark};
+    if (kind == "close_quarters") return {amber, amber_dark};
+    if (kind == "breach") return {contact_violet, "#5b3f8f"};
+    return {clear_grey, slate_dark};
+}
+
+}  // namespace
+
+const char* kind_colour(const std::string& kind) noexcept { return named_style(kind).dark; }
+
+std::string markup_text(std::string_view s) { return xml(s); }
+
+std::string duration_words(double seconds) { return duration_text(seconds); }
+
+std::string event_description(const audit::TrackSummary& track, const audit::Event& event) { return describe_event(track, event); }
+
+std::string zoom_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const ZoomSpec& spec, double width_px,
+                     const PlotOptions& options) {
+    if (!std::isfinite(width_px) || width_px < 150 || width_px > 20000)
+        throw UsageError("zoomed panel width must be between 150 and 20000 px (got " + num(width_px) + ")");
+    std::vector<std::size_t> drawn = options.tracks;
+    if (!drawn.empty()) drawn.insert(drawn.end(), spec.tracks.begin(), spec.tracks.end());
+    const Scene scene = project_scene(result, grid.frame(), drawn);
+    const geo::LocalFrame& frame = grid.frame();
+    Focus f;
+    f.id = spec.id;
+    f.cls = spec.kind;
+    f.style = named_style(spec.kind);
+    f.time_text = spec.time_label;
+    f.tooltip = spec.tooltip;
+    for (const std::size_t ti : spec.tracks) {
+        auto it = std::find_if(scene.tracks.begin(), scene.tracks.end(), [&](const TrackDraw& t) { return t.index == ti; });
+        if (it == scene.tracks.end()) throw UsageError("ZoomSpec::tracks names track " + std::to_string(ti) + " of a result with " +
+                                                       std::to_string(result.tracks.size()));
+        f.own.push_back(&*it);
+    }
+    double hull_m = 0;
+    if (spec.event) {
+        for (const EventDraw& e : scene.events)
+            if (e.event == spec.event && !f.own.empty() && e.drawn_track == f.own[0]) f.event = &e;
+        if (!f.event) throw UsageError("ZoomSpec::event is not an event of ZoomSpec::tracks[0]");
+        f.cls = audit::to_string(spec.event->kind);
+        f.style = kind_style(spec.event->kind);
+        hull_m = f.event->hull_length_m;
+    }
+    for (const auto& ring : spec.hulls) {
+        std::vector<XY>& h = f.hulls.emplace_back();
+        for (const LonLat& p : ring)
+            if (auto q = project(frame, p)) h.push_back(*q);
+        for (std::size_t a = 0; a < h.size(); ++a)
+            for (std::size_t b = a + 1; b < h.size(); ++b) hull_m = std::max(hull_m, geo::distance(h[a], h[b]));
+    }
+    if (std::isfinite(spec.start_s) && std::isfinite(spec.end_s))
+        for (std::size_t k = 0; k < f.own.size(); ++k)
+            for (const audit::Pose& pose : f.own[k]->result->poses) {
+                if (pose.time_s < spec.start_s || pose.time_s > spec.end_s) continue;
+                std::vector<XY> h;
+                for (const LonLat& p : pose.hull)
+                    if (auto q = project(frame, p)) h.push_back(*q);
+                if (h.size() < 3) continue;
+                f.window_hulls.push_back(std::move(h));
+                f.window_owner.push_back(k);
+            }
+    if (auto c = project(frame, spec.centre)) {
+        f.point = *c;
+        f.point_ok = true;
+    } else if (f.event) {
+        f.point = f.event->point;
+        f.point_ok = f.event->point_ok;
+    }
+    const double size_m = spec.size_m > 0 ? spec.size_m : hull_m > 0 ? std::max(8 * hull_m, 100.0) : 800.0;
+    const double h_px = std::round(width_px * 0.75);
+    const Rect px{0.5, 0.5, width_px - 0.5, h_px - 0.5};
+    const View v = fit({f.point.x - size_m / 2, f.point.y - size_m / 2, f.point.x + size_m / 2, f.point.y + size_m / 2}, px);
+    std::string body;
+    draw_zoom(body, scene, grid, f, v);
+    return svg_element(body, width_px, h_px, spec.tooltip.empty() ? "shoal: zoomed panel" : spec.tooltip);
 }
 
 void write_plot_svg(const std::string& path, const audit::AuditResult& result, const grid::CoastGrid& grid,

@@ -39,7 +39,10 @@
 /// tooltip in browsers).
 
 #include <cstddef>
+#include <cmath>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/grid/coast_grid.hpp>
@@ -52,11 +55,69 @@ struct PlotOptions {
     std::size_t max_zoom_panels = 12;
     /// Width of the picture in CSS pixels (>= 400); the height follows from the content.
     double width_px = 1200;
+    /// The tracks drawn (indices in AuditResult::tracks), with their events: one exercise's,
+    /// say. Empty: every track. The headline of plot_svg still counts the whole result.
+    std::vector<std::size_t> tracks{};
 };
 
 /// The picture of `result` (audited against `grid`) as SVG text. Throws UsageError for a
-/// width under 400 px or not finite.
+/// width under 400 px or not finite, or a track index out of range.
 std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const PlotOptions& options = {});
+
+/// The legend and the overview panel of plot_svg alone (no headline, no zoomed panels), as an
+/// `<svg>` element without an XML declaration: to put inline in an HTML page. Its panel has
+/// id `overview` (clip path `clip-overview`).
+std::string overview_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const PlotOptions& options = {});
+
+/// One zoomed panel, around a track event or around a moment of some tracks (a ship-to-ship
+/// encounter, an assessment breach).
+struct ZoomSpec {
+    std::string id = "zoom";  ///< the panel's id (unique within a page); its clip path is `clip-<id>`
+    geo::LonLat centre;       ///< the panel's centre, and where scale bar and north arrow are measured
+    /// Ground across the panel's shorter side, metres; 0: 8 times the longest hull drawn, at
+    /// least 100 m (800 m when no hull is known), as plot_svg's panels.
+    double size_m = 0;
+    /// The tracks drawn in colour with their fixes (indices in AuditResult::tracks); the other
+    /// tracks of PlotOptions::tracks are grey. The first has the kind's colour, the next ones
+    /// blue, purple, teal, brown.
+    std::vector<std::size_t> tracks;
+    /// A track event of `tracks[0]` (an element of its TrackResult::events): drawn as plot_svg
+    /// draws it (its hull, the contact ring, "first contact HH:MM:SSZ"); `kind` is then its own.
+    const audit::Event* event = nullptr;
+    /// Hull outlines at the moment (closed rings, lon/lat), in the order of `tracks`, each
+    /// labelled with its track id (an encounter's two ships).
+    std::vector<std::vector<geo::LonLat>> hulls;
+    /// A time window (epoch seconds; NaN: none): the hulls of `tracks` at their kept poses
+    /// (TrackResult::poses) inside it are outlined faintly, showing how the ships moved.
+    double start_s = NAN, end_s = NAN;
+    /// Class and colour of the marker at `centre` (`contact <kind>`, `hull <kind>`):
+    /// "collision" (red), "close_quarters" (amber), "breach" (violet).
+    std::string kind = "breach";
+    std::string time_label;  ///< beside the marker ("" none)
+    std::string tooltip;     ///< the marker's <title>
+};
+
+/// The panel as an `<svg>` element (no XML declaration, no title above it: the page around it
+/// says what it is), `width_px` wide (>= 150) and 3/4 as high. Throws UsageError for a bad
+/// width, a track index out of range, or an event that is not one of tracks[0]'s.
+std::string zoom_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const ZoomSpec& spec, double width_px = 360,
+                     const PlotOptions& options = {});
+
+/// An event in words, as the picture's tooltips say it: track (and name), kind, what was hit,
+/// start and end (UTC), duration, speed and its source, penetration or clearance, heading,
+/// and the evidence for the kind.
+std::string event_description(const audit::TrackSummary& track, const audit::Event& event);
+
+/// Text for XML or HTML character data or an attribute value: `& < > " '` escaped, invalid
+/// UTF-8 replaced by U+FFFD, the control characters XML 1.0 forbids replaced by spaces.
+std::string markup_text(std::string_view s);
+
+/// A duration in words: "0 s", "4.2 s", "42 s", "3 min 07 s", "2 h 05 min"; "duration unknown".
+std::string duration_words(double seconds);
+
+/// The colour (#rrggbb) the picture gives a kind: an audit::EventKind name (audit::to_string),
+/// "collision", "close_quarters" or "breach"; grey for anything else.
+const char* kind_colour(const std::string& kind) noexcept;
 
 /// Writes `plot_svg(...)` to `path` atomically ("-" or "" writes to stdout). Throws InputError
 /// naming the path when it cannot be written.

@@ -1,0 +1,579 @@
+#include <shoal/report/debrief.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string_view>
+#include <tuple>
+
+#include <shoal/report/plot.hpp>
+#include <shoal/util/error.hpp>
+#include <shoal/version.hpp>
+
+namespace shoal::report {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* generator_mark = "<meta name=\"generator\" content=\"shoal debrief\"/>";
+
+std::string esc(std::string_view s) { return markup_text(s); }
+
+/// "2024-05-01 10:03:12Z" (to the second, cut from the report's ISO time).
+std::string when(double t) {
+    const std::string s = iso_time(t);
+    return s.size() >= 19 ? s.substr(0, 10) + " " + s.substr(11, 8) + "Z" : "?";
+}
+
+/// "10:03:12Z".
+std::string clock_of(double t) {
+    const std::string s = iso_time(t);
+    return s.size() >= 19 ? s.substr(11, 8) + "Z" : "?";
+}
+
+std::string fixed(double v, int decimals) {
+    if (!std::isfinite(v)) return "&#8211;";
+    char b[48];
+    std::snprintf(b, sizeof b, "%.*f", decimals, v);
+    if (std::string_view(b).find_first_not_of("-0.") == std::string_view::npos && b[0] == '-') return b + 1;
+    return b;
+}
+
+// ---------------------------------------------------------------- file names
+
+/// ASCII letters, digits, '.', '-' and '_' kept, anything else '_' (runs of it as one), no
+/// leading dots, dashes or underscores, at most 100 bytes.
+std::string safe_stem(const std::string& s) {
+    std::string out;
+    for (const char ch : s) {
+        const auto c = static_cast<unsigned char>(ch);
+        const bool keep = c < 0x80 && (std::isalnum(c) || c == '.' || c == '-' || c == '_');
+        if (keep && ch != '_') out += ch;
+        else if (out.empty() || out.back() != '_') out += '_';
+    }
+    const std::size_t first = out.find_first_not_of("._-");
+    out = first == std::string::npos ? std::string() : out.substr(first);
+    if (out.size() > 100) out.resize(100);
+    while (!out.empty() && (out.back() == '.' || out.back() == '_')) out.pop_back();
+    return out.empty() ? "exercise" : out;
+}
+
+/// The path components of an exercise name ("a/b/c" -> a, b, c), "." and empty ones left out.
+std::vector<std::string> components(const std::string& name) {
+    std::vector<std::string> out;
+    std::string part;
+    for (const char ch : name + "/") {
+        if (ch == '/' || ch == '\\') {
+            if (!part.empty() && part != ".") out.push_back(part);
+            part.clear();
+        } else {
+            part += ch;
+        }
+    }
+    return out;
+}
+
+std::string lower(std::string s) {
+    for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return s;
+}
+
+/// File names for `names` (see the header): the last k components, k as small as keeps them apart.
+std::vector<std::string> file_names(const std::vector<std::string>& names) {
+    std::vector<std::vector<std::string>> parts;
+    std::size_t most = 1;
+    for (const auto& n : names) {
+        parts.push_back(components(n));
+        most = std::max(most, parts.back().size());
+    }
+    auto stem = [&](std::size_t i, std::size_t k) {
+        const auto& p = parts[i];
+        std::string s;
+        for (std::size_t c = p.size() > k ? p.size() - k : 0; c < p.size(); ++c) s += (s.empty() ? "" : "_") + p[c];
+        return safe_stem(s);
+    };
+    std::vector<std::string> stems;
+    for (std::size_t k = 1; k <= most; ++k) {
+        stems.clear();
+        std::set<std::string> seen;
+        bool apart = true;
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            stems.push_back(stem(i, k));
+            apart = seen.insert(lower(stems.back())).second && apart;
+        }
+        if (apart) break;
+    }
+    std::set<std::string> taken;
+    std::vector<std::string> out;
+    for (const std::string& s : stems) {
+        std::string name = s;
+        for (int n = 2; !taken.insert(lower(name)).second; ++n) name = s + "-" + std::to_string(n);
+        out.push_back(name + ".html");
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------- what the page lists
+
+/// One line of the events section: a track event, a ship-to-ship encounter or a breach.
+struct Item {
+    double time_s = 0;
+    int order = 0;  ///< among equal times: contacts, encounters, close passes, breaches
+    std::string kind;       ///< data-kind: an EventKind name, "collision", "close_quarters", "breach"
+    std::string heading;    ///< "grounding", "collision", "breach of cpa-1", ...
+    std::string who;        ///< the track(s)
+    std::string text;       ///< the description
+    ZoomSpec zoom;
+};
+
+std::string track_words(const audit::TrackSummary& t) {
+    return t.name.empty() || t.name == t.id ? t.id : t.id + " (" + t.name + ")";
+}
+
+std::string kind_heading(audit::EventKind k) {
+    switch (k) {
+    case audit::EventKind::grounding: return "Grounding";
+    case audit::EventKind::alongside: return "Alongside (not a grounding)";
+    case audit::EventKind::contact_at_start: return "In contact at the first fix";
+    case audit::EventKind::expected_contact: return "Contact in an expected-contact area";
+    case audit::EventKind::close_pass: return "Close pass";
+    }
+    return "Event";
+}
+
+/// A criterion's kind in words, and the unit of its value.
+std::pair<const char*, const char*> criterion_words(audit::CriterionKind k) {
+    switch (k) {
+    case audit::CriterionKind::land_clearance: return {"clearance to land or hazards", "m"};
+    case audit::CriterionKind::under_keel_clearance: return {"under-keel clearance", "m"};
+    case audit::CriterionKind::cpa: return {"closest approach to another ship", "m"};
+    case audit::CriterionKind::speed_limit: return {"speed limit in an area", "kn"};
+    case audit::CriterionKind::no_entry: return {"no entry into an area", ""};
+    case audit::CriterionKind::close_quarters_time: return {"time in close quarters", "s"};
+    }
+    return {"criterion", ""};
+}
+
+/// The longest hull of a track (its first kept pose's outline), metres in the grid's frame; 0 unknown.
+double hull_length(const audit::TrackResult& t, const geo::LocalFrame& frame) {
+    for (const audit::Pose& p : t.poses) {
+        std::vector<geo::XY> pts;
+        for (const geo::LonLat& q : p.hull) {
+            try {
+                pts.push_back(frame.forward(q));
+            } catch (const std::exception&) {
+            }
+        }
+        double m = 0;
+        for (std::size_t a = 0; a < pts.size(); ++a)
+            for (std::size_t b = a + 1; b < pts.size(); ++b) m = std::max(m, geo::distance(pts[a], pts[b]));
+        if (m > 0) return m;
+    }
+    return 0;
+}
+
+std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid& g, const DebriefPage& page) {
+    std::vector<Item> items;
+    std::map<std::string, std::size_t> by_id;  // track id -> index, within the page
+    std::set<std::size_t> mine(page.tracks.begin(), page.tracks.end());
+    for (const std::size_t ti : page.tracks) by_id.emplace(r.tracks[ti].summary.id, ti);
+    for (const std::size_t ti : page.tracks) {
+        const auto& t = r.tracks[ti];
+        for (const audit::Event& e : t.events) {
+            Item it;
+            it.time_s = e.start_s;
+            it.order = audit::is_contact(e.kind) ? 0 : 2;
+            it.kind = audit::to_string(e.kind);
+            it.heading = kind_heading(e.kind);
+            it.who = track_words(t.summary) + (r.has_encounters && t.summary.role == audit::Role::target ? " [target]" : "");
+            it.text = event_description(t.summary, e);
+            it.zoom.tracks = {ti};
+            it.zoom.event = &e;
+            it.zoom.centre = e.point;
+            it.zoom.start_s = e.start_s - 120;
+            it.zoom.end_s = e.end_s + 120;
+            it.zoom.tooltip = it.text;
+            items.push_back(std::move(it));
+        }
+    }
+    if (r.has_encounters)
+        for (const audit::Encounter& e : r.encounters.events) {
+            if (!mine.count(e.a.track) || !mine.count(e.b.track)) continue;
+            const auto& a = r.tracks[e.a.track].summary;
+            const auto& b = r.tracks[e.b.track].summary;
+            Item it;
+            it.time_s = e.start_s;
+            it.order = 1;
+            it.kind = audit::to_string(e.kind);
+            it.heading = e.kind == audit::EncounterKind::collision ? "Collision" : "Close quarters";
+            it.who = track_words(a) + " and " + track_words(b);
+            it.text = it.heading + " of " + it.who + " from " + iso_time(e.start_s) + " to " + iso_time(e.end_s) + " (" +
+                      duration_words(e.end_s - e.start_s) + "); least hull-to-hull clearance " + fixed(e.min_clearance_m, 1) +
+                      " m, reference points " + fixed(e.distance_m, 0) + " m apart";
+            it.zoom.tracks = {e.a.track, e.b.track};
+            it.zoom.hulls = {e.a.hull, e.b.hull};
+            it.zoom.centre = e.point;
+            it.zoom.start_s = e.start_s - 120;
+            it.zoom.end_s = e.end_s + 120;
+            it.zoom.kind = it.kind;
+            it.zoom.time_label = clock_of(e.start_s);
+            it.zoom.tooltip = it.text;
+            double hull_m = 0;
+            for (const auto* ship : {&e.a, &e.b}) {
+                std::vector<geo::XY> pts;
+                for (const geo::LonLat& q : ship->hull) pts.push_back(g.frame().forward(q));
+                for (std::size_t i = 0; i < pts.size(); ++i)
+                    for (std::size_t j = i + 1; j < pts.size(); ++j) hull_m = std::max(hull_m, geo::distance(pts[i], pts[j]));
+            }
+            it.zoom.size_m = std::max({8 * hull_m, 2.5 * e.distance_m, 100.0});
+            items.push_back(std::move(it));
+        }
+    if (r.has_assessment)
+        for (const audit::Breach& b : r.assessment.breaches) {
+            if (b.exercise != page.exercise && !(page.exercise == "run" && b.exercise.empty())) continue;
+            const auto t = by_id.find(b.track);
+            Item it;
+            it.time_s = std::isfinite(b.start_s) ? b.start_s : b.worst_s;
+            it.order = 3;
+            it.kind = "breach";
+            const auto [words, unit] = criterion_words(b.kind);
+            it.heading = "Breach of " + b.criterion + " (" + words + ")";
+            it.who = t != by_id.end() ? track_words(r.tracks[t->second].summary) : b.track;
+            if (!b.other.empty()) it.who += " with " + b.other;
+            std::string text = it.heading + " by " + it.who;
+            if (std::isfinite(b.start_s)) {
+                text += " from " + iso_time(b.start_s);
+                if (std::isfinite(b.end_s) && b.end_s > b.start_s) text += " to " + iso_time(b.end_s) + " (" + duration_words(b.end_s - b.start_s) + ")";
+            }
+            if (std::isfinite(b.value))
+                text += "; worst " + fixed(b.value, 1) + (*unit ? std::string(" ") + unit : "") + " against a limit of " + fixed(b.limit, 1) +
+                        (*unit ? std::string(" ") + unit : "") + (std::isfinite(b.worst_s) ? " at " + clock_of(b.worst_s) : "");
+            text += "; penalty " + fixed(b.penalty, 1);
+            if (!b.detail.empty()) text += "; " + b.detail;
+            it.text = text;
+            if (t != by_id.end()) {
+                it.zoom.tracks = {t->second};
+                if (const auto o = by_id.find(b.other); !b.other.empty() && o != by_id.end()) it.zoom.tracks.push_back(o->second);
+                it.zoom.centre = {b.lon, b.lat};
+                it.zoom.start_s = std::isfinite(b.start_s) ? b.start_s : b.worst_s;
+                it.zoom.end_s = std::isfinite(b.end_s) ? b.end_s : b.worst_s;
+                it.zoom.kind = "breach";
+                it.zoom.time_label = std::isfinite(b.worst_s) ? "worst " + clock_of(b.worst_s) : "";
+                it.zoom.tooltip = text;
+                const double hull_m = hull_length(r.tracks[t->second], g.frame());
+                it.zoom.size_m = std::max({hull_m > 0 ? 8 * hull_m : 800.0, b.kind == audit::CriterionKind::cpa ? 2.5 * b.value : 0.0,
+                                           b.kind == audit::CriterionKind::land_clearance ? 3 * b.limit : 0.0, 100.0});
+                if (!std::isfinite(it.zoom.size_m)) it.zoom.size_m = 0;
+            }
+            items.push_back(std::move(it));
+        }
+    std::stable_sort(items.begin(), items.end(), [](const Item& x, const Item& y) {
+        if (x.time_s != y.time_s && !std::isnan(x.time_s) && !std::isnan(y.time_s)) return x.time_s < y.time_s;
+        if (std::isnan(x.time_s) != std::isnan(y.time_s)) return !std::isnan(x.time_s);
+        return x.order < y.order;
+    });
+    return items;
+}
+
+// ---------------------------------------------------------------- the page
+
+/// The page's style: screen and A4 print, nothing fetched.
+constexpr const char* page_style = R"(
+@page { size: A4; margin: 12mm; }
+* { box-sizing: border-box; }
+body { font-family: "DejaVu Sans", Verdana, Arial, Helvetica, sans-serif; font-size: 10.5pt; color: #222222; margin: 16px auto; max-width: 1040px; padding: 0 12px; }
+h1 { font-size: 18pt; margin: 0 0 4px 0; }
+h2 { font-size: 13pt; margin: 18px 0 6px 0; border-bottom: 1px solid #999999; }
+h3 { font-size: 11pt; margin: 0 0 4px 0; }
+table { border-collapse: collapse; width: 100%; margin: 4px 0 10px 0; font-size: 9.5pt; }
+th, td { border: 1px solid #bbbbbb; padding: 3px 5px; text-align: left; vertical-align: top; }
+th { background: #eeeeee; }
+td.num { text-align: right; white-space: nowrap; }
+table.facts th { width: 22%; }
+svg { max-width: 100%; height: auto; display: block; }
+.picture svg { margin: 0 auto; }
+.none { color: #555555; font-style: italic; }
+article.event { display: flex; gap: 12px; align-items: flex-start; border-top: 1px solid #dddddd; padding: 8px 0; break-inside: avoid; page-break-inside: avoid; }
+article.event .words { flex: 1 1 50%; }
+article.event figure { flex: 0 0 auto; margin: 0; width: 340px; max-width: 48%; }
+.kind { display: inline-block; width: 10px; height: 10px; margin-right: 6px; border-radius: 2px; }
+.target { color: #555555; }
+footer { margin-top: 18px; font-size: 8.5pt; color: #555555; }
+tr { break-inside: avoid; page-break-inside: avoid; }
+@media print {
+  body { max-width: none; margin: 0; padding: 0; font-size: 9.5pt; }
+  section#picture { break-after: page; page-break-after: always; }
+  h2 { break-after: avoid; page-break-after: avoid; }
+  section { break-inside: auto; }
+}
+)";
+
+/// An <svg> element for inline use: the namespace the HTML parser gives it anyway is left out,
+/// so the page names no http(s) address at all.
+std::string inline_svg(std::string svg) {
+    const std::string ns = " xmlns=\"http://www.w3.org/2000/svg\"";
+    if (const auto at = svg.find(ns); at != std::string::npos) svg.erase(at, ns.size());
+    return svg;
+}
+
+std::string party_ids(const audit::AuditResult& r, const audit::ColregEncounter& c, audit::Party p) {
+    const std::string& a = r.tracks.at(c.a).summary.id;
+    const std::string& b = r.tracks.at(c.b).summary.id;
+    switch (p) {
+    case audit::Party::a: return a;
+    case audit::Party::b: return b;
+    case audit::Party::both: return "both (" + a + ", " + b + ")";
+    case audit::Party::neither: break;
+    }
+    return "neither";
+}
+
+std::string action_words(const audit::Manoeuvre& m) {
+    if (std::isnan(m.time_s)) return "none";
+    return std::string(m.course && m.speed ? "course and speed" : m.course ? "course" : "speed") + " at " + clock_of(m.time_s);
+}
+
+/// "3 min 20 s" for a TCPA, "-40 s" when opening.
+std::string tcpa_words(double s) {
+    if (!std::isfinite(s)) return "&#8211;";
+    return s < 0 ? "opening (" + duration_words(-s) + " ago)" : duration_words(s);
+}
+
+void row(std::string& out, const char* th, const std::string& td_escaped) {
+    out += "<tr><th>";
+    out += th;
+    out += "</th><td>" + td_escaped + "</td></tr>\n";
+}
+
+}  // namespace
+
+std::vector<DebriefPage> debrief_pages(const audit::AuditResult& result) {
+    std::vector<DebriefPage> pages;
+    std::map<std::string, std::size_t> at;
+    for (std::size_t ti = 0; ti < result.tracks.size(); ++ti) {
+        const std::string& e = result.tracks[ti].summary.exercise;
+        const std::string name = e.empty() ? "run" : e;
+        auto [it, fresh] = at.emplace(name, pages.size());
+        if (fresh) pages.push_back({name, "", {}});
+        pages[it->second].tracks.push_back(ti);
+    }
+    if (pages.empty()) pages.push_back({"run", "", {}});
+    std::vector<std::string> names;
+    for (const auto& p : pages) names.push_back(p.exercise);
+    const std::vector<std::string> files = file_names(names);
+    for (std::size_t k = 0; k < pages.size(); ++k) pages[k].file = files[k];
+    return pages;
+}
+
+std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid& grid, const RunInfo& info, const DebriefPage& page,
+                         const DebriefOptions& options) {
+    const audit::AuditResult& r = result;
+    std::string out;
+    out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n";
+    out += generator_mark;
+    out += "\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"/>\n<title>Debrief: " + esc(page.exercise) +
+           "</title>\n<style>" + std::string(page_style) + "</style>\n</head>\n<body>\n";
+
+    // Header: exercise, time span, chart and grid, hull and rules.
+    double first = NAN, last = NAN;
+    std::size_t trainees = 0, targets = 0;
+    for (const std::size_t ti : page.tracks) {
+        const auto& s = r.tracks[ti].summary;
+        if (std::isfinite(s.start_s)) first = std::isnan(first) ? s.start_s : std::min(first, s.start_s);
+        if (std::isfinite(s.end_s)) last = std::isnan(last) ? s.end_s : std::max(last, s.end_s);
+        (s.role == audit::Role::target ? targets : trainees) += 1;
+    }
+    out += "<header>\n<h1>Debrief: " + esc(page.exercise) + "</h1>\n<table class=\"facts\">\n";
+    row(out, "Exercise", "<span class=\"exercise\">" + esc(page.exercise) + "</span>");
+    row(out, "Time span",
+        std::isfinite(first) ? esc(when(first) + " to " + when(last) + " (" + duration_words(last - first) + ")") : "no fixes");
+    row(out, "Ships",
+        esc(std::to_string(page.tracks.size()) + " tracks" +
+            (r.has_encounters ? ": " + std::to_string(trainees) + " trainee" + (trainees == 1 ? "" : "s") + ", " + std::to_string(targets) +
+                                    " target" + (targets == 1 ? "" : "s")
+                              : "")));
+    row(out, "Chart", esc(info.coast));
+    row(out, "Grid", esc(info.frame + "; cells of " + fixed(info.cell_m, 0) + " m; fingerprint " + info.grid_fingerprint));
+    row(out, "Hull", esc(info.ship));
+    std::string rules = "close pass under " + fixed(info.sweep.margin_m, 1) + " m; step " + fixed(info.sweep.step_m, 2) + " m; limiting depth " +
+                        (std::isfinite(info.limiting_depth_m) ? fixed(info.limiting_depth_m, 1) + " m (" + info.limiting_depth_source + ")"
+                                                              : std::string("land only")) +
+                        "; under-keel clearance " + fixed(info.ukc_m, 1) + " m";
+    if (r.has_encounters)
+        rules += "; close quarters under " + fixed(info.ship_margin_m, 1) + " m; COLREG situations within " +
+                 fixed(info.encounter_range_m, 0) + " m; exercises by " + info.exercise_by +
+                 (info.roles.empty() ? std::string("; every track a trainee") : "; roles from " + info.roles);
+    if (!info.berths.empty()) rules += "; expected-contact areas " + info.berths;
+    row(out, "Rules", esc(rules));
+    out += "</table>\n</header>\n";
+
+    // The picture of the run.
+    PlotOptions plot;
+    plot.width_px = options.picture_width_px;
+    plot.tracks = page.tracks;
+    out += "<section id=\"picture\" class=\"picture\">\n<h2>The run</h2>\n";
+    if (page.tracks.empty()) out += "<p class=\"none\">No track was audited.</p>\n";
+    else out += inline_svg(overview_svg(r, grid, plot));
+    out += "</section>\n";
+
+    // Scores.
+    out += "<section id=\"scores\">\n<h2>Scores</h2>\n";
+    if (!r.has_assessment) {
+        out += "<p class=\"none\">Not assessed (no assessment file: <code>--assess</code>).</p>\n";
+    } else {
+        std::vector<const audit::Score*> scores;
+        for (const audit::Score& s : r.assessment.scores)
+            if (s.exercise == page.exercise || (page.exercise == "run" && s.exercise.empty())) scores.push_back(&s);
+        if (scores.empty()) out += "<p class=\"none\">No trainee in this exercise.</p>\n";
+        else {
+            out += "<table class=\"scores\">\n<thead><tr><th>Trainee</th><th>Name</th><th>Penalty</th><th>Breaches</th></tr></thead>\n<tbody>\n";
+            for (const audit::Score* s : scores) {
+                std::string name;
+                for (const std::size_t ti : page.tracks)
+                    if (r.tracks[ti].summary.id == s->track) name = r.tracks[ti].summary.name;
+                out += "<tr class=\"score\"><td class=\"track\">" + esc(s->track) + "</td><td>" + esc(name) + "</td><td class=\"num penalty\">" +
+                       fixed(s->penalty, 1) + "</td><td class=\"num\">" + std::to_string(s->breaches) + "</td></tr>\n";
+            }
+            out += "</tbody>\n</table>\n";
+        }
+    }
+    // The ships.
+    out += "<h2>Ships</h2>\n<table class=\"ships\">\n<thead><tr><th>Track</th><th>Name</th><th>Role</th><th>Fixes</th><th>From</th>"
+           "<th>To</th><th>Sailed (nm)</th><th>Groundings</th><th>Close passes</th><th>Least clearance (m)</th></tr></thead>\n<tbody>\n";
+    for (const std::size_t ti : page.tracks) {
+        const auto& s = r.tracks[ti].summary;
+        out += "<tr class=\"ship\"><td class=\"track\">" + esc(s.id) + "</td><td>" + esc(s.name) + "</td><td>" +
+               (r.has_encounters ? audit::to_string(s.role) : "&#8211;") + "</td><td class=\"num\">" + std::to_string(s.fixes) +
+               "</td><td>" + esc(clock_of(s.start_s)) + "</td><td>" + esc(clock_of(s.end_s)) + "</td><td class=\"num\">" +
+               fixed(s.distance_m / 1852, 2) + "</td><td class=\"num\">" + std::to_string(s.groundings) + "</td><td class=\"num\">" +
+               std::to_string(s.close_passes) + "</td><td class=\"num\">" + (std::isfinite(s.min_clearance_m) ? fixed(s.min_clearance_m, 1) : "&#8211;") +
+               "</td></tr>\n";
+    }
+    out += "</tbody>\n</table>\n";
+    if (r.has_encounters && targets > 0)
+        out += "<p class=\"none\">Groundings of targets are listed but not scored.</p>\n";
+    out += "</section>\n";
+
+    // Events in time order, each with its zoomed panel.
+    std::vector<Item> items = page_items(r, grid, page);
+    out += "<section id=\"events\">\n<h2>Events in time order</h2>\n";
+    if (items.empty()) out += "<p class=\"none\">No grounding, contact, close pass, collision, close quarters or breach.</p>\n";
+    std::size_t panels = 0;
+    for (std::size_t n = 0; n < items.size(); ++n) {
+        Item& it = items[n];
+        out += "<article class=\"event\" id=\"event-" + std::to_string(n + 1) + "\" data-kind=\"" + esc(it.kind) + "\" data-time=\"" +
+               esc(std::isfinite(it.time_s) ? iso_time(it.time_s) : "") + "\">\n<div class=\"words\">\n<h3><span class=\"kind\" style=\"background:" +
+               kind_colour(it.kind) + "\"></span>" + std::to_string(n + 1) + ". " + esc(clock_of(it.time_s)) + " " + esc(it.heading) +
+               "</h3>\n<p class=\"who\">" + esc(it.who) + "</p>\n<p class=\"what\">" + esc(it.text) + "</p>\n</div>\n";
+        if (!it.zoom.tracks.empty() && panels < options.max_zoom_panels) {
+            it.zoom.id = "zoom-" + std::to_string(n + 1);
+            ++panels;
+            out += "<figure>" + inline_svg(zoom_svg(r, grid, it.zoom, options.zoom_width_px, plot)) + "</figure>\n";
+        }
+        out += "</article>\n";
+    }
+    if (panels < items.size() && items.size() > options.max_zoom_panels)
+        out += "<p class=\"none\">Zoomed panels for the first " + std::to_string(options.max_zoom_panels) + " events only.</p>\n";
+    out += "</section>\n";
+
+    // Encounters.
+    out += "<section id=\"encounters\">\n<h2>Encounters</h2>\n";
+    std::vector<const audit::ColregEncounter*> sits;
+    const std::set<std::size_t> mine(page.tracks.begin(), page.tracks.end());
+    for (const auto& c : r.situations)
+        if (mine.count(c.a) && mine.count(c.b)) sits.push_back(&c);
+    if (!r.has_encounters) out += "<p class=\"none\">Not in exercise mode (<code>--encounters</code>): no encounters sought.</p>\n";
+    else if (sits.empty())
+        out += "<p class=\"none\">No pair came within " + fixed(info.encounter_range_m, 0) + " m.</p>\n";
+    else {
+        out += "<table class=\"encounters\">\n<thead><tr><th>Situation</th><th>Start</th><th>Ships</th><th>Give-way</th><th>Stand-on</th>"
+               "<th>Bearings (&#176;)</th><th>CPA at start (m)</th><th>TCPA at start</th><th>Closest approach</th>"
+               "<th>Least hull clearance (m)</th><th>Actions</th></tr></thead>\n<tbody>\n";
+        for (const audit::ColregEncounter* c : sits) {
+            const std::string& a = r.tracks[c->a].summary.id;
+            const std::string& b = r.tracks[c->b].summary.id;
+            double hull_clearance = NAN;
+            for (const auto& ap : r.encounters.approaches)
+                if (ap.a == c->a && ap.b == c->b) hull_clearance = ap.clearance_m;
+            std::string actions = a + ": " + action_words(c->action_a) + "; " + b + ": " + action_words(c->action_b);
+            if (c->a_stopped || c->b_stopped)
+                actions += "; not under way at the start: " + std::string(c->a_stopped ? a : "") + (c->a_stopped && c->b_stopped ? ", " : "") +
+                           (c->b_stopped ? b : "");
+            out += "<tr class=\"encounter\"><td class=\"situation\">" + esc(audit::to_string(c->at_start.situation)) + "</td><td>" +
+                   esc(when(c->start_s)) + "</td><td class=\"ships\">" + esc(a) + " &#215; " + esc(b) + "</td><td class=\"give-way\">" +
+                   esc(party_ids(r, *c, c->at_start.give_way)) + "</td><td class=\"stand-on\">" + esc(party_ids(r, *c, c->at_start.stand_on)) +
+                   "</td><td class=\"num\">" + fixed(c->at_start.bearing_of_b_deg, 0) + " / " + fixed(c->at_start.bearing_of_a_deg, 0) +
+                   "</td><td class=\"num cpa\">" + fixed(c->cpa_start.distance_m, 0) + "</td><td class=\"num tcpa\">" + tcpa_words(c->cpa_start.time_s) +
+                   "</td><td class=\"closest\">" + fixed(c->closest_m, 0) + " m at " + esc(clock_of(c->closest_s)) + "</td><td class=\"num\">" +
+                   fixed(hull_clearance, 1) + "</td><td class=\"actions\">" + esc(actions) + "</td></tr>\n";
+        }
+        out += "</tbody>\n</table>\n<p class=\"none\">Bearings: of the second ship from the first / of the first from the second, "
+               "relative to each one's heading. CPA and TCPA: if both had kept their course and speed from the start.</p>\n";
+    }
+    out += "</section>\n";
+    out += "<footer>Written by shoal " + esc(SHOAL_VERSION_STRING) + " (<code>shoal check --debrief</code>).</footer>\n</body>\n</html>\n";
+    return out;
+}
+
+void check_debrief_folder(const std::string& folder) {
+    if (is_standard_output(folder)) throw UsageError("the debrief needs a folder (one page per exercise), not standard output");
+    const std::string ext = lower(fs::path(folder).extension().string());
+    std::error_code ec;
+    if ((ext == ".html" || ext == ".htm") && !fs::is_directory(folder, ec))
+        throw UsageError("the debrief folder '" + folder + "' names a page; give a folder: it receives one page per exercise, <exercise>.html");
+    if (fs::exists(folder, ec)) {
+        if (!fs::is_directory(folder, ec)) throw InputError("cannot write the debrief into '" + folder + "': it is not a folder");
+        return;
+    }
+    fs::path parent = fs::path(folder).parent_path();
+    if (parent.empty()) parent = ".";
+    if (!fs::is_directory(parent, ec))
+        throw InputError("cannot write the debrief into '" + folder + "': folder '" + parent.string() + "' does not exist");
+}
+
+std::vector<OutputSpec> debrief_outputs(const std::string& folder, const std::vector<DebriefPage>& pages) {
+    std::vector<OutputSpec> out;
+    for (const auto& p : pages) out.push_back({(fs::path(folder) / p.file).string(), "--debrief", "the debrief of " + p.exercise});
+    return out;
+}
+
+std::vector<StagedOutput> stage_debrief(const std::string& folder, const audit::AuditResult& result, const grid::CoastGrid& grid,
+                                        const RunInfo& info, const std::vector<std::string>& inputs,
+                                        const std::vector<OutputSpec>& others, const DebriefOptions& options,
+                                        std::vector<std::string>* warnings) {
+    check_debrief_folder(folder);
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec) && !fs::create_directory(folder, ec) && !fs::is_directory(folder))
+        throw InputError("cannot create the debrief folder '" + folder + "': " + ec.message());
+    const std::vector<DebriefPage> pages = debrief_pages(result);
+    std::vector<OutputSpec> all = others;
+    for (OutputSpec& s : debrief_outputs(folder, pages)) all.push_back(std::move(s));
+    check_outputs(all, inputs);
+    std::vector<StagedOutput> out;
+    for (const DebriefPage& page : pages) {
+        const std::string path = (fs::path(folder) / page.file).string();
+        if (fs::exists(path, ec)) {
+            std::ifstream in(path, std::ios::binary);
+            std::string head(512, '\0');
+            in.read(head.data(), static_cast<std::streamsize>(head.size()));
+            head.resize(static_cast<std::size_t>(in.gcount()));
+            if (head.find(generator_mark) == std::string::npos) {
+                if (warnings)
+                    warnings->push_back("'" + path + "' exists and shoal did not write it: the debrief of exercise '" + page.exercise +
+                                        "' was not written (move the file away)");
+                continue;
+            }
+        }
+        StagedOutput& s = out.emplace_back(path);
+        s.write(debrief_html(result, grid, info, page, options));
+    }
+    return out;
+}
+
+}  // namespace shoal::report
