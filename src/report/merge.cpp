@@ -3,12 +3,12 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
+#include "detail/input_file.hpp"
+#include "detail/json_message.hpp"
 #include "report/geojson_output.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/audit/shard.hpp>
@@ -31,21 +31,26 @@ struct Part {
     std::size_t set = 0;  ///< which set of inputs
 };
 
-std::string named(const std::string& s) { return "'" + s + "'"; }
+/// A name or value from a part, quoted for a message (cut: a hostile part may hold megabytes in one).
+std::string named(const std::string& s) { return "'" + shoal::detail::shortened(s, 240) + "'"; }
 
 Part read_part(const std::string& path) {
     Part p;
     p.path = path;
     if (std::filesystem::path(path).extension() == ".gpkg")
         throw InputError(path + ": a GeoPackage part; merge reads the GeoJSON reports of shards (check --shard I/N -o PART.geojson)");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot be read (" + (std::filesystem::exists(path) ? "not readable" : "no such file") + ")");
-    std::ostringstream text;
-    text << in.rdbuf();
+    std::string text;
     try {
-        p.doc = json::parse(text.str());
+        text = shoal::detail::read_json_object_input(path, max_part_bytes, "a shard's report");
+    } catch (const shoal::detail::InputOpenError& e) {
+        throw InputError(path + ": cannot be read (" + e.reason + ")");
+    } catch (const shoal::detail::NotJsonObject& e) {
+        throw InputError(path + ": not a GeoJSON report (" + e.reason + ")");
+    }
+    try {
+        p.doc = json::parse(text);
     } catch (const json::exception& e) {
-        throw InputError(path + ": not a GeoJSON report (" + e.what() + ")");
+        throw InputError(path + ": not a GeoJSON report (" + shoal::detail::json_error_text(e.what()) + ")");
     }
     const auto not_part = [&](const std::string& why) {
         return InputError(path + ": not the report of a shard (" + why + "); `shoal check --shard I/N` writes those");
@@ -75,7 +80,7 @@ bool is_merge_only(const std::string& key) { return key == "shard" || key == "pa
 /// The run header (the scalars of `shoal`) and the top level must agree, field by field.
 void check_same_run(const Part& a, const Part& b) {
     const auto differ = [&](const std::string& field, const json* va, const json* vb) {
-        const auto show = [](const json* v) { return v ? v->dump() : std::string("missing"); };
+        const auto show = [](const json* v) { return v ? shoal::detail::shortened(v->dump()) : std::string("missing"); };
         return InputError("the parts are not of one run: " + field + " is " + show(va) + " in " + named(a.path) + " but " + show(vb) +
                           " in " + named(b.path) + " (merge parts checked with the same version, grid, ship and rules)");
     };
@@ -132,8 +137,8 @@ json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_
                     if (f->merge == fields::Merge::per_input) {
                         const Part& first = parts[first_of_set[parts[k].set]];
                         if (v != value(first))
-                            throw InputError("summary field " + named(name) + " is " + v.dump() + " in " + named(parts[k].path) + " but " +
-                                             value(first).dump() + " in " + named(first.path) + ", shards of the same inputs: were the files changed between them?");
+                            throw InputError("summary field " + named(name) + " is " + shoal::detail::shortened(v.dump()) + " in " + named(parts[k].path) + " but " +
+                                             shoal::detail::shortened(value(first).dump()) + " in " + named(first.path) + ", shards of the same inputs: were the files changed between them?");
                         if (&first != &parts[k]) continue;
                     }
                     if (v.is_null()) continue;
@@ -157,7 +162,7 @@ json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_
                     const json& v = value(p);
                     if (v.is_null() || v == "") continue;
                     const auto t = v.is_string() ? track::parse_iso8601(v.get<std::string>()) : std::nullopt;
-                    if (!t) throw InputError(p.path + ": summary field " + named(name) + " is not an ISO 8601 time: " + v.dump());
+                    if (!t) throw InputError(p.path + ": summary field " + named(name) + " is not an ISO 8601 time: " + shoal::detail::shortened(v.dump()));
                     if (!found || (f->merge == fields::Merge::min_time ? *t < best_s : *t > best_s)) {
                         best = v;
                         best_s = *t;
@@ -232,7 +237,7 @@ std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* s
             const auto [it, fresh] = vessel_set.emplace(id, p.set);
             if (fresh) vessel_part[id] = &p;
             else if (it->second != p.set)
-                throw InputError("vessel " + id + " has tracks in " + named(vessel_part[id]->path) + " and in " + named(p.path) +
+                throw InputError("vessel " + shoal::detail::shortened(id) + " has tracks in " + named(vessel_part[id]->path) + " and in " + named(p.path) +
                                  ", which read different files: one run would have merged them into one track. Check those files in one run "
                                  "(shards of all of them: --shard I/N) instead of one run per file");
         }
