@@ -70,11 +70,11 @@ public:
         m_sub->add_option("--format", m_format, "geojson or gpkg (default: from the extension of -o)")
             ->check(CLI::IsMember({"geojson", "gpkg"}));
         m_sub->add_option("--margin", m_audit.sweep.margin_m, "Close pass: clearance under this many metres (default 50)")
-            ->check(finite)->check(CLI::NonNegativeNumber);
+            ->check(finite)->check(non_negative);
         m_sub->add_option("--step", m_audit.sweep.step_m, "No hull point moves more than this many metres between checks (default 5, at least 0.01)")
-            ->check(finite)->check(CLI::PositiveNumber);
+            ->check(finite)->check(positive);
         m_sub->add_option("--max-gap", m_audit.sweep.max_gap_s, "A gap between fixes longer than this (seconds) splits the track (default 600)")
-            ->check(finite)->check(CLI::PositiveNumber);
+            ->check(finite)->check(positive);
         m_sub->add_option("--jobs,-j", m_audit.jobs, "Tracks checked in parallel (default: all cores)");
         m_sub->add_option("--shard", m_shard,
                           "Audit only shard I of N (0 <= I < N): the tracks whose id hashes there (XXH3); every file is still "
@@ -84,7 +84,7 @@ public:
                         "Exercise mode: the tracks are one exercise; also report ship-to-ship collisions and close quarters");
         m_sub->add_option("--ship-margin", m_audit.encounter.ship_margin_m,
                           "Exercise mode: close quarters when hulls come within this many metres (default 20)")
-            ->check(finite)->check(CLI::NonNegativeNumber);
+            ->check(finite)->check(non_negative);
         // Exercises, roles and COLREG situations (issue 18).
         m_sub->add_option("--exercise-by", m_exercise_by,
                           "Exercise mode: run (the whole run is one exercise, the default), file (each track file is one) or "
@@ -96,7 +96,7 @@ public:
         m_sub->add_option("--encounter-range", m_audit.colreg.range_m,
                           "Exercise mode: a pair whose reference points come within this many metres is a COLREG situation "
                           "(head-on, crossing, overtaking), classified when it first does (default 3704, 2 nm)")
-            ->check(finite)->check(CLI::PositiveNumber);
+            ->check(finite)->check(positive);
         m_sub->add_option("--berths", m_berths,
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
@@ -111,19 +111,19 @@ public:
                         "position taken amidships (can miss a bow-first grounding when the antenna is aft; default: --ship/--dims)");
         m_sub->add_option("--berth-tolerance", m_berth_tolerance_m,
                           "Lines and points of --berths and S-57 berths / shore constructions count within this many metres (default 10)")
-            ->check(finite)->check(CLI::PositiveNumber);
+            ->check(finite)->check(positive)->check(at_most(coast::ExpectedAreas::max_tolerance_m, "a berth grown by more is no berth"));
         m_sub->add_option("--berthing-speed", m_audit.sweep.berthing_speed_kn,
                           "A contact that begins under this speed (knots) is alongside (berthing, moored), not a grounding (default 1)")
-            ->check(finite)->check(CLI::NonNegativeNumber);
+            ->check(finite)->check(non_negative);
         m_sub->add_option("--stop-diameter", m_audit.sweep.stop_diameter_m,
                           "Stopped: every fix of --stop-time seconds within a box of this diagonal, metres (default 50)")
-            ->check(finite)->check(CLI::PositiveNumber);
+            ->check(finite)->check(positive);
         m_sub->add_option("--stop-time", m_audit.sweep.stop_duration_s, "Stopped: a stay of at least this many seconds (default 120)")
-            ->check(finite)->check(CLI::PositiveNumber);
+            ->check(finite)->check(positive);
         m_sub->add_option("--max-speed", m_audit.wild.max_speed_kn,
                           "Fastest plausible speed, knots: a fix that implies more against its neighbours is dropped as an "
                           "outlier, a jump that persists starts a new piece of track (default 60)")
-            ->check(finite)->check(CLI::PositiveNumber);
+            ->check(finite)->check(positive);
         m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and zoomed panels, groundings first");
         m_sub->add_option("--debrief", m_debrief,
                           "Also write the instructor's debrief: FOLDER (created if missing) receives one self-contained HTML page "
@@ -149,9 +149,12 @@ public:
         check_outputs(outputs, all_inputs);
         if (!m_debrief.empty()) report::check_debrief_folder(m_debrief);
         if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
-        if (m_audit.sweep.step_m < audit::min_step_m)
-            throw UsageError("--step " + std::to_string(m_audit.sweep.step_m) + " is under the smallest step, " + std::to_string(audit::min_step_m) +
-                             " m: a sweep that fine never ends");
+        if (m_audit.sweep.step_m < audit::min_step_m) {
+            char said[160];  // %g: std::to_string would say 1e-20 is "0.000000"
+            std::snprintf(said, sizeof said, "--step %g is under the smallest step, %g m: a sweep that fine never ends", m_audit.sweep.step_m,
+                          audit::min_step_m);
+            throw UsageError(said);
+        }
         // Exercises and roles (issue 18): either option turns exercise mode on.
         if (!m_exercise_by.empty()) {
             m_audit.exercise_by = audit::parse_exercise_by(m_exercise_by);

@@ -24,9 +24,9 @@ public:
             ->required();
         m_sub->add_option("-o,--output", m_output, "Grid file to write (.shoalgrid)")->required();
         auto* cell = m_sub->add_option("--cell", m_request.cell_m, "Cell edge in metres (default 500, or 2.5 x --ship-length)")
-                         ->check(finite)->check(CLI::PositiveNumber);
+                         ->check(finite)->check(positive)->check(at_most(grid::CoastGrid::max_cell_m, "the largest cell"));
         m_sub->add_option("--ship-length", m_request.ship_length_m, "Largest ship length in metres: cell = 2.5 x this")
-            ->check(finite)->check(CLI::PositiveNumber)->excludes(cell);
+            ->check(finite)->check(positive)->check(at_most(hull::Hull::max_length_m, "longer than any ship"))->excludes(cell);
         m_sub->add_option("--crs", m_request.crs, "Projected CRS for the local frame (default: transverse Mercator centred on the data)");
         m_sub->add_option("--layer", m_request.import.layers,
                           "Layer(s) to read (default: all; S-57: LNDARE and COALNE, with --hazard-depth also DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN)")

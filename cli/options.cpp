@@ -20,6 +20,33 @@ const CLI::Validator finite = CLI::Validator(
     },
     "FINITE");
 
+namespace {
+CLI::Validator compared(const char* name, bool (*ok)(double), const char* said) {
+    return CLI::Validator(
+        [ok, said](std::string& text) -> std::string {
+            double v = 0;
+            if (CLI::detail::lexical_cast(text, v) && ok(v)) return {};
+            return std::string("must be ") + said + " (got '" + text + "')";
+        },
+        name);
+}
+}  // namespace
+
+const CLI::Validator positive = compared("POSITIVE", [](double v) { return v > 0; }, "> 0");
+const CLI::Validator non_negative = compared("NONNEGATIVE", [](double v) { return v >= 0; }, ">= 0");
+
+CLI::Validator at_most(double max, const std::string& what) {
+    return CLI::Validator(
+        [max, what](std::string& text) -> std::string {
+            double v = 0;
+            if (CLI::detail::lexical_cast(text, v) && v <= max) return {};
+            char bound[32];
+            std::snprintf(bound, sizeof bound, "%g", max);
+            return std::string("must be at most ") + bound + " (" + what + "; got '" + text + "')";
+        },
+        "MAX");
+}
+
 void check_readable(const std::vector<std::string>& paths) {
     for (const std::string& p : paths) {
         std::error_code ec;
@@ -85,7 +112,7 @@ void add_hazard_options(CLI::App& sub, coast::ImportOptions& import) {
     sub.add_option("--depth-field", import.depth_field,
                    "Attribute holding a polygon's least depth in sources other than S-57 (DEPARE/DRGARE use DRVAL1)");
     sub.add_option("--danger-radius", import.danger_radius_m, "Radius in metres of the circle a point danger becomes (default 10)")
-        ->check(finite)->check(CLI::PositiveNumber);
+        ->check(finite)->check(positive)->check(at_most(coast::ImportOptions::max_danger_radius_m, "a point danger is a rock or a wreck"));
 }
 
 
@@ -94,15 +121,15 @@ void CoastAndShip::add(CLI::App& sub) {
     auto* ship = sub.add_option("--ship", ship_file, "Ship file (schemas/ship.schema.json)");
     sub.add_option("--dims", dims, "AIS dimensions A,B,C,D in metres instead of --ship")->excludes(ship);
     auto* cell = sub.add_option("--cell", request.cell_m, "Cell edge in metres when building from a coastline")
-                     ->check(finite)->check(CLI::PositiveNumber);
+                     ->check(finite)->check(positive)->check(at_most(grid::CoastGrid::max_cell_m, "the largest cell"));
     sub.add_option("--ship-length", request.ship_length_m, "Cell = 2.5 x this when building from a coastline")
-        ->check(finite)->check(CLI::PositiveNumber)->excludes(cell);
+        ->check(finite)->check(positive)->check(at_most(hull::Hull::max_length_m, "longer than any ship"))->excludes(cell);
     sub.add_option("--crs", request.crs, "Projected CRS of the local frame when building from a coastline");
     sub.add_option("--layer", request.import.layers, "Layer(s) to read from coastline sources")->delimiter(',');
     sub.add_option("--source-crs", request.import.source_crs, "CRS of coastline sources that carry none");
     sub.add_option("--cache-dir", request.cache_dir, "Folder for built grids (default $SHOAL_CACHE_DIR or ~/.cache/shoal)");
     sub.add_option("--ukc", ukc, "Under-keel clearance required, metres: limiting depth = the ship's draught + this (default 0)")
-        ->check(finite)->check(CLI::NonNegativeNumber);
+        ->check(finite)->check(non_negative);
     add_hazard_options(sub, request.import);
     sub.add_flag("-v,--verbose", verbose, "Say how the grid was obtained and how long it took");
 }

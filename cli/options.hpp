@@ -18,6 +18,12 @@ namespace shoal::cli {
 /// Numbers that must be finite: CLI11's PositiveNumber and NonNegativeNumber let NaN through
 /// (every comparison with it is false), and a NaN option would silently switch a rule off.
 extern const CLI::Validator finite;
+/// > 0 and >= 0, said plainly: "must be > 0 (got '-1')" (CLI11's own print the range with its
+/// upper bound, the largest double, in 309 digits).
+extern const CLI::Validator positive;
+extern const CLI::Validator non_negative;
+/// At most `max`; `what` says why ("the largest cell"): "must be at most 100000 (the largest cell; got '1e300')".
+CLI::Validator at_most(double max, const std::string& what);
 
 /// Coastline sources and grids that exist but cannot be opened: said as such, not as "not a
 /// vector dataset" (which is what OGR makes of a file it may not read).

@@ -13,16 +13,22 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
+#include <shoal/audit/exercise.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
+#include <shoal/io/pose_csv.hpp>
+#include <shoal/report/merge.hpp>
 #include <shoal/track/ais.hpp>
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/nmea_reader.hpp>
@@ -372,6 +378,63 @@ inline void grid_cache(const std::uint8_t* data, std::size_t size) {
         bounded("grid_cache", e.what());
     } catch (const UsageError& e) {
         bounded("grid_cache", e.what());
+    }
+}
+
+/// Exercise files (`check --roles`: audit::Roles::parse): an entry read has a track id, and
+/// every track's role is trainee or target; messages are short.
+inline void roles(const std::uint8_t* data, std::size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    try {
+        const audit::Roles r = audit::Roles::parse(text, "fuzz.json");
+        for (const auto& e : r.entries) {
+            if (e.track.empty()) broken("roles", "an entry without a track");
+            const audit::Role role = r.role_of(e.exercise, e.track);
+            if (role != audit::Role::trainee && role != audit::Role::target) broken("roles", "a role that is neither");
+        }
+    } catch (const InputError& e) {
+        bounded("roles", e.what());
+    }
+}
+
+/// The poses of `shoal probe` (io::parse_pose_csv): every pose kept is on the globe with a
+/// finite heading and its line; at most a few messages, each short.
+inline void poses(const std::uint8_t* data, std::size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    try {
+        const io::PoseFile f = io::parse_pose_csv(text, "fuzz.csv");
+        for (const io::PoseRow& p : f.poses) {
+            if (!(std::fabs(p.lat) <= 90.0) || !(std::fabs(p.lon) <= 180.0)) broken("poses", "a pose off the globe");
+            if (!std::isfinite(p.heading_deg)) broken("poses", "a heading that is not finite");
+            if (p.line == 0) broken("poses", "a pose without its line");
+        }
+        if (f.errors.size() > f.skipped) broken("poses", "more messages than bad rows");
+        for (const std::string& m : f.errors) bounded("poses", m);
+    } catch (const InputError& e) {
+        bounded("poses", e.what());
+    }
+}
+
+/// Shards' reports merged (`shoal merge`: report::merge_geojson), from /vsimem/ files as the
+/// merge reads files: the input is the parts one after another, separated by a NUL byte (which
+/// JSON text never holds), at most four. A merge gives a JSON text or a short InputError.
+inline void merge_parts(const std::uint8_t* data, std::size_t size) {
+    const std::string_view all(reinterpret_cast<const char*>(data), size);
+    std::vector<std::unique_ptr<shoal::detail::MemoryFile>> files;
+    std::vector<std::string> paths;
+    for (std::size_t from = 0; from <= all.size() && files.size() < 4;) {
+        const std::size_t nul = std::min(all.find('\0', from), all.size());
+        files.push_back(std::make_unique<shoal::detail::MemoryFile>(std::string(all.substr(from, nul - from)), ".geojson"));
+        paths.push_back(files.back()->path());
+        from = nul + 1;
+    }
+    try {
+        report::MergeSummary summary;
+        const std::string merged = report::merge_geojson(paths, &summary);
+        if (!nlohmann::json::accept(merged)) broken("merge_parts", "a merged report that is not JSON");
+        if (summary.parts != paths.size()) broken("merge_parts", "a merge that counts other parts than it was given");
+    } catch (const InputError& e) {
+        bounded("merge_parts", e.what());
     }
 }
 

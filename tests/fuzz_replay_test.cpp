@@ -35,6 +35,9 @@ const Target targets[] = {
     {"vessels", shoal::fuzz::vessels},
     {"ship", shoal::fuzz::ship},
     {"grid_cache", shoal::fuzz::grid_cache},
+    {"roles", shoal::fuzz::roles},
+    {"poses", shoal::fuzz::poses},
+    {"merge_parts", shoal::fuzz::merge_parts},
 };
 
 std::vector<fs::path> inputs(const std::string& target, const char* kind) {

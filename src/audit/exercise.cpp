@@ -4,12 +4,13 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include <shoal/util/error.hpp>
+
+#include "detail/input_file.hpp"
+#include "detail/json_message.hpp"
 
 namespace shoal::audit {
 
@@ -64,7 +65,7 @@ Roles Roles::parse(const std::string& text, const std::string& source) {
     try {
         j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
-        throw InputError("exercise file '" + source + "': not JSON: " + e.what());
+        throw InputError("exercise file '" + source + "': not JSON: " + shoal::detail::json_error_text(e.what()));
     }
     auto fail = [&](const std::string& what) { throw InputError("exercise file '" + source + "': " + what); };
     if (!j.is_object()) fail("not a JSON object");
@@ -97,11 +98,15 @@ Roles Roles::parse(const std::string& text, const std::string& source) {
 }
 
 Roles Roles::load(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError("exercise file '" + path + "': cannot be read");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse(text.str(), path);
+    std::string text;
+    try {
+        text = shoal::detail::read_json_object_input(path, max_file_bytes, "an exercise file");
+    } catch (const shoal::detail::InputOpenError& e) {
+        throw InputError("exercise file '" + path + "': cannot be read (" + e.reason + ")");
+    } catch (const shoal::detail::NotJsonObject& e) {
+        throw InputError("exercise file '" + path + "': not JSON: " + e.reason);
+    }
+    return parse(text, path);
 }
 
 Role Roles::role_of(const std::string& exercise, const std::string& track) const {

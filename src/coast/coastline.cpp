@@ -348,8 +348,8 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
     if (paths.empty()) throw UsageError("no coastline file given");
     if (options.limiting_depth_m && !std::isfinite(*options.limiting_depth_m))
         throw UsageError("the limiting depth must be a finite number of metres");
-    if (!(options.danger_radius_m > 0) || !std::isfinite(options.danger_radius_m))
-        throw UsageError("ImportOptions::danger_radius_m must be > 0 metres");
+    if (!(options.danger_radius_m > 0) || !(options.danger_radius_m <= ImportOptions::max_danger_radius_m))
+        throw UsageError("ImportOptions::danger_radius_m must be > 0 and at most 10000 metres");
     Coastline out;
     geo::GeosContext geos;
     std::vector<bool> found(options.layers.size(), false);

@@ -91,6 +91,19 @@ private:
 std::string read_input(const std::string& path, std::size_t limit = static_cast<std::size_t>(-1),
                        const char* what = "an input");
 
+/// Content that is not a JSON object: its first byte that is not blank (nor a UTF-8 byte order
+/// mark) is not '{'. `reason` says which byte it is; what() is "PATH: not JSON (REASON)".
+struct NotJsonObject : InputError {
+    NotJsonObject(const std::string& path, std::string why) : InputError(path + ": not JSON (" + why + ")"), reason(std::move(why)) {}
+    std::string reason;
+};
+
+/// read_input for a JSON object (an exercise file, a shard's report): the first block (64 KiB)
+/// is looked at first, and content that does not begin with '{' throws NotJsonObject there, so
+/// a device (/dev/zero, /dev/urandom) or a binary file is refused at once instead of read on to
+/// `limit`. InputOpenError when it cannot be opened; InputError at the limit.
+std::string read_json_object_input(const std::string& path, std::size_t limit, const char* what);
+
 /// A /vsimem/ file holding `bytes` while it lives, for GDAL drivers that need a path.
 class MemoryFile {
 public:

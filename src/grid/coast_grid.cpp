@@ -382,7 +382,7 @@ CoastGrid CoastGrid::build(const coast::Coastline& coast, geo::LocalFrame frame,
 
 CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::LocalFrame frame, double cell_m,
                            BuildStats* stats) {
-    if (!(cell_m > 0) || !std::isfinite(cell_m)) throw UsageError("cell size must be > 0 metres");
+    if (!(cell_m > 0) || !(cell_m <= max_cell_m)) throw UsageError("cell size must be > 0 and at most 100000 metres");
     const auto t0 = Clock::now();
     CoastGrid g(std::move(frame));
     g.m_cell = cell_m;
@@ -410,7 +410,7 @@ CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::
     if (fnx * fny > static_cast<double>(max_cells)) {
         char buf[200];
         std::snprintf(buf, sizeof buf,
-                      "a %.0f m cell over this %.0f x %.0f km extent needs %.3g cells, more than the limit of %llu; choose a larger BuildRequest::cell_m",
+                      "a %.3g m cell over this %.0f x %.0f km extent needs %.3g cells, more than the limit of %llu; choose a larger BuildRequest::cell_m",
                       cell_m, (ext.maxx - ext.minx) / 1000, (ext.maxy - ext.miny) / 1000, fnx * fny,
                       static_cast<unsigned long long>(max_cells));
         throw UsageError(buf);

@@ -19,6 +19,7 @@
 
 #include <shoal/util/error.hpp>
 #include "detail/input_file.hpp"
+#include "detail/json_message.hpp"
 
 namespace shoal::hull {
 
@@ -240,19 +241,6 @@ std::string brief(const json& v) {
     return text;
 }
 
-/// Strips nlohmann's "[json.exception.parse_error.101] " tag from a message, and cuts it short:
-/// its "last read: '...'" quotes the whole token, which may be megabytes of the file.
-std::string untagged(const char* what) {
-    std::string_view text{what};
-    if (!text.empty() && text.front() == '[') {
-        const auto close = text.find("] ");
-        if (close != std::string_view::npos) text.remove_prefix(close + 2);
-    }
-    constexpr std::size_t max_chars = 240;
-    if (text.size() > max_chars) return std::string{text.substr(0, max_chars)} + "...";
-    return std::string{text};
-}
-
 struct ShipSpec {
     std::string name;
     Dimensions dims;
@@ -293,9 +281,9 @@ private:
         try {
             return json::parse(m_text);
         } catch (const json::parse_error& e) {
-            fail("not valid JSON at byte " + std::to_string(e.byte) + ": " + untagged(e.what()));
+            fail("not valid JSON at byte " + std::to_string(e.byte) + ": " + shoal::detail::json_error_text(e.what()));
         } catch (const json::exception& e) {  // e.g. a number too large for a double
-            fail("not valid JSON: " + untagged(e.what()));
+            fail("not valid JSON: " + shoal::detail::json_error_text(e.what()));
         }
     }
 

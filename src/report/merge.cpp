@@ -12,8 +12,9 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
+#include "detail/input_file.hpp"
+#include "detail/json_message.hpp"
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"
 #include "report/report_fields.hpp"
@@ -45,7 +46,8 @@ struct Part {
 /// numbers under 2^53, exact as doubles; an encounter's start time is a double).
 using Key = std::vector<double>;
 
-std::string named(const std::string& s) { return "'" + s + "'"; }
+/// A name or value from a part, quoted for a message (cut: a hostile part may hold megabytes in one).
+std::string named(const std::string& s) { return "'" + shoal::detail::shortened(s, 240) + "'"; }
 
 InputError not_a_part(const std::string& path, const std::string& why) {
     return InputError(path + ": not the report of a shard (" + why + "); `shoal check --shard I/N` writes those");
@@ -75,7 +77,7 @@ Part read_geojson_part(const std::string& path, const std::string& text) {
         p.doc = json::parse(text);
     } catch (const json::exception& e) {
         if (std::filesystem::path(path).extension() == ".gpkg") throw InputError(path + ": not a GeoPackage (not an SQLite file)");
-        throw InputError(path + ": not a GeoJSON report (" + e.what() + ")");
+        throw InputError(path + ": not a GeoJSON report (" + shoal::detail::json_error_text(e.what()) + ")");
     }
     if (!p.doc.is_object() || !p.doc.contains("shoal") || !p.doc["shoal"].is_object()) throw not_a_part(path, "no \"shoal\" member");
     read_shard(p, {"inputs", "tracks", "features", "problems", "approaches"});
@@ -171,11 +173,17 @@ Part read_part(const std::string& path) {
     char head[sizeof sqlite] = {};
     in.read(head, sizeof head);
     if (in.gcount() == sizeof head && std::equal(head, head + sizeof head, sqlite)) return read_gpkg_part(path);
-    in.clear();
-    in.seekg(0);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return read_geojson_part(path, text.str());
+    in.close();
+    std::string text;
+    try {
+        text = shoal::detail::read_json_object_input(path, max_part_bytes, "a shard's report");
+    } catch (const shoal::detail::InputOpenError& e) {
+        throw InputError(path + ": cannot be read (" + e.reason + ")");
+    } catch (const shoal::detail::NotJsonObject& e) {
+        if (std::filesystem::path(path).extension() == ".gpkg") throw InputError(path + ": not a GeoPackage (not an SQLite file)");
+        throw InputError(path + ": not a GeoJSON report (" + e.reason + ")");
+    }
+    return read_geojson_part(path, text);
 }
 
 bool is_layer_or_table(const std::string& key) { return key == "summary" || key == "tracks" || key == "problems"; }
@@ -184,7 +192,7 @@ bool is_merge_only(const std::string& key) { return key == "shard" || key == "pa
 /// The run header (the scalars of `shoal`) and the top level must agree, field by field.
 void check_same_run(const Part& a, const Part& b) {
     const auto differ = [&](const std::string& field, const json* va, const json* vb) {
-        const auto show = [](const json* v) { return v ? v->dump() : std::string("missing"); };
+        const auto show = [](const json* v) { return v ? shoal::detail::shortened(v->dump()) : std::string("missing"); };
         return InputError("the parts are not of one run: " + field + " is " + show(va) + " in " + named(a.path) + " but " + show(vb) +
                           " in " + named(b.path) + " (merge parts checked with the same version, grid, ship and rules)");
     };
@@ -291,8 +299,8 @@ json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_
                     if (f->merge == fields::Merge::per_input) {
                         const Part& first = parts[first_of_set[parts[k].set]];
                         if (v != value(first))
-                            throw InputError("summary field " + named(name) + " is " + v.dump() + " in " + named(parts[k].path) + " but " +
-                                             value(first).dump() + " in " + named(first.path) + ", shards of the same inputs: were the files changed between them?");
+                            throw InputError("summary field " + named(name) + " is " + shoal::detail::shortened(v.dump()) + " in " + named(parts[k].path) + " but " +
+                                             shoal::detail::shortened(value(first).dump()) + " in " + named(first.path) + ", shards of the same inputs: were the files changed between them?");
                         if (&first != &parts[k]) continue;
                     }
                     if (v.is_null()) continue;
@@ -316,7 +324,7 @@ json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_
                     const json& v = value(p);
                     if (v.is_null() || v == "") continue;
                     const auto t = v.is_string() ? track::parse_iso8601(v.get<std::string>()) : std::nullopt;
-                    if (!t) throw InputError(p.path + ": summary field " + named(name) + " is not an ISO 8601 time: " + v.dump());
+                    if (!t) throw InputError(p.path + ": summary field " + named(name) + " is not an ISO 8601 time: " + shoal::detail::shortened(v.dump()));
                     if (!found || (f->merge == fields::Merge::min_time ? *t < best_s : *t > best_s)) {
                         best = v;
                         best_s = *t;
@@ -411,7 +419,7 @@ Plan plan_merge(const std::vector<std::string>& paths, bool gpkg) {
             const auto [it, fresh] = vessel_set.emplace(id, p.set);
             if (fresh) vessel_part[id] = &p;
             else if (it->second != p.set)
-                throw InputError("vessel " + id + " has tracks in " + named(vessel_part[id]->path) + " and in " + named(p.path) +
+                throw InputError("vessel " + shoal::detail::shortened(id) + " has tracks in " + named(vessel_part[id]->path) + " and in " + named(p.path) +
                                  ", which read different files: one run would have merged them into one track. Check those files in one run "
                                  "(shards of all of them: --shard I/N) instead of one run per file");
         }

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "detail/json_message.hpp"
 #include "detail/parse_util.hpp"
 #include "track/stream_readers.hpp"
 #include <shoal/track/time.hpp>
@@ -247,7 +248,7 @@ public:
         try {
             doc = json::parse(m_text.begin(), m_text.end());
         } catch (const json::parse_error& e) {
-            throw InputError(m_file + ": not valid JSON: " + e.what());
+            throw InputError(m_file + ": not valid JSON: " + shoal::detail::json_error_text(e.what()));
         }
         const json* type = member(doc, "type");
         if (!type || !type->is_string())
@@ -467,7 +468,7 @@ TrackFile read_geojson_text(std::string_view text, const std::string& file, cons
     try {
         return GeoJsonReader(text, file, options).read();
     } catch (const json::exception& e) {  // a value of a type the reader did not check: bad input all the same
-        throw InputError(file + ": unexpected JSON: " + e.what());
+        throw InputError(file + ": unexpected JSON: " + shoal::detail::json_error_text(e.what()));
     }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -241,6 +242,30 @@ std::string read_input(const std::string& path, std::size_t limit, const char* w
     InputFile in(path);
     std::string out;
     in.append_all(out, limit, what);
+    return out;
+}
+
+std::string read_json_object_input(const std::string& path, std::size_t limit, const char* what) {
+    constexpr std::size_t head = std::size_t{64} << 10;
+    InputFile in(path);
+    std::string out;
+    std::size_t first = std::string::npos;
+    std::size_t got = head;
+    while (first == std::string::npos && got == head) {  // blanks only so far: look further
+        got = in.append(out, std::min(head, limit - std::min(limit, out.size()) + 1));
+        if (out.size() > limit)
+            throw InputError(path + ": larger than " + size_text(limit) + ", the most " + what + " may be; not read further");
+        first = out.find_first_not_of(" \t\r\n", starts_with(out, "\xEF\xBB\xBF") ? 3 : 0);
+    }
+    if (first == std::string::npos) return out;  // blanks only: the JSON parser says "empty"
+    if (out[first] != '{') {
+        char byte[48];
+        const auto c = static_cast<unsigned char>(out[first]);
+        if (c >= 0x21 && c < 0x7f) std::snprintf(byte, sizeof byte, "it begins with '%c', not '{'", c);
+        else std::snprintf(byte, sizeof byte, "it begins with the byte 0x%02X, not '{'", c);
+        throw NotJsonObject(path, byte);
+    }
+    if (got == head) in.append_all(out, limit, what, out.size());
     return out;
 }
 

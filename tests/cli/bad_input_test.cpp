@@ -7,9 +7,11 @@
 // project's test data or generated, so every input's defect is visible in the test.
 
 #include <fcntl.h>
+#include <pwd.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -41,6 +43,7 @@ using shoal::test::TempDir;
 struct Outcome {
     int status = -1;  ///< exit status; 128 + N when killed by signal N
     std::string out, err;
+    long peak_rss_kb = 0;  ///< the child's largest resident set (getrusage's ru_maxrss)
 };
 
 std::string slurp(const fs::path& p) {
@@ -88,8 +91,11 @@ pid_t spawn(const std::vector<std::string>& argv, const fs::path& dir) {
 Outcome wait_for(pid_t pid, const fs::path& dir) {
     Outcome r;
     int st = 0;
-    if (pid > 0 && ::waitpid(pid, &st, 0) == pid)
+    struct rusage usage{};
+    if (pid > 0 && ::wait4(pid, &st, 0, &usage) == pid) {
         r.status = WIFEXITED(st) ? WEXITSTATUS(st) : WIFSIGNALED(st) ? 128 + WTERMSIG(st) : -1;
+        r.peak_rss_kb = usage.ru_maxrss;
+    }
     r.out = slurp(dir / "stdout.txt");
     r.err = slurp(dir / "stderr.txt");
     return r;
@@ -715,13 +721,16 @@ TEST_F(BadInput, AStepUnderACentimetreIsRefusedAndHugeJobCountsAreCapped) {
         EXPECT_EQ(r.status, 2) << step << r.err;
         EXPECT_NE(r.err.find("smallest step"), std::string::npos) << r.err;
     }
-    // -j 100000: capped at 4 per core (and the work), the same report as -j 1.
+    // -j 100000: capped at 4 per core (and the work), the same report as -j 1. Before, 100,000
+    // threads started (5.3 GB resident); now the run stays the size of one with a few threads.
     const std::string a = m_dir.file("j1.geojson"), b = m_dir.file("jmany.geojson");
     auto run_jobs = [&](const std::string& jobs, const std::string& out) {
-        return shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", jobs, "-o", out, tracks}).status;
+        return shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", jobs, "-o", out, tracks});
     };
-    EXPECT_EQ(run_jobs("1", a), 1);
-    EXPECT_EQ(run_jobs("100000", b), 1);
+    const Outcome one = run_jobs("1", a), many = run_jobs("100000", b);
+    EXPECT_EQ(one.status, 1);
+    EXPECT_EQ(many.status, 1);
+    EXPECT_LT(many.peak_rss_kb, 4 * one.peak_rss_kb + 100'000) << "KiB: " << many.peak_rss_kb << " against " << one.peak_rss_kb << " at -j 1";
     EXPECT_EQ(shoal::test::read_bytes(a), shoal::test::read_bytes(b));
 }
 
@@ -1140,6 +1149,199 @@ TEST_F(BadInput, AGzipCutShortKeepsTheRowsBeforeTheBreak) {
     const auto doc = report(r);
     EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
     EXPECT_GT(doc["shoal"]["summary"]["fixes"].get<int>(), 21);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(BadInput, AnExerciseFileOrAMergePartOnDevZeroIsRefusedAtItsFirstByte) {
+    // Before: --roles /dev/zero (a bare ifstream) and a merge part on /dev/zero were read without
+    // end. Now a JSON file is looked at first: not '{', not read further; '{' and then more than
+    // the limit is refused at the limit.
+    const std::string r = m_dir.file("r.geojson");
+    const auto t0 = std::chrono::steady_clock::now();
+    const Outcome zero = check({good_tracks()}, r, {"--roles", "/dev/zero"});
+    EXPECT_EQ(zero.status, 2) << zero.err;
+    EXPECT_NE(zero.err.find("exercise file '/dev/zero': not JSON: it begins with the byte 0x00, not '{'"), std::string::npos) << zero.err;
+    const Outcome random = check({good_tracks()}, r, {"--roles", "/dev/urandom"});
+    EXPECT_EQ(random.status, 2) << random.err;
+    EXPECT_NE(random.err.find("/dev/urandom"), std::string::npos) << random.err;
+    std::string huge = "{\"tracks\": [";
+    huge.append((std::size_t{16} << 20) + 10, ' ');
+    const Outcome big = check({good_tracks()}, r, {"--roles", file("huge-roles.json", huge)});
+    EXPECT_EQ(big.status, 2) << big.err;
+    EXPECT_NE(big.err.find("huge-roles.json: larger than 16 MiB, the most an exercise file may be; not read further"), std::string::npos)
+        << big.err;
+    const Outcome part = shoal({"merge", "/dev/zero", "-o", m_dir.file("merged.geojson")});
+    EXPECT_EQ(part.status, 2) << part.err;
+    EXPECT_NE(part.err.find("/dev/zero: not a GeoJSON report (it begins with the byte 0x00, not '{')"), std::string::npos) << part.err;
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(60)) << "none is read to its end";
+    EXPECT_FALSE(fs::exists(r));
+    // A good exercise file on a pipe is read as from a file: vessel A, a trainee, still grounds.
+    const std::string roles = file("roles.json", R"({"tracks": [{"track": "111111111", "role": "trainee"}]})");
+    const std::string line = "cat '" + roles + "' | '" + SHOAL_BINARY + "' check --coast '" + s_grid + "' --dims 50,10,5,5 -o '" + r +
+                             "' --roles - '" + good_tracks() + "'";
+    const Outcome piped = wait_for(spawn({"/bin/sh", "-c", line}, m_dir.path()), m_dir.path());
+    EXPECT_EQ(piped.status, 1) << piped.err;
+    EXPECT_EQ(report(r)["shoal"]["summary"]["groundings"], 1);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(BadInput, AJsonSyntaxErrorQuotesAFewHundredBytesNotTheToken) {
+    // nlohmann-json's message quotes the whole last token: a 10 MB string never closed was a
+    // 10 MB line on stderr from a GeoJSON track, an exercise file or a merge part.
+    const std::string token(std::size_t{10} << 20, 'x');
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome track = check({file("long.geojson", R"({"type": "FeatureCollection", "features": [")" + token), good_tracks()}, r);
+    EXPECT_EQ(track.status, 1) << "the good file is still checked";
+    EXPECT_NE(track.err.find("long.geojson: not valid JSON: "), std::string::npos) << track.err.substr(0, 2000);
+    EXPECT_LT(track.err.size(), 4000u);
+    const Outcome roles = check({good_tracks()}, r, {"--roles", file("long-roles.json", R"({"tracks": [")" + token)});
+    EXPECT_EQ(roles.status, 2);
+    EXPECT_NE(roles.err.find("long-roles.json': not JSON: "), std::string::npos) << roles.err.substr(0, 2000);
+    EXPECT_LT(roles.err.size(), 1000u);
+    const Outcome part = shoal({"merge", file("long-part.geojson", R"({"shoal": ")" + token), "-o", m_dir.file("m.geojson")});
+    EXPECT_EQ(part.status, 2);
+    EXPECT_NE(part.err.find("long-part.geojson: not a GeoJSON report ("), std::string::npos) << part.err.substr(0, 2000);
+    EXPECT_LT(part.err.size(), 1000u);
+}
+
+TEST_F(BadInput, AFifoWhereTheReportsStyleGoesIsNeverOpened) {
+    // Before: the check for shoal's mark opened REPORT.qml, and a FIFO there waited for a writer
+    // for ever after the whole run. A guard releases a reader left waiting, so a regression fails.
+    const std::string qml = m_dir.file("fifo.qml");
+    ASSERT_EQ(::mkfifo(qml.c_str(), 0600), 0);
+    std::atomic<bool> done{false};
+    std::thread guard([&] {
+        for (int i = 0; i < 600 && !done; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        if (!done)
+            if (const int fd = ::open(qml.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+    });
+    const auto t0 = std::chrono::steady_clock::now();
+    const Outcome o = check({good_tracks()}, m_dir.file("fifo.geojson"));
+    const auto took = std::chrono::steady_clock::now() - t0;
+    done = true;
+    guard.join();
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("fifo.qml' exists and was not written by shoal: left as it is"), std::string::npos) << o.err;
+    EXPECT_LT(took, std::chrono::seconds(25)) << "the run waited on the FIFO";
+    EXPECT_TRUE(fs::is_fifo(qml));
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(BadInput, WithoutHomeTheGridCacheIsTheUsersOwnNeverASharedFolder) {
+    // cron and services run without HOME. Before, the cache fell back to a fixed folder in the
+    // shared temporary directory. Now: the home of the password database's entry, else a folder
+    // of this user's own in $TMPDIR; -v names the path used.
+    const struct passwd* pw = ::getpwuid(::geteuid());
+    ASSERT_NE(pw, nullptr);
+    const fs::path want = fs::path(pw->pw_dir) / ".cache" / "shoal";
+    const std::string coast = file("home-test-coast.geojson", slurp(data_path("coast/uk_solent_land.geojson")));
+    const std::string line = "unset HOME XDG_CACHE_HOME SHOAL_CACHE_DIR; exec '" + std::string(SHOAL_BINARY) + "' check -v --coast '" + coast +
+                             "' --cell 2000 --dims 50,10,5,5 -o '" + m_dir.file("home.geojson") + "' '" + good_tracks() + "'";
+    const Outcome o = wait_for(spawn({"/bin/sh", "-c", line}, m_dir.path()), m_dir.path());
+    EXPECT_EQ(o.status, 1) << o.err;
+    const std::size_t at = o.err.find(want.string() + "/home-test-coast-");
+    EXPECT_NE(at, std::string::npos) << "the cache is in " << want << "\n" << o.err;
+    // The grid this test cached there is removed (the folder is the user's real cache).
+    if (at != std::string::npos) {
+        const std::size_t end = o.err.find(".shoalgrid", at);
+        if (end != std::string::npos) fs::remove(o.err.substr(at, end + 10 - at));
+    }
+}
+
+}  // namespace
+
+namespace {
+
+/// One numeric option of one command, and what each hostile value must give.
+struct NumericOption {
+    const char* command;
+    const char* option;
+    std::vector<const char*> refused;   ///< exit 2 at parse time, the message naming the option
+    std::vector<const char*> accepted;  ///< documented (docs/bad-input.md): a run that ends, 0 or 1
+};
+
+const char* const hostile_values[] = {"nan", "inf", "-1", "0", "1e300"};
+
+TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseTime) {
+    // nan, inf, -1, 0 and 1e300 to every numeric option of check, probe and import (merge has
+    // none): a usage error naming the option, or the documented acceptance, never a hang, a
+    // crash or an internal error. Before: --berth-tolerance 1e300 and import --cell 1e300 were
+    // internal errors (exit 3), --danger-radius 1e300 a 300-digit projection error after the
+    // chart was read, and CLI11's range messages printed the largest double in 309 digits.
+    const std::vector<NumericOption> table{
+        {"check", "--margin", {"nan", "inf", "-1"}, {"0", "1e300"}},
+        {"check", "--step", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--max-gap", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--jobs", {"nan", "inf", "-1", "1e300"}, {"0"}},
+        {"check", "--ship-margin", {"nan", "inf", "-1"}, {"0", "1e300"}},
+        {"check", "--encounter-range", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--berth-tolerance", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"check", "--berthing-speed", {"nan", "inf", "-1"}, {"0", "1e300"}},
+        {"check", "--stop-diameter", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--stop-time", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--max-speed", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--ukc", {"nan", "inf", "-1"}, {"0", "1e300"}},
+        {"check", "--hazard-depth", {"nan", "inf"}, {"-1", "0", "1e300"}},
+        {"check", "--danger-radius", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"check", "--cell", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"check", "--ship-length", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"probe", "--ukc", {"nan", "inf", "-1"}, {"0", "1e300"}},
+        {"probe", "--hazard-depth", {"nan", "inf"}, {"-1", "0", "1e300"}},
+        {"probe", "--danger-radius", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"probe", "--cell", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"probe", "--ship-length", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"import", "--hazard-depth", {"nan", "inf"}, {"-1", "0", "1e300"}},
+        {"import", "--danger-radius", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"import", "--cell", {"nan", "inf", "-1", "0", "1e300"}, {}},
+        {"import", "--ship-length", {"nan", "inf", "-1", "0", "1e300"}, {}},
+    };
+    const std::string tracks = good_tracks(), poses = file("poses.csv", "lat,lon,heading\n50.70,-1.30,0\n50.74,-1.05,90\n");
+    const std::string coast = data_path("coast/uk_solent_land.geojson");
+    for (const NumericOption& o : table) {
+        // Every hostile value is in the table, one way or the other.
+        for (const char* v : hostile_values) {
+            const auto in = [&](const std::vector<const char*>& list) {
+                return std::any_of(list.begin(), list.end(), [&](const char* x) { return std::string(x) == v; });
+            };
+            EXPECT_TRUE(in(o.refused) != in(o.accepted)) << o.command << " " << o.option << " " << v << " is in neither list, or in both";
+        }
+        const auto run = [&](const char* value) {
+            const std::string opt = std::string(o.option) + "=" + value;
+            const std::string cmd = o.command;
+            if (cmd == "check")
+                return shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--encounters", "-o", m_dir.file("opt.geojson"), tracks, opt});
+            if (cmd == "probe") return shoal({"probe", "--coast", s_grid, "--dims", "50,10,5,5", poses, opt});
+            return shoal({"import", coast, "-o", m_dir.file("opt.shoalgrid"), opt});
+        };
+        for (const char* v : o.refused) {
+            const Outcome r = run(v);
+            EXPECT_EQ(r.status, 2) << o.command << " " << o.option << "=" << v << "\n" << r.err;
+            EXPECT_NE(r.err.find("usage error: "), std::string::npos) << o.option << "=" << v << "\n" << r.err;
+            EXPECT_NE(r.err.find(o.option), std::string::npos) << "the message names the option\n" << r.err;
+            EXPECT_LT(r.err.size(), 400u) << "one short line: " << r.err;
+        }
+        for (const char* v : o.accepted) {
+            const Outcome r = run(v);
+            EXPECT_TRUE(r.status == 0 || r.status == 1) << o.command << " " << o.option << "=" << v << ": exit " << r.status << "\n" << r.err;
+            EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+        }
+    }
+    // --dims: each of its four numbers.
+    for (const char* v : hostile_values) {
+        const std::string dims = std::string(v) + ",10,5,5";
+        const Outcome r = shoal({"check", "--coast", s_grid, "--dims", dims, "-o", m_dir.file("dims.geojson"), tracks});
+        EXPECT_EQ(r.status, 2) << dims << "\n" << r.err;
+        EXPECT_TRUE(r.err.find("--dims") != std::string::npos || r.err.find("AIS dimensions") != std::string::npos) << dims << "\n" << r.err;
+    }
 }
 
 }  // namespace

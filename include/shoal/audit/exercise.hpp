@@ -12,6 +12,7 @@
 /// targets are not reported. Without a roles file every track is a trainee.
 /// exercise_key() is what a shard of a batch keys on, so that an exercise is never split.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,12 @@ struct Roles {
     std::vector<Entry> entries;
     Role default_role = Role::target;  ///< for tracks no entry names
 
-    /// Reads an exercise file; throws InputError naming the file and the entry that is wrong.
+    /// The largest exercise file read (16 MiB: some 300,000 entries); a larger one, or an
+    /// endless source such as /dev/zero, is refused at that limit.
+    static constexpr std::size_t max_file_bytes = std::size_t{16} << 20;
+
+    /// Reads an exercise file (a file, a pipe, standard input `-`; gzip read decompressed);
+    /// throws InputError naming the file and the entry that is wrong.
     static Roles load(const std::string& path);
     /// Parses the JSON text of an exercise file (`source` names it in messages).
     static Roles parse(const std::string& text, const std::string& source);

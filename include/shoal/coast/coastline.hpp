@@ -79,8 +79,12 @@ struct ImportOptions {
     /// (a Detector made without one, the C API's shoal_detector_new). It does not change what
     /// is read: every depth area and danger is kept with its depth.
     std::optional<double> limiting_depth_m;
-    /// Radius in metres of the polygon a point danger becomes (a 16-gon around the circle).
+    /// Radius in metres of the polygon a point danger becomes (a 16-gon around the circle),
+    /// in (0, max_danger_radius_m].
     double danger_radius_m = 10.0;
+    /// The largest danger radius (10 km): a point danger is a rock or a wreck, and a circle of
+    /// 1e300 m cannot be projected (a usage error, not the chart's fault).
+    static constexpr double max_danger_radius_m = 10'000.0;
     /// For sources other than S-57 layers: the attribute holding a polygon's least depth. A
     /// layer with this field holds depth areas; layers without it hold land.
     std::string depth_field;

@@ -81,7 +81,12 @@ public:
     /// Throws InputError naming the file (and layer, feature) for: a missing file, one OGR
     /// cannot read, an S-57 user file with none of the four layers, a user layer with no
     /// polygon, line or point at all, no CRS with coordinates that are not lon/lat, a vertex
-    /// that cannot be transformed or projected. UsageError when tolerance_m is not > 0.
+    /// that cannot be transformed or projected. UsageError when tolerance_m is not > 0 and at
+    /// most max_tolerance_m.
+    /// The largest tolerance (1 km): a berth's line grown by more is no berth (and by 1e300 m
+    /// GEOS cannot buffer it).
+    static constexpr double max_tolerance_m = 1000.0;
+
     static ExpectedAreas load(const std::vector<std::string>& user_files, const std::vector<std::string>& charts,
                               const geo::LocalFrame& frame, double tolerance_m, std::vector<std::string>* warnings);
 

@@ -85,9 +85,12 @@ class CoastGrid {
 public:
     /// Largest number of cells a grid may have (4 bytes each).
     static constexpr std::uint64_t max_cells = std::uint64_t{1} << 27;
+    /// Largest cell edge (100 km: the default for the whole globe is about 5 km); a larger one
+    /// leaves no cell whose reference point is clear of the coast.
+    static constexpr double max_cell_m = 100'000.0;
 
     /// Builds the grid of `coast` in `frame` with cells of `cell_m` metres. Throws UsageError
-    /// when the extent needs more than `max_cells` cells.
+    /// when `cell_m` is not in (0, max_cell_m] or the extent needs more than `max_cells` cells.
     static CoastGrid build(const coast::Coastline& coast, geo::LocalFrame frame, double cell_m,
                            BuildStats* stats = nullptr);
     /// Same from already projected polylines (tests use hand-made shapes in metres).

@@ -35,6 +35,10 @@ struct MergeSummary {
     std::size_t parts = 0, tracks = 0, events = 0, groundings = 0, collisions = 0;
 };
 
+/// The largest part read (1 GiB, as a GeoJSON track file); a larger one, or an endless source
+/// such as /dev/zero (refused at its first byte, which is not '{'), is not read further.
+inline constexpr std::size_t max_part_bytes = std::size_t{1} << 30;
+
 /// The merged GeoJSON report of the GeoJSON part reports at `parts` (in that order). Throws
 /// InputError naming the part and what is wrong: unreadable, not a shard's report (or a
 /// GeoPackage one), a run

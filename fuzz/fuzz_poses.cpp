@@ -1,0 +1,9 @@
+// libFuzzer target: the poses of shoal probe (io::parse_pose_csv). Built by scripts/fuzz.sh; the entry point
+// is shared with tests/fuzz_replay_test.cpp.
+
+#include "fuzz_targets.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    shoal::fuzz::poses(data, size);
+    return 0;
+}
