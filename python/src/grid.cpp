@@ -109,7 +109,7 @@ void bind_grid(py::module_& m) {
                     "hazard_depth_m (depth areas shallower and dangers are hazards; default land only), layers, source_crs, "
                     "depth_field, danger_radius_m. cache=True (or a cache_dir) keeps and reuses the grid as --coast does.")
         .def("save", &save, py::arg("path"), "Writes the grid as a .shoalgrid file (atomically).")
-        .def_property_readonly("fingerprint", [](const GridHandle& h) { return h.grid->source().fingerprint_hex(); }, "XXH3 of the sources' bytes and the build options, in hex (the report's grid_fingerprint)")
+        .def_property_readonly("fingerprint", [](const GridHandle& h) { return grid::fingerprint_hex(h.grid->source().fingerprint); }, "XXH3 of the sources' bytes and the build options, in hex (the report's grid_fingerprint)")
         .def_property_readonly("frame", [](const GridHandle& h) { return h.grid->frame().description(); }, "the local frame")
         .def_property_readonly("cell_m", [](const GridHandle& h) { return h.grid->cell_size(); }, "cell edge, metres")
         .def_property_readonly("shape", [](const GridHandle& h) { return py::make_tuple(h.grid->nx(), h.grid->ny()); }, "(columns, rows)")
@@ -128,7 +128,7 @@ void bind_grid(py::module_& m) {
         .def("__repr__", [](const GridHandle& h) {
             char buf[256];
             std::snprintf(buf, sizeof buf, "<shoal.Grid %d x %d cells of %.1f m, fingerprint %s>", h.grid->nx(), h.grid->ny(),
-                          h.grid->cell_size(), h.grid->source().fingerprint_hex().c_str());
+                          h.grid->cell_size(), grid::fingerprint_hex(h.grid->source().fingerprint).c_str());
             return std::string(buf);
         });
 }

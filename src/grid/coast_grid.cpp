@@ -8,12 +8,13 @@
 #include <numeric>
 
 #include "detail/geos_context.hpp"
+#include "detail/parse_util.hpp"
 #include "grid/outward.hpp"
 #include <shoal/util/error.hpp>
 
 namespace shoal::grid {
 
-std::string GridSource::fingerprint_hex() const {
+std::string fingerprint_hex(std::uint64_t fingerprint) {
     char buf[17];
     std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(fingerprint));
     return buf;
@@ -382,7 +383,7 @@ CoastGrid CoastGrid::build(const coast::Coastline& coast, geo::LocalFrame frame,
 
 CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::LocalFrame frame, double cell_m,
                            BuildStats* stats) {
-    if (!(cell_m > 0) || !(cell_m <= max_cell_m)) throw UsageError("cell size must be > 0 and at most 100000 metres");
+    if (!(cell_m > 0) || !(cell_m <= max_cell_m)) throw UsageError("cell size must be > 0 and at most " + track::detail::fmt(max_cell_m) + " metres");
     const auto t0 = Clock::now();
     CoastGrid g(std::move(frame));
     g.m_cell = cell_m;

@@ -18,12 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string hex64(std::uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
-
 fs::path cache_folder(const std::string& requested) {
     if (!requested.empty()) return requested;
     if (const char* d = std::getenv("SHOAL_CACHE_DIR"); d && *d) return d;
@@ -79,7 +73,7 @@ CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildReques
     const double cell_key = request.cell_m > 0 ? request.cell_m : 2.5 * request.ship_length_m;
     const std::uint64_t fp = fingerprint_sources(paths, request.import, request.crs, cell_key);
     const fs::path dir = cache_folder(request.cache_dir);
-    const fs::path cache = dir / (fs::path(paths[0]).stem().string() + "-" + hex64(fp) + ".shoalgrid");
+    const fs::path cache = dir / (fs::path(paths[0]).stem().string() + "-" + fingerprint_hex(fp) + ".shoalgrid");
     rep.cache_path = cache.string();
     std::error_code ec;
     // A cache is trusted only when it is the user's own: a grid planted by another user (its

@@ -28,7 +28,7 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.limiting_depth_m = depth.depth_m.value_or(NAN);
     info.limiting_depth_source = grid::to_string(depth.source);
     info.ukc_m = options.ukc_m.value_or(0.0);
-    info.grid_fingerprint = grid.source().fingerprint_hex();
+    info.grid_fingerprint = grid::fingerprint_hex(grid.source().fingerprint);
     info.ship = ship;
     info.sweep = options.sweep;
     info.wild = options.wild;

@@ -61,10 +61,10 @@ struct GridSource {
     std::uint64_t input_vertices = 0;      ///< vertices read
     std::uint64_t polylines = 0;           ///< boundary polylines made of them
     std::uint64_t land_polylines = 0;      ///< of which with the land side known
-
-    /// `fingerprint` as 16 hex digits, as reports, `info` and the cache's file names show it.
-    std::string fingerprint_hex() const;
 };
+
+/// A grid fingerprint as 16 hex digits, as reports, `info` and the cache's file names show it.
+std::string fingerprint_hex(std::uint64_t fingerprint);
 
 /// The segment of a grid nearest to a point (CoastGrid::nearest_segment).
 struct NearestSegment {
