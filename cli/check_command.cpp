@@ -149,12 +149,7 @@ public:
         check_outputs(outputs, all_inputs);
         if (!m_debrief.empty()) report::check_debrief_folder(m_debrief);
         if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
-        if (m_audit.sweep.step_m < audit::min_step_m) {
-            char said[160];  // %g: std::to_string would say 1e-20 is "0.000000"
-            std::snprintf(said, sizeof said, "--step %g is under the smallest step, %g m: a sweep that fine never ends", m_audit.sweep.step_m,
-                          audit::min_step_m);
-            throw UsageError(said);
-        }
+        audit::check_step(m_audit.sweep.step_m);
         // Exercises and roles (issue 18): either option turns exercise mode on.
         if (!m_exercise_by.empty()) {
             m_audit.exercise_by = audit::parse_exercise_by(m_exercise_by);
@@ -245,6 +240,10 @@ public:
         }
         // A picture that cannot be written is an error said as such, but it must not hide the
         // groundings the report holds (exit 1 stays 1).
+        const auto not_written = [&](const char* what, const std::exception& e) {
+            std::fprintf(stderr, "shoal: error: the %s was not written: %s (the report %s was)\n", what, printable(in_cli_terms(e.what())).c_str(),
+                         printable(m_output).c_str());
+        };
         bool plot_failed = false;
         if (!m_plot.empty()) {
             try {
@@ -252,8 +251,7 @@ public:
                 picture.write(report::plot_svg(r, g));
                 staged.push_back(std::move(picture));
             } catch (const InputError& e) {
-                std::fprintf(stderr, "shoal: error: the picture was not written: %s (the report %s was)\n", printable(e.what()).c_str(),
-                             printable(m_output).c_str());
+                not_written("picture", e);
                 plot_failed = true;
             }
         }
@@ -270,10 +268,11 @@ public:
                 debrief_failed = !debrief_warnings.empty();
                 debrief_pages = sheets.size();
                 for (auto& s : sheets) staged.push_back(std::move(s));
-            } catch (const std::runtime_error& e) {
-                if (!dynamic_cast<const InputError*>(&e) && !dynamic_cast<const UsageError*>(&e)) throw;
-                std::fprintf(stderr, "shoal: error: the debrief was not written: %s (the report %s was)\n", printable(in_cli_terms(e.what())).c_str(),
-                             printable(m_output).c_str());
+            } catch (const InputError& e) {
+                not_written("debrief", e);
+                debrief_failed = true;
+            } catch (const UsageError& e) {
+                not_written("debrief", e);
                 debrief_failed = true;
             }
         }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 
 #include <shoal/util/error.hpp>
 #include <shoal/util/option_names.hpp>
@@ -12,39 +13,29 @@
 
 namespace shoal::cli {
 
-const CLI::Validator finite = CLI::Validator(
-    [](std::string& text) -> std::string {
-        double v = 0;
-        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v)) return "must be a finite number (got '" + text + "')";
-        return {};
-    },
-    "FINITE");
-
 namespace {
-CLI::Validator compared(const char* name, bool (*ok)(double), const char* said) {
+/// A validator for a number: accepted when `ok` holds for it, else "must be SAID (WHY; got 'TEXT')"
+/// ("(got 'TEXT')" with no `why`).
+CLI::Validator compared(const char* name, std::function<bool(double)> ok, std::string said, std::string why = "") {
+    if (!why.empty()) why += "; ";
     return CLI::Validator(
-        [ok, said](std::string& text) -> std::string {
+        [ok = std::move(ok), said = std::move(said), why = std::move(why)](std::string& text) -> std::string {
             double v = 0;
             if (CLI::detail::lexical_cast(text, v) && ok(v)) return {};
-            return std::string("must be ") + said + " (got '" + text + "')";
+            return "must be " + said + " (" + why + "got '" + text + "')";
         },
         name);
 }
 }  // namespace
 
+const CLI::Validator finite = compared("FINITE", [](double v) { return std::isfinite(v); }, "a finite number");
 const CLI::Validator positive = compared("POSITIVE", [](double v) { return v > 0; }, "> 0");
 const CLI::Validator non_negative = compared("NONNEGATIVE", [](double v) { return v >= 0; }, ">= 0");
 
 CLI::Validator at_most(double max, const std::string& what) {
-    return CLI::Validator(
-        [max, what](std::string& text) -> std::string {
-            double v = 0;
-            if (CLI::detail::lexical_cast(text, v) && v <= max) return {};
-            char bound[32];
-            std::snprintf(bound, sizeof bound, "%g", max);
-            return std::string("must be at most ") + bound + " (" + what + "; got '" + text + "')";
-        },
-        "MAX");
+    char bound[32];
+    std::snprintf(bound, sizeof bound, "%g", max);
+    return compared("MAX", [max](double v) { return v <= max; }, std::string("at most ") + bound, what);
 }
 
 void check_readable(const std::vector<std::string>& paths) {
@@ -69,7 +60,7 @@ void print_grid(const grid::CoastGrid& g) {
     for (std::size_t i = 0; i < s.inputs.size(); ++i) std::printf("%s%s", i ? ", " : "", s.inputs[i].c_str());
     std::printf("\nlayers:         ");
     for (std::size_t i = 0; i < s.layers.size(); ++i) std::printf("%s%s", i ? ", " : "", s.layers[i].c_str());
-    std::printf("\nfingerprint:    %s\n", s.fingerprint_hex().c_str());
+    std::printf("\nfingerprint:    %s\n", grid::fingerprint_hex(s.fingerprint).c_str());
     std::printf("frame:          %s\n", g.frame().description().c_str());
     std::printf("cell size:      %.1f m\n", g.cell_size());
     std::printf("grid:           %d x %d cells, %.1f x %.1f km, origin (%.1f, %.1f) m\n", g.nx(), g.ny(),

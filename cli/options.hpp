@@ -15,8 +15,8 @@
 
 namespace shoal::cli {
 
-/// Numbers that must be finite: CLI11's PositiveNumber and NonNegativeNumber let NaN through
-/// (every comparison with it is false), and a NaN option would silently switch a rule off.
+/// Numbers that must be finite: "must be a finite number (got 'inf')" (an infinite or NaN
+/// option would silently switch a rule off; `positive` and `non_negative` refuse NaN too).
 extern const CLI::Validator finite;
 /// > 0 and >= 0, said plainly: "must be > 0 (got '-1')" (CLI11's own print the range with its
 /// upper bound, the largest double, in 309 digits).

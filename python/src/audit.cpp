@@ -210,9 +210,7 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
     options.ukc_m = depth_or_none(ukc, "ukc", true);
     options.sweep.margin_m = positive("margin_m", margin_m, true);
     options.sweep.step_m = positive("step_m", step_m);
-    if (step_m < audit::min_step_m)
-        throw UsageError("step_m " + track::detail::fmt(step_m) + " is under the smallest step, " + track::detail::fmt(audit::min_step_m) +
-                         " m: a sweep that fine never ends");
+    audit::check_step(step_m);
     options.sweep.max_gap_s = positive("max_gap_s", max_gap_s);
     options.wild.max_speed_kn = positive("max_speed_kn", max_speed_kn);
     options.sweep.berthing_speed_kn = positive("berthing_speed_kn", berthing_speed_kn, true);

@@ -8,6 +8,7 @@
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/util/error.hpp>
 #include "audit/interval_events.hpp"
+#include "detail/parse_util.hpp"
 
 namespace shoal::audit {
 
@@ -330,6 +331,12 @@ private:
 };
 
 }  // namespace
+
+void check_step(double step_m) {
+    if (!(step_m >= min_step_m))
+        throw UsageError("SweepOptions::step_m " + track::detail::fmt(step_m) + " is under the smallest step, " + track::detail::fmt(min_step_m) +
+                         " m: a sweep that fine never ends");
+}
 
 TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, const PoseChecker& inner,
                         const SweepOptions& opt, const SweepContext& ctx) {

@@ -11,6 +11,7 @@
 
 #include "coast/ogr_source.hpp"
 #include "detail/geos_context.hpp"
+#include "detail/parse_util.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/util/error.hpp>
 
@@ -349,7 +350,7 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
     if (options.limiting_depth_m && !std::isfinite(*options.limiting_depth_m))
         throw UsageError("the limiting depth must be a finite number of metres");
     if (!(options.danger_radius_m > 0) || !(options.danger_radius_m <= ImportOptions::max_danger_radius_m))
-        throw UsageError("ImportOptions::danger_radius_m must be > 0 and at most 10000 metres");
+        throw UsageError("ImportOptions::danger_radius_m must be > 0 and at most " + track::detail::fmt(ImportOptions::max_danger_radius_m) + " metres");
     Coastline out;
     geo::GeosContext geos;
     std::vector<bool> found(options.layers.size(), false);

@@ -20,6 +20,7 @@
 
 #include "coast/ogr_source.hpp"
 #include "detail/geos_context.hpp"
+#include "detail/parse_util.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/util/error.hpp>
 
@@ -409,7 +410,7 @@ ExpectedAreas::~ExpectedAreas() = default;
 ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, const std::vector<std::string>& charts,
                                   const geo::LocalFrame& frame, double tolerance_m, std::vector<std::string>* warnings) {
     if (!(tolerance_m > 0) || !(tolerance_m <= max_tolerance_m))
-        throw UsageError("the tolerance around lines and points of expected areas must be > 0 and at most 1000 metres (got " +
+        throw UsageError("the tolerance around lines and points of expected areas must be > 0 and at most " + track::detail::fmt(max_tolerance_m) + " metres (got " +
                          std::to_string(tolerance_m) + ")");
     register_drivers();
     auto impl = std::make_unique<Impl>();

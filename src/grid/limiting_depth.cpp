@@ -53,10 +53,14 @@ std::vector<std::string> depth_warnings(const DepthPlan& plan, const CoastGrid& 
     if (plan.ukc_unused && !plan.depth_m)
         w.push_back("AuditOptions::ukc_m needs a ship with a draught (or give AuditOptions::hazard_depth_m): checking against land only");
     if (plan.depth_m && grid.charted_depths().empty()) {
-        const char* why = plan.source == DepthPlan::Source::hazard_depth     ? "AuditOptions::hazard_depth_m"
-                          : plan.source == DepthPlan::Source::grid_default   ? "the grid's default"
-                          : plan.source == DepthPlan::Source::vessel_draught ? "the vessel's draught + AuditOptions::ukc_m"
-                                                                             : "the ship's draught + AuditOptions::ukc_m";
+        const char* why = "the ship's draught + AuditOptions::ukc_m";
+        switch (plan.source) {
+            case DepthPlan::Source::hazard_depth: why = "AuditOptions::hazard_depth_m"; break;
+            case DepthPlan::Source::grid_default: why = "the grid's default"; break;
+            case DepthPlan::Source::vessel_draught: why = "the vessel's draught + AuditOptions::ukc_m"; break;
+            case DepthPlan::Source::draught:
+            case DepthPlan::Source::land_only: break;  // land only has no depth: not here
+        }
         char buf[160];
         std::snprintf(buf, sizeof buf, "%.2f m (%s)", *plan.depth_m, why);
         w.push_back((grid_name.empty() ? std::string("the grid") : "the grid '" + grid_name + "'") +

@@ -21,13 +21,14 @@ std::optional<StagedOutput> stage_sidecar_style(const std::string& qml_path, std
     std::error_code ec;
     if (std::filesystem::exists(p, ec)) {
         std::string head;  // a FIFO or a device is never opened (a FIFO would wait for a writer)
-        if (std::filesystem::is_regular_file(p, ec))
+        const bool regular = std::filesystem::is_regular_file(p, ec);
+        if (regular)
             if (std::FILE* f = std::fopen(p.c_str(), "rb")) {
                 head.resize(4096);
                 head.resize(std::fread(head.data(), 1, head.size(), f));
                 std::fclose(f);
             }
-        if (!std::filesystem::is_regular_file(p, ec) || head.find(sidecar_mark) == std::string::npos) {
+        if (!regular || head.find(sidecar_mark) == std::string::npos) {
             warning = "'" + p.string() + "' exists and was not written by shoal: left as it is, so the report has no QGIS style beside it "
                       "(move that file, or write the report elsewhere)";
             return std::nullopt;

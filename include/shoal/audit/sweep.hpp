@@ -21,6 +21,9 @@ namespace shoal::audit {
 /// The smallest SweepOptions::step_m front ends accept: a centimetre (a sweep finer than
 /// that never ends on a long voyage).
 inline constexpr double min_step_m = 0.01;
+/// Throws UsageError naming SweepOptions::step_m when `step_m` is under min_step_m (or NaN):
+/// what front ends call before any work.
+void check_step(double step_m);
 
 struct SweepOptions {
     double step_m = 5.0;          ///< no hull point moves more than this between two checks
