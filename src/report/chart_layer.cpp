@@ -50,6 +50,13 @@ std::string tile_key(ChartTile t) {
     return buf;
 }
 
+std::optional<ChartTile> parse_tile_key(const std::string& key) {
+    ChartTile t;
+    int used = 0;
+    if (std::sscanf(key.c_str(), "R%dC%d%n", &t.row, &t.col, &used) != 2 || used != static_cast<int>(key.size())) return std::nullopt;
+    return t;
+}
+
 ChartTile tile_of(geo::LonLat p) {
     return {static_cast<int>(std::floor(p.lon / chart_tile_deg)) + col_offset, static_cast<int>(std::floor(p.lat / chart_tile_deg)) + row_offset};
 }

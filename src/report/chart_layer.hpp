@@ -17,6 +17,7 @@
 /// hole taken away, so that a lake in an island and an island in that lake come out right.
 /// Lines with the land side unknown (a COALNE without LNDARE) bound no area and are not drawn.
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -35,6 +36,8 @@ struct ChartTile {
     auto operator<=>(const ChartTile&) const = default;
 };
 std::string tile_key(ChartTile t);
+/// The tile a tile_key names; none for text that is not one.
+std::optional<ChartTile> parse_tile_key(const std::string& key);
 /// The tile holding lon/lat `p`.
 ChartTile tile_of(geo::LonLat p);
 

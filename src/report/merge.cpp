@@ -13,8 +13,10 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "detail/gdal_support.hpp"
 #include "detail/input_file.hpp"
 #include "detail/json_message.hpp"
+#include "report/chart_layer.hpp"
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"
 #include "report/report_fields.hpp"
@@ -47,7 +49,15 @@ struct Part {
 using Key = std::vector<double>;
 
 /// A name or value from a part, quoted for a message (cut: a hostile part may hold megabytes in one).
-std::string named(const std::string& s) { return "'" + shoal::detail::shortened(s, 240) + "'"; }
+std::string named(const std::string& s) { return "'" + shoal::detail::shortened(s, shoal::detail::max_json_message_bytes) + "'"; }
+
+bool is_gpkg(const std::string& path) { return std::filesystem::path(path).extension() == ".gpkg"; }
+
+/// A part that is not JSON (`why`): named as the GeoPackage its name promises, or as GeoJSON.
+InputError not_json(const std::string& path, const std::string& why) {
+    if (is_gpkg(path)) return InputError(path + ": not a GeoPackage (not an SQLite file)");
+    return InputError(path + ": not a GeoJSON report (" + why + ")");
+}
 
 InputError not_a_part(const std::string& path, const std::string& why) {
     return InputError(path + ": not the report of a shard (" + why + "); `shoal check --shard I/N` writes those");
@@ -76,8 +86,7 @@ Part read_geojson_part(const std::string& path, const std::string& text) {
     try {
         p.doc = json::parse(text);
     } catch (const json::exception& e) {
-        if (std::filesystem::path(path).extension() == ".gpkg") throw InputError(path + ": not a GeoPackage (not an SQLite file)");
-        throw InputError(path + ": not a GeoJSON report (" + shoal::detail::json_error_text(e.what()) + ")");
+        throw not_json(path, shoal::detail::json_error_text(e.what()));
     }
     if (!p.doc.is_object() || !p.doc.contains("shoal") || !p.doc["shoal"].is_object()) throw not_a_part(path, "no \"shoal\" member");
     read_shard(p, {"inputs", "tracks", "features", "problems", "approaches"});
@@ -127,7 +136,7 @@ json rows_of(Part& p, const char* name, bool omit_null) {
 Part read_gpkg_part(const std::string& path) {
     Part p;
     p.path = path;
-    GDALAllRegister();
+    shoal::detail::register_drivers();
     const char* const drivers[] = {"GPKG", nullptr};
     CPLErrorReset();
     p.gpkg.reset(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers, nullptr, nullptr));
@@ -167,21 +176,23 @@ Part read_gpkg_part(const std::string& path) {
 
 /// A part, GeoJSON or GeoPackage (an SQLite file).
 Part read_part(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot be read (" + (std::filesystem::exists(path) ? "not readable" : "no such file") + ")");
-    static const char sqlite[] = "SQLite format 3";  // and its NUL: the first 16 bytes of every SQLite file
-    char head[sizeof sqlite] = {};
-    in.read(head, sizeof head);
-    if (in.gcount() == sizeof head && std::equal(head, head + sizeof head, sqlite)) return read_gpkg_part(path);
-    in.close();
+    // Only a regular file can be a GeoPackage (SQLite needs a file): a stream (a FIFO, a pipe,
+    // standard input) is not opened to look, so read_json_object_input still sees it whole.
+    if (std::filesystem::is_regular_file(path)) {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw InputError(path + ": cannot be read (not readable)");
+        static const char sqlite[] = "SQLite format 3";  // and its NUL: the first 16 bytes of every SQLite file
+        char head[sizeof sqlite] = {};
+        in.read(head, sizeof head);
+        if (in.gcount() == sizeof head && std::equal(head, head + sizeof head, sqlite)) return read_gpkg_part(path);
+    }
     std::string text;
     try {
         text = shoal::detail::read_json_object_input(path, max_part_bytes, "a shard's report");
     } catch (const shoal::detail::InputOpenError& e) {
         throw InputError(path + ": cannot be read (" + e.reason + ")");
     } catch (const shoal::detail::NotJsonObject& e) {
-        if (std::filesystem::path(path).extension() == ".gpkg") throw InputError(path + ": not a GeoPackage (not an SQLite file)");
-        throw InputError(path + ": not a GeoJSON report (" + e.reason + ")");
+        throw not_json(path, e.reason);
     }
     return read_geojson_part(path, text);
 }
@@ -340,7 +351,6 @@ json merged_summary(const std::vector<Part>& parts, const std::vector<std::size_
 }
 
 
-bool is_gpkg(const std::string& path) { return std::filesystem::path(path).extension() == ".gpkg"; }
 
 /// Parts must be of the format of the report they are merged into.
 void check_formats(const std::vector<Part>& parts, bool gpkg) {
@@ -525,10 +535,10 @@ void put_rows(OGRLayer* out, const std::vector<std::pair<Key, OGRFeatureUniquePt
 
 /// The tile of a coast feature, from its key ("RrrrrCcccc", report/chart_layer.hpp: tile_key).
 Key tile_key_of(const Part& p, const OGRFeature& f) {
-    int row = 0, col = 0;
-    const char* key = f.GetFieldAsString("tile");
-    if (std::sscanf(key, "R%dC%d", &row, &col) != 2) throw InputError(p.path + ": coast tile '" + key + "' is not RrrrrCcccc (was it edited?)");
-    return {as_key(static_cast<std::size_t>(col)), as_key(static_cast<std::size_t>(row))};
+    const std::string key = f.GetFieldAsString("tile");
+    const std::optional<ChartTile> t = parse_tile_key(key);
+    if (!t) throw InputError(p.path + ": coast tile " + named(key) + " is not RrrrrCcccc (was it edited?)");
+    return {static_cast<double>(t->col), static_cast<double>(t->row)};  // ChartTile's order, as the writer's set
 }
 
 /// The merged GeoPackage report of GeoPackage parts, staged at `output`, written by the

@@ -9,9 +9,9 @@ namespace shoal::report {
 using json = nlohmann::ordered_json;
 
 json part_order(const audit::AuditResult& r, bool gpkg) {
-    const auto position = [&](std::size_t k) { return k < r.track_positions.size() ? r.track_positions[k] : k; };
+    const auto position = [&](std::size_t k) { return fields::position_in_run(r.track_positions, k); };
     const auto encounter_key = [&](const audit::Encounter& e) {
-        return json::array({e.start_s, position(e.a.track), position(e.b.track), static_cast<int>(e.kind)});
+        return json::array({e.start_s, position(e.a.track), position(e.b.track), static_cast<unsigned>(e.kind)});
     };
     json inputs = json::array(), tracks = json::array(), features = json::array(), problems = json::array(), approaches = json::array();
     json events = json::array(), encounters = json::array(), hulls = json::array(), poses = json::array();
@@ -22,7 +22,7 @@ json part_order(const audit::AuditResult& r, bool gpkg) {
         for (std::size_t p = 0; p < r.tracks[k].poses.size(); ++p) poses.push_back(position(k));
     }
     for (const auto& e : r.encounters.events) encounters.push_back(encounter_key(e));
-    // hull_rows' order: each track event's hull, then both ships' hulls of each encounter.
+    // fields::hull_rows' order: each track event's hull, then both ships' hulls of each encounter.
     hulls = events;
     for (const auto& k : encounters) hulls.insert(hulls.end(), 2, k);
     features = events;

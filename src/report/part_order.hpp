@@ -11,9 +11,10 @@
 /// - `problems`: [group, position] (report_fields.hpp: ProblemRow);
 /// - `approaches`: [position of a, position of b] of each closest approach (one run's order);
 /// - GeoPackage only: `events`, `poses` (track positions), `encounters` (encounter keys),
-///   `hulls` (a track position, or an encounter key), `coast` ([column, row] of each
-///   feature's tile: a tile's features are the same in every part, chart_layer.hpp), and
-///   `project`, the QGIS project's view of the part (qgis_project.hpp: ProjectView).
+///   `hulls` (a track position, or an encounter key), and `project`, the QGIS project's view
+///   of the part (qgis_project.hpp: ProjectView). The coast layer needs no positions: merge
+///   orders its features by each one's `tile` field (a tile's features are the same in every
+///   part, chart_layer.hpp).
 #include <nlohmann/json.hpp>
 
 #include <shoal/audit/audit.hpp>

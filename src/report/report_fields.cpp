@@ -365,7 +365,6 @@ std::vector<HullRow> hull_rows(const audit::AuditResult& r) {
 }
 
 std::vector<ProblemRow> problem_rows(const audit::AuditResult& r) {
-    const auto at = [](const std::vector<std::size_t>& positions, std::size_t k) { return k < positions.size() ? positions[k] : k; };
     std::vector<ProblemRow> rows;
     for (const auto& f : r.files) {
         if (!f.error.empty()) rows.push_back({f.file, "", 0, f.error});
@@ -373,12 +372,12 @@ std::vector<ProblemRow> problem_rows(const audit::AuditResult& r) {
     }
     for (std::size_t k = 0; k < r.errors.size(); ++k) {
         const auto& e = r.errors[k];
-        rows.push_back({e.file, e.track, 0, e.message, 1, at(r.error_positions, k)});
+        rows.push_back({e.file, e.track, 0, e.message, 1, position_in_run(r.error_positions, k)});
     }
     for (std::size_t k = 0; k < r.tracks.size(); ++k) {
         const auto& t = r.tracks[k];
         for (const auto& w : t.summary.wild_fixes)
-            rows.push_back({t.summary.file, t.summary.id, w.line, wild_fix_message(t.summary, w), 2, at(r.track_positions, k)});
+            rows.push_back({t.summary.file, t.summary.id, w.line, wild_fix_message(t.summary, w), 2, position_in_run(r.track_positions, k)});
     }
     return rows;
 }

@@ -139,8 +139,16 @@ const std::vector<Field<RunRow>>& summary_fields();
 
 /// The rows of the layers that are not one-to-one with a vector of the result.
 std::vector<TrackRow> track_rows(const audit::AuditResult& r);
+/// Each track event's hull, then both ships' hulls of each encounter (part_order.cpp keys
+/// the GeoPackage `hulls` rows in this order: change both together).
 std::vector<HullRow> hull_rows(const audit::AuditResult& r);
 std::vector<ProblemRow> problem_rows(const audit::AuditResult& r);
+
+/// Row k's position among all the rows of one run (AuditResult::track_positions or
+/// error_positions); k itself when the run was not a shard (no positions kept).
+inline std::size_t position_in_run(const std::vector<std::size_t>& positions, std::size_t k) {
+    return k < positions.size() ? positions[k] : k;
+}
 
 /// "collision 10:03:12Z", "close quarters 10:03:12Z".
 std::string encounter_label(const audit::Encounter& e);

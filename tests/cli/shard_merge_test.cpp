@@ -218,13 +218,16 @@ TEST(ShardMerge, OneRunPerFileMergesToTheSingleRunWhenNoVesselSpansFiles) {
     EXPECT_EQ(slurp(merged), slurp(single));
 }
 
+/// `shoal check` of the Helsinki coast with `args`, its report at temp_dir()/FILE (quoted for the shell).
+std::string checked_part(const std::string& file, const std::string& args) {
+    const fs::path p = temp_dir() / file;
+    const Outcome r = shoal("check " + helsinki + " " + args + " -o " + q(p));
+    EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
+    return q(p);
+}
+
 TEST(ShardMerge, MismatchedIncompleteOrForeignPartsAreRefusedNamingWhy) {
-    const auto part = [](const std::string& name, const std::string& args) {
-        const fs::path p = temp_dir() / (name + ".geojson");
-        const Outcome r = shoal("check " + helsinki + " " + args + " -o " + q(p));
-        EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
-        return q(p);
-    };
+    const auto part = [](const std::string& name, const std::string& args) { return checked_part(name + ".geojson", args); };
     const std::string a = part("r0", "--shard 0/2 " + case_files());
     const std::string b = part("r1", "--shard 1/2 " + case_files());
     const std::string b_step = part("r1step", "--step 2 --shard 1/2 " + case_files());
@@ -266,12 +269,7 @@ TEST(ShardMerge, MismatchedIncompleteOrForeignPartsAreRefusedNamingWhy) {
 }
 
 TEST(ShardMerge, MismatchedIncompleteOrForeignGeoPackagePartsAreRefusedNamingWhy) {
-    const auto part = [](const std::string& name, const std::string& args) {
-        const fs::path p = temp_dir() / (name + ".gpkg");
-        const Outcome r = shoal("check " + helsinki + " " + args + " -o " + q(p));
-        EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
-        return q(p);
-    };
+    const auto part = [](const std::string& name, const std::string& args) { return checked_part(name + ".gpkg", args); };
     const std::string a = part("g0", "--shard 0/2 " + case_files());
     const std::string b = part("g1", "--shard 1/2 " + case_files());
     const std::string b_step = part("g1step", "--step 2 --shard 1/2 " + case_files());
