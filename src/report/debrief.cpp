@@ -25,25 +25,8 @@ constexpr const char* generator_mark = "<meta name=\"generator\" content=\"shoal
 
 std::string esc(std::string_view s) { return markup_text(s); }
 
-/// "2024-05-01 10:03:12Z" (to the second, cut from the report's ISO time).
-std::string when(double t) {
-    const std::string s = iso_time(t);
-    return s.size() >= 19 ? s.substr(0, 10) + " " + s.substr(11, 8) + "Z" : "?";
-}
-
-/// "10:03:12Z".
-std::string clock_of(double t) {
-    const std::string s = iso_time(t);
-    return s.size() >= 19 ? s.substr(11, 8) + "Z" : "?";
-}
-
-std::string fixed(double v, int decimals) {
-    if (!std::isfinite(v)) return "&#8211;";
-    char b[48];
-    std::snprintf(b, sizeof b, "%.*f", decimals, v);
-    if (std::string_view(b).find_first_not_of("-0.") == std::string_view::npos && b[0] == '-') return b + 1;
-    return b;
-}
+/// A number for the page: an en dash when not finite (plain text: escaped like any other).
+std::string fixed(double v, int decimals) { return fixed_text(v, decimals, "\xE2\x80\x93"); }
 
 // ---------------------------------------------------------------- file names
 
@@ -160,7 +143,8 @@ std::pair<const char*, const char*> criterion_words(audit::CriterionKind k) {
     return {"criterion", ""};
 }
 
-/// The longest hull of a track (its first kept pose's outline), metres in the grid's frame; 0 unknown.
+/// The size of a track's hull (the longest chord of the first pose outline that has one),
+/// metres in the grid's frame; 0 unknown.
 double hull_length(const audit::TrackResult& t, const geo::LocalFrame& frame) {
     for (const audit::Pose& p : t.poses) {
         std::vector<geo::XY> pts;
@@ -222,7 +206,7 @@ std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid&
             it.zoom.start_s = e.start_s - 120;
             it.zoom.end_s = e.end_s + 120;
             it.zoom.kind = it.kind;
-            it.zoom.time_label = clock_of(e.start_s);
+            it.zoom.time_label = clock_text(e.start_s, "?");
             it.zoom.tooltip = it.text;
             double hull_m = 0;
             for (const auto* ship : {&e.a, &e.b}) {
@@ -253,7 +237,7 @@ std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid&
             }
             if (std::isfinite(b.value))
                 text += "; worst " + fixed(b.value, 1) + (*unit ? std::string(" ") + unit : "") + " against a limit of " + fixed(b.limit, 1) +
-                        (*unit ? std::string(" ") + unit : "") + (std::isfinite(b.worst_s) ? " at " + clock_of(b.worst_s) : "");
+                        (*unit ? std::string(" ") + unit : "") + (std::isfinite(b.worst_s) ? " at " + clock_text(b.worst_s, "?") : "");
             text += "; penalty " + fixed(b.penalty, 1);
             if (!b.detail.empty()) text += "; " + b.detail;
             it.text = text;
@@ -264,7 +248,7 @@ std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid&
                 it.zoom.start_s = std::isfinite(b.start_s) ? b.start_s : b.worst_s;
                 it.zoom.end_s = std::isfinite(b.end_s) ? b.end_s : b.worst_s;
                 it.zoom.kind = "breach";
-                it.zoom.time_label = std::isfinite(b.worst_s) ? "worst " + clock_of(b.worst_s) : "";
+                it.zoom.time_label = std::isfinite(b.worst_s) ? "worst " + clock_text(b.worst_s, "?") : "";
                 it.zoom.tooltip = text;
                 const double hull_m = hull_length(r.tracks[t->second], g.frame());
                 it.zoom.size_m = std::max({hull_m > 0 ? 8 * hull_m : 800.0, b.kind == audit::CriterionKind::cpa ? 2.5 * b.value : 0.0,
@@ -303,7 +287,6 @@ article.event { display: flex; gap: 12px; align-items: flex-start; border-top: 1
 article.event .words { flex: 1 1 50%; }
 article.event figure { flex: 0 0 auto; margin: 0; width: 340px; max-width: 48%; }
 .kind { display: inline-block; width: 10px; height: 10px; margin-right: 6px; border-radius: 2px; }
-.target { color: #555555; }
 footer { margin-top: 18px; font-size: 8.5pt; color: #555555; }
 tr { break-inside: avoid; page-break-inside: avoid; }
 @media print {
@@ -336,10 +319,10 @@ std::string party_ids(const audit::AuditResult& r, const audit::ColregEncounter&
 
 std::string action_words(const audit::Manoeuvre& m) {
     if (std::isnan(m.time_s)) return "none";
-    return std::string(m.course && m.speed ? "course and speed" : m.course ? "course" : "speed") + " at " + clock_of(m.time_s);
+    return std::string(m.course && m.speed ? "course and speed" : m.course ? "course" : "speed") + " at " + clock_text(m.time_s, "?");
 }
 
-/// "3 min 20 s" for a TCPA, "-40 s" when opening.
+/// "3 min 20 s" for a TCPA, "opening (40 s ago)" when the ships were already opening.
 std::string tcpa_words(double s) {
     if (!std::isfinite(s)) return "&#8211;";
     return s < 0 ? "opening (" + duration_words(-s) + " ago)" : duration_words(s);
@@ -392,7 +375,7 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
     out += "<header>\n<h1>Debrief: " + esc(page.exercise) + "</h1>\n<table class=\"facts\">\n";
     row(out, "Exercise", "<span class=\"exercise\">" + esc(page.exercise) + "</span>");
     row(out, "Time span",
-        std::isfinite(first) ? esc(when(first) + " to " + when(last) + " (" + duration_words(last - first) + ")") : "no fixes");
+        std::isfinite(first) ? esc(date_clock_text(first) + " to " + date_clock_text(last) + " (" + duration_words(last - first) + ")") : "no fixes");
     row(out, "Ships",
         esc(std::to_string(page.tracks.size()) + " tracks" +
             (r.has_encounters ? ": " + std::to_string(trainees) + " trainee" + (trainees == 1 ? "" : "s") + ", " + std::to_string(targets) +
@@ -450,9 +433,9 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
         const auto& s = r.tracks[ti].summary;
         out += "<tr class=\"ship\"><td class=\"track\">" + esc(s.id) + "</td><td>" + esc(s.name) + "</td><td>" +
                (r.has_encounters ? audit::to_string(s.role) : "&#8211;") + "</td><td class=\"num\">" + std::to_string(s.fixes) +
-               "</td><td>" + esc(clock_of(s.start_s)) + "</td><td>" + esc(clock_of(s.end_s)) + "</td><td class=\"num\">" +
+               "</td><td>" + esc(clock_text(s.start_s, "?")) + "</td><td>" + esc(clock_text(s.end_s, "?")) + "</td><td class=\"num\">" +
                fixed(s.distance_m / 1852, 2) + "</td><td class=\"num\">" + std::to_string(s.groundings) + "</td><td class=\"num\">" +
-               std::to_string(s.close_passes) + "</td><td class=\"num\">" + (std::isfinite(s.min_clearance_m) ? fixed(s.min_clearance_m, 1) : "&#8211;") +
+               std::to_string(s.close_passes) + "</td><td class=\"num\">" + fixed(s.min_clearance_m, 1) +
                "</td></tr>\n";
     }
     out += "</tbody>\n</table>\n";
@@ -469,7 +452,7 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
         Item& it = items[n];
         out += "<article class=\"event\" id=\"event-" + std::to_string(n + 1) + "\" data-kind=\"" + esc(it.kind) + "\" data-time=\"" +
                esc(std::isfinite(it.time_s) ? iso_time(it.time_s) : "") + "\">\n<div class=\"words\">\n<h3><span class=\"kind\" style=\"background:" +
-               kind_colour(it.kind) + "\"></span>" + std::to_string(n + 1) + ". " + esc(clock_of(it.time_s)) + " " + esc(it.heading) +
+               kind_colour(it.kind) + "\"></span>" + std::to_string(n + 1) + ". " + esc(clock_text(it.time_s, "?")) + " " + esc(it.heading) +
                "</h3>\n<p class=\"who\">" + esc(it.who) + "</p>\n<p class=\"what\">" + esc(it.text) + "</p>\n</div>\n";
         if (!it.zoom.tracks.empty() && panels < options.max_zoom_panels) {
             it.zoom.id = "zoom-" + std::to_string(n + 1);
@@ -506,11 +489,11 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
                 actions += "; not under way at the start: " + std::string(c->a_stopped ? a : "") + (c->a_stopped && c->b_stopped ? ", " : "") +
                            (c->b_stopped ? b : "");
             out += "<tr class=\"encounter\"><td class=\"situation\">" + esc(audit::to_string(c->at_start.situation)) + "</td><td>" +
-                   esc(when(c->start_s)) + "</td><td class=\"ships\">" + esc(a) + " &#215; " + esc(b) + "</td><td class=\"give-way\">" +
+                   esc(date_clock_text(c->start_s)) + "</td><td class=\"ships\">" + esc(a) + " &#215; " + esc(b) + "</td><td class=\"give-way\">" +
                    esc(party_ids(r, *c, c->at_start.give_way)) + "</td><td class=\"stand-on\">" + esc(party_ids(r, *c, c->at_start.stand_on)) +
                    "</td><td class=\"num\">" + fixed(c->at_start.bearing_of_b_deg, 0) + " / " + fixed(c->at_start.bearing_of_a_deg, 0) +
                    "</td><td class=\"num cpa\">" + fixed(c->cpa_start.distance_m, 0) + "</td><td class=\"num tcpa\">" + tcpa_words(c->cpa_start.time_s) +
-                   "</td><td class=\"closest\">" + fixed(c->closest_m, 0) + " m at " + esc(clock_of(c->closest_s)) + "</td><td class=\"num\">" +
+                   "</td><td class=\"closest\">" + fixed(c->closest_m, 0) + " m at " + esc(clock_text(c->closest_s, "?")) + "</td><td class=\"num\">" +
                    fixed(hull_clearance, 1) + "</td><td class=\"actions\">" + esc(actions) + "</td></tr>\n";
         }
         out += "</tbody>\n</table>\n<p class=\"none\">Bearings: of the second ship from the first / of the first from the second, "

@@ -18,6 +18,24 @@
 
 namespace shoal::report {
 
+std::string fixed_text(double v, int decimals, const char* not_finite) {
+    if (!std::isfinite(v)) return not_finite;
+    char b[48];
+    std::snprintf(b, sizeof b, "%.*f", decimals, v);
+    if (std::string_view(b).find_first_not_of("-0.") == std::string_view::npos && b[0] == '-') return b + 1;  // no "-0.0"
+    return b;
+}
+
+std::string clock_text(double t, const char* unknown) {
+    const std::string s = iso_time(t);
+    return s.size() >= 19 ? s.substr(11, 8) + "Z" : unknown;
+}
+
+std::string date_clock_text(double t) {
+    const std::string s = iso_time(t);
+    return s.size() >= 19 ? s.substr(0, 10) + " " + s.substr(11, 8) + "Z" : "?";
+}
+
 namespace {
 
 using audit::Event;
@@ -71,54 +89,6 @@ std::string num(double v) {
     return s;
 }
 
-/// `v` with `decimals` decimals ("9.8", "182"); "?" when not finite.
-std::string num_fixed(double v, int decimals) {
-    if (!std::isfinite(v)) return "?";
-    char b[48];
-    std::snprintf(b, sizeof b, "%.*f", decimals, v);
-    if (std::string_view(b).find_first_not_of("-0.") == std::string_view::npos && b[0] == '-') return b + 1;  // no "-0.0"
-    return b;
-}
-
-/// Text for XML character data or an attribute value: markup characters escaped, invalid
-/// UTF-8 replaced by U+FFFD, control characters XML 1.0 forbids replaced by spaces.
-std::string xml(std::string_view s) {
-    std::string out;
-    out.reserve(s.size());
-    for (std::size_t i = 0; i < s.size();) {
-        const auto c = static_cast<unsigned char>(s[i]);
-        if (c < 0x80) {
-            switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default: out += (c < 0x20 && c != '\t' && c != '\n' && c != '\r') ? ' ' : static_cast<char>(c);
-            }
-            ++i;
-            continue;
-        }
-        const std::size_t n = (c >= 0xC2 && c <= 0xDF) ? 2 : (c >= 0xE0 && c <= 0xEF) ? 3 : (c >= 0xF0 && c <= 0xF4) ? 4 : 0;
-        bool ok = n > 0 && i + n <= s.size();
-        std::uint32_t cp = ok ? (c & (0xFFu >> (n + 1))) : 0;
-        for (std::size_t k = 1; ok && k < n; ++k) {
-            const auto cc = static_cast<unsigned char>(s[i + k]);
-            ok = (cc & 0xC0) == 0x80;
-            cp = (cp << 6) | (cc & 0x3Fu);
-        }
-        const std::uint32_t min_cp = n == 2 ? 0x80 : n == 3 ? 0x800 : 0x10000;
-        ok = ok && cp >= min_cp && cp <= 0x10FFFF && !(cp >= 0xD800 && cp <= 0xDFFF) && cp != 0xFFFE && cp != 0xFFFF;
-        if (ok) {
-            out.append(s.substr(i, n));
-            i += n;
-        } else {
-            out += "\xEF\xBF\xBD";
-            ++i;
-        }
-    }
-    return out;
-}
 
 /// Characters (code points) in UTF-8 text, for estimating its width.
 std::size_t glyphs(std::string_view s) {
@@ -142,17 +112,7 @@ std::string fit_text(const std::string& s, double size, double max_px) {
     return cut + "\xE2\x80\xA6";
 }
 
-/// "19:02:33Z" (UTC time of day, cut from the report's ISO time, not rounded).
-std::string clock(double t) {
-    const std::string s = iso_time(t);
-    return s.size() >= 19 ? s.substr(11, 8) + "Z" : "--:--:--";
-}
 
-/// "2014-08-15 19:02:33Z".
-std::string date_clock(double t) {
-    const std::string s = iso_time(t);
-    return s.size() >= 19 ? s.substr(0, 10) + " " + s.substr(11, 8) + "Z" : "?";
-}
 
 std::string plural(std::size_t n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
@@ -217,7 +177,7 @@ std::string hazard_text(const Event& e) {
     if (e.hit == coast::HazardKind::land) return {};
     std::string s = e.hit == coast::HazardKind::danger ? coast::to_string(e.danger) : coast::to_string(e.hit);
     if (s.empty()) s = coast::to_string(e.hit);
-    if (std::isfinite(e.charted_depth_m)) s += " " + num_fixed(e.charted_depth_m, 1) + " m";
+    if (std::isfinite(e.charted_depth_m)) s += " " + fixed_text(e.charted_depth_m, 1) + " m";
     return s;
 }
 
@@ -241,30 +201,13 @@ std::string kind_words(const Event& e) {
 /// "9.8 kn SOG", "0.3 kn from positions", "speed unknown".
 std::string speed_text(const Event& e) {
     if (!std::isfinite(e.speed_kn) || e.speed_source == track::SpeedSource::none) return "speed unknown";
-    return num_fixed(e.speed_kn, 1) + (e.speed_source == track::SpeedSource::sog ? " kn SOG" : " kn from positions");
+    return fixed_text(e.speed_kn, 1) + (e.speed_source == track::SpeedSource::sog ? " kn SOG" : " kn from positions");
 }
 
 /// " at contact" (a contact whose speed is known), " at least clearance" (a close pass's), "".
 std::string speed_when(const Event& e) {
     if (!std::isfinite(e.speed_kn) || e.speed_source == track::SpeedSource::none) return {};
     return audit::is_contact(e.kind) ? " at contact" : " at least clearance";
-}
-
-/// "0 s", "4.2 s", "42 s", "3 min 07 s", "2 h 05 min".
-std::string duration_text(double s) {
-    if (!std::isfinite(s) || s < 0) return "duration unknown";
-    char b[48];
-    if (s < 0.05) return "0 s";
-    if (s < 9.95) std::snprintf(b, sizeof b, "%.1f s", s);
-    else if (s < 59.5) std::snprintf(b, sizeof b, "%.0f s", s);
-    else if (s < 3600) {
-        const long t = std::lround(s);
-        std::snprintf(b, sizeof b, "%ld min %02ld s", t / 60, t % 60);
-    } else {
-        const long t = std::lround(s / 60);
-        std::snprintf(b, sizeof b, "%ld h %02ld min", t / 60, t % 60);
-    }
-    return b;
 }
 
 /// "heading 182°" (with its source when `source`), "heading unknown (hull circle)" when no
@@ -275,7 +218,7 @@ std::string heading_text(const Event& e, bool source) {
     double h = std::fmod(e.heading_deg, 360.0);
     if (h < 0) h += 360;
     if (h >= 359.5) h = 0;
-    std::string s = "heading " + num_fixed(h, 0) + "\xC2\xB0";
+    std::string s = "heading " + fixed_text(h, 0) + "\xC2\xB0";
     if (source) {
         switch (e.heading_source) {
         case track::HeadingSource::heading: s += " (true heading)"; break;
@@ -290,8 +233,8 @@ std::string heading_text(const Event& e, bool source) {
 
 /// "penetration 1.2 m" (contacts), "least clearance 12.3 m" (close passes).
 std::string depth_text(const Event& e) {
-    if (audit::is_contact(e.kind)) return "penetration " + num_fixed(e.penetration_m, 1) + " m";
-    return "least clearance " + num_fixed(e.min_clearance_m, 1) + " m";
+    if (audit::is_contact(e.kind)) return "penetration " + fixed_text(e.penetration_m, 1) + " m";
+    return "least clearance " + fixed_text(e.min_clearance_m, 1) + " m";
 }
 
 /// "track 230123456 AAVA" (the name only when it says more than the id).
@@ -307,15 +250,15 @@ std::string evidence_text(const Event& e) {
     std::vector<std::string> parts;
     if (audit::is_contact(e.kind)) {
         if (e.stopped_before) parts.push_back("stopped before contact");
-        parts.push_back(std::isfinite(e.stopped_after_s) ? "stopped after " + duration_text(e.stopped_after_s)
+        parts.push_back(std::isfinite(e.stopped_after_s) ? "stopped after " + duration_words(e.stopped_after_s)
                                                          : std::string("did not stop (in this piece)"));
         if (std::isfinite(e.reference_inside_m)) {
             const std::string what = e.hit == coast::HazardKind::land      ? "land"
                                      : e.hit == coast::HazardKind::shallow ? "the shallow area"
                                                                            : "the danger";
             parts.push_back(e.reference_inside_m >= 0
-                                ? "reference point " + num_fixed(e.reference_inside_m, 1) + " m inside " + what
-                                : "reference point " + num_fixed(-e.reference_inside_m, 1) + " m outside " + what + " (in water)");
+                                ? "reference point " + fixed_text(e.reference_inside_m, 1) + " m inside " + what
+                                : "reference point " + fixed_text(-e.reference_inside_m, 1) + " m outside " + what + " (in water)");
         }
     }
     if (e.nav_status != track::nav_status_unknown) {
@@ -789,7 +732,7 @@ void label(std::string& out, const Rect& box, const std::string& text, double si
            num(box.w()) + "\" height=\"" + num(box.h()) +
            "\" rx=\"2\" fill=\"#ffffff\" fill-opacity=\"0.8\"/><text x=\"" + num(box.x0 + 2) + "\" y=\"" +
            num(box.y0 + size * 0.95 + 1) + "\" font-size=\"" + num(size) + "\" fill=\"" + colour + "\"" +
-           (bold ? " font-weight=\"bold\"" : "") + ">" + xml(text) + "</text></g>\n";
+           (bold ? " font-weight=\"bold\"" : "") + ">" + markup_text(text) + "</text></g>\n";
 }
 
 // ---------------------------------------------------------------- pieces of a panel
@@ -797,7 +740,7 @@ void label(std::string& out, const Rect& box, const std::string& text, double si
 void text(std::string& out, double x, double y, const std::string& s, double size, const char* colour,
           const char* extra = "") {
     out += "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\" font-size=\"" + num(size) + "\" fill=\"" + colour + "\"" + extra +
-           ">" + xml(s) + "</text>\n";
+           ">" + markup_text(s) + "</text>\n";
 }
 
 /// Background (grey where there is no chart), water over the grid's extent, land, coastline.
@@ -837,7 +780,7 @@ void draw_track(std::string& out, const TrackDraw& t, const View& v, const char*
     if (d.empty()) return;
     out += "<path class=\"track\" fill=\"none\" stroke=\"" + std::string(colour) + "\" stroke-width=\"" + num(width) +
            "\" stroke-opacity=\"" + num(opacity) + "\" stroke-linejoin=\"round\" stroke-linecap=\"round\" d=\"" + d +
-           "\"><title>" + xml("track " + t.summary->id + (t.summary->name.empty() ? "" : " (" + t.summary->name + ")")) +
+           "\"><title>" + markup_text("track " + t.summary->id + (t.summary->name.empty() ? "" : " (" + t.summary->name + ")")) +
            "</title></path>\n";
 }
 
@@ -851,22 +794,7 @@ void draw_lonely_fixes(std::string& out, const TrackDraw& t, const View& v, cons
     }
 }
 
-/// The event's full description (tooltips): track, kind, times, speed, depth or clearance,
-/// heading, and the evidence for the kind.
-std::string describe_event(const audit::TrackSummary& t, const Event& ev) {
-    std::string s = "track " + t.id + (t.name.empty() || t.name == t.id ? "" : " (" + t.name + ")");
-    s += ": " + kind_words(ev);
-    const std::string hazard = audit::is_contact(ev.kind) ? hazard_text(ev) : "";
-    if (!hazard.empty()) s += ", " + hazard;
-    s += " from " + iso_time(ev.start_s) + " to " + iso_time(ev.end_s) + " (" + duration_text(ev.end_s - ev.start_s) + "); " +
-         speed_text(ev) + speed_when(ev) + "; " + depth_text(ev) + "; " +
-         heading_text(ev, true);
-    const std::string evidence = evidence_text(ev);
-    if (!evidence.empty()) s += "; " + evidence;
-    return s;
-}
-
-std::string event_title(const EventDraw& e) { return describe_event(*e.track, *e.event); }
+std::string event_title(const EventDraw& e) { return event_description(*e.track, *e.event); }
 
 /// The hull footprint; dashed when the heading was unknown (the hull's circle is drawn then).
 void draw_hull(std::string& out, const EventDraw& e, const View& v, bool focus) {
@@ -939,7 +867,7 @@ Rect draw_marker(std::string& out, const EventDraw& e, const View& v, const char
     shape.insert(tag.size() + 1, " class=\"" + std::string(cls) + " " + audit::to_string(kind) + "\"");
     const bool big = kind == EventKind::grounding || kind == EventKind::close_pass;
     out += shape + " fill=\"" + kind_style(kind).fill + "\" stroke=\"#ffffff\" stroke-width=\"" + (big ? "1.5" : "1") +
-           "\" stroke-linejoin=\"round\"><title>" + xml(event_title(e)) + "</title></" + tag + ">\n";
+           "\" stroke-linejoin=\"round\"><title>" + markup_text(event_title(e)) + "</title></" + tag + ">\n";
     const double r = size * 1.25;
     return {p.x - r - 1, p.y - r - 1, p.x + r + 1, p.y + r + 1};
 }
@@ -948,7 +876,7 @@ Rect draw_marker(std::string& out, const EventDraw& e, const View& v, const char
 Rect draw_contact(std::string& out, const EventDraw& e, const View& v, double r) {
     const XY p = v.to_px(e.point);
     const char* dark = kind_style(e.event->kind).dark;
-    out += std::string("<g class=\"contact ") + audit::to_string(e.event->kind) + "\"><title>" + xml(event_title(e)) +
+    out += std::string("<g class=\"contact ") + audit::to_string(e.event->kind) + "\"><title>" + markup_text(event_title(e)) +
            "</title><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"" + num(r) +
            "\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"3.5\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) +
            "\" r=\"" + num(r) + "\" fill=\"none\" stroke=\"" + dark + "\" stroke-width=\"1.8\"/><circle cx=\"" + num(p.x) +
@@ -976,7 +904,7 @@ Rect draw_scale_bar(std::string& out, const View& v, const Bearing& b) {
     const double w = std::max(bar, text_width(caption, 11)) + 16, h = 34;
     const Rect box{v.px.x0 + 8, v.px.y1 - 8 - h, v.px.x0 + 8 + w, v.px.y1 - 8};
     const double x = box.x0 + 8, y = box.y0 + 21;
-    out += "<g class=\"scale-bar\"><title>" + xml("scale bar: " + caption + " on the ground" +
+    out += "<g class=\"scale-bar\"><title>" + markup_text("scale bar: " + caption + " on the ground" +
                                                     (b.known ? "" : " (frame scale unknown here: local metres)")) +
            "</title>\n<rect x=\"" + num(box.x0) + "\" y=\"" + num(box.y0) + "\" width=\"" + num(w) + "\" height=\"" + num(h) +
            "\" rx=\"3\" fill=\"#ffffff\" fill-opacity=\"0.85\"/>\n<rect x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" +
@@ -1001,7 +929,7 @@ Rect draw_north_arrow(std::string& out, const View& v, const Bearing& b) {
     out += "<g class=\"north-arrow\" transform=\"translate(" + num(c.x) + "," + num(c.y) + ") rotate(";
     char angle[32];
     std::snprintf(angle, sizeof angle, "%.3f", b.north_deg);
-    out += std::string(angle) + ")\"><title>" + xml(title) + "</title>\n<circle r=\"" + num(r) +
+    out += std::string(angle) + ")\"><title>" + markup_text(title) + "</title>\n<circle r=\"" + num(r) +
            "\" fill=\"#ffffff\" fill-opacity=\"0.85\"/>\n<polygon points=\"0,-8 -6,16 0,11\" fill=\"" + ink +
            "\"/>\n<polygon points=\"0,-8 6,16 0,11\" fill=\"#ffffff\" stroke=\"" + ink +
            "\" stroke-width=\"1\" stroke-linejoin=\"round\"/>\n<polygon points=\"0,-8 -6,16 0,11\" fill=\"none\" stroke=\"" + ink +
@@ -1026,7 +954,7 @@ void close_panel(std::string& out, const View& v) {
 
 /// The time label of an event in the overview: "10:03:12Z", "(n)" added when it has a panel.
 std::string time_label(const EventDraw& e) {
-    return clock(e.event->start_s) + (e.zoom ? " (" + std::to_string(e.zoom) + ")" : "");
+    return clock_text(e.event->start_s) + (e.zoom ? " (" + std::to_string(e.zoom) + ")" : "");
 }
 
 /// `order`: the events most severe first (see order_events).
@@ -1096,7 +1024,7 @@ std::vector<TitleLine> zoom_title(const EventDraw& e) {
     if (!hazard.empty()) kind += ", " + hazard;
     lines.push_back({kind, kind_style(ev.kind).dark, 11, true});
     lines.push_back({speed_text(ev) + speed_when(ev) + ", " + depth_text(ev), ink, 11, false});
-    lines.push_back({"from " + date_clock(ev.start_s) + " UTC for " + duration_text(ev.end_s - ev.start_s), ink, 11, false});
+    lines.push_back({"from " + date_clock_text(ev.start_s) + " UTC for " + duration_words(ev.end_s - ev.start_s), ink, 11, false});
     lines.push_back({heading_text(ev, true), ev.orientation_unknown ? slate_dark : "#555555", 11, false});
     return lines;
 }
@@ -1173,7 +1101,7 @@ void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, c
     if (focus.event) labels.block(draw_contact(out, *focus.event, v, 4.5));
     else if (focus.point_ok) {
         const XY p = v.to_px(focus.point);
-        out += "<g class=\"contact " + focus.cls + "\"><title>" + xml(focus.tooltip) + "</title><circle cx=\"" + num(p.x) +
+        out += "<g class=\"contact " + focus.cls + "\"><title>" + markup_text(focus.tooltip) + "</title><circle cx=\"" + num(p.x) +
                "\" cy=\"" + num(p.y) + "\" r=\"4.5\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"3.5\"/><circle cx=\"" + num(p.x) +
                "\" cy=\"" + num(p.y) + "\" r=\"4.5\" fill=\"none\" stroke=\"" + focus.style.dark +
                "\" stroke-width=\"1.8\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"1.2\" fill=\"" + focus.style.dark +
@@ -1235,7 +1163,7 @@ Focus event_focus(const EventDraw& e) {
     f.time_text = (ev.kind == EventKind::contact_at_start ? "in contact at first fix "
                    : ev.kind == EventKind::close_pass     ? "close pass from "
                                                           : "first contact ") +
-                  clock(ev.start_s);
+                  clock_text(ev.start_s);
     f.title = zoom_title(e);
     return f;
 }
@@ -1369,7 +1297,7 @@ std::string svg_element(const std::string& body, double width, double height, co
     out.reserve(body.size() + 600);
     out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + num(width) + "\" height=\"" + num(height) +
            "\" viewBox=\"0 0 " + num(width) + " " + num(height) + "\" font-family=\"" + font_family + "\">\n";
-    out += "<title>" + xml(title) + "</title>\n";
+    out += "<title>" + markup_text(title) + "</title>\n";
     out += "<rect width=\"" + num(width) + "\" height=\"" + num(height) + "\" fill=\"#ffffff\"/>\n";
     out += body;
     out += "</svg>\n";
@@ -1415,7 +1343,7 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
     text(body, margin, margin + 40, fit_text(summary, 13, inner), 13, ink, " class=\"summary\"");
     std::string when;
     if (std::isfinite(result.first_fix_s) && std::isfinite(result.last_fix_s))
-        when = "fixes from " + date_clock(result.first_fix_s) + " to " + date_clock(result.last_fix_s);
+        when = "fixes from " + date_clock_text(result.first_fix_s) + " to " + date_clock_text(result.last_fix_s);
     const std::string how = "drawn in " + grid.frame().description() + ", grid cells of " + num(grid.cell_size()) + " m";
     double y = margin + 58;
     if (!when.empty() && text_width(when + "; " + how, 11) > inner) {
@@ -1508,13 +1436,79 @@ KindStyle named_style(const std::string& kind) noexcept {
 
 }  // namespace
 
+/// Text for XML character data or an attribute value: markup characters escaped, invalid
+/// UTF-8 replaced by U+FFFD, control characters XML 1.0 forbids replaced by spaces.
+std::string markup_text(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    for (std::size_t i = 0; i < s.size();) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        if (c < 0x80) {
+            switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&apos;"; break;
+            default: out += (c < 0x20 && c != '\t' && c != '\n' && c != '\r') ? ' ' : static_cast<char>(c);
+            }
+            ++i;
+            continue;
+        }
+        const std::size_t n = (c >= 0xC2 && c <= 0xDF) ? 2 : (c >= 0xE0 && c <= 0xEF) ? 3 : (c >= 0xF0 && c <= 0xF4) ? 4 : 0;
+        bool ok = n > 0 && i + n <= s.size();
+        std::uint32_t cp = ok ? (c & (0xFFu >> (n + 1))) : 0;
+        for (std::size_t k = 1; ok && k < n; ++k) {
+            const auto cc = static_cast<unsigned char>(s[i + k]);
+            ok = (cc & 0xC0) == 0x80;
+            cp = (cp << 6) | (cc & 0x3Fu);
+        }
+        const std::uint32_t min_cp = n == 2 ? 0x80 : n == 3 ? 0x800 : 0x10000;
+        ok = ok && cp >= min_cp && cp <= 0x10FFFF && !(cp >= 0xD800 && cp <= 0xDFFF) && cp != 0xFFFE && cp != 0xFFFF;
+        if (ok) {
+            out.append(s.substr(i, n));
+            i += n;
+        } else {
+            out += "\xEF\xBF\xBD";
+            ++i;
+        }
+    }
+    return out;
+}
+
+/// "0 s", "4.2 s", "42 s", "3 min 07 s", "2 h 05 min".
+std::string duration_words(double s) {
+    if (!std::isfinite(s) || s < 0) return "duration unknown";
+    char b[48];
+    if (s < 0.05) return "0 s";
+    if (s < 9.95) std::snprintf(b, sizeof b, "%.1f s", s);
+    else if (s < 59.5) std::snprintf(b, sizeof b, "%.0f s", s);
+    else if (s < 3600) {
+        const long t = std::lround(s);
+        std::snprintf(b, sizeof b, "%ld min %02ld s", t / 60, t % 60);
+    } else {
+        const long t = std::lround(s / 60);
+        std::snprintf(b, sizeof b, "%ld h %02ld min", t / 60, t % 60);
+    }
+    return b;
+}
+
+/// The event's full description (tooltips): track, kind, times, speed, depth or clearance,
+/// heading, and the evidence for the kind.
+std::string event_description(const audit::TrackSummary& t, const audit::Event& ev) {
+    std::string s = "track " + t.id + (t.name.empty() || t.name == t.id ? "" : " (" + t.name + ")");
+    s += ": " + kind_words(ev);
+    const std::string hazard = audit::is_contact(ev.kind) ? hazard_text(ev) : "";
+    if (!hazard.empty()) s += ", " + hazard;
+    s += " from " + iso_time(ev.start_s) + " to " + iso_time(ev.end_s) + " (" + duration_words(ev.end_s - ev.start_s) + "); " +
+         speed_text(ev) + speed_when(ev) + "; " + depth_text(ev) + "; " +
+         heading_text(ev, true);
+    const std::string evidence = evidence_text(ev);
+    if (!evidence.empty()) s += "; " + evidence;
+    return s;
+}
+
 const char* kind_colour(const std::string& kind) noexcept { return named_style(kind).dark; }
-
-std::string markup_text(std::string_view s) { return xml(s); }
-
-std::string duration_words(double seconds) { return duration_text(seconds); }
-
-std::string event_description(const audit::TrackSummary& track, const audit::Event& event) { return describe_event(track, event); }
 
 std::string zoom_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const ZoomSpec& spec, double width_px,
                      const PlotOptions& options) {

@@ -36,36 +36,17 @@
 #include <shoal/report/report.hpp>
 #include "run_shoal.hpp"
 #include "test_support.hpp"
+#include "xml_support.hpp"
 
 namespace shoal::report {
 namespace {
 
+using test::attr;
+using test::each_element;
+
 namespace fs = std::filesystem;
 
-struct XmlDeleter {
-    void operator()(CPLXMLNode* n) const noexcept { CPLDestroyXMLNode(n); }
-};
-using XmlPtr = std::unique_ptr<CPLXMLNode, XmlDeleter>;
 
-XmlPtr parse(const std::string& text, std::string* error) {
-    shoal::detail::QuietErrors quiet;
-    XmlPtr doc(CPLParseXMLString(text.c_str()));
-    if (!doc && error) *error = CPLGetLastErrorMsg();
-    return doc;
-}
-
-std::string attr(const CPLXMLNode* n, const char* name) {
-    for (const CPLXMLNode* c = n->psChild; c; c = c->psNext)
-        if (c->eType == CXT_Attribute && std::string(c->pszValue) == name && c->psChild) return c->psChild->pszValue;
-    return {};
-}
-
-/// `n` (when an element) and every element under it, depth first.
-void each_element(const CPLXMLNode* n, const std::function<void(const CPLXMLNode*)>& f) {
-    if (n->eType != CXT_Element) return;
-    f(n);
-    for (const CPLXMLNode* c = n->psChild; c; c = c->psNext) each_element(c, f);
-}
 
 /// The document's <html> element (after the doctype), or null.
 const CPLXMLNode* html_of(const CPLXMLNode* doc) {
@@ -243,7 +224,7 @@ TEST(Debrief, PagePerExerciseListsEveryTraineeEveryEncounterAndEveryEventInTimeO
     EXPECT_NE(html.find("@media print"), std::string::npos);
 
     std::string error;
-    const XmlPtr doc = parse(html, &error);
+    const test::XmlPtr doc = test::parse_xml(html, &error);
     ASSERT_TRUE(doc) << "not well-formed: " << error;
     const CPLXMLNode* root = html_of(doc.get());
     ASSERT_NE(root, nullptr) << "no <html> element";
@@ -258,7 +239,7 @@ TEST(Debrief, PagePerExerciseListsEveryTraineeEveryEncounterAndEveryEventInTimeO
     ASSERT_NE(picture, nullptr);
     EXPECT_EQ(with_class(picture, "overview", "g").size(), 1u);
     EXPECT_EQ(with_class(picture, "track", "path").size(), 3u);
-    EXPECT_EQ(with_class(picture, "grounding", "circle").size() + with_class(picture, "grounding", "polygon").size() > 0, true);
+    EXPECT_GT(with_class(picture, "grounding", "circle").size() + with_class(picture, "grounding", "polygon").size(), 0u);
 
     // Scores: every trainee of this exercise (and only them), with the penalty given.
     const auto scores = with_class(root, "score", "tr");
@@ -330,7 +311,7 @@ TEST(Debrief, PagePerExerciseListsEveryTraineeEveryEncounterAndEveryEventInTimeO
     EXPECT_NE(all_text(by_id(root, "events")).find(hostile_id), std::string::npos);
 
     // The second exercise's page holds D only, its score and its breach.
-    const XmlPtr doc2 = parse(debrief_html(r, f.grid, f.info, pages[1]), &error);
+    const test::XmlPtr doc2 = test::parse_xml(debrief_html(r, f.grid, f.info, pages[1]), &error);
     ASSERT_TRUE(doc2) << error;
     EXPECT_EQ(with_class(html_of(doc2.get()), "ship", "tr").size(), 1u);
     EXPECT_EQ(with_class(html_of(doc2.get()), "score", "tr").size(), 1u);
@@ -341,7 +322,7 @@ TEST(Debrief, UnassessedRunSaysSoAndListsNoScores) {
     Fixture f;
     f.result.has_assessment = false;
     const std::vector<DebriefPage> pages = debrief_pages(f.result);
-    const XmlPtr doc = parse(debrief_html(f.result, f.grid, f.info, pages[0]), nullptr);
+    const test::XmlPtr doc = test::parse_xml(debrief_html(f.result, f.grid, f.info, pages[0]), nullptr);
     ASSERT_TRUE(doc);
     EXPECT_TRUE(with_class(html_of(doc.get()), "score", "tr").empty());
     EXPECT_NE(all_text(by_id(html_of(doc.get()), "scores")).find("Not assessed"), std::string::npos);
@@ -416,7 +397,10 @@ std::size_t count_colour(GDALDataset& png, int x0, int y0, int x1, int y1, unsig
     const int w = x1 - x0, h = y1 - y0;
     std::vector<unsigned char> px(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
     int bands[] = {1, 2, 3};
-    if (png.RasterIO(GF_Read, x0, y0, w, h, px.data(), w, h, GDT_Byte, 3, bands, 3, 3L * w, 1) != CE_None) return 0;
+    if (png.RasterIO(GF_Read, x0, y0, w, h, px.data(), w, h, GDT_Byte, 3, bands, 3, 3L * w, 1) != CE_None) {
+        ADD_FAILURE() << "the screenshot's pixels cannot be read: " << CPLGetLastErrorMsg();  // not "no pixel of that colour"
+        return 0;
+    }
     const int r = static_cast<int>((rgb >> 16) & 0xFF), g = static_cast<int>((rgb >> 8) & 0xFF), b = static_cast<int>(rgb & 0xFF);
     std::size_t n = 0;
     for (std::size_t k = 0; k < px.size(); k += 3)

@@ -30,25 +30,17 @@
 #include <shoal/report/report.hpp>
 #include <shoal/track/track.hpp>
 #include "test_support.hpp"
+#include "xml_support.hpp"
 #include <shoal/util/error.hpp>
 
 namespace shoal::report {
 namespace {
 
+using test::attr;
+using test::each_element;
+
 constexpr const char* svg_ns = "http://www.w3.org/2000/svg";
 
-struct XmlDeleter {
-    void operator()(CPLXMLNode* n) const noexcept { CPLDestroyXMLNode(n); }
-};
-using XmlPtr = std::unique_ptr<CPLXMLNode, XmlDeleter>;
-
-/// The parsed document, or null (with GDAL's message in `error`) when it is not well-formed.
-XmlPtr parse(const std::string& svg, std::string* error) {
-    shoal::detail::QuietErrors quiet;
-    XmlPtr doc(CPLParseXMLString(svg.c_str()));
-    if (!doc && error) *error = CPLGetLastErrorMsg();
-    return doc;
-}
 
 const CPLXMLNode* root_element(const CPLXMLNode* doc) {
     for (const CPLXMLNode* n = doc; n; n = n->psNext)
@@ -56,11 +48,6 @@ const CPLXMLNode* root_element(const CPLXMLNode* doc) {
     return nullptr;
 }
 
-std::string attr(const CPLXMLNode* n, const char* name) {
-    for (const CPLXMLNode* c = n->psChild; c; c = c->psNext)
-        if (c->eType == CXT_Attribute && std::string(c->pszValue) == name && c->psChild) return c->psChild->pszValue;
-    return {};
-}
 
 /// The text directly inside an element.
 std::string inner_text(const CPLXMLNode* n) {
@@ -68,13 +55,6 @@ std::string inner_text(const CPLXMLNode* n) {
     for (const CPLXMLNode* c = n->psChild; c; c = c->psNext)
         if (c->eType == CXT_Text) s += c->pszValue;
     return s;
-}
-
-/// Every element under `n` (and `n`), depth first.
-void each_element(const CPLXMLNode* n, const std::function<void(const CPLXMLNode*)>& f) {
-    if (n->eType != CXT_Element) return;
-    f(n);
-    for (const CPLXMLNode* c = n->psChild; c; c = c->psNext) each_element(c, f);
 }
 
 std::vector<const CPLXMLNode*> with_class(const CPLXMLNode* n, const std::string& cls) {
@@ -160,7 +140,7 @@ TEST(PlotSvg, SolentRunDrawsEveryEventItsTimeAndAZoomedPanelPerEventUpToTheLimit
 
     const std::string svg = plot_svg(r, g);
     std::string error;
-    const XmlPtr doc = parse(svg, &error);
+    const test::XmlPtr doc = test::parse_xml(svg, &error);
     ASSERT_TRUE(doc) << "not well-formed XML: " << error;
     const CPLXMLNode* root = root_element(doc.get());
     ASSERT_NE(root, nullptr);
@@ -215,7 +195,7 @@ TEST(PlotSvg, ArrowPointsToTrueNorthAndScaleBarMeasuresTheShipInAFrameWithConver
             if (!first && e.kind == audit::EventKind::grounding) first = &e;
     ASSERT_NE(first, nullptr);
 
-    const XmlPtr doc = parse(plot_svg(r, g), nullptr);
+    const test::XmlPtr doc = test::parse_xml(plot_svg(r, g), nullptr);
     ASSERT_TRUE(doc);
     const CPLXMLNode* zoom = panel(root_element(doc.get()), "zoom-1");
     ASSERT_NE(zoom, nullptr);
@@ -258,7 +238,7 @@ TEST(PlotSvg, EmptyAuditStillDrawsTheOverviewOfTheChart) {
     const grid::CoastGrid g = solent_grid();
     const std::string svg = plot_svg(audit::AuditResult{}, g, PlotOptions{12, 800});
     std::string error;
-    const XmlPtr doc = parse(svg, &error);
+    const test::XmlPtr doc = test::parse_xml(svg, &error);
     ASSERT_TRUE(doc) << error;
     const CPLXMLNode* root = root_element(doc.get());
     EXPECT_EQ(attr(root, "xmlns"), svg_ns);
@@ -302,7 +282,7 @@ TEST(PlotSvg, AThousandsOfVesselsCrowdGetsLabelsThatNeverOverlapAndStayInThePane
     ASSERT_EQ(r.tracks.size(), 2000u);
     const std::string svg = plot_svg(r, g, PlotOptions{3, 1200});
     std::string error;
-    const XmlPtr doc = parse(svg, &error);
+    const test::XmlPtr doc = test::parse_xml(svg, &error);
     ASSERT_TRUE(doc) << error;
     const CPLXMLNode* root = root_element(doc.get());
     const CPLXMLNode* overview = panel(root, "overview");
@@ -339,7 +319,7 @@ TEST(PlotSvg, ZoomedPanelsStopAtTheLimitAndTheRestAreCounted) {
     const grid::CoastGrid g = solent_grid();
     const audit::AuditResult r = solent_audit(g, dir);
     ASSERT_GE(r.groundings, 1u);
-    const XmlPtr doc = parse(plot_svg(r, g, PlotOptions{0, 1200}), nullptr);
+    const test::XmlPtr doc = test::parse_xml(plot_svg(r, g, PlotOptions{0, 1200}), nullptr);
     ASSERT_TRUE(doc);
     const CPLXMLNode* root = root_element(doc.get());
     EXPECT_EQ(with_class(root, "panel zoom").size(), 0u);
@@ -466,7 +446,7 @@ TEST(PlotSvg, GroundingsComeFirstThenTheOtherContactsBySeverityThenClosePassesAl
     const audit::AuditResult r = hand_audit();
     const std::string svg = plot_svg(r, g);
     std::string error;
-    const XmlPtr doc = parse(svg, &error);
+    const test::XmlPtr doc = test::parse_xml(svg, &error);
     ASSERT_TRUE(doc) << error;
     const CPLXMLNode* root = root_element(doc.get());
 
@@ -554,7 +534,7 @@ TEST(PlotSvg, GroundingsComeFirstThenTheOtherContactsBySeverityThenClosePassesAl
 
 TEST(PlotSvg, PanelsLeftOutAreCountedByKind) {
     const grid::CoastGrid g = solent_grid();
-    const XmlPtr doc = parse(plot_svg(hand_audit(), g, PlotOptions{3, 1200}), nullptr);
+    const test::XmlPtr doc = test::parse_xml(plot_svg(hand_audit(), g, PlotOptions{3, 1200}), nullptr);
     ASSERT_TRUE(doc);
     const CPLXMLNode* root = root_element(doc.get());
     EXPECT_EQ(with_class(root, "panel zoom").size(), 3u);
@@ -588,7 +568,7 @@ TEST(PlotSvg, UnknownHeadingIsDrawnDashedAndSaidNeverAsHeadingZero) {
     r.alongside = 1;
     const std::string svg = plot_svg(r, g);
     std::string error;
-    const XmlPtr doc = parse(svg, &error);
+    const test::XmlPtr doc = test::parse_xml(svg, &error);
     ASSERT_TRUE(doc) << error;
     const CPLXMLNode* root = root_element(doc.get());
 
@@ -613,7 +593,7 @@ TEST(PlotSvg, UnknownHeadingIsDrawnDashedAndSaidNeverAsHeadingZero) {
 
 TEST(PlotSvg, HeadlineCountsEachKind) {
     const grid::CoastGrid g = solent_grid();
-    const XmlPtr doc = parse(plot_svg(hand_audit(), g), nullptr);
+    const test::XmlPtr doc = test::parse_xml(plot_svg(hand_audit(), g), nullptr);
     ASSERT_TRUE(doc);
     const auto summary = with_class(root_element(doc.get()), "summary");
     ASSERT_EQ(summary.size(), 1u);
@@ -626,7 +606,7 @@ TEST(PlotSvg, HeadlineCountsEachKind) {
     r.alongside = 2;
     r.expected_contacts = 0;
     r.close_passes = 8;
-    const XmlPtr doc2 = parse(plot_svg(r, g), nullptr);
+    const test::XmlPtr doc2 = test::parse_xml(plot_svg(r, g), nullptr);
     ASSERT_TRUE(doc2);
     EXPECT_TRUE(has_text_containing(root_element(doc2.get()), "1 grounding, 37 in contact at the start, 2 alongside, 8 close passes"));
 }
@@ -641,7 +621,7 @@ TEST(PlotSvg, TextFromTheDataIsEscapedAndBadUtf8Replaced) {
     const std::string svg = plot_svg(r, g);
     EXPECT_NE(svg.find("A&amp;B &lt;x&gt; &quot;q&quot; &apos;z&apos; \xEF\xBF\xBD "), std::string::npos);
     std::string error;
-    const XmlPtr doc = parse(svg, &error);
+    const test::XmlPtr doc = test::parse_xml(svg, &error);
     ASSERT_TRUE(doc) << error;
     EXPECT_TRUE(has_text_containing(root_element(doc.get()), "A&B <x>"));
 }

@@ -112,6 +112,13 @@ std::string event_description(const audit::TrackSummary& track, const audit::Eve
 /// UTF-8 replaced by U+FFFD, the control characters XML 1.0 forbids replaced by spaces.
 std::string markup_text(std::string_view s);
 
+/// `v` with `decimals` decimals ("9.8", "182", never "-0.0"); `not_finite` when it is not finite.
+std::string fixed_text(double v, int decimals, const char* not_finite = "?");
+/// "19:02:33Z" (UTC time of day, cut from the ISO time, not rounded); `unknown` for no time.
+std::string clock_text(double t, const char* unknown = "--:--:--");
+/// "2014-08-15 19:02:33Z"; "?" for no time.
+std::string date_clock_text(double t);
+
 /// A duration in words: "0 s", "4.2 s", "42 s", "3 min 07 s", "2 h 05 min"; "duration unknown".
 std::string duration_words(double seconds);
 
