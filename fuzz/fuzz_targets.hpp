@@ -381,16 +381,15 @@ inline void grid_cache(const std::uint8_t* data, std::size_t size) {
     }
 }
 
-/// Exercise files (`check --roles`: audit::Roles::parse): an entry read has a track id, and
-/// every track's role is trainee or target; messages are short.
+/// Exercise files (`check --roles`: audit::Roles::parse): an entry read has a track id and
+/// its role can be looked up; messages are short.
 inline void roles(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
         const audit::Roles r = audit::Roles::parse(text, "fuzz.json");
         for (const auto& e : r.entries) {
             if (e.track.empty()) broken("roles", "an entry without a track");
-            const audit::Role role = r.role_of(e.exercise, e.track);
-            if (role != audit::Role::trainee && role != audit::Role::target) broken("roles", "a role that is neither");
+            (void)r.role_of(e.exercise, e.track);  // the lookup, under the sanitizers
         }
     } catch (const InputError& e) {
         bounded("roles", e.what());
@@ -429,10 +428,8 @@ inline void merge_parts(const std::uint8_t* data, std::size_t size) {
         from = nul + 1;
     }
     try {
-        report::MergeSummary summary;
-        const std::string merged = report::merge_geojson(paths, &summary);
+        const std::string merged = report::merge_geojson(paths);
         if (!nlohmann::json::accept(merged)) broken("merge_parts", "a merged report that is not JSON");
-        if (summary.parts != paths.size()) broken("merge_parts", "a merge that counts other parts than it was given");
     } catch (const InputError& e) {
         bounded("merge_parts", e.what());
     }

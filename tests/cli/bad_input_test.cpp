@@ -19,12 +19,15 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -151,6 +154,36 @@ std::string rmc(int minute, double lon_min) {
     std::snprintf(body, sizeof body, "GPRMC,10%02d00,A,5044.400,N,001%06.3f,W,8.0,90.0,010524,,,A", minute, lon_min);
     return nmea(body);
 }
+
+/// While it lives, nothing; if it still lives after `patience`, opens the FIFO `path` for
+/// writing once, so that a reader left waiting on it is released: a regression then fails
+/// instead of hanging the suite. The destructor stops the watch.
+class FifoReleaser {
+public:
+    FifoReleaser(std::string path, std::chrono::milliseconds patience)
+        : m_path(std::move(path)), m_watch([this, patience] {
+              std::unique_lock<std::mutex> lock(m_mutex);
+              if (!m_stop.wait_for(lock, patience, [this] { return m_done; }))
+                  if (const int fd = ::open(m_path.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+          }) {}
+    FifoReleaser(const FifoReleaser&) = delete;
+    FifoReleaser& operator=(const FifoReleaser&) = delete;
+    ~FifoReleaser() {
+        {
+            std::lock_guard<std::mutex> lock(m_mutex);
+            m_done = true;
+        }
+        m_stop.notify_one();
+        m_watch.join();
+    }
+
+private:
+    std::string m_path;
+    std::mutex m_mutex;
+    std::condition_variable m_stop;
+    bool m_done = false;
+    std::thread m_watch;
+};
 
 class BadInput : public testing::Test {
 protected:
@@ -1036,12 +1069,7 @@ TEST_F(BadInput, ACoastBerthsOrGridOnADeviceOrAFifoIsRefusedNamingIt) {
     // open. A guard releases a reader left waiting on the FIFO, so a regression fails, not hangs.
     const std::string fifo = m_dir.file("coast.fifo");
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    std::atomic<bool> done{false};
-    std::thread guard([&] {
-        for (int i = 0; i < 400 && !done; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        if (!done)
-            if (const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
-    });
+    const FifoReleaser guard(fifo, std::chrono::seconds(20));
     const std::string r = m_dir.file("r.geojson"), g = m_dir.file("g.shoalgrid");
     for (const std::string& source : {std::string("/dev/zero"), std::string("/dev/urandom"), fifo}) {
         SCOPED_TRACE(source);
@@ -1059,8 +1087,6 @@ TEST_F(BadInput, ACoastBerthsOrGridOnADeviceOrAFifoIsRefusedNamingIt) {
         EXPECT_EQ(info.status, 2) << info.err;
         EXPECT_NE(info.err.find(source), std::string::npos) << info.err;
     }
-    done = true;
-    guard.join();
     EXPECT_FALSE(fs::exists(r));
     EXPECT_FALSE(fs::exists(g));
 }
@@ -1215,17 +1241,11 @@ TEST_F(BadInput, AFifoWhereTheReportsStyleGoesIsNeverOpened) {
     // for ever after the whole run. A guard releases a reader left waiting, so a regression fails.
     const std::string qml = m_dir.file("fifo.qml");
     ASSERT_EQ(::mkfifo(qml.c_str(), 0600), 0);
-    std::atomic<bool> done{false};
-    std::thread guard([&] {
-        for (int i = 0; i < 600 && !done; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        if (!done)
-            if (const int fd = ::open(qml.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
-    });
+    std::optional<FifoReleaser> guard(std::in_place, qml, std::chrono::seconds(30));
     const auto t0 = std::chrono::steady_clock::now();
     const Outcome o = check({good_tracks()}, m_dir.file("fifo.geojson"));
     const auto took = std::chrono::steady_clock::now() - t0;
-    done = true;
-    guard.join();
+    guard.reset();
     EXPECT_EQ(o.status, 1) << o.err;
     EXPECT_NE(o.err.find("fifo.qml' exists and was not written by shoal: left as it is"), std::string::npos) << o.err;
     EXPECT_LT(took, std::chrono::seconds(25)) << "the run waited on the FIFO";
