@@ -64,7 +64,7 @@ Roles Roles::parse(const std::string& text, const std::string& source) {
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {  // a syntax error, or a number too large for a double (out_of_range 406)
         throw InputError("exercise file '" + source + "': not JSON: " + shoal::detail::json_error_text(e.what()));
     }
     auto fail = [&](const std::string& what) { throw InputError("exercise file '" + source + "': " + what); };

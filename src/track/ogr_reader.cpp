@@ -247,7 +247,7 @@ public:
         json doc;
         try {
             doc = json::parse(m_text.begin(), m_text.end());
-        } catch (const json::parse_error& e) {
+        } catch (const json::exception& e) {  // also a number too large for a double
             throw InputError(m_file + ": not valid JSON: " + shoal::detail::json_error_text(e.what()));
         }
         const json* type = member(doc, "type");

@@ -55,6 +55,8 @@ TEST(Exercise, RolesFromTheExerciseFile) {
     EXPECT_NE(message(R"({"tracks": [{"role": "target"}]})").find("tracks[0]: no \"track\""), std::string::npos);
     EXPECT_NE(message(R"({"trainees": []})").find("unknown member 'trainees'"), std::string::npos);
     EXPECT_NE(message(R"({"tracks": [], "default_role": 3})").find("default_role"), std::string::npos);
+    // A number too large for a double is nlohmann's out_of_range, not a parse_error: still bad input.
+    EXPECT_NE(message(R"({"tracks": [{"track": 1e999, "role": "target"}]})").find("ex.json': not JSON: "), std::string::npos);
 }
 
 constexpr double t0 = 1714557600;  // 2024-05-01T10:00:00Z

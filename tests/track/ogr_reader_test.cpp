@@ -151,6 +151,9 @@ TEST(GeoJsonReader, LineWithoutTimesIsAnErrorNamingFileAndFeature) {
 TEST(GeoJsonReader, RejectsBrokenJsonOtherJsonAndOtherCrs) {
     EXPECT_THAT([] { read_geojson_text("{\"type\": \"FeatureCollection\", ", "cut.geojson"); },
                 ThrowsMessage<InputError>(HasSubstr("cut.geojson: not valid JSON")));
+    // A number too large for a double (nlohmann's out_of_range, not a parse_error) is bad input too.
+    EXPECT_THAT([] { read_geojson_text(R"({"type": "FeatureCollection", "features": [], "x": 1e999})", "huge.geojson"); },
+                ThrowsMessage<InputError>(HasSubstr("huge.geojson: not valid JSON")));
     EXPECT_THAT([] { read_geojson_text(R"({"name": "tanker", "a": 100})", "ship.json"); },
                 ThrowsMessage<InputError>(HasSubstr("ship.json: not a track format shoal reads")));
     EXPECT_THAT(
