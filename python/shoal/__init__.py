@@ -46,6 +46,7 @@ DEFAULT_COLUMNS = {
     "name": ["vesselname", "vessel_name", "name", "shipname", "ship_name"],
     "nav_status": ["navigational status", "navigational_status", "nav_status", "navstatus", "status"],
     "mobile_type": ["type of mobile"],
+    "ship_type": ["vesseltype", "shiptype", "ship_type", "ship type", "vessel_type"],
     "line": [],
 }
 
@@ -214,7 +215,8 @@ def audit(fixes, grid, *, ship=None, dims=None, columns=None, file="DataFrame", 
     one track named after `file`), time (datetime64, epoch seconds, or text read as the CSV reader
     reads it), lat, lon (WGS84 degrees), optionally heading, cog, sog (knots), a, b, c, d (AIS
     dimensions, metres), draught (metres), name, nav_status (AIS number or text), mobile_type (DMA's
-    "Type of mobile": Base Station and AtoN rows are skipped), line (the row's line in its file;
+    "Type of mobile": Base Station and AtoN rows are skipped), ship_type (the AIS number 1-255; a
+    text such as DMA's "Cargo" is not read), line (the row's line in its file;
     default the row number, 1-based). Columns are found by the CSV reader's
     names (DEFAULT_COLUMNS) unless `columns` maps a role to a column ({"id": "MMSI", ...}; None: not
     used). grid: a shoal.Grid. ship (a ship file) or dims (a, b, c, d): the hull of tracks without

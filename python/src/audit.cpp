@@ -65,7 +65,7 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
     const std::vector<std::string> time_text = texts(cols, "time_text", n);
     const Numbers heading = numbers(cols, "heading", n), cog = numbers(cols, "cog", n), sog = numbers(cols, "sog", n);
     const Numbers dims[4] = {numbers(cols, "a", n), numbers(cols, "b", n), numbers(cols, "c", n), numbers(cols, "d", n)};
-    const Numbers draught = numbers(cols, "draught", n), line = numbers(cols, "line", n);
+    const Numbers draught = numbers(cols, "draught", n), line = numbers(cols, "line", n), ship_type = numbers(cols, "ship_type", n);
     const std::vector<std::string> ids = texts(cols, "id", n), names = texts(cols, "name", n), status = texts(cols, "nav_status", n);
     const std::vector<std::string> mobile = texts(cols, "mobile_type", n);
     const bool has_id = !ids.empty(), has_dims = dims[0] && dims[1] && dims[2] && dims[3];
@@ -136,7 +136,7 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
             nt.file = file;
         }
         track::Track& tr = tracks[it->second];
-        // Static data as the CSV reader takes it: the first name, complete dimensions, draught.
+        // Static data as the CSV reader takes it: the first name, complete dimensions, draught, ship type.
         if (!names.empty() && tr.name.empty() && !names[k].empty()) tr.name = names[k];
         if (has_dims && !tr.dims) {
             const double v[4] = {dims[0].at(k), dims[1].at(k), dims[2].at(k), dims[3].at(k)};
@@ -148,6 +148,13 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
         if (draught && std::isnan(tr.draught_m) && std::isfinite(draught.at(k)) && draught.at(k) > 0) {
             tr.draught_m = draught.at(k);
             tr.draught_source = "draught column";
+        }
+        if (ship_type && tr.ship_type < 0) {
+            const double v = ship_type.at(k);
+            if (v >= 1.0 && v <= 255.0 && v == std::floor(v)) {
+                tr.ship_type = static_cast<int>(v);
+                tr.ship_type_source = "ship type column";
+            }
         }
         tr.fixes.push_back(fix);
     }
@@ -330,7 +337,7 @@ void bind_audit(py::module_& m) {
           py::arg("vessels") = py::none(), py::arg("ukc") = py::none(), py::arg("hazard_depth_m") = py::none(),
           py::arg("progress") = py::none(),
           "The audit behind shoal.audit: `columns` maps id, time (epoch seconds), lat, lon, heading, cog, sog, a, b, c, d, "
-          "draught, name, nav_status, line to arrays or lists; returns every layer of the report as columns.");
+          "draught, ship_type, name, nav_status, line to arrays or lists; returns every layer of the report as columns.");
 }
 
 }  // namespace shoal::python

@@ -79,7 +79,7 @@ struct TrackSource {
 AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
                   const AuditOptions& options);
 
-/// A vessels table's static data over the track's own: name, A,B,C,D, draught.
+/// A vessels table's static data over the track's own: name, A,B,C,D, draught, ship type.
 void join_static_data(track::Track& t, const std::map<std::string, track::VesselInfo>& vessels) {
     const auto it = vessels.find(t.id);
     if (it == vessels.end()) return;
@@ -92,6 +92,10 @@ void join_static_data(track::Track& t, const std::map<std::string, track::Vessel
     if (std::isfinite(v.draught_m)) {
         t.draught_m = v.draught_m;
         t.draught_source = v.draught_source.empty() ? v.source : v.draught_source;
+    }
+    if (v.ship_type > 0) {
+        t.ship_type = v.ship_type;
+        t.ship_type_source = v.ship_type_source.empty() ? v.source : v.ship_type_source;
     }
 }
 
@@ -237,6 +241,8 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 swept[k].summary.hull = label;
                 swept[k].summary.draught_m = t.draught_m;
                 swept[k].summary.draught_source = t.draught_source;
+                swept[k].summary.ship_type = t.ship_type;
+                swept[k].summary.ship_type_source = t.ship_type_source;
                 swept[k].summary.limiting_depth_m = depth.depth_m.value_or(NAN);
                 swept[k].summary.limiting_depth_source = grid::to_string(depth.source);
                 if (options.encounters) {

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include <shoal/report/plot.hpp>
+#include <shoal/track/ship_type.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/version.hpp>
 
@@ -427,11 +428,12 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
         }
     }
     // The ships.
-    out += "<h2>Ships</h2>\n<table class=\"ships\">\n<thead><tr><th>Track</th><th>Name</th><th>Role</th><th>Fixes</th><th>From</th>"
+    out += "<h2>Ships</h2>\n<table class=\"ships\">\n<thead><tr><th>Track</th><th>Name</th><th>Type</th><th>Role</th><th>Fixes</th><th>From</th>"
            "<th>To</th><th>Sailed (nm)</th><th>Groundings</th><th>Close passes</th><th>Least clearance (m)</th></tr></thead>\n<tbody>\n";
     for (const std::size_t ti : page.tracks) {
         const auto& s = r.tracks[ti].summary;
-        out += "<tr class=\"ship\"><td class=\"track\">" + esc(s.id) + "</td><td>" + esc(s.name) + "</td><td>" +
+        out += "<tr class=\"ship\"><td class=\"track\">" + esc(s.id) + "</td><td>" + esc(s.name) + "</td><td class=\"ship-type\">" +
+               (s.ship_type < 0 ? std::string("&#8211;") : esc(track::ship_type_text(s.ship_type))) + "</td><td>" +
                (r.has_encounters ? audit::to_string(s.role) : "&#8211;") + "</td><td class=\"num\">" + std::to_string(s.fixes) +
                "</td><td>" + esc(clock_text(s.start_s, "?")) + "</td><td>" + esc(clock_text(s.end_s, "?")) + "</td><td class=\"num\">" +
                fixed(s.distance_m / 1852, 2) + "</td><td class=\"num\">" + std::to_string(s.groundings) + "</td><td class=\"num\">" +

@@ -4,6 +4,7 @@
 #include <map>
 #include <utility>
 
+#include <shoal/track/ship_type.hpp>
 #include <shoal/track/track.hpp>
 #include <shoal/version.hpp>
 
@@ -170,6 +171,10 @@ const std::vector<Field<TrackRow>>& track_fields() {
         {"hull", text_t, none, -1, [](const T& x) { return text(x.track.hull); }},
         {"draught_m", real, metres, 2, [](const T& x) { return Value(x.track.draught_m); }},
         {"draught_source", text_t, none, -1, [](const T& x) { return text(x.track.draught_source); }},
+        {"ship_type", integer, none, -1, [](const T& x) { return x.track.ship_type < 0 ? null : Value(std::int64_t{x.track.ship_type}); }},
+        {"ship_type_text", text_t, none, -1,
+         [](const T& x) { return x.track.ship_type < 0 ? null : text(track::ship_type_text(x.track.ship_type)); }},
+        {"ship_type_source", text_t, none, -1, [](const T& x) { return text(x.track.ship_type_source); }},
         {"limiting_depth_m", real, metres, 2, [](const T& x) { return Value(x.track.limiting_depth_m); }},
         {"limiting_depth_source", text_t, none, -1, [](const T& x) { return text(x.track.limiting_depth_source); }},
         {"fixes", integer, none, -1, [](const T& x) { return count(x.track.fixes); }},

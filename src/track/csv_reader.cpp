@@ -210,6 +210,7 @@ struct Columns {
     std::size_t heading = absent, cog = absent, sog = absent;
     std::array<std::size_t, 4> dims{absent, absent, absent, absent};
     std::size_t draught = absent, mobile_type = absent, nav_status = absent;
+    std::size_t ship_type = absent;  ///< AIS ship type as a number (MarineCadastre's VesselType); DMA's text is not read
     std::size_t length = absent, width = absent;  ///< MarineCadastre's Length and Width, metres
     std::size_t required = 0;  ///< fields a row needs: 1 + the largest required index
 };
@@ -252,6 +253,7 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     c.length = find_column(names, {"length", "length_m"});
     c.width = find_column(names, {"width", "width_m", "beam", "beam_m"});
     c.mobile_type = find_column(names, {"type of mobile"});
+    c.ship_type = find_column(names, {"vesseltype", "shiptype", "ship_type", "ship type", "vessel_type"});
     c.nav_status = find_column(names, {"navigational status", "navigational_status", "nav_status", "navstatus", "status"});
 
     std::string missing;
@@ -456,6 +458,14 @@ private:
             if (std::isfinite(v) && v > 0.0) {
                 t.draught_m = v;
                 t.draught_source = "draught column";
+            }
+        }
+        if (m_cols.ship_type != absent && t.ship_type < 0) {
+            // A number 1-255 (0: not available); a text (DMA's "Cargo", "Undefined") is not the number.
+            const double v = number(f, m_cols.ship_type);
+            if (v >= 1.0 && v <= 255.0 && v == std::floor(v)) {
+                t.ship_type = static_cast<int>(v);
+                t.ship_type_source = "ship type column";
             }
         }
     }

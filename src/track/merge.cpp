@@ -34,6 +34,10 @@ std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks) {
                 merged.draught_m = other.draught_m;
                 merged.draught_source = other.draught_source;
             }
+            if (merged.ship_type < 0) {
+                merged.ship_type = other.ship_type;
+                merged.ship_type_source = other.ship_type_source;
+            }
             files += " + " + other.file;
             gone[ks[i]] = true;
         }

@@ -330,6 +330,10 @@ private:
             t.draught_m = m.draught_m;
             t.draught_source = "AIS static data (message 5)";
         }
+        if (t.ship_type < 0 && m.ship_type > 0) {  // 0: not available
+            t.ship_type = m.ship_type;
+            t.ship_type_source = "AIS static data (message " + std::to_string(m.type) + ")";
+        }
         if (!m.is_position_report()) return;
         ++m_ais_reports;
         const std::string what = "AIS type " + std::to_string(m.type) + " (MMSI " + t.id + ")";

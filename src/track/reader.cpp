@@ -504,7 +504,8 @@ std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vec
         if (v.name.empty() && name != absent) v.name = to_utf8(detail::trim(f[name]));
         if (!v.dims) v.dims = given;
         if (std::isnan(v.draught_m) && std::isfinite(dr) && dr > 0.0) v.draught_m = dr;
-        if (v.ship_type < 0 && std::isfinite(t) && t > 0.0 && t < 1000.0) v.ship_type = static_cast<int>(t);
+        // AIS ship types are 1-255 (0: not available); anything else is not one: unknown.
+        if (v.ship_type < 0 && t >= 1.0 && t <= 255.0 && t == std::floor(t)) v.ship_type = static_cast<int>(t);
     }
     if (warnings && bad > said) warnings->push_back(path + ": " + std::to_string(bad - said) + " more bad rows skipped");
     return out;
@@ -542,7 +543,10 @@ void merge_vessels(std::map<std::string, VesselInfo>& into, std::map<std::string
             kept.draught_m = other.draught_m;
             kept.draught_source = source;
         }
-        if (kept.ship_type < 0) kept.ship_type = other.ship_type;
+        if (kept.ship_type < 0 && other.ship_type >= 0) {
+            kept.ship_type = other.ship_type;
+            kept.ship_type_source = source;
+        }
     }
 }
 

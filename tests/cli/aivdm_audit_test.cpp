@@ -36,6 +36,9 @@
 #include <string>
 #include <vector>
 
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
 #include "test_support.hpp"
 #include "track/ais_encoder.hpp"
 
@@ -114,6 +117,7 @@ struct Vessel {
     std::string name;
     int a, b, c, d;
     int draught_dm;     ///< AIS draught, 1/10 m
+    int ship_type;      ///< AIS ship and cargo type
     std::int64_t start;  ///< seconds after t0
     std::vector<Waypoint> route;
 };
@@ -135,9 +139,9 @@ std::vector<Vessel> vessels() {
     // P: 30 m off the Isle of Wight's north shore west of Cowes, on the bearing 218 from W.
     const Waypoint w{-1.26, 50.775, 8.0}, p{-1.2727674, 50.7646374, 4.0}, away{-1.2850, 50.7780, 0.0};
     return {
-        {235100001, "SMALL ONE", 9, 3, 2, 2, 12, 120, {w, p, away}},
-        {235100002, "COASTER", 45, 15, 5, 5, 38, 0, {w, p, away}},
-        {235100003, "SOLENT FERRY", 150, 30, 14, 14, 65, 60, {{-1.30, 50.795, 12.0}, {-1.30, 50.750, 0.0}}},
+        {235100001, "SMALL ONE", 9, 3, 2, 2, 12, 37, 120, {w, p, away}},
+        {235100002, "COASTER", 45, 15, 5, 5, 38, 70, 0, {w, p, away}},
+        {235100003, "SOLENT FERRY", 150, 30, 14, 14, 65, 60, 60, {{-1.30, 50.795, 12.0}, {-1.30, 50.750, 0.0}}},
     };
 }
 
@@ -215,7 +219,7 @@ std::pair<std::string, int> type5(const Vessel& v) {
     e.put(9000000 + v.mmsi % 1000, 30);  // IMO number
     e.text("MCALL", 7);
     e.text(v.name, 20);
-    e.put(v.a > 100 ? 60 : 70, 8);  // ship type: passenger, cargo
+    e.put(v.ship_type, 8);
     e.put(v.a, 9);
     e.put(v.b, 9);
     e.put(v.c, 6);
@@ -281,7 +285,7 @@ std::string iso(std::int64_t t) {
 }
 
 /// The same fixes, each value the double the AIS decoding gives (raw / scale, printed to round
-/// trip), with the vessel's name, status 0 and, when `with_dims`, its A,B,C,D and draught.
+/// trip), with the vessel's name, status 0 and, when `with_dims`, its A,B,C,D, draught and ship type.
 std::string csv(const std::vector<Vessel>& fleet, const std::vector<std::vector<Report>>& reports, bool with_dims) {
     struct Row {
         std::int64_t time;
@@ -296,7 +300,7 @@ std::string csv(const std::vector<Vessel>& fleet, const std::vector<std::vector<
                           r.lat / per_degree, r.lon / per_degree, r.sog / 10.0, r.cog / 10.0, r.heading);
             std::string row = buf;
             if (with_dims) {
-                std::snprintf(buf, sizeof buf, ",%d,%d,%d,%d,%.17g", v.a, v.b, v.c, v.d, v.draught_dm / 10.0);
+                std::snprintf(buf, sizeof buf, ",%d,%d,%d,%d,%.17g,%d", v.a, v.b, v.c, v.d, v.draught_dm / 10.0, v.ship_type);
                 row += buf;
             }
             rows.push_back({r.time, row + "\n"});
@@ -304,7 +308,7 @@ std::string csv(const std::vector<Vessel>& fleet, const std::vector<std::vector<
     }
     std::stable_sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) { return x.time < y.time; });
     std::string out = "mmsi,name,timestamp,lat,lon,sog,cog,heading,nav_status";
-    out += with_dims ? ",A,B,C,D,draught\n" : "\n";
+    out += with_dims ? ",A,B,C,D,draught,shiptype\n" : "\n";
     for (const Row& r : rows) out += r.text;
     return out;
 }
@@ -339,7 +343,9 @@ void expect_same(const json& a, const json& b, double tolerance, const std::stri
 }
 
 /// Properties that name the input (its file, its line) or the hull's origin: compared apart.
-bool about_the_input(const std::string& key) { return key == "file" || key == "fix_line" || key == "hull" || key == "draught_source"; }
+bool about_the_input(const std::string& key) {
+    return key == "file" || key == "fix_line" || key == "hull" || key == "draught_source" || key == "ship_type_source";
+}
 
 /// Every event of the AIS run is the CSV run's: kind, track, start, end, position (to 2e-7
 /// degrees: the report has 7 decimals), every other field, and the hull's dimensions.
@@ -509,6 +515,68 @@ TEST_F(AivdmAudit, TheVoyagesAsAisWithTheirStaticDataFirstAuditAsTheCsvWithEachH
 
 TEST_F(AivdmAudit, TheTypeFiveArrivingAfterSomeReportsStillGivesTheWholeTrackItsHull) {
     expect_log_audits_as_csv(4);
+}
+
+/// The tracks layer of a GeoPackage report: ship_type (null: -1), ship_type_text, ship_type_source by track.
+std::map<std::string, std::tuple<int, std::string, std::string>> gpkg_ship_types(const std::string& path) {
+    GDALAllRegister();
+    std::map<std::string, std::tuple<int, std::string, std::string>> out;
+    const GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+    if (!ds) {
+        ADD_FAILURE() << "cannot open " << path;
+        return out;
+    }
+    OGRLayer* tracks = ds->GetLayerByName("tracks");
+    if (!tracks) {
+        ADD_FAILURE() << path << " has no tracks layer";
+        return out;
+    }
+    for (const auto& f : *tracks) {
+        const int type = f->GetFieldIndex("ship_type");
+        EXPECT_GE(type, 0);
+        EXPECT_EQ(f->GetDefnRef()->GetFieldDefn(type)->GetType(), OFTInteger64);
+        const bool null_text = f->IsFieldNull(f->GetFieldIndex("ship_type_text"));
+        out[f->GetFieldAsString("track")] = {f->IsFieldNull(type) ? -1 : f->GetFieldAsInteger(type),
+                                             null_text ? "(null)" : f->GetFieldAsString("ship_type_text"),
+                                             f->GetFieldAsString("ship_type_source")};
+    }
+    return out;
+}
+
+TEST_F(AivdmAudit, EachVesselsShipTypeFromItsTypeFiveIsReportedWithItsMeaningAndSourceInGeoJsonAndGeoPackage) {
+    // The meanings after ITU-R M.1371 table 53, written out here.
+    const std::map<int, std::string> meaning = {
+        {37, "Pleasure craft"}, {70, "Cargo, all ships of this type"}, {60, "Passenger, all ships of this type"}};
+    const std::string log = file("voyages.nmea", aivdm_log(m_fleet, m_reports, 0));
+    const json ais = check(log, "ais");
+    const std::string gpkg = m_dir.file("ais.gpkg");
+    const Outcome o = shoal({"check", "--coast", s_grid, "--dims", "2,2,1,1", log, "-o", gpkg}, m_dir.path());
+    ASSERT_EQ(o.status, 1) << o.err;
+    const auto in_gpkg = gpkg_ship_types(gpkg);
+    const auto t = tracks(ais);
+    for (const Vessel& v : m_fleet) {
+        const std::string id = std::to_string(v.mmsi);
+        ASSERT_TRUE(t.count(id)) << id;
+        const json& j = t.at(id);
+        EXPECT_EQ(j.at("ship_type"), v.ship_type) << j.dump();
+        EXPECT_EQ(j.at("ship_type_text"), meaning.at(v.ship_type)) << j.dump();
+        EXPECT_EQ(j.at("ship_type_source"), "AIS static data (message 5)") << j.dump();
+        ASSERT_TRUE(in_gpkg.count(id)) << id;
+        EXPECT_EQ(in_gpkg.at(id), std::make_tuple(v.ship_type, meaning.at(v.ship_type), std::string("AIS static data (message 5)")));
+    }
+    EXPECT_EQ(by_name(m_fleet, "COASTER").ship_type, 70);
+
+    // The same from a CSV's ship type column; a CSV without one: not known (null, null, "").
+    const auto with_type = tracks(check(file("voyages.csv", csv(m_fleet, m_reports, true)), "csv"));
+    const auto without = tracks(check(file("voyages_no_dims.csv", csv(m_fleet, m_reports, false)), "no_dims"));
+    for (const Vessel& v : m_fleet) {
+        const std::string id = std::to_string(v.mmsi);
+        EXPECT_EQ(with_type.at(id).at("ship_type"), v.ship_type);
+        EXPECT_EQ(with_type.at(id).at("ship_type_source"), "ship type column");
+        EXPECT_TRUE(without.at(id).at("ship_type").is_null()) << without.at(id).dump();
+        EXPECT_TRUE(without.at(id).at("ship_type_text").is_null()) << without.at(id).dump();
+        EXPECT_EQ(without.at(id).at("ship_type_source"), "");
+    }
 }
 
 }  // namespace

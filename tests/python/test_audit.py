@@ -79,6 +79,10 @@ class AuditAgainstCheck(unittest.TestCase):
                 result = shoal.audit(read_fixes(track), self.grid, dims=DIMS, columns=COLUMNS, file=track)
             self.assert_same(report, result, track)
             kinds.update(result.events["kind"])
+            # Each case's VesselType column says 70 (cargo): the tracks carry it, with its meaning.
+            self.assertEqual(result.tracks["ship_type"].tolist(), [70] * len(result.tracks), track)
+            self.assertEqual(set(result.tracks["ship_type_text"]), {"Cargo, all ships of this type"}, track)
+            self.assertEqual(set(result.tracks["ship_type_source"]), {"ship type column"}, track)
         # The cases hold groundings and other contacts: the comparison covers them.
         self.assertIn("grounding", kinds)
         self.assertGreater(len(kinds), 1)

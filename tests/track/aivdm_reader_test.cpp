@@ -49,6 +49,17 @@ TEST(AivdmReader, MixedLogGivesTheOwnShipAndEveryAisVesselDatedByTheLogsClock) {
     const Track* own = find(f, "244630386");
     ASSERT_NE(own, nullptr);
     EXPECT_GE(own->fixes.size(), 30u);
+    // Its static data (gpsdecode -j): type 5 of MMSI 305235000 "MEDUM", shiptype 70; type 24 of
+    // 244050308 "TYPHOON", shiptype 37 (part B).
+    const Track* medum = find(f, "305235000");
+    ASSERT_NE(medum, nullptr);
+    EXPECT_EQ(medum->name, "MEDUM");
+    EXPECT_EQ(medum->ship_type, 70);
+    EXPECT_EQ(medum->ship_type_source, "AIS static data (message 5)");
+    const Track* typhoon = find(f, "244050308");
+    ASSERT_NE(typhoon, nullptr);
+    EXPECT_EQ(typhoon->ship_type, 37);
+    EXPECT_EQ(typhoon->ship_type_source, "AIS static data (message 24)");
     const Track* t = find(f, "258774000");
     ASSERT_NE(t, nullptr);
     const Fix& x = t->fixes.at(0);
@@ -82,8 +93,8 @@ TEST(AivdmReader, DmaLogIsDatedByItsPghpHeadersAndStaticDataJoinsItsTrack) {
 
 TEST(AivdmReader, StaticDataGivesTheTrackItsNameDimensionsAndDraught) {
     // The first lines of gpsd's ais-nmea.log: a type 5 in two sentences (here with NMEA 4.10
-    // tag-block groups), per gpsdecode -j MMSI 371255000, shipname "SEA ENTERPRISE", to_bow 13,
-    // to_stern 15, to_port 1, to_starboard 6, draught 1.4; its line 936, a type 3 of the same
+    // tag-block groups), per gpsdecode -j MMSI 371255000, shipname "SEA ENTERPRISE", shiptype 90,
+    // to_bow 13, to_stern 15, to_port 1, to_starboard 6, draught 1.4; its line 936, a type 3 of the same
     // MMSI: status 5 (moored), lon 3427638, lat 31705155 (gpsdecode -u), heading 249. The report
     // repeated with a tag-block time in milliseconds, an epoch receive time and an ISO 8601 one:
     // date -u -d @1586295591 -> 2020-04-07T21:39:51Z.
@@ -102,6 +113,8 @@ TEST(AivdmReader, StaticDataGivesTheTrackItsNameDimensionsAndDraught) {
     EXPECT_EQ(t.name, "SEA ENTERPRISE");
     EXPECT_EQ(t.dims, (hull::Dimensions{13, 15, 1, 6}));
     EXPECT_DOUBLE_EQ(t.draught_m, 1.4);
+    EXPECT_EQ(t.ship_type, 90);
+    EXPECT_EQ(t.ship_type_source, "AIS static data (message 5)");
     ASSERT_EQ(t.fixes.size(), 3u);
     EXPECT_DOUBLE_EQ(t.fixes[0].time_s, 1586295591.5);
     EXPECT_DOUBLE_EQ(t.fixes[1].time_s, 1586295592.0);

@@ -108,6 +108,8 @@ struct TrackSummary {
     std::string hull;                 ///< "ship file", "--dims" or "AIS dimensions a,b,c,d (their source)"
     double draught_m = NAN;           ///< the vessel's own draught (AIS, vessels file), NaN when not known
     std::string draught_source;       ///< where it came from
+    int ship_type = -1;               ///< the vessel's AIS ship type (track/ship_type.hpp), -1 when not known
+    std::string ship_type_source;     ///< where it came from
     /// The limiting depth the track was checked at (metres; NaN: land only) and where it came
     /// from (grid::to_string(DepthPlan::Source): vessel_draught, ship_draught, hazard_depth,
     /// grid_default, land_only).

@@ -66,6 +66,8 @@ struct PackedTrack {
     std::optional<hull::Dimensions> dims;
     double draught_m = NAN;
     std::string dims_source, draught_source;  ///< as Track's
+    int ship_type = -1;                       ///< as Track's
+    std::string ship_type_source;
     PackedFixes fixes;
     std::vector<FixExtra> extras;
 

@@ -80,9 +80,9 @@ struct VesselInfo {
     double draught_m = NAN;
     int ship_type = -1;                    ///< AIS ship and cargo type, -1 when not known
     std::string source;                    ///< where it came from, for the report ("vessels file F")
-    /// Where the dimensions and the draught came from when not from `source` (merge_vessels
+    /// Where the dimensions, the draught and the ship type came from when not from `source` (merge_vessels
     /// took them from a later table that gave what the first lacked); empty: `source`.
-    std::string dims_source, draught_source;
+    std::string dims_source, draught_source, ship_type_source;
 };
 
 /// The deepest draught a vessels table may give (metres): the deepest ships draw about 25 m

@@ -78,6 +78,8 @@ struct Track {
     double draught_m = NAN;
     std::string dims_source;     ///< where `dims` came from ("AIS static messages", "vessels file F", ...)
     std::string draught_source;  ///< where `draught_m` came from
+    int ship_type = -1;          ///< AIS ship and cargo type 1-255 (ship_type.hpp); -1 not known (AIS 0 "not available" included)
+    std::string ship_type_source;  ///< where `ship_type` came from
 };
 
 /// What reading a file found, for the user: counts and the first few problems.
