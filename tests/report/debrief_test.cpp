@@ -329,6 +329,25 @@ TEST(Debrief, UnassessedRunSaysSoAndListsNoScores) {
     EXPECT_TRUE(with_class(html_of(doc.get()), "breach").empty());
 }
 
+TEST(Debrief, TheShipsTableGivesEachShipsAisTypeAndADashWhenNotKnown) {
+    Fixture f;
+    const std::vector<DebriefPage> pages = debrief_pages(f.result);
+    const DebriefPage& page = pages[0];
+    ASSERT_EQ(page.tracks.size(), 3u);
+    f.result.tracks[page.tracks[1]].summary.ship_type = 52;  // a tug (ITU-R M.1371 table 53); the others not known
+    const test::XmlPtr doc = test::parse_xml(debrief_html(f.result, f.grid, f.info, page), nullptr);
+    ASSERT_TRUE(doc);
+    const auto rows = with_class(html_of(doc.get()), "ship", "tr");
+    ASSERT_EQ(rows.size(), 3u);
+    std::vector<std::string> types;
+    for (const auto* row : rows) {
+        const auto cell = with_class(row, "ship-type");
+        ASSERT_EQ(cell.size(), 1u);
+        types.push_back(all_text(cell[0]));
+    }
+    EXPECT_EQ(types, (std::vector<std::string>{"\xE2\x80\x93", "Tug", "\xE2\x80\x93"}));  // an en dash when not known
+}
+
 TEST(Debrief, FileNamesAreSafeShortAndApartForHostileExerciseNames) {
     audit::AuditResult r;
     for (const char* e : {"morning/ex1.csv", "afternoon/ex1.csv", ".", "../../etc/passwd", "EX", "ex", "<script>alert(1)</script>", ""}) {
