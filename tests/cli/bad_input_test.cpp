@@ -1054,6 +1054,37 @@ TEST_F(BadInput, StandardInputDevStdinAFifoAZipAndAGzipGiveTheReportOfThePlainFi
     }
 }
 
+/// A report with every `file` value (the track's input, which names the zip or gzip) made "FILE".
+nlohmann::json without_file_names(nlohmann::json j) {
+    if (j.is_object()) {
+        for (auto& [key, value] : j.items()) value = key == "file" ? nlohmann::json("FILE") : without_file_names(value);
+    } else if (j.is_array()) {
+        for (auto& value : j) value = without_file_names(value);
+    }
+    return j;
+}
+
+TEST_F(BadInput, ADailyExportAsZipAndAsCsvGzGivesThePlainCsvsWholeReport) {
+    // The Danish Maritime Authority's and MarineCadastre's exports (their committed slices), each
+    // zipped and gzipped as they are published: the same report, field for field, but the file names.
+    for (const char* name : {"dma_export_dk_head200.csv", "depons_marinecadastre.csv"}) {
+        SCOPED_TRACE(name);
+        const std::string csv = file(name, slurp(data_path(std::string("tracks/") + name)));
+        const std::string gz = csv + ".gz", zip = m_dir.file(std::string(name) + ".zip");
+        ASSERT_EQ(std::system(("gzip -k -c " + csv + " > " + gz).c_str()), 0);
+        if (std::system(("zip -q -j " + zip + " " + csv + " 2>/dev/null").c_str()) != 0) GTEST_SKIP() << "no zip program";
+        const Outcome plain = check({csv}, csv + ".geojson");
+        ASSERT_LE(plain.status, 1) << plain.err;
+        const nlohmann::json want = without_file_names(report(csv + ".geojson"));
+        ASSERT_GT(want["shoal"]["tracks"].size(), 2u);
+        for (const std::string& packed : {gz, zip}) {
+            const Outcome o = check({packed}, packed + ".geojson");
+            EXPECT_EQ(o.status, plain.status) << packed << ": " << o.err;
+            EXPECT_EQ(without_file_names(report(packed + ".geojson")), want) << packed;
+        }
+    }
+}
+
 TEST_F(BadInput, DevZeroAsShipOrTrackIsRefusedAtTheReadLimit) {
     const std::string r = m_dir.file("r.geojson");
     const Outcome ship = shoal({"check", "--coast", s_grid, "--ship", "/dev/zero", good_tracks(), "-o", r});
