@@ -979,8 +979,8 @@ TEST_F(BadInput, LengthAndWidthColumnsGiveAHullTakenAmidships) {
 
 TEST_F(BadInput, AVesselsTableGivesEachVesselItsOwnHullAndDraught) {
     // Vessel B's hull from the table, vessel A's from --dims.
-    const std::string vessels = file("fleet_vessels.csv", "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n"
-                                                          "222222222,SMALL ONE,8,4,2,2,1.2\n");
+    const std::string vessels = file("fleet_vessels.csv", "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m,shiptype\n"
+                                                          "222222222,SMALL ONE,8,4,2,2,1.2,36\n");
     const std::string r = m_dir.file("r.geojson");
     const Outcome o = check({good_tracks()}, r, {"--vessels", vessels});
     EXPECT_EQ(o.status, 1) << o.err;
@@ -991,10 +991,14 @@ TEST_F(BadInput, AVesselsTableGivesEachVesselItsOwnHullAndDraught) {
     EXPECT_EQ((*b)["name"], "SMALL ONE");
     EXPECT_EQ((*b)["hull"], "AIS dimensions 8,4,2,2 (vessels file " + vessels + ")");
     EXPECT_EQ((*b)["draught_m"], 1.2);
+    EXPECT_EQ((*b)["ship_type"], 36);
+    EXPECT_EQ((*b)["ship_type_text"], "Sailing");  // ITU-R M.1371 table 53
+    EXPECT_EQ((*b)["ship_type_source"], "vessels file " + vessels);
     const auto* a = track_entry(doc, "111111111");
     ASSERT_NE(a, nullptr);
     EXPECT_EQ((*a)["hull"], "--dims 50,10,5,5");
     EXPECT_TRUE((*a)["draught_m"].is_null());
+    EXPECT_TRUE((*a)["ship_type"].is_null());
 
     // In a track folder, a *_vessels.csv is joined the same way (no --vessels needed).
     const fs::path dir = fs::path(m_dir.path()) / "day";
