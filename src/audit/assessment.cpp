@@ -356,6 +356,7 @@ double charted_depth_at(const grid::CoastGrid& grid, XY p) {
     return INFINITY;
 }
 
+/// "10:03:30Z".
 std::string clock(double t) { return track::format_iso8601(t, 0).substr(11); }
 
 std::string number(double v, int decimals) {
@@ -460,7 +461,7 @@ private:
                 what = "close quarters with " + b.other + " for " + number(value, 0) + " s, over " + number(cr.limit, 0) + " s";
                 break;
         }
-        b.detail = cr.id + ": " + what + ", " + clock(b.start_s) + "Z-" + clock(b.end_s) + "Z (" + number(duration, 0) + " s); penalty " +
+        b.detail = cr.id + ": " + what + ", " + clock(b.start_s) + "-" + clock(b.end_s) + " (" + number(duration, 0) + " s); penalty " +
                    number(b.penalty, 2);
         m_track.push_back({std::move(b), m_crit, other});
     }
