@@ -373,6 +373,10 @@ public:
     AssessmentResult run() {
         const AuditResult& r = m_in.result;
         m_out.criteria = m_a.criteria;
+        for (const Criterion& c : m_a.criteria)
+            if (c.kind == CriterionKind::under_keel_clearance && m_in.grid.charted_depths().empty())
+                m_out.warnings.push_back("assessment: the grid holds no depth areas or dangers, so " + c.id +
+                                         " (under-keel clearance) is breached only where a ship's reference point lies on land");
         for (std::size_t k = 0; k < r.tracks.size(); ++k) {
             const TrackSummary& s = r.tracks[k].summary;
             if (s.role != Role::trainee) continue;

@@ -239,8 +239,10 @@ TEST_F(Scored, NeedsExerciseModeAndAVesselWithoutDraughtIsNotAssessedForUnderKee
     EXPECT_THROW(audit_tracks({straight("A", -2000, 2000, -1305, 5, 9.72)}, *s_grid, box_hull(), "box", o), UsageError);
     const AuditResult r = run({straight("A", -2000, 2000, -1305, 5, 9.72)}, a);
     EXPECT_TRUE(r.assessment.breaches.empty());
-    ASSERT_EQ(r.assessment.warnings.size(), 1u);
-    EXPECT_THAT(r.assessment.warnings[0], HasSubstr("track 'A' has no draught"));
+    ASSERT_EQ(r.assessment.warnings.size(), 2u);
+    EXPECT_THAT(r.assessment.warnings[0], HasSubstr("the grid holds no depth areas or dangers, so under_keel_clearance-1"));
+    EXPECT_THAT(r.assessment.warnings[1], HasSubstr("track 'A' has no draught"));
+    EXPECT_THAT(r.warnings, ::testing::Contains(r.assessment.warnings[1])) << "the run's warnings say it too";
 }
 
 /// The fraction along the straight line from `a` to `b` (lon/lat) where it enters a polygon of
