@@ -265,8 +265,11 @@ struct LocalTrack {
             p.push_back(frame.forward(f.position));
             speed_kn.push_back(f.speed_used_kn);
             gap_before.push_back(k == 0 || f.time_s - track.fixes[k - 1].time_s > max_gap_s);
+            lo = {std::min(lo.x, p.back().x), std::min(lo.y, p.back().y)};
+            hi = {std::max(hi.x, p.back().x), std::max(hi.y, p.back().y)};
         }
     }
+    XY lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};  ///< the box of its fixes
     std::size_t size() const { return t.size(); }
     /// Segment k to k + 1 is sailed (no gap).
     bool sailed(std::size_t k) const { return k + 1 < size() && !gap_before[k + 1]; }
@@ -381,8 +384,7 @@ public:
             const TrackSummary& s = r.tracks[k].summary;
             if (s.role != Role::trainee) continue;
             const track::Track* t = k < m_in.tracks.size() ? m_in.tracks[k] : nullptr;
-            std::optional<LocalTrack> lt;
-            if (t && !t->fixes.empty()) lt.emplace(*t, m_in.frame, m_in.max_gap_s);
+            const LocalTrack* lt = t && !t->fixes.empty() ? &local(k) : nullptr;
             for (std::size_t c = 0; c < m_a.criteria.size(); ++c) {
                 const Criterion& cr = m_a.criteria[c];
                 m_crit = c;
@@ -417,6 +419,13 @@ public:
 
 private:
     const TrackSummary& summary(std::size_t k) const { return m_in.result.tracks[k].summary; }
+
+    /// Track k in local metres (projected once).
+    const LocalTrack& local(std::size_t k) {
+        if (m_local.size() < m_in.result.tracks.size()) m_local.resize(m_in.result.tracks.size());
+        if (!m_local[k]) m_local[k].emplace(*m_in.tracks[k], m_in.frame, m_in.max_gap_s);
+        return *m_local[k];
+    }
 
     void add(std::size_t k, const Criterion& cr, const Run& run, double value, std::size_t other = SIZE_MAX) {
         Breach b;
@@ -571,9 +580,11 @@ private:
             if (m == k || r.tracks[m].summary.exercise != summary(k).exercise) continue;
             const track::Track* tb = m < m_in.tracks.size() ? m_in.tracks[m] : nullptr;
             if (!tb || tb->fixes.empty()) continue;
-            const LocalTrack b(*tb, m_in.frame, m_in.max_gap_s);
-            const double t0 = std::max(a.t.front(), b.t.front()), t1 = std::min(a.t.back(), b.t.back());
+            // Never at the same time, or never within the limit of each other's box: no breach.
+            const double t0 = std::max(a.t.front(), tb->fixes.front().time_s), t1 = std::min(a.t.back(), tb->fixes.back().time_s);
             if (!(t0 <= t1)) continue;
+            const LocalTrack& b = local(m);
+            if (std::max({b.lo.x - a.hi.x, a.lo.x - b.hi.x, b.lo.y - a.hi.y, a.lo.y - b.hi.y}) >= L) continue;
             std::vector<double> cuts{t0, t1};
             for (const double t : a.t)
                 if (t > t0 && t < t1) cuts.push_back(t);
@@ -676,6 +687,7 @@ private:
         std::size_t criterion = 0, other = 0;
     };
     std::vector<Pending> m_track;
+    std::vector<std::optional<LocalTrack>> m_local;  ///< by index in AuditResult::tracks
 };
 
 }  // namespace
