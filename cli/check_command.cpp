@@ -93,6 +93,9 @@ public:
         m_sub->add_option("--roles", m_roles_file,
                           "Exercise mode: exercise file (JSON, schemas/exercise.schema.json) giving each track's role, trainee or "
                           "target; pairs of two targets are not reported. Default: every track is a trainee. Implies --encounters");
+        m_sub->add_option("--assess", m_assess_file,
+                          "Exercise mode: score each trainee against the criteria of an assessment file (JSON, "
+                          "schemas/assessment.schema.json); scores and breaches go to stdout and the report. Implies --encounters");
         m_sub->add_option("--encounter-range", m_audit.colreg.range_m,
                           "Exercise mode: a pair whose reference points come within this many metres is a COLREG situation "
                           "(head-on, crossing, overtaking), classified when it first does (default 3704, 2 nm)")
@@ -141,6 +144,7 @@ public:
         all_inputs.insert(all_inputs.end(), m_berths.begin(), m_berths.end());
         all_inputs.insert(all_inputs.end(), m_vessel_files.begin(), m_vessel_files.end());
         if (!m_roles_file.empty()) all_inputs.push_back(m_roles_file);
+        if (!m_assess_file.empty()) all_inputs.push_back(m_assess_file);
         const std::string format = !m_format.empty() ? m_format
                                    : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
         // Every output, checked before any work: none is an input or another output.
@@ -159,6 +163,12 @@ public:
             check_readable({m_roles_file});
             m_roles = audit::Roles::load(m_roles_file);
             m_audit.roles = &m_roles;
+            m_audit.encounters = true;
+        }
+        if (!m_assess_file.empty()) {  // scored criteria (issue 18)
+            check_readable({m_assess_file});
+            m_assessment = audit::Assessment::load(m_assess_file);
+            m_audit.assessment = &m_assessment;
             m_audit.encounters = true;
         }
         const hull::Hull hull = m_opts.load_hull();
@@ -219,6 +229,7 @@ public:
         report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
                                                       m_audit, m_berths, hull.draught());
         info.roles = m_roles_file;
+        info.assessment = m_assess_file;
         // The chart under the run (the GeoPackage's coast layer): the grid's sources read again.
         std::optional<coast::Coastline> chart;
         if (format == "gpkg") {
@@ -313,6 +324,8 @@ private:
     std::string m_exercise_by;  // exercises and roles (issue 18)
     std::string m_roles_file;
     audit::Roles m_roles;
+    std::string m_assess_file;  // scored criteria (issue 18)
+    audit::Assessment m_assessment;
 };
 
 }  // namespace

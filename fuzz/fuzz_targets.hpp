@@ -23,6 +23,7 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
+#include <shoal/audit/assessment.hpp>
 #include <shoal/audit/exercise.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/grid_cache.hpp>
@@ -393,6 +394,34 @@ inline void roles(const std::uint8_t* data, std::size_t size) {
         }
     } catch (const InputError& e) {
         bounded("roles", e.what());
+    }
+}
+
+/// Assessment files (audit::Assessment::parse, check --assess): every criterion kept has a
+/// unique non-empty id, a finite limit and penalty >= 0, and an area (a closed ring of at
+/// least 4 points on the globe) exactly when its kind takes one.
+inline void assessment(const std::uint8_t* data, std::size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    try {
+        const audit::Assessment a = audit::Assessment::parse(text, "fuzz.json");
+        if (a.criteria.empty()) broken("assessment", "no criteria, no error");
+        std::vector<std::string> ids;
+        for (const audit::Criterion& c : a.criteria) {
+            if (c.id.empty()) broken("assessment", "a criterion without an id");
+            ids.push_back(c.id);
+            if (!(std::isfinite(c.limit) && c.limit >= 0) || !(std::isfinite(c.penalty) && c.penalty >= 0))
+                broken("assessment", "a limit or penalty that is not a finite number >= 0");
+            const bool area = c.kind == audit::CriterionKind::speed_limit || c.kind == audit::CriterionKind::no_entry;
+            if (area != !c.area.empty()) broken("assessment", "an area where the kind takes none, or none where it needs one");
+            if (area && (c.area.size() < 4 || !(c.area.front() == c.area.back()))) broken("assessment", "an area that is not a closed ring");
+            for (const geo::LonLat& p : c.area)
+                if (!(std::fabs(p.lon) <= 180.0) || !(std::fabs(p.lat) <= 90.0)) broken("assessment", "an area corner off the globe");
+        }
+        std::sort(ids.begin(), ids.end());
+        if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) broken("assessment", "two criteria with one id");
+        (void)a.watch_clearance_m();
+    } catch (const InputError& e) {
+        bounded("assessment", e.what());
     }
 }
 

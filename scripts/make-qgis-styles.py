@@ -27,6 +27,7 @@ MAGENTA, VIOLET = "#c51b7d", "#756bb1"
 RED, AMBER, GREEN, GREY = "#e31a1c", "#ff9f00", "#33a02c", "#6a7f95"
 BLUE, PURPLE = "#1f78b4", "#6a3d9a"
 STEEL = "#4a7fa8"
+ORANGE_RED = "#d7301f"
 VIOLET_TRACK = "#8a76b8"  # as in the --plot picture
 
 
@@ -87,7 +88,9 @@ for expr, colour, shape, size, label in (
         ("\"kind\" = 'close_pass'", AMBER, "triangle", "4.2", "close pass"),
         # a GeoJSON report holds exercise-mode encounters in the same layer: drawn as in `encounters`
         ("\"kind\" = 'collision'", MAGENTA, "diamond", "4.2", "ship-ship collision"),
-        ("\"kind\" = 'close_quarters'", VIOLET, "pentagon", "4.2", "ship-ship close quarters")):
+        ("\"kind\" = 'close_quarters'", VIOLET, "pentagon", "4.2", "ship-ship close quarters"),
+        # and --assess breaches: drawn as in `breaches`
+        ("\"kind\" = 'breach'", ORANGE_RED, "cross2", "4.6", "assessment breach")):
     sym = QgsMarkerSymbol.createSimple({"name": shape, "color": colour, "outline_color": "#000000",
                                         "outline_width": "0.4", "size": size})
     root.appendChild(QgsRuleBasedRenderer.Rule(sym, 0, 0, expr, label))
@@ -127,6 +130,22 @@ encounters.setRenderer(QgsCategorizedSymbolRenderer("kind", cats))
 encounters.setLabeling(labels("label", QgsPalLayerSettings.OverPoint))
 encounters.setLabelsEnabled(True)
 save(encounters, "encounters")
+
+# breaches (--assess): a cross at the worst moment of each breach of a scored criterion,
+# labelled with the criterion and the time; shown from its start to its end
+breaches = QgsVectorLayer("Point?crs=EPSG:4326&field=criterion:string&field=criterion_kind:string&field=label:string"
+                          "&field=start:datetime&field=end:datetime", "breaches", "memory")
+temporal(breaches, "start", "end")
+sym = QgsMarkerSymbol.createSimple({"name": "cross2", "color": ORANGE_RED, "outline_color": ORANGE_RED,
+                                    "outline_width": "0.8", "size": "4.6"})
+breaches.setRenderer(QgsCategorizedSymbolRenderer("criterion_kind", [
+    QgsRendererCategory(kind, sym.clone(), label) for kind, label in (
+        ("land_clearance", "too close to land"), ("under_keel_clearance", "under-keel clearance too small"),
+        ("cpa", "CPA too small"), ("speed_limit", "over the speed limit"), ("no_entry", "inside a no-entry area"),
+        ("close_quarters_time", "too long in close quarters"))]))
+breaches.setLabeling(labels("label", QgsPalLayerSettings.OverPoint))
+breaches.setLabelsEnabled(True)
+save(breaches, "breaches")
 
 # tracks: coloured by least clearance (NULL: never within the search limit)
 tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double&field=groundings:integer"

@@ -36,6 +36,7 @@ const Target targets[] = {
     {"ship", shoal::fuzz::ship},
     {"grid_cache", shoal::fuzz::grid_cache},
     {"roles", shoal::fuzz::roles},
+    {"assessment", shoal::fuzz::assessment},
     {"poses", shoal::fuzz::poses},
     {"merge_parts", shoal::fuzz::merge_parts},
 };

@@ -191,6 +191,10 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                   const AuditOptions& options) {
     AuditResult result;
     result.shard = options.shard;
+    if (options.assessment && !options.encounters)
+        throw UsageError("AuditOptions::assessment needs exercise mode (AuditOptions::encounters): trainees are scored per exercise");
+    SweepOptions sweep_options = options.sweep;
+    if (options.assessment) sweep_options.watch_clearance_m = std::max(sweep_options.watch_clearance_m, options.assessment->watch_clearance_m());
     const auto position = [&](std::size_t k) { return source.position ? source.position(k) : k; };
     const unsigned jobs = thread_count(options.jobs);
     // 2. Sweep every track.
@@ -235,7 +239,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 SweepContext context;
                 context.unknown_heading = &circle;
                 context.areas = options.areas;
-                swept[k] = sweep_track(t, *frames[w], detector, options.sweep, context);
+                swept[k] = sweep_track(t, *frames[w], detector, sweep_options, context);
                 swept[k].summary.fixes += wild.size();  // fixes read, the wild ones among them
                 swept[k].summary.wild_fixes = std::move(wild);
                 swept[k].summary.hull = label;
@@ -267,6 +271,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
 
     std::vector<const track::Track*> exercise;
     std::vector<std::size_t> exercise_index;  // exercise position -> index in result.tracks
+    std::vector<const track::Track*> kept_of;  // index in result.tracks -> its kept track (assessment)
     std::vector<hull::Hull> exercise_hulls;
     for (std::size_t k = 0; k < source.count; ++k) {
         if (!errors[k].empty()) {
@@ -297,6 +302,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         }
         result.tracks.push_back(std::move(swept[k]));
         result.track_positions.push_back(position(k));
+        if (options.encounters) kept_of.push_back(kept[k].fixes.empty() ? nullptr : &kept[k]);
     }
     if (result.fixes >= 10 && 2 * result.uncovered_fixes > result.fixes)
         result.warnings.push_back(std::to_string(result.uncovered_fixes) + " of " + std::to_string(result.fixes) +
@@ -412,6 +418,14 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         });
         result.has_encounters = true;
         result.encounters_s = std::chrono::duration<double>(Clock::now() - t2).count();
+    }
+    // 4. Assessment: every trainee scored against the criteria.
+    if (options.assessment) {
+        AssessInput in{result, kept_of, grid, *frames[0], default_hull.draught(), options.sweep.step_m, options.sweep.max_gap_s,
+                       options.sweep.time_tolerance_s};
+        result.assessment = assess(*options.assessment, in);
+        result.has_assessment = true;
+        result.warnings.insert(result.warnings.end(), result.assessment.warnings.begin(), result.assessment.warnings.end());
     }
     return result;
 }

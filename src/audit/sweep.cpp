@@ -72,7 +72,43 @@ public:
     /// (a search of the grid's rings) is left out: only an event's first sample needs it, and
     /// make_event asks for it then.
     check::Contact check(std::size_t i, double f, bool penetration) const {
-        return checker_at(i, f).check(m_motion.pose(i, f), {.max_clearance_m = m_opt.margin_m + m_opt.lookahead_m, .want_penetration = penetration, .want_polyline = false});
+        return checker_at(i, f).check(m_motion.pose(i, f), {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false});
+    }
+
+    /// How far clearance is searched: the lookahead beyond the margin (or the watch, when larger).
+    double search_m() const { return std::max(m_opt.margin_m, m_opt.watch_clearance_m) + m_opt.lookahead_m; }
+
+    /// SweepOptions::watch_clearance_m: keeps `s` in TrackResult::clearance when under the
+    /// watch, with the sample before it (pending) and the one after. `piece_start`: the first
+    /// sample of a piece of track.
+    void watch(const Sample& s, bool piece_start) {
+        if (!(m_opt.watch_clearance_m > 0)) return;
+        ClearanceSample c;
+        c.time_s = m_motion.time(s.i, s.f);
+        c.clearance_m = s.contact.collision ? 0.0 : s.contact.clearance_m;
+        c.ship = m_frame.inverse(m_motion.pose(s.i, s.f).position);
+        c.covered = s.contact.covered;
+        if (piece_start) {
+            m_watch_pending.reset();
+            m_watch_last_kept = false;
+        }
+        const bool under = c.covered && c.clearance_m < m_opt.watch_clearance_m;
+        if (under) {
+            if (m_watch_pending) {
+                m_watch_pending->after_break = true;
+                m_out.clearance.push_back(*m_watch_pending);
+                m_watch_pending.reset();
+            } else {
+                c.after_break = !m_watch_last_kept;
+            }
+            m_out.clearance.push_back(c);
+            m_watch_last_kept = true;
+        } else if (m_watch_last_kept) {
+            m_out.clearance.push_back(c);
+            m_watch_last_kept = false;
+        } else {
+            m_watch_pending = c;
+        }
     }
 
     /// A new piece of track starts at fix i; `after` is "track start", "gap" or "jump".
@@ -244,7 +280,7 @@ private:
             // Not searched by check(): asked again as the sample was checked (penetration at
             // fixes), so that the same pose at the next fixes is answered from the last check.
             if (s.contact.collision && polyline == grid::CoastGrid::no_polyline)
-                polyline = used.check(pose, {.max_clearance_m = m_opt.margin_m + m_opt.lookahead_m, .want_penetration = s.f == 0.0, .want_polyline = true}).polyline;
+                polyline = used.check(pose, {.max_clearance_m = search_m(), .want_penetration = s.f == 0.0, .want_polyline = true}).polyline;
             if (polyline < g->polyline_count()) {
                 const coast::Hazard& hit = g->hazard(polyline);
                 e.hit = hit.kind;
@@ -297,6 +333,8 @@ private:
     const char* m_piece_after = "track start";
     detail::IntervalEvents<Sample, true> m_intervals;
     Event m_ground;  ///< the open contact, from its first contact
+    std::optional<ClearanceSample> m_watch_pending;  ///< the last sample over the watch, not kept (yet)
+    bool m_watch_last_kept = false;                  ///< the last sample was kept
 };
 
 /// Gives the last answer again for the same pose and options (a pure function of them): a
@@ -360,11 +398,12 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
 
     // Hull motion (metres) that may pass before the next check: what the last check proved clear.
     double budget_m = 0;
+    const double near_m = std::max(opt.margin_m, opt.watch_clearance_m);  // clearance followed up to this
     auto note = [&](const check::Contact& c) {
         ++sum.poses;
         if (c.covered) sum.min_clearance_m = std::min(sum.min_clearance_m, c.clearance_m);
-        const double clear = std::isinf(c.clearance_m) ? opt.margin_m + opt.lookahead_m : c.clearance_m;
-        budget_m = c.collision ? 0 : std::max(0.0, clear - opt.margin_m);
+        const double clear = std::isinf(c.clearance_m) ? near_m + opt.lookahead_m : c.clearance_m;
+        budget_m = c.collision ? 0 : std::max(0.0, clear - near_m);
     };
     bool have_prev = false;
     std::vector<geo::LonLat>* line = nullptr;
@@ -414,6 +453,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 s.contact = events.check(s.i, s.f, false);
                 note(s.contact);
                 events.add(s);
+                events.watch(s, false);
             }
         }
         Sample s{i, 0.0, {}};
@@ -422,6 +462,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         if (!s.contact.covered) ++sum.uncovered_fixes;
         note(s.contact);
         events.add(s);
+        events.watch(s, !have_prev);
         {
             const int state = state_of(s.contact);
             const bool first = out.poses.size() == piece_poses;

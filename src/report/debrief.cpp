@@ -409,7 +409,7 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
     // Scores.
     out += "<section id=\"scores\">\n<h2>Scores</h2>\n";
     if (!r.has_assessment) {
-        out += "<p class=\"none\">Not assessed.</p>\n";
+        out += "<p class=\"none\">Not assessed (run check with --assess FILE).</p>\n";
     } else {
         std::vector<const audit::Score*> scores;
         for (const audit::Score& s : r.assessment.scores)

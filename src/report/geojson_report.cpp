@@ -186,6 +186,19 @@ void write_report(const audit::AuditResult& r, const RunInfo& info, const Staged
         out.key(1, "closest_approaches");
         array_of(out, 2, fields::approach_fields(), rows, r);
     }
+    if (r.has_assessment) {  // --assess: the criteria and the trainees' scores (breaches are features)
+        std::vector<fields::CriterionRow> criteria;
+        for (const auto& c : r.assessment.criteria) criteria.push_back({c});
+        std::vector<fields::ScoreRow> scores;
+        for (const auto& s : r.assessment.scores) scores.push_back({r, s});
+        out.key(1, "assessment");
+        out.open('{');
+        out.key(2, "criteria");
+        array_of(out, 3, fields::criterion_fields(), criteria, r);
+        out.key(2, "scores");
+        array_of(out, 3, fields::score_fields(), scores, r);
+        out.close('}', 2);
+    }
     out.key(1, "summary");
     out.open('{');
     members_of(out, 2, fields::summary_fields(), run, r);
@@ -209,6 +222,10 @@ void write_report(const audit::AuditResult& r, const RunInfo& info, const Staged
     for (const auto& e : r.encounters.events) {
         out.item(1);
         out.value(point_feature(e.point, object_of(fields::encounter_fields(), fields::EncounterRow{r, e}, r)), 2);
+    }
+    for (const auto& b : r.assessment.breaches) {
+        out.item(1);
+        out.value(point_feature({b.lon, b.lat}, object_of(fields::breach_fields(), fields::BreachRow{r, b}, r)), 2);
     }
     out.close(']', 1);
     out.close('}', 0);

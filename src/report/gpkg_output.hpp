@@ -14,17 +14,18 @@ class OGRLayer;
 namespace shoal::report {
 
 /// The layers and tables of a GeoPackage report; null: not in this report. Rows are written
-/// in this order too: events, encounters, tracks, hulls, poses, coast, problems, approaches,
-/// run, summary, part.
+/// in this order too: events, encounters, breaches, tracks, hulls, poses, coast, problems,
+/// approaches, scores, run, summary, part.
 struct GpkgLayers {
     OGRLayer *events = nullptr, *tracks = nullptr, *hulls = nullptr, *poses = nullptr, *coast = nullptr, *encounters = nullptr,
              *problems = nullptr, *approaches = nullptr, *run = nullptr, *summary = nullptr;
+    OGRLayer *breaches = nullptr, *scores = nullptr;  ///< --assess
     /// A shard's report only: one row, field `order`, the JSON of report/part_order.hpp.
     OGRLayer* part = nullptr;
 };
 
 /// Creates the empty layers of a report of the shape of `shape` (exercise mode:
-/// has_encounters; a shard: shard), each with the fields report_fields.hpp lists for it; the
+/// has_encounters; --assess: has_assessment; a shard: shard), each with the fields report_fields.hpp lists for it; the
 /// `coast` layer when `chart`.
 GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& shape, bool chart);
 

@@ -96,6 +96,11 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
         const OGRPoint pt = point(e.point);
         put(*encounters, fields::encounter_fields(), fields::EncounterRow{r, e}, r, &pt);
     }
+    if (layers.breaches)
+        for (const auto& b : r.assessment.breaches) {
+            const OGRPoint pt = point({b.lon, b.lat});
+            put(*layers.breaches, fields::breach_fields(), fields::BreachRow{r, b}, r, &pt);
+        }
     for (const auto& t : fields::track_rows(r)) {
         OGRMultiLineString ml;
         for (const auto& piece : t.track.lines) {
@@ -143,6 +148,8 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
     for (const auto& p : fields::problem_rows(r)) put(problems, fields::problem_fields(), p, r, nullptr);
     if (approaches)
         for (const auto& a : r.encounters.approaches) put(*approaches, fields::approach_fields(), fields::ApproachRow{r, a}, r, nullptr);
+    if (layers.scores)
+        for (const auto& s : r.assessment.scores) put(*layers.scores, fields::score_fields(), fields::ScoreRow{r, s}, r, nullptr);
     put(run, fields::run_fields(), fields::RunRow{r, info}, r, nullptr);
     put(summary, fields::summary_fields(), fields::RunRow{r, info}, r, nullptr);
     if (layers.part) {
@@ -165,8 +172,11 @@ GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& r, bool c
     // Exercise mode: ship-to-ship encounters, their own layer (hull footprints of both ships
     // go into `hulls` with kind collision / close_quarters).
     if (r.has_encounters) l.encounters = &make_layer(ds, "encounters", wkbPoint, fields::encounter_fields(), r);
+    // --assess: one point per breach (at its worst moment), one row per trainee's score.
+    if (r.has_assessment) l.breaches = &make_layer(ds, "breaches", wkbPoint, fields::breach_fields(), r);
     l.problems = &make_layer(ds, "problems", wkbNone, fields::problem_fields(), r);
     if (r.has_encounters) l.approaches = &make_layer(ds, "closest_approaches", wkbNone, fields::approach_fields(), r);
+    if (r.has_assessment) l.scores = &make_layer(ds, "scores", wkbNone, fields::score_fields(), r);
     l.run = &make_layer(ds, "run", wkbNone, fields::run_fields(), r);
     l.summary = &make_layer(ds, "summary", wkbNone, fields::summary_fields(), r);
     if (r.shard.active()) {

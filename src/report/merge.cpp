@@ -92,6 +92,12 @@ Part read_geojson_part(const std::string& path, const std::string& text) {
     read_shard(p, {"inputs", "tracks", "features", "problems", "approaches"});
     if (!p.doc.contains("features") || !p.doc["features"].is_array() || p.doc["features"].size() != p.doc["shoal"]["part"]["features"].size())
         throw InputError(path + ": its features and the positions in shoal.part.features do not match (was it edited?)");
+    if (const json& s = p.doc["shoal"]; s.contains("assessment")) {  // --assess: the scores and their positions
+        const json& a = s["assessment"];
+        if (!a.is_object() || !a.contains("criteria") || !a.contains("scores") || !a["scores"].is_array() || !s["part"].contains("scores") ||
+            !s["part"]["scores"].is_array() || s["part"]["scores"].size() != a["scores"].size())
+            throw InputError(path + ": its shoal.assessment.scores and the positions in shoal.part.scores do not match (was it edited?)");
+    }
     return p;
 }
 
@@ -170,6 +176,9 @@ Part read_gpkg_part(const std::string& path) {
     header["part"] = std::move(s["part"]);
     s = std::move(header);
     read_shard(p, {"inputs", "tracks", "problems", "approaches", "events", "encounters", "hulls", "poses"});
+    if (p.gpkg->GetLayerByName("breaches"))  // --assess
+        for (const char* k : {"breaches", "scores"})
+            if (!s["part"].contains(k) || !s["part"][k].is_array()) throw not_a_part(path, std::string("no part.") + k);
     if (!s["part"].contains("project") || !s["part"]["project"].is_object()) throw not_a_part(path, "no part.project");
     return p;
 }
@@ -197,7 +206,7 @@ Part read_part(const std::string& path) {
     return read_geojson_part(path, text);
 }
 
-bool is_layer_or_table(const std::string& key) { return key == "summary" || key == "tracks" || key == "problems"; }
+bool is_layer_or_table(const std::string& key) { return key == "summary" || key == "tracks" || key == "problems" || key == "assessment"; }
 bool is_merge_only(const std::string& key) { return key == "shard" || key == "part"; }
 
 /// The run header (the scalars of `shoal`) and the top level must agree, field by field.
@@ -218,6 +227,13 @@ void check_same_run(const Part& a, const Part& b) {
     };
     compare(a.doc, b.doc, "", true);
     compare(a.doc["shoal"], b.doc["shoal"], "", false);
+    // --assess (GeoJSON): the same criteria; the scores are rows.
+    const json& sa = a.doc["shoal"];
+    const json& sb = b.doc["shoal"];
+    if (sa.contains("assessment") != sb.contains("assessment"))
+        throw differ(named("assessment"), sa.contains("assessment") ? &sa["assessment"] : nullptr, sb.contains("assessment") ? &sb["assessment"] : nullptr);
+    if (sa.contains("assessment") && sa["assessment"].value("criteria", json()) != sb["assessment"].value("criteria", json()))
+        throw differ(named("assessment") + ".criteria", &sa["assessment"]["criteria"], &sb["assessment"]["criteria"]);
 }
 
 /// Sorts rows by key (stable: rows of equal keys stay in part order), as one run orders them.
@@ -245,11 +261,13 @@ double as_key(std::size_t n) { return static_cast<double>(n); }
 /// A track's, or a row of a track's: its track's position.
 Key track_key(const json& o, const Part& p, const char* what) { return {as_key(p.set), as_key(position_of(o, p, what))}; }
 
-/// A feature's (GeoJSON features, GeoPackage events, encounters, hulls): a track's position
-/// (its events first, in track order), or an encounter's key [start_s, position of a,
-/// position of b, kind] (after every track's, in the order one run sorts encounters).
+/// A feature's (GeoJSON features, GeoPackage events, encounters, hulls, breaches): a track's
+/// position (its events first, in track order), or an encounter's key [start_s, position of a,
+/// position of b, kind] (after every track's, in the order one run sorts encounters), or a
+/// breach's [trainee position] (last, by trainee; a trainee's in part order).
 Key feature_key(const json& o, const Part& p, const char* what) {
     if (!o.is_array()) return {0, as_key(p.set), as_key(position_of(o, p, what))};
+    if (o.size() == 1) return {2, as_key(p.set), as_key(position_of(o[0], p, what))};
     if (o.size() != 4 || !o[0].is_number() || !o[3].is_number_unsigned()) throw edited(p, what, "a track position or [start, a, b, kind]");
     return {1, o[0].get<double>(), as_key(p.set), as_key(position_of(o[1], p, what)), as_key(position_of(o[2], p, what)), o[3].get<double>()};
 }
@@ -454,12 +472,15 @@ MergeSummary summary_of(std::size_t parts, std::size_t tracks, const json& s) {
 /// The merged GeoJSON report of GeoJSON parts.
 std::string merged_geojson(Plan& plan, MergeSummary* summary) {
     std::vector<Part>& parts = plan.parts;
-    std::vector<std::pair<Key, json>> tracks, features, problems, approaches;
+    std::vector<std::pair<Key, json>> tracks, features, problems, approaches, scores;
     std::map<std::string, json> run_layers;  // other arrays of `shoal`, in part order
     for (std::size_t k = 0; k < parts.size(); ++k) {
         Part& p = parts[k];
         json& s = p.doc["shoal"];
         const json& order = s["part"];
+        if (s.contains("assessment"))
+            for (std::size_t i = 0; i < s["assessment"]["scores"].size(); ++i)
+                scores.push_back({track_key(order["scores"][i], p, "scores"), std::move(s["assessment"]["scores"][i])});
         for (std::size_t i = 0; i < s["tracks"].size(); ++i) tracks.push_back({track_key(order["tracks"][i], p, "tracks"), std::move(s["tracks"][i])});
         for (std::size_t i = 0; i < p.doc["features"].size(); ++i)
             features.push_back({feature_key(order["features"][i], p, "features"), std::move(p.doc["features"][i])});
@@ -494,6 +515,7 @@ std::string merged_geojson(Plan& plan, MergeSummary* summary) {
                 else if (name == "tracks") s[name] = in_order(std::move(tracks));
                 else if (name == "problems") s[name] = in_order(std::move(problems));
                 else if (name == "closest_approaches") s[name] = in_order(std::move(approaches));
+                else if (name == "assessment") s[name] = {{"criteria", value["criteria"]}, {"scores", in_order(std::move(scores))}};
                 else if (value.is_array()) s[name] = std::move(run_layers[name]);
                 else s[name] = value;
             }
@@ -548,6 +570,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
     GDALDataset& first = *parts[0].gpkg;
     audit::AuditResult shape;  // what decides which layers and fields the report has
     shape.has_encounters = first.GetLayerByName("encounters") != nullptr;
+    shape.has_assessment = first.GetLayerByName("breaches") != nullptr;
     const bool chart = first.GetLayerByName("coast") != nullptr;
     ProjectView view;
     for (const Part& p : parts) {
@@ -567,6 +590,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
         if (ds.StartTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage transaction failed");
         put_rows(out.events, gpkg_rows(parts, "events", "events", by_feature("events")));
         if (out.encounters) put_rows(out.encounters, gpkg_rows(parts, "encounters", "encounters", by_feature("encounters")));
+        if (out.breaches) put_rows(out.breaches, gpkg_rows(parts, "breaches", "breaches", by_feature("breaches")));
         const auto tracks = gpkg_rows(parts, "tracks", "tracks", by_track("tracks"));
         if (summary) *summary = summary_of(parts.size(), tracks.size(), merged);
         put_rows(out.tracks, tracks);
@@ -599,6 +623,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
         if (out.approaches)
             put_rows(out.approaches, gpkg_rows(parts, "closest_approaches", "approaches",
                                                [](const Part& p, const json& o, const OGRFeature*) { return approach_key(o, p, "approaches"); }));
+        if (out.scores) put_rows(out.scores, gpkg_rows(parts, "scores", "scores", by_track("scores")));
         // The run: part 0's row (without its shard); the summary: part 0's row, merged.
         std::vector<std::pair<Key, OGRFeatureUniquePtr>> run, sum;
         OGRLayer* run_in = first.GetLayerByName("run");

@@ -25,15 +25,23 @@ json part_order(const audit::AuditResult& r, bool gpkg) {
     // fields::hull_rows' order: each track event's hull, then both ships' hulls of each encounter.
     hulls = events;
     for (const auto& k : encounters) hulls.insert(hulls.end(), 2, k);
+    // --assess: a breach's key is [its trainee's position] (one run lists them by track, then
+    // time); a score's, its trainee's position.
+    json breaches = json::array(), scores = json::array();
+    for (const auto& b : r.assessment.breaches) breaches.push_back(json::array({position(b.track_index)}));
+    for (const auto& s : r.assessment.scores) scores.push_back(position(s.track_index));
     features = events;
     features.insert(features.end(), encounters.begin(), encounters.end());
+    features.insert(features.end(), breaches.begin(), breaches.end());
     for (const auto& p : fields::problem_rows(r)) problems.push_back(json::array({p.group, p.position}));
     for (const auto& a : r.encounters.approaches) approaches.push_back(json::array({position(a.a), position(a.b)}));
     json out = {{"inputs", inputs}, {"tracks", tracks}};
     if (!gpkg) out["features"] = std::move(features);
     out["problems"] = std::move(problems);
     out["approaches"] = std::move(approaches);
+    if (r.has_assessment) out["scores"] = std::move(scores);
     if (gpkg) {
+        if (r.has_assessment) out["breaches"] = std::move(breaches);
         const ProjectView v = project_view(r);
         out["events"] = std::move(events);
         out["encounters"] = std::move(encounters);

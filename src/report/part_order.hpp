@@ -7,10 +7,12 @@
 /// - `inputs`: the files read; `tracks`: each track's position;
 /// - `features` (GeoJSON): a track event's track position; an encounter (exercise mode) its
 ///   encounter key [start_s, position of a, position of b, kind], the order one run sorts
-///   them in (audit.cpp);
+///   them in (audit.cpp); a breach (--assess) [its trainee's position], after both;
+/// - `scores` (--assess): each score's trainee position;
 /// - `problems`: [group, position] (report_fields.hpp: ProblemRow);
 /// - `approaches`: [position of a, position of b] of each closest approach (one run's order);
 /// - GeoPackage only: `events`, `poses` (track positions), `encounters` (encounter keys),
+///   `breaches` (--assess: [trainee position]),
 ///   `hulls` (a track position, or an encounter key), and `project`, the QGIS project's view
 ///   of the part (qgis_project.hpp: ProjectView). The coast layer needs no positions: merge
 ///   orders its features by each one's `tile` field (a tile's features are the same in every

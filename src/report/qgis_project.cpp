@@ -93,7 +93,7 @@ ProjectView project_view(const audit::AuditResult& r) {
 std::string qgis_project_xml(GDALDataset& ds, const std::string& file_name, const ProjectView& view) {
     // Top of the map first (QGIS's layer tree order).
     std::vector<std::pair<std::string, std::string>> layers;  // name, geometry
-    for (const char* name : {"events", "encounters", "hulls", "poses", "tracks", "coast"})
+    for (const char* name : {"breaches", "events", "encounters", "hulls", "poses", "tracks", "coast"})
         if (OGRLayer* l = ds.GetLayerByName(name)) layers.emplace_back(name, geometry_of(*l));
 
     // The run's extent (its tracks), and the UTM zone of its centre.

@@ -24,6 +24,7 @@ const Value null{};
 
 bool exercise(const audit::AuditResult& r) { return r.has_encounters; }
 bool sharded(const audit::AuditResult& r) { return r.shard.active(); }
+bool assessed(const audit::AuditResult& r) { return r.has_assessment; }
 
 /// The COLREG situation of pair (a, b) (a < b), or null (AuditResult::situations is by (a, b)).
 const audit::ColregEncounter* situation_of(const audit::AuditResult& r, std::size_t a, std::size_t b) {
@@ -309,6 +310,7 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"exercise_by", text_t, none, -1, [](const R& x) { return text(x.info.exercise_by); }, exercise},
         {"roles", text_t, none, -1, [](const R& x) { return text(x.info.roles); }, exercise},
         {"encounter_range_m", real, metres, -1, [](const R& x) { return Value(x.info.encounter_range_m); }, exercise},
+        {"assessment_file", text_t, none, -1, [](const R& x) { return text(x.info.assessment); }, assessed},
         {"shard", text_t, none, -1, [](const R& x) { return text(x.result.shard.text()); }, sharded},
     };
     return f;
@@ -345,6 +347,59 @@ const std::vector<Field<RunRow>>& summary_fields() {
         {"close_quarters", integer, none, -1, [](const R& x) { return count(x.result.close_quarters); }, exercise},
         {"exercises", integer, none, -1, [](const R& x) { return count(x.result.exercises); }, exercise},
         {"situations", integer, none, -1, [](const R& x) { return count(x.result.situations.size()); }, exercise},
+        {"trainees_scored", integer, none, -1, [](const R& x) { return count(x.result.assessment.scores.size()); }, assessed},
+        {"breaches", integer, none, -1, [](const R& x) { return count(x.result.assessment.breaches.size()); }, assessed},
+    };
+    return f;
+}
+
+const std::vector<Field<BreachRow>>& breach_fields() {
+    using B = BreachRow;
+    static const auto track = [](const B& x) -> const audit::TrackSummary& { return x.result.tracks.at(x.breach.track_index).summary; };
+    static const std::vector<Field<BreachRow>> f = {
+        {"track", text_t, none, -1, [](const B& x) { return text(x.breach.track); }},
+        {"name", text_t, none, -1, [](const B& x) { return text(track(x).name); }},
+        {"kind", text_t, none, -1, [](const B&) { return text("breach"); }},
+        {"exercise", text_t, none, -1, [](const B& x) { return text(x.breach.exercise); }},
+        {"criterion", text_t, none, -1, [](const B& x) { return text(x.breach.criterion); }},
+        {"criterion_kind", text_t, none, -1, [](const B& x) { return text(audit::to_string(x.breach.kind)); }},
+        {"start", datetime, utc, -1, [](const B& x) { return text(iso_time(x.breach.start_s)); }},
+        {"end", datetime, utc, -1, [](const B& x) { return text(iso_time(x.breach.end_s)); }},
+        {"duration_s", real, seconds, 3, [](const B& x) { return Value(x.breach.end_s - x.breach.start_s); }},
+        {"worst", datetime, utc, -1, [](const B& x) { return text(iso_time(x.breach.worst_s)); }},
+        {"value", real, none, 3, [](const B& x) { return Value(x.breach.value); }},
+        {"limit", real, none, 3, [](const B& x) { return Value(x.breach.limit); }},
+        {"unit", text_t, none, -1, [](const B& x) { return text(audit::unit_of(x.breach.kind)); }},
+        {"penalty", real, none, 3, [](const B& x) { return Value(x.breach.penalty); }},
+        {"other_track", text_t, none, -1, [](const B& x) { return x.breach.other.empty() ? null : text(x.breach.other); }},
+        {"detail", text_t, none, -1, [](const B& x) { return text(x.breach.detail); }},
+        {"label", text_t, none, -1, [](const B& x) { return text(x.breach.criterion + " " + iso_time(x.breach.start_s).substr(11)); }},
+    };
+    return f;
+}
+
+const std::vector<Field<ScoreRow>>& score_fields() {
+    using S = ScoreRow;
+    static const std::vector<Field<ScoreRow>> f = {
+        {"exercise", text_t, none, -1, [](const S& x) { return text(x.score.exercise); }},
+        {"track", text_t, none, -1, [](const S& x) { return text(x.score.track); }},
+        {"name", text_t, none, -1, [](const S& x) { return text(x.result.tracks.at(x.score.track_index).summary.name); }},
+        {"penalty", real, none, 3, [](const S& x) { return Value(x.score.penalty); }},
+        {"breaches", integer, none, -1, [](const S& x) { return count(x.score.breaches); }},
+    };
+    return f;
+}
+
+const std::vector<Field<CriterionRow>>& criterion_fields() {
+    using K = CriterionRow;
+    static const std::vector<Field<CriterionRow>> f = {
+        {"id", text_t, none, -1, [](const K& x) { return text(x.criterion.id); }},
+        {"kind", text_t, none, -1, [](const K& x) { return text(audit::to_string(x.criterion.kind)); }},
+        {"limit", real, none, -1, [](const K& x) { return Value(x.criterion.limit); }},
+        {"unit", text_t, none, -1, [](const K& x) { return text(audit::unit_of(x.criterion.kind)); }},
+        {"penalty", real, none, -1, [](const K& x) { return Value(x.criterion.penalty); }},
+        {"per", text_t, none, -1, [](const K& x) { return text(audit::to_string(x.criterion.per)); }},
+        {"area_name", text_t, none, -1, [](const K& x) { return x.criterion.area.empty() ? null : text(x.criterion.area_name); }},
     };
     return f;
 }

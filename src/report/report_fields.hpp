@@ -16,6 +16,9 @@
 ///   coast               (none)                                   MultiPolygon layer `coast` (when the chart is readable)
 ///   problems            `shoal.problems[]` (null keys left out)  table `problems`
 ///   closest_approaches  `shoal.closest_approaches[]`             table `closest_approaches` (exercise mode)
+///   breaches            Point features, kind "breach" (--assess) Point layer `breaches` (--assess)
+///   scores              `shoal.assessment.scores[]`              table `scores` (--assess)
+///   criteria            `shoal.assessment.criteria[]`            (none)
 ///   run                 members of `shoal`                       table `run` (one row)
 ///   summary             `shoal.summary`                          table `summary` (one row)
 
@@ -125,6 +128,17 @@ struct RunRow {
     const audit::AuditResult& result;
     const RunInfo& info;
 };
+struct BreachRow {
+    const audit::AuditResult& result;
+    const audit::Breach& breach;
+};
+struct ScoreRow {
+    const audit::AuditResult& result;
+    const audit::Score& score;
+};
+struct CriterionRow {
+    const audit::Criterion& criterion;
+};
 
 const std::vector<Field<EventRow>>& event_fields();
 const std::vector<Field<EncounterRow>>& encounter_fields();
@@ -136,6 +150,9 @@ const std::vector<Field<CoastRow>>& coast_fields();
 const std::vector<Field<ApproachRow>>& approach_fields();
 const std::vector<Field<RunRow>>& run_fields();
 const std::vector<Field<RunRow>>& summary_fields();
+const std::vector<Field<BreachRow>>& breach_fields();
+const std::vector<Field<ScoreRow>>& score_fields();
+const std::vector<Field<CriterionRow>>& criterion_fields();
 
 /// The rows of the layers that are not one-to-one with a vector of the result.
 std::vector<TrackRow> track_rows(const audit::AuditResult& r);

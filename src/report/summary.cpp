@@ -88,6 +88,21 @@ std::string summary_table(const audit::AuditResult& r) {
             out += line;
         }
     }
+    if (r.has_assessment) {  // --assess: one line per trainee's score, then one per breach
+        std::snprintf(line, sizeof line, "assessment: %zu criteria, %zu trainees scored, %zu breaches\n", r.assessment.criteria.size(),
+                      r.assessment.scores.size(), r.assessment.breaches.size());
+        out += line;
+        for (const auto& s : r.assessment.scores) {
+            std::snprintf(line, sizeof line, "  score  [%s] %s  penalty %.2f, %zu breach%s\n", printable(s.exercise).c_str(), printable(s.track).c_str(),
+                          s.penalty, s.breaches, s.breaches == 1 ? "" : "es");
+            out += line;
+        }
+        for (const auto& b : r.assessment.breaches) {
+            std::snprintf(line, sizeof line, "  breach [%s] %s  %s at %.6f, %.6f\n", printable(b.exercise).c_str(), printable(b.track).c_str(),
+                          printable(b.detail).c_str(), b.lat, b.lon);
+            out += line;
+        }
+    }
     for (const auto& f : r.files)
         if (!f.error.empty()) out += "unreadable: " + printable(f.error) + "\n";
     for (const auto& e : r.errors) out += "track failed: " + printable(e.track + " in " + e.file + ": " + e.message) + "\n";

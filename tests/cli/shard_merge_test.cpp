@@ -188,6 +188,30 @@ bool has_table(const fs::path& gpkg, const std::string& name) {
     return ds && ds->GetLayerByName(name.c_str()) != nullptr;
 }
 
+TEST(ShardMerge, AssessedExercisesInShuffledShardsMergeToTheSingleRun) {
+    // --assess: every exercise's two ships cross (CPA under 300 m) inside a 1 kn speed limit;
+    // scores and breaches of the parts go back in the single run's order (by trainee).
+    const fs::path assessment = temp_dir() / "assessment.json";
+    std::ofstream(assessment) << R"({"criteria": [
+        {"id": "cpa", "kind": "cpa", "limit": 300, "penalty": 10},
+        {"id": "slow", "kind": "speed_limit", "limit": 1, "penalty": 1, "per": "metre",
+         "area": [[24.89, 60.09], [24.93, 60.09], [24.93, 60.11], [24.89, 60.11]]},
+        {"id": "land", "kind": "land_clearance", "limit": 2000, "penalty": 1, "per": "second"}]})";
+    const std::string assessed = " --exercise-by file --assess " + q(assessment);
+    const std::string one = single_run("assessed", assessed, "geojson", exercise_files());
+    const auto doc = nlohmann::json::parse(one);
+    ASSERT_EQ(doc["shoal"]["assessment"]["scores"].size(), 10u) << "every ship a trainee";
+    std::size_t breaches = 0;
+    for (const auto& f : doc["features"]) breaches += f["properties"]["kind"] == "breach";
+    ASSERT_GE(breaches, 20u) << "a CPA and a speed breach for every ship";
+    EXPECT_EQ(doc["shoal"]["summary"]["breaches"], breaches);
+    EXPECT_EQ(sharded_run(3, "assessed3", assessed, true, "geojson", exercise_files()), one);
+    const std::string gpkg = single_run("assessed-gpkg", assessed, "gpkg", exercise_files());
+    EXPECT_TRUE(has_table(report_of("assessed-gpkg", "gpkg"), "breaches"));
+    EXPECT_TRUE(has_table(report_of("assessed-gpkg", "gpkg"), "scores"));
+    EXPECT_EQ(sharded_run(3, "assessed3-gpkg", assessed, true, "gpkg", exercise_files()), gpkg) << "GeoPackage parts";
+}
+
 TEST(ShardMerge, GeoPackageShardsMergeToTheSingleRunsGeoPackageByteForByte) {
     const std::string one = single_run("single-gpkg", "", "gpkg");
     ASSERT_EQ(one.compare(0, 15, "SQLite format 3"), 0);

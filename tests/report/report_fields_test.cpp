@@ -383,6 +383,9 @@ TEST(ReportFields, TheGeoJsonMatchesItsSchemaAndTheSchemaListsEveryField) {
     const json& feature = schema["properties"]["features"]["items"]["properties"]["properties"]["properties"];
     listed(feature, fields::event_fields(), "features");
     listed(feature, fields::encounter_fields(), "features");
+    listed(feature, fields::breach_fields(), "features");
+    listed(shoal["assessment"]["properties"]["scores"]["items"]["properties"], fields::score_fields(), "assessment.scores");
+    listed(shoal["assessment"]["properties"]["criteria"]["items"]["properties"], fields::criterion_fields(), "assessment.criteria");
     listed(shoal["tracks"]["items"]["properties"], fields::track_fields(), "tracks");
     listed(shoal["problems"]["items"]["properties"], fields::problem_fields(), "problems");
     listed(shoal["closest_approaches"]["items"]["properties"], fields::approach_fields(), "closest_approaches");
@@ -409,6 +412,9 @@ TEST(ReportFields, TheUserGuideNamesEveryField) {
     named(fields::summary_fields(), "summary");
     named(fields::pose_fields(), "poses");
     named(fields::coast_fields(), "coast");
+    named(fields::breach_fields(), "breaches");
+    named(fields::score_fields(), "scores");
+    named(fields::criterion_fields(), "criteria");
 }
 
 }  // namespace

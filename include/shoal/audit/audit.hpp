@@ -36,6 +36,9 @@ struct AuditOptions {
     /// Exercise mode: roles of tracks (exercise.hpp); null: every track is a trainee. Pairs of
     /// two targets are not reported. Must outlive the run.
     const Roles* roles = nullptr;
+    /// Exercise mode: scored criteria (assessment.hpp); null: not assessed. Needs `encounters`;
+    /// the sweep then follows clearance up to its largest land clearance limit. Must outlive the run.
+    const Assessment* assessment = nullptr;
     /// Exercise mode: COLREG situations of the pairs that come within colreg.range_m (colreg.hpp).
     ColregOptions colreg;
     track::WildFixOptions wild;  ///< what makes a fix an outlier

@@ -34,6 +34,10 @@ struct SweepOptions {
     /// lets the sweep skip checks for the next d - margin metres of hull motion (they cannot
     /// come within the margin). Fixes are always checked.
     double lookahead_m = 500.0;
+    /// Assessment (assessment.hpp): clearance is followed up to this (metres) as it is up to
+    /// the margin, and every checked pose under it is kept in TrackResult::clearance (with the
+    /// pose before and after, for the crossings). 0 (default): nothing kept, as before.
+    double watch_clearance_m = 0.0;
     /// A contact that begins under this speed (knots) is a vessel berthing or lying alongside,
     /// not a grounding (berthing approaches are 0.1-0.3 m/s, 0.2-0.6 kn).
     double berthing_speed_kn = 1.0;
@@ -146,10 +150,23 @@ struct Pose {
     std::vector<geo::LonLat> hull;  ///< hull outline (closed ring)
 };
 
+/// A checked pose's clearance, kept when SweepOptions::watch_clearance_m asks for it.
+struct ClearanceSample {
+    double time_s = 0;
+    double clearance_m = INFINITY;  ///< 0 in contact; INFINITY: beyond the search limit
+    geo::LonLat ship;               ///< reference point
+    bool covered = true;            ///< the hull lay inside the coastline's area
+    /// Not joined to the sample before: the first of a piece of track, or the one after poses
+    /// that were not kept (clearance over the watch between them).
+    bool after_break = false;
+};
+
 struct TrackResult {
     TrackSummary summary;
     std::vector<Event> events;
     std::vector<Pose> poses;  ///< in time order
+    /// SweepOptions::watch_clearance_m > 0: the checked poses under it and their neighbours, in time order.
+    std::vector<ClearanceSample> clearance;
 };
 
 /// Anything that checks a pose: the grid Detector, or the brute-force traversal in tests.
