@@ -141,6 +141,8 @@ ReadResult read_inputs(const std::vector<std::string>& inputs, const track::Read
 
 AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                       const std::string& hull_label, const AuditOptions& options) {
+    if (options.exercise_by == ExerciseBy::column && options.read.exercise_column.empty())
+        throw UsageError("AuditOptions::exercise_by column needs the column's name (ReadOptions::exercise_column)");
     return audit_tracks(read_inputs(inputs, options.read, options.jobs), grid, default_hull, hull_label, options);
 }
 
@@ -151,7 +153,7 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
     std::vector<std::size_t> chosen;
     for (std::size_t k = 0; k < packed.size(); ++k)
         if (!options.shard.active() ||
-            shard_of(shard_key(packed[k].id, options.encounters ? std::optional<std::string>(exercise_key(options.exercise_by, packed[k].file))
+            shard_of(shard_key(packed[k].id, options.encounters ? std::optional<std::string>(exercise_key(options.exercise_by, packed[k].file, packed[k].exercise))
                                                                 : std::nullopt),
                      options.shard.count) == options.shard.index)
             chosen.push_back(k);
@@ -241,7 +243,9 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 swept[k].summary.limiting_depth_source = grid::to_string(depth.source);
                 if (options.encounters) {
                     swept[k].summary.exercise = exercise_key(options.exercise_by, t);
-                    swept[k].summary.role = options.roles ? options.roles->role_of(swept[k].summary.exercise, t.id) : Role::trainee;
+                    if (options.exercise_by == ExerciseBy::column && swept[k].summary.exercise.empty())
+                        throw InputError("no exercise: AuditOptions::exercise_by is column, and the track's rows gave none");
+                    swept[k].summary.role = role_of(options.roles, swept[k].summary.exercise, t);
                 }
                 if (options.encounters) {
                     kept[k] = t;

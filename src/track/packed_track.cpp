@@ -115,6 +115,8 @@ Track PackedTrack::unpack() const {
     t.draught_m = draught_m;
     t.dims_source = dims_source;
     t.draught_source = draught_source;
+    t.exercise = exercise;
+    t.role = role;
     t.fixes.reserve(fixes.size());
     for (std::size_t i = 0; i < fixes.size(); ++i) t.fixes.push_back(fix(i));
     return t;
@@ -135,6 +137,8 @@ PackedTrack PackedTrack::pack(Track&& t) {
     p.draught_m = t.draught_m;
     p.dims_source = t.dims_source;
     p.draught_source = t.draught_source;
+    p.exercise = std::move(t.exercise);
+    p.role = std::move(t.role);
     for (const Fix& f : t.fixes) p.push_back(f);
     t.fixes.clear();
     t.fixes.shrink_to_fit();

@@ -17,8 +17,10 @@ bool is_vessel_id(const std::string& id) noexcept;
 
 /// Merges the tracks of `tracks` (in file order) that share a vessel id (is_vessel_id) and come
 /// from different files into the first of them, in time order, a time met twice kept once (as
-/// normalise does); the merged track's `file` names every file ("a.csv + b.csv"). Returns one
-/// message per merged vessel.
+/// normalise does); the merged track's `file` names every file ("a.csv + b.csv"). Tracks of
+/// different exercises (Track::exercise, from an exercise column) are never merged. Files that
+/// give the vessel different roles (Track::role) make it a target, said in its message.
+/// Returns one message per merged vessel.
 std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks);
 
 }  // namespace shoal::track

@@ -66,6 +66,7 @@ struct PackedTrack {
     std::optional<hull::Dimensions> dims;
     double draught_m = NAN;
     std::string dims_source, draught_source;  ///< as Track's
+    std::string exercise, role;               ///< as Track's
     PackedFixes fixes;
     std::vector<FixExtra> extras;
 
