@@ -443,9 +443,9 @@ private:
         double s = json_number(props, "sog");
         if (std::isnan(s)) s = json_number(props, "sog_kn");
         fix.sog_kn = detail::valid_sog(s);
-        Track& t = m_set.get(id_of(f, props, k, false), name_of(props), exercise);
-        take_role(t, role, k);
-        t.fixes.push_back(fix);
+        Track& track = m_set.get(id_of(f, props, k, false), name_of(props), exercise);
+        take_role(track, role, k);
+        track.fixes.push_back(fix);
     }
 
     /// The per-vertex time array of a line, flattened over the parts of a MultiLineString.

@@ -338,8 +338,11 @@ TEST(CliCheck, ExercisesByAColumnOfOneFileAreAuditedApartWithRolesFromAColumn) {
         EXPECT_TRUE(pair == "1:333333333-444444444" || pair == "2:333333333-555555555") << pair;
     }
     // Each vessel's exercise in the events too.
-    for (const auto& f : doc["features"])
-        if (f["properties"].contains("exercise")) EXPECT_TRUE(f["properties"]["exercise"] == "1" || f["properties"]["exercise"] == "2");
+    for (const auto& f : doc["features"]) {
+        if (f["properties"].contains("exercise")) {
+            EXPECT_TRUE(f["properties"]["exercise"] == "1" || f["properties"]["exercise"] == "2");
+        }
+    }
 
     // A file without the column: exit 2, the file and the column named.
     const Outcome missing = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
