@@ -333,6 +333,7 @@ TEST(CliCheck, ExercisesByAColumnOfOneFileAreAuditedApartWithRolesFromAColumn) {
     for (const auto& t : doc["shoal"]["tracks"])
         seen.push_back(t["exercise"].get<std::string>() + "/" + t["track"].get<std::string>() + "/" + t["role"].get<std::string>());
     EXPECT_EQ(seen, (std::vector<std::string>{"1/333333333/trainee", "1/444444444/target", "2/333333333/trainee", "2/555555555/target"}));
+    ASSERT_EQ(doc["shoal"]["closest_approaches"].size(), 2u) << "one situation in each exercise";
     for (const auto& a : doc["shoal"]["closest_approaches"]) {
         const std::string pair = a["exercise"].get<std::string>() + ":" + a["track"].get<std::string>() + "-" + a["other_track"].get<std::string>();
         EXPECT_TRUE(pair == "1:333333333-444444444" || pair == "2:333333333-555555555") << pair;
