@@ -11,10 +11,10 @@ bool is_vessel_id(const std::string& id) noexcept {
     return id.size() == 9 && std::all_of(id.begin(), id.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
 }
 
-std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks) {
+std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks, const std::function<std::string(const PackedTrack&)>& exercise_of) {
     std::map<std::pair<std::string, std::string>, std::vector<std::size_t>> by_id;  // (exercise, id): never across exercises
     for (std::size_t k = 0; k < tracks.size(); ++k)
-        if (is_vessel_id(tracks[k].id)) by_id[{tracks[k].exercise, tracks[k].id}].push_back(k);
+        if (is_vessel_id(tracks[k].id)) by_id[{exercise_of ? exercise_of(tracks[k]) : tracks[k].exercise, tracks[k].id}].push_back(k);
     std::vector<std::string> messages;
     std::vector<bool> gone(tracks.size(), false);
     for (const auto& [key, ks] : by_id) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -257,6 +258,41 @@ TEST_F(ExerciseAudit, AnExerciseColumnSplitsOneFileIntoExercisesAuditedApart) {
     EXPECT_NE(missing.files[0].error.find("morning.csv: the header has no column 'drill', the exercise column"), std::string::npos)
         << missing.files[0].error;
     EXPECT_TRUE(missing.tracks.empty());
+}
+
+TEST_F(ExerciseAudit, OneVesselInTwoFoldersIsOneTrackPerExerciseByFolderAndOneTrackOtherwise) {
+    // The bridge 235000001 sailed ex1 and then ex2: one file in each folder.
+    const test::TempDir dir;
+    std::filesystem::create_directories(dir.path() / "ex1");
+    std::filesystem::create_directories(dir.path() / "ex2");
+    for (const char* ex : {"ex1", "ex2"}) {
+        track::Track t = along("x", "", ex[2] == '1' ? 0 : 300, -1.02, -0.935);
+        std::string text = "mmsi,timestamp,lat,lon\n";
+        for (auto& f : t.fixes) {
+            if (ex[2] == '2') f.time_s += 3600;
+            char row[120];
+            std::snprintf(row, sizeof row, "235000001,%.0f,%.7f,%.7f\n", f.time_s, f.position.lat, f.position.lon);
+            text += row;
+        }
+        std::ofstream((dir.path() / ex / "bridge.csv").string()) << text;
+    }
+    const std::vector<std::string> inputs = {dir.file("ex1"), dir.file("ex2")};
+    AuditOptions o;
+    o.encounters = true;
+    o.exercise_by = ExerciseBy::folder;
+    const AuditResult by_folder = run_audit(inputs, *s_grid, m_hull, "test hull", o);
+    ASSERT_EQ(by_folder.tracks.size(), 2u);
+    EXPECT_EQ(by_folder.tracks[0].summary.exercise, dir.file("ex1"));
+    EXPECT_EQ(by_folder.tracks[1].summary.exercise, dir.file("ex2"));
+    EXPECT_EQ(by_folder.tracks[0].summary.fixes, 121u);
+    EXPECT_EQ(by_folder.exercises, 2u);
+    o.exercise_by = ExerciseBy::file;
+    EXPECT_EQ(run_audit(inputs, *s_grid, m_hull, "test hull", o).tracks.size(), 2u);
+    // One exercise (and outside exercise mode): one vessel, one track of both files.
+    o.exercise_by = ExerciseBy::run;
+    const AuditResult one = run_audit(inputs, *s_grid, m_hull, "test hull", o);
+    ASSERT_EQ(one.tracks.size(), 1u);
+    EXPECT_EQ(one.tracks[0].summary.fixes, 242u);
 }
 
 TEST_F(ExerciseAudit, EncountersAreFoundWithinAnExerciseOnlyAndNeverBetweenTwoTargets) {
