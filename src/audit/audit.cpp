@@ -140,7 +140,9 @@ ReadResult read_exercises(const std::vector<std::string>& inputs, const track::R
     for (auto& f : read)
         for (auto& t : f.tracks) result.tracks.push_back(std::move(t));
     // One vessel in several files is one track, within an exercise only.
-    const auto exercise_of = [&](const track::PackedTrack& t) { return exercise_key(exercise_by, t.file, t.exercise); };
+    const auto exercise_of = [&](const track::PackedTrack& t) {
+        return exercise_by == ExerciseBy::run ? std::string() : exercise_key(exercise_by, t.file, t.exercise);  // "": the message names none
+    };
     for (std::string& m : track::merge_same_vessels(result.tracks, exercise_of)) result.warnings.push_back(std::move(m));
     result.read_s = std::chrono::duration<double>(Clock::now() - t0).count();
     return result;
