@@ -87,15 +87,20 @@ public:
             ->check(finite)->check(non_negative);
         // Exercises, roles and COLREG situations (issue 18).
         m_sub->add_option("--exercise-by", m_exercise_by,
-                          "Exercise mode: run (the whole run is one exercise, the default), file (each track file is one) or "
-                          "folder (the files of one folder are one); encounters only within an exercise. Implies --encounters")
-            ->check(CLI::IsMember({"run", "file", "folder"}));
+                          "Exercise mode: run (the whole run is one exercise, the default), file (each track file is one), "
+                          "folder (the files of one folder are one) or column:NAME (each row's exercise is the value of its column "
+                          "NAME, any case; CSV columns, GeoJSON properties; one vessel in two exercises is two tracks); encounters "
+                          "only within an exercise. Implies --encounters");
         m_sub->add_option("--roles", m_roles_file,
                           "Exercise mode: exercise file (JSON, schemas/exercise.schema.json) giving each track's role, trainee or "
                           "target; pairs of two targets are not reported. Default: every track is a trainee. Implies --encounters");
         m_sub->add_option("--assess", m_assess_file,
                           "Exercise mode: score each trainee against the criteria of an assessment file (JSON, "
                           "schemas/assessment.schema.json); scores and breaches go to stdout and the report. Implies --encounters");
+        m_sub->add_option("--role-column", m_audit.read.role_column,
+                          "Exercise mode: each track's role from its column NAME (CSV columns, GeoJSON properties): trainee (also "
+                          "own, own ship), target, any case. Rows of one track that disagree make it a target. With --roles, the "
+                          "exercise file's entries win for the tracks they name. Implies --encounters");
         m_sub->add_option("--encounter-range", m_audit.colreg.range_m,
                           "Exercise mode: a pair whose reference points come within this many metres is a COLREG situation "
                           "(head-on, crossing, overtaking), classified when it first does (default 3704, 2 nm)")
@@ -156,9 +161,12 @@ public:
         audit::check_step(m_audit.sweep.step_m);
         // Exercises and roles (issue 18): either option turns exercise mode on.
         if (!m_exercise_by.empty()) {
-            m_audit.exercise_by = audit::parse_exercise_by(m_exercise_by);
+            const audit::ExerciseGrouping grouping = audit::parse_exercise_grouping(m_exercise_by);
+            m_audit.exercise_by = grouping.by;
+            m_audit.read.exercise_column = grouping.column;
             m_audit.encounters = true;
         }
+        if (!m_audit.read.role_column.empty()) m_audit.encounters = true;
         if (!m_roles_file.empty()) {
             check_readable({m_roles_file});
             m_roles = audit::Roles::load(m_roles_file);

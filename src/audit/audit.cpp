@@ -107,7 +107,12 @@ std::string dims_label(const hull::Dimensions& d) {
 
 }  // namespace
 
-ReadResult read_inputs(const std::vector<std::string>& inputs, const track::ReadOptions& options, unsigned jobs) {
+namespace {
+
+/// read_inputs, one vessel met in several files merged into one track within one exercise of
+/// `exercise_by` only: by file, never; by folder, within a folder; by column, within the
+/// column's value.
+ReadResult read_exercises(const std::vector<std::string>& inputs, const track::ReadOptions& options, unsigned jobs, ExerciseBy exercise_by) {
     ReadResult result;
     const std::vector<std::string> files = track::expand_inputs(inputs, &result.warnings);
     // 1. Read every file (a file that cannot be read is reported; the batch goes on). Fixes
@@ -138,14 +143,28 @@ ReadResult read_inputs(const std::vector<std::string>& inputs, const track::Read
     failure.rethrow();
     for (auto& f : read)
         for (auto& t : f.tracks) result.tracks.push_back(std::move(t));
-    for (std::string& m : track::merge_same_vessels(result.tracks)) result.warnings.push_back(std::move(m));
+    // One vessel in several files is one track, within an exercise only.
+    const auto exercise_of = [&](const track::PackedTrack& t) {
+        return exercise_by == ExerciseBy::run ? std::string() : exercise_key(exercise_by, t.file, t.exercise);  // "": the message names none
+    };
+    for (std::string& m : track::merge_same_vessels(result.tracks, exercise_of)) result.warnings.push_back(std::move(m));
     result.read_s = std::chrono::duration<double>(Clock::now() - t0).count();
     return result;
 }
 
+}  // namespace
+
+ReadResult read_inputs(const std::vector<std::string>& inputs, const track::ReadOptions& options, unsigned jobs) {
+    return read_exercises(inputs, options, jobs, ExerciseBy::run);
+}
+
 AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                       const std::string& hull_label, const AuditOptions& options) {
-    return audit_tracks(read_inputs(inputs, options.read, options.jobs), grid, default_hull, hull_label, options);
+    if (options.exercise_by == ExerciseBy::column && options.read.exercise_column.empty())
+        throw UsageError("AuditOptions::exercise_by column needs the column's name (ReadOptions::exercise_column)");
+    // In exercise mode a vessel of two exercises stays two tracks (read_inputs would merge them).
+    const ExerciseBy by = options.encounters ? options.exercise_by : ExerciseBy::run;
+    return audit_tracks(read_exercises(inputs, options.read, options.jobs, by), grid, default_hull, hull_label, options);
 }
 
 AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
@@ -155,7 +174,7 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
     std::vector<std::size_t> chosen;
     for (std::size_t k = 0; k < packed.size(); ++k)
         if (!options.shard.active() ||
-            shard_of(shard_key(packed[k].id, options.encounters ? std::optional<std::string>(exercise_key(options.exercise_by, packed[k].file))
+            shard_of(shard_key(packed[k].id, options.encounters ? std::optional<std::string>(exercise_key(options.exercise_by, packed[k].file, packed[k].exercise))
                                                                 : std::nullopt),
                      options.shard.count) == options.shard.index)
             chosen.push_back(k);
@@ -251,7 +270,9 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 swept[k].summary.limiting_depth_source = grid::to_string(depth.source);
                 if (options.encounters) {
                     swept[k].summary.exercise = exercise_key(options.exercise_by, t);
-                    swept[k].summary.role = options.roles ? options.roles->role_of(swept[k].summary.exercise, t.id) : Role::trainee;
+                    if (options.exercise_by == ExerciseBy::column && swept[k].summary.exercise.empty())
+                        throw InputError("no exercise: AuditOptions::exercise_by is column, and the track's rows gave none");
+                    swept[k].summary.role = role_of(options.roles, swept[k].summary.exercise, t);
                 }
                 if (options.encounters) {
                     kept[k] = t;

@@ -18,20 +18,34 @@ const char* to_string(ExerciseBy by) noexcept {
     switch (by) {
         case ExerciseBy::file: return "file";
         case ExerciseBy::folder: return "folder";
+        case ExerciseBy::column: return "column";
         case ExerciseBy::run: break;
     }
     return "run";
 }
 
-ExerciseBy parse_exercise_by(const std::string& s) {
-    if (s == "run") return ExerciseBy::run;
-    if (s == "file") return ExerciseBy::file;
-    if (s == "folder") return ExerciseBy::folder;
-    throw UsageError("AuditOptions::exercise_by '" + s + "' is none of run, file, folder");
+std::string exercise_by_text(ExerciseBy by, const std::string& column) {
+    return by == ExerciseBy::column ? "column:" + column : std::string(to_string(by));
 }
 
-std::string exercise_key(ExerciseBy by, const std::string& file) {
+ExerciseGrouping parse_exercise_grouping(const std::string& s) {
+    if (s == "run") return {ExerciseBy::run, {}};
+    if (s == "file") return {ExerciseBy::file, {}};
+    if (s == "folder") return {ExerciseBy::folder, {}};
+    if (s.rfind("column:", 0) == 0) {
+        std::string name = s.substr(7);
+        if (name.find_first_not_of(" \t") == std::string::npos)
+            throw UsageError("AuditOptions::exercise_by '" + s + "' names no column: give column:NAME, e.g. column:exercise");
+        return {ExerciseBy::column, std::move(name)};
+    }
+    throw UsageError("AuditOptions::exercise_by '" + s + "' is none of run, file, folder, column:NAME");
+}
+
+ExerciseBy parse_exercise_by(const std::string& s) { return parse_exercise_grouping(s).by; }
+
+std::string exercise_key(ExerciseBy by, const std::string& file, const std::string& column_value) {
     switch (by) {
+        case ExerciseBy::column: return column_value;
         case ExerciseBy::file: return file;
         case ExerciseBy::folder: {
             const std::string folder = std::filesystem::path(file).parent_path().string();
@@ -42,22 +56,15 @@ std::string exercise_key(ExerciseBy by, const std::string& file) {
     return "run";
 }
 
-std::string exercise_key(ExerciseBy by, const track::Track& track) { return exercise_key(by, track.file); }
+std::string exercise_key(ExerciseBy by, const track::Track& track) { return exercise_key(by, track.file, track.exercise); }
 
 const char* to_string(Role r) noexcept { return r == Role::target ? "target" : "trainee"; }
 
 bool parse_role(const std::string& s, Role& role) {
-    std::string v;
-    for (const char c : s) v += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (v == "trainee" || v == "own" || v == "own ship" || v == "own_ship") {
-        role = Role::trainee;
-        return true;
-    }
-    if (v == "target") {
-        role = Role::target;
-        return true;
-    }
-    return false;
+    const char* v = track::role_value(s);
+    if (!v) return false;
+    role = std::string_view(v) == "target" ? Role::target : Role::trainee;
+    return true;
 }
 
 Roles Roles::parse(const std::string& text, const std::string& source) {
@@ -109,14 +116,26 @@ Roles Roles::load(const std::string& path) {
     return parse(text, path);
 }
 
-Role Roles::role_of(const std::string& exercise, const std::string& track) const {
+std::optional<Role> Roles::entry_role(const std::string& exercise, const std::string& track) const {
     const Entry* any = nullptr;
     for (const Entry& e : entries) {
         if (e.track != track) continue;
         if (e.exercise == exercise) return e.role;
         if (e.exercise.empty() && !any) any = &e;
     }
-    return any ? any->role : default_role;
+    if (any) return any->role;
+    return std::nullopt;
+}
+
+Role Roles::role_of(const std::string& exercise, const std::string& track) const {
+    return entry_role(exercise, track).value_or(default_role);
+}
+
+Role role_of(const Roles* roles, const std::string& exercise, const track::Track& track) {
+    if (roles)
+        if (const std::optional<Role> r = roles->entry_role(exercise, track.id)) return *r;
+    if (!track.role.empty()) return track.role == "target" ? Role::target : Role::trainee;
+    return roles ? roles->default_role : Role::trainee;
 }
 
 }  // namespace shoal::audit

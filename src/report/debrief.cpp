@@ -392,7 +392,9 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
     if (r.has_encounters)
         rules += "; close quarters under " + fixed(info.ship_margin_m, 1) + " m; COLREG situations within " +
                  fixed(info.encounter_range_m, 0) + " m; exercises by " + info.exercise_by +
-                 (info.roles.empty() ? std::string("; every track a trainee") : "; roles from " + info.roles);
+                 (info.roles.empty() && info.role_column.empty() ? std::string("; every track a trainee")
+                  : "; roles from " + info.roles + (info.roles.empty() || info.role_column.empty() ? "" : " and ") +
+                        (info.role_column.empty() ? "" : "column " + info.role_column));
     if (!info.berths.empty()) rules += "; expected-contact areas " + info.berths;
     row(out, "Rules", esc(rules));
     out += "</table>\n</header>\n";

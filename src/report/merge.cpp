@@ -439,7 +439,8 @@ Plan plan_merge(const std::vector<std::string>& paths, bool gpkg) {
     // A vessel seen by two sets would have been one track in one run.
     std::map<std::string, const Part*> vessel_part;
     std::map<std::string, std::size_t> vessel_set;
-    for (const Part& p : parts)
+    for (const Part& p : parts) {
+        if (p.doc["shoal"].value("exercise_by", json()) == "file") continue;  // exercises by file: never merged across files
         for (const auto& t : p.doc["shoal"]["tracks"]) {
             if (!t.is_object() || !t.contains("track") || !t["track"].is_string()) continue;
             const std::string id = t["track"].get<std::string>();
@@ -451,6 +452,7 @@ Plan plan_merge(const std::vector<std::string>& paths, bool gpkg) {
                                  ", which read different files: one run would have merged them into one track. Check those files in one run "
                                  "(shards of all of them: --shard I/N) instead of one run per file");
         }
+    }
     std::set<std::pair<std::size_t, std::size_t>> track_seen;
     for (const Part& p : parts)
         for (const json& o : p.doc["shoal"]["part"]["tracks"]) {

@@ -309,6 +309,7 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"ship_margin_m", real, metres, -1, [](const R& x) { return Value(x.info.ship_margin_m); }, exercise},
         {"exercise_by", text_t, none, -1, [](const R& x) { return text(x.info.exercise_by); }, exercise},
         {"roles", text_t, none, -1, [](const R& x) { return text(x.info.roles); }, exercise},
+        {"role_column", text_t, none, -1, [](const R& x) { return text(x.info.role_column); }, exercise},
         {"encounter_range_m", real, metres, -1, [](const R& x) { return Value(x.info.encounter_range_m); }, exercise},
         {"assessment_file", text_t, none, -1, [](const R& x) { return text(x.info.assessment); }, assessed},
         {"shard", text_t, none, -1, [](const R& x) { return text(x.result.shard.text()); }, sharded},

@@ -34,7 +34,8 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.wild = options.wild;
     info.berths = joined(berths);
     info.ship_margin_m = options.encounter.ship_margin_m;
-    info.exercise_by = audit::to_string(options.exercise_by);
+    info.exercise_by = audit::exercise_by_text(options.exercise_by, options.read.exercise_column);
+    info.role_column = options.read.role_column;
     info.encounter_range_m = options.colreg.range_m;
     return info;
 }

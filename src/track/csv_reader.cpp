@@ -212,6 +212,7 @@ struct Columns {
     std::size_t draught = absent, mobile_type = absent, nav_status = absent;
     std::size_t ship_type = absent;  ///< AIS ship type as a number (MarineCadastre's VesselType); DMA's text is not read
     std::size_t length = absent, width = absent;  ///< MarineCadastre's Length and Width, metres
+    std::size_t exercise = absent, role = absent;  ///< ReadOptions::exercise_column, role_column
     std::size_t required = 0;  ///< fields a row needs: 1 + the largest required index
 };
 
@@ -232,7 +233,7 @@ std::string join(const std::vector<std::string_view>& fields) {
     return s;
 }
 
-Columns map_columns(const std::vector<std::string_view>& header, const std::string& file) {
+Columns map_columns(const std::vector<std::string_view>& header, const std::string& file, const ReadOptions& options) {
     std::vector<std::string> names;
     names.reserve(header.size());
     for (const auto h : header) names.push_back(normalise_column_name(h));
@@ -264,7 +265,18 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
         throw InputError(file +
                          ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183): "
                          "the header has no " + missing + " column; header: " + join(header));
-    c.required = 1 + std::max({c.time, c.lat, c.lon, c.id == absent ? 0 : c.id});
+    // Exercise mode: the columns named by the user must be there.
+    auto named = [&](const std::string& wanted, const char* what, const char* field) {
+        if (wanted.empty()) return absent;
+        const std::string n = normalise_column_name(wanted);
+        const std::size_t at = find_column(names, {n});
+        if (at == absent)
+            throw InputError(file + ": the header has no column '" + wanted + "', the " + what + " column (" + field + "); header: " + join(header));
+        return at;
+    };
+    c.exercise = named(options.exercise_column, "exercise", "ReadOptions::exercise_column");
+    c.role = named(options.role_column, "role", "ReadOptions::role_column");
+    c.required = 1 + std::max({c.time, c.lat, c.lon, c.id == absent ? 0 : c.id, c.exercise == absent ? 0 : c.exercise, c.role == absent ? 0 : c.role});
     return c;
 }
 
@@ -357,7 +369,7 @@ public:
                 throw InputError(m_file + ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183)" +
                                  (m_split->separator() == '\0' ? ": the first line has no ',', ';' or tab" : ""));
             }
-            m_cols = map_columns(f, m_file);
+            m_cols = map_columns(f, m_file, m_options);
             m_decimal_comma = m_split->separator() != ',';
             m_header_read = true;
         }
@@ -392,6 +404,14 @@ public:
 
     PackedTrackFile finish() {
         date_pending();
+        for (const RoleConflict& c : m_role_conflicts) {
+            PackedTrack& t = m_out.tracks[c.track];
+            m_out.report.messages.push_back(m_file + ": track '" + t.id + "'" + (t.exercise.empty() ? "" : " of exercise '" + t.exercise + "'") +
+                                            ": its rows disagree on the role (" + t.role + " on line " + std::to_string(c.first_line) + ", " +
+                                            c.other + " on line " + std::to_string(c.other_line) + " of column '" + m_options.role_column +
+                                            "'): it is taken as a target");
+            t.role = "target";
+        }
         for (PackedTrack& t : m_out.tracks) normalise(t, m_out.report);
         return std::move(m_out);
     }
@@ -407,9 +427,18 @@ private:
         return v;
     }
 
-    std::size_t track_for(std::string_view id) {
-        if (m_last_track != absent && id == m_last_id) return m_last_track;
-        const std::optional<std::uint64_t> mmsi = integer_id(id);
+    /// The track of (exercise, id); `exercise` is "" unless the exercise column is read.
+    std::size_t track_for(std::string_view id, std::string_view exercise) {
+        if (m_last_track != absent && id == m_last_id && exercise == m_last_exercise) return m_last_track;
+        // With an exercise column the key is (exercise, id), as text: no integer shortcut.
+        std::optional<std::uint64_t> mmsi;
+        if (m_cols.exercise == absent) {
+            mmsi = integer_id(id);
+        } else {
+            m_key.assign(exercise).push_back('\0');
+            m_key.append(id);
+            id = m_key;
+        }
         std::size_t idx = absent;
         if (mmsi) {
             idx = m_integer_index.find(*mmsi);
@@ -419,12 +448,14 @@ private:
         if (idx == absent) {
             idx = m_out.tracks.size();
             PackedTrack& t = m_out.tracks.emplace_back();
-            t.id = m_cols.id == absent ? detail::file_stem(m_file) : to_utf8(id);
+            t.id = m_cols.id == absent ? detail::file_stem(m_file) : to_utf8(m_cols.exercise == absent ? id : id.substr(exercise.size() + 1));
             t.file = m_file;
+            t.exercise = to_utf8(exercise);
             if (mmsi) m_integer_index.insert(*mmsi, idx);
             else m_index.emplace(std::string(id), idx);
         }
-        m_last_id.assign(id);
+        m_last_id.assign(m_cols.exercise == absent ? id : id.substr(exercise.size() + 1));
+        m_last_exercise.assign(exercise);
         m_last_track = idx;
         return idx;
     }
@@ -488,6 +519,21 @@ private:
             skip("no vessel id");
             return;
         }
+        const std::string_view exercise = m_cols.exercise == absent ? std::string_view{} : f[m_cols.exercise];
+        if (m_cols.exercise != absent && exercise.empty()) {
+            skip("no exercise (column '" + m_options.exercise_column + "' is empty)");
+            return;
+        }
+        const char* role = nullptr;
+        if (m_cols.role != absent) {
+            role = role_value(f[m_cols.role]);
+            if (!role) {
+                skip(f[m_cols.role].empty() ? "no role (column '" + m_options.role_column + "' is empty)"
+                                            : "role " + detail::quoted(f[m_cols.role]) + " (column '" + m_options.role_column +
+                                                  "') is neither trainee (own, own ship) nor target");
+                return;
+            }
+        }
         const std::string_view time_text = f[m_cols.time];
         if (time_text.empty()) {
             skip("no time");
@@ -527,9 +573,10 @@ private:
             skip("longer than " + shoal::detail::size_text(shoal::detail::max_line_bytes) + ", the longest line shoal reads");
             return;
         }
-        const std::size_t ti = track_for(id);
+        const std::size_t ti = track_for(id, exercise);
         PackedTrack& t = m_out.tracks[ti];
         vessel_data(t, f);
+        if (role) take_role(ti, role);
         if (m_clocks.size() <= ti) m_clocks.resize(ti + 1);
         DayClock& clock = m_clocks[ti];
         if (!time->date_missing) {
@@ -544,6 +591,21 @@ private:
                 m_pending.push_back({ti, t.size(), day, time->seconds});
         }
         t.push_back(fix);
+    }
+
+    /// A row's role for track `ti`: the first gives the track's; a different one later is a
+    /// disagreement, said (and the track taken as a target) in finish().
+    void take_role(std::size_t ti, const char* role) {
+        PackedTrack& t = m_out.tracks[ti];
+        if (m_role_lines.size() <= ti) m_role_lines.resize(ti + 1, 0);
+        if (t.role.empty()) {
+            t.role = role;
+            m_role_lines[ti] = m_split->line();
+            return;
+        }
+        if (t.role == role || m_role_lines[ti] == absent) return;  // absent: said already, with the first row that disagreed
+        m_role_conflicts.push_back({ti, m_role_lines[ti], m_split->line(), role});
+        m_role_lines[ti] = absent;
     }
 
     /// Times of day met before their vessel's first dated row take that row's date; a vessel
@@ -580,8 +642,15 @@ private:
     PackedTrackFile m_out;
     std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;  ///< ids that are not integer_id()s
     IntegerIndex m_integer_index;
-    std::string m_last_id;
+    std::string m_last_id, m_last_exercise;
+    std::string m_key;  ///< (exercise, id) as one text, for the lookup
     std::size_t m_last_track = absent;
+    struct RoleConflict {
+        std::size_t track, first_line, other_line;
+        std::string other;
+    };
+    std::vector<std::size_t> m_role_lines;  ///< per track: the line that gave its role
+    std::vector<RoleConflict> m_role_conflicts;
     std::vector<DayClock> m_clocks;  ///< per track: rows of one vessel come from one recording
     double m_first_date = NAN;       ///< midnight of the file's first dated row
     std::vector<Pending> m_pending;

@@ -11,16 +11,18 @@ bool is_vessel_id(const std::string& id) noexcept {
     return id.size() == 9 && std::all_of(id.begin(), id.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
 }
 
-std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks) {
-    std::map<std::string, std::vector<std::size_t>> by_id;
+std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks, const std::function<std::string(const PackedTrack&)>& exercise_of) {
+    std::map<std::pair<std::string, std::string>, std::vector<std::size_t>> by_id;  // (exercise, id): never across exercises
     for (std::size_t k = 0; k < tracks.size(); ++k)
-        if (is_vessel_id(tracks[k].id)) by_id[tracks[k].id].push_back(k);
+        if (is_vessel_id(tracks[k].id)) by_id[{exercise_of ? exercise_of(tracks[k]) : tracks[k].exercise, tracks[k].id}].push_back(k);
     std::vector<std::string> messages;
     std::vector<bool> gone(tracks.size(), false);
-    for (const auto& [id, ks] : by_id) {
+    for (const auto& [key, ks] : by_id) {
         if (ks.size() < 2) continue;
+        const std::string& id = key.second;
         Track merged = tracks[ks[0]].unpack();
         std::string files = tracks[ks[0]].file;
+        std::string role_note;
         for (std::size_t i = 1; i < ks.size(); ++i) {
             const PackedTrack& other = tracks[ks[i]];
             const Track t = other.unpack();
@@ -38,15 +40,23 @@ std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks) {
                 merged.ship_type = other.ship_type;
                 merged.ship_type_source = other.ship_type_source;
             }
+            if (merged.role.empty()) {
+                merged.role = other.role;
+            } else if (!other.role.empty() && other.role != merged.role && role_note.empty()) {
+                role_note = "; its files disagree on the role (" + merged.role + " in " + tracks[ks[0]].file + ", " + other.role + " in " +
+                            other.file + "): it is taken as a target";
+            }
             files += " + " + other.file;
             gone[ks[i]] = true;
         }
         ReadReport report;
         normalise(merged, report);
         merged.file = files;
-        messages.push_back("vessel " + id + " is in " + std::to_string(ks.size()) + " files (" + files + "): merged into one track of " +
+        if (!role_note.empty()) merged.role = "target";
+        messages.push_back("vessel " + id + (key.first.empty() ? "" : " of exercise '" + key.first + "'") + " is in " + std::to_string(ks.size()) + " files (" + files + "): merged into one track of " +
                            std::to_string(merged.fixes.size()) + " fixes" +
-                           (report.duplicates ? ", " + std::to_string(report.duplicates) + " fixes held twice kept once" : std::string()));
+                           (report.duplicates ? ", " + std::to_string(report.duplicates) + " fixes held twice kept once" : std::string()) +
+                           role_note);
         tracks[ks[0]] = PackedTrack::pack(std::move(merged));
     }
     std::size_t kept = 0;

@@ -7,6 +7,7 @@
 
 #include <map>
 #include <mutex>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "detail/json_message.hpp"
 #include "detail/parse_util.hpp"
 #include "track/stream_readers.hpp"
+#include <shoal/track/csv_reader.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
 
@@ -27,16 +29,18 @@ using nlohmann::json;
 // ---------------------------------------------------------------------------------------------
 // Shared
 
-/// Tracks of one file by id, in the order ids first appear.
+/// Tracks of one file by (exercise, id), in the order they first appear; the exercise is ""
+/// unless ReadOptions::exercise_column is read.
 class TrackSet {
 public:
     TrackSet(TrackFile& out, const std::string& file) : m_out(out), m_file(file) {}
-    Track& get(const std::string& id, const std::string& name = {}) {
-        auto [it, added] = m_index.try_emplace(id, m_out.tracks.size());
+    Track& get(const std::string& id, const std::string& name = {}, const std::string& exercise = {}) {
+        auto [it, added] = m_index.try_emplace(exercise + '\0' + id, m_out.tracks.size());
         if (added) {
             Track& t = m_out.tracks.emplace_back();
             t.id = id;
             t.file = m_file;
+            t.exercise = exercise;
         }
         Track& t = m_out.tracks[it->second];
         if (t.name.empty()) t.name = name;
@@ -238,7 +242,7 @@ double json_number(const json& props, const char* key) {
 class GeoJsonReader {
 public:
     GeoJsonReader(std::string_view text, const std::string& file, const ReadOptions& options)
-        : m_text(text), m_file(file), m_set(m_out, m_file) {
+        : m_text(text), m_file(file), m_options(options), m_set(m_out, m_file) {
         m_out.format = "geojson";
         m_out.report.max_messages = options.max_messages;
     }
@@ -275,6 +279,20 @@ public:
         }
         m_single_line = lines == 1;
         for (std::size_t k = 0; k < features.size(); ++k) feature(*features[k], k + 1);
+        for (const auto& [what, wanted, field, seen] : {std::tuple{"exercise", &m_options.exercise_column, "ReadOptions::exercise_column", m_exercise_seen},
+                                                        std::tuple{"role", &m_options.role_column, "ReadOptions::role_column", m_role_seen}})
+            if (!wanted->empty() && !seen && !features.empty())
+                throw InputError(m_file + ": no feature has the property '" + *wanted + "', the " + what + " column (" + field + ")");
+        for (Track& t : m_out.tracks) {
+            const auto it = m_roles.find(t.exercise + '\0' + t.id);
+            if (it != m_roles.end() && !it->second.other.empty()) {
+                m_out.report.messages.push_back(m_file + ": track '" + t.id + "'" + (t.exercise.empty() ? "" : " of exercise '" + t.exercise + "'") +
+                                                ": its features disagree on the role (" + t.role + " in feature " + std::to_string(it->second.first) +
+                                                ", " + it->second.other + " in feature " + std::to_string(it->second.other_at) + " of property '" +
+                                                m_options.role_column + "'): it is taken as a target");
+                t.role = "target";
+            }
+        }
         for (Track& t : m_out.tracks) normalise(t, m_out.report);
         return std::move(m_out);
     }
@@ -309,10 +327,62 @@ private:
         return {};
     }
 
+    /// The property named `wanted` as columns are matched (any case, a leading `#` and blanks
+    /// ignored), or null (also for a null value); `seen` set when the feature has it at all.
+    static const json* named_property(const json& props, const std::string& wanted, bool& seen) {
+        const std::string n = normalise_column_name(wanted);
+        for (const auto& [key, value] : props.items())
+            if (normalise_column_name(key) == n) {
+                seen = true;
+                return value.is_null() ? nullptr : &value;
+            }
+        return nullptr;
+    }
+
+    /// Feature `k`'s exercise and role (ReadOptions::exercise_column, role_column); false (the
+    /// feature skipped and said) when one is read and the feature's is missing or not valid.
+    bool exercise_and_role(const json& props, std::size_t k, std::string& exercise, const char*& role) {
+        auto bad = [&](const std::string& what) {
+            ++m_out.report.rows;
+            m_out.report.skip(where(k) + ": " + what + "; feature skipped");
+            return false;
+        };
+        if (!m_options.exercise_column.empty()) {
+            const json* v = named_property(props, m_options.exercise_column, m_exercise_seen);
+            if (v && !v->is_string() && !v->is_number()) return bad("exercise " + json_text(*v) + " (property '" + m_options.exercise_column + "') is not a text");
+            exercise = v ? id_text(*v) : std::string();
+            if (exercise.empty()) return bad("no exercise (property '" + m_options.exercise_column + "' is missing or empty)");
+        }
+        if (!m_options.role_column.empty()) {
+            const json* v = named_property(props, m_options.role_column, m_role_seen);
+            role = v && v->is_string() ? role_value(v->get_ref<const std::string&>()) : nullptr;
+            if (!v) return bad("no role (property '" + m_options.role_column + "' is missing)");
+            if (!role) return bad("role " + json_text(*v) + " (property '" + m_options.role_column + "') is neither trainee (own, own ship) nor target");
+        }
+        return true;
+    }
+
+    /// A feature's role for its track: the first gives the track's; a different one later is a
+    /// disagreement, said (and the track taken as a target) once the file is read.
+    void take_role(Track& t, const char* role, std::size_t k) {
+        if (!role) return;
+        RoleSeen& seen = m_roles[t.exercise + '\0' + t.id];
+        if (t.role.empty()) {
+            t.role = role;
+            seen.first = k;
+        } else if (t.role != role && seen.other.empty()) {
+            seen.other = role;
+            seen.other_at = k;
+        }
+    }
+
     void feature(const json& f, std::size_t k) {
         static const json empty = json::object();
         const json* props_ptr = member(f, "properties");
         const json& props = props_ptr && props_ptr->is_object() ? *props_ptr : empty;
+        std::string exercise;
+        const char* role = nullptr;
+        if (!exercise_and_role(props, k, exercise, role)) return;
         const json* g = member(f, "geometry");
         const json* type = g ? member(*g, "type") : nullptr;
         if (!type || !type->is_string()) {
@@ -320,8 +390,8 @@ private:
             m_out.report.skip(where(k) + ": no geometry; feature skipped");
             return;
         }
-        if (*type == "Point") return point(f, props, *g, k);
-        if (*type == "LineString" || *type == "MultiLineString") return line(f, props, *g, k);
+        if (*type == "Point") return point(f, props, *g, k, exercise, role);
+        if (*type == "LineString" || *type == "MultiLineString") return line(f, props, *g, k, exercise, role);
         ++m_out.report.rows;
         m_out.report.skip(where(k) + ": a " + type->get<std::string>() + " is not a track; feature skipped");
     }
@@ -340,7 +410,7 @@ private:
         return true;
     }
 
-    void point(const json& f, const json& props, const json& g, std::size_t k) {
+    void point(const json& f, const json& props, const json& g, std::size_t k, const std::string& exercise, const char* role) {
         ++m_out.report.rows;
         ++m_point;
         const std::string at = where(k) + ": ";
@@ -373,7 +443,9 @@ private:
         double s = json_number(props, "sog");
         if (std::isnan(s)) s = json_number(props, "sog_kn");
         fix.sog_kn = detail::valid_sog(s);
-        m_set.get(id_of(f, props, k, false), name_of(props)).fixes.push_back(fix);
+        Track& track = m_set.get(id_of(f, props, k, false), name_of(props), exercise);
+        take_role(track, role, k);
+        track.fixes.push_back(fix);
     }
 
     /// The per-vertex time array of a line, flattened over the parts of a MultiLineString.
@@ -391,7 +463,7 @@ private:
         return nullptr;
     }
 
-    void line(const json& f, const json& props, const json& g, std::size_t k) {
+    void line(const json& f, const json& props, const json& g, std::size_t k, const std::string& exercise, const char* role) {
         const json* coords = member(g, "coordinates");
         if (!coords || !coords->is_array()) throw InputError(where(k) + ": line without a 'coordinates' array");
         std::vector<const json*> vertices;
@@ -426,7 +498,8 @@ private:
             key = "m";
             for (const json* c : vertices) times.push_back(&(*c)[3]);
         }
-        Track& track = m_set.get(id_of(f, props, k, true), name_of(props));
+        Track& track = m_set.get(id_of(f, props, k, true), name_of(props), exercise);
+        take_role(track, role, k);
         for (std::size_t i = 0; i < vertices.size(); ++i) {
             ++m_out.report.rows;
             ++m_point;
@@ -450,10 +523,17 @@ private:
 
     std::string_view m_text;
     std::string m_file;
+    const ReadOptions& m_options;
     TrackFile m_out;
     TrackSet m_set;
     std::size_t m_point = 0;
     bool m_single_line = false;
+    bool m_exercise_seen = false, m_role_seen = false;  ///< some feature has the property
+    struct RoleSeen {
+        std::size_t first = 0, other_at = 0;  ///< feature numbers
+        std::string other;                    ///< the other role, when one disagreed
+    };
+    std::map<std::string, RoleSeen> m_roles;  ///< by (exercise, id)
 };
 
 }  // namespace

@@ -117,6 +117,8 @@ Track PackedTrack::unpack() const {
     t.draught_source = draught_source;
     t.ship_type = ship_type;
     t.ship_type_source = ship_type_source;
+    t.exercise = exercise;
+    t.role = role;
     t.fixes.reserve(fixes.size());
     for (std::size_t i = 0; i < fixes.size(); ++i) t.fixes.push_back(fix(i));
     return t;
@@ -139,6 +141,8 @@ PackedTrack PackedTrack::pack(Track&& t) {
     p.draught_source = t.draught_source;
     p.ship_type = t.ship_type;
     p.ship_type_source = t.ship_type_source;
+    p.exercise = std::move(t.exercise);
+    p.role = std::move(t.role);
     for (const Fix& f : t.fixes) p.push_back(f);
     t.fixes.clear();
     t.fixes.shrink_to_fit();

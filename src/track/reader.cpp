@@ -215,6 +215,19 @@ void drop_impossible_dims(File& out, const std::string& path) {
                                   ": the default hull is used for them");
 }
 
+/// GPX and NMEA have no columns: with an exercise or role column to read, such a file is
+/// refused, naming the column (ReadOptions::exercise_column, role_column).
+void check_columns_readable(const std::string& path, const std::string& format, const ReadOptions& options) {
+    if (format != "gpx" && format != "nmea") return;
+    const std::string what = format == "gpx" ? "a GPX file" : "an NMEA log";
+    if (!options.exercise_column.empty())
+        throw InputError(path + ": " + what + " has no column '" + options.exercise_column +
+                         "', the exercise column (ReadOptions::exercise_column); columns are read from CSV files and GeoJSON properties");
+    if (!options.role_column.empty())
+        throw InputError(path + ": " + what + " has no column '" + options.role_column +
+                         "', the role column (ReadOptions::role_column); columns are read from CSV files and GeoJSON properties");
+}
+
 /// Every format but CSV, read whole (GeoJSON and GPX at most this much).
 constexpr std::size_t max_whole_bytes = std::size_t{1} << 30;
 
@@ -258,6 +271,7 @@ TrackFile unpack(PackedTrackFile&& packed) {
 TrackFile read_tracks(const std::string& path, const ReadOptions& options) {
     const auto in = open_track_file(path);
     Sniffed sniffed = sniff_file(*in);
+    check_columns_readable(path, sniffed.format, options);
     TrackFile out = sniffed.format == "csv" ? unpack(detail::read_csv_stream(*in, std::move(sniffed.head), sniffed.whole, options))
                                             : read_whole(*in, std::move(sniffed), options);
     if (!in->damage().empty()) out.report.messages.push_back(path + ": " + in->damage() + "; the rows before it are kept");
@@ -269,6 +283,7 @@ TrackFile read_tracks(const std::string& path, const ReadOptions& options) {
 PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& options) {
     const auto in = open_track_file(path);
     Sniffed sniffed = sniff_file(*in);
+    check_columns_readable(path, sniffed.format, options);
     PackedTrackFile out;
     if (sniffed.format == "csv") {
         out = detail::read_csv_stream(*in, std::move(sniffed.head), sniffed.whole, options);

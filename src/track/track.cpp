@@ -102,6 +102,18 @@ constexpr const char* nav_status_names[16] = {
 
 const char* nav_status_text(std::uint8_t status) noexcept { return status < 16 ? nav_status_names[status] : ""; }
 
+const char* role_value(std::string_view text) noexcept {
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
+    char buf[16];
+    if (text.size() > sizeof buf) return nullptr;
+    for (std::size_t i = 0; i < text.size(); ++i) buf[i] = static_cast<char>(std::tolower(static_cast<unsigned char>(text[i])));
+    const std::string_view v(buf, text.size());
+    if (v == "trainee" || v == "own" || v == "own ship" || v == "own_ship") return "trainee";
+    if (v == "target") return "target";
+    return nullptr;
+}
+
 std::uint8_t parse_nav_status(std::string_view text) noexcept {
     while (!text.empty() && (text.front() == ' ' || text.front() == '"')) text.remove_prefix(1);
     while (!text.empty() && (text.back() == ' ' || text.back() == '"' || text.back() == '\r')) text.remove_suffix(1);

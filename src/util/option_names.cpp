@@ -31,6 +31,9 @@ constexpr OptionName names[] = {
     {"BuildRequest::ship_length_m", "--ship-length", "ship_length_m"},
     {"BuildRequest::cache_dir", "--cache-dir", "cache_dir"},
     {"AuditOptions::shard", "--shard", nullptr},
+    {"AuditOptions::exercise_by", "--exercise-by", nullptr},
+    {"ReadOptions::exercise_column", "--exercise-by column:NAME", nullptr},
+    {"ReadOptions::role_column", "--role-column", nullptr},
 };
 
 }  // namespace

@@ -6,6 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
 #include <string>
 
 #include <shoal/audit/audit.hpp>
@@ -27,7 +32,41 @@ TEST(Exercise, KeyByRunFileOrFolder) {
     t.file = "ex2/target.gpx";
     EXPECT_EQ(exercise_key(ExerciseBy::folder, t), "ex2");
     EXPECT_EQ(parse_exercise_by("folder"), ExerciseBy::folder);
+    // By a column: the column's value is the exercise, whatever the file.
+    const ExerciseGrouping g = parse_exercise_grouping("column:Exercise");
+    EXPECT_EQ(g.by, ExerciseBy::column);
+    EXPECT_EQ(g.column, "Exercise");
+    EXPECT_EQ(exercise_by_text(g.by, g.column), "column:Exercise");
+    EXPECT_EQ(exercise_by_text(ExerciseBy::folder, ""), "folder");
+    EXPECT_EQ(exercise_key(ExerciseBy::column, "morning/all.csv", "ex 2"), "ex 2");
+    t.exercise = "night";
+    EXPECT_EQ(exercise_key(ExerciseBy::column, t), "night");
+    EXPECT_EQ(exercise_key(ExerciseBy::folder, t), "ex2");
     EXPECT_THROW(parse_exercise_by("column"), UsageError);
+    EXPECT_THROW(parse_exercise_by("column:"), UsageError);
+    EXPECT_THROW(parse_exercise_by("column: "), UsageError);
+    EXPECT_THROW(parse_exercise_by("columns:x"), UsageError);
+}
+
+TEST(Exercise, TheExerciseFileWinsOverTheRoleColumnWhichWinsOverTheDefault) {
+    const Roles r = Roles::parse(R"({"default_role": "target", "tracks": [{"track": "a", "role": "target"},
+        {"track": "b", "exercise": "ex1", "role": "trainee"}]})",
+                                 "ex.json");
+    track::Track t;
+    t.id = "a";
+    t.role = "trainee";  // the column says trainee; the file's entry says target
+    EXPECT_EQ(role_of(&r, "ex1", t), Role::target);
+    EXPECT_EQ(role_of(nullptr, "ex1", t), Role::trainee);
+    t.id = "b";
+    t.role = "target";
+    EXPECT_EQ(role_of(&r, "ex1", t), Role::trainee);  // the exercise's entry
+    EXPECT_EQ(role_of(&r, "ex2", t), Role::target);   // no entry there: the column
+    t.role = "trainee";
+    EXPECT_EQ(role_of(&r, "ex2", t), Role::trainee);  // the column over the file's default_role
+    t.role.clear();
+    EXPECT_EQ(role_of(&r, "ex2", t), Role::target);   // no column: the file's default
+    EXPECT_EQ(role_of(nullptr, "ex2", t), Role::trainee);
+    EXPECT_EQ(r.entry_role("ex2", "b"), std::nullopt);
 }
 
 TEST(Exercise, RolesFromTheExerciseFile) {
@@ -106,6 +145,155 @@ protected:
     }
 };
 grid::CoastGrid* ExerciseAudit::s_grid = nullptr;
+
+/// One CSV file of two exercises (column `exercise`), roles in column `role`: A and B sail the
+/// same water at the same time. Vessel 235000001 is the trainee of both (two tracks). In A it
+/// sails east and its target 235000002 west 300 m north of it; in B it sails east on that
+/// line, and its target 235000003 west on A's trainee's line. So each exercise is a head-on
+/// pass at 300 m, but had the two been one, each trainee would have collided head-on with the
+/// other exercise's target. Lines 2 and 3 are bad rows.
+std::string two_exercises_csv(const std::string& path) {
+    struct Ship {
+        const char* id;
+        const char* exercise;
+        const char* role;
+        track::Track track;
+    };
+    const std::vector<Ship> ships = {{"235000001", "A", "Own Ship", along("a", "", 0, -1.02, -0.935)},
+                                     {"235000002", "A", "target", along("b", "", 300, -0.935, -1.02)},
+                                     {"235000001", "B", "trainee", along("c", "", 300, -1.02, -0.935)},
+                                     {"235000003", "B", "TARGET", along("d", "", 0, -0.935, -1.02)}};
+    std::string text = "mmsi,exercise,role,timestamp,lat,lon,heading,sog\n";
+    text += "235000002,,target,1714557600,50.70,-1.00,90,9.7\n";    // line 2: no exercise
+    text += "235000002,A,pilot,1714557600,50.70,-1.00,90,9.7\n";    // line 3: no role shoal knows
+    for (std::size_t i = 0; i < ships.front().track.fixes.size(); ++i)
+        for (const Ship& s : ships) {
+            const track::Fix& f = s.track.fixes[i];
+            char row[200];
+            std::snprintf(row, sizeof row, "%s,%s,%s,%.0f,%.7f,%.7f,%.0f,%.1f\n", s.id, s.exercise, s.role, f.time_s, f.position.lat,
+                          f.position.lon, f.heading_deg, f.sog_kn);
+            text += row;
+        }
+    std::ofstream(path) << text;
+    return path;
+}
+
+TEST_F(ExerciseAudit, AnExerciseColumnSplitsOneFileIntoExercisesAuditedApart) {
+    const test::TempDir dir;
+    const std::string file = two_exercises_csv(dir.file("morning.csv"));
+    AuditOptions o;
+    o.jobs = 2;
+    o.encounters = true;
+    o.exercise_by = ExerciseBy::column;
+    o.read.exercise_column = "exercise";
+    o.read.role_column = "role";
+    const AuditResult r = run_audit({file}, *s_grid, m_hull, "test hull", o);
+    ASSERT_EQ(r.files.size(), 1u);
+    ASSERT_TRUE(r.files[0].error.empty()) << r.files[0].error;
+    EXPECT_EQ(r.files[0].read.skipped, 2u);
+    ASSERT_EQ(r.files[0].read.messages.size(), 2u);
+    EXPECT_NE(r.files[0].read.messages[0].find("morning.csv line 2: no exercise"), std::string::npos) << r.files[0].read.messages[0];
+    EXPECT_NE(r.files[0].read.messages[1].find("morning.csv line 3: role 'pilot'"), std::string::npos) << r.files[0].read.messages[1];
+    ASSERT_TRUE(r.errors.empty());
+    ASSERT_EQ(r.tracks.size(), 4u);
+    EXPECT_EQ(r.exercises, 2u);
+    std::vector<std::string> tracks;
+    for (const auto& t : r.tracks)
+        tracks.push_back(t.summary.exercise + "/" + t.summary.id + "/" + to_string(t.summary.role) + "/" + std::to_string(t.summary.fixes));
+    EXPECT_EQ(tracks, (std::vector<std::string>{"A/235000001/trainee/121", "A/235000002/target/121", "B/235000001/trainee/121",
+                                                "B/235000003/target/121"}));
+    EXPECT_EQ(r.collisions, 0u) << "a trainee never meets the other exercise's target";
+    EXPECT_EQ(r.close_quarters, 0u);
+    std::vector<std::string> pairs;
+    for (const auto& c : r.situations) {
+        const auto& a = r.tracks[c.a].summary;
+        const auto& b = r.tracks[c.b].summary;
+        EXPECT_EQ(a.exercise, b.exercise);
+        pairs.push_back(a.exercise + ":" + a.id + "-" + b.id);
+        EXPECT_EQ(c.at_start.situation, Situation::head_on) << pairs.back();
+        EXPECT_NEAR(c.closest_m, 300, 2) << pairs.back();
+    }
+    EXPECT_EQ(pairs, (std::vector<std::string>{"A:235000001-235000002", "B:235000001-235000003"}));
+
+    // The control: A's trainee and B's target in one exercise collide.
+    AuditOptions one;
+    one.encounters = true;
+    const AuditResult mixed = audit_tracks({along("235000001", "", 0, -1.02, -0.935), along("235000003", "", 0, -0.935, -1.02)}, *s_grid,
+                                           m_hull, "test hull", one);
+    EXPECT_GE(mixed.collisions, 1u);
+
+    // An exercise file beside the column: its entries win for the tracks they name.
+    const Roles roles = Roles::parse(R"({"default_role": "trainee", "tracks": [{"track": "235000003", "exercise": "B", "role": "trainee"}]})", "ex.json");
+    AuditOptions with_file = o;
+    with_file.roles = &roles;
+    const AuditResult both = run_audit({file}, *s_grid, m_hull, "test hull", with_file);
+    ASSERT_EQ(both.tracks.size(), 4u);
+    EXPECT_EQ(both.tracks[3].summary.role, Role::trainee);
+    EXPECT_EQ(both.tracks[1].summary.role, Role::target) << "the column, not the file's default";
+
+    // Shards hold whole exercises: every track of an exercise in the shard its exercise hashes to.
+    std::map<std::string, std::set<unsigned>> shards_of;
+    std::size_t audited = 0;
+    for (unsigned i = 0; i < 3; ++i) {
+        AuditOptions part = o;
+        part.shard = {i, 3};
+        const AuditResult p = run_audit({file}, *s_grid, m_hull, "test hull", part);
+        audited += p.tracks.size();
+        for (const auto& t : p.tracks) {
+            shards_of[t.summary.exercise].insert(i);
+            EXPECT_EQ(shard_of(t.summary.exercise, 3), i) << t.summary.exercise;
+        }
+    }
+    EXPECT_EQ(audited, 4u);
+    for (const auto& [exercise, shards] : shards_of) EXPECT_EQ(shards.size(), 1u) << exercise;
+
+    // Without the column's name the run is refused; a file without the column is a file error.
+    AuditOptions nameless = o;
+    nameless.read.exercise_column.clear();
+    EXPECT_THROW(run_audit({file}, *s_grid, m_hull, "test hull", nameless), UsageError);
+    AuditOptions wrong = o;
+    wrong.read.exercise_column = "drill";
+    const AuditResult missing = run_audit({file}, *s_grid, m_hull, "test hull", wrong);
+    ASSERT_EQ(missing.files.size(), 1u);
+    EXPECT_NE(missing.files[0].error.find("morning.csv: the header has no column 'drill', the exercise column"), std::string::npos)
+        << missing.files[0].error;
+    EXPECT_TRUE(missing.tracks.empty());
+}
+
+TEST_F(ExerciseAudit, OneVesselInTwoFoldersIsOneTrackPerExerciseByFolderAndOneTrackOtherwise) {
+    // The bridge 235000001 sailed ex1 and then ex2: one file in each folder.
+    const test::TempDir dir;
+    std::filesystem::create_directories(dir.path() / "ex1");
+    std::filesystem::create_directories(dir.path() / "ex2");
+    for (const char* ex : {"ex1", "ex2"}) {
+        track::Track t = along("x", "", ex[2] == '1' ? 0 : 300, -1.02, -0.935);
+        std::string text = "mmsi,timestamp,lat,lon\n";
+        for (auto& f : t.fixes) {
+            if (ex[2] == '2') f.time_s += 3600;
+            char row[120];
+            std::snprintf(row, sizeof row, "235000001,%.0f,%.7f,%.7f\n", f.time_s, f.position.lat, f.position.lon);
+            text += row;
+        }
+        std::ofstream((dir.path() / ex / "bridge.csv").string()) << text;
+    }
+    const std::vector<std::string> inputs = {dir.file("ex1"), dir.file("ex2")};
+    AuditOptions o;
+    o.encounters = true;
+    o.exercise_by = ExerciseBy::folder;
+    const AuditResult by_folder = run_audit(inputs, *s_grid, m_hull, "test hull", o);
+    ASSERT_EQ(by_folder.tracks.size(), 2u);
+    EXPECT_EQ(by_folder.tracks[0].summary.exercise, dir.file("ex1"));
+    EXPECT_EQ(by_folder.tracks[1].summary.exercise, dir.file("ex2"));
+    EXPECT_EQ(by_folder.tracks[0].summary.fixes, 121u);
+    EXPECT_EQ(by_folder.exercises, 2u);
+    o.exercise_by = ExerciseBy::file;
+    EXPECT_EQ(run_audit(inputs, *s_grid, m_hull, "test hull", o).tracks.size(), 2u);
+    // One exercise (and outside exercise mode): one vessel, one track of both files.
+    o.exercise_by = ExerciseBy::run;
+    const AuditResult one = run_audit(inputs, *s_grid, m_hull, "test hull", o);
+    ASSERT_EQ(one.tracks.size(), 1u);
+    EXPECT_EQ(one.tracks[0].summary.fixes, 242u);
+}
 
 TEST_F(ExerciseAudit, EncountersAreFoundWithinAnExerciseOnlyAndNeverBetweenTwoTargets) {
     const Roles roles = Roles::parse(R"({"tracks": [{"track": "own1", "role": "trainee"}, {"track": "own2", "role": "trainee"}]})", "ex.json");

@@ -294,6 +294,79 @@ TEST(CliCheck, ExercisesByFolderAreAuditedApartWithRolesAndSituations) {
     EXPECT_NE(bad.err.find("tracks[0] (track '333333333')"), std::string::npos) << bad.err;
 }
 
+TEST(CliCheck, ExercisesByAColumnOfOneFileAreAuditedApartWithRolesFromAColumn) {
+    // One file, two exercises (column "Exercise"), roles in column "role". Vessel 333333333 is
+    // the trainee of both: in exercise 1 it sails east along 50.74N and reaches 1.04W at 10:05;
+    // in exercise 2 along 50.75N. 555555555, exercise 2's target, sails north along 1.04W and
+    // is at 50.74N at 10:05: it would hit exercise 1's trainee, were they one exercise.
+    // 444444444, exercise 1's target, crosses 1.03W well after 333333333 has passed.
+    const fs::path tracks = temp_dir() / "column_exercises.csv";
+    {
+        std::ofstream out(tracks);
+        out << "mmsi,Exercise,role,timestamp,lat,lon,heading\n";
+        out << "333333333,,trainee,2024-05-01T09:59:00Z,50.7400,-1.0520,90\n";  // line 2: no exercise
+        for (int i = 0; i <= 10; ++i) {
+            char row[200];
+            std::snprintf(row, sizeof row, "333333333,1,own ship,2024-05-01T10:%02d:00Z,50.7400,%.5f,90\n", i, -1.05 + 0.002 * i);
+            out << row;
+            std::snprintf(row, sizeof row, "444444444,1,target,2024-05-01T10:%02d:00Z,%.5f,-1.0300,0\n", i, 50.7200 + 0.0013 * i);
+            out << row;
+            std::snprintf(row, sizeof row, "333333333,2,trainee,2024-05-01T10:%02d:00Z,50.7500,%.5f,90\n", i, -1.05 + 0.002 * i);
+            out << row;
+            std::snprintf(row, sizeof row, "555555555,2,Target,2024-05-01T10:%02d:00Z,%.5f,-1.0400,0\n", i, 50.7335 + 0.0013 * i);
+            out << row;
+        }
+    }
+    const fs::path report = temp_dir() / "column_exercises.geojson";
+    const std::string check = "check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
+                              report.string() + "' --exercise-by column:exercise --role-column ROLE";
+    const Outcome r = shoal(check);
+    EXPECT_EQ(r.status, 0) << "no collision within an exercise: " << r.err << r.out;
+    EXPECT_TRUE(validates_against_schema(report));
+    EXPECT_NE(r.err.find("column_exercises.csv line 2: no exercise (column 'exercise' is empty); row skipped"), std::string::npos) << r.err;
+    const auto doc = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(doc["shoal"]["exercise_by"], "column:exercise");
+    EXPECT_EQ(doc["shoal"]["role_column"], "ROLE");
+    EXPECT_EQ(doc["shoal"]["summary"]["exercises"], 2);
+    EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 0);
+    std::vector<std::string> seen;
+    for (const auto& t : doc["shoal"]["tracks"])
+        seen.push_back(t["exercise"].get<std::string>() + "/" + t["track"].get<std::string>() + "/" + t["role"].get<std::string>());
+    EXPECT_EQ(seen, (std::vector<std::string>{"1/333333333/trainee", "1/444444444/target", "2/333333333/trainee", "2/555555555/target"}));
+    ASSERT_EQ(doc["shoal"]["closest_approaches"].size(), 2u) << "one situation in each exercise";
+    for (const auto& a : doc["shoal"]["closest_approaches"]) {
+        const std::string pair = a["exercise"].get<std::string>() + ":" + a["track"].get<std::string>() + "-" + a["other_track"].get<std::string>();
+        EXPECT_TRUE(pair == "1:333333333-444444444" || pair == "2:333333333-555555555") << pair;
+    }
+    // Each vessel's exercise in the events too.
+    for (const auto& f : doc["features"]) {
+        if (f["properties"].contains("exercise")) {
+            EXPECT_TRUE(f["properties"]["exercise"] == "1" || f["properties"]["exercise"] == "2");
+        }
+    }
+
+    // A file without the column: exit 2, the file and the column named.
+    const Outcome missing = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
+                                  (temp_dir() / "missing.geojson").string() + "' --exercise-by column:drill");
+    EXPECT_EQ(missing.status, 2) << missing.err;
+    EXPECT_NE(missing.err.find("column_exercises.csv: the header has no column 'drill', the exercise column (--exercise-by column:NAME)"),
+              std::string::npos)
+        << missing.err;
+    const Outcome nameless = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
+                                   (temp_dir() / "nameless.geojson").string() + "' --exercise-by column:");
+    EXPECT_EQ(nameless.status, 2);
+    EXPECT_NE(nameless.err.find("--exercise-by 'column:' names no column"), std::string::npos) << nameless.err;
+
+    // An exercise file beside the column: its entry for exercise 2's target makes it a trainee.
+    std::ofstream(temp_dir() / "column_roles.json") << R"({"tracks": [{"track": "555555555", "exercise": "2", "role": "trainee"}]})";
+    const Outcome both = shoal(check + " --roles '" + (temp_dir() / "column_roles.json").string() + "'");
+    EXPECT_EQ(both.status, 0) << both.err;
+    const auto doc2 = nlohmann::json::parse(slurp(report));
+    ASSERT_EQ(doc2["shoal"]["tracks"].size(), 4u);
+    EXPECT_EQ(doc2["shoal"]["tracks"][3]["role"], "trainee");
+    EXPECT_EQ(doc2["shoal"]["tracks"][1]["role"], "target");
+}
+
 TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
     const fs::path tracks = solent_tracks();
     std::string reports[2];

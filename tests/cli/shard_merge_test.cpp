@@ -181,6 +181,37 @@ TEST(ShardMerge, ExercisesByFileInShuffledShardsMergeToTheSingleRun) {
     EXPECT_EQ(sharded_run(3, "exercises3-gpkg", by_file, true, "gpkg", exercise_files()), gpkg) << "GeoPackage parts";
 }
 
+/// The exercises of exercise_files() in one file, the exercise in a column: every exercise
+/// has the same two vessels (so each vessel is five tracks, one per exercise).
+std::string exercise_column_file() {
+    static const std::string file = [] {
+        const fs::path f = temp_dir() / "exercise_column.csv";
+        std::ofstream out(f);
+        out << "mmsi,exercise,timestamp,lat,lon,heading\n";
+        for (int x = 0; x < 5; ++x)
+            for (int i = 0; i <= 10; ++i) {
+                const int t = i * 60 + (4 - x) * 20;
+                char row[160];
+                std::snprintf(row, sizeof row, "230990000,ex%d,2024-05-01T10:%02d:%02dZ,60.1000,%.5f,90\n", x, t / 60, t % 60, 24.90 + 0.002 * i);
+                out << row;
+                std::snprintf(row, sizeof row, "230990001,ex%d,2024-05-01T10:%02d:%02dZ,%.5f,24.9100,0\n", x, t / 60, t % 60, 60.0955 + 0.0009 * i);
+                out << row;
+            }
+        return " " + q(f);
+    }();
+    return file;
+}
+
+TEST(ShardMerge, ExercisesByAColumnShardAsWholeExercisesAndMergeToTheSingleRun) {
+    const std::string by_column = " --exercise-by column:exercise";
+    const std::string one = single_run("column", by_column, "geojson", exercise_column_file());
+    const auto doc = nlohmann::json::parse(one);
+    ASSERT_EQ(doc["shoal"]["summary"]["exercises"], 5);
+    ASSERT_EQ(doc["shoal"]["tracks"].size(), 10u) << "each vessel one track per exercise";
+    ASSERT_GE(doc["shoal"]["summary"]["collisions"], 5) << "a collision in each exercise";
+    EXPECT_EQ(sharded_run(3, "column3", by_column, true, "geojson", exercise_column_file()), one);
+}
+
 /// Whether `gpkg` (a GeoPackage) has a layer or table `name`: GDAL's answer.
 bool has_table(const fs::path& gpkg, const std::string& name) {
     GDALAllRegister();

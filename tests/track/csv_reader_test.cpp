@@ -405,3 +405,101 @@ TEST(CsvNames, MatchesCaseAndHashInsensitively) {
 }
 
 }  // namespace
+
+// Exercise mode (issue 18): an exercise column and a role column.
+
+namespace {
+
+/// Two exercises in one file: vessel 235000001 sails in both (two tracks), 235000002 in A only.
+/// Line 6 has no exercise, line 7 an unknown role: both bad rows. 235000004 (lines 8, 9) gives
+/// both roles: a target, said. Columns are found in any case ("Exercise", "ROLE").
+constexpr const char* two_exercises =
+    "mmsi,Exercise,ROLE,timestamp,lat,lon\n"
+    "235000001,A,own ship,2024-05-01T10:00:00Z,50.70,-1.00\n"  // line 2
+    "235000001,B,Trainee,2024-05-01T10:00:00Z,50.71,-1.00\n"
+    "235000002,A,target,2024-05-01T10:00:00Z,50.72,-1.00\n"
+    "235000001,A,own,2024-05-01T10:01:00Z,50.70,-0.99\n"
+    "235000001,,trainee,2024-05-01T10:02:00Z,50.70,-0.98\n"   // line 6: no exercise
+    "235000002,A,pilot,2024-05-01T10:01:00Z,50.72,-0.99\n"     // line 7: not a role
+    "235000004,B,trainee,2024-05-01T10:00:00Z,50.73,-1.00\n"
+    "235000004,B,target,2024-05-01T10:01:00Z,50.73,-0.99\n";
+
+ReadOptions columns() {
+    ReadOptions o;
+    o.exercise_column = "exercise";
+    o.role_column = "role";
+    return o;
+}
+
+TEST(CsvReader, AnExerciseColumnKeysTracksByExerciseAndIdWithTheirRoles) {
+    const TrackFile f = read_csv_text(two_exercises, "two.csv", columns());
+    ASSERT_EQ(f.tracks.size(), 4u);
+    std::vector<std::string> keys;
+    for (const auto& t : f.tracks) keys.push_back(t.exercise + "/" + t.id + "/" + t.role + "/" + std::to_string(t.fixes.size()));
+    // In first-appearance order; the vessel of two exercises is two tracks.
+    EXPECT_THAT(keys, ElementsAre("A/235000001/trainee/2", "B/235000001/trainee/1", "A/235000002/target/1", "B/235000004/target/2"));
+    EXPECT_EQ(f.report.rows, 8u);
+    EXPECT_EQ(f.report.skipped, 2u);
+    const std::string said = [&] {
+        std::string s;
+        for (const auto& m : f.report.messages) s += m + "\n";
+        return s;
+    }();
+    EXPECT_THAT(said, HasSubstr("two.csv line 6: no exercise (column 'exercise' is empty); row skipped"));
+    EXPECT_THAT(said, HasSubstr("two.csv line 7: role 'pilot' (column 'role') is neither trainee (own, own ship) nor target; row skipped"));
+    EXPECT_THAT(said, HasSubstr("two.csv: track '235000004' of exercise 'B': its rows disagree on the role (trainee on line 8, target on "
+                                "line 9 of column 'role'): it is taken as a target"));
+    // Without the columns asked for, the same file is three vessels, the rows merged by id.
+    const TrackFile plain = read_csv_text(two_exercises, "two.csv");
+    EXPECT_EQ(plain.tracks.size(), 3u);
+    for (const auto& t : plain.tracks) EXPECT_EQ(t.exercise + t.role, "");
+}
+
+TEST(CsvReader, AFileWithoutTheExerciseOrRoleColumnIsAnErrorNamingFileAndColumn) {
+    const std::string text = "mmsi,timestamp,lat,lon\n235000001,2024-05-01T10:00:00Z,50.70,-1.00\n";
+    ReadOptions o;
+    o.exercise_column = "Exercise";
+    EXPECT_THAT([&] { read_csv_text(text, "plain.csv", o); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr("plain.csv: the header has no column 'Exercise', the exercise column"),
+                                                HasSubstr("header: mmsi,timestamp,lat,lon"))));
+    ReadOptions r;
+    r.role_column = "role";
+    EXPECT_THAT([&] { read_csv_text(text, "plain.csv", r); },
+                ThrowsMessage<InputError>(HasSubstr("plain.csv: the header has no column 'role', the role column")));
+}
+
+TEST(CsvReader, ARowShortOfTheExerciseColumnIsABadRow) {
+    ReadOptions o;
+    o.exercise_column = "exercise";
+    const TrackFile f = read_csv_text("mmsi,timestamp,lat,lon,exercise\n235000001,2024-05-01T10:00:00Z,50.70,-1.00,A\n"
+                                      "235000001,2024-05-01T10:01:00Z,50.70,-0.99\n",
+                                      "short.csv", o);
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].fixes.size(), 1u);
+    EXPECT_EQ(f.report.skipped, 1u);
+    EXPECT_THAT(f.report.messages.at(0), HasSubstr("short.csv line 3: has 4 fields, the header needs 5"));
+}
+
+TEST(TrackReader, GpxAndNmeaHaveNoColumnsToReadTheExerciseFrom) {
+    ReadOptions o;
+    o.exercise_column = "exercise";
+    EXPECT_THAT([&] { read_tracks(data_path("tracks/track_and_route.gpx"), o); },
+                ThrowsMessage<InputError>(HasSubstr("track_and_route.gpx: a GPX file has no column 'exercise', the exercise column")));
+    ReadOptions r;
+    r.role_column = "role";
+    EXPECT_THAT([&] { read_tracks_packed(data_path("tracks/midnight.nmea"), r); },
+                ThrowsMessage<InputError>(HasSubstr("midnight.nmea: an NMEA log has no column 'role', the role column")));
+}
+
+TEST(TrackRoles, RoleValuesInAnyCase) {
+    EXPECT_STREQ(role_value("Own Ship"), "trainee");
+    EXPECT_STREQ(role_value(" own_ship "), "trainee");
+    EXPECT_STREQ(role_value("OWN"), "trainee");
+    EXPECT_STREQ(role_value("trainee"), "trainee");
+    EXPECT_STREQ(role_value("TARGET"), "target");
+    EXPECT_EQ(role_value("pilot"), nullptr);
+    EXPECT_EQ(role_value(""), nullptr);
+    EXPECT_EQ(role_value("target but much longer than any role"), nullptr);
+}
+
+}  // namespace

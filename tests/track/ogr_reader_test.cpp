@@ -168,3 +168,43 @@ TEST(GeoJsonReader, RejectsBrokenJsonOtherJsonAndOtherCrs) {
 }
 
 }  // namespace
+
+namespace {
+
+// Exercise mode (issue 18): the exercise and role columns are GeoJSON properties too.
+TEST(GeoJsonReader, ExerciseAndRolePropertiesKeyTracksByExerciseAndId) {
+    const std::string text = R"({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {"mmsi": 235000001, "EXERCISE": "A", "Role": "own ship", "time": "2024-05-01T10:00:00Z"},
+         "geometry": {"type": "Point", "coordinates": [-1.0, 50.7]}},
+        {"type": "Feature", "properties": {"mmsi": 235000001, "EXERCISE": "B", "Role": "target", "time": "2024-05-01T10:00:00Z"},
+         "geometry": {"type": "Point", "coordinates": [-1.0, 50.71]}},
+        {"type": "Feature", "properties": {"mmsi": 235000001, "EXERCISE": 7, "Role": "trainee", "times": ["2024-05-01T10:00:00Z", "2024-05-01T10:01:00Z"]},
+         "geometry": {"type": "LineString", "coordinates": [[-1.0, 50.72], [-0.99, 50.72]]}},
+        {"type": "Feature", "properties": {"mmsi": 235000001, "Role": "trainee", "time": "2024-05-01T10:01:00Z"},
+         "geometry": {"type": "Point", "coordinates": [-0.99, 50.7]}},
+        {"type": "Feature", "properties": {"mmsi": 235000001, "EXERCISE": "A", "Role": "pilot", "time": "2024-05-01T10:01:00Z"},
+         "geometry": {"type": "Point", "coordinates": [-0.99, 50.7]}},
+        {"type": "Feature", "properties": {"mmsi": 235000001, "EXERCISE": "B", "Role": "trainee", "time": "2024-05-01T10:01:00Z"},
+         "geometry": {"type": "Point", "coordinates": [-0.99, 50.71]}}]})";
+    ReadOptions o;
+    o.exercise_column = "exercise";
+    o.role_column = "role";
+    const TrackFile f = read_geojson_text(text, "ex.geojson", o);
+    std::vector<std::string> keys;
+    for (const auto& t : f.tracks) keys.push_back(t.exercise + "/" + t.id + "/" + t.role + "/" + std::to_string(t.fixes.size()));
+    EXPECT_THAT(keys, ElementsAre("A/235000001/trainee/1", "B/235000001/target/2", "7/235000001/trainee/2"));
+    EXPECT_EQ(f.report.skipped, 2u);
+    std::string said;
+    for (const auto& m : f.report.messages) said += m + "\n";
+    EXPECT_THAT(said, HasSubstr("ex.geojson feature 4: no exercise (property 'exercise' is missing or empty); feature skipped"));
+    EXPECT_THAT(said, HasSubstr("ex.geojson feature 5: role \"pilot\" (property 'role') is neither trainee (own, own ship) nor target; feature skipped"));
+    EXPECT_THAT(said, HasSubstr("ex.geojson: track '235000001' of exercise 'B': its features disagree on the role (target in feature 2, trainee "
+                                "in feature 6 of property 'role'): it is taken as a target"));
+    // No feature has the property: the file is refused, naming it and the column.
+    ReadOptions other;
+    other.exercise_column = "drill";
+    EXPECT_THAT([&] { read_geojson_text(text, "ex.geojson", other); },
+                ThrowsMessage<InputError>(HasSubstr("ex.geojson: no feature has the property 'drill', the exercise column")));
+}
+
+}  // namespace

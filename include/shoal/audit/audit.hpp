@@ -31,10 +31,12 @@ struct AuditOptions {
     bool encounters = false;
     EncounterOptions encounter;  ///< step and max gap are taken from `sweep`
     /// Exercise mode: how tracks are grouped into exercises (exercise.hpp); encounters are
-    /// found within an exercise only.
+    /// found within an exercise only. ExerciseBy::column takes each track's Track::exercise,
+    /// read from the column read.exercise_column (which run_audit requires then).
     ExerciseBy exercise_by = ExerciseBy::run;
-    /// Exercise mode: roles of tracks (exercise.hpp); null: every track is a trainee. Pairs of
-    /// two targets are not reported. Must outlive the run.
+    /// Exercise mode: roles of tracks (exercise.hpp), with the role column's values
+    /// (read.role_column, Track::role) as audit::role_of combines them; neither: every track is
+    /// a trainee. Pairs of two targets are not reported. Must outlive the run.
     const Roles* roles = nullptr;
     /// Exercise mode: scored criteria (assessment.hpp); null: not assessed. Needs `encounters`;
     /// the sweep then follows clearance up to its largest land clearance limit. Must outlive the run.

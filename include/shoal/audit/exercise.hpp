@@ -6,13 +6,20 @@
 /// - `ExerciseBy::file`: each track file is an exercise, named by the file as given.
 /// - `ExerciseBy::folder`: the tracks of one folder are an exercise, named by the folder
 ///   ("." for files given without one).
+/// - `ExerciseBy::column`: the exercise of each fix is the value of a column (a CSV column or
+///   a GeoJSON property, track::ReadOptions::exercise_column), named by that value: one file
+///   may hold several exercises, and one vessel id in two exercises is two tracks
+///   (Track::exercise).
 ///
 /// Each track has a role: a *trainee* (own ship, the bridge being assessed) or a *target*
 /// (traffic played by the instructor). Targets are checked against trainees only: pairs of two
-/// targets are not reported. Without a roles file every track is a trainee.
+/// targets are not reported. A track's role comes from an exercise file (Roles), from a role
+/// column (track::ReadOptions::role_column, Track::role), or both: role_of() says which wins.
+/// With neither, every track is a trainee.
 /// exercise_key() is what a shard of a batch keys on, so that an exercise is never split.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,16 +27,29 @@
 
 namespace shoal::audit {
 
-enum class ExerciseBy { run, file, folder };
+enum class ExerciseBy { run, file, folder, column };
 
-/// "run", "file", "folder".
+/// "run", "file", "folder", "column".
 const char* to_string(ExerciseBy by) noexcept;
-/// Parses "run", "file" or "folder"; throws UsageError naming AuditOptions::exercise_by otherwise.
+/// How the exercises of a run were made, for the report: to_string(by), and for a column
+/// "column:NAME".
+std::string exercise_by_text(ExerciseBy by, const std::string& column);
+
+/// How tracks are grouped, as `--exercise-by` gives it.
+struct ExerciseGrouping {
+    ExerciseBy by = ExerciseBy::run;
+    std::string column;  ///< ExerciseBy::column: the column's name (not empty); else ""
+};
+/// Parses "run", "file", "folder" or "column:NAME" (NAME not empty, kept as given); throws
+/// UsageError naming AuditOptions::exercise_by otherwise.
+ExerciseGrouping parse_exercise_grouping(const std::string& s);
+/// parse_exercise_grouping(s).by.
 ExerciseBy parse_exercise_by(const std::string& s);
 
-/// The exercise of a track read from `file` (as given to the reader: Track::file).
-std::string exercise_key(ExerciseBy by, const std::string& file);
-/// The exercise of `track`: exercise_key(by, track.file).
+/// The exercise of a track read from `file` (as given to the reader: Track::file) whose
+/// exercise column gave `column_value` (Track::exercise; used by ExerciseBy::column only).
+std::string exercise_key(ExerciseBy by, const std::string& file, const std::string& column_value = {});
+/// The exercise of `track`: exercise_key(by, track.file, track.exercise).
 std::string exercise_key(ExerciseBy by, const track::Track& track);
 
 enum class Role { trainee, target };
@@ -61,8 +81,20 @@ struct Roles {
     /// Parses the JSON text of an exercise file (`source` names it in messages).
     static Roles parse(const std::string& text, const std::string& source);
 
+    /// The role of `track` in `exercise` by this file: the entry of that exercise, else an
+    /// entry without one, else default_role.
     Role role_of(const std::string& exercise, const std::string& track) const;
+    /// The role an entry gives `track` in `exercise` (of that exercise, else one without);
+    /// none when no entry names it.
+    std::optional<Role> entry_role(const std::string& exercise, const std::string& track) const;
 };
+
+/// The role of a track in exercise mode, from an exercise file (may be null) and the track's
+/// role column value (Track::role: "trainee", "target", or "" when none was read). The file's
+/// entry for the track wins; then the column; then the file's default_role; with neither, a
+/// trainee. So a role column gives every track its role, and an exercise file given beside it
+/// corrects the tracks it names.
+Role role_of(const Roles* roles, const std::string& exercise, const track::Track& track);
 
 /// Parses a role value ("trainee", "own", "own ship", "own_ship", "target"; any case); false if
 /// it is none of them.

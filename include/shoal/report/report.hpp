@@ -41,6 +41,7 @@ struct RunInfo {
     std::string exercise_by = "run";  ///< exercise mode: how tracks are grouped (audit::ExerciseBy)
     std::string roles;                ///< exercise mode: the exercise (roles) file, "" when none
     std::string assessment;           ///< --assess: the assessment file, "" when none
+    std::string role_column;          ///< exercise mode: the role column (--role-column), "" when none
     double encounter_range_m = audit::ColregOptions{}.range_m;  ///< exercise mode: COLREG situations within this
     /// The chart for the GeoPackage's `coast` layer (read_chart); null: no coast layer.
     const coast::Coastline* chart = nullptr;

@@ -68,6 +68,7 @@ struct PackedTrack {
     std::string dims_source, draught_source;  ///< as Track's
     int ship_type = -1;                       ///< as Track's
     std::string ship_type_source;
+    std::string exercise, role;               ///< as Track's
     PackedFixes fixes;
     std::vector<FixExtra> extras;
 

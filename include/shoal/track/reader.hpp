@@ -31,6 +31,20 @@ struct ReadOptions {
     /// and an antenna aft of amidships puts the true bow up to half a length further ahead, so a
     /// bow-first grounding can be missed (tests/data/tracks/ais_cases/aground_at_speed.csv).
     bool hull_from_length_width = false;
+    /// Exercise mode, `--exercise-by column:NAME`: the exercise of each fix is the value of the
+    /// CSV column (GeoJSON property) of this name, matched as other columns are (any case, a
+    /// leading `#` and blanks ignored); tracks are keyed by (exercise, id), so one vessel id in
+    /// two exercises is two tracks (Track::exercise). A row whose value is empty is a bad row;
+    /// a CSV file without the column, a GeoJSON file none of whose features has it, and a GPX
+    /// or NMEA file (they have no columns) are an InputError naming the file and the column.
+    /// "": none read.
+    std::string exercise_column;
+    /// Exercise mode, `--role-column NAME`: each track's role from the column (property) of this
+    /// name (Track::role; values as track::role_value reads them). A row with any other value,
+    /// or none, is a bad row; a file without the column is an InputError, as for the exercise
+    /// column. A track whose rows give both roles is a target (the rows disagree: the track is
+    /// not scored as a trainee on a guess), said in ReadReport::messages. "": none read.
+    std::string role_column;
 };
 
 /// All tracks of one file, what reading it found, and the format it was read as

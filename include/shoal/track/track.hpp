@@ -80,7 +80,17 @@ struct Track {
     std::string draught_source;  ///< where `draught_m` came from
     int ship_type = -1;          ///< AIS ship and cargo type 1-255 (ship_type.hpp); -1 not known (AIS 0 "not available" included)
     std::string ship_type_source;  ///< where `ship_type` came from
+    /// The value of the exercise column (ReadOptions::exercise_column), "" when none is read.
+    /// Tracks are keyed by (exercise, id): one vessel id in two exercises is two tracks.
+    std::string exercise;
+    /// The role from the role column (ReadOptions::role_column): "trainee", "target", or ""
+    /// when none is read.
+    std::string role;
 };
+
+/// The role a role value names: "trainee" for trainee, own, own ship, own_ship; "target" for
+/// target (any case, blanks around ignored); nullptr for anything else.
+const char* role_value(std::string_view text) noexcept;
 
 /// What reading a file found, for the user: counts and the first few problems.
 struct ReadReport {
