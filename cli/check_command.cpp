@@ -113,8 +113,8 @@ public:
                           "Lines and points of --berths and S-57 berths / shore constructions count within this many metres (default 10)")
             ->check(finite)->check(positive)->check(at_most(coast::ExpectedAreas::max_tolerance_m, "a berth grown by more is no berth"));
         m_sub->add_option("--berthing-speed", m_audit.sweep.berthing_speed_kn,
-                          "A contact that begins under this speed (knots) is alongside (berthing, moored), not a grounding (default 1)")
-            ->check(finite)->check(non_negative);
+                          "A contact that begins under this speed (knots) is alongside (berthing, moored), not a grounding (default 1, at most 5)")
+            ->check(finite)->check(non_negative)->check(at_most(audit::SweepOptions::max_berthing_speed_kn, "faster is no berthing"));
         m_sub->add_option("--stop-diameter", m_audit.sweep.stop_diameter_m,
                           "Stopped: every fix of --stop-time seconds within a box of this diagonal, metres (default 50)")
             ->check(finite)->check(positive);

@@ -213,13 +213,14 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
     audit::check_step(step_m);
     options.sweep.max_gap_s = positive("max_gap_s", max_gap_s);
     options.wild.max_speed_kn = positive("max_speed_kn", max_speed_kn);
-    options.sweep.berthing_speed_kn = positive("berthing_speed_kn", berthing_speed_kn, true);
+    options.sweep.berthing_speed_kn =
+        positive("berthing_speed_kn", berthing_speed_kn, true, audit::SweepOptions::max_berthing_speed_kn, "faster is no berthing");
     options.sweep.stop_diameter_m = positive("stop_diameter_m", stop_diameter_m);
     options.sweep.stop_duration_s = positive("stop_time_s", stop_time_s);
     options.jobs = jobs;
     options.encounters = encounters;
     options.encounter.ship_margin_m = positive("ship_margin_m", ship_margin_m, true);
-    positive("berth_tolerance_m", berth_tolerance_m);
+    positive("berth_tolerance_m", berth_tolerance_m, false, coast::ExpectedAreas::max_tolerance_m, "a berth grown by more is no berth");
     const std::vector<std::string> berth_files = berths.is_none() ? std::vector<std::string>{} : paths_of(berths);
     const std::vector<std::string> vessel_files = vessels.is_none() ? std::vector<std::string>{} : paths_of(vessels);
 

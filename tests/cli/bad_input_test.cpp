@@ -1305,7 +1305,7 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
         {"check", "--ship-margin", {"nan", "inf", "-1"}, {"0", "1e300"}},
         {"check", "--encounter-range", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--berth-tolerance", {"nan", "inf", "-1", "0", "1e300"}, {}},
-        {"check", "--berthing-speed", {"nan", "inf", "-1"}, {"0", "1e300"}},
+        {"check", "--berthing-speed", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--stop-diameter", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--stop-time", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--max-speed", {"nan", "inf", "-1", "0"}, {"1e300"}},
@@ -1362,6 +1362,19 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
         EXPECT_EQ(r.status, 2) << dims << "\n" << r.err;
         EXPECT_TRUE(r.err.find("--dims") != std::string::npos || r.err.find("AIS dimensions") != std::string::npos) << dims << "\n" << r.err;
     }
+}
+
+TEST_F(BadInput, BerthingSpeedOverWhatBerthingIsIsRefusedBeforeAnyWork) {
+    // --berthing-speed 1e300 was accepted and called every contact alongside: no grounding was
+    // ever reported. Now at most SweepOptions::max_berthing_speed_kn, said like the other bounds.
+    const std::string tracks = good_tracks();
+    const Outcome at = check({tracks}, m_dir.file("at.geojson"), {"--berthing-speed", "5"});
+    EXPECT_TRUE(at.status == 0 || at.status == 1) << at.err;
+    const std::string over_report = m_dir.file("over.geojson");
+    const Outcome over = check({tracks}, over_report, {"--berthing-speed", "5.5"});
+    EXPECT_EQ(over.status, 2) << over.err;
+    EXPECT_NE(over.err.find("--berthing-speed: must be at most 5 (faster is no berthing; got '5.5')"), std::string::npos) << over.err;
+    EXPECT_FALSE(std::filesystem::exists(over_report));
 }
 
 }  // namespace
