@@ -97,6 +97,9 @@ public:
                           "Exercise mode: a pair whose reference points come within this many metres is a COLREG situation "
                           "(head-on, crossing, overtaking), classified when it first does (default 3704, 2 nm)")
             ->check(finite)->check(positive);
+        m_sub->add_option("--max-encounters-per-ship", m_audit.max_encounters_per_ship,
+                          "Exercise mode: each ship lists at most N other ships, those it came closest to (their collisions, close "
+                          "quarters, closest approach and situation); the summary counts the rest. 0: no limit (default 20)");
         m_sub->add_option("--berths", m_berths,
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "

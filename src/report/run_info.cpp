@@ -36,6 +36,7 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.ship_margin_m = options.encounter.ship_margin_m;
     info.exercise_by = audit::to_string(options.exercise_by);
     info.encounter_range_m = options.colreg.range_m;
+    info.max_encounters_per_ship = options.max_encounters_per_ship;
     return info;
 }
 

@@ -31,6 +31,7 @@ constexpr OptionName names[] = {
     {"BuildRequest::ship_length_m", "--ship-length", "ship_length_m"},
     {"BuildRequest::cache_dir", "--cache-dir", "cache_dir"},
     {"AuditOptions::shard", "--shard", nullptr},
+    {"AuditOptions::max_encounters_per_ship", "--max-encounters-per-ship", "max_encounters_per_ship"},
 };
 
 }  // namespace

@@ -41,6 +41,7 @@ struct RunInfo {
     std::string exercise_by = "run";  ///< exercise mode: how tracks are grouped (audit::ExerciseBy)
     std::string roles;                ///< exercise mode: the exercise (roles) file, "" when none
     double encounter_range_m = audit::ColregOptions{}.range_m;  ///< exercise mode: COLREG situations within this
+    std::size_t max_encounters_per_ship = audit::AuditOptions{}.max_encounters_per_ship;  ///< exercise mode: 0, no limit
     /// The chart for the GeoPackage's `coast` layer (read_chart); null: no coast layer.
     const coast::Coastline* chart = nullptr;
 };
