@@ -99,7 +99,8 @@ public:
             ->check(finite)->check(positive);
         m_sub->add_option("--max-encounters-per-ship", m_audit.max_encounters_per_ship,
                           "Exercise mode: each ship lists at most N other ships, those it came closest to (their collisions, close "
-                          "quarters, closest approach and situation); the summary counts the rest. 0: no limit (default 20)");
+                          "quarters, closest approach and situation); the summary counts the rest. 0: no limit (default 20)")
+            ->check(finite)->check(non_negative);  // CLI11 would read -1 as the largest size_t
         m_sub->add_option("--berths", m_berths,
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
