@@ -105,6 +105,10 @@ public:
                           "Exercise mode: a pair whose reference points come within this many metres is a COLREG situation "
                           "(head-on, crossing, overtaking), classified when it first does (default 3704, 2 nm)")
             ->check(finite)->check(positive);
+        m_sub->add_option("--max-encounters-per-ship", m_audit.max_encounters_per_ship,
+                          "Exercise mode: each ship lists at most N other ships, those it came closest to (their collisions, close "
+                          "quarters, closest approach and situation); the summary counts the rest. 0: no limit (default 20)")
+            ->check(finite)->check(non_negative);  // CLI11 would read -1 as the largest size_t
         m_sub->add_option("--berths", m_berths,
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
@@ -121,8 +125,8 @@ public:
                           "Lines and points of --berths and S-57 berths / shore constructions count within this many metres (default 10)")
             ->check(finite)->check(positive)->check(at_most(coast::ExpectedAreas::max_tolerance_m, "a berth grown by more is no berth"));
         m_sub->add_option("--berthing-speed", m_audit.sweep.berthing_speed_kn,
-                          "A contact that begins under this speed (knots) is alongside (berthing, moored), not a grounding (default 1)")
-            ->check(finite)->check(non_negative);
+                          "A contact that begins under this speed (knots) is alongside (berthing, moored), not a grounding (default 1, at most 5)")
+            ->check(finite)->check(non_negative)->check(at_most(audit::SweepOptions::max_berthing_speed_kn, "faster is no berthing"));
         m_sub->add_option("--stop-diameter", m_audit.sweep.stop_diameter_m,
                           "Stopped: every fix of --stop-time seconds within a box of this diagonal, metres (default 50)")
             ->check(finite)->check(positive);

@@ -223,10 +223,10 @@ def audit(fixes, grid, *, ship=None, dims=None, columns=None, file="DataFrame", 
     their own dimensions. file: the name events and problems give for the rows' source.
 
     options, as shoal check's: margin_m (50), step_m (5), max_gap_s (600), max_speed_kn (60),
-    berthing_speed_kn (1), stop_diameter_m (50), stop_time_s (120), jobs (0: all cores),
-    encounters (False), ship_margin_m (20), berths (paths), berth_tolerance_m (10), vessels
-    (vessels CSV paths), ukc, hazard_depth_m (the limiting depth wanted; a grid built for another
-    is warned about), progress (a callable(done, total) called about ten times a second).
+    berthing_speed_kn (1, at most 5), stop_diameter_m (50), stop_time_s (120), jobs (0: all cores),
+    encounters (False), ship_margin_m (20), max_encounters_per_ship (20; 0: no limit), berths
+    (paths), berth_tolerance_m (10), vessels (vessels CSV paths), ukc, hazard_depth_m (the limiting
+    depth wanted; a grid built for another is warned about), progress (a callable(done, total) called about ten times a second).
     geo: GeoDataFrames (True), DataFrames (False), or GeoDataFrames when geopandas imports (None).
 
     A bad row (no position, an impossible time, ...) costs that row: it is listed in `problems`

@@ -206,7 +206,8 @@ py::tuple point(geo::LonLat p) {
 
 py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string& file, const py::object& ship, const py::object& dims,
                    double margin_m, double step_m, double max_gap_s, double max_speed_kn, double berthing_speed_kn, double stop_diameter_m,
-                   double stop_time_s, unsigned jobs, bool encounters, double ship_margin_m, const py::object& berths,
+                   double stop_time_s, unsigned jobs, bool encounters, double ship_margin_m, std::size_t max_encounters_per_ship,
+                   const py::object& berths,
                    double berth_tolerance_m, const py::object& vessels, const py::object& ukc, const py::object& hazard_depth_m,
                    const py::object& progress) {
     std::string label;
@@ -220,13 +221,15 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
     audit::check_step(step_m);
     options.sweep.max_gap_s = positive("max_gap_s", max_gap_s);
     options.wild.max_speed_kn = positive("max_speed_kn", max_speed_kn);
-    options.sweep.berthing_speed_kn = positive("berthing_speed_kn", berthing_speed_kn, true);
+    options.sweep.berthing_speed_kn =
+        positive("berthing_speed_kn", berthing_speed_kn, true, audit::SweepOptions::max_berthing_speed_kn, "faster is no berthing");
     options.sweep.stop_diameter_m = positive("stop_diameter_m", stop_diameter_m);
     options.sweep.stop_duration_s = positive("stop_time_s", stop_time_s);
     options.jobs = jobs;
     options.encounters = encounters;
     options.encounter.ship_margin_m = positive("ship_margin_m", ship_margin_m, true);
-    positive("berth_tolerance_m", berth_tolerance_m);
+    options.max_encounters_per_ship = max_encounters_per_ship;
+    positive("berth_tolerance_m", berth_tolerance_m, false, coast::ExpectedAreas::max_tolerance_m, "a berth grown by more is no berth");
     const std::vector<std::string> berth_files = berths.is_none() ? std::vector<std::string>{} : paths_of(berths);
     const std::vector<std::string> vessel_files = vessels.is_none() ? std::vector<std::string>{} : paths_of(vessels);
 
@@ -333,7 +336,8 @@ void bind_audit(py::module_& m) {
           py::arg("max_gap_s") = sweep.max_gap_s, py::arg("max_speed_kn") = wild.max_speed_kn,
           py::arg("berthing_speed_kn") = sweep.berthing_speed_kn, py::arg("stop_diameter_m") = sweep.stop_diameter_m,
           py::arg("stop_time_s") = sweep.stop_duration_s, py::arg("jobs") = 0u, py::arg("encounters") = false,
-          py::arg("ship_margin_m") = encounter.ship_margin_m, py::arg("berths") = py::none(), py::arg("berth_tolerance_m") = 10.0,
+          py::arg("ship_margin_m") = encounter.ship_margin_m,
+          py::arg("max_encounters_per_ship") = audit::AuditOptions{}.max_encounters_per_ship, py::arg("berths") = py::none(), py::arg("berth_tolerance_m") = 10.0,
           py::arg("vessels") = py::none(), py::arg("ukc") = py::none(), py::arg("hazard_depth_m") = py::none(),
           py::arg("progress") = py::none(),
           "The audit behind shoal.audit: `columns` maps id, time (epoch seconds), lat, lon, heading, cog, sog, a, b, c, d, "

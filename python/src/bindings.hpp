@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>  // in every file of the module: the casters must agree
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,8 +48,9 @@ grid::DepthPlan plan_depth(const GridHandle& g, const hull::Hull& hull, const py
 /// A depth keyword's value: none for None; ValueError "NAME must be a finite number (metres)"
 /// for one that is not (or, `non_negative`, is under 0).
 std::optional<double> depth_or_none(const py::object& o, const char* name, bool non_negative);
-/// `v` if it is a finite number > 0 (>= 0 when `zero_ok`); ValueError naming `name` otherwise.
-double positive(const char* name, double v, bool zero_ok = false);
+/// `v` if it is a finite number > 0 (>= 0 when `zero_ok`) and at most `max` (the library's
+/// bound, `why` said with it, as the CLI's); ValueError naming `name` otherwise.
+double positive(const char* name, double v, bool zero_ok = false, double max = INFINITY, const char* why = "");
 
 void bind_grid(py::module_& m);
 void bind_detector(py::module_& m);

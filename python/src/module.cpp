@@ -80,9 +80,12 @@ std::optional<double> depth_or_none(const py::object& o, const char* name, bool 
     return v;
 }
 
-double positive(const char* name, double v, bool zero_ok) {
+double positive(const char* name, double v, bool zero_ok, double max, const char* why) {
     if (!std::isfinite(v) || v < 0 || (!zero_ok && v == 0))
         throw py::value_error(std::string(name) + " must be a finite number " + (zero_ok ? ">= 0" : "> 0") + " (got " + track::detail::fmt(v) + ")");
+    if (!(v <= max))
+        throw py::value_error(std::string(name) + " must be at most " + track::detail::fmt(max) + " (" + (*why ? std::string(why) + "; " : std::string()) +
+                              "got " + track::detail::fmt(v) + ")");
     return v;
 }
 

@@ -13,6 +13,7 @@
 #include <thread>
 #include <tuple>
 
+#include <shoal/audit/worst_pairs.hpp>
 #include <shoal/grid/limiting_depth.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/util/error.hpp>
@@ -391,24 +392,28 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
             }
             auto wanted = [&](std::size_t a, std::size_t b) { return !(is_target(index[a]) && is_target(index[b])); };
             EncounterResult er = find_encounters(tracks, hulls, *frames[0], eo);
-            for (auto& e : er.events) {
-                e.a.track = index[e.a.track];
-                e.b.track = index[e.b.track];
-                if (is_target(e.a.track) && is_target(e.b.track)) continue;
-                (e.kind == EncounterKind::collision ? result.collisions : result.close_quarters) += 1;
-                result.encounters.events.push_back(std::move(e));
-            }
-            std::set<std::pair<std::size_t, std::size_t>> approached;
+            // Each ship lists its worst pairs (worst_pairs.hpp); the situations of the others are
+            // dropped as they are found (a crowd has one for nearly every pair of ships).
+            WorstPairs worst(options.max_encounters_per_ship);
+            std::map<WorstPairs::Pair, ClosestApproach> approached;
             for (auto& a : er.approaches) {
                 a.a = index[a.a];
                 a.b = index[a.b];
                 if (is_target(a.a) && is_target(a.b)) continue;
-                approached.insert({a.a, a.b});
-                result.encounters.approaches.push_back(a);
+                worst.offer(a.a, a.b, a.clearance_m, a.distance_m);
+                approached.emplace(WorstPairs::Pair{a.a, a.b}, a);
             }
-            for (ColregEncounter& c : find_situations(tracks, *frames[0], options.colreg, options.sweep.max_gap_s, wanted)) {
+            std::map<WorstPairs::Pair, std::pair<ColregEncounter, std::optional<ClosestApproach>>> situated;
+            std::size_t situations = 0;
+            const auto forget_unlisted = [&] {
+                for (auto it = situated.begin(); it != situated.end();)
+                    it = worst.listed(it->first.first, it->first.second) ? std::next(it) : situated.erase(it);
+            };
+            for_each_situation(tracks, *frames[0], options.colreg, options.sweep.max_gap_s, wanted, [&](ColregEncounter& c) {
+                ++situations;
                 c.a = index[c.a];
                 c.b = index[c.b];
+                std::optional<ClosestApproach> own;
                 if (!approached.count({c.a, c.b})) {  // never within the hull-to-hull threshold
                     ClosestApproach a;
                     a.a = c.a;
@@ -418,10 +423,45 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                     a.distance_m = c.closest_m;
                     a.a_position = c.a_closest;
                     a.b_position = c.b_closest;
-                    result.encounters.approaches.push_back(a);
+                    worst.offer(a.a, a.b, a.clearance_m, a.distance_m);
+                    own = a;
                 }
-                result.situations.push_back(c);
+                if (!worst.listed(c.a, c.b)) return;
+                situated.emplace(WorstPairs::Pair{c.a, c.b}, std::make_pair(c, own));
+                if (options.max_encounters_per_ship > 0 && situated.size() > 2 * worst.size() + 1024) forget_unlisted();
+            });
+            forget_unlisted();
+            AuditResult::Unlisted here;
+            for (auto& e : er.events) {
+                e.a.track = index[e.a.track];
+                e.b.track = index[e.b.track];
+                if (is_target(e.a.track) && is_target(e.b.track)) continue;
+                const bool collision = e.kind == EncounterKind::collision;
+                (collision ? result.collisions : result.close_quarters) += 1;
+                if (worst.listed(e.a.track, e.b.track)) result.encounters.events.push_back(std::move(e));
+                else (collision ? here.collisions : here.close_quarters) += 1;
             }
+            for (const auto& entry : approached) {
+                if (worst.listed(entry.first.first, entry.first.second)) result.encounters.approaches.push_back(entry.second);
+                else ++here.approached;
+            }
+            for (auto& entry : situated) {
+                if (entry.second.second) result.encounters.approaches.push_back(*entry.second.second);
+                result.situations.push_back(entry.second.first);
+            }
+            here.pairs = options.max_encounters_per_ship == 0 ? 0 : worst.offered() - worst.size();
+            here.situations = situations - situated.size();
+            result.unlisted.pairs += here.pairs;
+            result.unlisted.collisions += here.collisions;
+            result.unlisted.close_quarters += here.close_quarters;
+            result.unlisted.situations += here.situations;
+            result.unlisted.approached += here.approached;
+            if (here.pairs > 0)
+                result.warnings.push_back("exercise '" + name + "': " + std::to_string(here.pairs) + " of " + std::to_string(worst.offered()) +
+                                          " pairs of ships not listed (" + std::to_string(here.collisions) + " collisions, " +
+                                          std::to_string(here.close_quarters) + " close quarters among them), each ship listing the " +
+                                          std::to_string(options.max_encounters_per_ship) +
+                                          " it came closest to (AuditOptions::max_encounters_per_ship); the summary counts every one");
             result.encounters.instants += er.instants;
             result.encounters.pairs_checked += er.pairs_checked;
             result.encounters.hull_checks += er.hull_checks;

@@ -214,6 +214,14 @@ Cpa cpa(const VesselAt& a, const VesselAt& b) {
 std::vector<ColregEncounter> find_situations(const std::vector<const track::Track*>& tracks, const geo::LocalFrame& frame,
                                              const ColregOptions& o, double max_gap_s,
                                              const std::function<bool(std::size_t, std::size_t)>& wanted) {
+    std::vector<ColregEncounter> out;
+    for_each_situation(tracks, frame, o, max_gap_s, wanted, [&](ColregEncounter& e) { out.push_back(e); });
+    return out;
+}
+
+void for_each_situation(const std::vector<const track::Track*>& tracks, const geo::LocalFrame& frame, const ColregOptions& o,
+                        double max_gap_s, const std::function<bool(std::size_t, std::size_t)>& wanted,
+                        const std::function<void(ColregEncounter&)>& found) {
     if (!(o.range_m > 0) || !std::isfinite(o.range_m)) throw UsageError("ColregOptions::range_m must be > 0 metres");
     if (!(o.head_on_tolerance_deg >= 0 && o.head_on_tolerance_deg < 22.5))
         throw UsageError("ColregOptions::head_on_tolerance_deg must be in [0, 22.5) degrees");
@@ -227,7 +235,6 @@ std::vector<ColregEncounter> find_situations(const std::vector<const track::Trac
         ships.push_back(prepare(*t, frame, max_gap_s));
     }
     const double R = o.range_m, R2 = R * R;
-    std::vector<ColregEncounter> out;
     std::vector<double> times;
     for (std::size_t ia = 0; ia < ships.size(); ++ia) {
         for (std::size_t ib = ia + 1; ib < ships.size(); ++ib) {
@@ -315,10 +322,9 @@ std::vector<ColregEncounter> find_situations(const std::vector<const track::Trac
             e.cpa_start = cpa(e.a_start, e.b_start);
             e.action_a = action(A, e.start_s, e.end_s, e.a_start, o);
             e.action_b = action(B, e.start_s, e.end_s, e.b_start, o);
-            out.push_back(e);
+            found(e);
         }
     }
-    return out;
 }
 
 }  // namespace shoal::audit

@@ -312,6 +312,7 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"role_column", text_t, none, -1, [](const R& x) { return text(x.info.role_column); }, exercise},
         {"encounter_range_m", real, metres, -1, [](const R& x) { return Value(x.info.encounter_range_m); }, exercise},
         {"assessment_file", text_t, none, -1, [](const R& x) { return text(x.info.assessment); }, assessed},
+        {"max_encounters_per_ship", integer, none, -1, [](const R& x) { return count(x.info.max_encounters_per_ship); }, exercise},
         {"shard", text_t, none, -1, [](const R& x) { return text(x.result.shard.text()); }, sharded},
     };
     return f;
@@ -347,7 +348,10 @@ const std::vector<Field<RunRow>>& summary_fields() {
         {"collisions", integer, none, -1, [](const R& x) { return count(x.result.collisions); }, exercise},
         {"close_quarters", integer, none, -1, [](const R& x) { return count(x.result.close_quarters); }, exercise},
         {"exercises", integer, none, -1, [](const R& x) { return count(x.result.exercises); }, exercise},
-        {"situations", integer, none, -1, [](const R& x) { return count(x.result.situations.size()); }, exercise},
+        {"situations", integer, none, -1, [](const R& x) { return count(x.result.situations_found()); }, exercise},
+        {"pairs_not_listed", integer, none, -1, [](const R& x) { return count(x.result.unlisted.pairs); }, exercise},
+        {"collisions_not_listed", integer, none, -1, [](const R& x) { return count(x.result.unlisted.collisions); }, exercise},
+        {"close_quarters_not_listed", integer, none, -1, [](const R& x) { return count(x.result.unlisted.close_quarters); }, exercise},
         {"trainees_scored", integer, none, -1, [](const R& x) { return count(x.result.assessment.scores.size()); }, assessed},
         {"breaches", integer, none, -1, [](const R& x) { return count(x.result.assessment.breaches.size()); }, assessed},
     };

@@ -37,6 +37,7 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.exercise_by = audit::exercise_by_text(options.exercise_by, options.read.exercise_column);
     info.role_column = options.read.role_column;
     info.encounter_range_m = options.colreg.range_m;
+    info.max_encounters_per_ship = options.max_encounters_per_ship;
     return info;
 }
 

@@ -7,6 +7,12 @@
 
 namespace shoal::report {
 
+namespace {
+/// The summary lists at most this many situations, and as many encounters (a crowd's report
+/// lists thousands).
+constexpr std::size_t table_lines = 50;
+}  // namespace
+
 std::string summary_table(const audit::AuditResult& r) {
     std::string out;
     char line[512];
@@ -59,11 +65,26 @@ std::string summary_table(const audit::AuditResult& r) {
         const auto within = static_cast<std::size_t>(std::count_if(r.encounters.approaches.begin(), r.encounters.approaches.end(),
                                                                    [](const audit::ClosestApproach& a) { return std::isfinite(a.clearance_m); }));
         std::snprintf(line, sizeof line, "encounters: %zu exercise%s, %zu collisions, %zu close quarters, %zu pairs came within the threshold (%.0f m)\n",
-                      r.exercises, r.exercises == 1 ? "" : "s", r.collisions, r.close_quarters, within, r.encounters.threshold_m);
+                      r.exercises, r.exercises == 1 ? "" : "s", r.collisions, r.close_quarters, within + r.unlisted.approached,
+                      r.encounters.threshold_m);
         out += line;
-        std::snprintf(line, sizeof line, "situations: %zu pairs came within the encounter range\n", r.situations.size());
+        std::snprintf(line, sizeof line, "situations: %zu pairs came within the encounter range\n", r.situations_found());
         out += line;
+        if (r.unlisted.pairs > 0) {
+            std::snprintf(line, sizeof line,
+                          "not listed: %zu pairs (%zu collisions, %zu close quarters, %zu situations), each ship listing those it came closest to\n",
+                          r.unlisted.pairs, r.unlisted.collisions, r.unlisted.close_quarters, r.unlisted.situations);
+            out += line;
+        }
+        // One line each, up to table_lines of each kind: the report has them all.
+        const auto more = [&](std::size_t n, const char* what) {
+            if (n <= table_lines) return;
+            std::snprintf(line, sizeof line, "  ... %zu more %s in the report\n", n - table_lines, what);
+            out += line;
+        };
+        std::size_t lines = 0;
         for (const auto& c : r.situations) {
+            if (lines++ == table_lines) break;
             const std::string& a = r.tracks.at(c.a).summary.id;
             const std::string& b = r.tracks.at(c.b).summary.id;
             const auto who = [&](audit::Party p) -> std::string {
@@ -81,12 +102,16 @@ std::string summary_table(const audit::AuditResult& r) {
                           c.cpa_start.time_s, c.closest_m, iso_time(c.closest_s).substr(11).c_str(), acted.c_str());
             out += line;
         }
+        more(r.situations.size(), "situations");
+        lines = 0;
         for (const auto& e : r.encounters.events) {
+            if (lines++ == table_lines) break;
             std::snprintf(line, sizeof line, "  %-14s %s - %s  %s x %s  least %.1f m\n", audit::to_string(e.kind),
                           iso_time(e.start_s).c_str(), iso_time(e.end_s).c_str(), r.tracks.at(e.a.track).summary.id.c_str(),
                           r.tracks.at(e.b.track).summary.id.c_str(), e.min_clearance_m);
             out += line;
         }
+        more(r.encounters.events.size(), "collisions and close quarters");
     }
     if (r.has_assessment) {  // --assess: one line per trainee's score, then one per breach
         std::snprintf(line, sizeof line, "assessment: %zu criteria, %zu trainees scored, %zu breaches\n", r.assessment.criteria.size(),

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
@@ -1339,8 +1340,9 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
         {"check", "--jobs", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--ship-margin", {"nan", "inf", "-1"}, {"0", "1e300"}},
         {"check", "--encounter-range", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--max-encounters-per-ship", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--berth-tolerance", {"nan", "inf", "-1", "0", "1e300"}, {}},
-        {"check", "--berthing-speed", {"nan", "inf", "-1"}, {"0", "1e300"}},
+        {"check", "--berthing-speed", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--stop-diameter", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--stop-time", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--max-speed", {"nan", "inf", "-1", "0"}, {"1e300"}},
@@ -1397,6 +1399,79 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
         EXPECT_EQ(r.status, 2) << dims << "\n" << r.err;
         EXPECT_TRUE(r.err.find("--dims") != std::string::npos || r.err.find("AIS dimensions") != std::string::npos) << dims << "\n" << r.err;
     }
+}
+
+TEST_F(BadInput, BerthingSpeedOverWhatBerthingIsIsRefusedBeforeAnyWork) {
+    // --berthing-speed 1e300 was accepted and called every contact alongside: no grounding was
+    // ever reported. Now at most SweepOptions::max_berthing_speed_kn, said like the other bounds.
+    const std::string tracks = good_tracks();
+    const Outcome at = check({tracks}, m_dir.file("at.geojson"), {"--berthing-speed", "5"});
+    EXPECT_TRUE(at.status == 0 || at.status == 1) << at.err;
+    const std::string over_report = m_dir.file("over.geojson");
+    const Outcome over = check({tracks}, over_report, {"--berthing-speed", "5.5"});
+    EXPECT_EQ(over.status, 2) << over.err;
+    EXPECT_NE(over.err.find("--berthing-speed: must be at most 5 (faster is no berthing; got '5.5')"), std::string::npos) << over.err;
+    EXPECT_FALSE(std::filesystem::exists(over_report));
+}
+
+TEST_F(BadInput, ACrowdUnderEncountersListsEachShipsClosestPairsAndCountsEveryOne) {
+    // 2,000 ships in 1 km² wrote 2 million closest approaches and situations (every pair is
+    // within 2 nm) and 33,000 collisions and close quarters: 1.6 GB. Now each ship lists the 20
+    // others it came closest to (--max-encounters-per-ship) and the summary counts the rest: the
+    // listed part grows with the ships. 60 ships in 300 m here, as scripts/make-crowd.py writes.
+    const std::size_t ships = 60, pairs = ships * (ships - 1) / 2;
+    std::string rows = header;
+    unsigned seed = 14;
+    const auto next = [&] { return (seed = seed * 1103515245u + 12345u) / 65536 % 32768 / 32768.0; };
+    for (std::size_t k = 0; k < ships; ++k) {
+        double x = (next() - 0.5) * 300, y = (next() - 0.5) * 300;
+        const double course = 360 * next(), kn = 2 + 6 * next();
+        for (int i = 0; i < 6; ++i) {
+            char row[160];
+            std::snprintf(row, sizeof row, "%zu,2024-05-01T10:00:%02dZ,%.7f,%.7f,%.1f,%.1f,%.0f\n", 200000000 + k, 10 * i, 50.66 + y / 111320.0,
+                          -0.98 + x / (111320.0 * std::cos(50.66 * M_PI / 180)), kn, course, course);
+            rows += row;
+            x += kn * 0.514444 * 10 * std::sin(course * M_PI / 180);
+            y += kn * 0.514444 * 10 * std::cos(course * M_PI / 180);
+        }
+    }
+    const std::string crowd = file("crowd.csv", rows);
+    const auto encounters = [](const nlohmann::json& doc, const char* kind) {
+        return std::count_if(doc["features"].begin(), doc["features"].end(), [&](const nlohmann::json& f) { return f["properties"]["kind"] == kind; });
+    };
+
+    const std::string capped_path = m_dir.file("capped.geojson");
+    const Outcome capped = check({crowd}, capped_path, {"--encounters"});
+    ASSERT_EQ(capped.status, 1) << "collisions\n" << capped.err;
+    EXPECT_NE(capped.err.find("pairs of ships not listed"), std::string::npos) << capped.err;
+    EXPECT_NE(capped.err.find("(--max-encounters-per-ship)"), std::string::npos) << "in the CLI's terms\n" << capped.err;
+    const nlohmann::json c = report(capped_path);
+    const nlohmann::json& cs = c["shoal"]["summary"];
+    EXPECT_EQ(c["shoal"]["max_encounters_per_ship"], 20);
+    const std::size_t listed = c["shoal"]["closest_approaches"].size();
+    EXPECT_LE(listed, 20 * ships) << "at most 20 per ship";
+    EXPECT_GT(cs["pairs_not_listed"].get<std::size_t>(), 0u);
+    EXPECT_EQ(listed + cs["pairs_not_listed"].get<std::size_t>(), pairs) << "every pair is within the encounter range";
+    EXPECT_EQ(cs["situations"], pairs);
+    EXPECT_EQ(encounters(c, "collision") + cs["collisions_not_listed"].get<long>(), cs["collisions"].get<long>());
+    EXPECT_EQ(encounters(c, "close_quarters") + cs["close_quarters_not_listed"].get<long>(), cs["close_quarters"].get<long>());
+    EXPECT_NE(capped.out.find("not listed: " + std::to_string(cs["pairs_not_listed"].get<std::size_t>()) + " pairs"), std::string::npos) << capped.out;
+    EXPECT_NE(capped.out.find("more situations in the report"), std::string::npos) << "the table lists 50\n" << capped.out;
+    EXPECT_LT(capped.out.size(), 40'000u) << "the table is bounded too";
+
+    // 0: no limit, every pair listed; the same counts.
+    const std::string all_path = m_dir.file("all.geojson");
+    const Outcome all = check({crowd}, all_path, {"--encounters", "--max-encounters-per-ship", "0"});
+    ASSERT_EQ(all.status, 1) << all.err;
+    EXPECT_EQ(all.err.find("not listed"), std::string::npos) << all.err;
+    const nlohmann::json a = report(all_path);
+    const nlohmann::json& as = a["shoal"]["summary"];
+    EXPECT_EQ(a["shoal"]["closest_approaches"].size(), pairs);
+    EXPECT_EQ(as["pairs_not_listed"], 0);
+    EXPECT_EQ(as["collisions_not_listed"], 0);
+    for (const char* n : {"collisions", "close_quarters", "situations"}) EXPECT_EQ(as[n], cs[n]) << n;
+    EXPECT_EQ(encounters(a, "collision"), as["collisions"].get<long>());
+    EXPECT_LT(std::filesystem::file_size(capped_path), std::filesystem::file_size(all_path));
 }
 
 }  // namespace

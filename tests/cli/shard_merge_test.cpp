@@ -212,6 +212,19 @@ TEST(ShardMerge, ExercisesByAColumnShardAsWholeExercisesAndMergeToTheSingleRun) 
     EXPECT_EQ(sharded_run(3, "column3", by_column, true, "geojson", exercise_column_file()), one);
 }
 
+TEST(ShardMerge, AnExerciseWhoseShipsListOnlyTheirClosestPairsMergesToTheSingleRun) {
+    // The ten ships of the five files as one exercise, each listing the one other ship it came
+    // closest to: the summary's counts of what is not listed merge like the others.
+    const std::string capped = " --encounters --max-encounters-per-ship 1";
+    const std::string one = single_run("capped", capped, "geojson", exercise_files());
+    const auto doc = nlohmann::json::parse(one);
+    ASSERT_GT(doc["shoal"]["summary"]["pairs_not_listed"].get<int>(), 0) << "the cap leaves pairs out";
+    ASSERT_LE(doc["shoal"]["closest_approaches"].size(), 10u);
+    EXPECT_EQ(sharded_run(3, "capped3", capped, true, "geojson", exercise_files()), one);
+    const std::string gpkg = single_run("capped-gpkg", capped, "gpkg", exercise_files());
+    EXPECT_EQ(sharded_run(3, "capped3-gpkg", capped, true, "gpkg", exercise_files()), gpkg) << "GeoPackage parts";
+}
+
 /// Whether `gpkg` (a GeoPackage) has a layer or table `name`: GDAL's answer.
 bool has_table(const fs::path& gpkg, const std::string& name) {
     GDALAllRegister();

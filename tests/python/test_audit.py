@@ -190,6 +190,12 @@ class AuditAgainstCheck(unittest.TestCase):
             shoal.audit(df, self.grid, dims=DIMS, step_m=0.001)
         with self.assertRaisesRegex(ValueError, "margin_m must be a finite number >= 0"):
             shoal.audit(df, self.grid, dims=DIMS, margin_m=float("nan"))
+        # As the CLI's --berthing-speed: at most SweepOptions::max_berthing_speed_kn (5 kn);
+        # 1e300 called every grounding alongside.
+        with self.assertRaisesRegex(ValueError, r"berthing_speed_kn must be at most 5 \(faster is no berthing; got 1e\+300\)"):
+            shoal.audit(df, self.grid, dims=DIMS, berthing_speed_kn=1e300)
+        with self.assertRaisesRegex(ValueError, "berth_tolerance_m must be at most 1000"):
+            shoal.audit(df, self.grid, dims=DIMS, berth_tolerance_m=1e300)
         with self.assertRaisesRegex(ValueError, "no lat column"):
             shoal.audit(df.drop(columns=["LAT"]), self.grid, dims=DIMS)
         with self.assertRaisesRegex(ValueError, "columns: id column 'mmsi_typo' is not in the DataFrame"):

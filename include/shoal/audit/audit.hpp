@@ -43,6 +43,10 @@ struct AuditOptions {
     const Assessment* assessment = nullptr;
     /// Exercise mode: COLREG situations of the pairs that come within colreg.range_m (colreg.hpp).
     ColregOptions colreg;
+    /// Exercise mode: each ship lists at most this many other ships, the ones it came closest
+    /// to (worst_pairs.hpp), with their collisions, close quarters, closest approach and
+    /// situation; the others are counted (AuditResult::unlisted), not listed. 0: no limit.
+    std::size_t max_encounters_per_ship = 20;
     track::WildFixOptions wild;  ///< what makes a fix an outlier
     /// Areas where contact is expected, and shore constructions; may be null. Must outlive the run.
     const coast::ExpectedAreas* areas = nullptr;
@@ -99,7 +103,14 @@ struct AuditResult {
     /// distance between the reference points).
     std::vector<ColregEncounter> situations;
     std::size_t exercises = 0;  ///< exercise mode: exercises with at least one audited track
-    std::size_t collisions = 0, close_quarters = 0;
+    std::size_t collisions = 0, close_quarters = 0;  ///< every one found, listed or not
+    /// Exercise mode: what AuditOptions::max_encounters_per_ship left out of `encounters` and
+    /// `situations` (counted in `collisions`, `close_quarters` and situations_found).
+    struct Unlisted {
+        std::size_t pairs = 0, collisions = 0, close_quarters = 0, situations = 0;
+        std::size_t approached = 0;  ///< of `pairs`, those that came within the hull-to-hull threshold
+    } unlisted;
+    std::size_t situations_found() const noexcept { return situations.size() + unlisted.situations; }
     double encounters_s = 0;
     /// `--assess`: the trainees' scores and their breaches (has_assessment false: not asked).
     bool has_assessment = false;

@@ -104,5 +104,10 @@ struct ColregEncounter {
 std::vector<ColregEncounter> find_situations(const std::vector<const track::Track*>& tracks, const geo::LocalFrame& frame,
                                              const ColregOptions& options, double max_gap_s,
                                              const std::function<bool(std::size_t, std::size_t)>& wanted = nullptr);
+/// The same, each situation given to `found` as it is judged (by (a, b)) and none kept: for
+/// callers that keep only some (a crowd has a situation for nearly every pair of ships).
+void for_each_situation(const std::vector<const track::Track*>& tracks, const geo::LocalFrame& frame, const ColregOptions& options,
+                        double max_gap_s, const std::function<bool(std::size_t, std::size_t)>& wanted,
+                        const std::function<void(ColregEncounter&)>& found);
 
 }  // namespace shoal::audit

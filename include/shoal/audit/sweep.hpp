@@ -39,8 +39,13 @@ struct SweepOptions {
     /// pose before and after, for the crossings). 0 (default): nothing kept, as before.
     double watch_clearance_m = 0.0;
     /// A contact that begins under this speed (knots) is a vessel berthing or lying alongside,
-    /// not a grounding (berthing approaches are 0.1-0.3 m/s, 0.2-0.6 kn).
+    /// not a grounding (berthing approaches are 0.1-0.3 m/s, 0.2-0.6 kn). At most
+    /// max_berthing_speed_kn.
     double berthing_speed_kn = 1.0;
+    /// The largest berthing_speed_kn front ends accept (knots): berthing is done at well under
+    /// 1-2 kn, and a contact that begins faster is no berthing (a larger value would call every
+    /// grounding alongside).
+    static constexpr double max_berthing_speed_kn = 5.0;
     /// Speed from positions and stops (MotionOptions::max_gap_s is taken from max_gap_s above).
     double speed_window_s = 120.0;
     double stop_diameter_m = 50.0;

@@ -43,6 +43,7 @@ struct RunInfo {
     std::string assessment;           ///< --assess: the assessment file, "" when none
     std::string role_column;          ///< exercise mode: the role column (--role-column), "" when none
     double encounter_range_m = audit::ColregOptions{}.range_m;  ///< exercise mode: COLREG situations within this
+    std::size_t max_encounters_per_ship = audit::AuditOptions{}.max_encounters_per_ship;  ///< exercise mode: 0, no limit
     /// The chart for the GeoPackage's `coast` layer (read_chart); null: no coast layer.
     const coast::Coastline* chart = nullptr;
 };
