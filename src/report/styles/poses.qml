@@ -1,25 +1,25 @@
 <!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>
-<qgis simplifyAlgorithm="0" minScale="100000000" version="3.22.16-Białowieża" simplifyDrawingTol="1" labelsEnabled="0" simplifyLocal="1" simplifyDrawingHints="1" symbologyReferenceScale="-1" styleCategories="AllStyleCategories" hasScaleBasedVisibilityFlag="0" readOnly="0" maxScale="0" simplifyMaxScale="1">
+<qgis styleCategories="AllStyleCategories" simplifyLocal="1" symbologyReferenceScale="-1" labelsEnabled="0" simplifyDrawingHints="1" simplifyDrawingTol="1" readOnly="0" simplifyAlgorithm="0" version="3.22.16-Białowieża" maxScale="0" minScale="250000" hasScaleBasedVisibilityFlag="1" simplifyMaxScale="1">
   <flags>
     <Identifiable>1</Identifiable>
     <Removable>1</Removable>
     <Searchable>1</Searchable>
     <Private>0</Private>
   </flags>
-  <temporal endExpression="" durationUnit="min" startExpression="" enabled="1" limitMode="1" accumulate="0" durationField="" mode="2" startField="time" fixedDuration="0" endField="until">
+  <temporal accumulate="0" mode="2" startField="time" endField="until" startExpression="" fixedDuration="0" enabled="1" endExpression="" durationUnit="min" durationField="" limitMode="1">
     <fixedRange>
       <start></start>
       <end></end>
     </fixedRange>
   </temporal>
-  <renderer-v2 forceraster="0" referencescale="-1" type="RuleRenderer" enableorderby="0" symbollevels="0">
-    <rules key="{ebb4245b-1013-4659-a20f-b405ef019e37}">
-      <rule symbol="0" key="{ce352c5c-e5fb-4e8a-8acb-97c72094cda3}" filter="&quot;contact&quot;" label="hull in contact"/>
-      <rule symbol="1" key="{333256ec-be7d-4bd4-b86d-b70ce96afb00}" filter="&quot;clearance_m&quot; &lt; 50" label="hull within 50 m of a hazard"/>
-      <rule symbol="2" key="{67b088d0-5969-4675-92e9-88197c8aed84}" filter="ELSE" label="hull"/>
+  <renderer-v2 enableorderby="0" type="RuleRenderer" referencescale="-1" forceraster="0" symbollevels="0">
+    <rules key="{5efbda6d-b9a1-41d5-a914-21e4980558ff}">
+      <rule symbol="0" key="{6468ee8d-3f92-4885-971e-3cbcb1410e12}" filter="&quot;contact&quot;" label="hull in contact"/>
+      <rule symbol="1" key="{85916a17-2604-4e5c-b7ea-b0b50a4eb030}" filter="&quot;clearance_m&quot; &lt; 50" label="hull within 50 m of a hazard"/>
+      <rule symbol="2" key="{e4a9f1c7-9726-46ac-922d-2a195ccc8fc8}" filter="ELSE" label="hull"/>
     </rules>
     <symbols>
-      <symbol type="fill" force_rhr="0" name="0" clip_to_extent="1" alpha="1">
+      <symbol type="fill" name="0" alpha="1" force_rhr="0" clip_to_extent="1">
         <data_defined_properties>
           <Option type="Map">
             <Option type="QString" name="name" value=""/>
@@ -27,7 +27,7 @@
             <Option type="QString" name="type" value="collection"/>
           </Option>
         </data_defined_properties>
-        <layer locked="0" pass="0" enabled="1" class="SimpleFill">
+        <layer class="SimpleFill" enabled="1" locked="0" pass="0">
           <Option type="Map">
             <Option type="QString" name="border_width_map_unit_scale" value="3x:0,0,0,0,0,0"/>
             <Option type="QString" name="color" value="227,26,28,150"/>
@@ -41,17 +41,17 @@
             <Option type="QString" name="outline_width_unit" value="MM"/>
             <Option type="QString" name="style" value="solid"/>
           </Option>
-          <prop k="border_width_map_unit_scale" v="3x:0,0,0,0,0,0"/>
-          <prop k="color" v="227,26,28,150"/>
-          <prop k="joinstyle" v="bevel"/>
-          <prop k="offset" v="0,0"/>
-          <prop k="offset_map_unit_scale" v="3x:0,0,0,0,0,0"/>
-          <prop k="offset_unit" v="MM"/>
-          <prop k="outline_color" v="227,26,28,255"/>
-          <prop k="outline_style" v="solid"/>
-          <prop k="outline_width" v="0.4"/>
-          <prop k="outline_width_unit" v="MM"/>
-          <prop k="style" v="solid"/>
+          <prop v="3x:0,0,0,0,0,0" k="border_width_map_unit_scale"/>
+          <prop v="227,26,28,150" k="color"/>
+          <prop v="bevel" k="joinstyle"/>
+          <prop v="0,0" k="offset"/>
+          <prop v="3x:0,0,0,0,0,0" k="offset_map_unit_scale"/>
+          <prop v="MM" k="offset_unit"/>
+          <prop v="227,26,28,255" k="outline_color"/>
+          <prop v="solid" k="outline_style"/>
+          <prop v="0.4" k="outline_width"/>
+          <prop v="MM" k="outline_width_unit"/>
+          <prop v="solid" k="style"/>
           <data_defined_properties>
             <Option type="Map">
               <Option type="QString" name="name" value=""/>
@@ -61,7 +61,7 @@
           </data_defined_properties>
         </layer>
       </symbol>
-      <symbol type="fill" force_rhr="0" name="1" clip_to_extent="1" alpha="1">
+      <symbol type="fill" name="1" alpha="1" force_rhr="0" clip_to_extent="1">
         <data_defined_properties>
           <Option type="Map">
             <Option type="QString" name="name" value=""/>
@@ -69,7 +69,7 @@
             <Option type="QString" name="type" value="collection"/>
           </Option>
         </data_defined_properties>
-        <layer locked="0" pass="0" enabled="1" class="SimpleFill">
+        <layer class="SimpleFill" enabled="1" locked="0" pass="0">
           <Option type="Map">
             <Option type="QString" name="border_width_map_unit_scale" value="3x:0,0,0,0,0,0"/>
             <Option type="QString" name="color" value="255,159,0,130"/>
@@ -83,17 +83,17 @@
             <Option type="QString" name="outline_width_unit" value="MM"/>
             <Option type="QString" name="style" value="solid"/>
           </Option>
-          <prop k="border_width_map_unit_scale" v="3x:0,0,0,0,0,0"/>
-          <prop k="color" v="255,159,0,130"/>
-          <prop k="joinstyle" v="bevel"/>
-          <prop k="offset" v="0,0"/>
-          <prop k="offset_map_unit_scale" v="3x:0,0,0,0,0,0"/>
-          <prop k="offset_unit" v="MM"/>
-          <prop k="outline_color" v="255,159,0,255"/>
-          <prop k="outline_style" v="solid"/>
-          <prop k="outline_width" v="0.4"/>
-          <prop k="outline_width_unit" v="MM"/>
-          <prop k="style" v="solid"/>
+          <prop v="3x:0,0,0,0,0,0" k="border_width_map_unit_scale"/>
+          <prop v="255,159,0,130" k="color"/>
+          <prop v="bevel" k="joinstyle"/>
+          <prop v="0,0" k="offset"/>
+          <prop v="3x:0,0,0,0,0,0" k="offset_map_unit_scale"/>
+          <prop v="MM" k="offset_unit"/>
+          <prop v="255,159,0,255" k="outline_color"/>
+          <prop v="solid" k="outline_style"/>
+          <prop v="0.4" k="outline_width"/>
+          <prop v="MM" k="outline_width_unit"/>
+          <prop v="solid" k="style"/>
           <data_defined_properties>
             <Option type="Map">
               <Option type="QString" name="name" value=""/>
@@ -103,7 +103,7 @@
           </data_defined_properties>
         </layer>
       </symbol>
-      <symbol type="fill" force_rhr="0" name="2" clip_to_extent="1" alpha="1">
+      <symbol type="fill" name="2" alpha="1" force_rhr="0" clip_to_extent="1">
         <data_defined_properties>
           <Option type="Map">
             <Option type="QString" name="name" value=""/>
@@ -111,7 +111,7 @@
             <Option type="QString" name="type" value="collection"/>
           </Option>
         </data_defined_properties>
-        <layer locked="0" pass="0" enabled="1" class="SimpleFill">
+        <layer class="SimpleFill" enabled="1" locked="0" pass="0">
           <Option type="Map">
             <Option type="QString" name="border_width_map_unit_scale" value="3x:0,0,0,0,0,0"/>
             <Option type="QString" name="color" value="51,71,91,110"/>
@@ -125,17 +125,17 @@
             <Option type="QString" name="outline_width_unit" value="MM"/>
             <Option type="QString" name="style" value="solid"/>
           </Option>
-          <prop k="border_width_map_unit_scale" v="3x:0,0,0,0,0,0"/>
-          <prop k="color" v="51,71,91,110"/>
-          <prop k="joinstyle" v="bevel"/>
-          <prop k="offset" v="0,0"/>
-          <prop k="offset_map_unit_scale" v="3x:0,0,0,0,0,0"/>
-          <prop k="offset_unit" v="MM"/>
-          <prop k="outline_color" v="51,71,91,255"/>
-          <prop k="outline_style" v="solid"/>
-          <prop k="outline_width" v="0.4"/>
-          <prop k="outline_width_unit" v="MM"/>
-          <prop k="style" v="solid"/>
+          <prop v="3x:0,0,0,0,0,0" k="border_width_map_unit_scale"/>
+          <prop v="51,71,91,110" k="color"/>
+          <prop v="bevel" k="joinstyle"/>
+          <prop v="0,0" k="offset"/>
+          <prop v="3x:0,0,0,0,0,0" k="offset_map_unit_scale"/>
+          <prop v="MM" k="offset_unit"/>
+          <prop v="51,71,91,255" k="outline_color"/>
+          <prop v="solid" k="outline_style"/>
+          <prop v="0.4" k="outline_width"/>
+          <prop v="MM" k="outline_width_unit"/>
+          <prop v="solid" k="style"/>
           <data_defined_properties>
             <Option type="Map">
               <Option type="QString" name="name" value=""/>
@@ -153,7 +153,7 @@
   <blendMode>0</blendMode>
   <featureBlendMode>0</featureBlendMode>
   <layerOpacity>1</layerOpacity>
-  <geometryOptions removeDuplicateNodes="0" geometryPrecision="0">
+  <geometryOptions geometryPrecision="0" removeDuplicateNodes="0">
     <activeChecks type="StringList">
       <Option type="QString" value=""/>
     </activeChecks>
@@ -162,35 +162,35 @@
   <legend showLabelLegend="0" type="default-vector"/>
   <referencedLayers/>
   <fieldConfiguration>
-    <field name="track" configurationFlags="None">
+    <field configurationFlags="None" name="track">
       <editWidget type="">
         <config>
           <Option/>
         </config>
       </editWidget>
     </field>
-    <field name="clearance_m" configurationFlags="None">
+    <field configurationFlags="None" name="clearance_m">
       <editWidget type="">
         <config>
           <Option/>
         </config>
       </editWidget>
     </field>
-    <field name="contact" configurationFlags="None">
+    <field configurationFlags="None" name="contact">
       <editWidget type="">
         <config>
           <Option/>
         </config>
       </editWidget>
     </field>
-    <field name="time" configurationFlags="None">
+    <field configurationFlags="None" name="time">
       <editWidget type="">
         <config>
           <Option/>
         </config>
       </editWidget>
     </field>
-    <field name="until" configurationFlags="None">
+    <field configurationFlags="None" name="until">
       <editWidget type="">
         <config>
           <Option/>
@@ -199,36 +199,36 @@
     </field>
   </fieldConfiguration>
   <aliases>
-    <alias index="0" field="track" name=""/>
-    <alias index="1" field="clearance_m" name=""/>
-    <alias index="2" field="contact" name=""/>
-    <alias index="3" field="time" name=""/>
-    <alias index="4" field="until" name=""/>
+    <alias field="track" name="" index="0"/>
+    <alias field="clearance_m" name="" index="1"/>
+    <alias field="contact" name="" index="2"/>
+    <alias field="time" name="" index="3"/>
+    <alias field="until" name="" index="4"/>
   </aliases>
   <defaults>
-    <default field="track" applyOnUpdate="0" expression=""/>
-    <default field="clearance_m" applyOnUpdate="0" expression=""/>
-    <default field="contact" applyOnUpdate="0" expression=""/>
-    <default field="time" applyOnUpdate="0" expression=""/>
-    <default field="until" applyOnUpdate="0" expression=""/>
+    <default field="track" expression="" applyOnUpdate="0"/>
+    <default field="clearance_m" expression="" applyOnUpdate="0"/>
+    <default field="contact" expression="" applyOnUpdate="0"/>
+    <default field="time" expression="" applyOnUpdate="0"/>
+    <default field="until" expression="" applyOnUpdate="0"/>
   </defaults>
   <constraints>
-    <constraint unique_strength="0" field="track" constraints="0" exp_strength="0" notnull_strength="0"/>
-    <constraint unique_strength="0" field="clearance_m" constraints="0" exp_strength="0" notnull_strength="0"/>
-    <constraint unique_strength="0" field="contact" constraints="0" exp_strength="0" notnull_strength="0"/>
-    <constraint unique_strength="0" field="time" constraints="0" exp_strength="0" notnull_strength="0"/>
-    <constraint unique_strength="0" field="until" constraints="0" exp_strength="0" notnull_strength="0"/>
+    <constraint constraints="0" notnull_strength="0" field="track" unique_strength="0" exp_strength="0"/>
+    <constraint constraints="0" notnull_strength="0" field="clearance_m" unique_strength="0" exp_strength="0"/>
+    <constraint constraints="0" notnull_strength="0" field="contact" unique_strength="0" exp_strength="0"/>
+    <constraint constraints="0" notnull_strength="0" field="time" unique_strength="0" exp_strength="0"/>
+    <constraint constraints="0" notnull_strength="0" field="until" unique_strength="0" exp_strength="0"/>
   </constraints>
   <constraintExpressions>
-    <constraint desc="" field="track" exp=""/>
-    <constraint desc="" field="clearance_m" exp=""/>
-    <constraint desc="" field="contact" exp=""/>
-    <constraint desc="" field="time" exp=""/>
-    <constraint desc="" field="until" exp=""/>
+    <constraint field="track" exp="" desc=""/>
+    <constraint field="clearance_m" exp="" desc=""/>
+    <constraint field="contact" exp="" desc=""/>
+    <constraint field="time" exp="" desc=""/>
+    <constraint field="until" exp="" desc=""/>
   </constraintExpressions>
   <expressionfields/>
   <attributeactions/>
-  <attributetableconfig sortExpression="" actionWidgetStyle="dropDown" sortOrder="0">
+  <attributetableconfig sortOrder="0" sortExpression="" actionWidgetStyle="dropDown">
     <columns/>
   </attributetableconfig>
   <conditionalstyles>
