@@ -184,6 +184,8 @@ for name, renderer in (("poses", "RuleRenderer"), ("tracks", "RuleRenderer"), ("
     layer = QgsVectorLayer(os.path.join(work, f"solent.{name}.geojson"), name, "ogr")
     msg, ok = layer.loadDefaultStyle()
     check(layer.isValid() and ok and layer.renderer().type() == renderer, f"solent.{name}.geojson: its style solent.{name}.qml ({msg}, {layer.renderer().type()})")
+    del layer  # before exitQgis: a layer that outlives QGIS crashes the interpreter at exit
+project.clear()
 app.exitQgis()
 if failures:
     print(f"{len(failures)} checks failed")

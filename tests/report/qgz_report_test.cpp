@@ -50,7 +50,10 @@ std::string slurp(const fs::path& p) {
     return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-shoal::test::Outcome shoal(const std::string& args) { return shoal::test::run_shoal(args, dir() / "cache", dir() / "stderr.txt"); }
+shoal::test::Outcome shoal(const std::string& args) {
+    GDALAllRegister();  // for the tests' own reading (each test may run alone)
+    return shoal::test::run_shoal(args, dir() / "cache", dir() / "stderr.txt");
+}
 
 /// Two ships in the Solent (as tests/report/qgis_report_test.py): A southwards across the
 /// Isle of Wight (aground), B eastwards clear of land.
