@@ -336,15 +336,18 @@ void stage_project_beside(const std::string& path, const audit::AuditResult& r, 
             return;
         }
     }
+    // Each source names its geometry type (an OGR layer of a GeoJSON file with no feature has
+    // none, and QGIS would open it as a table, dropping it from the map).
     const std::string name = std::filesystem::path(path).filename().string();
-    std::vector<ProjectLayer> layers{{"events", "Point", "./" + name}};
+    std::vector<ProjectLayer> layers{{"events", "Point", "./" + name + "|geometrytype=Point"}};
     for (const auto& l : f.layers) {
         if (l.which == MapLayer::coast && !info.chart) continue;
         out.push_back(stage_layer_file(l.geojson, l.which, r, info));
         std::string warning;  // checked above: shoal's, or none
         if (std::optional<StagedOutput> s = stage_sidecar_style(l.qml, name_of(l.which), warning)) out.push_back(std::move(*s));
+        const char* type = l.which == MapLayer::tracks ? "MultiLineString" : l.which == MapLayer::coast ? "MultiPolygon" : "Polygon";
         layers.push_back({name_of(l.which), l.which == MapLayer::tracks ? "Line" : "Polygon",
-                          "./" + std::filesystem::path(l.geojson).filename().string()});
+                          "./" + std::filesystem::path(l.geojson).filename().string() + "|geometrytype=" + type});
     }
     StagedOutput qgz(f.qgz);
     qgz.write(qgz_of(f.qgs_member, qgis_project_xml(layers, name, project_view(r))));

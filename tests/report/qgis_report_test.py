@@ -175,7 +175,7 @@ def check_project(uri, tag):
 check_project(f"geopackage:{gpkg}?projectName=shoal", "gpkg")
 check_project(qgz, "geojson")
 # The GeoJSON project's layers are the files beside the report, by relative path.
-sources = sorted(os.path.basename(l.source()) for l in project.mapLayers().values())
+sources = sorted(os.path.basename(l.source().split("|")[0]) for l in project.mapLayers().values())
 check(sources == ["solent.coast.geojson", "solent.geojson", "solent.hulls.geojson", "solent.poses.geojson", "solent.tracks.geojson"],
       f"the .qgz's layers are the files beside the report: {sources}")
 # Each layer file opened alone in QGIS gets its style from the .qml beside it.
@@ -185,6 +185,26 @@ for name, renderer in (("poses", "RuleRenderer"), ("tracks", "RuleRenderer"), ("
     msg, ok = layer.loadDefaultStyle()
     check(layer.isValid() and ok and layer.renderer().type() == renderer, f"solent.{name}.geojson: its style solent.{name}.qml ({msg}, {layer.renderer().type()})")
     del layer  # before exitQgis: a layer that outlives QGIS crashes the interpreter at exit
+project.clear()
+
+# A run with no event (ship B alone, clear of land): the report's events and the hulls file are
+# empty, and still map layers of their geometry (an empty GeoJSON has no geometry type of its own).
+clear_tracks = os.path.join(work, "clear-tracks.csv")
+with open(clear_tracks, "w") as f:
+    f.write("mmsi,timestamp,lat,lon,sog,cog,heading\n")
+    for i in range(11):
+        f.write(f"222222222,2024-05-01T10:{i:02d}:00Z,50.7000,{-1.05 + 0.002 * i:.4f},8,90,90\n")
+clear = os.path.join(work, "clear.geojson")
+run = subprocess.run([shoal, "check", "--coast", os.path.join(data, "coast", "uk_solent_land.geojson"), "--dims", "50,10,5,5",
+                      clear_tracks, "-o", clear], capture_output=True, text=True)
+check(run.returncode == 0, f"shoal check -o clear.geojson exits 0: {run.returncode} {run.stderr.strip()[-300:]}")
+check(project.read(os.path.join(work, "clear.qgz")), "QGIS reads clear.qgz")
+layers = {l.name(): l for l in project.mapLayers().values()}
+check(sorted(layers) == ["coast", "events", "hulls", "poses", "tracks"] and all(l.isValid() for l in layers.values()),
+      f"every layer of clear.qgz is valid: {[(n, l.isValid(), l.featureCount()) for n, l in layers.items()]}")
+check(layers["events"].featureCount() == 0 and layers["events"].geometryType() == 0 and layers["hulls"].geometryType() == 2,
+      f"no event: events a Point layer ({layers['events'].geometryType()}), hulls a Polygon one ({layers['hulls'].geometryType()}), both empty")
+del layers
 project.clear()
 app.exitQgis()
 if failures:
