@@ -250,6 +250,32 @@ TEST(PosesInterval, ACoarserIntervalKeepsFewerPosesAndZeroEveryFix) {
     EXPECT_GE(coarse, 4) << "first and last fix of each track at least";
 }
 
+TEST(ShardMerge, WithNoProjectOrAPosesIntervalTheMergeIsTheSingleRunByteForByte) {
+    // The thinning and the outline depend on the track and the options only: shards merge to one run's bytes.
+    for (const std::string& options : {std::string("--no-project"), std::string("--poses-interval 0"), std::string("--poses-interval 600")}) {
+        SCOPED_TRACE(options);
+        const fs::path single = dir() / "single", merged = dir() / "merged";
+        fs::create_directories(single);
+        fs::create_directories(merged);
+        ASSERT_EQ(shoal(check_args(single / "r.gpkg", options)).status, 1);
+        for (int i = 0; i < 2; ++i)
+            ASSERT_EQ(shoal(check_args(dir() / ("part" + std::to_string(i) + ".gpkg"), options + " --shard " + std::to_string(i) + "/2")).status < 2, true);
+        const auto m = shoal("merge '" + (dir() / "part0.gpkg").string() + "' '" + (dir() / "part1.gpkg").string() + "' -o '" +
+                             (merged / "r.gpkg").string() + "'");
+        ASSERT_EQ(m.status, 1) << m.err;
+        EXPECT_TRUE(slurp(single / "r.gpkg") == slurp(merged / "r.gpkg")) << "the merged GeoPackage is the single run's";
+    }
+    // A merged GeoJSON report has its style beside it, but no project (docs/user-guide.md, shoal merge).
+    for (int i = 0; i < 2; ++i)
+        ASSERT_LT(shoal(check_args(dir() / ("gpart" + std::to_string(i) + ".geojson"), "--shard " + std::to_string(i) + "/2")).status, 2);
+    EXPECT_FALSE(fs::exists(dir() / "gpart0.qgz")) << "a shard's GeoJSON part gets no project";
+    const auto m = shoal("merge '" + (dir() / "gpart0.geojson").string() + "' '" + (dir() / "gpart1.geojson").string() + "' -o '" +
+                         (dir() / "gmerged.geojson").string() + "'");
+    ASSERT_EQ(m.status, 1) << m.err;
+    EXPECT_TRUE(fs::exists(dir() / "gmerged.qml"));
+    EXPECT_FALSE(fs::exists(dir() / "gmerged.qgz"));
+}
+
 // --- the simplified pose outline, against GEOS ---
 
 std::vector<shoal::geo::LonLat> ring_at(const shoal::hull::Hull& h, double lat0, double heading_deg) {
