@@ -265,6 +265,13 @@ TEST(ShardMerge, WithNoProjectOrAPosesIntervalTheMergeIsTheSingleRunByteForByte)
         ASSERT_EQ(m.status, 1) << m.err;
         EXPECT_TRUE(slurp(single / "r.gpkg") == slurp(merged / "r.gpkg")) << "the merged GeoPackage is the single run's";
     }
+    // Parts made with another interval are not one run's (the run header's poses_interval_s).
+    ASSERT_LT(shoal(check_args(dir() / "other1.gpkg", "--poses-interval 600 --shard 1/2")).status, 2);
+    ASSERT_LT(shoal(check_args(dir() / "other0.gpkg", "--shard 0/2")).status, 2);
+    const auto mixed = shoal("merge '" + (dir() / "other0.gpkg").string() + "' '" + (dir() / "other1.gpkg").string() + "' -o '" +
+                             (dir() / "mixed.gpkg").string() + "'");
+    EXPECT_EQ(mixed.status, 2);
+    EXPECT_NE(mixed.err.find("'poses_interval_s' is 120.0 in"), std::string::npos) << mixed.err;
     // A merged GeoJSON report has its style beside it, but no project (docs/user-guide.md, shoal merge).
     for (int i = 0; i < 2; ++i)
         ASSERT_LT(shoal(check_args(dir() / ("gpart" + std::to_string(i) + ".geojson"), "--shard " + std::to_string(i) + "/2")).status, 2);
