@@ -136,6 +136,15 @@ public:
                           "Fastest plausible speed, knots: a fix that implies more against its neighbours is dropped as an "
                           "outlier, a jump that persists starts a new piece of track (default 60)")
             ->check(finite)->check(positive);
+        // The report's map for QGIS (issue 17).
+        m_sub->add_option("--poses-interval", m_poses_interval_s,
+                          "The poses layer (the hull along each track, for replaying the run in QGIS): a fix is kept when this "
+                          "many seconds have passed and the ship moved 300 m since the last kept one, or max(900, this) seconds "
+                          "passed; state changes and piece ends always. 0: every fix (default 120)")
+            ->check(finite)->check(non_negative)->check(at_most(max_poses_interval_s, "a day"));
+        m_sub->add_flag("--no-project", m_no_project,
+                        "The events only, for QGIS: no poses layer, no coast (chart) layer and no QGIS project (a GeoPackage's "
+                        "stored project; REPORT.qgz and its layer files beside a GeoJSON report)");
         m_sub->add_option("--plot", m_plot, "Also draw the run as an SVG picture: overview and zoomed panels, groundings first");
         m_sub->add_option("--debrief", m_debrief,
                           "Also write the instructor's debrief: FOLDER (created if missing) receives one self-contained HTML page "
@@ -157,11 +166,13 @@ public:
         const std::string format = !m_format.empty() ? m_format
                                    : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
         // Every output, checked before any work: none is an input or another output.
-        std::vector<OutputSpec> outputs = report::report_outputs(m_output, format);
+        std::vector<OutputSpec> outputs = report::report_outputs(m_output, format, !m_no_project);
         if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
         check_outputs(outputs, all_inputs);
         if (!m_debrief.empty()) report::check_debrief_folder(m_debrief);
         if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
+        m_audit.sweep.pose_interval_s = m_poses_interval_s;
+        m_audit.sweep.pose_max_interval_s = std::max(audit::SweepOptions{}.pose_max_interval_s, m_poses_interval_s);
         audit::check_step(m_audit.sweep.step_m);
         // Exercises and roles (issue 18): either option turns exercise mode on.
         if (!m_exercise_by.empty()) {
@@ -242,9 +253,13 @@ public:
                                                       m_audit, m_berths, hull.draught());
         info.roles = m_roles_file;
         info.assessment = m_assess_file;
-        // The chart under the run (the GeoPackage's coast layer): the grid's sources read again.
+        info.project = !m_no_project;
+        // The chart under the run (the coast layer), the grid's sources read again: for a
+        // GeoPackage, and for a GeoJSON report whose project files go beside it (not on stdout
+        // or a device: report_outputs lists more than the report and its style; not a shard).
+        const bool geojson_project = format != "gpkg" && !r.shard.active() && report::report_outputs(m_output, format).size() > 2;
         std::optional<coast::Coastline> chart;
-        if (format == "gpkg") {
+        if (info.project && (format == "gpkg" || geojson_project)) {
             std::string chart_warning;
             chart = report::read_chart(m_opts.coast, g, chart_warning);
             if (chart) info.chart = &*chart;
@@ -332,6 +347,9 @@ private:
     std::vector<std::string> m_vessel_files;
     std::map<std::string, track::VesselInfo> m_vessels;
     double m_berth_tolerance_m = 10.0;
+    static constexpr double max_poses_interval_s = 86400;
+    double m_poses_interval_s = audit::SweepOptions{}.pose_interval_s;
+    bool m_no_project = false;
     audit::AuditOptions m_audit;
     std::string m_exercise_by;  // exercises and roles (issue 18)
     std::string m_roles_file;

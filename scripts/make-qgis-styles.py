@@ -31,10 +31,24 @@ ORANGE_RED = "#d7301f"
 VIOLET_TRACK = "#8a76b8"  # as in the --plot picture
 
 
-def labels(field, placement):
+# Scales (1:N) that keep a large report quick to draw (docs/performance.md, "The report in
+# QGIS: 10,000 tracks"): track labels only when zoomed in closer than 1:50,000, and the hull
+# poses only closer than 1:250,000 (a 100 m hull is 0.4 mm there); no layer draws more
+# than 2,000 labels.
+TRACK_LABELS_SCALE, POSES_SCALE, MAX_LABELS = 50000, 250000, 2000
+
+
+def labels(field, placement, zoomed_in_from=None):
+    """Labels of `field`; with `zoomed_in_from` (a scale 1:N), only at that scale and closer."""
     s = QgsPalLayerSettings()
     s.fieldName = field
     s.placement = placement
+    s.limitNumLabels = True
+    s.maxNumLabels = MAX_LABELS
+    if zoomed_in_from:
+        s.scaleVisibility = True
+        s.minimumScale = zoomed_in_from  # the most zoomed-out scale at which labels are drawn
+        s.maximumScale = 0
     fmt = QgsTextFormat()
     fmt.setFont(QFont("Sans Serif", 9))
     fmt.setSize(9)
@@ -163,7 +177,7 @@ for expr, colour, label in (('"groundings" > 0', RED, "aground"),
         rule.setIsElse(True)
     root.appendChild(rule)
 tracks.setRenderer(QgsRuleBasedRenderer(root))
-tracks.setLabeling(labels("track", QgsPalLayerSettings.Line))
+tracks.setLabeling(labels("track", QgsPalLayerSettings.Line, TRACK_LABELS_SCALE))
 tracks.setLabelsEnabled(True)
 save(tracks, "tracks")
 
@@ -182,20 +196,25 @@ for expr, fill, colour, label in (('"contact"', "227,26,28,150", RED, "hull in c
     root.appendChild(rule)
 poses.setRenderer(QgsRuleBasedRenderer(root))
 temporal(poses, "time", "until")
+poses.setScaleBasedVisibility(True)
+poses.setMinimumScale(POSES_SCALE)  # the most zoomed-out scale at which the layer is drawn
+poses.setMaximumScale(0)
 save(poses, "poses")
 
 # coast: the chart under the run, coloured as on a paper chart: land buff, drying green,
 # shallow water in blues (darker the shallower), dangers purple hatched. Not temporal. No
-# outlines: the layer is cut into tiles, and outlined tiles would draw their seams.
+# outlines: the layer is cut into tiles, and outlined tiles would draw their seams. The depth is
+# read with to_real(): beside a GeoJSON report, a coast of land only has depth_m all null,
+# which OGR types as text (a filter comparing it with a number would fail in OGR).
 coast = QgsVectorLayer("MultiPolygon?crs=EPSG:4326&field=tile:string&field=kind:string&field=danger:string&field=depth_m:double",
                        "coast", "memory")
 root = QgsRuleBasedRenderer.Rule(None)
 for expr, fill, colour, style, label in (
         ("\"kind\" = 'land'", "#f3e3b5", "#9c8650", "solid", "land"),
-        ("\"kind\" = 'shallow' AND \"depth_m\" < 0", "#b9d3a0", "#6f8f5a", "solid", "dries"),
-        ("\"kind\" = 'shallow' AND \"depth_m\" < 2", "#6fa8d6", "#4a7fa8", "solid", "shallow, under 2 m"),
-        ("\"kind\" = 'shallow' AND \"depth_m\" < 5", "#98c2e4", "#4a7fa8", "solid", "shallow, 2 to 5 m"),
-        ("\"kind\" = 'shallow' AND \"depth_m\" >= 5", "#c3dcf0", "#4a7fa8", "solid", "shallow, 5 m or more (under the limiting depth)"),
+        ("\"kind\" = 'shallow' AND to_real(\"depth_m\") < 0", "#b9d3a0", "#6f8f5a", "solid", "dries"),
+        ("\"kind\" = 'shallow' AND to_real(\"depth_m\") < 2", "#6fa8d6", "#4a7fa8", "solid", "shallow, under 2 m"),
+        ("\"kind\" = 'shallow' AND to_real(\"depth_m\") < 5", "#98c2e4", "#4a7fa8", "solid", "shallow, 2 to 5 m"),
+        ("\"kind\" = 'shallow' AND to_real(\"depth_m\") >= 5", "#c3dcf0", "#4a7fa8", "solid", "shallow, 5 m or more (under the limiting depth)"),
         ("\"kind\" = 'shallow'", "#98c2e4", "#4a7fa8", "dense4", "shallow, depth not charted"),
         ("\"kind\" = 'danger'", "#6a3d9a", "#3f1f66", "bdiagonal", "danger (rock, wreck, obstruction)")):
     sym = QgsFillSymbol.createSimple({"color": fill, "outline_color": colour, "outline_style": "no", "style": style})

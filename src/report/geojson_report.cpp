@@ -1,3 +1,5 @@
+#include <gdal_priv.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,11 +12,14 @@
 
 #include "detail/qgis_styles.hpp"
 #include "report/geojson_output.hpp"
+#include "report/gpkg_output.hpp"
+#include "report/qgis_project.hpp"
 #include "report/part_order.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/version.hpp>
 #include <shoal/track/time.hpp>
+#include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 
 namespace shoal::report {
@@ -251,12 +256,48 @@ std::string style_path(const std::string& report) {
     return std::filesystem::path(report).replace_extension(".qml").string();
 }
 
+/// The files of a GeoJSON report's QGIS project beside REPORT.geojson: REPORT.qgz (holding
+/// REPORT.qgs), and for each map layer it lacks REPORT.LAYER.geojson and REPORT.LAYER.qml.
+struct ProjectFiles {
+    std::string qgz, qgs_member;
+    struct Layer {
+        MapLayer which;
+        std::string geojson, qml;
+    };
+    std::vector<Layer> layers;
+};
+
+constexpr MapLayer side_layers[] = {MapLayer::hulls, MapLayer::poses, MapLayer::tracks, MapLayer::coast};  // top of the map first
+
+ProjectFiles project_files(const std::string& report) {
+    ProjectFiles f;
+    const std::filesystem::path p(report);
+    f.qgz = std::filesystem::path(p).replace_extension(".qgz").string();
+    f.qgs_member = p.stem().string() + ".qgs";
+    for (MapLayer l : side_layers) {
+        const std::string name = name_of(l);
+        f.layers.push_back({l, std::filesystem::path(p).replace_extension("." + name + ".geojson").string(),
+                            std::filesystem::path(p).replace_extension("." + name + ".qml").string()});
+    }
+    return f;
+}
+
 }  // namespace
 
-std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format) {
+std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project) {
     std::vector<OutputSpec> out{{path, "-o", "the report"}};
-    if (format != "gpkg")
-        if (std::string style = style_path(path); !style.empty()) out.push_back({std::move(style), "-o", "the QGIS style of the report"});
+    if (format == "gpkg") return out;
+    if (std::string style = style_path(path); !style.empty()) {
+        out.push_back({std::move(style), "-o", "the QGIS style of the report"});
+        if (project) {
+            const ProjectFiles f = project_files(path);
+            out.push_back({f.qgz, "-o", "the QGIS project of the report"});
+            for (const auto& l : f.layers) {
+                out.push_back({l.geojson, "-o", std::string("the ") + name_of(l.which) + " layer of the report"});
+                out.push_back({l.qml, "-o", std::string("the QGIS style of the ") + name_of(l.which) + " layer"});
+            }
+        }
+    }
     return out;
 }
 
@@ -272,6 +313,64 @@ void stage_style_beside(const std::string& path, std::vector<StagedOutput>& out,
     }
 }
 
+/// A map layer of the report as GeoJSON at `path` (RFC 7946, through GDAL's GeoJSON driver),
+/// marked as shoal's in its "description".
+StagedOutput stage_layer_file(const std::string& path, MapLayer which, const audit::AuditResult& r, const RunInfo& info) {
+    GDALAllRegister();
+    StagedOutput out(path);
+    if (out.direct()) throw InputError("cannot write '" + path + "': the layer files of a QGIS project must be regular files");
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GeoJSON");
+    if (!drv) throw LibraryError("GDAL has no GeoJSON driver");
+    CPLErrorReset();
+    GDALDatasetUniquePtr ds(drv->Create(out.temp_path().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+    if (!ds) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
+    const std::string mark = "DESCRIPTION=" + std::string(sidecar_mark);
+    const char* const options[] = {"RFC7946=YES", mark.c_str(), nullptr};
+    write_map_layer(*ds, which, r, info, options);
+    CPLErrorReset();
+    ds.reset();  // GDALClose: writes the file out
+    if (CPLGetLastErrorType() == CE_Failure) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
+    return out;
+}
+
+/// The QGIS project REPORT.qgz beside a GeoJSON report and the layer files it opens, unless
+/// one of those files exists that shoal did not write (a warning then, and none is staged).
+void stage_project_beside(const std::string& path, const audit::AuditResult& r, const RunInfo& info, std::vector<StagedOutput>& out,
+                          std::vector<std::string>* warnings) {
+    // A shard's part gets none: merge does not read one (docs/user-guide.md, shoal merge).
+    if (!info.project || r.shard.active() || style_path(path).empty()) return;
+    const ProjectFiles f = project_files(path);
+    std::vector<std::string> files{f.qgz};
+    for (const auto& l : f.layers) files.insert(files.end(), {l.geojson, l.qml});
+    for (const std::string& file : files) {
+        std::error_code ec;
+        if (!std::filesystem::exists(file, ec)) continue;
+        const bool ours = file == f.qgz ? is_shoal_qgz(file, f.qgs_member) : is_shoal_sidecar(file);
+        if (!ours) {
+            if (warnings)
+                warnings->push_back("'" + file + "' exists and was not written by shoal: left as it is, so the report has no QGIS project " +
+                                    f.qgz + " beside it (move that file, or write the report elsewhere)");
+            return;
+        }
+    }
+    // Each source names its geometry type (an OGR layer of a GeoJSON file with no feature has
+    // none, and QGIS would open it as a table, dropping it from the map).
+    const std::string name = std::filesystem::path(path).filename().string();
+    std::vector<ProjectLayer> layers{{"events", "Point", "./" + name + "|geometrytype=Point"}};
+    for (const auto& l : f.layers) {
+        if (l.which == MapLayer::coast && !info.chart) continue;
+        out.push_back(stage_layer_file(l.geojson, l.which, r, info));
+        std::string warning;  // checked above: shoal's, or none
+        if (std::optional<StagedOutput> s = stage_sidecar_style(l.qml, name_of(l.which), warning)) out.push_back(std::move(*s));
+        const char* type = l.which == MapLayer::tracks ? "MultiLineString" : l.which == MapLayer::coast ? "MultiPolygon" : "Polygon";
+        layers.push_back({name_of(l.which), l.which == MapLayer::tracks ? "Line" : "Polygon",
+                          "./" + std::filesystem::path(l.geojson).filename().string() + "|geometrytype=" + type});
+    }
+    StagedOutput qgz(f.qgz);
+    qgz.write(qgz_of(f.qgs_member, qgis_project_xml(layers, name, project_view(r))));
+    out.push_back(std::move(qgz));
+}
+
 }  // namespace
 
 std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
@@ -280,6 +379,7 @@ std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::Au
     out.emplace_back(path);
     out.back().write_streamed([&](const StagedOutput::Sink& sink) { write_report(result, info, sink); });
     stage_style_beside(path, out, warnings);
+    stage_project_beside(path, result, info, out, warnings);
     return out;
 }
 

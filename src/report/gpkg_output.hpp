@@ -1,11 +1,14 @@
 #pragma once
 // The GeoPackage report's frame, one for `check` (stage_gpkg) and `merge`: how the file is
 // created, its layers (in the order they are created and filled), its QGIS styles and project.
+#include <cpl_port.h>
+
 #include <functional>
 #include <string>
 
 #include "report/qgis_project.hpp"
 #include <shoal/audit/audit.hpp>
+#include <shoal/report/report.hpp>
 #include <shoal/util/output_file.hpp>
 
 class GDALDataset;
@@ -26,13 +29,23 @@ struct GpkgLayers {
 
 /// Creates the empty layers of a report of the shape of `shape` (exercise mode:
 /// has_encounters; --assess: has_assessment; a shard: shard), each with the fields report_fields.hpp lists for it; the
-/// `coast` layer when `chart`.
-GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& shape, bool chart);
+/// `coast` layer when `chart`, the `poses` layer when `poses`.
+GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& shape, bool chart, bool poses);
+
+/// The map layers a GeoJSON report lacks (it holds the events), each written into a file of
+/// its own beside it (report/geojson_output.hpp) by the GeoPackage's code: the same fields,
+/// rows and geometries.
+enum class MapLayer { tracks, hulls, poses, coast };
+/// "tracks", "hulls", "poses", "coast": the layer's name and its style's.
+const char* name_of(MapLayer which) noexcept;
+/// Creates layer `which` in `ds` (EPSG:4326, layer creation `options`) and writes its rows
+/// for `result` (the coast: from `info.chart`, which must be set).
+void write_map_layer(GDALDataset& ds, MapLayer which, const audit::AuditResult& result, const RunInfo& info, CSLConstList options);
 
 /// A GeoPackage report staged at `path`: created as every report is (a fixed "current date":
 /// the same rows, the same bytes), filled by `fill` (make_gpkg_layers, then the rows in one
-/// transaction), then given its QGIS styles and project (`view`). Throws InputError when
-/// `path` is not a regular file or cannot be written.
-StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(GDALDataset&)>& fill, const ProjectView& view);
+/// transaction), then given its QGIS styles and project (`view`; null: no project, --no-project).
+/// Throws InputError when `path` is not a regular file or cannot be written.
+StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(GDALDataset&)>& fill, const ProjectView* view);
 
 }  // namespace shoal::report

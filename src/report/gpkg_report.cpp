@@ -8,6 +8,7 @@
 #include "report/chart_layer.hpp"
 #include "report/gpkg_output.hpp"
 #include "report/part_order.hpp"
+#include "report/pose_outline.hpp"
 #include "report/qgis_project.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
@@ -35,12 +36,12 @@ OGRFieldType ogr_type(fields::Type t) {
 /// present in this run, in the table's order.
 template <class Row>
 OGRLayer& make_layer(GDALDataset& ds, const char* name, OGRwkbGeometryType type, const std::vector<Field<Row>>& table,
-                     const audit::AuditResult& r) {
+                     const audit::AuditResult& r, CSLConstList options = nullptr) {
     OGRSpatialReference wgs84;
     wgs84.importFromEPSG(4326);
     wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    OGRLayer* l = ds.CreateLayer(name, type == wkbNone ? nullptr : &wgs84, type, nullptr);
-    if (!l) throw LibraryError(std::string("creating GeoPackage layer ") + name + ": " + CPLGetLastErrorMsg());
+    OGRLayer* l = ds.CreateLayer(name, type == wkbNone ? nullptr : &wgs84, type, const_cast<char**>(options));
+    if (!l) throw LibraryError(std::string("creating layer ") + name + ": " + CPLGetLastErrorMsg());
     for (const auto& f : table) {
         if (f.present && !f.present(r)) continue;
         OGRFieldDefn d(f.name, ogr_type(f.type));
@@ -80,9 +81,65 @@ OGRPoint point(geo::LonLat p) {
     return OGRPoint(round_to(p.lon, coordinate_decimals), round_to(p.lat, coordinate_decimals));
 }
 
+void fill_tracks(OGRLayer& tracks, const audit::AuditResult& r) {
+    for (const auto& t : fields::track_rows(r)) {
+        OGRMultiLineString ml;
+        for (const auto& piece : t.track.lines) {
+            OGRLineString ls;
+            for (const auto& p : piece) ls.addPoint(p.lon, p.lat);
+            if (ls.getNumPoints() == 1) ls.addPoint(piece[0].lon, piece[0].lat);
+            ml.addGeometry(&ls);
+        }
+        put(tracks, fields::track_fields(), t, r, &ml);
+    }
+}
+
+void fill_hulls(OGRLayer& hulls, const audit::AuditResult& r) {
+    for (const auto& h : fields::hull_rows(r)) {
+        OGRLinearRing ring;
+        for (const auto& p : h.ring) ring.addPoint(p.lon, p.lat);
+        OGRPolygon poly;
+        poly.addRing(&ring);
+        put(hulls, fields::hull_fields(), h, r, &poly);
+    }
+}
+
+void fill_poses(OGRLayer& poses, const audit::AuditResult& r) {
+    for (const auto& t : r.tracks)
+        for (const auto& p : t.poses) {
+            OGRLinearRing ring;
+            for (const auto& q : pose_outline(p.hull)) ring.addPoint(q.lon, q.lat);
+            OGRPolygon poly;
+            poly.addRing(&ring);
+            put(poses, fields::pose_fields(), fields::PoseRow{t.summary, p}, r, &poly);
+        }
+}
+
+void fill_coast(OGRLayer& coast, const audit::AuditResult& r, const coast::Coastline& chart) {
+    std::vector<std::vector<geo::LonLat>> lines;
+    for (const auto& t : r.tracks) lines.insert(lines.end(), t.summary.lines.begin(), t.summary.lines.end());
+    for (const ChartFeature& c : chart_features(chart, tiles_near(lines))) {
+        OGRMultiPolygon mp;
+        for (const auto& rings : c.polygons) {
+            OGRPolygon poly;
+            for (const auto& ring : rings) {
+                OGRLinearRing lr;
+                for (const auto& q : ring) lr.addPoint(q.lon, q.lat);
+                poly.addRing(&lr);
+            }
+            mp.addGeometry(&poly);
+        }
+        const fields::CoastRow row{tile_key(c.tile), coast::to_string(c.kind), coast::to_string(c.danger),
+                                   c.kind == coast::HazardKind::land ? NAN : c.depth_m};
+        put(coast, fields::coast_fields(), row, r, &mp);
+    }
+}
+
+bool with_chart(const RunInfo& info) { return info.project && info.chart != nullptr; }
+
 void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& info) {
-    const GpkgLayers layers = make_gpkg_layers(ds, r, info.chart != nullptr);
-    OGRLayer &events = *layers.events, &tracks = *layers.tracks, &hulls = *layers.hulls, &poses = *layers.poses, &problems = *layers.problems,
+    const GpkgLayers layers = make_gpkg_layers(ds, r, with_chart(info), info.project);
+    OGRLayer &events = *layers.events, &tracks = *layers.tracks, &hulls = *layers.hulls, &problems = *layers.problems,
              &run = *layers.run, &summary = *layers.summary;
     OGRLayer *coast = layers.coast, *encounters = layers.encounters, *approaches = layers.approaches;
 
@@ -101,50 +158,10 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
             const OGRPoint pt = point({b.lon, b.lat});
             put(*layers.breaches, fields::breach_fields(), fields::BreachRow{r, b}, r, &pt);
         }
-    for (const auto& t : fields::track_rows(r)) {
-        OGRMultiLineString ml;
-        for (const auto& piece : t.track.lines) {
-            OGRLineString ls;
-            for (const auto& p : piece) ls.addPoint(p.lon, p.lat);
-            if (ls.getNumPoints() == 1) ls.addPoint(piece[0].lon, piece[0].lat);
-            ml.addGeometry(&ls);
-        }
-        put(tracks, fields::track_fields(), t, r, &ml);
-    }
-    for (const auto& h : fields::hull_rows(r)) {
-        OGRLinearRing ring;
-        for (const auto& p : h.ring) ring.addPoint(p.lon, p.lat);
-        OGRPolygon poly;
-        poly.addRing(&ring);
-        put(hulls, fields::hull_fields(), h, r, &poly);
-    }
-    for (const auto& t : r.tracks)
-        for (const auto& p : t.poses) {
-            OGRLinearRing ring;
-            for (const auto& q : p.hull) ring.addPoint(q.lon, q.lat);
-            OGRPolygon poly;
-            poly.addRing(&ring);
-            put(poses, fields::pose_fields(), fields::PoseRow{t.summary, p}, r, &poly);
-        }
-    if (coast) {
-        std::vector<std::vector<geo::LonLat>> lines;
-        for (const auto& t : r.tracks) lines.insert(lines.end(), t.summary.lines.begin(), t.summary.lines.end());
-        for (const ChartFeature& c : chart_features(*info.chart, tiles_near(lines))) {
-            OGRMultiPolygon mp;
-            for (const auto& rings : c.polygons) {
-                OGRPolygon poly;
-                for (const auto& ring : rings) {
-                    OGRLinearRing lr;
-                    for (const auto& q : ring) lr.addPoint(q.lon, q.lat);
-                    poly.addRing(&lr);
-                }
-                mp.addGeometry(&poly);
-            }
-            const fields::CoastRow row{tile_key(c.tile), coast::to_string(c.kind), coast::to_string(c.danger),
-                                       c.kind == coast::HazardKind::land ? NAN : c.depth_m};
-            put(*coast, fields::coast_fields(), row, r, &mp);
-        }
-    }
+    fill_tracks(tracks, r);
+    fill_hulls(hulls, r);
+    if (layers.poses) fill_poses(*layers.poses, r);
+    if (coast) fill_coast(*coast, r, *info.chart);
     for (const auto& p : fields::problem_rows(r)) put(problems, fields::problem_fields(), p, r, nullptr);
     if (approaches)
         for (const auto& a : r.encounters.approaches) put(*approaches, fields::approach_fields(), fields::ApproachRow{r, a}, r, nullptr);
@@ -162,12 +179,12 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
 
 }  // namespace
 
-GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& r, bool chart) {
+GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& r, bool chart, bool poses) {
     GpkgLayers l;
     l.events = &make_layer(ds, "events", wkbPoint, fields::event_fields(), r);
     l.tracks = &make_layer(ds, "tracks", wkbMultiLineString, fields::track_fields(), r);
     l.hulls = &make_layer(ds, "hulls", wkbPolygon, fields::hull_fields(), r);
-    l.poses = &make_layer(ds, "poses", wkbPolygon, fields::pose_fields(), r);
+    if (poses) l.poses = &make_layer(ds, "poses", wkbPolygon, fields::pose_fields(), r);
     if (chart) l.coast = &make_layer(ds, "coast", wkbMultiPolygon, fields::coast_fields(), r);
     // Exercise mode: ship-to-ship encounters, their own layer (hull footprints of both ships
     // go into `hulls` with kind collision / close_quarters).
@@ -187,7 +204,30 @@ GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& r, bool c
     return l;
 }
 
-StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(GDALDataset&)>& fill, const ProjectView& view) {
+const char* name_of(MapLayer which) noexcept {
+    switch (which) {
+        case MapLayer::tracks: return "tracks";
+        case MapLayer::hulls: return "hulls";
+        case MapLayer::poses: return "poses";
+        case MapLayer::coast: return "coast";
+    }
+    return "";
+}
+
+void write_map_layer(GDALDataset& ds, MapLayer which, const audit::AuditResult& r, const RunInfo& info, CSLConstList options) {
+    const char* name = name_of(which);
+    switch (which) {
+        case MapLayer::tracks: fill_tracks(make_layer(ds, name, wkbMultiLineString, fields::track_fields(), r, options), r); break;
+        case MapLayer::hulls: fill_hulls(make_layer(ds, name, wkbPolygon, fields::hull_fields(), r, options), r); break;
+        case MapLayer::poses: fill_poses(make_layer(ds, name, wkbPolygon, fields::pose_fields(), r, options), r); break;
+        case MapLayer::coast:
+            if (!info.chart) throw LibraryError("the coast layer without a chart");
+            fill_coast(make_layer(ds, name, wkbMultiPolygon, fields::coast_fields(), r, options), r, *info.chart);
+            break;
+    }
+}
+
+StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(GDALDataset&)>& fill, const ProjectView* view) {
     GDALAllRegister();
     StagedOutput out(path);  // removed (with SQLite's journal) if interrupted or if anything below fails
     if (out.direct())
@@ -201,7 +241,7 @@ StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(G
     if (!ds) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
     fill(*ds);
     add_layer_styles(*ds);
-    add_qgis_project(*ds, std::filesystem::path(path).filename().string(), view);
+    if (view) add_qgis_project(*ds, std::filesystem::path(path).filename().string(), *view);
     CPLErrorReset();
     ds.reset();  // GDALClose: flushes and closes the SQLite file
     if (CPLGetLastErrorType() == CE_Failure) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
@@ -209,7 +249,8 @@ StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(G
 }
 
 StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info) {
-    return stage_gpkg_with(path, [&](GDALDataset& ds) { write_layers(ds, result, info); }, project_view(result));
+    const ProjectView view = project_view(result);
+    return stage_gpkg_with(path, [&](GDALDataset& ds) { write_layers(ds, result, info); }, info.project ? &view : nullptr);
 }
 
 void write_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info) { stage_gpkg(path, result, info).commit(); }

@@ -574,6 +574,8 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
     shape.has_encounters = first.GetLayerByName("encounters") != nullptr;
     shape.has_assessment = first.GetLayerByName("breaches") != nullptr;
     const bool chart = first.GetLayerByName("coast") != nullptr;
+    // The poses layer and the stored project go together (check --no-project: neither).
+    const bool project = first.GetLayerByName("poses") != nullptr;
     ProjectView view;
     for (const Part& p : parts) {
         const json& v = p.doc["shoal"]["part"]["project"];
@@ -588,7 +590,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
     const auto by_track = [](const char* what) { return [what](const Part& p, const json& o, const OGRFeature*) { return track_key(o, p, what); }; };
     const auto by_feature = [](const char* what) { return [what](const Part& p, const json& o, const OGRFeature*) { return feature_key(o, p, what); }; };
     const auto fill = [&](GDALDataset& ds) {
-        const GpkgLayers out = make_gpkg_layers(ds, shape, chart);
+        const GpkgLayers out = make_gpkg_layers(ds, shape, chart, project);
         if (ds.StartTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage transaction failed");
         put_rows(out.events, gpkg_rows(parts, "events", "events", by_feature("events")));
         if (out.encounters) put_rows(out.encounters, gpkg_rows(parts, "encounters", "encounters", by_feature("encounters")));
@@ -597,7 +599,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
         if (summary) *summary = summary_of(parts.size(), tracks.size(), merged);
         put_rows(out.tracks, tracks);
         put_rows(out.hulls, gpkg_rows(parts, "hulls", "hulls", by_feature("hulls")));
-        put_rows(out.poses, gpkg_rows(parts, "poses", "poses", by_track("poses")));
+        if (out.poses) put_rows(out.poses, gpkg_rows(parts, "poses", "poses", by_track("poses")));
         if (out.coast) {
             // A tile's features are the same in every part that has the tile: taken from the first.
             std::map<Key, const Part*> tile_part;
@@ -646,7 +648,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
         put_rows(out.summary, sum);
         if (ds.CommitTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage commit failed: " + std::string(CPLGetLastErrorMsg()));
     };
-    return stage_gpkg_with(output, fill, view);
+    return stage_gpkg_with(output, fill, project ? &view : nullptr);
 }
 
 }  // namespace
@@ -658,7 +660,7 @@ std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* s
 
 MergeSummary merge_reports(const std::vector<std::string>& parts, const std::string& output, std::vector<std::string>* warnings) {
     const bool gpkg = is_gpkg(output);
-    check_outputs(report_outputs(output, gpkg ? "gpkg" : "geojson"), parts);
+    check_outputs(report_outputs(output, gpkg ? "gpkg" : "geojson", false), parts);  // a merged GeoJSON report has no project (docs/user-guide.md)
     MergeSummary summary;
     Plan plan = plan_merge(parts, gpkg);
     std::vector<StagedOutput> staged;

@@ -3,11 +3,14 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
-#include <zlib.h>
+#include <cpl_conv.h>
+#include <cpl_vsi.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "detail/qgis_styles.hpp"
@@ -46,7 +49,8 @@ std::string srs_xml(int epsg) {
 }
 
 /// The <maplayer> of one layer: the style's root attributes and elements, wrapped.
-std::string map_layer(const std::string& name, const std::string& geometry, const std::string& source) {
+std::string map_layer(const ProjectLayer& layer) {
+    const std::string& name = layer.name;
     const std::string qml(layer_style(name));
     const std::size_t open = qml.find("<qgis ");
     const std::size_t open_end = qml.find('>', open);
@@ -56,8 +60,8 @@ std::string map_layer(const std::string& name, const std::string& geometry, cons
     std::string attrs = qml.substr(open + 6, open_end - open - 6);
     // The style's own version attribute is the style's, not the layer's.
     if (std::size_t v = attrs.find("version=\""); v != std::string::npos) attrs.erase(v, attrs.find('"', v + 9) + 1 - v);
-    return "    <maplayer type=\"vector\" geometry=\"" + geometry + "\" " + attrs + ">\n      <id>shoal_" + name + "</id>\n      <datasource>" +
-           escape(source) + "</datasource>\n      <layername>" + name + "</layername>\n      <srs>" + srs_xml(4326) +
+    return "    <maplayer type=\"vector\" geometry=\"" + layer.geometry + "\" " + attrs + ">\n      <id>shoal_" + name + "</id>\n      <datasource>" +
+           escape(layer.source) + "</datasource>\n      <layername>" + name + "</layername>\n      <srs>" + srs_xml(4326) +
            "</srs>\n      <provider encoding=\"UTF-8\">ogr</provider>\n" + qml.substr(open_end + 1, close - open_end - 1) + "    </maplayer>\n";
 }
 
@@ -90,12 +94,7 @@ ProjectView project_view(const audit::AuditResult& r) {
     return v;
 }
 
-std::string qgis_project_xml(GDALDataset& ds, const std::string& file_name, const ProjectView& view) {
-    // Top of the map first (QGIS's layer tree order).
-    std::vector<std::pair<std::string, std::string>> layers;  // name, geometry
-    for (const char* name : {"breaches", "events", "encounters", "hulls", "poses", "tracks", "coast"})
-        if (OGRLayer* l = ds.GetLayerByName(name)) layers.emplace_back(name, geometry_of(*l));
-
+std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std::string& report_name, const ProjectView& view) {
     // The run's extent (its tracks), and the UTM zone of its centre.
     const double x0 = view.x0, y0 = view.y0, x1 = view.x1, y1 = view.y1;
     const bool have_extent = x0 <= x1 && y0 <= y1;
@@ -103,17 +102,18 @@ std::string qgis_project_xml(GDALDataset& ds, const std::string& file_name, cons
     const int zone = std::clamp(static_cast<int>(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
     const int epsg = (lat_c >= 0 ? 32600 : 32700) + zone;
 
-    std::string x = "<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>\n<qgis projectname=\"shoal report\" version=\"3.22.16-Białowieża\">\n";
-    x += "  <title>shoal report " + escape(file_name) + "</title>\n";
+    std::string x = "<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>\n" + std::string(sidecar_mark) +
+                    "\n<qgis projectname=\"shoal report\" version=\"3.22.16-Białowieża\">\n";
+    x += "  <title>shoal report " + escape(report_name) + "</title>\n";
     x += "  <projectCrs>" + srs_xml(epsg) + "</projectCrs>\n";
     x += "  <layer-tree-group>\n";
-    for (const auto& [name, geom] : layers)
-        x += "    <layer-tree-layer id=\"shoal_" + name + "\" name=\"" + name + "\" providerKey=\"ogr\" checked=\"Qt::Checked\" expanded=\"" +
-             (name == "coast" ? "0" : "1") + "\" source=\"" + escape("./" + file_name + "|layername=" + name) + "\"/>\n";
+    for (const ProjectLayer& l : layers)
+        x += "    <layer-tree-layer id=\"shoal_" + l.name + "\" name=\"" + l.name + "\" providerKey=\"ogr\" checked=\"Qt::Checked\" expanded=\"" +
+             (l.name == "coast" ? "0" : "1") + "\" source=\"" + escape(l.source) + "\"/>\n";
     x += "  </layer-tree-group>\n  <projectlayers>\n";
-    for (const auto& [name, geom] : layers) x += map_layer(name, geom, "./" + file_name + "|layername=" + name);
+    for (const ProjectLayer& l : layers) x += map_layer(l);
     x += "  </projectlayers>\n  <layerorder>\n";
-    for (const auto& [name, geom] : layers) x += "    <layer id=\"shoal_" + name + "\"/>\n";
+    for (const ProjectLayer& l : layers) x += "    <layer id=\"shoal_" + l.name + "\"/>\n";
     x += "  </layerorder>\n";
     x += "  <properties><Paths><Absolute type=\"bool\">false</Absolute></Paths>"
          "<SpatialRefSys><ProjectionsEnabled type=\"int\">1</ProjectionsEnabled></SpatialRefSys></properties>\n";
@@ -156,75 +156,39 @@ std::string qgis_project_xml(GDALDataset& ds, const std::string& file_name, cons
     return x;
 }
 
-namespace {
-
-void put16(std::string& s, unsigned v) {
-    s += static_cast<char>(v & 0xff);
-    s += static_cast<char>((v >> 8) & 0xff);
-}
-void put32(std::string& s, unsigned long v) {
-    put16(s, static_cast<unsigned>(v & 0xffff));
-    put16(s, static_cast<unsigned>((v >> 16) & 0xffff));
-}
-
-}  // namespace
-
-std::string zip_one(const std::string& name, const std::string& content) {
-    // Raw deflate (window bits -15), as a zip member holds it.
-    z_stream z{};
-    if (deflateInit2(&z, Z_BEST_COMPRESSION, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) throw LibraryError("zlib deflateInit2 failed");
-    std::string packed(deflateBound(&z, static_cast<uLong>(content.size())), '\0');
-    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(content.data()));
-    z.avail_in = static_cast<uInt>(content.size());
-    z.next_out = reinterpret_cast<Bytef*>(packed.data());
-    z.avail_out = static_cast<uInt>(packed.size());
-    const int rc = deflate(&z, Z_FINISH);
-    packed.resize(z.total_out);
-    deflateEnd(&z);
-    if (rc != Z_STREAM_END) throw LibraryError("zlib deflate failed");
-    const unsigned long crc = crc32(0L, reinterpret_cast<const Bytef*>(content.data()), static_cast<uInt>(content.size()));
-    constexpr unsigned dos_time = 0, dos_date = (0u << 9) | (1u << 5) | 1u;  // 1980-01-01 00:00
-    std::string out;
-    auto header = [&](bool central) {
-        put32(out, central ? 0x02014b50 : 0x04034b50);
-        if (central) put16(out, 20);  // made by
-        put16(out, 20);               // version needed
-        put16(out, 0x0800);           // flags: UTF-8 name
-        put16(out, 8);                // deflate
-        put16(out, dos_time);
-        put16(out, dos_date);
-        put32(out, crc);
-        put32(out, packed.size());
-        put32(out, content.size());
-        put16(out, static_cast<unsigned>(name.size()));
-        put16(out, 0);  // extra
-        if (central) {
-            put16(out, 0);  // comment
-            put16(out, 0);  // disk
-            put16(out, 0);  // internal attributes
-            put32(out, 0);  // external attributes
-            put32(out, 0);  // offset of the local header
-        }
-        out += name;
-    };
-    header(false);
-    out += packed;
-    const std::size_t central_at = out.size();
-    header(true);
-    const std::size_t central_size = out.size() - central_at;
-    put32(out, 0x06054b50);
-    put16(out, 0);
-    put16(out, 0);
-    put16(out, 1);
-    put16(out, 1);
-    put32(out, central_size);
-    put32(out, central_at);
-    put16(out, 0);
+std::string qgz_of(const std::string& member, const std::string& qgs) {
+    // Through GDAL's zip writer into a file in memory (GDAL stamps no date: the same XML, the same bytes).
+    static std::atomic<unsigned> serial{0};
+    const std::string zip = "/vsimem/shoal-qgz-" + std::to_string(serial++) + ".qgz";
+    void* z = CPLCreateZip(zip.c_str(), nullptr);
+    if (!z) throw LibraryError("GDAL cannot create a zip in memory: " + std::string(CPLGetLastErrorMsg()));
+    const bool ok = CPLCreateFileInZip(z, member.c_str(), nullptr) == CE_None &&
+                    CPLWriteFileInZip(z, qgs.data(), static_cast<int>(qgs.size())) == CE_None && CPLCloseFileInZip(z) == CE_None;
+    const bool closed = CPLCloseZip(z) == CE_None;
+    vsi_l_offset n = 0;
+    GByte* bytes = VSIGetMemFileBuffer(zip.c_str(), &n, FALSE);
+    std::string out = ok && closed && bytes ? std::string(reinterpret_cast<const char*>(bytes), static_cast<std::size_t>(n)) : std::string();
+    VSIUnlink(zip.c_str());
+    if (out.empty()) throw LibraryError("GDAL could not zip the QGIS project: " + std::string(CPLGetLastErrorMsg()));
     return out;
 }
 
+bool is_shoal_qgz(const std::string& path, const std::string& member) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return false;  // a FIFO or a device is never opened
+    VSILFILE* f = VSIFOpenL(("/vsizip/{" + path + "}/" + member).c_str(), "rb");
+    if (!f) return false;
+    std::string head(4096, '\0');
+    head.resize(VSIFReadL(head.data(), 1, head.size(), f));
+    VSIFCloseL(f);
+    return head.find(sidecar_mark) != std::string::npos;
+}
+
 void add_qgis_project(GDALDataset& ds, const std::string& file_name, const ProjectView& view) {
-    const std::string qgz = zip_one("shoal.qgs", qgis_project_xml(ds, file_name, view));
+    std::vector<ProjectLayer> layers;
+    for (const char* name : report_layers_top_first)
+        if (OGRLayer* l = ds.GetLayerByName(name)) layers.push_back({name, geometry_of(*l), "./" + file_name + "|layername=" + name});
+    const std::string qgz = qgz_of("shoal.qgs", qgis_project_xml(layers, file_name, view));
     static const char hex[] = "0123456789abcdef";
     std::string h;
     h.reserve(qgz.size() * 2);

@@ -1,14 +1,18 @@
 #pragma once
-/// The QGIS project stored in a GeoPackage report (QGIS's `qgis_projects` table, opened with
-/// `qgis --project 'geopackage:REPORT.gpkg?projectName=shoal'`): the report's layers in order
-/// (coast at the bottom, then tracks, poses, hulls, encounters, events on top) with their
-/// styles, the project CRS the UTM zone of the run's centre, the map extent the run's tracks,
-/// and the temporal controller's range the run (first to last fix).
+/// The QGIS project of a report, one writer for both formats: the report's layers in order
+/// (coast at the bottom, then tracks, poses, hulls, encounters, events on top), each with its
+/// source (relative to the project's folder), style and temporal settings (the style's), the
+/// project CRS the UTM zone of the run's centre, the map extent the run's tracks, and the
+/// temporal controller's range the run (first to last fix).
 ///
-/// Stored as QGIS 3.22 stores it: a row (name, metadata, content) whose content is the .qgz
-/// (a zip holding one .qgs) written out in hexadecimal text; the layers' sources are
-/// "./REPORT.gpkg|layername=LAYER", relative to the folder of the GeoPackage (renaming the
-/// file breaks them, as it does for any QGIS project).
+/// - A GeoPackage report stores it in QGIS's `qgis_projects` table (opened with
+///   `qgis --project 'geopackage:REPORT.gpkg?projectName=shoal'`), as QGIS 3.22 stores it: a
+///   row (name, metadata, content) whose content is the .qgz written out in hexadecimal text;
+///   the layers' sources are "./REPORT.gpkg|layername=LAYER".
+/// - A GeoJSON report gets REPORT.qgz beside it (report/geojson_output.hpp), whose layers are
+///   the report itself (events) and the per-layer files beside it (REPORT.poses.geojson, ...).
+///
+/// Renaming or moving the files breaks the relative sources, as it does for any QGIS project.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -31,13 +35,30 @@ struct ProjectView {
 };
 ProjectView project_view(const audit::AuditResult& result);
 
-/// The project's .qgs XML for the layers of `gpkg` (a GeoPackage named `file_name`).
-std::string qgis_project_xml(GDALDataset& gpkg, const std::string& file_name, const ProjectView& view);
+/// One layer of the project: `name` (also the name of its style, layer_style), its geometry
+/// ("Point", "Line" or "Polygon") and its OGR source relative to the project's folder
+/// ("./REPORT.gpkg|layername=poses", "./REPORT.poses.geojson").
+struct ProjectLayer {
+    std::string name, geometry, source;
+};
 
-/// `content` as a .qgz: a zip (deflated, with a fixed date so the same run writes the same bytes) holding NAME.
-std::string zip_one(const std::string& name, const std::string& content);
+/// The project's .qgs XML: `layers` top of the map first, titled after `report_name`.
+std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std::string& report_name, const ProjectView& view);
 
-/// Writes the project into the `qgis_projects` table of `gpkg`.
+/// `qgs` as a .qgz: a zip holding it as `member` (deflated), written with GDAL's zip support;
+/// the same XML gives the same bytes (GDAL writes no date).
+std::string qgz_of(const std::string& member, const std::string& qgs);
+
+/// Whether the .qgz at `path` (a regular file) holds `member` and that says shoal wrote it
+/// (sidecar_mark, detail/qgis_styles.hpp): false for anything else (not a zip, another
+/// project, or shoal's project saved over by QGIS, which drops the mark).
+bool is_shoal_qgz(const std::string& path, const std::string& member);
+
+/// Writes the project into the `qgis_projects` table of `gpkg` (named `file_name`): its
+/// layers, those of report_layers_top_first that it has.
 void add_qgis_project(GDALDataset& gpkg, const std::string& file_name, const ProjectView& view);
+
+/// The report's map layers, top of the map first (QGIS's layer tree order).
+inline constexpr const char* report_layers_top_first[] = {"breaches", "events", "encounters", "hulls", "poses", "tracks", "coast"};
 
 }  // namespace shoal::report

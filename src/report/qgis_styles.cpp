@@ -16,19 +16,23 @@ std::string_view style_qml(std::string_view name);  // qgis_styles_data.cpp, gen
 
 std::string_view layer_style(std::string_view layer) { return detail::style_qml(layer); }
 
+bool is_shoal_sidecar(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return false;  // a FIFO or a device is never opened (a FIFO would wait for a writer)
+    std::string head;
+    if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+        head.resize(4096);
+        head.resize(std::fread(head.data(), 1, head.size(), f));
+        std::fclose(f);
+    }
+    return head.find(sidecar_mark) != std::string::npos;
+}
+
 std::optional<StagedOutput> stage_sidecar_style(const std::string& qml_path, std::string_view layer, std::string& warning) {
     const std::filesystem::path p(qml_path);
     std::error_code ec;
     if (std::filesystem::exists(p, ec)) {
-        std::string head;  // a FIFO or a device is never opened (a FIFO would wait for a writer)
-        const bool regular = std::filesystem::is_regular_file(p, ec);
-        if (regular)
-            if (std::FILE* f = std::fopen(p.c_str(), "rb")) {
-                head.resize(4096);
-                head.resize(std::fread(head.data(), 1, head.size(), f));
-                std::fclose(f);
-            }
-        if (!regular || head.find(sidecar_mark) == std::string::npos) {
+        if (!is_shoal_sidecar(p.string())) {
             warning = "'" + p.string() + "' exists and was not written by shoal: left as it is, so the report has no QGIS style beside it "
                       "(move that file, or write the report elsewhere)";
             return std::nullopt;

@@ -304,6 +304,7 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"stop_diameter_m", real, metres, -1, [](const R& x) { return Value(x.info.sweep.stop_diameter_m); }},
         {"stop_duration_s", real, seconds, -1, [](const R& x) { return Value(x.info.sweep.stop_duration_s); }},
         {"speed_window_s", real, seconds, -1, [](const R& x) { return Value(x.info.sweep.speed_window_s); }},
+        {"poses_interval_s", real, seconds, -1, [](const R& x) { return Value(x.info.sweep.pose_interval_s); }},
         {"max_speed_kn", real, knots, -1, [](const R& x) { return Value(x.info.wild.max_speed_kn); }},
         {"berths", text_t, none, -1, [](const R& x) { return text(x.info.berths); }},
         {"ship_margin_m", real, metres, -1, [](const R& x) { return Value(x.info.ship_margin_m); }, exercise},

@@ -1346,6 +1346,7 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
         {"check", "--stop-diameter", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--stop-time", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--max-speed", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--poses-interval", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--ukc", {"nan", "inf", "-1"}, {"0", "1e300"}},
         {"check", "--hazard-depth", {"nan", "inf"}, {"-1", "0", "1e300"}},
         {"check", "--danger-radius", {"nan", "inf", "-1", "0", "1e300"}, {}},

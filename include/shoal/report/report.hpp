@@ -44,8 +44,12 @@ struct RunInfo {
     std::string role_column;          ///< exercise mode: the role column (--role-column), "" when none
     double encounter_range_m = audit::ColregOptions{}.range_m;  ///< exercise mode: COLREG situations within this
     std::size_t max_encounters_per_ship = audit::AuditOptions{}.max_encounters_per_ship;  ///< exercise mode: 0, no limit
-    /// The chart for the GeoPackage's `coast` layer (read_chart); null: no coast layer.
+    /// The chart for the report's `coast` layer (read_chart); null: no coast layer.
     const coast::Coastline* chart = nullptr;
+    /// The report's map for QGIS: its `poses` and `coast` layers and its QGIS project (a
+    /// GeoPackage's stored project; beside a GeoJSON report REPORT.qgz and the layer files it
+    /// opens). false (--no-project): the events, tracks and hulls only.
+    bool project = true;
 };
 
 /// The chart the run was checked against, for the report's `coast` layer: the grid's sources
@@ -66,21 +70,28 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
 std::string geojson(const audit::AuditResult& result, const RunInfo& info);
 
 /// The files a report at `path` consists of, for check_outputs: the report ("-o", "the
-/// report") and, for a GeoJSON report in a regular file, its QGIS style REPORT.qml beside it.
+/// report") and, for a GeoJSON report in a regular file, its QGIS style REPORT.qml beside it
+/// and, with `project`, its QGIS project REPORT.qgz and the layer files that opens,
+/// REPORT.LAYER.geojson and REPORT.LAYER.qml for LAYER tracks, hulls, poses and coast.
 /// `format`: "geojson" or "gpkg".
-std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format);
+std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project = true);
 
 /// The GeoJSON report, staged at `path` (not yet in place: commit_all puts it there), and the
 /// QGIS style REPORT.qml beside it, unless a file of that name exists that shoal did not write
-/// (then a warning goes into `warnings`, when given, and that file is left alone). No style
-/// beside stdout, a device or a pipe. Throws InputError naming the file it could not write.
+/// (then a warning goes into `warnings`, when given, and that file is left alone). With
+/// `info.project`, also the QGIS project REPORT.qgz beside it and the layer files it opens
+/// (REPORT.tracks.geojson, .hulls, .poses and, with `info.chart`, .coast, each with its .qml),
+/// unless one of those exists that shoal did not write (a warning then, and none of them is
+/// written). Nothing beside stdout, a device or a pipe. Throws InputError naming the file it
+/// could not write.
 std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
                                         std::vector<std::string>* warnings = nullptr);
 /// stage_geojson, then commit_all.
 void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
                    std::vector<std::string>* warnings = nullptr);
 
-/// The GeoPackage report, staged at `path`: layers events, encounters, tracks, hulls, tables
+/// The GeoPackage report, staged at `path`: layers events, encounters, tracks, hulls (with
+/// `info.project` also poses, coast and the stored QGIS project), tables
 /// problems, closest_approaches, run, summary (docs/user-guide.md), in
 /// EPSG:4326, QGIS styles in its `layer_styles` table. Throws InputError when `path` is not a
 /// regular file (a device: "a GeoPackage must be a regular file ...") or cannot be written.

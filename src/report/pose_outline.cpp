@@ -1,0 +1,50 @@
+#include "report/pose_outline.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "detail/geos_context.hpp"
+#include <shoal/util/error.hpp>
+
+namespace shoal::report {
+
+std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
+    if (ring.size() < 4 || ring.size() <= pose_outline_min_corners + 1) return ring;
+    // Local metres around the first vertex (an equirectangular frame: the hull is tens or
+    // hundreds of metres, where it is exact to far under a millimetre).
+    constexpr double metres_per_deg = 6371008.8 * M_PI / 180;
+    const double lon0 = ring[0].lon, lat0 = ring[0].lat, kx = std::cos(lat0 * M_PI / 180) * metres_per_deg;
+    std::vector<geo::XY> xy;
+    xy.reserve(ring.size());
+    for (const auto& p : ring) xy.push_back({(p.lon - lon0) * kx, (p.lat - lat0) * metres_per_deg});
+    double length = 0;
+    for (std::size_t i = 0; i + 1 < xy.size(); ++i)
+        for (std::size_t j = i + 1; j + 1 < xy.size(); ++j) length = std::max(length, std::hypot(xy[i].x - xy[j].x, xy[i].y - xy[j].y));
+    if (!(length > 0)) return ring;
+
+    thread_local geo::GeosContext ctx;
+    const geo::GeomPtr poly = geo::make_polygon(ctx, {xy});
+    const geo::GeomPtr simple = geo::own(ctx, GEOSTopologyPreserveSimplify_r(ctx, poly.get(), pose_outline_tolerance * length), "simplifying a hull outline");
+    std::vector<std::vector<std::vector<geo::XY>>> rings;
+    geo::collect_polygons(ctx, simple.get(), rings);
+    if (rings.size() != 1 || rings[0].empty()) return ring;
+    const std::vector<geo::XY>& kept = rings[0][0];
+    if (kept.size() < pose_outline_min_corners + 1) return ring;
+    // The kept vertices are vertices of the outline, in its order (GEOS may start the ring
+    // elsewhere or turn it): each is found again, so the layer holds the outline's own lon/lat.
+    std::vector<bool> keep(ring.size(), false);
+    for (const geo::XY& q : kept) {
+        const auto at = std::find(xy.begin(), xy.end() - 1, q);
+        if (at == xy.end() - 1) return ring;  // not one of ours: keep the outline whole
+        keep[static_cast<std::size_t>(at - xy.begin())] = true;
+    }
+    keep[0] = true;
+    std::vector<geo::LonLat> out;
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+        if (keep[i]) out.push_back(ring[i]);
+    if (out.size() < pose_outline_min_corners) return ring;
+    out.push_back(out.front());
+    return out;
+}
+
+}  // namespace shoal::report
