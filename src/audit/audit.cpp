@@ -487,6 +487,15 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         result.assessment = assess(*options.assessment, in);
         result.has_assessment = true;
         result.warnings.insert(result.warnings.end(), result.assessment.warnings.begin(), result.assessment.warnings.end());
+        // Time in close quarters is scored from the listed encounters: say when the cap left some out.
+        const auto& criteria = options.assessment->criteria;
+        const bool scores_close_quarters = std::any_of(criteria.begin(), criteria.end(), [](const Criterion& c) {
+            return c.kind == CriterionKind::close_quarters_time;
+        });
+        if (scores_close_quarters && result.unlisted.close_quarters > 0)
+            result.warnings.push_back(std::to_string(result.unlisted.close_quarters) +
+                                      " close-quarters encounters were not listed (AuditOptions::max_encounters_per_ship), so their time "
+                                      "in close quarters was not scored: raise the limit, or 0 for none, to score every one");
     }
     return result;
 }

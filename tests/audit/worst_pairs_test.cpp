@@ -204,5 +204,30 @@ TEST_F(CrowdAudit, ACapListsEachShipsWorstPairsWithTheirEventsAndCountsEveryOne)
     EXPECT_LE(capped.situations.size(), 3 * ships);
 }
 
+
+TEST_F(CrowdAudit, AnAssessmentOfCloseQuartersTimeSaysWhenTheCapLeftEncountersUnscored) {
+    const Assessment a = Assessment::parse(
+        R"({"criteria": [{"id": "cq", "kind": "close_quarters_time", "limit": 0, "penalty": 1, "per": "second"}]})", "cq.json");
+    AuditOptions o;
+    o.jobs = 2;
+    o.encounters = true;
+    o.assessment = &a;
+    const auto unscored = [](const AuditResult& r) {
+        return std::count_if(r.warnings.begin(), r.warnings.end(),
+                             [](const std::string& w) { return w.find("was not scored") != std::string::npos; });
+    };
+    o.max_encounters_per_ship = 3;
+    const AuditResult capped = audit_tracks(crowd(ships, 300), *s_grid, hull::Hull::from_dimensions({15, 5, 3, 3}), "test hull", o);
+    ASSERT_GT(capped.unlisted.close_quarters, 0u);
+    EXPECT_EQ(unscored(capped), 1) << "the capped run says its scores leave close quarters out";
+    o.max_encounters_per_ship = 0;
+    const AuditResult all = audit_tracks(crowd(ships, 300), *s_grid, hull::Hull::from_dimensions({15, 5, 3, 3}), "test hull", o);
+    EXPECT_EQ(unscored(all), 0);
+    // Every close-quarters encounter over the limit of 0 s is a breach of each trainee in it.
+    std::size_t breaches = 0;
+    for (const Encounter& e : all.encounters.events) breaches += e.kind == EncounterKind::close_quarters && e.end_s > e.start_s ? 2 : 0;
+    EXPECT_EQ(all.assessment.breaches.size(), breaches);
+}
+
 }  // namespace
 }  // namespace shoal::audit
