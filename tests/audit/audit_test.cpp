@@ -10,6 +10,7 @@
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/track/reader.hpp>
 
+#include "audit/solent_grid.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -35,20 +36,12 @@ std::string solent_csv() {
 
 class Audit : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        grid::BuildRequest req;
-        req.cell_m = 500;
-        s_grid = new grid::CoastGrid(grid::build_grid({data_path("coast/uk_solent_land.geojson")}, req, nullptr));
-    }
-    static void TearDownTestSuite() {
-        delete s_grid;
-        s_grid = nullptr;
-    }
-    static grid::CoastGrid* s_grid;
+    static void SetUpTestSuite() { s_grid = &test::solent_grid(); }
+    static const grid::CoastGrid* s_grid;
     TempDir m_dir;
     const hull::Hull m_hull = hull::Hull::from_dimensions({50, 10, 5, 5});
 };
-grid::CoastGrid* Audit::s_grid = nullptr;
+const grid::CoastGrid* Audit::s_grid = nullptr;
 
 TEST_F(Audit, TracksInMemoryAuditAsTheirFile) {
     const std::string csv = m_dir.file("solent.csv");

@@ -18,6 +18,7 @@
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/util/error.hpp>
 
+#include "audit/solent_grid.hpp"
 #include "test_support.hpp"
 
 namespace shoal::audit {
@@ -123,16 +124,8 @@ track::Track along(const std::string& id, const std::string& file, double north_
 
 class ExerciseAudit : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        grid::BuildRequest req;
-        req.cell_m = 500;
-        s_grid = new grid::CoastGrid(grid::build_grid({test::data_path("coast/uk_solent_land.geojson")}, req, nullptr));
-    }
-    static void TearDownTestSuite() {
-        delete s_grid;
-        s_grid = nullptr;
-    }
-    static grid::CoastGrid* s_grid;
+    static void SetUpTestSuite() { s_grid = &test::solent_grid(); }
+    static const grid::CoastGrid* s_grid;
     const hull::Hull m_hull = hull::Hull::from_dimensions({50, 10, 5, 5});
 
     /// Two exercises of the same scenario at the same time: in each the own ship meets a target
@@ -144,7 +137,7 @@ protected:
                 along("tgt2", "ex2/target.csv", 300, -0.935, -1.02)};
     }
 };
-grid::CoastGrid* ExerciseAudit::s_grid = nullptr;
+const grid::CoastGrid* ExerciseAudit::s_grid = nullptr;
 
 /// One CSV file of two exercises (column `exercise`), roles in column `role`: A and B sail the
 /// same water at the same time. Vessel 235000001 is the trainee of both (two tracks). In A it

@@ -18,6 +18,7 @@
 #include <shoal/audit/worst_pairs.hpp>
 #include <shoal/grid/grid_cache.hpp>
 
+#include "audit/solent_grid.hpp"
 #include "test_support.hpp"
 
 namespace shoal::audit {
@@ -113,15 +114,7 @@ std::vector<track::Track> crowd(std::size_t ships, double side_m) {
 
 class CrowdAudit : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        grid::BuildRequest req;
-        req.cell_m = 500;
-        s_grid = new grid::CoastGrid(grid::build_grid({test::data_path("coast/uk_solent_land.geojson")}, req, nullptr));
-    }
-    static void TearDownTestSuite() {
-        delete s_grid;
-        s_grid = nullptr;
-    }
+    static void SetUpTestSuite() { s_grid = &test::solent_grid(); }
     static AuditResult run(std::size_t per_ship) {
         AuditOptions o;
         o.jobs = 2;
@@ -130,9 +123,9 @@ protected:
         return audit_tracks(crowd(ships, 300), *s_grid, hull::Hull::from_dimensions({15, 5, 3, 3}), "test hull", o);
     }
     static constexpr std::size_t ships = 40;
-    static grid::CoastGrid* s_grid;
+    static const grid::CoastGrid* s_grid;
 };
-grid::CoastGrid* CrowdAudit::s_grid = nullptr;
+const grid::CoastGrid* CrowdAudit::s_grid = nullptr;
 
 TEST_F(CrowdAudit, ACapListsEachShipsWorstPairsWithTheirEventsAndCountsEveryOne) {
     const AuditResult all = run(0), capped = run(3);

@@ -20,6 +20,7 @@
 
 #include "test_support.hpp"
 #include "track/ais_encoder.hpp"
+#include "track/decoders.hpp"
 #include <shoal/track/ais.hpp>
 
 namespace {
@@ -32,29 +33,10 @@ using test::TempDir;
 using test::Encoder;
 using test::with_checksum;
 
-const char* const gpsdecode_path = "/usr/bin/gpsdecode";
-const char* const python_path = "/usr/bin/python3";
-
-std::string run(const std::string& cmd) {
-    std::string out;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return out;
-    char buf[1 << 14];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-    const int status = ::pclose(p);
-    if (status != 0) ADD_FAILURE() << cmd << " exited with status " << status;
-    return out;
-}
-
-bool have_gpsdecode() { return std::filesystem::exists(gpsdecode_path); }
-bool have_libais() {
-    return std::filesystem::exists(python_path) && std::system("/usr/bin/python3 -c 'import ais' >/dev/null 2>&1") == 0;
-}
-#define REQUIRE_TOOLS()                                                                                              \
-    do {                                                                                                             \
-        if (!have_gpsdecode()) GTEST_SKIP() << gpsdecode_path << " is missing: install gpsd-clients (scripts/install-deps.sh)"; \
-        if (!have_libais()) GTEST_SKIP() << "libais is missing: install python3-ais (scripts/install-deps.sh)";     \
-    } while (0)
+using test::gpsdecode_path;
+using test::json_lines;
+using test::python_path;
+using test::run;
 
 std::string file_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -78,14 +60,6 @@ std::string sentences_only(const std::string& text) {
                 break;
             }
     }
-    return out;
-}
-
-std::vector<json> json_lines(const std::string& text) {
-    std::vector<json> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        if (!line.empty()) out.push_back(json::parse(line));
     return out;
 }
 
@@ -336,7 +310,7 @@ Comparison compare_with_decoders(const std::string& text) {
 }
 
 TEST(AisDecoder, RawLogsDecodeAsGpsdAndLibaisDecodeThem) {
-    REQUIRE_TOOLS();
+    REQUIRE_DECODERS();
     for (const char* name : {"gpsd_ais_nmea_head400.log", "gpsd_ait250.log", "gpsd_ais_raw_messages.log",
                              "dma_stream_example_head400.txt", "dma_replay_dump.txt"}) {
         SCOPED_TRACE(name);
@@ -350,7 +324,7 @@ TEST(AisDecoder, RawLogsDecodeAsGpsdAndLibaisDecodeThem) {
 /// first 400 lines), when they are there: $SHOAL_SHARED_DATA, or ../shared/data beside the
 /// repository.
 TEST(AisDecoder, WholeSharedRawLogsDecodeAsGpsdAndLibaisDecodeThem) {
-    REQUIRE_TOOLS();
+    REQUIRE_DECODERS();
     const char* env = std::getenv("SHOAL_SHARED_DATA");
     const std::filesystem::path shared = env ? std::filesystem::path(env)
                                              : std::filesystem::path(SHOAL_TEST_DATA).parent_path().parent_path().parent_path().parent_path() /
@@ -589,7 +563,7 @@ void expect_truth(const ais::Decoded& d, const Truth& t) {
 }
 
 TEST(AisDecoder, RandomMessagesDecodeAsBuiltAndAsGpsdAndLibaisDecodeThem) {
-    REQUIRE_TOOLS();
+    REQUIRE_DECODERS();
     Generator gen(20240519);
     std::string lines, plain;
     std::vector<Truth> truth;

@@ -21,6 +21,7 @@
 
 #include "test_support.hpp"
 #include "track/ais_encoder.hpp"
+#include "track/decoders.hpp"
 #include <shoal/track/ais.hpp>
 #include <shoal/track/ship_type.hpp>
 
@@ -32,26 +33,10 @@ using test::Encoder;
 using test::TempDir;
 using test::with_checksum;
 
-const char* const gpsdecode_path = "/usr/bin/gpsdecode";
-const char* const python_path = "/usr/bin/python3";
-
-std::string run(const std::string& cmd) {
-    std::string out;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return out;
-    char buf[1 << 14];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-    if (::pclose(p) != 0) ADD_FAILURE() << cmd << " failed";
-    return out;
-}
-
-std::vector<json> json_lines(const std::string& text) {
-    std::vector<json> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        if (!line.empty()) out.push_back(json::parse(line));
-    return out;
-}
+using test::gpsdecode_path;
+using test::json_lines;
+using test::python_path;
+using test::run;
 
 /// Type 5 (ITU-R M.1371 table 72) of MMSI 200000000 + `ship_type` with that ship type, as two
 /// sentences.
