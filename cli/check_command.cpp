@@ -108,7 +108,8 @@ public:
         m_sub->add_option("--max-encounters-per-ship", m_audit.max_encounters_per_ship,
                           "Exercise mode: each ship lists at most N other ships, those it came closest to (their collisions, close "
                           "quarters, closest approach and situation); the summary counts the rest. 0: no limit (default 20)")
-            ->check(finite)->check(non_negative);  // CLI11 would read -1 as the largest size_t
+            ->check(finite)->check(non_negative)  // CLI11 would read -1 as the largest size_t
+            ->check(at_most(max_listed_per_ship, "more ships than any exercise holds; 0 for no limit"));
         m_sub->add_option("--berths", m_berths,
                           "Areas where contact is expected (berths, harbours, anchorages): any OGR vector source, every layer; "
                           "contacts there are expected_contact, not groundings. S-57 charts given as --coast add their "
@@ -348,6 +349,7 @@ private:
     std::map<std::string, track::VesselInfo> m_vessels;
     double m_berth_tolerance_m = 10.0;
     static constexpr double max_poses_interval_s = 86400;
+    static constexpr double max_listed_per_ship = 1e6;  // --max-encounters-per-ship
     double m_poses_interval_s = audit::SweepOptions{}.pose_interval_s;
     bool m_no_project = false;
     audit::AuditOptions m_audit;

@@ -49,6 +49,18 @@ const char* unit_of(CriterionKind k) noexcept {
     return "m";
 }
 
+double Criterion::max_limit(CriterionKind k) noexcept {
+    switch (k) {
+        case CriterionKind::land_clearance: return 10000;
+        case CriterionKind::under_keel_clearance: return 2000;
+        case CriterionKind::cpa: return 100000;
+        case CriterionKind::speed_limit: return 100;
+        case CriterionKind::no_entry: return 0;
+        case CriterionKind::close_quarters_time: break;
+    }
+    return 7 * 86400.0;
+}
+
 const char* to_string(PenaltyPer p) noexcept {
     switch (p) {
         case PenaltyPer::second: return "second";
@@ -138,11 +150,14 @@ Assessment Assessment::parse(const std::string& text, const std::string& source)
                 bad("unknown member '" + shoal::detail::shortened(key) + "'");
         if (!c.contains("kind") || !c["kind"].is_string() || !parse_kind(c["kind"].get<std::string>(), cr.kind))
             bad("\"kind\" must be one of land_clearance, under_keel_clearance, cpa, speed_limit, no_entry, close_quarters_time");
-        if (cr.id.empty()) {
+        const bool explicit_id = !cr.id.empty();
+        if (!explicit_id) {
             cr.id = std::string(to_string(cr.kind)) + "-" + std::to_string(n);
             where += " (id '" + cr.id + "')";
         }
-        if (!ids.insert(cr.id).second) bad("id '" + shoal::detail::shortened(cr.id) + "' is given twice");
+        if (!ids.insert(cr.id).second)
+            bad(explicit_id ? "id '" + shoal::detail::shortened(cr.id) + "' is given twice (or is an earlier criterion's default id, kind-position)"
+                            : "its default id '" + cr.id + "' (kind-position) is the id another criterion gives: give this one an \"id\"");
         if (cr.kind == CriterionKind::no_entry) {
             if (c.contains("limit") && !(c["limit"].is_number() && c["limit"].get<double>() == 0))
                 bad("a no_entry criterion has no \"limit\" (any time inside is a breach)");
@@ -150,12 +165,17 @@ Assessment Assessment::parse(const std::string& text, const std::string& source)
             if (!c.contains("limit") || !c["limit"].is_number()) bad(std::string("\"limit\" must be a number (") + unit_of(cr.kind) + ")");
             cr.limit = c["limit"].get<double>();
             if (!std::isfinite(cr.limit) || cr.limit < 0) bad("\"limit\" must be >= 0 (got " + track::detail::fmt(cr.limit) + ")");
+            if (cr.limit > Criterion::max_limit(cr.kind))
+                bad("\"limit\" must be at most " + track::detail::fmt(Criterion::max_limit(cr.kind)) + " " + unit_of(cr.kind) + " (got " +
+                    track::detail::fmt(cr.limit) + ")");
             if (cr.kind != CriterionKind::close_quarters_time && cr.kind != CriterionKind::speed_limit && cr.limit == 0)
                 bad("\"limit\" 0 m can never be breached");
         }
         if (!c.contains("penalty") || !c["penalty"].is_number()) bad("\"penalty\" must be a number");
         cr.penalty = c["penalty"].get<double>();
         if (!std::isfinite(cr.penalty) || cr.penalty < 0) bad("\"penalty\" must be >= 0 (got " + track::detail::fmt(cr.penalty) + ")");
+        if (cr.penalty > Criterion::max_penalty)
+            bad("\"penalty\" must be at most " + track::detail::fmt(Criterion::max_penalty) + " (got " + track::detail::fmt(cr.penalty) + ")");
         if (c.contains("per")) {
             const std::string per = c["per"].is_string() ? c["per"].get<std::string>() : "";
             if (per == "breach") cr.per = PenaltyPer::breach;
@@ -168,6 +188,14 @@ Assessment Assessment::parse(const std::string& text, const std::string& source)
         if (has_area(cr.kind)) {
             if (!c.contains("area")) bad(std::string("a ") + to_string(cr.kind) + " criterion needs an \"area\" ([[lon, lat], ...])");
             cr.area = parse_area(c["area"], bad);
+            // The area is scored in the run's local metres, true over a few hundred km: an area
+            // of a continent would fold in that frame and score nothing.
+            const auto [lon0, lon1] = std::minmax_element(cr.area.begin(), cr.area.end(), [](const LonLat& p, const LonLat& q) { return p.lon < q.lon; });
+            const auto [lat0, lat1] = std::minmax_element(cr.area.begin(), cr.area.end(), [](const LonLat& p, const LonLat& q) { return p.lat < q.lat; });
+            const double span = std::max(lon1->lon - lon0->lon, lat1->lat - lat0->lat);
+            if (span > Criterion::max_area_span_deg)
+                bad("\"area\" spans " + track::detail::fmt(span) + " degrees: at most " + track::detail::fmt(Criterion::max_area_span_deg) +
+                    " (the waters of an exercise, scored in the run's local metres)");
             if (c.contains("area_name")) {
                 if (!c["area_name"].is_string()) bad("\"area_name\" must be a string");
                 cr.area_name = c["area_name"].get<std::string>();
@@ -481,9 +509,27 @@ private:
 
     void land_clearance(std::size_t k, const Criterion& cr) {
         const auto& samples = m_in.result.tracks[k].clearance;
+        // A contact the audit does not call a grounding (alongside a quay, in contact from the
+        // first fix, in a berth or harbour area) is no breach of clearance: its samples are
+        // left out, and the samples on either side of it are not joined across it.
+        const auto& events = m_in.result.tracks[k].events;
+        const auto excused = [&](double t) {
+            return std::any_of(events.begin(), events.end(), [t](const Event& e) {
+                return (e.kind == EventKind::alongside || e.kind == EventKind::contact_at_start ||
+                        e.kind == EventKind::expected_contact) &&
+                       t >= e.start_s && t <= e.end_s;
+            });
+        };
         std::vector<ValuePoint> pts;
-        for (const ClearanceSample& c : samples)
-            pts.push_back({c.time_s, c.covered ? c.clearance_m : INFINITY, m_in.frame.forward(c.ship), !c.after_break});
+        bool broken = false;
+        for (const ClearanceSample& c : samples) {
+            if (excused(c.time_s)) {
+                broken = true;
+                continue;
+            }
+            pts.push_back({c.time_s, c.covered ? c.clearance_m : INFINITY, m_in.frame.forward(c.ship), !c.after_break && !broken});
+            broken = false;
+        }
         for (const Run& run : runs_over(pts, cr.limit, false)) add(k, cr, run, run.worst_v);
     }
 
@@ -649,7 +695,14 @@ private:
         const geo::GeosContext ctx;
         std::vector<XY> ring;
         for (const LonLat& p : cr.area) ring.push_back(m_in.frame.forward(p));
-        const geo::GeomPtr area = geo::make_polygon(ctx, {ring});
+        const bool finite = std::all_of(ring.begin(), ring.end(), [](const XY& q) { return std::isfinite(q.x) && std::isfinite(q.y); });
+        const geo::GeomPtr area = finite ? geo::make_polygon(ctx, {ring}) : nullptr;
+        // An area spanning much of the globe does not survive the run's local frame (points on
+        // its far side fold back): said, never a silent "no breach".
+        if (!area || GEOSisValid_r(ctx, area.get()) != 1)
+            throw InputError("assessment: the area of " + cr.id + (cr.area_name.empty() ? "" : " (" + cr.area_name + ")") +
+                             " is too large for the run's local frame (its outline, projected, is not a simple polygon): "
+                             "draw it around the waters of the exercise");
         const geo::PreparedPtr prepared(GEOSPrepare_r(ctx, area.get()), geo::PreparedDeleter{ctx});
         if (!prepared) throw LibraryError("preparing the area of " + cr.id + ": " + ctx.last_message());
         for (const auto& [t0, t1] : inside_intervals(lt, ctx, area.get(), prepared.get())) {

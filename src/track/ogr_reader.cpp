@@ -350,7 +350,7 @@ private:
         if (!m_options.exercise_column.empty()) {
             const json* v = named_property(props, m_options.exercise_column, m_exercise_seen);
             if (v && !v->is_string() && !v->is_number()) return bad("exercise " + json_text(*v) + " (property '" + m_options.exercise_column + "') is not a text");
-            exercise = v ? id_text(*v) : std::string();
+            exercise = v ? std::string(detail::trim(id_text(*v))) : std::string();  // blanks around it ignored, as in a CSV
             if (exercise.empty()) return bad("no exercise (property '" + m_options.exercise_column + "' is missing or empty)");
         }
         if (!m_options.role_column.empty()) {

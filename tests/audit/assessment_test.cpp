@@ -208,6 +208,44 @@ TEST_F(Scored, LandClearanceSpeedLimitNoEntryAndCpaOfAConstructedPassage) {
     EXPECT_NEAR(both.assessment.breaches.back().value, 300, 1e-6);
 }
 
+TEST_F(Scored, LandClearanceIsNotBreachedAlongsideOnlyOnceOffTheBerth) {
+    // A lies at the island's south edge (y = 0, x -500..500) heading east, reference point at
+    // y = -4: her port side (y + 5) is 1 m into the land, still for 50 s (SOG 0), then she
+    // moves off south at 1 m/s: y(t) = -4 - (t - t0 - 50). In contact until the side leaves
+    // the edge, y < -5, t0 + 51: a contact from the first fix, not a grounding, so no breach
+    // there. Under 500 m of clearance from then until the side is 500 m off, y = -505,
+    // t0 + 551: one breach, from the end of the contact to t0 + 551.
+    track::Track t;
+    t.id = "A";
+    t.file = "ex/A.csv";
+    for (int i = 0; i <= 60; ++i) {
+        track::Fix f;
+        f.time_s = t0 + 10.0 * i;
+        const double y = i <= 5 ? -4.0 : -4.0 - (10.0 * i - 50);
+        f.position = frame().inverse({0, y});
+        f.heading_deg = 90;
+        f.sog_kn = i <= 5 ? 0 : 1.944;
+        f.line = static_cast<std::size_t>(i) + 2;
+        t.fixes.push_back(f);
+    }
+    const Assessment a = Assessment::parse(R"({"criteria": [{"id": "land-500", "kind": "land_clearance", "limit": 500, "penalty": 1}]})", "a.json");
+    const AuditResult r = run({t}, a);
+    ASSERT_TRUE(r.errors.empty());
+    ASSERT_EQ(r.tracks.size(), 1u);
+    ASSERT_EQ(r.tracks[0].events.size(), 1u);
+    const Event& contact = r.tracks[0].events[0];
+    ASSERT_NE(contact.kind, EventKind::grounding);
+    EXPECT_NEAR(contact.end_s, t0 + 51, 0.5);
+    ASSERT_EQ(r.assessment.breaches.size(), 1u) << "one breach, off the berth";
+    const Breach& b = r.assessment.breaches[0];
+    EXPECT_GE(b.start_s, contact.end_s - 0.5) << "no breach while alongside";
+    // It starts at the first clearance sample after the contact (not interpolated across it):
+    // samples are at most --step (5 m) of hull motion apart, 5 s at 1 m/s.
+    EXPECT_LE(b.start_s, contact.end_s + 5.0 + 0.5);
+    EXPECT_NEAR(b.end_s, t0 + 551, 1.0);
+    EXPECT_DOUBLE_EQ(b.penalty, 1);
+}
+
 TEST_F(Scored, TimeInCloseQuartersOverTheTimeAllowed) {
     // Two trainees side by side 40 m apart (reference points), same course and speed for
     // 800 s: hulls 30 m apart, under a ship margin of 50 m the whole time, one close-quarters
@@ -381,6 +419,16 @@ TEST(AssessmentFile, BadFilesNameTheFileTheCriterionAndWhatIsWrong) {
     EXPECT_THAT(message_of(R"({"criteria": [{"kind": "land_clearance", "limit": 0, "penalty": 1}]})"), HasSubstr("can never be breached"));
     // A number too large for a double is nlohmann's out_of_range, not a parse_error: still bad input.
     EXPECT_THAT(message_of(R"({"criteria": [{"kind": "cpa", "limit": 1e999, "penalty": 1}]})"), HasSubstr("'bad.json': not JSON: "));
+    // Bounds: a penalty that would make a score infinite, a limit beyond what is searched, an
+    // area wider than the local frame holds, a default id another criterion gives.
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "cpa", "limit": 926, "penalty": 1e308}]})"),
+                HasSubstr("\"penalty\" must be at most 1e+06 (got 1e+308)"));
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "land_clearance", "limit": 20000, "penalty": 1}]})"),
+                HasSubstr("\"limit\" must be at most 10000 m (got 20000)"));
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "no_entry", "penalty": 1, "area": [[-90, 0], [140, 0], [140, 89], [-90, 89]]}]})"),
+                HasSubstr("\"area\" spans 230 degrees: at most 5"));
+    EXPECT_THAT(message_of(R"({"criteria": [{"id": "cpa-2", "kind": "cpa", "limit": 1, "penalty": 1}, {"kind": "cpa", "limit": 2, "penalty": 1}]})"),
+                HasSubstr("criteria[1] (id 'cpa-2'): its default id 'cpa-2' (kind-position) is the id another criterion gives"));
 }
 
 TEST(AssessmentFile, LoadReadsWithTheBoundedReaderAndNamesTheFile) {

@@ -1340,7 +1340,7 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
         {"check", "--jobs", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--ship-margin", {"nan", "inf", "-1"}, {"0", "1e300"}},
         {"check", "--encounter-range", {"nan", "inf", "-1", "0"}, {"1e300"}},
-        {"check", "--max-encounters-per-ship", {"nan", "inf", "-1", "1e300"}, {"0"}},
+        {"check", "--max-encounters-per-ship", {"nan", "inf", "-1", "1e300", "18446744073709551615", "1000001"}, {"0", "1000000"}},
         {"check", "--berth-tolerance", {"nan", "inf", "-1", "0", "1e300"}, {}},
         {"check", "--berthing-speed", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--stop-diameter", {"nan", "inf", "-1", "0"}, {"1e300"}},

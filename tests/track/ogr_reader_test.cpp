@@ -207,4 +207,21 @@ TEST(GeoJsonReader, ExerciseAndRolePropertiesKeyTracksByExerciseAndId) {
                 ThrowsMessage<InputError>(HasSubstr("ex.geojson: no feature has the property 'drill', the exercise column")));
 }
 
+TEST(GeoJsonReader, BlanksAroundAnExerciseAreIgnoredAsInACsvAndBlanksAloneAreNone) {
+    const std::string text = R"({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {"mmsi": 1, "exercise": "A", "time": "2024-05-01T10:00:00Z"},
+         "geometry": {"type": "Point", "coordinates": [-1.0, 50.7]}},
+        {"type": "Feature", "properties": {"mmsi": 1, "exercise": " A\t", "time": "2024-05-01T10:01:00Z"},
+         "geometry": {"type": "Point", "coordinates": [-0.99, 50.7]}},
+        {"type": "Feature", "properties": {"mmsi": 1, "exercise": "  ", "time": "2024-05-01T10:02:00Z"},
+         "geometry": {"type": "Point", "coordinates": [-0.98, 50.7]}}]})";
+    ReadOptions o;
+    o.exercise_column = "exercise";
+    const TrackFile f = read_geojson_text(text, "ex.geojson", o);
+    ASSERT_EQ(f.tracks.size(), 1u) << "' A' is exercise A";
+    EXPECT_EQ(f.tracks[0].exercise, "A");
+    EXPECT_EQ(f.tracks[0].fixes.size(), 2u);
+    EXPECT_EQ(f.report.skipped, 1u) << "blanks alone: no exercise";
+}
+
 }  // namespace

@@ -64,8 +64,18 @@ struct Criterion {
     std::string id;  ///< as the file names it (or "<kind>-<n>", n from 1 in file order), unique
     CriterionKind kind = CriterionKind::land_clearance;
     double limit = 0;   ///< unit_of(kind); no_entry: 0
-    double penalty = 0; ///< >= 0
+    double penalty = 0; ///< >= 0, at most max_penalty
     PenaltyPer per = PenaltyPer::breach;
+    /// The largest penalty a file may give (a score stays a finite number however long or far
+    /// a breach goes).
+    static constexpr double max_penalty = 1e6;
+    /// The widest area (degrees of longitude or latitude): areas are scored in the run's local
+    /// metres, true over a few hundred kilometres.
+    static constexpr double max_area_span_deg = 5;
+    /// The largest limit of a criterion of kind `k`, in unit_of(k): 10 km of clearance to land
+    /// (the sweep searches that far around every pose), 2 km under the keel, 100 km of CPA,
+    /// 100 kn, a week in close quarters.
+    static double max_limit(CriterionKind k) noexcept;
     std::vector<geo::LonLat> area;  ///< speed_limit and no_entry: the polygon's outer ring, lon/lat, closed
     std::string area_name;
 };
