@@ -1,9 +1,14 @@
 #include "report/report_fields.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <utility>
 
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
+#include <shoal/grid/coast_grid.hpp>
 #include <shoal/track/ship_type.hpp>
 #include <shoal/track/track.hpp>
 #include <shoal/version.hpp>
@@ -16,6 +21,29 @@ double round_to(double v, int decimals) {
 }
 
 namespace {
+
+/// A fingerprint of the criteria as read (every field, numbers to the last bit): the run
+/// header carries it so that merge refuses parts scored against different criteria, whatever
+/// the format (a GeoPackage keeps only the file's path otherwise).
+std::string criteria_fingerprint(const std::vector<audit::Criterion>& criteria) {
+    std::string key;
+    char num[40];
+    const auto add = [&](double v) {
+        std::snprintf(num, sizeof num, "%a;", v);
+        key += num;
+    };
+    for (const audit::Criterion& c : criteria) {
+        key += c.id + '\0' + audit::to_string(c.kind) + '\0' + audit::to_string(c.per) + '\0' + c.area_name + '\0';
+        add(c.limit);
+        add(c.penalty);
+        for (const geo::LonLat& p : c.area) {
+            add(p.lon);
+            add(p.lat);
+        }
+        key += '\n';
+    }
+    return grid::fingerprint_hex(XXH3_64bits(key.data(), key.size()));
+}
 
 // Values are built through these, never from a bare `const char*` (which would make a bool).
 Value text(std::string s) { return Value(std::move(s)); }
@@ -313,6 +341,7 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"role_column", text_t, none, -1, [](const R& x) { return text(x.info.role_column); }, exercise},
         {"encounter_range_m", real, metres, -1, [](const R& x) { return Value(x.info.encounter_range_m); }, exercise},
         {"assessment_file", text_t, none, -1, [](const R& x) { return text(x.info.assessment); }, assessed},
+        {"assessment_fingerprint", text_t, none, -1, [](const R& x) { return text(criteria_fingerprint(x.result.assessment.criteria)); }, assessed},
         {"max_encounters_per_ship", integer, none, -1, [](const R& x) { return count(x.info.max_encounters_per_ship); }, exercise},
         {"shard", text_t, none, -1, [](const R& x) { return text(x.result.shard.text()); }, sharded},
     };

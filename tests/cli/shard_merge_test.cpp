@@ -391,6 +391,21 @@ TEST(ShardMerge, MismatchedIncompleteOrForeignGeoPackagePartsAreRefusedNamingWhy
     EXPECT_NE(self.err.find("would destroy the input"), std::string::npos) << self.err;
 }
 
+TEST(ShardMerge, PartsScoredAgainstOtherCriteriaAreRefusedInEitherFormat) {
+    // The same assessment file, edited between two shards: the path is the same, the criteria
+    // are not; the run header's assessment_fingerprint tells them apart.
+    const fs::path file = temp_dir() / "edited-assessment.json";
+    for (const char* ext : {".gpkg", ".geojson"}) {
+        std::ofstream(file) << R"({"criteria": [{"id": "cpa", "kind": "cpa", "limit": 300, "penalty": 10}]})";
+        const std::string a = checked_part(std::string("crit0") + ext, "--exercise-by file --assess " + q(file) + " --shard 0/2" + exercise_files());
+        std::ofstream(file) << R"({"criteria": [{"id": "cpa", "kind": "cpa", "limit": 100, "penalty": 1000}]})";
+        const std::string b = checked_part(std::string("crit1") + ext, "--exercise-by file --assess " + q(file) + " --shard 1/2" + exercise_files());
+        const Outcome r = shoal("merge " + a + " " + b + " -o " + q(temp_dir() / (std::string("crit-merged") + ext)));
+        EXPECT_EQ(r.status, 2) << ext << "\n" << r.err;
+        EXPECT_NE(r.err.find("'assessment_fingerprint' is"), std::string::npos) << ext << "\n" << r.err;
+    }
+}
+
 TEST(ShardMerge, BadShardTextIsAUsageErrorNamingTheOption) {
     for (const char* bad : {"2/2", "x/3", "1"}) {
         const Outcome r = shoal("check " + helsinki + " --shard " + bad + " " + case_files() + " -o " + q(temp_dir() / "bad.geojson"));
