@@ -337,11 +337,24 @@ StagedOutput stage_layer_file(const std::string& path, MapLayer which, const aud
 /// one of those files exists that shoal did not write (a warning then, and none is staged).
 void stage_project_beside(const std::string& path, const audit::AuditResult& r, const RunInfo& info, std::vector<StagedOutput>& out,
                           std::vector<std::string>* warnings) {
-    // A shard's part gets none: merge does not read one (docs/user-guide.md, shoal merge).
-    if (!info.project || r.shard.active() || style_path(path).empty()) return;
+    if (style_path(path).empty()) return;  // stdout, a device
     const ProjectFiles f = project_files(path);
     std::vector<std::string> files{f.qgz};
     for (const auto& l : f.layers) files.insert(files.end(), {l.geojson, l.qml});
+    // A shard's part gets none: merge does not read one (docs/user-guide.md, shoal merge). An
+    // earlier run's project left beside the report would show that run: said, not deleted.
+    if (!info.project || r.shard.active()) {
+        std::size_t stale = 0;
+        for (const std::string& file : files) {
+            std::error_code ec;
+            if (std::filesystem::exists(file, ec) && (file == f.qgz ? is_shoal_qgz(file, f.qgs_member) : is_shoal_sidecar(file))) ++stale;
+        }
+        if (stale && warnings)
+            warnings->push_back(std::to_string(stale) + " QGIS project files of an earlier run are beside the report (" + f.qgz +
+                                " and its layer files), not rewritten by this one (" + (r.shard.active() ? "a shard" : "--no-project") +
+                                "): they show that run; delete them");
+        return;
+    }
     for (const std::string& file : files) {
         std::error_code ec;
         if (!std::filesystem::exists(file, ec)) continue;

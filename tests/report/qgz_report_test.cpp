@@ -220,6 +220,14 @@ TEST(NoProject, OnlyTheEventsTracksAndHulls) {
     EXPECT_TRUE(fs::exists(dir() / "plain.qml"));
     for (const char* side : {"plain.qgz", "plain.poses.geojson", "plain.coast.geojson", "plain.tracks.geojson", "plain.hulls.geojson"})
         EXPECT_FALSE(fs::exists(dir() / side)) << side;
+    // A run with a project, then one without: the earlier project is left, and said to be stale.
+    const fs::path again = dir() / "again.geojson";
+    ASSERT_EQ(shoal(check_args(again, "")).status, 1);
+    ASSERT_TRUE(fs::exists(dir() / "again.qgz"));
+    const auto without = shoal(check_args(again, "--no-project"));
+    EXPECT_EQ(without.status, 1);
+    EXPECT_NE(without.err.find("QGIS project files of an earlier run are beside the report"), std::string::npos) << without.err;
+    EXPECT_NE(without.err.find("(--no-project)"), std::string::npos) << without.err;
 
     const fs::path gpkg = dir() / "plain.gpkg";
     ASSERT_EQ(shoal(check_args(gpkg, "--no-project")).status, 1);
