@@ -209,15 +209,7 @@ Assessment Assessment::parse(const std::string& text, const std::string& source)
 }
 
 Assessment Assessment::load(const std::string& path) {
-    std::string text;
-    try {
-        text = shoal::detail::read_json_object_input(path, max_file_bytes, "an assessment file");
-    } catch (const shoal::detail::InputOpenError& e) {
-        throw InputError("assessment file '" + path + "': cannot be read (" + e.reason + ")");
-    } catch (const shoal::detail::NotJsonObject& e) {
-        throw InputError("assessment file '" + path + "': not JSON: " + e.reason);
-    }
-    return parse(text, path);
+    return parse(shoal::detail::read_json_settings(path, max_file_bytes, "an assessment file", "assessment file"), path);
 }
 
 double Assessment::watch_clearance_m() const noexcept {

@@ -105,15 +105,7 @@ Roles Roles::parse(const std::string& text, const std::string& source) {
 }
 
 Roles Roles::load(const std::string& path) {
-    std::string text;
-    try {
-        text = shoal::detail::read_json_object_input(path, max_file_bytes, "an exercise file");
-    } catch (const shoal::detail::InputOpenError& e) {
-        throw InputError("exercise file '" + path + "': cannot be read (" + e.reason + ")");
-    } catch (const shoal::detail::NotJsonObject& e) {
-        throw InputError("exercise file '" + path + "': not JSON: " + e.reason);
-    }
-    return parse(text, path);
+    return parse(shoal::detail::read_json_settings(path, max_file_bytes, "an exercise file", "exercise file"), path);
 }
 
 std::optional<Role> Roles::entry_role(const std::string& exercise, const std::string& track) const {

@@ -104,6 +104,10 @@ struct NotJsonObject : InputError {
 /// `limit`. InputOpenError when it cannot be opened; InputError at the limit.
 std::string read_json_object_input(const std::string& path, std::size_t limit, const char* what);
 
+/// read_json_object_input for a file of settings (an exercise file, an assessment file): its
+/// failures thrown as InputError "LABEL 'PATH': cannot be read (...)" or "...: not JSON: ...".
+std::string read_json_settings(const std::string& path, std::size_t limit, const char* what, const std::string& label);
+
 /// A /vsimem/ file holding `bytes` while it lives, for GDAL drivers that need a path.
 class MemoryFile {
 public:

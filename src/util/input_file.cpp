@@ -277,4 +277,14 @@ MemoryFile::MemoryFile(std::string bytes, const std::string& extension) : m_byte
 
 MemoryFile::~MemoryFile() { VSIUnlink(m_name.c_str()); }
 
+std::string read_json_settings(const std::string& path, std::size_t limit, const char* what, const std::string& label) {
+    try {
+        return read_json_object_input(path, limit, what);
+    } catch (const InputOpenError& e) {
+        throw InputError(label + " '" + path + "': cannot be read (" + e.reason + ")");
+    } catch (const NotJsonObject& e) {
+        throw InputError(label + " '" + path + "': not JSON: " + e.reason);
+    }
+}
+
 }  // namespace shoal::detail
