@@ -1,0 +1,92 @@
+// bench_geos_probe: `shoal probe` done with GEOS alone, as a whole process, so that the two can be
+// timed side by side the way a user runs them (docs/performance.md, "shoal probe against a
+// GEOS-only probe"). It reads the same coastline file through OGR (shoal's import, so the same
+// polylines), projects it to the same transverse Mercator frame `shoal import` chooses (centred on
+// the coastline's box), reads the same poses CSV with shoal's parser and places each pose with
+// check::place (PROJ, as probe does); the check itself is the GEOS tree checker of
+// bench/geos_tree.hpp (STRtree of coastline pieces, GEOSDistance nearest envelope first, prepared
+// land rings). It writes probe's columns (covered is always 1: the GEOS checker has no chart
+// extent), so the answers can be compared with probe's, row by row.
+//
+// Usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS]
+
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "geos_tree.hpp"
+#include <shoal/check/detector.hpp>
+#include <shoal/coast/coastline.hpp>
+#include <shoal/geo/local_frame.hpp>
+#include <shoal/hull/hull.hpp>
+#include <shoal/io/pose_csv.hpp>
+
+namespace {
+
+void append_fixed(std::string& out, double v, int precision) {
+    char buf[400];
+    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, precision);
+    if (ec != std::errc()) throw std::logic_error("a number too long to write");
+    out.append(buf, end);
+}
+
+int usage() {
+    std::fprintf(stderr, "usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS]\n");
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string coast_path, dims, poses_path, output;
+    std::size_t chunk = 8;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const bool more = i + 1 < argc;
+        if (a == "--coast" && more) coast_path = argv[++i];
+        else if (a == "--dims" && more) dims = argv[++i];
+        else if ((a == "-o" || a == "--output") && more) output = argv[++i];
+        else if (a == "--chunk" && more) chunk = std::stoul(argv[++i]);
+        else if (!a.empty() && a[0] != '-' && poses_path.empty()) poses_path = a;
+        else return usage();
+    }
+    if (coast_path.empty() || dims.empty() || poses_path.empty() || chunk == 0) return usage();
+    try {
+        const shoal::hull::Hull hull = shoal::hull::Hull::from_dims_string(dims);
+        const shoal::io::PoseFile poses = shoal::io::read_pose_csv(poses_path);
+        for (const auto& e : poses.errors) std::fprintf(stderr, "bench_geos_probe: warning: %s\n", e.c_str());
+        const shoal::coast::Coastline coast = shoal::coast::import_coastline({coast_path});
+        const shoal::geo::LocalFrame frame = shoal::geo::LocalFrame::transverse_mercator(
+            {(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+        shoal::bench::GeosTree tree(shoal::coast::project(coast, frame), chunk);
+        std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
+        out.reserve(out.size() + poses.poses.size() * 48);
+        for (const auto& p : poses.poses) {
+            const shoal::check::LocalPose lp = shoal::check::place(frame, shoal::check::Pose{{p.lon, p.lat}, p.heading_deg});
+            const shoal::bench::Answer a = tree.check(shoal::check::hull_outline(hull, lp), INFINITY);
+            append_fixed(out, p.lat, 7);
+            out += ',';
+            append_fixed(out, p.lon, 7);
+            out += ',';
+            append_fixed(out, p.heading_deg, 1);
+            out += a.collision ? ",1," : ",0,";
+            append_fixed(out, a.collision ? 0.0 : a.clearance, 3);
+            out += ",1\n";
+        }
+        FILE* f = output.empty() ? stdout : std::fopen(output.c_str(), "wb");
+        if (!f) throw std::runtime_error("cannot write " + output + ": " + std::strerror(errno));
+        const bool ok = std::fwrite(out.data(), 1, out.size(), f) == out.size();
+        if (f != stdout && std::fclose(f) != 0) throw std::runtime_error("cannot write " + output);
+        if (!ok) throw std::runtime_error("cannot write " + (output.empty() ? std::string("stdout") : output));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_geos_probe: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
