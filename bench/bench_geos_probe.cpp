@@ -44,19 +44,24 @@ int usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string coast_path, dims, poses_path, output;
-    std::size_t chunk = 8;
+    std::string coast_path, dims, poses_path, output, chunk_text = "8";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const bool more = i + 1 < argc;
         if (a == "--coast" && more) coast_path = argv[++i];
         else if (a == "--dims" && more) dims = argv[++i];
         else if ((a == "-o" || a == "--output") && more) output = argv[++i];
-        else if (a == "--chunk" && more) chunk = std::stoul(argv[++i]);
+        else if (a == "--chunk" && more) chunk_text = argv[++i];
         else if (!a.empty() && a[0] != '-' && poses_path.empty()) poses_path = a;
         else return usage();
     }
-    if (coast_path.empty() || dims.empty() || poses_path.empty() || chunk == 0) return usage();
+    std::size_t chunk = 0;
+    const auto [end, ec] = std::from_chars(chunk_text.data(), chunk_text.data() + chunk_text.size(), chunk);
+    if (ec != std::errc() || end != chunk_text.data() + chunk_text.size() || chunk == 0) {
+        std::fprintf(stderr, "bench_geos_probe: --chunk '%s' is not a whole number of segments >= 1\n", chunk_text.c_str());
+        return 2;
+    }
+    if (coast_path.empty() || dims.empty() || poses_path.empty()) return usage();
     try {
         const shoal::hull::Hull hull = shoal::hull::Hull::from_dims_string(dims);
         const shoal::io::PoseFile poses = shoal::io::read_pose_csv(poses_path);

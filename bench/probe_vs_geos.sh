@@ -15,20 +15,20 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 "$build/cli/shoal" import "$coast" -o "$work/coast.shoalgrid" > /dev/null
 head -2 "$poses" > "$work/one.csv"
 n=$(($(wc -l < "$poses") - 1))
-now() { date +%s.%N; }
-best() { printf '%s\n' "$@" | sort -g | head -1; }
+now() { date +%s%N; }  # nanoseconds
+best() { printf '%s\n' "$@" | sort -n | head -1; }
 declare -a s_all s_one g_all g_one
 for ((r = 0; r < runs; ++r)); do
-  t=$(now); "$build/cli/shoal" probe --coast "$work/coast.shoalgrid" --dims "$dims" "$poses" -o "$work/shoal.csv"; s_all+=("$(echo "$(now) - $t" | bc)")
-  t=$(now); "$build/bench/bench_geos_probe" --coast "$coast" --dims "$dims" "$poses" -o "$work/geos.csv"; g_all+=("$(echo "$(now) - $t" | bc)")
-  t=$(now); "$build/cli/shoal" probe --coast "$work/coast.shoalgrid" --dims "$dims" "$work/one.csv" -o "$work/s1.csv"; s_one+=("$(echo "$(now) - $t" | bc)")
-  t=$(now); "$build/bench/bench_geos_probe" --coast "$coast" --dims "$dims" "$work/one.csv" -o "$work/g1.csv"; g_one+=("$(echo "$(now) - $t" | bc)")
+  t=$(now); "$build/cli/shoal" probe --coast "$work/coast.shoalgrid" --dims "$dims" "$poses" -o "$work/shoal.csv"; s_all+=($(($(now) - t)))
+  t=$(now); "$build/bench/bench_geos_probe" --coast "$coast" --dims "$dims" "$poses" -o "$work/geos.csv"; g_all+=($(($(now) - t)))
+  t=$(now); "$build/cli/shoal" probe --coast "$work/coast.shoalgrid" --dims "$dims" "$work/one.csv" -o "$work/s1.csv"; s_one+=($(($(now) - t)))
+  t=$(now); "$build/bench/bench_geos_probe" --coast "$coast" --dims "$dims" "$work/one.csv" -o "$work/g1.csv"; g_one+=($(($(now) - t)))
 done
 sa=$(best "${s_all[@]}") so=$(best "${s_one[@]}") ga=$(best "${g_all[@]}") go=$(best "${g_one[@]}")
 /usr/bin/python3 - "$work/shoal.csv" "$work/geos.csv" "$n" "$sa" "$so" "$ga" "$go" <<'PY'
 import csv, sys
 a, b = list(csv.DictReader(open(sys.argv[1]))), list(csv.DictReader(open(sys.argv[2])))
-n = int(sys.argv[3]); sa, so, ga, go = map(float, sys.argv[4:8])
+n = int(sys.argv[3]); sa, so, ga, go = (int(v) / 1e9 for v in sys.argv[4:8])  # ns -> s
 assert len(a) == len(b) == n, (len(a), len(b), n)
 bad = touching = 0
 for x, y in zip(a, b):
