@@ -1,9 +1,12 @@
 #include <shoal/check/detector.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <cstdint>
 #include <span>
+#include <stdexcept>
 
 #include "grid/outward.hpp"
 
@@ -245,6 +248,27 @@ struct AlignedHull {
     }
 };
 
+/// The box in local metres of the hull `c` (n points of the contour) placed by `m` at `origin`:
+/// the same operations as AlignedHull::build, so the same box.
+geo::Box local_hull_box(const XY* c, std::size_t n, const Eigen::Matrix2d& m, XY origin) noexcept {
+    const V2 mcol0 = v2(m(0, 0), m(1, 0)), mcol1 = v2(m(0, 1), m(1, 1));
+    V2 lmin = splat(INFINITY), lmax = splat(-INFINITY);
+    for (std::size_t i = 0; i < n; ++i) {
+        const V2 w = mcol0 * splat(c[i].x) + mcol1 * splat(c[i].y);
+        lmin = vmin(w, lmin);
+        lmax = vmax(w, lmax);
+    }
+    geo::Box b;
+    const V2 o = load(origin);
+    store_box(b, o + lmin, o + lmax);
+    return b;
+}
+
+/// Contact::covered: the hull's local box inside the grid's extent.
+bool inside_extent(const geo::Box& lb, const geo::Box& ext) noexcept {
+    return lb.minx >= ext.minx && lb.miny >= ext.miny && lb.maxx <= ext.maxx && lb.maxy <= ext.maxy;
+}
+
 /// State of one check while cells are read.
 struct Search {
     AlignedHull& hull;
@@ -256,11 +280,29 @@ struct Search {
     const grid::Segment* seg = nullptr;       // the segment being measured
     const grid::Segment* best_seg = nullptr;  // the segment realising best2 (when found)
 
+    std::vector<grid::ChunkRun>& runs;        // chunks gathered, not read yet
+
     double best() const noexcept { return std::sqrt(best2); }
 
-    /// The segments `segs` of one cell of `grid`: each is moved to the aligned frame and tested
-    /// against the hull's box at the distance found so far; only those that pass meet the edges.
+    /// Adds the chunks of `segs` (one cell of `grid`) nearer the hull's box than the distance
+    /// found so far to those read by the next drain().
+    void gather(const grid::CoastGrid& grid, std::span<const grid::Segment> segs) {
+        const geo::Box& lb = hull.local_box;
+        grid::gather_chunks(grid, segs, [&](const geo::Box& cb) { return box_dist2(cb, lb); }, best2, runs);
+    }
+
+    /// The segments `segs` of one cell of `grid`, nearest chunk first (see drain).
     void read(const grid::CoastGrid& grid, std::span<const grid::Segment> segs, bool collect) {
+        gather(grid, segs);
+        drain(collect);
+    }
+
+    /// Reads the chunks gathered, nearest first, so that the bound shrinks before the far ones
+    /// are looked at (a search for the unlimited clearance starts with no bound at all): each
+    /// segment is moved to the aligned frame and tested against the hull's box at the distance
+    /// found so far; only those that pass meet the edges. `collect`: keep the coast vertices
+    /// that may lie inside the hull (the block under the hull).
+    void drain(bool collect) {
         // First tests in local metres, on the segments as stored: the box of a chunk of
         // segments, then of each segment, against the hull's local box grown by the clearance
         // found so far (r). Only the segments that pass are moved to the aligned frame,
@@ -272,9 +314,7 @@ struct Search {
         V2 r = splat(std::sqrt(best2));
         V2 qmin = lmin - r, qmax = lmax + r;
         // After a crossing nothing more is read (the rest of its chunk is passed over).
-        auto near = [&](const geo::Box& cb) { return !crossing && !any_gt_or_lt(load_min(cb), qmax, load_max(cb), qmin); };
-        visit_chunks(grid, segs, near, [&](const grid::Segment& sg) {
-            if (crossing) return;
+        grid::visit_nearest_first(runs, [&] { return best2; }, [&] { return crossing; }, [&](const grid::Segment& sg) {
             const V2 la = load(sg.a), lb = load(sg.b);
             if (any_gt_or_lt(vmin(la, lb), qmax, vmax(la, lb), qmin)) return;
             const V2 da = la - o, db = lb - o;
@@ -353,6 +393,7 @@ struct Search {
 struct Scratch {
     AlignedHull hull;
     std::vector<XY> inside_candidates;
+    std::vector<grid::ChunkRun> runs;
 };
 
 Scratch& scratch() {
@@ -387,24 +428,21 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     // clearance found so far (the limit grown by a hair, so that one exactly at it counts).
     const double limit = options.max_clearance_m;
     const double bound = std::isfinite(limit) ? limit * (1 + 1e-9) + 1e-9 : INFINITY;
-    Search search{h, bound * bound, false, {}, {}, false, s.inside_candidates};
+    Search search{h, bound * bound, false, {}, {}, false, s.inside_candidates, nullptr, nullptr, s.runs};
     Contact out;
     const geo::Box ext = m_grid.extent();
     const geo::Box& lb = h.local_box;
-    out.covered = lb.minx >= ext.minx && lb.miny >= ext.miny && lb.maxx <= ext.maxx && lb.maxy <= ext.maxy;
+    out.covered = inside_extent(lb, ext);
 
     const int nx = m_grid.nx(), ny = m_grid.ny();
     // The block of cells under the hull's box: every segment that could touch the hull.
     const int i0 = std::max(0, m_grid.col_of(lb.minx)), i1 = std::min(nx - 1, m_grid.col_of(lb.maxx));
     const int j0 = std::max(0, m_grid.row_of(lb.miny)), j1 = std::min(ny - 1, m_grid.row_of(lb.maxy));
-    auto read_cell = [&](int i, int j, bool collect) {
-        const std::span<const grid::Segment> segs = m_grid.segments(i, j);
-        if (!segs.empty()) search.read(m_grid, segs, collect);
-    };
     const bool block_valid = i0 <= i1 && j0 <= j1;
-    if (block_valid) {
-        for (int j = j0; j <= j1 && !search.crossing; ++j)
-            for (int i = i0; i <= i1 && !search.crossing; ++i) read_cell(i, j, true);
+    if (block_valid) {  // the block's chunks together, nearest first
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) search.gather(m_grid, m_grid.segments(i, j));
+        search.drain(true);
     }
     if (!search.crossing) {
         // No edge crossing: the hull is wholly in water, wholly in land, or holds an islet.
@@ -434,9 +472,32 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         out.clearance_m = 0;
         if (options.want_penetration) {
             double depth = 0;
-            for (std::size_t i = 0; i < h.n; ++i) {  // hull points on land: how far inside
+            // Hull points on land: how far inside. A point nearer than d to a point found d
+            // deep lies on land too (no winding test) and at most d + their distance deep: it
+            // is not searched when that cannot raise the depth, else searched within it (the
+            // bounds a hair loose: the same depth comes out as from a search of each point).
+            struct Known {
+                XY p;
+                double d;
+            };
+            std::array<Known, 8> known;
+            std::size_t n_known = 0, next_known = 0;
+            for (std::size_t i = 0; i < h.n; ++i) {
                 const XY p = h.to_local(h.pt(i));
-                if (m_grid.winding(p) > 0) depth = std::max(depth, nearest_coast(p, INFINITY, nullptr));
+                double most = INFINITY;
+                bool on_land = false;
+                for (std::size_t k = 0; k < n_known; ++k) {
+                    const double gap = std::sqrt(geo::norm2(p - known[k].p)) * (1 + 1e-9) + 1e-9;
+                    on_land = on_land || gap < known[k].d * (1 - 1e-9);
+                    most = std::min(most, (known[k].d + gap) * (1 + 1e-9) + 1e-9);
+                }
+                if (most <= depth) continue;
+                if (!on_land && m_grid.winding(p) <= 0) continue;
+                double d = nearest_coast(p, most, nullptr);
+                if (std::isinf(d)) d = nearest_coast(p, INFINITY, nullptr);
+                depth = std::max(depth, d);
+                known[next_known++ % known.size()] = {p, d};
+                n_known = std::min(n_known + 1, known.size());
             }
             const std::size_t n = h.n;
             // Coast vertices inside the hull: how far from its outline.
@@ -483,6 +544,51 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         out.polyline = m_grid.polyline_of(*search.best_seg);
     }
     return out;
+}
+
+bool Detector::covers(const LocalPose& pose) const noexcept {
+    const std::vector<XY>& c = m_hull.contour();
+    return inside_extent(local_hull_box(c.data(), c.size(), pose.ship_to_local, pose.position), m_grid.extent());
+}
+
+namespace {
+/// Position of cell (x, y) along the Hilbert curve over an n x n grid of cells (n a power of
+/// two above x and y): cells near each other on the curve are near each other on the chart.
+std::uint64_t hilbert_index(std::uint32_t n, std::uint32_t x, std::uint32_t y) noexcept {
+    std::uint64_t d = 0;
+    for (std::uint32_t s = n / 2; s > 0; s /= 2) {
+        const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+        d += std::uint64_t{s} * s * ((3 * rx) ^ ry);
+        if (ry == 0) {  // rotate the quadrant
+            if (rx == 1) {
+                x = n - 1 - x;
+                y = n - 1 - y;
+            }
+            std::swap(x, y);
+        }
+    }
+    return d;
+}
+}  // namespace
+
+void Detector::check_all(std::span<const LocalPose> poses, const CheckOptions& options, std::span<Contact> out) const {
+    if (out.size() != poses.size()) throw std::invalid_argument("Detector::check_all: out must have one element per pose");
+    const int nx = m_grid.nx(), ny = m_grid.ny();
+    std::uint32_t n = 1;
+    while (n < static_cast<std::uint32_t>(std::max({nx, ny, 1}))) n *= 2;
+    struct Item {
+        std::uint64_t key;
+        std::size_t index;
+    };
+    std::vector<Item> order(poses.size());
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+        const geo::XY p = poses[k].position;
+        const int i = std::clamp(m_grid.col_of(p.x), 0, std::max(nx - 1, 0));
+        const int j = std::clamp(m_grid.row_of(p.y), 0, std::max(ny - 1, 0));
+        order[k] = {hilbert_index(n, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)), k};
+    }
+    std::sort(order.begin(), order.end(), [](const Item& a, const Item& b) { return a.key != b.key ? a.key < b.key : a.index < b.index; });
+    for (const Item& it : order) out[it.index] = check(poses[it.index], options);
 }
 
 double Detector::nearest_coast(XY p, double max_m, XY* on_coast) const {

@@ -292,6 +292,9 @@ NearestSegment CoastGrid::nearest_segment(XY p, double max_m) const noexcept {
         bool wants(double gap) const { return gap <= 0 || (gap * gap < best.dist2 && gap <= max_m); }
         double reach() const { return std::min(std::sqrt(best.dist2), max_m); }
     } visit{*this, p, max_m};
+    // Nothing farther than max_m is wanted: chunks beyond it (by more than rounding) are
+    // skipped from the first cell on.
+    if (std::isfinite(max_m)) visit.best.dist2 = std::pow(max_m * (1 + 1e-9) + 1e-9, 2);
     visit_outward(*this, point_box(p), visit);
     if (visit.best.segment) visit.best.polyline = polyline_of(*visit.best.segment);
     return visit.best;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <vector>
 
 #include <shoal/grid/coast_grid.hpp>
 
@@ -30,6 +31,60 @@ void visit_chunks(const CoastGrid& grid, std::span<const Segment> segs, Keep&& k
         else
             k = end;
     }
+}
+
+/// The segments of one chunk that lie in one cell, and a lower bound of the squared distance
+/// from what is sought to any of them (the distance to the chunk's box).
+struct ChunkRun {
+    double d2;
+    const Segment* begin;
+    const Segment* end;
+};
+
+/// Appends to `runs` the chunks of `segs` (a span returned by grid.segments(i, j)) whose box
+/// lies nearer than `limit2`: dist2(box) is the squared distance to what is sought, a lower
+/// bound of every segment's in the chunk. With visit_nearest_first, a search reads the chunk
+/// nearest first and its bound shrinks before the far ones are looked at.
+template <class Dist2>
+void gather_chunks(const CoastGrid& grid, std::span<const Segment> segs, Dist2&& dist2, double limit2,
+                   std::vector<ChunkRun>& runs) {
+    if (segs.empty()) return;
+    constexpr std::size_t chunk = CoastGrid::chunk_segments;
+    const std::size_t first = grid.index_of(segs), n = segs.size();
+    const std::span<const geo::Box> boxes = grid.chunk_boxes();
+    for (std::size_t k = 0; k < n;) {
+        const std::size_t g = first + k, end = std::min(n, k + (chunk - g % chunk));
+        // Shrunk by a hair: a segment measured in another frame, rounded a little nearer than
+        // its box, is still read.
+        const double d2 = dist2(boxes[g / chunk]) * (1 - 1e-9);
+        if (d2 < limit2) runs.push_back({d2, segs.data() + k, segs.data() + end});
+        k = end;
+    }
+}
+
+/// Calls visit(segment) for the segments of `runs`, nearest run first, while the run's bound
+/// is under bound() (asked again before every run, so it may tighten as visit finds things)
+/// and stop() is false; clears `runs`.
+template <class Bound, class Stop, class Visit>
+void visit_nearest_first(std::vector<ChunkRun>& runs, Bound&& bound, Stop&& stop, Visit&& visit) {
+    // Stable, so that runs at the same bound (all those meeting the hull's box) keep the
+    // order of storage; insertion for the few runs of a usual cell.
+    auto nearer = [](const ChunkRun& a, const ChunkRun& b) { return a.d2 < b.d2; };
+    if (runs.size() > 32) {
+        std::stable_sort(runs.begin(), runs.end(), nearer);
+    } else {
+        for (std::size_t i = 1; i < runs.size(); ++i) {
+            const ChunkRun r = runs[i];
+            std::size_t j = i;
+            for (; j > 0 && nearer(r, runs[j - 1]); --j) runs[j] = runs[j - 1];
+            runs[j] = r;
+        }
+    }
+    for (const ChunkRun& r : runs) {
+        if (stop() || !(r.d2 < bound())) break;
+        for (const Segment* s = r.begin; s != r.end && !stop(); ++s) visit(*s);
+    }
+    runs.clear();
 }
 
 /// Squared distance from p to box b (0 inside).

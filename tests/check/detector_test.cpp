@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
@@ -56,6 +57,27 @@ public:
     LandOracle& operator=(const LandOracle&) = delete;
 
     bool intersects(const std::vector<XY>& hull) const { return GEOSPreparedIntersects_r(m_ctx, m_prepared.get(), polygon(hull).get()) == 1; }
+    /// How deep p lies in land: its distance to the land's boundary; -1 when not in land.
+    double depth(XY p) const {
+        const geo::GeomPtr pt = geo::own(m_ctx, GEOSGeom_createPointFromXY_r(m_ctx, p.x, p.y), "point");
+        if (GEOSPreparedContains_r(m_ctx, m_prepared.get(), pt.get()) != 1) return -1;
+        if (!m_boundary) {
+            m_boundary = geo::own(m_ctx, GEOSBoundary_r(m_ctx, m_land.get()), "boundary");
+            m_prepared_boundary = geo::PreparedPtr(GEOSPrepare_r(m_ctx, m_boundary.get()), {m_ctx.get()});
+        }
+        double d = -1;
+        GEOSPreparedDistance_r(m_ctx, m_prepared_boundary.get(), pt.get(), &d);
+        return d;
+    }
+    /// How deep q lies inside the closed ring `hull`: its distance to the outline; -1 outside.
+    double depth_in(const std::vector<XY>& hull, XY q) const {
+        const geo::GeomPtr poly = polygon(hull), pt = geo::own(m_ctx, GEOSGeom_createPointFromXY_r(m_ctx, q.x, q.y), "point");
+        if (GEOSContains_r(m_ctx, poly.get(), pt.get()) != 1) return -1;
+        const geo::GeomPtr outline = geo::own(m_ctx, GEOSBoundary_r(m_ctx, poly.get()), "outline");
+        double d = -1;
+        GEOSDistance_r(m_ctx, outline.get(), pt.get(), &d);
+        return d;
+    }
     double distance(const std::vector<XY>& hull) const {
         double d = -1;
         GEOSPreparedDistance_r(m_ctx, m_prepared.get(), polygon(hull).get(), &d);
@@ -77,6 +99,8 @@ private:
     const geo::LocalFrame& m_frame;
     geo::GeomPtr m_land{nullptr, {m_ctx.get()}};
     geo::PreparedPtr m_prepared{nullptr, {m_ctx.get()}};
+    mutable geo::GeomPtr m_boundary{nullptr, {m_ctx.get()}};
+    mutable geo::PreparedPtr m_prepared_boundary{nullptr, {m_ctx.get()}};
 };
 
 struct Disagreements {
@@ -338,6 +362,102 @@ TEST(DetectorOptions, AskingLessChangesNothingElse) {
     }
     EXPECT_GT(left_out, 50) << "too few hulls wholly on land to mean anything";
     EXPECT_GT(deep, 500);
+}
+
+TEST(DetectorPenetration, AgreesWithGeos) {
+    // Penetration, as documented: the deepest of the hull points in land (their distance to
+    // the coast) and of the coast vertices inside the hull (their distance to its outline),
+    // the vertices being those of the grid's segments (the coastline's, and where it crosses
+    // a cell's side). Answered by GEOS on the land polygons and the hull's polygon, on poses
+    // touching the shore, half on land, deep in land (a search of several rings of cells).
+    const std::string path = test_data("coast/uk_solent_land.geojson");
+    const coast::Coastline coast = coast::import_coastline({path});
+    const geo::LocalFrame frame =
+        geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+    const auto lines = coast::project(coast, frame);
+    const grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
+    const LandOracle oracle(path, frame);
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
+    const Detector det(grid, hull);
+    std::vector<XY> vertices;  // every segment's first point, by x
+    for (int j = 0; j < grid.ny(); ++j)
+        for (int i = 0; i < grid.nx(); ++i)
+            for (const grid::Segment& sg : grid.segments(i, j)) vertices.push_back(sg.a);
+    std::sort(vertices.begin(), vertices.end(), [](XY a, XY b) { return a.x < b.x; });
+    std::mt19937_64 rng(77);
+    std::uniform_real_distribution<double> unit(0, 1);
+    int contacts = 0, deep = 0;
+    for (int k = 0; k < 1500; ++k) {
+        const auto& l = lines[rng() % lines.size()];
+        const XY on = l.points[rng() % l.points.size()];
+        const double r = (k % 2 == 0 ? 3000.0 : hull.radius()) * unit(rng), a = 2 * std::numbers::pi * unit(rng);
+        const LocalPose pose = place(frame, Pose{frame.inverse(on + XY{r * std::cos(a), r * std::sin(a)}), 360 * unit(rng)});
+        const Contact c = det.check(pose, {INFINITY, true, false});
+        if (!c.collision || !c.covered) continue;
+        ++contacts;
+        const std::vector<XY> outline = hull_outline(hull, pose);
+        double want = 0;
+        for (const XY& p : outline) want = std::max(want, oracle.depth(p));
+        geo::Box box;
+        for (const XY& p : outline) box.extend(p);
+        auto from = std::lower_bound(vertices.begin(), vertices.end(), box.minx, [](XY v, double x) { return v.x < x; });
+        for (; from != vertices.end() && from->x <= box.maxx; ++from)
+            if (from->y >= box.miny && from->y <= box.maxy) want = std::max(want, oracle.depth_in(outline, *from));
+        ASSERT_NEAR(c.penetration_m, want, 1e-6) << "pose " << k;
+        deep += want > 300;
+    }
+    EXPECT_GT(contacts, 600);
+    EXPECT_GT(deep, 50) << "too few hulls deep in land to mean anything";
+}
+
+TEST(DetectorBatch, CheckAllAnswersAsCheckPoseByPose) {
+    // Poses near the coast, anywhere on the chart and beyond it, checked as one batch (in the
+    // grid's cell order): each answer is that of check() on its own, in input order.
+    const std::string path = test_data("coast/uk_solent_land.geojson");
+    const coast::Coastline coast = coast::import_coastline({path});
+    const geo::LocalFrame frame =
+        geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+    const auto lines = coast::project(coast, frame);
+    const grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
+    const Detector det(grid, hull);
+    std::mt19937_64 rng(2026);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const geo::Box ext = grid.extent();
+    std::vector<LocalPose> poses;
+    for (int k = 0; k < 5000; ++k) {
+        XY pos;
+        if (k % 5 == 0) {  // the chart and 5 km around it
+            pos = {ext.minx - 5000 + unit(rng) * (ext.maxx - ext.minx + 10000), ext.miny - 5000 + unit(rng) * (ext.maxy - ext.miny + 10000)};
+        } else {
+            const auto& l = lines[rng() % lines.size()];
+            const XY on = l.points[rng() % l.points.size()];
+            const double r = 2.5 * hull.radius() * unit(rng), a = 2 * std::numbers::pi * unit(rng);
+            pos = on + XY{r * std::cos(a), r * std::sin(a)};
+        }
+        poses.push_back(LocalPose::at(pos, 360 * unit(rng)));
+    }
+    for (const CheckOptions& options : {CheckOptions{INFINITY, false, false}, CheckOptions{100.0, true, true}}) {
+        std::vector<Contact> batch(poses.size());
+        det.check_all(poses, options, batch);
+        int hits = 0, uncovered = 0;
+        for (std::size_t k = 0; k < poses.size(); ++k) {
+            const Contact one = det.check(poses[k], options);
+            ASSERT_EQ(batch[k].collision, one.collision) << k;
+            ASSERT_EQ(batch[k].covered, one.covered) << k;
+            ASSERT_EQ(batch[k].clearance_m, one.clearance_m) << k;
+            ASSERT_EQ(batch[k].penetration_m, one.penetration_m) << k;
+            ASSERT_EQ(batch[k].hull_point, one.hull_point) << k;
+            ASSERT_EQ(batch[k].coast_point, one.coast_point) << k;
+            ASSERT_EQ(batch[k].polyline, one.polyline) << k;
+            hits += one.collision;
+            uncovered += !one.covered;
+        }
+        EXPECT_GT(hits, 500);
+        EXPECT_GT(uncovered, 50);
+    }
+    std::vector<Contact> wrong(3);
+    EXPECT_THROW(det.check_all(poses, {}, wrong), std::invalid_argument);
 }
 
 TEST(Placement, BowLandsWhereTheGeodesicPutsIt) {

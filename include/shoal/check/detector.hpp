@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <shoal/geo/point.hpp>
@@ -87,6 +88,15 @@ public:
 
     Contact check(const Pose& pose, const CheckOptions& options = {}) const;
     Contact check(const LocalPose& pose, const CheckOptions& options = {}) const;
+    /// Checks many poses: out[k] is check(poses[k], options), the same answer, but the poses
+    /// are checked in the order of the grid cells they lie in (along a Hilbert curve), so a
+    /// batch scattered over the chart reads each part of the grid while it is in the cache.
+    /// `out` must have poses.size() elements.
+    void check_all(std::span<const LocalPose> poses, const CheckOptions& options, std::span<Contact> out) const;
+
+    /// Whether the hull at `pose` lies inside the grid's extent: Contact::covered, as check()
+    /// gives it, without the check.
+    bool covers(const LocalPose& pose) const noexcept;
 
     /// Nearest coastline segment to p within `max_m` (INFINITY if none): distance, and the point.
     double nearest_coast(geo::XY p, double max_m, geo::XY* on_coast) const;
