@@ -75,6 +75,19 @@ public:
         return checker_at(i, f).check(m_motion.pose(i, f), {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false});
     }
 
+    /// The answer at fix interval i, fraction f, when the pose is known to be in contact
+    /// (SweepOptions::carry_contact): what check() would say but where the contact is, which
+    /// only an event's first sample reports (and that one is always checked).
+    check::Contact carried_contact(std::size_t i, double f) const {
+        check::Contact c;
+        const check::LocalPose pose = m_motion.pose(i, f);
+        c.collision = true;
+        c.clearance_m = 0;
+        c.covered = checker_at(i, f).covered(pose);
+        c.hull_point = c.coast_point = pose.position;
+        return c;
+    }
+
     /// How far clearance is searched: the lookahead beyond the margin (or the watch, when larger).
     double search_m() const { return std::max(m_opt.margin_m, m_opt.watch_clearance_m) + m_opt.lookahead_m; }
 
@@ -359,6 +372,7 @@ public:
     const hull::Hull& hull() const override { return m_inner.hull(); }
     const grid::CoastGrid* grid() const override { return m_inner.grid(); }
     double inside_depth(geo::XY p, double max_m) const override { return m_inner.inside_depth(p, max_m); }
+    bool covered(const check::LocalPose& pose) const override { return m_inner.covered(pose); }
 
 private:
     const PoseChecker& m_inner;
@@ -405,6 +419,15 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         const double clear = std::isinf(c.clearance_m) ? near_m + opt.lookahead_m : c.clearance_m;
         budget_m = c.collision ? 0 : std::max(0.0, clear - near_m);
     };
+    // SweepOptions::carry_contact: the penetration found at the last fix in contact (0: none),
+    // the checker that found it, and the hull motion (metres) since that fix.
+    double contact_depth_m = 0, since_contact_m = 0;
+    const PoseChecker* contact_checker = nullptr;
+    // Still in contact: a 1 % and 1 cm allowance over the motion bound (the local scale of the
+    // frame, rounding), far under any depth that matters.
+    auto still_in_contact = [&](const PoseChecker& c) {
+        return opt.carry_contact && &c == contact_checker && since_contact_m * 1.01 + 0.01 < contact_depth_m;
+    };
     bool have_prev = false;
     std::vector<geo::LonLat>* line = nullptr;
     // Poses for the report (SweepOptions::pose_interval_s): the last kept one of this piece,
@@ -446,11 +469,13 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             double moved = 0;
             for (std::size_t k = 1; k < n; ++k) {
                 moved += per_step;
+                since_contact_m += per_step;
                 if (moved < budget_m) continue;  // proved clear of the margin by the last check
                 budget_m = 0;
                 moved = 0;
                 Sample s{i - 1, static_cast<double>(k) / static_cast<double>(n), {}};
-                s.contact = events.check(s.i, s.f, false);
+                // Proved in contact by the last fix's penetration, or checked.
+                s.contact = still_in_contact(events.checker_at(s.i, s.f)) ? events.carried_contact(s.i, s.f) : events.check(s.i, s.f, false);
                 note(s.contact);
                 events.add(s);
                 events.watch(s, false);
@@ -458,6 +483,9 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         }
         Sample s{i, 0.0, {}};
         s.contact = events.check(i, 0.0, true);
+        contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
+        contact_checker = &events.checker_at(i, 0.0);
+        since_contact_m = 0;
         if (t.fixes[i].heading_source == track::HeadingSource::none && circle) ++sum.unknown_heading_fixes;
         if (!s.contact.covered) ++sum.uncovered_fixes;
         note(s.contact);

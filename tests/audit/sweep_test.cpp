@@ -168,6 +168,7 @@ public:
     }
     const hull::Hull& hull() const override { return m_inner.hull(); }
     const grid::CoastGrid* grid() const override { return m_inner.grid(); }
+    bool covered(const check::LocalPose& pose) const override { return m_inner.covered(pose); }
     mutable std::size_t calls = 0;
 
 private:
@@ -283,6 +284,110 @@ TEST(Sweep, RandomTracksAgreeWithBruteForceSweep) {
     }
     EXPECT_GT(groundings, 0u) << "the random tracks should meet land sometimes";
     EXPECT_GT(passes, 0u) << "the random tracks should pass close sometimes";
+}
+
+/// Everything a sweep reports about its events, poses and figures, compared exactly.
+void expect_same_results(const TrackResult& a, const TrackResult& b, const std::string& what) {
+    ASSERT_EQ(a.events.size(), b.events.size()) << what;
+    for (std::size_t e = 0; e < a.events.size(); ++e) {
+        const Event &x = a.events[e], &y = b.events[e];
+        SCOPED_TRACE(what + " event " + std::to_string(e));
+        EXPECT_EQ(x.kind, y.kind);
+        EXPECT_EQ(x.start_s, y.start_s);
+        EXPECT_EQ(x.end_s, y.end_s);
+        EXPECT_EQ(x.min_clearance_m, y.min_clearance_m);
+        EXPECT_EQ(x.penetration_m, y.penetration_m);
+        EXPECT_EQ(x.point, y.point);
+        EXPECT_EQ(x.ship, y.ship);
+        EXPECT_EQ(x.hull, y.hull);
+        EXPECT_EQ(x.fix_index, y.fix_index);
+        EXPECT_EQ(x.hit, y.hit);
+        EXPECT_TRUE(x.reference_inside_m == y.reference_inside_m || (std::isnan(x.reference_inside_m) && std::isnan(y.reference_inside_m)));
+        EXPECT_EQ(x.reported_aground, y.reported_aground);
+    }
+    ASSERT_EQ(a.poses.size(), b.poses.size()) << what;
+    for (std::size_t k = 0; k < a.poses.size(); ++k) {
+        EXPECT_EQ(a.poses[k].contact, b.poses[k].contact) << what << " pose " << k;
+        EXPECT_EQ(a.poses[k].clearance_m, b.poses[k].clearance_m) << what << " pose " << k;
+        EXPECT_EQ(a.poses[k].covered, b.poses[k].covered) << what << " pose " << k;
+        EXPECT_EQ(a.poses[k].time_s, b.poses[k].time_s) << what << " pose " << k;
+    }
+    EXPECT_EQ(a.summary.poses, b.summary.poses) << what;
+    EXPECT_EQ(a.summary.min_clearance_m, b.summary.min_clearance_m) << what;
+    EXPECT_EQ(a.summary.uncovered_fixes, b.summary.uncovered_fixes) << what;
+    EXPECT_EQ(a.summary.groundings, b.summary.groundings) << what;
+    EXPECT_EQ(a.summary.alongside, b.summary.alongside) << what;
+    EXPECT_EQ(a.summary.close_passes, b.summary.close_passes) << what;
+}
+
+/// SweepOptions::carry_contact: the poses after a fix deep in contact are not checked while the
+/// hull cannot have left it; every answer is still that of the full check. Tracks that cross
+/// land (straight legs over the Solent's islands and shores, and off the chart's edge),
+/// vessels alongside with GPS jitter and a swinging heading, swept with the contact carried
+/// and with every pose checked: the same events, poses and figures; and the same moments as the
+/// brute-force traversal (which reports no penetration, so it carries nothing).
+TEST(Sweep, CarriedContactsAreTheFullChecks) {
+    const coast::Coastline coast = coast::import_coastline({std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson"});
+    const geo::LocalFrame f = geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+    const auto lines = coast::project(coast, f);
+    const grid::CoastGrid grid = grid::CoastGrid::build(lines, f, 500);
+    const hull::Hull hull = hull::Hull::from_dimensions({60, 15, 6, 6});
+    const CountingChecker fast(grid, hull);
+    const BruteChecker slow(lines, hull);
+    SweepOptions carry, every;
+    every.carry_contact = false;
+    std::mt19937_64 rng(2026);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::size_t contacts = 0, saved = 0;
+    const geo::Box ext = grid.extent();
+    for (int k = 0; k < 24; ++k) {
+        track::Track t;
+        t.id = "crossing" + std::to_string(k);
+        const auto& l = lines[rng() % lines.size()];
+        XY p = l.points[rng() % l.points.size()];
+        if (k % 6 == 5) p = {ext.minx + 300 * unit(rng), ext.miny + (ext.maxy - ext.miny) * unit(rng)};  // near the chart's edge
+        const bool alongside = k % 3 == 0;
+        double time = 1.6e9, hdg = 360 * unit(rng);
+        const double step = alongside ? 0 : 20 + 60 * unit(rng);  // metres per fix
+        for (int i = 0; i < (alongside ? 400 : 60); ++i) {
+            track::Fix fix;
+            fix.time_s = time;
+            const XY jitter = alongside ? XY{3 * (unit(rng) - 0.5), 3 * (unit(rng) - 0.5)} : XY{0, 0};
+            fix.position = f.inverse(p + jitter);
+            fix.heading_used_deg = alongside ? std::fmod(hdg + 20 * (unit(rng) - 0.5) + 360, 360) : hdg;
+            fix.heading_source = track::HeadingSource::heading;
+            fix.line = static_cast<std::size_t>(i + 2);
+            t.fixes.push_back(fix);
+            if (!alongside) {
+                hdg = std::fmod(hdg + (unit(rng) - 0.5) * 6 + 360, 360);
+                const double h = hdg * std::numbers::pi / 180;
+                p = p + step * XY{std::sin(h), std::cos(h)};
+            }
+            time += 10;
+        }
+        fast.calls = 0;
+        const TrackResult every_pose = sweep_track(t, f, fast, every);
+        const std::size_t full_calls = fast.calls;
+        fast.calls = 0;
+        const TrackResult carried = sweep_track(t, f, fast, carry);
+        saved += full_calls - fast.calls;
+        expect_same_results(carried, every_pose, t.id);
+        contacts += carried.summary.groundings + carried.summary.alongside + carried.summary.contacts_at_start;
+        if (k % 4 != 1) continue;
+        // The brute force knows no chart's edge and no penetration: the moments and the checks.
+        const TrackResult brute = sweep_track(t, f, slow, carry);
+        ASSERT_EQ(carried.events.size(), brute.events.size()) << t.id;
+        for (std::size_t e = 0; e < brute.events.size(); ++e) {
+            EXPECT_EQ(carried.events[e].kind, brute.events[e].kind) << t.id << " event " << e;
+            EXPECT_NEAR(carried.events[e].start_s, brute.events[e].start_s, 1e-6) << t.id << " event " << e;
+            EXPECT_NEAR(carried.events[e].end_s, brute.events[e].end_s, 1e-6) << t.id << " event " << e;
+            EXPECT_NEAR(carried.events[e].min_clearance_m, brute.events[e].min_clearance_m, 1e-6) << t.id << " event " << e;
+        }
+        EXPECT_EQ(carried.summary.poses, brute.summary.poses) << t.id;
+    }
+    std::printf("carried contacts: %zu contacts, %zu checks saved\n", contacts, saved);
+    EXPECT_GT(contacts, 10u) << "too few contacts to mean anything";
+    EXPECT_GT(saved, 1000u) << "the carried contacts saved no checks";
 }
 
 }  // namespace

@@ -34,6 +34,11 @@ struct SweepOptions {
     /// lets the sweep skip checks for the next d - margin metres of hull motion (they cannot
     /// come within the margin). Fixes are always checked.
     double lookahead_m = 500.0;
+    /// A fix found in contact with penetration p is still in contact while no hull point has
+    /// moved p since (a hull point p deep in land, or a coast vertex p inside the hull, cannot
+    /// have left): the poses swept after it are not checked until then (the same answer, at no
+    /// cost, for a vessel crossing land or lying alongside). False: every pose is checked.
+    bool carry_contact = true;
     /// Assessment (assessment.hpp): clearance is followed up to this (metres) as it is up to
     /// the margin, and every checked pose under it is kept in TrackResult::clearance (with the
     /// pose before and after, for the crossings). 0 (default): nothing kept, as before.
@@ -185,6 +190,10 @@ public:
     /// How deep local point `p` lies inside land or a hazard (metres; negative: in water, by
     /// its distance to the nearest coast, at most `max_m`); NaN when not known.
     virtual double inside_depth(geo::XY /*p*/, double /*max_m*/) const { return NAN; }
+    /// Contact::covered of check(pose, ...), possibly without the check.
+    virtual bool covered(const check::LocalPose& pose) const {
+        return check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false}).covered;
+    }
 };
 
 class DetectorChecker final : public PoseChecker {
@@ -203,6 +212,7 @@ public:
         const double d = m_detector.nearest_coast(p, max_m, nullptr);
         return m_detector.grid().is_land(p) ? d : -d;
     }
+    bool covered(const check::LocalPose& pose) const override { return m_detector.covers(pose); }
 
 private:
     check::Detector m_detector;
