@@ -255,6 +255,7 @@ public:
         info.roles = m_roles_file;
         info.assessment = m_assess_file;
         info.project = !m_no_project;
+        info.jobs = m_audit.jobs;
         // The chart under the run (the coast layer), the grid's sources read again: for a
         // GeoPackage, and for a GeoJSON report whose project files go beside it (not on stdout
         // or a device: report_outputs lists more than the report and its style; not a shard).

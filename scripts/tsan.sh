@@ -32,7 +32,10 @@ run check --coast "$ex/data/gof_helsinki_land.geojson" --ship "$ex/ship.json" "$
 run check --coast "$ex/data/gof_helsinki_land.geojson" --ship "$ex/ship.json" "$ex/data/aava_n2k_fixes.csv" \
   -o "$out/traffic-1.geojson" --jobs 1 --margin 50
 cmp "$out/traffic.geojson" "$out/traffic-1.geojson"
-echo "reports of --jobs 1 and --jobs 2 are byte-identical"
+for layer in hulls poses tracks coast; do  # the QGIS project's layer files, written on two threads
+  cmp "$out/traffic.$layer.geojson" "$out/traffic-1.$layer.geojson"
+done
+echo "reports of --jobs 1 and --jobs 2 (and their layer files) are byte-identical"
 echo "== tests that run the audit on several threads, under ThreadSanitizer =="
 "$build/tests/audit_test" --gtest_brief=1
 "$build/tests/cli_test" --gtest_brief=1

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
+#include <thread>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -333,6 +334,38 @@ StagedOutput stage_layer_file(const std::string& path, MapLayer which, const aud
     return out;
 }
 
+/// The layer files `layers`, staged in that order: each written by one thread of its own (at
+/// most RunInfo::jobs at once), GDAL datasets being independent. The first failure is thrown
+/// once every file is done (the others' temporary files are removed with them).
+std::vector<StagedOutput> stage_layer_files(const std::vector<const ProjectFiles::Layer*>& layers, const audit::AuditResult& r,
+                                            const RunInfo& info) {
+    GDALAllRegister();  // once, before the threads
+    const std::size_t n = layers.size();
+    std::vector<std::optional<StagedOutput>> staged(n);
+    std::vector<std::exception_ptr> failed(n);
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t k; (k = next.fetch_add(1)) < n;) {
+            try {
+                staged[k].emplace(stage_layer_file(layers[k]->geojson, layers[k]->which, r, info));
+            } catch (...) {
+                failed[k] = std::current_exception();
+            }
+        }
+    };
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t threads = std::min<std::size_t>(n, info.jobs ? info.jobs : cores);
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
+    std::vector<StagedOutput> out;
+    for (auto& s : staged) out.push_back(std::move(*s));
+    return out;
+}
+
 /// The QGIS project REPORT.qgz beside a GeoJSON report and the layer files it opens, unless
 /// one of those files exists that shoal did not write (a warning then, and none is staged).
 void stage_project_beside(const std::string& path, const audit::AuditResult& r, const RunInfo& info, std::vector<StagedOutput>& out,
@@ -370,9 +403,13 @@ void stage_project_beside(const std::string& path, const audit::AuditResult& r, 
     // none, and QGIS would open it as a table, dropping it from the map).
     const std::string name = std::filesystem::path(path).filename().string();
     std::vector<ProjectLayer> layers{{"events", "Point", "./" + name + "|geometrytype=Point"}};
-    for (const auto& l : f.layers) {
-        if (l.which == MapLayer::coast && !info.chart) continue;
-        out.push_back(stage_layer_file(l.geojson, l.which, r, info));
+    std::vector<const ProjectFiles::Layer*> written;
+    for (const auto& l : f.layers)
+        if (l.which != MapLayer::coast || info.chart) written.push_back(&l);
+    std::vector<StagedOutput> files_out = stage_layer_files(written, r, info);
+    for (std::size_t k = 0; k < written.size(); ++k) {
+        const auto& l = *written[k];
+        out.push_back(std::move(files_out[k]));
         std::string warning;  // checked above: shoal's, or none
         if (std::optional<StagedOutput> s = stage_sidecar_style(l.qml, name_of(l.which), warning)) out.push_back(std::move(*s));
         const char* type = l.which == MapLayer::tracks ? "MultiLineString" : l.which == MapLayer::coast ? "MultiPolygon" : "Polygon";

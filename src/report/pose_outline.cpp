@@ -24,9 +24,18 @@ std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
 
     thread_local geo::GeosContext ctx;
     const geo::GeomPtr poly = geo::make_polygon(ctx, {xy});
-    const geo::GeomPtr simple = geo::own(ctx, GEOSTopologyPreserveSimplify_r(ctx, poly.get(), pose_outline_tolerance * length), "simplifying a hull outline");
+    // Douglas-Peucker (GEOSSimplify), a tenth of the cost of the topology-preserving
+    // simplifier, whose answer it is for every outline it leaves simple; where it does not
+    // (a deep notch in a hand-drawn hull), the topology-preserving one.
+    const double tolerance = pose_outline_tolerance * length;
+    geo::GeomPtr simple = geo::own(ctx, GEOSSimplify_r(ctx, poly.get(), tolerance), "simplifying a hull outline");
     std::vector<std::vector<std::vector<geo::XY>>> rings;
-    geo::collect_polygons(ctx, simple.get(), rings);
+    if (GEOSisValid_r(ctx, simple.get()) == 1) geo::collect_polygons(ctx, simple.get(), rings);
+    if (rings.size() != 1 || rings[0].size() != 1 || rings[0][0].size() < pose_outline_min_corners + 1) {
+        rings.clear();
+        simple = geo::own(ctx, GEOSTopologyPreserveSimplify_r(ctx, poly.get(), tolerance), "simplifying a hull outline");
+        geo::collect_polygons(ctx, simple.get(), rings);
+    }
     if (rings.size() != 1 || rings[0].empty()) return ring;
     const std::vector<geo::XY>& kept = rings[0][0];
     if (kept.size() < pose_outline_min_corners + 1) return ring;

@@ -50,6 +50,9 @@ struct RunInfo {
     /// GeoPackage's stored project; beside a GeoJSON report REPORT.qgz and the layer files it
     /// opens). false (--no-project): the events, tracks and hulls only.
     bool project = true;
+    /// Threads that write the layer files of a GeoJSON report's QGIS project, each file in one
+    /// (0: all cores; the CLI passes --jobs).
+    unsigned jobs = 0;
 };
 
 /// The chart the run was checked against, for the report's `coast` layer: the grid's sources
