@@ -17,9 +17,10 @@ std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
     std::vector<geo::XY> xy;
     xy.reserve(ring.size());
     for (const auto& p : ring) xy.push_back({(p.lon - lon0) * kx, (p.lat - lat0) * metres_per_deg});
-    double length = 0;
+    double length2 = 0;  // squared: one square root, not one per pair
     for (std::size_t i = 0; i + 1 < xy.size(); ++i)
-        for (std::size_t j = i + 1; j + 1 < xy.size(); ++j) length = std::max(length, std::hypot(xy[i].x - xy[j].x, xy[i].y - xy[j].y));
+        for (std::size_t j = i + 1; j + 1 < xy.size(); ++j) length2 = std::max(length2, geo::norm2(xy[i] - xy[j]));
+    const double length = std::sqrt(length2);
     if (!(length > 0)) return ring;
 
     thread_local geo::GeosContext ctx;
