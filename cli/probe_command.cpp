@@ -63,17 +63,9 @@ public:
         check::CheckOptions asked;
         asked.want_penetration = false;
         asked.want_polyline = false;
-        // Placed in input order (a pose that cannot be projected stops the run where it did),
-        // checked in the grid's order, written in input order.
-        std::vector<check::LocalPose> placed;
-        placed.reserve(poses.poses.size());
-        for (const auto& p : poses.poses) placed.push_back(check::place(detector.grid().frame(), check::Pose{{p.lon, p.lat}, p.heading_deg}));
-        std::vector<check::Contact> contacts(placed.size());
-        detector.check_all(placed, asked, contacts);
         std::size_t uncovered = 0;
-        for (std::size_t k = 0; k < poses.poses.size(); ++k) {
-            const auto& p = poses.poses[k];
-            const check::Contact& c = contacts[k];
+        for (const auto& p : poses.poses) {
+            const check::Contact c = detector.check(check::Pose{{p.lon, p.lat}, p.heading_deg}, asked);
             append_fixed(out, p.lat, 7);
             out += ',';
             append_fixed(out, p.lon, 7);

@@ -4,9 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <cstdint>
 #include <span>
-#include <stdexcept>
 
 #include "grid/outward.hpp"
 
@@ -549,46 +547,6 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
 bool Detector::covers(const LocalPose& pose) const noexcept {
     const std::vector<XY>& c = m_hull.contour();
     return inside_extent(local_hull_box(c.data(), c.size(), pose.ship_to_local, pose.position), m_grid.extent());
-}
-
-namespace {
-/// Position of cell (x, y) along the Hilbert curve over an n x n grid of cells (n a power of
-/// two above x and y): cells near each other on the curve are near each other on the chart.
-std::uint64_t hilbert_index(std::uint32_t n, std::uint32_t x, std::uint32_t y) noexcept {
-    std::uint64_t d = 0;
-    for (std::uint32_t s = n / 2; s > 0; s /= 2) {
-        const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
-        d += std::uint64_t{s} * s * ((3 * rx) ^ ry);
-        if (ry == 0) {  // rotate the quadrant
-            if (rx == 1) {
-                x = n - 1 - x;
-                y = n - 1 - y;
-            }
-            std::swap(x, y);
-        }
-    }
-    return d;
-}
-}  // namespace
-
-void Detector::check_all(std::span<const LocalPose> poses, const CheckOptions& options, std::span<Contact> out) const {
-    if (out.size() != poses.size()) throw std::invalid_argument("Detector::check_all: out must have one element per pose");
-    const int nx = m_grid.nx(), ny = m_grid.ny();
-    std::uint32_t n = 1;
-    while (n < static_cast<std::uint32_t>(std::max({nx, ny, 1}))) n *= 2;
-    struct Item {
-        std::uint64_t key;
-        std::size_t index;
-    };
-    std::vector<Item> order(poses.size());
-    for (std::size_t k = 0; k < poses.size(); ++k) {
-        const geo::XY p = poses[k].position;
-        const int i = std::clamp(m_grid.col_of(p.x), 0, std::max(nx - 1, 0));
-        const int j = std::clamp(m_grid.row_of(p.y), 0, std::max(ny - 1, 0));
-        order[k] = {hilbert_index(n, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)), k};
-    }
-    std::sort(order.begin(), order.end(), [](const Item& a, const Item& b) { return a.key != b.key ? a.key < b.key : a.index < b.index; });
-    for (const Item& it : order) out[it.index] = check(poses[it.index], options);
 }
 
 double Detector::nearest_coast(XY p, double max_m, XY* on_coast) const {

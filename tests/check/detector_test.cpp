@@ -410,56 +410,6 @@ TEST(DetectorPenetration, AgreesWithGeos) {
     EXPECT_GT(deep, 50) << "too few hulls deep in land to mean anything";
 }
 
-TEST(DetectorBatch, CheckAllAnswersAsCheckPoseByPose) {
-    // Poses near the coast, anywhere on the chart and beyond it, checked as one batch (in the
-    // grid's cell order): each answer is that of check() on its own, in input order.
-    const std::string path = test_data("coast/uk_solent_land.geojson");
-    const coast::Coastline coast = coast::import_coastline({path});
-    const geo::LocalFrame frame =
-        geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
-    const auto lines = coast::project(coast, frame);
-    const grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
-    const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
-    const Detector det(grid, hull);
-    std::mt19937_64 rng(2026);
-    std::uniform_real_distribution<double> unit(0, 1);
-    const geo::Box ext = grid.extent();
-    std::vector<LocalPose> poses;
-    for (int k = 0; k < 5000; ++k) {
-        XY pos;
-        if (k % 5 == 0) {  // the chart and 5 km around it
-            pos = {ext.minx - 5000 + unit(rng) * (ext.maxx - ext.minx + 10000), ext.miny - 5000 + unit(rng) * (ext.maxy - ext.miny + 10000)};
-        } else {
-            const auto& l = lines[rng() % lines.size()];
-            const XY on = l.points[rng() % l.points.size()];
-            const double r = 2.5 * hull.radius() * unit(rng), a = 2 * std::numbers::pi * unit(rng);
-            pos = on + XY{r * std::cos(a), r * std::sin(a)};
-        }
-        poses.push_back(LocalPose::at(pos, 360 * unit(rng)));
-    }
-    for (const CheckOptions& options : {CheckOptions{INFINITY, false, false}, CheckOptions{100.0, true, true}}) {
-        std::vector<Contact> batch(poses.size());
-        det.check_all(poses, options, batch);
-        int hits = 0, uncovered = 0;
-        for (std::size_t k = 0; k < poses.size(); ++k) {
-            const Contact one = det.check(poses[k], options);
-            ASSERT_EQ(batch[k].collision, one.collision) << k;
-            ASSERT_EQ(batch[k].covered, one.covered) << k;
-            ASSERT_EQ(batch[k].clearance_m, one.clearance_m) << k;
-            ASSERT_EQ(batch[k].penetration_m, one.penetration_m) << k;
-            ASSERT_EQ(batch[k].hull_point, one.hull_point) << k;
-            ASSERT_EQ(batch[k].coast_point, one.coast_point) << k;
-            ASSERT_EQ(batch[k].polyline, one.polyline) << k;
-            hits += one.collision;
-            uncovered += !one.covered;
-        }
-        EXPECT_GT(hits, 500);
-        EXPECT_GT(uncovered, 50);
-    }
-    std::vector<Contact> wrong(3);
-    EXPECT_THROW(det.check_all(poses, {}, wrong), std::invalid_argument);
-}
-
 TEST(Placement, BowLandsWhereTheGeodesicPutsIt) {
     // Checked in depth in geo tests; here: place() gives the frame's scale and convergence.
     const geo::LocalFrame frame = geo::LocalFrame::transverse_mercator({24.5, 60.0});

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <span>
 #include <vector>
 
 #include <shoal/geo/point.hpp>
@@ -88,11 +87,6 @@ public:
 
     Contact check(const Pose& pose, const CheckOptions& options = {}) const;
     Contact check(const LocalPose& pose, const CheckOptions& options = {}) const;
-    /// Checks many poses: out[k] is check(poses[k], options), the same answer, but the poses
-    /// are checked in the order of the grid cells they lie in (along a Hilbert curve), so a
-    /// batch scattered over the chart reads each part of the grid while it is in the cache.
-    /// `out` must have poses.size() elements.
-    void check_all(std::span<const LocalPose> poses, const CheckOptions& options, std::span<Contact> out) const;
 
     /// Whether the hull at `pose` lies inside the grid's extent: Contact::covered, as check()
     /// gives it, without the check.
