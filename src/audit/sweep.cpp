@@ -4,6 +4,8 @@
 #include <optional>
 #include <numbers>
 
+#include <Eigen/LU>
+
 #include <shoal/audit/motion.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/util/error.hpp>
@@ -350,6 +352,12 @@ private:
     bool m_watch_last_kept = false;                  ///< the last sample was kept
 };
 
+/// The largest singular value of `m`: how far it stretches a unit vector at most.
+double largest_stretch(const Eigen::Matrix2d& m) {
+    const double s = m.squaredNorm(), det = m.determinant();
+    return std::sqrt((s + std::sqrt(std::max(0.0, s * s - 4 * det * det))) / 2);
+}
+
 /// Gives the last answer again for the same pose and options (a pure function of them): a
 /// vessel standing still, a fix a second for a day at anchor or aground, costs one check per
 /// change of pose rather than one per fix (a hull deep in land costs a long penetration search).
@@ -466,10 +474,18 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             const double motion_m = std::hypot(d.x, d.y) + radius * rot;
             const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil(motion_m / opt.step_m)));
             const double per_step = motion_m / static_cast<double>(n);
+            // For the carried contact, a bound in local metres on every hull point's motion per
+            // step: the frame's local scale on the turn (its largest stretch, at either fix) and
+            // the change of the scale along the interval.
+            const Eigen::Matrix2d& j0 = local[i - 1].jacobian;
+            const Eigen::Matrix2d& j1 = local[i].jacobian;
+            const double stretch = std::max(largest_stretch(j0), largest_stretch(j1));
+            const double carry_per_step =
+                (std::hypot(d.x, d.y) + radius * (stretch * rot + (j1 - j0).norm())) / static_cast<double>(n);
             double moved = 0;
             for (std::size_t k = 1; k < n; ++k) {
                 moved += per_step;
-                since_contact_m += per_step;
+                since_contact_m += carry_per_step;
                 if (moved < budget_m) continue;  // proved clear of the margin by the last check
                 budget_m = 0;
                 moved = 0;

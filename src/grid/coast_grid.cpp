@@ -297,6 +297,7 @@ NearestSegment CoastGrid::nearest_segment(XY p, double max_m) const noexcept {
     if (std::isfinite(max_m)) visit.best.dist2 = std::pow(max_m * (1 + 1e-9) + 1e-9, 2);
     visit_outward(*this, point_box(p), visit);
     if (visit.best.segment) visit.best.polyline = polyline_of(*visit.best.segment);
+    else visit.best.dist2 = INFINITY;  // none found
     return visit.best;
 }
 

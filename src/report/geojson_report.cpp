@@ -1,21 +1,28 @@
 #include <gdal_priv.h>
 
+#include <algorithm>
+#include <atomic>
+#include <charconv>
 #include <cmath>
+#include <exception>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
+#include <system_error>
 #include <thread>
 #include <type_traits>
 #include <variant>
 #include <vector>
 
 #include "detail/qgis_styles.hpp"
+#include "report/chart_layer.hpp"
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"
 #include "report/qgis_project.hpp"
 #include "report/part_order.hpp"
+#include "report/pose_outline.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/version.hpp>
@@ -314,23 +321,105 @@ void stage_style_beside(const std::string& path, std::vector<StagedOutput>& out,
     }
 }
 
-/// A map layer of the report as GeoJSON at `path` (RFC 7946, through GDAL's GeoJSON driver),
-/// marked as shoal's in its "description".
+/// `v` rounded to fields::coordinate_decimals as printf's "%.7f" rounds it (the decimal
+/// nearest the double, ties to even), as GDAL writes GeoJSON coordinates.
+double decimal_coordinate(double v) {
+    char buf[400];
+    const auto printed = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, fields::coordinate_decimals);
+    double out = v;
+    if (printed.ec == std::errc()) std::from_chars(buf, printed.ptr, out);
+    return out;
+}
+
+json position(geo::LonLat p) { return {decimal_coordinate(p.lon), decimal_coordinate(p.lat)}; }
+
+/// A ring's GeoJSON coordinates, rounded as GDAL rounds them, running counter-clockwise
+/// (`ccw`: a polygon's shell) or clockwise (a hole), as RFC 7946 has them. `ring` is closed.
+json ring_coordinates(const std::vector<geo::LonLat>& ring, bool ccw) {
+    double area2 = 0;  // twice the signed area in degrees: > 0 counter-clockwise
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i) area2 += ring[i].lon * ring[i + 1].lat - ring[i + 1].lon * ring[i].lat;
+    const bool reverse = area2 != 0 && (area2 > 0) != ccw;
+    json a = json::array();
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+        a.push_back(position(ring[reverse ? ring.size() - 1 - k : k]));
+    }
+    return a;
+}
+
+json polygon_geometry(const std::vector<std::vector<geo::LonLat>>& rings) {
+    json c = json::array();
+    for (std::size_t k = 0; k < rings.size(); ++k) c.push_back(ring_coordinates(rings[k], k == 0));
+    return {{"type", "Polygon"}, {"coordinates", std::move(c)}};
+}
+
+/// A map layer of the report (tracks, hulls, poses, coast) as a GeoJSON FeatureCollection
+/// (RFC 7946: WGS84 longitude, latitude to 7 decimals, shells counter-clockwise), marked as
+/// shoal's in its "description"; one feature per line, written as it is made. The features,
+/// their properties and geometries are those of the GeoPackage's layer (gpkg_report.cpp).
+void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& info, const StagedOutput::Sink& sink) {
+    std::string buf;
+    constexpr std::size_t chunk = std::size_t{1} << 20;
+    buf.reserve(chunk + 65536);
+    buf += "{\n\"type\": \"FeatureCollection\",\n\"name\": " + json(name_of(which)).dump() + ",\n\"description\": " +
+           json(std::string(sidecar_mark)).dump() + ",\n\"features\": [";
+    bool first = true;
+    auto feature = [&](json properties, json geometry) {
+        json f;
+        f["type"] = "Feature";
+        f["properties"] = std::move(properties);
+        f["geometry"] = std::move(geometry);
+        buf += first ? "\n" : ",\n";
+        first = false;
+        buf += f.dump();
+        if (buf.size() >= chunk) {
+            sink(buf);
+            buf.clear();
+        }
+    };
+    switch (which) {
+        case MapLayer::tracks:
+            for (const auto& t : fields::track_rows(r)) {
+                json lines = json::array();
+                for (const auto& piece : t.track.lines) {
+                    json line = json::array();
+                    for (const auto& p : piece) line.push_back(position(p));
+                    if (line.size() == 1) line.push_back(line[0]);  // a piece of one fix: a line of no length
+                    lines.push_back(std::move(line));
+                }
+                feature(object_of(fields::track_fields(), t, r), {{"type", "MultiLineString"}, {"coordinates", std::move(lines)}});
+            }
+            break;
+        case MapLayer::hulls:
+            for (const auto& h : fields::hull_rows(r)) feature(object_of(fields::hull_fields(), h, r), polygon_geometry({h.ring}));
+            break;
+        case MapLayer::poses:
+            for (const auto& t : r.tracks)
+                for (const auto& p : t.poses)
+                    feature(object_of(fields::pose_fields(), fields::PoseRow{t.summary, p}, r), polygon_geometry({pose_outline(p.hull)}));
+            break;
+        case MapLayer::coast: {
+            if (!info.chart) throw LibraryError("the coast layer without a chart");
+            std::vector<std::vector<geo::LonLat>> lines;
+            for (const auto& t : r.tracks) lines.insert(lines.end(), t.summary.lines.begin(), t.summary.lines.end());
+            for (const ChartFeature& c : chart_features(*info.chart, tiles_near(lines))) {
+                json polygons = json::array();
+                for (const auto& rings : c.polygons) polygons.push_back(polygon_geometry(rings)["coordinates"]);
+                const fields::CoastRow row{tile_key(c.tile), coast::to_string(c.kind), coast::to_string(c.danger),
+                                           c.kind == coast::HazardKind::land ? NAN : c.depth_m};
+                feature(object_of(fields::coast_fields(), row, r), {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}});
+            }
+            break;
+        }
+    }
+    buf += "\n]\n}\n";
+    sink(buf);
+}
+
+/// A map layer of the report as GeoJSON at `path` (write_layer).
 StagedOutput stage_layer_file(const std::string& path, MapLayer which, const audit::AuditResult& r, const RunInfo& info) {
-    GDALAllRegister();
     StagedOutput out(path);
     if (out.direct()) throw InputError("cannot write '" + path + "': the layer files of a QGIS project must be regular files");
-    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GeoJSON");
-    if (!drv) throw LibraryError("GDAL has no GeoJSON driver");
-    CPLErrorReset();
-    GDALDatasetUniquePtr ds(drv->Create(out.temp_path().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    if (!ds) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
-    const std::string mark = "DESCRIPTION=" + std::string(sidecar_mark);
-    const char* const options[] = {"RFC7946=YES", mark.c_str(), nullptr};
-    write_map_layer(*ds, which, r, info, options);
-    CPLErrorReset();
-    ds.reset();  // GDALClose: writes the file out
-    if (CPLGetLastErrorType() == CE_Failure) throw InputError("cannot write '" + path + "': " + CPLGetLastErrorMsg());
+    out.write_streamed([&](const StagedOutput::Sink& sink) { write_layer(which, r, info, sink); });
     return out;
 }
 
@@ -339,7 +428,6 @@ StagedOutput stage_layer_file(const std::string& path, MapLayer which, const aud
 /// once every file is done (the others' temporary files are removed with them).
 std::vector<StagedOutput> stage_layer_files(const std::vector<const ProjectFiles::Layer*>& layers, const audit::AuditResult& r,
                                             const RunInfo& info) {
-    GDALAllRegister();  // once, before the threads
     const std::size_t n = layers.size();
     std::vector<std::optional<StagedOutput>> staged(n);
     std::vector<std::exception_ptr> failed(n);
@@ -356,7 +444,10 @@ std::vector<StagedOutput> stage_layer_files(const std::vector<const ProjectFiles
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t threads = std::min<std::size_t>(n, info.jobs ? info.jobs : cores);
     std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    try {
+        for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    } catch (const std::system_error&) {  // no thread to be had: fewer do the work
+    }
     work();
     for (std::thread& t : pool) t.join();
     for (const std::exception_ptr& e : failed)

@@ -25,16 +25,24 @@ std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
 
     thread_local geo::GeosContext ctx;
     const geo::GeomPtr poly = geo::make_polygon(ctx, {xy});
-    // Douglas-Peucker (GEOSSimplify), a tenth of the cost of the topology-preserving
-    // simplifier, whose answer it is for every outline it leaves simple; where it does not
-    // (a deep notch in a hand-drawn hull), the topology-preserving one.
+    // Douglas-Peucker (GEOSSimplify) on the outline as a closed line, a tenth of the cost of
+    // the topology-preserving simplifier; kept when the ring it leaves is simple (valid) and
+    // has enough corners, else the topology-preserving simplifier of the polygon. (As a line:
+    // a polygon's simplification is "repaired" by GEOS, with new vertices.)
     const double tolerance = pose_outline_tolerance * length;
-    geo::GeomPtr simple = geo::own(ctx, GEOSSimplify_r(ctx, poly.get(), tolerance), "simplifying a hull outline");
     std::vector<std::vector<std::vector<geo::XY>>> rings;
-    if (GEOSisValid_r(ctx, simple.get()) == 1) geo::collect_polygons(ctx, simple.get(), rings);
-    if (rings.size() != 1 || rings[0].size() != 1 || rings[0][0].size() < pose_outline_min_corners + 1) {
-        rings.clear();
-        simple = geo::own(ctx, GEOSTopologyPreserveSimplify_r(ctx, poly.get(), tolerance), "simplifying a hull outline");
+    {
+        const geo::GeomPtr line = geo::make_linestring(ctx, xy.data(), xy.size());
+        const geo::GeomPtr simple = geo::own(ctx, GEOSSimplify_r(ctx, line.get(), tolerance), "simplifying a hull outline");
+        std::vector<std::vector<geo::XY>> lines;
+        geo::collect_lines(ctx, simple.get(), lines);
+        if (lines.size() == 1 && lines[0].size() >= pose_outline_min_corners + 1 && lines[0].front() == lines[0].back()) {
+            const geo::GeomPtr simplified = geo::make_polygon(ctx, {lines[0]});
+            if (GEOSisValid_r(ctx, simplified.get()) == 1) rings.push_back({lines[0]});
+        }
+    }
+    if (rings.empty()) {
+        const geo::GeomPtr simple = geo::own(ctx, GEOSTopologyPreserveSimplify_r(ctx, poly.get(), tolerance), "simplifying a hull outline");
         geo::collect_polygons(ctx, simple.get(), rings);
     }
     if (rings.size() != 1 || rings[0].empty()) return ring;

@@ -1,7 +1,8 @@
 #pragma once
 /// The hull outline of a pose as the report's `poses` layer draws it: simplified with GEOS
-/// (GEOSSimplify, Douglas-Peucker; GEOSTopologyPreserveSimplify where that would leave the
-/// ring not simple, or fewer than pose_outline_min_corners corners) to within
+/// (GEOSSimplify, Douglas-Peucker of the closed outline; GEOSTopologyPreserveSimplify of the
+/// polygon where that leaves a ring that is not simple, or has fewer than
+/// pose_outline_min_corners corners) to within
 /// pose_outline_tolerance of the hull's length (its longest vertex-to-vertex distance), in
 /// local metres around the pose; never fewer than pose_outline_min_corners corners (else the
 /// outline is kept whole). The kept vertices are the outline's own, unrounded, in order, and
