@@ -15,22 +15,31 @@
 
 namespace shoal::grid {
 
-/// Calls visit(segment) for the segments of `segs` (a span returned by grid.segments(i, j))
-/// in the chunks whose box passes keep(box) (see CoastGrid::chunk_boxes); keep is asked
-/// again for every chunk, so it may tighten as visit finds things.
-template <class Keep, class Visit>
-void visit_chunks(const CoastGrid& grid, std::span<const Segment> segs, Keep&& keep, Visit&& visit) {
+/// Calls run(box, begin, end) for each chunk of `segs` (a span returned by grid.segments(i, j)),
+/// in order: [begin, end) the chunk's segments that lie in `segs`, `box` the chunk's box (see
+/// CoastGrid::chunk_boxes).
+template <class Run>
+void for_each_chunk(const CoastGrid& grid, std::span<const Segment> segs, Run&& run) {
     if (segs.empty()) return;
     constexpr std::size_t chunk = CoastGrid::chunk_segments;
     const std::size_t first = grid.index_of(segs), n = segs.size();
     const std::span<const geo::Box> boxes = grid.chunk_boxes();
     for (std::size_t k = 0; k < n;) {
         const std::size_t g = first + k, end = std::min(n, k + (chunk - g % chunk));
-        if (keep(boxes[g / chunk]))
-            for (; k < end; ++k) visit(segs[k]);
-        else
-            k = end;
+        run(boxes[g / chunk], segs.data() + k, segs.data() + end);
+        k = end;
     }
+}
+
+/// Calls visit(segment) for the segments of `segs` (a span returned by grid.segments(i, j))
+/// in the chunks whose box passes keep(box); keep is asked again for every chunk, so it may
+/// tighten as visit finds things.
+template <class Keep, class Visit>
+void visit_chunks(const CoastGrid& grid, std::span<const Segment> segs, Keep&& keep, Visit&& visit) {
+    for_each_chunk(grid, segs, [&](const geo::Box& box, const Segment* begin, const Segment* end) {
+        if (keep(box))
+            for (const Segment* s = begin; s != end; ++s) visit(*s);
+    });
 }
 
 /// The segments of one chunk that lie in one cell, and a lower bound of the squared distance
@@ -48,18 +57,12 @@ struct ChunkRun {
 template <class Dist2>
 void gather_chunks(const CoastGrid& grid, std::span<const Segment> segs, Dist2&& dist2, double limit2,
                    std::vector<ChunkRun>& runs) {
-    if (segs.empty()) return;
-    constexpr std::size_t chunk = CoastGrid::chunk_segments;
-    const std::size_t first = grid.index_of(segs), n = segs.size();
-    const std::span<const geo::Box> boxes = grid.chunk_boxes();
-    for (std::size_t k = 0; k < n;) {
-        const std::size_t g = first + k, end = std::min(n, k + (chunk - g % chunk));
+    for_each_chunk(grid, segs, [&](const geo::Box& box, const Segment* begin, const Segment* end) {
         // Shrunk by a hair: a segment measured in another frame, rounded a little nearer than
         // its box, is still read.
-        const double d2 = dist2(boxes[g / chunk]) * (1 - 1e-9);
-        if (d2 < limit2) runs.push_back({d2, segs.data() + k, segs.data() + end});
-        k = end;
-    }
+        const double d2 = dist2(box) * (1 - 1e-9);
+        if (d2 < limit2) runs.push_back({d2, begin, end});
+    });
 }
 
 /// Calls visit(segment) for the segments of `runs`, nearest run first, while the run's bound

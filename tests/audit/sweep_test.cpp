@@ -237,13 +237,22 @@ TEST(Sweep, SwingingAtAnchorForADayAgreesWithBruteForce) {
     EXPECT_LT(a.summary.poses, 8640u * 20u);  // bounded by the swing, not by the day
 }
 
+/// The Solent's land (tests/data) in a transverse Mercator frame at its centre, as a grid of
+/// 500 m cells.
+struct Solent {
+    coast::Coastline coast = coast::import_coastline({std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson"});
+    geo::LocalFrame frame = geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+    std::vector<coast::LocalPolyline> lines = coast::project(coast, frame);
+    grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
+};
+
 /// Random tracks near the Solent coast: the grid sweep and the brute-force sweep report the
 /// same events (same sampling, so exactly the same).
 TEST(Sweep, RandomTracksAgreeWithBruteForceSweep) {
-    const coast::Coastline coast = coast::import_coastline({std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson"});
-    const geo::LocalFrame f = geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
-    const auto lines = coast::project(coast, f);
-    const grid::CoastGrid grid = grid::CoastGrid::build(lines, f, 500);
+    const Solent solent;
+    const geo::LocalFrame& f = solent.frame;
+    const auto& lines = solent.lines;
+    const grid::CoastGrid& grid = solent.grid;
     const hull::Hull hull = hull::Hull::from_dimensions({60, 15, 6, 6});
     const DetectorChecker fast(grid, hull);
     const BruteChecker slow(lines, hull);
@@ -327,10 +336,10 @@ void expect_same_results(const TrackResult& a, const TrackResult& b, const std::
 /// and with every pose checked: the same events, poses and figures; and the same moments as the
 /// brute-force traversal (which reports no penetration, so it carries nothing).
 TEST(Sweep, CarriedContactsAreTheFullChecks) {
-    const coast::Coastline coast = coast::import_coastline({std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson"});
-    const geo::LocalFrame f = geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
-    const auto lines = coast::project(coast, f);
-    const grid::CoastGrid grid = grid::CoastGrid::build(lines, f, 500);
+    const Solent solent;
+    const geo::LocalFrame& f = solent.frame;
+    const auto& lines = solent.lines;
+    const grid::CoastGrid& grid = solent.grid;
     const hull::Hull hull = hull::Hull::from_dimensions({60, 15, 6, 6});
     const CountingChecker fast(grid, hull);
     const BruteChecker slow(lines, hull);

@@ -315,16 +315,25 @@ TEST(DetectorShapes, ClearanceSearchStopsAtTheLimit) {
     EXPECT_TRUE(std::isinf(limited.clearance_m));
 }
 
+/// The Solent's land (tests/data), projected to a transverse Mercator frame at its centre,
+/// as a grid of 500 m cells.
+struct Solent {
+    std::string path = test_data("coast/uk_solent_land.geojson");
+    coast::Coastline coast = coast::import_coastline({path});
+    geo::LocalFrame frame =
+        geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
+    std::vector<coast::LocalPolyline> lines = coast::project(coast, frame);
+    grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
+};
+
 /// Asking for less (no penetration, no enclosing polyline: what probe and the sweep ask)
 /// changes nothing else: the same flags, clearance and points as the full check on random
 /// poses near the coast and deep inland, and the same polyline wherever one is given.
 TEST(DetectorOptions, AskingLessChangesNothingElse) {
-    const std::string path = test_data("coast/uk_solent_land.geojson");
-    const coast::Coastline coast = coast::import_coastline({path});
-    const geo::LocalFrame frame =
-        geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
-    const auto lines = coast::project(coast, frame);
-    const grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
+    const Solent solent;
+    const geo::LocalFrame& frame = solent.frame;
+    const auto& lines = solent.lines;
+    const grid::CoastGrid& grid = solent.grid;
     const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
     const Detector det(grid, hull);
     std::mt19937_64 rng(15);
@@ -370,12 +379,11 @@ TEST(DetectorPenetration, AgreesWithGeos) {
     // the vertices being those of the grid's segments (the coastline's, and where it crosses
     // a cell's side). Answered by GEOS on the land polygons and the hull's polygon, on poses
     // touching the shore, half on land, deep in land (a search of several rings of cells).
-    const std::string path = test_data("coast/uk_solent_land.geojson");
-    const coast::Coastline coast = coast::import_coastline({path});
-    const geo::LocalFrame frame =
-        geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
-    const auto lines = coast::project(coast, frame);
-    const grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
+    const Solent solent;
+    const std::string& path = solent.path;
+    const geo::LocalFrame& frame = solent.frame;
+    const auto& lines = solent.lines;
+    const grid::CoastGrid& grid = solent.grid;
     const LandOracle oracle(path, frame);
     const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
     const Detector det(grid, hull);
