@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -405,6 +406,78 @@ TEST(PoseOutline, WithinOnePercentOfTheLengthOfTheOutlineByGeosHausdorffAndFewer
             EXPECT_GT(hausdorff, 0) << "something was simplified";
             EXPECT_EQ(GEOSisValid_r(ctx, b.get()), 1) << "a valid polygon";
         }
+}
+
+TEST(PoseOutline, RandomNotchedOutlinesComeOutSimpleWithinOnePercentAndTheirOwnVertices) {
+    // Star-shaped outlines of 20-200 points with deep, narrow notches and spikes (where a
+    // Douglas-Peucker shortcut can cross another part of the ring): whichever simplifier
+    // answers, the outline that comes out is valid for GEOS, within 1 % of the length by GEOS's
+    // Hausdorff distance, and a subsequence of the outline's own vertices from the first.
+    using shoal::geo::XY;
+    std::mt19937_64 rng(2026);
+    std::uniform_real_distribution<double> unit(0, 1);
+    constexpr double m = 6371008.8 * M_PI / 180;
+    const double kx = std::cos(60.1 * M_PI / 180) * m;
+    shoal::geo::GeosContext ctx;
+    int simplified = 0, valid = 0;
+    for (int k = 0; k < 300; ++k) {
+        const int n = 20 + static_cast<int>(rng() % 180);
+        std::vector<XY> xy;
+        const double stretch = 1 + 3 * unit(rng);  // long and thin, or round
+        for (int i = 0; i < n; ++i) {
+            const double a = 2 * M_PI * i / n;
+            double r = 40 + 0.3 * unit(rng);
+            if (unit(rng) < 0.1) r *= 0.1 + 0.3 * unit(rng);  // a notch
+            else if (unit(rng) < 0.05) r *= 1.5;              // a spike
+            xy.push_back({r * std::cos(a) * stretch, r * std::sin(a)});
+        }
+        xy.push_back(xy.front());
+        const auto poly = shoal::geo::make_polygon(ctx, {xy});
+        if (GEOSisValid_r(ctx, poly.get()) != 1) continue;  // only simple outlines are hulls
+        ++valid;
+        std::vector<shoal::geo::LonLat> ring;
+        for (const XY& p : xy) ring.push_back({25 + p.x / kx, 60.1 + p.y / m});
+        const auto out = shoal::report::pose_outline(ring);
+        SCOPED_TRACE("outline " + std::to_string(k) + " of " + std::to_string(n) + " points");
+        ASSERT_GE(out.size(), shoal::report::pose_outline_min_corners + 1);
+        EXPECT_EQ(out.front(), ring.front());
+        EXPECT_EQ(out.back(), out.front());
+        std::size_t at = 0;
+        for (std::size_t i = 0; i + 1 < out.size(); ++i) {
+            while (at < ring.size() && !(ring[at] == out[i])) ++at;
+            ASSERT_LT(at, ring.size()) << "vertex " << i << " is one of the outline's, in order";
+        }
+        std::vector<XY> back;
+        for (const auto& q : out) back.push_back({(q.lon - 25) * kx, (q.lat - 60.1) * m});
+        const auto b = shoal::geo::make_polygon(ctx, {back});
+        EXPECT_EQ(GEOSisValid_r(ctx, b.get()), 1) << "a simple ring";
+        double hausdorff = 0, length = 0;
+        ASSERT_EQ(GEOSHausdorffDistance_r(ctx, poly.get(), b.get(), &hausdorff), 1);
+        for (const XY& p : xy)
+            for (const XY& q : xy) length = std::max(length, std::hypot(p.x - q.x, p.y - q.y));
+        EXPECT_LE(hausdorff, 0.0101 * length);
+        simplified += out.size() < ring.size();
+    }
+    EXPECT_GT(valid, 250);
+    EXPECT_GT(simplified, 200);
+}
+
+TEST(PoseOutline, ASliverThatDouglasPeuckerWouldCollapseKeepsItsCorners) {
+    // 100 m long, 0.5 m wide, 21 points a side: Douglas-Peucker at 1 m leaves three points (no
+    // ring); the topology-preserving simplifier keeps four corners.
+    constexpr double m = 6371008.8 * M_PI / 180;
+    const double kx = std::cos(60.1 * M_PI / 180) * m;
+    std::vector<shoal::geo::LonLat> ring;
+    for (int i = 0; i <= 20; ++i) ring.push_back({25 + 5.0 * i / kx, 60.1});
+    for (int i = 20; i >= 0; --i) ring.push_back({25 + 5.0 * i / kx, 60.1 + 0.5 / m});
+    ring.push_back(ring.front());
+    const auto out = shoal::report::pose_outline(ring);
+    ASSERT_GE(out.size(), shoal::report::pose_outline_min_corners + 1);
+    EXPECT_LT(out.size(), ring.size());
+    EXPECT_EQ(out.front(), ring.front());
+    EXPECT_EQ(out.back(), out.front());
+    for (const shoal::geo::LonLat corner : {ring[20], ring[21], ring[41]})
+        EXPECT_NE(std::find(out.begin(), out.end(), corner), out.end()) << "a corner is kept";
 }
 
 TEST(PoseOutline, AFourCorneredOutlineIsKeptWhole) {
