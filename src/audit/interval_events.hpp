@@ -100,6 +100,10 @@ public:
     }
 
     bool open() const noexcept { return m_in_contact || m_in_near; }
+    /// The least clearance of the open near interval's samples not in contact so far; INFINITY
+    /// when there is none, or no near interval is open (the next near sample opens one, and is
+    /// its nearest).
+    double near_min() const noexcept { return m_in_near ? m_near_min : INFINITY; }
     bool in_contact() const noexcept { return m_in_contact; }
 
 private:

@@ -78,7 +78,7 @@ public:
     }
 
     /// The answer at fix interval i, fraction f, when the pose is known to be in contact
-    /// (SweepOptions::carry_contact): what check() would say but where the contact is, which
+    /// (SweepOptions::carry_over): what check() would say but where the contact is, which
     /// only an event's first sample reports (and that one is always checked).
     check::Contact carried_contact(std::size_t i, double f) const {
         check::Contact c;
@@ -89,6 +89,22 @@ public:
         c.hull_point = c.coast_point = pose.position;
         return c;
     }
+
+    /// The answer at fix interval i, fraction f, when the pose is known to be clear by at least
+    /// `clearance_m`, under the margin, and over the least clearance of the pass so far
+    /// (SweepOptions::carry_over): its value is not the clearance, which no one reads (such a
+    /// pose is not the pass's nearest, and no clearance is watched), only that it is near.
+    check::Contact carried_clear(std::size_t i, double f, double clearance_m) const {
+        check::Contact c;
+        const check::LocalPose pose = m_motion.pose(i, f);
+        c.clearance_m = clearance_m;
+        c.covered = checker_at(i, f).covered(pose);
+        c.hull_point = c.coast_point = pose.position;
+        return c;
+    }
+
+    /// The least clearance of the open pass (IntervalEvents::near_min).
+    double near_min() const noexcept { return m_intervals.near_min(); }
 
     /// How far clearance is searched: the lookahead beyond the margin (or the watch, when larger).
     double search_m() const { return std::max(m_opt.margin_m, m_opt.watch_clearance_m) + m_opt.lookahead_m; }
@@ -427,14 +443,29 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         const double clear = std::isinf(c.clearance_m) ? near_m + opt.lookahead_m : c.clearance_m;
         budget_m = c.collision ? 0 : std::max(0.0, clear - near_m);
     };
-    // SweepOptions::carry_contact: the penetration found at the last fix in contact (0: none),
-    // the checker that found it, and the hull motion (metres) since that fix.
+    // SweepOptions::carry_over: the penetration found at the last fix in contact (0: none),
+    // the checker that found it, and the hull motion (metres) since that fix; the clearance of
+    // the last checked pose clear (NaN: none), its checker and the motion since.
     double contact_depth_m = 0, since_contact_m = 0;
     const PoseChecker* contact_checker = nullptr;
-    // Still in contact: a 1 % and 1 cm allowance over the motion bound (the local scale of the
-    // frame, rounding), far under any depth that matters.
+    double clear_ref_m = NAN, since_clear_m = 0;
+    const PoseChecker* clear_checker = nullptr;
+    // The motion bound with a 1 % and 1 cm allowance (the local scale of the frame, rounding).
+    auto slack = [](double motion_m) { return motion_m * 1.01 + 0.01; };
     auto still_in_contact = [&](const PoseChecker& c) {
-        return opt.carry_contact && &c == contact_checker && since_contact_m * 1.01 + 0.01 < contact_depth_m;
+        return opt.carry_over && &c == contact_checker && slack(since_contact_m) < contact_depth_m;
+    };
+    // The clearance a pose is known to have at least, when that is all that matters of it; NaN else.
+    auto known_near = [&](const PoseChecker& c) -> double {
+        if (!opt.carry_over || opt.watch_clearance_m > 0 || &c != clear_checker || !std::isfinite(clear_ref_m)) return NAN;
+        const double lower = clear_ref_m - slack(since_clear_m), upper = clear_ref_m + slack(since_clear_m);
+        const bool known = lower > 0 && upper < opt.margin_m && lower > events.near_min() && lower >= sum.min_clearance_m;
+        return known ? lower : NAN;
+    };
+    auto checked = [&](const check::Contact& c, const PoseChecker& by) {  // a pose checked in full
+        clear_ref_m = !c.collision && std::isfinite(c.clearance_m) ? c.clearance_m : NAN;
+        clear_checker = &by;
+        since_clear_m = 0;
     };
     bool have_prev = false;
     std::vector<geo::LonLat>* line = nullptr;
@@ -486,12 +517,22 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             for (std::size_t k = 1; k < n; ++k) {
                 moved += per_step;
                 since_contact_m += carry_per_step;
+                since_clear_m += carry_per_step;
                 if (moved < budget_m) continue;  // proved clear of the margin by the last check
                 budget_m = 0;
                 moved = 0;
                 Sample s{i - 1, static_cast<double>(k) / static_cast<double>(n), {}};
-                // Proved in contact by the last fix's penetration, or checked.
-                s.contact = still_in_contact(events.checker_at(s.i, s.f)) ? events.carried_contact(s.i, s.f) : events.check(s.i, s.f, false);
+                // Proved in contact by the last fix's penetration, or near and not the nearest by
+                // the last clearance checked, or checked.
+                const PoseChecker& by = events.checker_at(s.i, s.f);
+                if (still_in_contact(by)) {
+                    s.contact = events.carried_contact(s.i, s.f);
+                } else if (const double near = known_near(by); !std::isnan(near)) {
+                    s.contact = events.carried_clear(s.i, s.f, near);
+                } else {
+                    s.contact = events.check(s.i, s.f, false);
+                    checked(s.contact, by);
+                }
                 note(s.contact);
                 events.add(s);
                 events.watch(s, false);
@@ -502,6 +543,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
         contact_checker = &events.checker_at(i, 0.0);
         since_contact_m = 0;
+        checked(s.contact, *contact_checker);
         if (t.fixes[i].heading_source == track::HeadingSource::none && circle) ++sum.unknown_heading_fixes;
         if (!s.contact.covered) ++sum.uncovered_fixes;
         note(s.contact);

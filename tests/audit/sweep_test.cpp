@@ -329,7 +329,7 @@ void expect_same_results(const TrackResult& a, const TrackResult& b, const std::
     EXPECT_EQ(a.summary.close_passes, b.summary.close_passes) << what;
 }
 
-/// SweepOptions::carry_contact: the poses after a fix deep in contact are not checked while the
+/// SweepOptions::carry_over: the poses after a fix deep in contact are not checked while the
 /// hull cannot have left it; every answer is still that of the full check. Tracks that cross
 /// land (straight legs over the Solent's islands and shores, and off the chart's edge),
 /// vessels alongside with GPS jitter and a swinging heading, swept with the contact carried
@@ -344,21 +344,29 @@ TEST(Sweep, CarriedContactsAreTheFullChecks) {
     const CountingChecker fast(grid, hull);
     const BruteChecker slow(lines, hull);
     SweepOptions carry, every;
-    every.carry_contact = false;
+    every.carry_over = false;
     std::mt19937_64 rng(2026);
     std::uniform_real_distribution<double> unit(0, 1);
-    std::size_t contacts = 0, saved = 0;
+    std::size_t contacts = 0, saved = 0, passes = 0;
     const geo::Box ext = grid.extent();
-    for (int k = 0; k < 24; ++k) {
+    for (int k = 0; k < 36; ++k) {
         track::Track t;
         t.id = "crossing" + std::to_string(k);
         const auto& l = lines[rng() % lines.size()];
-        XY p = l.points[rng() % l.points.size()];
+        const std::size_t v = rng() % (l.points.size() - 1);
+        XY p = l.points[v];
         if (k % 6 == 5) p = {ext.minx + 300 * unit(rng), ext.miny + (ext.maxy - ext.miny) * unit(rng)};  // near the chart's edge
         const bool alongside = k % 3 == 0;
         double time = 1.6e9, hdg = 360 * unit(rng);
-        const double step = alongside ? 0 : 20 + 60 * unit(rng);  // metres per fix
-        for (int i = 0; i < (alongside ? 400 : 60); ++i) {
+        const bool passing = k % 6 == 2 || k % 6 == 4;
+        if (passing) {  // along the shore, 30-48 m off it (either side)
+            const XY d = l.points[v + 1] - l.points[v];
+            const double len = std::max(1e-6, std::hypot(d.x, d.y)), side = unit(rng) < 0.5 ? -1.0 : 1.0;
+            p = p + side * (30 + 18 * unit(rng)) * XY{d.y / len, -d.x / len};
+            hdg = std::fmod(std::atan2(d.x, d.y) * 180 / std::numbers::pi + 360, 360);
+        }
+        const double step = alongside ? 0 : passing ? 5 + 5 * unit(rng) : 20 + 60 * unit(rng);  // metres per fix
+        for (int i = 0; i < (alongside ? 400 : passing ? 30 : 60); ++i) {
             track::Fix fix;
             fix.time_s = time;
             const XY jitter = alongside ? XY{3 * (unit(rng) - 0.5), 3 * (unit(rng) - 0.5)} : XY{0, 0};
@@ -368,7 +376,7 @@ TEST(Sweep, CarriedContactsAreTheFullChecks) {
             fix.line = static_cast<std::size_t>(i + 2);
             t.fixes.push_back(fix);
             if (!alongside) {
-                hdg = std::fmod(hdg + (unit(rng) - 0.5) * 6 + 360, 360);
+                hdg = std::fmod(hdg + (unit(rng) - 0.5) * (passing ? 1 : 6) + 360, 360);
                 const double h = hdg * std::numbers::pi / 180;
                 p = p + step * XY{std::sin(h), std::cos(h)};
             }
@@ -382,6 +390,7 @@ TEST(Sweep, CarriedContactsAreTheFullChecks) {
         saved += full_calls - fast.calls;
         expect_same_results(carried, every_pose, t.id);
         contacts += carried.summary.groundings + carried.summary.alongside + carried.summary.contacts_at_start;
+        passes += carried.summary.close_passes;
         if (k % 4 != 1) continue;
         // The brute force knows no chart's edge and no penetration: the moments and the checks.
         const TrackResult brute = sweep_track(t, f, slow, carry);
@@ -394,8 +403,9 @@ TEST(Sweep, CarriedContactsAreTheFullChecks) {
         }
         EXPECT_EQ(carried.summary.poses, brute.summary.poses) << t.id;
     }
-    std::printf("carried contacts: %zu contacts, %zu checks saved\n", contacts, saved);
+    std::printf("carried over: %zu contacts, %zu close passes, %zu checks saved\n", contacts, passes, saved);
     EXPECT_GT(contacts, 10u) << "too few contacts to mean anything";
+    EXPECT_GT(passes, 5u) << "too few close passes to mean anything";
     EXPECT_GT(saved, 1000u) << "the carried contacts saved no checks";
 }
 

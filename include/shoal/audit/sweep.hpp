@@ -34,11 +34,16 @@ struct SweepOptions {
     /// lets the sweep skip checks for the next d - margin metres of hull motion (they cannot
     /// come within the margin). Fixes are always checked.
     double lookahead_m = 500.0;
-    /// A fix found in contact with penetration p is still in contact while no hull point has
+    /// Answers that carry over, with the same events, poses and figures as every pose checked:
+    /// a fix found in contact with penetration p is still in contact while no hull point has
     /// moved p since (a hull point p deep in land, or a coast vertex p inside the hull, cannot
-    /// have left): the poses swept after it are not checked until then (the same answer, at no
-    /// cost, for a vessel crossing land or lying alongside). False: every pose is checked.
-    bool carry_contact = true;
+    /// have left), so the poses swept after it are not checked until then (a vessel crossing
+    /// land or lying alongside); and within the margin, a pose whose clearance is known to lie
+    /// between the last checked one's plus or minus the motion since, all of it under the
+    /// margin and over the least clearance of the pass so far (it cannot be the pass's nearest),
+    /// is not checked either (unless watch_clearance_m keeps every value). False: every pose
+    /// swept is checked.
+    bool carry_over = true;
     /// Assessment (assessment.hpp): clearance is followed up to this (metres) as it is up to
     /// the margin, and every checked pose under it is kept in TrackResult::clearance (with the
     /// pose before and after, for the crossings). 0 (default): nothing kept, as before.
