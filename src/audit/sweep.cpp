@@ -77,26 +77,16 @@ public:
         return checker_at(i, f).check(m_motion.pose(i, f), {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false});
     }
 
-    /// The answer at fix interval i, fraction f, when the pose is known to be in contact
-    /// (SweepOptions::carry_over): what check() would say but where the contact is, which
-    /// only an event's first sample reports (and that one is always checked).
-    check::Contact carried_contact(std::size_t i, double f) const {
+    /// The answer at fix interval i, fraction f, when what matters of it is known
+    /// (SweepOptions::carry_over): in contact (`clearance_m` 0), or clear by at least
+    /// `clearance_m`, under the margin and over the least clearance of the pass so far. Where
+    /// the contact is, only an event's first sample reports (always checked); the clearance of
+    /// such a clear pose no one reads (it is not the pass's nearest, and no clearance is
+    /// watched), only that it is near.
+    check::Contact carried(std::size_t i, double f, double clearance_m) const {
         check::Contact c;
         const check::LocalPose pose = m_motion.pose(i, f);
-        c.collision = true;
-        c.clearance_m = 0;
-        c.covered = checker_at(i, f).covered(pose);
-        c.hull_point = c.coast_point = pose.position;
-        return c;
-    }
-
-    /// The answer at fix interval i, fraction f, when the pose is known to be clear by at least
-    /// `clearance_m`, under the margin, and over the least clearance of the pass so far
-    /// (SweepOptions::carry_over): its value is not the clearance, which no one reads (such a
-    /// pose is not the pass's nearest, and no clearance is watched), only that it is near.
-    check::Contact carried_clear(std::size_t i, double f, double clearance_m) const {
-        check::Contact c;
-        const check::LocalPose pose = m_motion.pose(i, f);
+        c.collision = clearance_m == 0;
         c.clearance_m = clearance_m;
         c.covered = checker_at(i, f).covered(pose);
         c.hull_point = c.coast_point = pose.position;
@@ -526,9 +516,9 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 // the last clearance checked, or checked.
                 const PoseChecker& by = events.checker_at(s.i, s.f);
                 if (still_in_contact(by)) {
-                    s.contact = events.carried_contact(s.i, s.f);
+                    s.contact = events.carried(s.i, s.f, 0);
                 } else if (const double near = known_near(by); !std::isnan(near)) {
-                    s.contact = events.carried_clear(s.i, s.f, near);
+                    s.contact = events.carried(s.i, s.f, near);
                 } else {
                     s.contact = events.check(s.i, s.f, false);
                     checked(s.contact, by);

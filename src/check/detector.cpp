@@ -134,6 +134,22 @@ inline double point_segment_d2(XY p, XY a, XY d, double inv_len2, XY* foot) noex
     return geo::norm2(p - *foot);
 }
 
+/// The box in local metres of the hull `c` (n points of the contour) placed by `m` at `origin`
+/// (AlignedHull::local_box, Detector::covers).
+geo::Box local_hull_box(const XY* c, std::size_t n, const Eigen::Matrix2d& m, XY origin) noexcept {
+    const V2 mcol0 = v2(m(0, 0), m(1, 0)), mcol1 = v2(m(0, 1), m(1, 1));
+    V2 lmin = splat(INFINITY), lmax = splat(-INFINITY);
+    for (std::size_t i = 0; i < n; ++i) {
+        const V2 w = mcol0 * splat(c[i].x) + mcol1 * splat(c[i].y);
+        lmin = vmin(w, lmin);
+        lmax = vmax(w, lmax);
+    }
+    geo::Box b;
+    const V2 o = load(origin);
+    store_box(b, o + lmin, o + lmax);
+    return b;
+}
+
 /// The hull at one pose, in a frame aligned with the ship (origin at the reference point,
 /// first axis along the ship's centreline). Rotation only: distances are metres.
 struct AlignedHull {
@@ -170,25 +186,18 @@ struct AlignedHull {
         const XY* c = hull.contour().data();
         n = hull.contour().size();
         pts.resize(n + 1);
-        // p = (a00 cx + a01 cy, a10 cx + a11 cy); w = m c (local metres from the position).
+        // p = (a00 cx + a01 cy, a10 cx + a11 cy).
         const V2 col0 = v2(a00, a10), col1 = v2(a01, a11);
-        const V2 mcol0 = v2(m00, m10), mcol1 = v2(m01, m11);
         V2 bmin = splat(INFINITY), bmax = splat(-INFINITY);
-        V2 lmin = bmin, lmax = bmax;
         for (std::size_t i = 0; i < n; ++i) {
-            const V2 cx = splat(c[i].x), cy = splat(c[i].y);
-            const V2 p = col0 * cx + col1 * cy;
-            const V2 w = mcol0 * cx + mcol1 * cy;
+            const V2 p = col0 * splat(c[i].x) + col1 * splat(c[i].y);
             store(pts[i], p);
             bmin = vmin(p, bmin);
             bmax = vmax(p, bmax);
-            lmin = vmin(w, lmin);
-            lmax = vmax(w, lmax);
         }
         pts[n] = pts[0];
         store_box(box, bmin, bmax);
-        const V2 o = load(origin);
-        store_box(local_box, o + lmin, o + lmax);
+        local_box = local_hull_box(c, n, m, origin);
         edges_ready = false;
     }
 
@@ -245,22 +254,6 @@ struct AlignedHull {
         return inside;
     }
 };
-
-/// The box in local metres of the hull `c` (n points of the contour) placed by `m` at `origin`:
-/// the same operations as AlignedHull::build, so the same box.
-geo::Box local_hull_box(const XY* c, std::size_t n, const Eigen::Matrix2d& m, XY origin) noexcept {
-    const V2 mcol0 = v2(m(0, 0), m(1, 0)), mcol1 = v2(m(0, 1), m(1, 1));
-    V2 lmin = splat(INFINITY), lmax = splat(-INFINITY);
-    for (std::size_t i = 0; i < n; ++i) {
-        const V2 w = mcol0 * splat(c[i].x) + mcol1 * splat(c[i].y);
-        lmin = vmin(w, lmin);
-        lmax = vmax(w, lmax);
-    }
-    geo::Box b;
-    const V2 o = load(origin);
-    store_box(b, o + lmin, o + lmax);
-    return b;
-}
 
 /// Contact::covered: the hull's local box inside the grid's extent.
 bool inside_extent(const geo::Box& lb, const geo::Box& ext) noexcept {

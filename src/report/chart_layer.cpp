@@ -198,4 +198,10 @@ std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast
     }
 }
 
+std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart) {
+    std::vector<std::vector<geo::LonLat>> lines;
+    for (const auto& t : r.tracks) lines.insert(lines.end(), t.summary.lines.begin(), t.summary.lines.end());
+    return chart_features(chart, tiles_near(lines));
+}
+
 }  // namespace shoal::report

@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include <shoal/audit/audit.hpp>
 #include <shoal/coast/coastline.hpp>
 
 namespace shoal::report {
@@ -55,5 +56,7 @@ struct ChartFeature {
 
 /// The chart `coast` cut to `tiles`, in the order of the merge contract above.
 std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles);
+/// The chart cut to the tiles near every piece of the run's tracks: the report's `coast` layer.
+std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart);
 
 }  // namespace shoal::report

@@ -1,5 +1,3 @@
-#include <gdal_priv.h>
-
 #include <algorithm>
 #include <atomic>
 #include <charconv>
@@ -340,9 +338,7 @@ json ring_coordinates(const std::vector<geo::LonLat>& ring, bool ccw) {
     for (std::size_t i = 0; i + 1 < ring.size(); ++i) area2 += ring[i].lon * ring[i + 1].lat - ring[i + 1].lon * ring[i].lat;
     const bool reverse = area2 != 0 && (area2 > 0) != ccw;
     json a = json::array();
-    for (std::size_t k = 0; k < ring.size(); ++k) {
-        a.push_back(position(ring[reverse ? ring.size() - 1 - k : k]));
-    }
+    for (std::size_t k = 0; k < ring.size(); ++k) a.push_back(position(ring[reverse ? ring.size() - 1 - k : k]));
     return a;
 }
 
@@ -399,14 +395,10 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
             break;
         case MapLayer::coast: {
             if (!info.chart) throw LibraryError("the coast layer without a chart");
-            std::vector<std::vector<geo::LonLat>> lines;
-            for (const auto& t : r.tracks) lines.insert(lines.end(), t.summary.lines.begin(), t.summary.lines.end());
-            for (const ChartFeature& c : chart_features(*info.chart, tiles_near(lines))) {
+            for (const ChartFeature& c : chart_features_near(r, *info.chart)) {
                 json polygons = json::array();
                 for (const auto& rings : c.polygons) polygons.push_back(polygon_geometry(rings)["coordinates"]);
-                const fields::CoastRow row{tile_key(c.tile), coast::to_string(c.kind), coast::to_string(c.danger),
-                                           c.kind == coast::HazardKind::land ? NAN : c.depth_m};
-                feature(object_of(fields::coast_fields(), row, r), {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}});
+                feature(object_of(fields::coast_fields(), fields::coast_row(c), r), {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}});
             }
             break;
         }
@@ -424,7 +416,7 @@ StagedOutput stage_layer_file(const std::string& path, MapLayer which, const aud
 }
 
 /// The layer files `layers`, staged in that order: each written by one thread of its own (at
-/// most RunInfo::jobs at once), GDAL datasets being independent. The first failure is thrown
+/// most RunInfo::jobs at once; they share nothing but the result they read). The first failure is thrown
 /// once every file is done (the others' temporary files are removed with them).
 std::vector<StagedOutput> stage_layer_files(const std::vector<const ProjectFiles::Layer*>& layers, const audit::AuditResult& r,
                                             const RunInfo& info) {

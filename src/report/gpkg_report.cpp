@@ -116,9 +116,7 @@ void fill_poses(OGRLayer& poses, const audit::AuditResult& r) {
 }
 
 void fill_coast(OGRLayer& coast, const audit::AuditResult& r, const coast::Coastline& chart) {
-    std::vector<std::vector<geo::LonLat>> lines;
-    for (const auto& t : r.tracks) lines.insert(lines.end(), t.summary.lines.begin(), t.summary.lines.end());
-    for (const ChartFeature& c : chart_features(chart, tiles_near(lines))) {
+    for (const ChartFeature& c : chart_features_near(r, chart)) {
         OGRMultiPolygon mp;
         for (const auto& rings : c.polygons) {
             OGRPolygon poly;
@@ -129,9 +127,7 @@ void fill_coast(OGRLayer& coast, const audit::AuditResult& r, const coast::Coast
             }
             mp.addGeometry(&poly);
         }
-        const fields::CoastRow row{tile_key(c.tile), coast::to_string(c.kind), coast::to_string(c.danger),
-                                   c.kind == coast::HazardKind::land ? NAN : c.depth_m};
-        put(coast, fields::coast_fields(), row, r, &mp);
+        put(coast, fields::coast_fields(), fields::coast_row(c), r, &mp);
     }
 }
 

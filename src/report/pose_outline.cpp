@@ -24,7 +24,6 @@ std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
     if (!(length > 0)) return ring;
 
     thread_local geo::GeosContext ctx;
-    const geo::GeomPtr poly = geo::make_polygon(ctx, {xy});
     // Douglas-Peucker (GEOSSimplify) on the outline as a closed line, a tenth of the cost of
     // the topology-preserving simplifier; kept when the ring it leaves is simple (valid) and
     // has enough corners, else the topology-preserving simplifier of the polygon. (As a line:
@@ -42,6 +41,7 @@ std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
         }
     }
     if (rings.empty()) {
+        const geo::GeomPtr poly = geo::make_polygon(ctx, {xy});
         const geo::GeomPtr simple = geo::own(ctx, GEOSTopologyPreserveSimplify_r(ctx, poly.get(), tolerance), "simplifying a hull outline");
         geo::collect_polygons(ctx, simple.get(), rings);
     }

@@ -259,6 +259,10 @@ const std::vector<Field<PoseRow>>& pose_fields() {
     return f;
 }
 
+CoastRow coast_row(const ChartFeature& c) {
+    return {tile_key(c.tile), coast::to_string(c.kind), coast::to_string(c.danger), c.kind == coast::HazardKind::land ? NAN : c.depth_m};
+}
+
 const std::vector<Field<CoastRow>>& coast_fields() {
     using X = CoastRow;
     static const std::vector<Field<CoastRow>> f = {

@@ -29,6 +29,7 @@
 #include <variant>
 #include <vector>
 
+#include "report/chart_layer.hpp"
 #include <shoal/audit/audit.hpp>
 #include <shoal/report/report.hpp>
 
@@ -110,6 +111,8 @@ struct CoastRow {
     const char* danger; ///< the danger's kind ("rock", ...), "" otherwise
     double depth_m;     ///< the charted depth (least depth of the areas, danger's sounding); NaN unknown or land
 };
+/// The `coast` layer's row of a chart feature.
+CoastRow coast_row(const ChartFeature& c);
 struct ProblemRow {
     std::string file, track;  ///< track "": none (null)
     std::size_t line = 0;     ///< 0: none (null)
