@@ -33,14 +33,11 @@ struct GpkgLayers {
 GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& shape, bool chart, bool poses);
 
 /// The map layers a GeoJSON report lacks (it holds the events), each written into a file of
-/// its own beside it (report/geojson_output.hpp) by the GeoPackage's code: the same fields,
-/// rows and geometries.
+/// its own beside it (geojson_report.cpp, write_layer): the same fields, rows and geometries
+/// as the GeoPackage's layers of those names.
 enum class MapLayer { tracks, hulls, poses, coast };
 /// "tracks", "hulls", "poses", "coast": the layer's name and its style's.
 const char* name_of(MapLayer which) noexcept;
-/// Creates layer `which` in `ds` (EPSG:4326, layer creation `options`) and writes its rows
-/// for `result` (the coast: from `info.chart`, which must be set).
-void write_map_layer(GDALDataset& ds, MapLayer which, const audit::AuditResult& result, const RunInfo& info, CSLConstList options);
 
 /// A GeoPackage report staged at `path`: created as every report is (a fixed "current date":
 /// the same rows, the same bytes), filled by `fill` (make_gpkg_layers, then the rows in one

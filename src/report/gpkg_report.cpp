@@ -36,11 +36,11 @@ OGRFieldType ogr_type(fields::Type t) {
 /// present in this run, in the table's order.
 template <class Row>
 OGRLayer& make_layer(GDALDataset& ds, const char* name, OGRwkbGeometryType type, const std::vector<Field<Row>>& table,
-                     const audit::AuditResult& r, CSLConstList options = nullptr) {
+                     const audit::AuditResult& r) {
     OGRSpatialReference wgs84;
     wgs84.importFromEPSG(4326);
     wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    OGRLayer* l = ds.CreateLayer(name, type == wkbNone ? nullptr : &wgs84, type, const_cast<char**>(options));
+    OGRLayer* l = ds.CreateLayer(name, type == wkbNone ? nullptr : &wgs84, type, nullptr);
     if (!l) throw LibraryError(std::string("creating layer ") + name + ": " + CPLGetLastErrorMsg());
     for (const auto& f : table) {
         if (f.present && !f.present(r)) continue;
@@ -208,19 +208,6 @@ const char* name_of(MapLayer which) noexcept {
         case MapLayer::coast: return "coast";
     }
     return "";
-}
-
-void write_map_layer(GDALDataset& ds, MapLayer which, const audit::AuditResult& r, const RunInfo& info, CSLConstList options) {
-    const char* name = name_of(which);
-    switch (which) {
-        case MapLayer::tracks: fill_tracks(make_layer(ds, name, wkbMultiLineString, fields::track_fields(), r, options), r); break;
-        case MapLayer::hulls: fill_hulls(make_layer(ds, name, wkbPolygon, fields::hull_fields(), r, options), r); break;
-        case MapLayer::poses: fill_poses(make_layer(ds, name, wkbPolygon, fields::pose_fields(), r, options), r); break;
-        case MapLayer::coast:
-            if (!info.chart) throw LibraryError("the coast layer without a chart");
-            fill_coast(make_layer(ds, name, wkbMultiPolygon, fields::coast_fields(), r, options), r, *info.chart);
-            break;
-    }
 }
 
 StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(GDALDataset&)>& fill, const ProjectView* view) {
