@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -22,10 +23,36 @@ inline std::string_view trim(std::string_view s) noexcept {
 
 /// A decimal number (leading '+' allowed, "nan"/"inf" read as such); false when `s` is empty
 /// or not entirely a number. With `decimal_comma`, "55,84" reads as 55.84.
+/// A plain decimal, `-`, 1 to 15 digits, `.` and at least one digit after it (or none, and no
+/// `.`), read as its digits over a power of ten: both are exact doubles (under 2^53 and 1e22),
+/// so the one division is rounded once, to the double nearest the text, the value
+/// std::from_chars gives. False (`out` untouched) for anything else, left to from_chars.
+inline bool plain_decimal(std::string_view s, double& out) noexcept {
+    static constexpr double powers[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+    std::size_t i = 0;
+    const bool negative = !s.empty() && s[0] == '-';
+    if (negative) ++i;
+    std::uint64_t digits = 0;
+    std::size_t count = 0, before = 0, after = 0;
+    for (; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i, ++before) digits = digits * 10 + static_cast<std::uint64_t>(s[i] - '0');
+    if (before == 0) return false;
+    if (i < s.size()) {
+        if (s[i] != '.') return false;
+        for (++i; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i, ++after) digits = digits * 10 + static_cast<std::uint64_t>(s[i] - '0');
+        if (after == 0 || i != s.size()) return false;
+    }
+    count = before + after;
+    if (count > 15) return false;
+    const double v = static_cast<double>(digits) / powers[after];
+    out = negative ? -v : v;
+    return true;
+}
+
 inline bool parse_double(std::string_view s, double& out, bool decimal_comma = false) noexcept {
     s = trim(s);
     if (!s.empty() && s.front() == '+') s.remove_prefix(1);
     if (s.empty()) return false;
+    if (plain_decimal(s, out)) return true;
     const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
     if (ec == std::errc{} && ptr == s.data() + s.size()) return true;
     if (!decimal_comma || s.size() >= 64) return false;

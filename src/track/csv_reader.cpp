@@ -2,10 +2,16 @@
 
 #include <algorithm>
 #include <array>
+#include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <exception>
 #include <functional>
 #include <initializer_list>
+#include <memory>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <unordered_map>
 
 #if defined(__SSE2__)
@@ -347,19 +353,57 @@ struct Pending {
     double tod;
 };
 
-/// Reads a CSV track file given whole or in blocks (see CsvSplitter): feed() each block, then
-/// finish(). Fixes are packed as they are read.
-class CsvTrackReader {
-public:
-    CsvTrackReader(const std::string& file, const ReadOptions& options) : m_file(file), m_options(options) {
-        m_out.format = "csv";
-        m_out.report.max_messages = options.max_messages;
-    }
+/// A record's fields that give its vessel's data (name, dimensions, draught, ship type): empty
+/// where the file has no such column.
+struct VesselFields {
+    std::string_view name, length, width, draught, ship_type;
+    std::array<std::string_view, 4> dims;
+};
 
-    /// Reads the records `text` holds; returns the bytes taken (the rest must come again,
-    /// followed by more, in the next call). The first text must hold the first line, or be
-    /// `complete` (the whole file, or its last block).
-    std::size_t feed(std::string_view text, bool complete) {
+constexpr std::size_t no_skip = static_cast<std::size_t>(-1);
+
+/// What one record says as far as it can be told without the records before it: a bad row's
+/// message, or its fix, vessel and fields. Its views point into its ParsedBlock.
+struct ParsedRow {
+    double seconds = 0;          ///< the time read: epoch seconds, or of the day when date_missing
+    bool date_missing = false;
+    bool long_row = false;       ///< over the line limit (a bad row, said after its fields' problems)
+    std::size_t line = 0;
+    geo::LonLat position;
+    std::string_view heading, cog, sog, nav_status;  ///< fields, empty where the file has no such column
+    std::string_view id, exercise;
+    const char* role = nullptr;  ///< role_value() of the role column; null when not read
+    VesselFields vessel;
+    std::size_t skip = no_skip;  ///< a bad row: its message in ParsedBlock::skips
+};
+
+/// The records read from one block of a CSV file, in file order: what the thread that splits
+/// and parses hands to the one that assembles tracks.
+struct ParsedBlock {
+    std::string text;               ///< the block's bytes (the rows' views point into them)
+    std::deque<std::string> owned;  ///< fields not in `text` (unescaped, or of a long record)
+    std::vector<ParsedRow> rows;
+    std::vector<std::string> skips;
+    void clear() {
+        text.clear();
+        owned.clear();
+        rows.clear();
+        skips.clear();
+    }
+};
+
+/// Splits a CSV track file given whole or in blocks (see CsvSplitter) into records and parses
+/// each into a ParsedRow: feed() each block. What a row means for its track (which track, its
+/// date, role, vessel data) is CsvTrackAssembler's, which takes the blocks in order.
+class CsvRowParser {
+public:
+    CsvRowParser(const std::string& file, const ReadOptions& options) : m_file(file), m_options(options) {}
+
+    /// Reads the records `text` holds into `out`; returns the bytes taken (the rest must come
+    /// again, followed by more, in the next call). The first text must hold the first line, or
+    /// be `complete` (the whole file, or its last block). The rows' views point into `text`,
+    /// or into `out`.
+    std::size_t feed(std::string_view text, bool complete, ParsedBlock& out) {
         if (m_split) m_split->more(text, complete);
         else m_split.emplace(text, complete);
         std::vector<std::string_view>& f = m_fields;
@@ -382,24 +426,152 @@ public:
             if (!rec.empty() && rec.back() == '\n') rec.remove_suffix(1);
             if (!rec.empty() && rec.back() == '\r') rec.remove_suffix(1);
             m_long_row = rec.size() > shoal::detail::max_line_bytes;
-            row(f);
+            parse(f, text, out);
             m_long_row = false;
         }
         return m_split->consumed();
     }
 
     bool header_read() const noexcept { return m_header_read; }
-
     char separator() const noexcept { return m_split ? m_split->separator() : ','; }
+    /// The header's columns and its decimal comma (set by the first feed()).
+    const Columns& columns() const noexcept { return m_cols; }
+    bool decimal_comma() const noexcept { return m_decimal_comma; }
 
     /// A record longer than the line limit, its fields cut short: a bad row, reported with its
     /// first problem, else as too long (its line is the pending record's: the splitter stopped
     /// before it).
-    void long_record(const std::vector<std::string>& fields) {
-        std::vector<std::string_view> f(fields.begin(), fields.end());
+    void long_record(const std::vector<std::string>& fields, ParsedBlock& out) {
+        std::vector<std::string_view> f;
+        for (const std::string& s : fields) f.push_back(out.owned.emplace_back(s));
         m_long_row = true;
-        row(f);
+        parse(f, {}, out);
         m_long_row = false;
+    }
+
+private:
+    void skip(ParsedBlock& out, const std::string& what) {
+        out.rows.emplace_back().skip = out.skips.size();
+        out.skips.push_back(m_file + " line " + std::to_string(m_split->line()) + ": " + what + "; row skipped");
+    }
+
+    /// Field `col` (empty when absent), kept in `out` unless it lies in `text` (an unescaped
+    /// field lives in the splitter only until its next record).
+    static std::string_view field(const std::vector<std::string_view>& f, std::size_t col, std::string_view text, ParsedBlock& out) {
+        if (col >= f.size() || f[col].empty()) return {};
+        const std::string_view v = f[col];
+        const auto at = reinterpret_cast<std::uintptr_t>(v.data()), from = reinterpret_cast<std::uintptr_t>(text.data());
+        if (at >= from && at - from <= text.size() && v.size() <= text.size() - (at - from)) return v;
+        return out.owned.emplace_back(v);
+    }
+
+    void parse(const std::vector<std::string_view>& f, std::string_view text, ParsedBlock& out) {
+        if (f.size() < m_cols.required) {
+            skip(out, "has " + std::to_string(f.size()) + " fields, the header needs " + std::to_string(m_cols.required));
+            return;
+        }
+        if (m_cols.mobile_type != absent && m_cols.mobile_type < f.size()) {
+            const std::string_view type = f[m_cols.mobile_type];
+            if (type == "Base Station" || type == "AtoN") {
+                skip(out, "not a vessel (Type of mobile " + detail::quoted(type) + ")");
+                return;
+            }
+        }
+        if (m_cols.id != absent && f[m_cols.id].empty()) {
+            skip(out, "no vessel id");
+            return;
+        }
+        if (m_cols.exercise != absent && f[m_cols.exercise].empty()) {
+            skip(out, "no exercise (column '" + m_options.exercise_column + "' is empty)");
+            return;
+        }
+        const char* role = nullptr;
+        if (m_cols.role != absent) {
+            role = role_value(f[m_cols.role]);
+            if (!role) {
+                skip(out, f[m_cols.role].empty() ? "no role (column '" + m_options.role_column + "' is empty)"
+                                                 : "role " + detail::quoted(f[m_cols.role]) + " (column '" + m_options.role_column +
+                                                       "') is neither trainee (own, own ship) nor target");
+                return;
+            }
+        }
+        const std::string_view time_text = f[m_cols.time];
+        if (time_text.empty()) {
+            skip(out, "no time");
+            return;
+        }
+        const auto time = parse_time(time_text);
+        if (!time) {
+            skip(out, "time " + detail::quoted(time_text) + " is not a valid time (ISO 8601, epoch seconds, dd/mm/yyyy hh:mm:ss or hh:mm:ss)");
+            return;
+        }
+        if (!time->date_missing && !plausible_fix_time(time->seconds)) {
+            skip(out, "time " + detail::quoted(time_text) + " is outside the years " + fix_time_range + " (a wrong unit, or a corrupt field?)");
+            return;
+        }
+        geo::LonLat position;
+        if (!detail::parse_double(f[m_cols.lat], position.lat, m_decimal_comma)) {
+            skip(out, f[m_cols.lat].empty() ? "no latitude" : "latitude " + detail::quoted(f[m_cols.lat]) + " is not a number");
+            return;
+        }
+        if (!detail::parse_double(f[m_cols.lon], position.lon, m_decimal_comma)) {
+            skip(out, f[m_cols.lon].empty() ? "no longitude" : "longitude " + detail::quoted(f[m_cols.lon]) + " is not a number");
+            return;
+        }
+        if (std::string what; detail::position_problem(position.lat, position.lon, what)) {
+            skip(out, what);
+            return;
+        }
+        // The other numbers are read by the assembling thread (add()), which has less to do.
+        ParsedRow& r = out.rows.emplace_back();
+        r.seconds = time->seconds;
+        r.date_missing = time->date_missing;
+        r.position = position;
+        r.line = m_split->line();
+        r.long_row = m_long_row;
+        r.heading = field(f, m_cols.heading, text, out);
+        r.cog = field(f, m_cols.cog, text, out);
+        r.sog = field(f, m_cols.sog, text, out);
+        r.nav_status = field(f, m_cols.nav_status, text, out);
+        if (m_cols.id != absent) r.id = field(f, m_cols.id, text, out);
+        if (m_cols.exercise != absent) r.exercise = field(f, m_cols.exercise, text, out);
+        r.role = role;
+        VesselFields& v = r.vessel;
+        v.name = field(f, m_cols.name, text, out);
+        for (std::size_t k = 0; k < 4; ++k) v.dims[k] = field(f, m_cols.dims[k], text, out);
+        v.length = field(f, m_cols.length, text, out);
+        v.width = field(f, m_cols.width, text, out);
+        v.draught = field(f, m_cols.draught, text, out);
+        v.ship_type = field(f, m_cols.ship_type, text, out);
+    }
+
+    std::optional<CsvSplitter> m_split;
+    std::vector<std::string_view> m_fields;
+    bool m_long_row = false;
+    bool m_header_read = false;
+    const std::string& m_file;
+    const ReadOptions& m_options;
+    Columns m_cols;
+    bool m_decimal_comma = false;
+};
+
+/// Makes the tracks of a CSV file from its parsed records, taken in file order (apply() each
+/// block), then finish(). Fixes are packed as they come.
+class CsvTrackAssembler {
+public:
+    /// `parser`'s columns are read once its first block (the header's) has been applied.
+    CsvTrackAssembler(const std::string& file, const ReadOptions& options, const CsvRowParser& parser)
+        : m_file(file), m_options(options), m_parser(parser) {
+        m_out.format = "csv";
+        m_out.report.max_messages = options.max_messages;
+    }
+
+    void apply(const ParsedBlock& b) {
+        for (const ParsedRow& r : b.rows) {
+            ++m_out.report.rows;
+            if (r.skip != no_skip) m_out.report.skip(b.skips[r.skip]);
+            else add(r);
+        }
     }
 
     PackedTrackFile finish() {
@@ -417,22 +589,58 @@ public:
     }
 
 private:
-    void skip(const std::string& what) {
-        m_out.report.skip(m_file + " line " + std::to_string(m_split->line()) + ": " + what + "; row skipped");
+    const Columns& cols() const noexcept { return m_parser.columns(); }
+
+    double number(std::string_view text) const {
+        double v = NAN;
+        if (!detail::parse_double(text, v, m_parser.decimal_comma())) return NAN;
+        return v;
     }
 
-    double number(const std::vector<std::string_view>& f, std::size_t col) const {
-        double v = NAN;
-        if (col >= f.size() || !detail::parse_double(f[col], v, m_decimal_comma)) return NAN;
-        return v;
+    void skip(std::size_t line, const std::string& what) {
+        m_out.report.skip(m_file + " line " + std::to_string(line) + ": " + what + "; row skipped");
+    }
+
+    void add(const ParsedRow& r) {
+        const Columns& c = cols();
+        Fix fix;
+        fix.position = r.position;
+        if (c.heading != absent) fix.heading_deg = detail::valid_heading(number(r.heading));
+        if (c.cog != absent) fix.cog_deg = detail::valid_cog(number(r.cog));
+        if (c.sog != absent) fix.sog_kn = detail::valid_sog(number(r.sog));
+        if (c.nav_status != absent) fix.nav_status = parse_nav_status(r.nav_status);
+        fix.line = r.line;
+        if (r.long_row) {
+            skip(r.line, "longer than " + shoal::detail::size_text(shoal::detail::max_line_bytes) + ", the longest line shoal reads");
+            return;
+        }
+        const std::size_t ti = track_for(r.id, r.exercise);
+        PackedTrack& t = m_out.tracks[ti];
+        vessel_data(t, r.vessel);
+        if (r.role) take_role(ti, r.role, fix.line);
+        if (m_clocks.size() <= ti) m_clocks.resize(ti + 1);
+        DayClock& clock = m_clocks[ti];
+        if (!r.date_missing) {
+            clock.date_seen(r.seconds);
+            if (std::isnan(m_first_date)) m_first_date = day_start(r.seconds);
+            fix.time_s = r.seconds;
+        } else {
+            const std::int64_t day = clock.day_of(r.seconds);
+            if (clock.has_date())
+                fix.time_s = clock.resolve(day, r.seconds);
+            else
+                m_pending.push_back({ti, t.size(), day, r.seconds});
+        }
+        t.push_back(fix);
     }
 
     /// The track of (exercise, id); `exercise` is "" unless the exercise column is read.
     std::size_t track_for(std::string_view id, std::string_view exercise) {
         if (m_last_track != absent && id == m_last_id && exercise == m_last_exercise) return m_last_track;
+        const Columns& c = cols();
         // With an exercise column the key is (exercise, id), as text: no integer shortcut.
         std::optional<std::uint64_t> mmsi;
-        if (m_cols.exercise == absent) {
+        if (c.exercise == absent) {
             mmsi = integer_id(id);
         } else {
             m_key.assign(exercise).push_back('\0');
@@ -448,26 +656,26 @@ private:
         if (idx == absent) {
             idx = m_out.tracks.size();
             PackedTrack& t = m_out.tracks.emplace_back();
-            t.id = m_cols.id == absent ? detail::file_stem(m_file) : to_utf8(m_cols.exercise == absent ? id : id.substr(exercise.size() + 1));
+            t.id = c.id == absent ? detail::file_stem(m_file) : to_utf8(c.exercise == absent ? id : id.substr(exercise.size() + 1));
             t.file = m_file;
             t.exercise = to_utf8(exercise);
             if (mmsi) m_integer_index.insert(*mmsi, idx);
             else m_index.emplace(std::string(id), idx);
         }
-        m_last_id.assign(m_cols.exercise == absent ? id : id.substr(exercise.size() + 1));
+        m_last_id.assign(c.exercise == absent ? id : id.substr(exercise.size() + 1));
         m_last_exercise.assign(exercise);
         m_last_track = idx;
         return idx;
     }
 
-    void vessel_data(PackedTrack& t, const std::vector<std::string_view>& f) {
-        if (m_cols.name != absent && t.name.empty() && m_cols.name < f.size() && !f[m_cols.name].empty())
-            t.name = to_utf8(f[m_cols.name]);
-        if (m_cols.dims[0] != absent && !t.dims) {
+    void vessel_data(PackedTrack& t, const VesselFields& f) {
+        const Columns& c = cols();
+        if (c.name != absent && t.name.empty() && !f.name.empty()) t.name = to_utf8(f.name);
+        if (c.dims[0] != absent && !t.dims) {
             std::array<double, 4> d{};
             bool ok = true;
             for (std::size_t k = 0; k < 4; ++k) {
-                d[k] = number(f, m_cols.dims[k]);
+                d[k] = number(f.dims[k]);
                 ok = ok && std::isfinite(d[k]) && d[k] > 0.0;
             }
             if (ok) {
@@ -477,23 +685,23 @@ private:
         }
         // Length and width alone (MarineCadastre): the reference point is not known; taken
         // amidships, the hull reaches half the length fore and aft.
-        if (m_options.hull_from_length_width && m_cols.length != absent && m_cols.width != absent && !t.dims) {
-            const double l = number(f, m_cols.length), w = number(f, m_cols.width);
+        if (m_options.hull_from_length_width && c.length != absent && c.width != absent && !t.dims) {
+            const double l = number(f.length), w = number(f.width);
             if (std::isfinite(l) && std::isfinite(w) && l > 0.0 && w > 0.0) {
                 t.dims = hull::Dimensions{l / 2, l / 2, w / 2, w / 2};
                 t.dims_source = "Length and Width columns (reference point taken amidships)";
             }
         }
-        if (m_cols.draught != absent && std::isnan(t.draught_m)) {
-            const double v = number(f, m_cols.draught);
+        if (c.draught != absent && std::isnan(t.draught_m)) {
+            const double v = number(f.draught);
             if (std::isfinite(v) && v > 0.0) {
                 t.draught_m = v;
                 t.draught_source = "draught column";
             }
         }
-        if (m_cols.ship_type != absent && t.ship_type < 0) {
+        if (c.ship_type != absent && t.ship_type < 0) {
             // A number 1-255 (0: not available); a text (DMA's "Cargo", "Undefined") is not the number.
-            const double v = number(f, m_cols.ship_type);
+            const double v = number(f.ship_type);
             if (v >= 1.0 && v <= 255.0 && v == std::floor(v)) {
                 t.ship_type = static_cast<int>(v);
                 t.ship_type_source = "ship type column";
@@ -501,110 +709,18 @@ private:
         }
     }
 
-    void row(const std::vector<std::string_view>& f) {
-        ++m_out.report.rows;
-        if (f.size() < m_cols.required) {
-            skip("has " + std::to_string(f.size()) + " fields, the header needs " + std::to_string(m_cols.required));
-            return;
-        }
-        if (m_cols.mobile_type != absent && m_cols.mobile_type < f.size()) {
-            const std::string_view type = f[m_cols.mobile_type];
-            if (type == "Base Station" || type == "AtoN") {
-                skip("not a vessel (Type of mobile " + detail::quoted(type) + ")");
-                return;
-            }
-        }
-        const std::string_view id = m_cols.id == absent ? std::string_view{} : f[m_cols.id];
-        if (m_cols.id != absent && id.empty()) {
-            skip("no vessel id");
-            return;
-        }
-        const std::string_view exercise = m_cols.exercise == absent ? std::string_view{} : f[m_cols.exercise];
-        if (m_cols.exercise != absent && exercise.empty()) {
-            skip("no exercise (column '" + m_options.exercise_column + "' is empty)");
-            return;
-        }
-        const char* role = nullptr;
-        if (m_cols.role != absent) {
-            role = role_value(f[m_cols.role]);
-            if (!role) {
-                skip(f[m_cols.role].empty() ? "no role (column '" + m_options.role_column + "' is empty)"
-                                            : "role " + detail::quoted(f[m_cols.role]) + " (column '" + m_options.role_column +
-                                                  "') is neither trainee (own, own ship) nor target");
-                return;
-            }
-        }
-        const std::string_view time_text = f[m_cols.time];
-        if (time_text.empty()) {
-            skip("no time");
-            return;
-        }
-        const auto time = parse_time(time_text);
-        if (!time) {
-            skip("time " + detail::quoted(time_text) +
-                 " is not a valid time (ISO 8601, epoch seconds, dd/mm/yyyy hh:mm:ss or hh:mm:ss)");
-            return;
-        }
-        if (!time->date_missing && !plausible_fix_time(time->seconds)) {
-            skip("time " + detail::quoted(time_text) + " is outside the years " + fix_time_range +
-                 " (a wrong unit, or a corrupt field?)");
-            return;
-        }
-        Fix fix;
-        if (!detail::parse_double(f[m_cols.lat], fix.position.lat, m_decimal_comma)) {
-            skip(f[m_cols.lat].empty() ? "no latitude" : "latitude " + detail::quoted(f[m_cols.lat]) + " is not a number");
-            return;
-        }
-        if (!detail::parse_double(f[m_cols.lon], fix.position.lon, m_decimal_comma)) {
-            skip(f[m_cols.lon].empty() ? "no longitude" : "longitude " + detail::quoted(f[m_cols.lon]) + " is not a number");
-            return;
-        }
-        if (std::string what; detail::position_problem(fix.position.lat, fix.position.lon, what)) {
-            skip(what);
-            return;
-        }
-        if (m_cols.heading != absent) fix.heading_deg = detail::valid_heading(number(f, m_cols.heading));
-        if (m_cols.cog != absent) fix.cog_deg = detail::valid_cog(number(f, m_cols.cog));
-        if (m_cols.sog != absent) fix.sog_kn = detail::valid_sog(number(f, m_cols.sog));
-        if (m_cols.nav_status != absent && m_cols.nav_status < f.size()) fix.nav_status = parse_nav_status(f[m_cols.nav_status]);
-        fix.line = m_split->line();
-
-        if (m_long_row) {
-            skip("longer than " + shoal::detail::size_text(shoal::detail::max_line_bytes) + ", the longest line shoal reads");
-            return;
-        }
-        const std::size_t ti = track_for(id, exercise);
-        PackedTrack& t = m_out.tracks[ti];
-        vessel_data(t, f);
-        if (role) take_role(ti, role);
-        if (m_clocks.size() <= ti) m_clocks.resize(ti + 1);
-        DayClock& clock = m_clocks[ti];
-        if (!time->date_missing) {
-            clock.date_seen(time->seconds);
-            if (std::isnan(m_first_date)) m_first_date = day_start(time->seconds);
-            fix.time_s = time->seconds;
-        } else {
-            const std::int64_t day = clock.day_of(time->seconds);
-            if (clock.has_date())
-                fix.time_s = clock.resolve(day, time->seconds);
-            else
-                m_pending.push_back({ti, t.size(), day, time->seconds});
-        }
-        t.push_back(fix);
-    }
-
-    /// A row's role for track `ti`: the first gives the track's; a different one later is a
-    /// disagreement, said (and the track taken as a target) in finish().
-    void take_role(std::size_t ti, const char* role) {
+    /// A row's role for track `ti` (its row on `line`): the first gives the track's; a
+    /// different one later is a disagreement, said (and the track taken as a target) in finish().
+    void take_role(std::size_t ti, const char* role, std::size_t line) {
         PackedTrack& t = m_out.tracks[ti];
         if (m_role_lines.size() <= ti) m_role_lines.resize(ti + 1, 0);
         if (t.role.empty()) {
             t.role = role;
-            m_role_lines[ti] = m_split->line();
+            m_role_lines[ti] = line;
             return;
         }
         if (t.role == role || m_role_lines[ti] == absent) return;  // absent: said already, with the first row that disagreed
-        m_role_conflicts.push_back({ti, m_role_lines[ti], m_split->line(), role});
+        m_role_conflicts.push_back({ti, m_role_lines[ti], line, role});
         m_role_lines[ti] = absent;
     }
 
@@ -631,14 +747,9 @@ private:
         }
     }
 
-    std::optional<CsvSplitter> m_split;
-    std::vector<std::string_view> m_fields;
-    bool m_long_row = false;
-    bool m_header_read = false;
     const std::string& m_file;
     const ReadOptions& m_options;
-    Columns m_cols;
-    bool m_decimal_comma = false;
+    const CsvRowParser& m_parser;
     PackedTrackFile m_out;
     std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;  ///< ids that are not integer_id()s
     IntegerIndex m_integer_index;
@@ -659,9 +770,12 @@ private:
 }  // namespace
 
 PackedTrackFile read_csv_text_packed(std::string_view text, const std::string& file, const ReadOptions& options) {
-    CsvTrackReader reader(file, options);
-    reader.feed(text, true);
-    return reader.finish();
+    CsvRowParser parser(file, options);
+    CsvTrackAssembler tracks(file, options, parser);
+    ParsedBlock block;
+    parser.feed(text, true, block);
+    tracks.apply(block);
+    return tracks.finish();
 }
 
 TrackFile read_csv_text(std::string_view text, const std::string& file, const ReadOptions& options) {
@@ -733,10 +847,76 @@ LongRecord read_long_record(std::string& buf, char sep, More&& more) {
     return r;
 }
 
+/// Parsed blocks on their way from the thread that splits a file to the one that assembles its
+/// tracks, and back empty (so at most `count` blocks are ever held). close() ends the file;
+/// cancel() stops the splitting thread at its next block (the assembling one failed).
+class BlockQueue {
+public:
+    explicit BlockQueue(std::size_t count) {
+        for (std::size_t k = 0; k < count; ++k) m_free.push_back(std::make_unique<ParsedBlock>());
+    }
+    struct Cancelled {};
+
+    /// An empty block to fill (waits for one); throws Cancelled after cancel().
+    std::unique_ptr<ParsedBlock> take() {
+        std::unique_lock lock(m_mutex);
+        m_changed.wait(lock, [&] { return m_cancelled || !m_free.empty(); });
+        if (m_cancelled) throw Cancelled{};
+        auto b = std::move(m_free.back());
+        m_free.pop_back();
+        return b;
+    }
+    void push(std::unique_ptr<ParsedBlock> b) {
+        {
+            const std::lock_guard lock(m_mutex);
+            m_full.push_back(std::move(b));
+        }
+        m_changed.notify_all();
+    }
+    /// The next filled block in order; null once closed and drained.
+    std::unique_ptr<ParsedBlock> pop() {
+        std::unique_lock lock(m_mutex);
+        m_changed.wait(lock, [&] { return m_closed || !m_full.empty(); });
+        if (m_full.empty()) return nullptr;
+        auto b = std::move(m_full.front());
+        m_full.pop_front();
+        return b;
+    }
+    void recycle(std::unique_ptr<ParsedBlock> b) {
+        b->clear();
+        {
+            const std::lock_guard lock(m_mutex);
+            m_free.push_back(std::move(b));
+        }
+        m_changed.notify_all();
+    }
+    void close() {
+        {
+            const std::lock_guard lock(m_mutex);
+            m_closed = true;
+        }
+        m_changed.notify_all();
+    }
+    void cancel() {
+        {
+            const std::lock_guard lock(m_mutex);
+            m_cancelled = true;
+        }
+        m_changed.notify_all();
+    }
+
+private:
+    std::mutex m_mutex;
+    std::condition_variable m_changed;
+    std::vector<std::unique_ptr<ParsedBlock>> m_free;
+    std::deque<std::unique_ptr<ParsedBlock>> m_full;
+    bool m_closed = false, m_cancelled = false;
+};
+
 }  // namespace
 
-PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options) {
-    constexpr std::size_t block = std::size_t{1} << 20;
+PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options,
+                                        std::size_t block) {
     constexpr std::size_t max_line = shoal::detail::max_line_bytes, max_first_line = shoal::detail::max_sniff_bytes;
     const std::string& path = in.path();
     // The head comes in blocks too, so that a long line in it is found as in the rest.
@@ -756,38 +936,87 @@ PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::strin
             if (in_done || in.append(buf, want) < want) in_done = eof = true;
         }
     };
-    read_more();
     const auto too_long = [&] {
         return InputError(path + ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183): its first line is longer than " +
                           shoal::detail::size_text(max_first_line) + ", the longest header shoal reads");
     };
-    CsvTrackReader reader(path, options);
-    while (!eof && !CsvSplitter::holds_first_line(buf)) {
-        if (buf.size() > max_first_line) throw too_long();
+    CsvRowParser parser(path, options);
+    CsvTrackAssembler tracks(path, options, parser);
+
+    // Splits the file into blocks of parsed records, handed in order to `emit`; `take` gives
+    // an empty block. A block holds its bytes: what it did not take goes on in `buf`.
+    auto split = [&](auto&& take, auto&& emit) {
         read_more();
-    }
-    std::size_t taken = reader.feed(buf, eof);
-    while (!eof) {
-        buf.erase(0, taken);
-        if (buf.size() > max_line) {  // a record that long: a bad row, read to its end but not held
-            if (!reader.header_read()) {
-                if (buf.size() > max_first_line) throw too_long();
-                read_more();
-                taken = reader.feed(buf, eof);
-                continue;
-            }
-            const LongRecord r = read_long_record(buf, reader.separator(), [&] {
-                if (eof) return false;
-                read_more();
-                return true;
-            });
-            reader.long_record(r.fields);
-            buf.insert(0, r.newlines, '\n');  // blank lines: the splitter counts the lines the record held
+        while (!eof && !CsvSplitter::holds_first_line(buf)) {
+            if (buf.size() > max_first_line) throw too_long();
+            read_more();
         }
-        if (!eof) read_more();
-        taken = reader.feed(buf, eof);
+        auto feed = [&] {
+            std::unique_ptr<ParsedBlock> b = take();
+            b->text.swap(buf);
+            const std::size_t taken = parser.feed(b->text, eof, *b);
+            buf.assign(b->text, taken);
+            emit(std::move(b));
+        };
+        feed();
+        while (!eof) {
+            if (buf.size() > max_line) {  // a record that long: a bad row, read to its end but not held
+                if (!parser.header_read()) {
+                    if (buf.size() > max_first_line) throw too_long();
+                    read_more();
+                    feed();
+                    continue;
+                }
+                const LongRecord r = read_long_record(buf, parser.separator(), [&] {
+                    if (eof) return false;
+                    read_more();
+                    return true;
+                });
+                std::unique_ptr<ParsedBlock> b = take();
+                parser.long_record(r.fields, *b);
+                emit(std::move(b));
+                buf.insert(0, r.newlines, '\n');  // blank lines: the splitter counts the lines the record held
+            }
+            if (!eof) read_more();
+            feed();
+        }
+    };
+
+    if (whole || options.threads < 2) {  // one thread: each block assembled as soon as it is parsed
+        auto block_used = std::make_unique<ParsedBlock>();
+        split([&] { return std::move(block_used); },
+              [&](std::unique_ptr<ParsedBlock> b) {
+                  tracks.apply(*b);
+                  b->clear();
+                  block_used = std::move(b);
+              });
+        return tracks.finish();
     }
-    return reader.finish();
+    // Two threads: one reads, splits and parses the blocks, this one makes the tracks of them.
+    BlockQueue queue(4);
+    std::exception_ptr failed;
+    std::thread splitter([&] {
+        try {
+            split([&] { return queue.take(); }, [&](std::unique_ptr<ParsedBlock> b) { queue.push(std::move(b)); });
+        } catch (const BlockQueue::Cancelled&) {
+        } catch (...) {
+            failed = std::current_exception();
+        }
+        queue.close();
+    });
+    try {
+        while (std::unique_ptr<ParsedBlock> b = queue.pop()) {
+            tracks.apply(*b);
+            queue.recycle(std::move(b));
+        }
+    } catch (...) {
+        queue.cancel();
+        splitter.join();
+        throw;
+    }
+    splitter.join();
+    if (failed) std::rethrow_exception(failed);
+    return tracks.finish();
 }
 
 PackedTrackFile read_csv_packed(const std::string& path, const ReadOptions& options) {

@@ -11,8 +11,11 @@ namespace shoal::track::detail {
 
 /// Reads a CSV track file from `in` in blocks: `head` holds its first bytes already read
 /// (`whole`: all of them). A line over shoal::detail::max_line_bytes is a bad row, dropped
-/// without being held; a first line that long is an InputError.
-PackedTrackFile read_csv_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options);
+/// without being held; a first line that long is an InputError. Read in blocks of `block`
+/// bytes; with ReadOptions::threads >= 2 (and more than `head`), split and parsed on a thread
+/// of its own while this one makes the tracks.
+PackedTrackFile read_csv_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options,
+                                std::size_t block = std::size_t{1} << 20);
 
 /// Reads the GPX file GDAL opens at `gdal_path`; `file` names it in messages and track ids.
 TrackFile read_gpx_at(const std::string& gdal_path, const std::string& file, const ReadOptions& options);

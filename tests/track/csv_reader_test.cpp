@@ -13,7 +13,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <random>
 #include <string>
@@ -88,6 +90,49 @@ TEST(CsvReader, DecodedFixesLayoutSplitsVesselsInFirstAppearanceOrder) {
 /// and as text otherwise: rows interleaved across thousands of vessels, with ids that read as
 /// the same number but are different text, must still make one track per distinct id text, in
 /// order of first appearance (the answer here is a map of strings).
+TEST(CsvReader, PlainDecimalsReadAsFromCharsReadsThem) {
+    // detail::plain_decimal's digits over a power of ten against std::from_chars, bit for bit,
+    // on random decimals of 1 to 18 digits with 0 to 17 after the point (the fast path takes
+    // up to 15 in all), signs and leading zeros; and texts it must leave to from_chars.
+    std::mt19937_64 rng(15);
+    std::size_t fast = 0;
+    for (int k = 0; k < 400000; ++k) {
+        std::string s = rng() % 4 == 0 ? "-" : "";
+        const std::size_t before = 1 + rng() % 9, after = rng() % 10;
+        for (std::size_t i = 0; i < before; ++i) s += static_cast<char>('0' + (i == 0 && rng() % 3 ? 1 + rng() % 9 : rng() % 10));
+        if (after || rng() % 2) {
+            s += '.';
+            for (std::size_t i = 0; i < after; ++i) s += static_cast<char>('0' + rng() % 10);
+        }
+        double want = 0;
+        const auto r = std::from_chars(s.data(), s.data() + s.size(), want);
+        double got = 12345;
+        const bool taken = shoal::track::detail::plain_decimal(s, got);
+        fast += taken;
+        if (taken) {
+            ASSERT_TRUE(r.ec == std::errc{} && r.ptr == s.data() + s.size()) << s;
+            ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0) << s << ": " << got << " against " << want;
+        }
+        double parsed = 12345;
+        const bool ok = shoal::track::detail::parse_double(s, parsed);
+        ASSERT_EQ(ok, r.ec == std::errc{} && r.ptr == s.data() + s.size()) << s;
+        if (ok) {
+            ASSERT_EQ(std::memcmp(&parsed, &want, sizeof parsed), 0) << s;
+        }
+    }
+    EXPECT_GT(fast, 200000u);
+    for (const char* s : {"", "-", ".5", "5.", "1e5", "+1", "0x10", "1234567890123456", "1.234567890123456", "inf", "nan", "1 ", "--1", "1.2.3"}) {
+        double v = 12345;
+        EXPECT_FALSE(shoal::track::detail::plain_decimal(s, v)) << s;
+        EXPECT_EQ(v, 12345) << s;
+    }
+    double v = 0;
+    ASSERT_TRUE(shoal::track::detail::plain_decimal("-0.0", v));
+    EXPECT_TRUE(std::signbit(v));
+    ASSERT_TRUE(shoal::track::detail::plain_decimal("123456789012345", v));
+    EXPECT_EQ(v, 123456789012345.0);
+}
+
 TEST(CsvReader, InterleavedIdsOfEveryKindMakeOneTrackPerIdText) {
     std::mt19937_64 rng(15);
     std::vector<std::string> ids;

@@ -6,20 +6,24 @@
 // tools (not by GDAL), the FIFOs written by a thread of the test.
 
 #include <shoal/track/reader.hpp>
+#include <shoal/track/csv_reader.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "detail/input_file.hpp"
+#include "track/stream_readers.hpp"
 #include "test_support.hpp"
 #include <shoal/hull/hull.hpp>
 #include <shoal/util/error.hpp>
@@ -186,6 +190,108 @@ TEST(Input, DevZeroIsRefusedAfterTheSniffLimit) {
     EXPECT_THAT([] { read_tracks("/dev/zero"); }, ThrowsMessage<InputError>(HasSubstr("/dev/zero: not a track format")));
     EXPECT_THAT([] { shoal::hull::Hull::load("/dev/zero"); },
                 ThrowsMessage<InputError>(HasSubstr("/dev/zero: larger than 1 MiB, the most a ship file may be")));
+}
+
+/// Fields a reader gives, every one (NaN equal to NaN).
+bool same_number(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
+
+void expect_same_packed(const shoal::track::PackedTrackFile& got, const shoal::track::PackedTrackFile& want) {
+    EXPECT_EQ(got.report.rows, want.report.rows);
+    EXPECT_EQ(got.report.skipped, want.report.skipped);
+    EXPECT_EQ(got.report.duplicates, want.report.duplicates);
+    EXPECT_EQ(got.report.reordered, want.report.reordered);
+    EXPECT_EQ(got.report.messages, want.report.messages);
+    ASSERT_EQ(got.tracks.size(), want.tracks.size());
+    for (std::size_t i = 0; i < got.tracks.size(); ++i) {
+        const auto &g = got.tracks[i], &w = want.tracks[i];
+        SCOPED_TRACE("track " + w.id);
+        EXPECT_EQ(g.id, w.id);
+        EXPECT_EQ(g.name, w.name);
+        EXPECT_EQ(g.dims, w.dims);
+        EXPECT_EQ(g.dims_source, w.dims_source);
+        EXPECT_TRUE(same_number(g.draught_m, w.draught_m));
+        EXPECT_EQ(g.ship_type, w.ship_type);
+        EXPECT_EQ(g.role, w.role);
+        ASSERT_EQ(g.size(), w.size());
+        for (std::size_t k = 0; k < g.size(); ++k) {
+            const shoal::track::Fix a = g.fix(k), b = w.fix(k);
+            EXPECT_TRUE(same_number(a.time_s, b.time_s) && a.position.lat == b.position.lat && a.position.lon == b.position.lon &&
+                        same_number(a.heading_deg, b.heading_deg) && same_number(a.cog_deg, b.cog_deg) && same_number(a.sog_kn, b.sog_kn) &&
+                        a.nav_status == b.nav_status && a.line == b.line)
+                << "fix " << k << " line " << b.line;
+        }
+    }
+}
+
+TEST(Input, ACsvReadByTwoThreadsIsTheCsvReadByOne) {
+    // Random files of everything a row can hold or lack (quoted and escaped fields, line breaks
+    // inside quotes, CRLF, blank lines, bad fields of every column, times of day before and
+    // after a vessel's first date, rows over the line limit), read in blocks of 997 bytes to
+    // 1 MiB by one thread and by two (ReadOptions::threads): the same tracks, fixes, lines and
+    // messages as the whole text read at once.
+    std::mt19937_64 rng(15);
+    auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
+    TempDir dir;
+    for (int file = 0; file < 6; ++file) {
+        std::string text = file % 2 ? "\xEF\xBB\xBF" : "";
+        text += "MMSI,time,lat,lon,SOG,COG,Heading,Status,VesselName,A,B,C,D,Draught,ShipType,role\n";
+        const std::vector<std::string> ids = {"211000001", "\"211000002\"", "\"21\"\"3\"", "0211", "abc", "211000001 ", "", "999"};
+        const std::vector<std::string> numbers = {"59.5", "-0.0", "12", "1e1", "59.123456789012345678", "abc", "", " 7.25 ", "\"8.5\"", "0.1e-2",
+                                                  "5.", ".5", "+3.5", "1,5", "nan", "inf", "91", "-181"};
+        const std::vector<std::string> names = {"NAME", "\"A, B\"", "\"line\nbreak\"", "\"say \"\"hi\"\"\"", "", "\xE9t\xE9"};
+        const std::size_t rows = 300 + pick(3000);
+        for (std::size_t r = 0; r < rows; ++r) {
+            const std::size_t kind = pick(40);
+            const std::string end = pick(5) == 0 ? "\r\n" : "\n";
+            if (kind == 0) {
+                text += end;  // blank line
+                continue;
+            }
+            if (kind == 1) {
+                text += ids[pick(ids.size())] + ",2024-05-01T10:00:00Z" + end;  // too few fields
+                continue;
+            }
+            std::string time = pick(6) == 0 ? "10:" + std::to_string(10 + pick(50)) + ":00" : "2024-05-01T" + std::to_string(10 + pick(10)) + ":" + std::to_string(10 + pick(50)) + ":" + std::to_string(10 + pick(50)) + "Z";
+            if (kind == 2) time = pick(2) ? "" : "yesterday";
+            std::string lat = pick(8) ? std::to_string(59.0 + static_cast<double>(pick(1000000)) / 1e6) : numbers[pick(numbers.size())];
+            std::string lon = pick(8) ? std::to_string(24.0 + static_cast<double>(pick(1000000)) / 1e6) : numbers[pick(numbers.size())];
+            auto num = [&] { return pick(3) ? std::to_string(pick(3600) / 10.0) : numbers[pick(numbers.size())]; };
+            std::string row = ids[pick(ids.size())] + "," + time + "," + lat + "," + lon + "," + num() + "," + num() + "," + num() + "," +
+                              std::to_string(pick(16)) + "," + names[pick(names.size())] + "," + num() + "," + num() + "," + num() + "," + num() +
+                              "," + num() + "," + std::to_string(pick(90)) + "," + (pick(30) ? "target" : pick(2) ? "own" : "neither");
+            if (kind == 3 && file < 3 && pick(10) == 0) row += "," + std::string((1 << 20) + pick(3000), 'x');  // over the line limit
+            text += row + end;
+        }
+        if (pick(2)) text += ids[0] + ",2024-05-01T23:00:00Z,59.5,24.5,1,2,3,0,LAST,1,2,3,4,5,70,target";  // no line end
+        const std::string path = dir.file("f" + std::to_string(file) + ".csv");
+        write(path, text);
+        shoal::track::ReadOptions options;
+        options.role_column = "role";
+        options.max_messages = 1000;
+        const shoal::track::PackedTrackFile want = shoal::track::read_csv_text_packed(text, path, options);
+        ASSERT_GT(want.tracks.size(), 2u);
+        ASSERT_GT(want.report.skipped, 5u);
+        // (Small blocks only without rows over the limit: each block would read such a row again.)
+        const std::vector<std::size_t> blocks = file < 3 ? std::vector<std::size_t>{65536, std::size_t{1} << 20} : std::vector<std::size_t>{997, 4096, std::size_t{1} << 20};
+        for (const std::size_t block : blocks) {
+            for (const unsigned threads : {1u, 2u}) {
+                SCOPED_TRACE("file " + std::to_string(file) + ", block " + std::to_string(block) + ", threads " + std::to_string(threads));
+                options.threads = threads;
+                shoal::detail::InputFile in(path);
+                expect_same_packed(shoal::track::detail::read_csv_stream(in, {}, false, options, block), want);
+            }
+        }
+    }
+}
+
+TEST(Input, ACsvReadByTwoThreadsStopsAtABadHeaderAsOneDoes) {
+    TempDir dir;
+    write(dir.file("bad.csv"), "a,b,c\n" + std::string(3 << 20, 'x'));
+    shoal::track::ReadOptions options;
+    options.threads = 2;
+    shoal::detail::InputFile in(dir.file("bad.csv"));
+    EXPECT_THAT([&] { shoal::track::detail::read_csv_stream(in, {}, false, options, 4096); },
+                ThrowsMessage<InputError>(HasSubstr("the header has no time")));
 }
 
 TEST(Input, CsvLineOverTheLimitIsABadRow) {

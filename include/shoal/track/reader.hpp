@@ -45,6 +45,11 @@ struct ReadOptions {
     /// column. A track whose rows give both roles is a target (the rows disagree: the track is
     /// not scored as a trainee on a guess), said in ReadReport::messages. "": none read.
     std::string role_column;
+    /// Threads a CSV file too big to be read whole (over 1 MiB) is read with: 2 or more, one
+    /// reads, splits and parses its rows while another makes the tracks of them (the same
+    /// tracks, fixes and messages as with 1). The audit gives 2 to each file when `--jobs`
+    /// leaves a core free (fewer files than jobs).
+    unsigned threads = 1;
 };
 
 /// All tracks of one file, what reading it found, and the format it was read as
