@@ -71,6 +71,30 @@ std::size_t field_end(std::string_view t, std::size_t pos, char sep) noexcept {
     return pos;
 }
 
+/// Bit i set where t[pos + i] is `sep`, a line end or a quote, over the 64 bytes from `pos`
+/// (fewer at the end of `t`).
+std::uint64_t stops(std::string_view t, std::size_t pos, char sep) noexcept {
+    const std::size_t n = t.size();
+    std::uint64_t m = 0;
+#if defined(__SSE2__)
+    if (pos + 64 <= n) {
+        const __m128i vs = _mm_set1_epi8(sep), vn = _mm_set1_epi8('\n'), vq = _mm_set1_epi8('"');
+        for (unsigned k = 0; k < 4; ++k) {
+            const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(t.data() + pos + 16 * k));
+            const __m128i hit = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, vs), _mm_cmpeq_epi8(v, vn)), _mm_cmpeq_epi8(v, vq));
+            m |= static_cast<std::uint64_t>(static_cast<unsigned>(_mm_movemask_epi8(hit))) << (16 * k);
+        }
+        return m;
+    }
+#endif
+    const std::size_t end = std::min(n, pos + 64);
+    for (std::size_t i = pos; i < end; ++i) {
+        const char c = t[i];
+        if (c == sep || c == '\n' || c == '"') m |= std::uint64_t{1} << (i - pos);
+    }
+    return m;
+}
+
 }  // namespace
 
 CsvSplitter::CsvSplitter(std::string_view text, bool complete) : m_text(text), m_complete(complete) {
@@ -102,6 +126,49 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
     while (m_pos < n) {
         fields.clear();
         m_record_line = m_line;
+        // Most records hold no quote: their fields end at the separators and the line end, found
+        // 64 bytes at a time. A record with a quote anywhere is read again field by field below.
+        {
+            std::size_t base = m_pos, start = m_pos;
+            std::uint64_t m = stops(t, base, sep);
+            bool plain = true, ended = false;
+            for (;;) {
+                while (m == 0 && base + 64 < n) {
+                    base += 64;
+                    m = stops(t, base, sep);
+                }
+                if (m == 0) break;  // the text ends within the record
+                const std::size_t at = base + static_cast<std::size_t>(__builtin_ctzll(m));
+                m &= m - 1;
+                const char c = t[at];
+                if (c == '"') {
+                    plain = false;
+                    break;
+                }
+                fields.push_back(trim(t.substr(start, at - start)));
+                start = at + 1;
+                if (c == '\n') {
+                    ended = true;
+                    break;
+                }
+            }
+            if (plain) {
+                if (!ended) {  // the record runs to the end of the text
+                    if (!m_complete) {  // it may go on in the next block: read it again then
+                        fields.clear();
+                        return false;
+                    }
+                    fields.push_back(trim(t.substr(start)));
+                    m_pos = n;
+                } else {
+                    m_pos = start;
+                    ++m_line;
+                }
+                if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
+                return true;
+            }
+            fields.clear();
+        }
         const std::size_t record_start = m_pos;
         bool at_end = false;  // the record ran to the end of the text (no line end)
         for (;;) {
@@ -355,10 +422,9 @@ struct Pending {
 
 /// A record's fields that give its vessel's data (name, dimensions, draught, ship type): empty
 /// where the file has no such column.
-struct VesselFields {
-    std::string_view name, length, width, draught, ship_type;
-    std::array<std::string_view, 4> dims;
-};
+/// The columns that give a vessel's data, in the order CsvRowParser::vessel_columns() lists
+/// those the file has.
+enum VesselField : unsigned { vessel_name, vessel_a, vessel_b, vessel_c, vessel_d, vessel_length, vessel_width, vessel_draught, vessel_ship_type, vessel_fields };
 
 constexpr std::size_t no_skip = static_cast<std::size_t>(-1);
 
@@ -373,7 +439,6 @@ struct ParsedRow {
     std::string_view heading, cog, sog, nav_status;  ///< fields, empty where the file has no such column
     std::string_view id, exercise;
     const char* role = nullptr;  ///< role_value() of the role column; null when not read
-    VesselFields vessel;
     std::size_t skip = no_skip;  ///< a bad row: its message in ParsedBlock::skips
 };
 
@@ -383,11 +448,15 @@ struct ParsedBlock {
     std::string text;               ///< the block's bytes (the rows' views point into them)
     std::deque<std::string> owned;  ///< fields not in `text` (unescaped, or of a long record)
     std::vector<ParsedRow> rows;
+    /// The vessel fields of every row not skipped by the parser, those of the file's
+    /// vessel_columns() each: row after row.
+    std::vector<std::string_view> vessel;
     std::vector<std::string> skips;
     void clear() {
         text.clear();
         owned.clear();
         rows.clear();
+        vessel.clear();
         skips.clear();
     }
 };
@@ -416,6 +485,10 @@ public:
             m_cols = map_columns(f, m_file, m_options);
             m_decimal_comma = m_split->separator() != ',';
             m_header_read = true;
+            const std::array<std::size_t, vessel_fields> cols{m_cols.name,   m_cols.dims[0], m_cols.dims[1], m_cols.dims[2],   m_cols.dims[3],
+                                                              m_cols.length, m_cols.width,   m_cols.draught, m_cols.ship_type};
+            for (unsigned k = 0; k < vessel_fields; ++k)
+                if (cols[k] != absent) m_vessel_cols.emplace_back(static_cast<VesselField>(k), cols[k]);
         }
         // A record over the line limit is a bad row wherever it lies, whole in a block or at the
         // end of the file without a line end (the stream reader catches longer ones unheld).
@@ -436,6 +509,8 @@ public:
     char separator() const noexcept { return m_split ? m_split->separator() : ','; }
     /// The header's columns and its decimal comma (set by the first feed()).
     const Columns& columns() const noexcept { return m_cols; }
+    /// The vessel fields the file has, and their columns (ParsedBlock::vessel).
+    const std::vector<std::pair<VesselField, std::size_t>>& vessel_columns() const noexcept { return m_vessel_cols; }
     bool decimal_comma() const noexcept { return m_decimal_comma; }
 
     /// A record longer than the line limit, its fields cut short: a bad row, reported with its
@@ -536,13 +611,7 @@ private:
         if (m_cols.id != absent) r.id = field(f, m_cols.id, text, out);
         if (m_cols.exercise != absent) r.exercise = field(f, m_cols.exercise, text, out);
         r.role = role;
-        VesselFields& v = r.vessel;
-        v.name = field(f, m_cols.name, text, out);
-        for (std::size_t k = 0; k < 4; ++k) v.dims[k] = field(f, m_cols.dims[k], text, out);
-        v.length = field(f, m_cols.length, text, out);
-        v.width = field(f, m_cols.width, text, out);
-        v.draught = field(f, m_cols.draught, text, out);
-        v.ship_type = field(f, m_cols.ship_type, text, out);
+        for (const auto& [what, col] : m_vessel_cols) out.vessel.push_back(field(f, col, text, out));
     }
 
     std::optional<CsvSplitter> m_split;
@@ -552,6 +621,7 @@ private:
     const std::string& m_file;
     const ReadOptions& m_options;
     Columns m_cols;
+    std::vector<std::pair<VesselField, std::size_t>> m_vessel_cols;
     bool m_decimal_comma = false;
 };
 
@@ -567,10 +637,16 @@ public:
     }
 
     void apply(const ParsedBlock& b) {
+        const std::size_t k = m_parser.vessel_columns().size();
+        const std::string_view* vessel = b.vessel.data();
         for (const ParsedRow& r : b.rows) {
             ++m_out.report.rows;
-            if (r.skip != no_skip) m_out.report.skip(b.skips[r.skip]);
-            else add(r);
+            if (r.skip != no_skip) {
+                m_out.report.skip(b.skips[r.skip]);
+            } else {
+                add(r, vessel);
+                vessel += k;
+            }
         }
     }
 
@@ -601,7 +677,8 @@ private:
         m_out.report.skip(m_file + " line " + std::to_string(line) + ": " + what + "; row skipped");
     }
 
-    void add(const ParsedRow& r) {
+    /// Row `r`, whose vessel fields are `vessel` (ParsedBlock::vessel).
+    void add(const ParsedRow& r, const std::string_view* vessel) {
         const Columns& c = cols();
         Fix fix;
         fix.position = r.position;
@@ -616,7 +693,7 @@ private:
         }
         const std::size_t ti = track_for(r.id, r.exercise);
         PackedTrack& t = m_out.tracks[ti];
-        vessel_data(t, r.vessel);
+        vessel_data(t, vessel);
         if (r.role) take_role(ti, r.role, fix.line);
         if (m_clocks.size() <= ti) m_clocks.resize(ti + 1);
         DayClock& clock = m_clocks[ti];
@@ -668,14 +745,21 @@ private:
         return idx;
     }
 
-    void vessel_data(PackedTrack& t, const VesselFields& f) {
+    void vessel_data(PackedTrack& t, const std::string_view* fields) {
+        if (m_slots.empty()) {  // where each vessel field lies among a row's
+            m_slots.assign(vessel_fields, absent);
+            const auto& vc = m_parser.vessel_columns();
+            for (std::size_t k = 0; k < vc.size(); ++k) m_slots[vc[k].first] = k;
+        }
+        auto at = [&](VesselField w) { return m_slots[w] == absent ? std::string_view{} : fields[m_slots[w]]; };
         const Columns& c = cols();
-        if (c.name != absent && t.name.empty() && !f.name.empty()) t.name = to_utf8(f.name);
+        if (c.name != absent && t.name.empty() && !at(vessel_name).empty()) t.name = to_utf8(at(vessel_name));
         if (c.dims[0] != absent && !t.dims) {
+            const std::array<std::string_view, 4> dims{at(vessel_a), at(vessel_b), at(vessel_c), at(vessel_d)};
             std::array<double, 4> d{};
             bool ok = true;
             for (std::size_t k = 0; k < 4; ++k) {
-                d[k] = number(f.dims[k]);
+                d[k] = number(dims[k]);
                 ok = ok && std::isfinite(d[k]) && d[k] > 0.0;
             }
             if (ok) {
@@ -686,14 +770,14 @@ private:
         // Length and width alone (MarineCadastre): the reference point is not known; taken
         // amidships, the hull reaches half the length fore and aft.
         if (m_options.hull_from_length_width && c.length != absent && c.width != absent && !t.dims) {
-            const double l = number(f.length), w = number(f.width);
+            const double l = number(at(vessel_length)), w = number(at(vessel_width));
             if (std::isfinite(l) && std::isfinite(w) && l > 0.0 && w > 0.0) {
                 t.dims = hull::Dimensions{l / 2, l / 2, w / 2, w / 2};
                 t.dims_source = "Length and Width columns (reference point taken amidships)";
             }
         }
         if (c.draught != absent && std::isnan(t.draught_m)) {
-            const double v = number(f.draught);
+            const double v = number(at(vessel_draught));
             if (std::isfinite(v) && v > 0.0) {
                 t.draught_m = v;
                 t.draught_source = "draught column";
@@ -701,7 +785,7 @@ private:
         }
         if (c.ship_type != absent && t.ship_type < 0) {
             // A number 1-255 (0: not available); a text (DMA's "Cargo", "Undefined") is not the number.
-            const double v = number(f.ship_type);
+            const double v = number(at(vessel_ship_type));
             if (v >= 1.0 && v <= 255.0 && v == std::floor(v)) {
                 t.ship_type = static_cast<int>(v);
                 t.ship_type_source = "ship type column";
@@ -750,6 +834,7 @@ private:
     const std::string& m_file;
     const ReadOptions& m_options;
     const CsvRowParser& m_parser;
+    std::vector<std::size_t> m_slots;  ///< per VesselField: its place among a row's vessel fields, or absent
     PackedTrackFile m_out;
     std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;  ///< ids that are not integer_id()s
     IntegerIndex m_integer_index;
