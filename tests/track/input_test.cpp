@@ -53,12 +53,17 @@ std::string slurp(const std::string& path) {
     return {b.begin(), b.end()};
 }
 
+/// The same counts of rows, skipped rows and duplicates.
+void expect_same_counts(const shoal::track::ReadReport& got, const shoal::track::ReadReport& want) {
+    EXPECT_EQ(got.rows, want.rows);
+    EXPECT_EQ(got.skipped, want.skipped);
+    EXPECT_EQ(got.duplicates, want.duplicates);
+}
+
 /// The same tracks (ids, names, dimensions, every fix) and the same counts.
 void expect_same(const TrackFile& got, const TrackFile& want) {
     EXPECT_EQ(got.format, want.format);
-    EXPECT_EQ(got.report.rows, want.report.rows);
-    EXPECT_EQ(got.report.skipped, want.report.skipped);
-    EXPECT_EQ(got.report.duplicates, want.report.duplicates);
+    expect_same_counts(got.report, want.report);
     ASSERT_EQ(got.tracks.size(), want.tracks.size());
     for (std::size_t i = 0; i < got.tracks.size(); ++i) {
         const auto &g = got.tracks[i], &w = want.tracks[i];
@@ -196,9 +201,7 @@ TEST(Input, DevZeroIsRefusedAfterTheSniffLimit) {
 bool same_number(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
 
 void expect_same_packed(const shoal::track::PackedTrackFile& got, const shoal::track::PackedTrackFile& want) {
-    EXPECT_EQ(got.report.rows, want.report.rows);
-    EXPECT_EQ(got.report.skipped, want.report.skipped);
-    EXPECT_EQ(got.report.duplicates, want.report.duplicates);
+    expect_same_counts(got.report, want.report);
     EXPECT_EQ(got.report.reordered, want.report.reordered);
     EXPECT_EQ(got.report.messages, want.report.messages);
     ASSERT_EQ(got.tracks.size(), want.tracks.size());
