@@ -15,6 +15,8 @@
 namespace shoal::track::detail {
 
 inline std::string_view trim(std::string_view s) noexcept {
+    // Most fields have no blank at either end (every blank is at most ' '): nothing to look for.
+    if (!s.empty() && static_cast<unsigned char>(s.front()) > ' ' && static_cast<unsigned char>(s.back()) > ' ') return s;
     while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
     while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r' || s.back() == '\n'))
         s.remove_suffix(1);
@@ -29,20 +31,24 @@ inline std::string_view trim(std::string_view s) noexcept {
 /// std::from_chars gives. False (`out` untouched) for anything else, left to from_chars.
 inline bool plain_decimal(std::string_view s, double& out) noexcept {
     static constexpr double powers[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-    std::size_t i = 0;
-    const bool negative = !s.empty() && s[0] == '-';
-    if (negative) ++i;
+    const char* p = s.data();
+    const char* const end = p + s.size();
+    const bool negative = p != end && *p == '-';
+    if (negative) ++p;
+    const char* const first = p;
     std::uint64_t digits = 0;
-    std::size_t count = 0, before = 0, after = 0;
-    for (; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i, ++before) digits = digits * 10 + static_cast<std::uint64_t>(s[i] - '0');
+    for (unsigned d; p != end && (d = static_cast<unsigned char>(*p) - unsigned{'0'}) < 10; ++p) digits = digits * 10 + d;
+    const std::size_t before = static_cast<std::size_t>(p - first);
+    std::size_t after = 0;
     if (before == 0) return false;
-    if (i < s.size()) {
-        if (s[i] != '.') return false;
-        for (++i; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i, ++after) digits = digits * 10 + static_cast<std::uint64_t>(s[i] - '0');
-        if (after == 0 || i != s.size()) return false;
+    if (p != end) {
+        if (*p != '.') return false;
+        const char* const point = ++p;
+        for (unsigned d; p != end && (d = static_cast<unsigned char>(*p) - unsigned{'0'}) < 10; ++p) digits = digits * 10 + d;
+        after = static_cast<std::size_t>(p - point);
+        if (after == 0 || p != end) return false;
     }
-    count = before + after;
-    if (count > 15) return false;
+    if (before + after > 15) return false;
     const double v = static_cast<double>(digits) / powers[after];
     out = negative ? -v : v;
     return true;

@@ -499,7 +499,7 @@ public:
             if (!rec.empty() && rec.back() == '\n') rec.remove_suffix(1);
             if (!rec.empty() && rec.back() == '\r') rec.remove_suffix(1);
             m_long_row = rec.size() > shoal::detail::max_line_bytes;
-            parse(f, text, out);
+            parse(f, m_split->unescaped(), out);
             m_long_row = false;
         }
         return m_split->consumed();
@@ -520,7 +520,7 @@ public:
         std::vector<std::string_view> f;
         for (const std::string& s : fields) f.push_back(out.owned.emplace_back(s));
         m_long_row = true;
-        parse(f, {}, out);
+        parse(f, false, out);  // the fields are in `out` already
         m_long_row = false;
     }
 
@@ -530,17 +530,16 @@ private:
         out.skips.push_back(m_file + " line " + std::to_string(m_split->line()) + ": " + what + "; row skipped");
     }
 
-    /// Field `col` (empty when absent), kept in `out` unless it lies in `text` (an unescaped
-    /// field lives in the splitter only until its next record).
-    static std::string_view field(const std::vector<std::string_view>& f, std::size_t col, std::string_view text, ParsedBlock& out) {
+    /// Field `col` (empty when absent), kept in `out` when `copy` (a record whose unescaped
+    /// fields live in the splitter only until its next record).
+    [[gnu::always_inline]] static std::string_view field(const std::vector<std::string_view>& f, std::size_t col, bool copy, ParsedBlock& out) {
         if (col >= f.size() || f[col].empty()) return {};
-        const std::string_view v = f[col];
-        const auto at = reinterpret_cast<std::uintptr_t>(v.data()), from = reinterpret_cast<std::uintptr_t>(text.data());
-        if (at >= from && at - from <= text.size() && v.size() <= text.size() - (at - from)) return v;
-        return out.owned.emplace_back(v);
+        return copy ? keep(f[col], out) : f[col];
     }
+    [[gnu::noinline]] static std::string_view keep(std::string_view v, ParsedBlock& out) { return out.owned.emplace_back(v); }
 
-    void parse(const std::vector<std::string_view>& f, std::string_view text, ParsedBlock& out) {
+    /// Record `f`; `copy`: its fields do not outlive the splitter's next record.
+    void parse(const std::vector<std::string_view>& f, bool copy, ParsedBlock& out) {
         if (f.size() < m_cols.required) {
             skip(out, "has " + std::to_string(f.size()) + " fields, the header needs " + std::to_string(m_cols.required));
             return;
@@ -604,14 +603,17 @@ private:
         r.position = position;
         r.line = m_split->line();
         r.long_row = m_long_row;
-        r.heading = field(f, m_cols.heading, text, out);
-        r.cog = field(f, m_cols.cog, text, out);
-        r.sog = field(f, m_cols.sog, text, out);
-        r.nav_status = field(f, m_cols.nav_status, text, out);
-        if (m_cols.id != absent) r.id = field(f, m_cols.id, text, out);
-        if (m_cols.exercise != absent) r.exercise = field(f, m_cols.exercise, text, out);
+        r.heading = field(f, m_cols.heading, copy, out);
+        r.cog = field(f, m_cols.cog, copy, out);
+        r.sog = field(f, m_cols.sog, copy, out);
+        r.nav_status = field(f, m_cols.nav_status, copy, out);
+        if (m_cols.id != absent) r.id = field(f, m_cols.id, copy, out);
+        if (m_cols.exercise != absent) r.exercise = field(f, m_cols.exercise, copy, out);
         r.role = role;
-        for (const auto& [what, col] : m_vessel_cols) out.vessel.push_back(field(f, col, text, out));
+        const std::size_t at = out.vessel.size();
+        out.vessel.resize(at + m_vessel_cols.size());
+        std::string_view* v = out.vessel.data() + at;
+        for (const auto& [what, col] : m_vessel_cols) *v++ = field(f, col, copy, out);
     }
 
     std::optional<CsvSplitter> m_split;
@@ -719,6 +721,7 @@ private:
         std::optional<std::uint64_t> mmsi;
         if (c.exercise == absent) {
             mmsi = integer_id(id);
+            if (mmsi && m_last_integer_track != absent && *mmsi == m_last_integer) return m_last_integer_track;
         } else {
             m_key.assign(exercise).push_back('\0');
             m_key.append(id);
@@ -739,9 +742,16 @@ private:
             if (mmsi) m_integer_index.insert(*mmsi, idx);
             else m_index.emplace(std::string(id), idx);
         }
+        if (mmsi) {  // the last track by number (no text to copy)
+            m_last_integer = *mmsi;
+            m_last_integer_track = idx;
+            m_last_track = absent;
+            return idx;
+        }
         m_last_id.assign(c.exercise == absent ? id : id.substr(exercise.size() + 1));
         m_last_exercise.assign(exercise);
         m_last_track = idx;
+        m_last_integer_track = absent;
         return idx;
     }
 
@@ -840,7 +850,9 @@ private:
     IntegerIndex m_integer_index;
     std::string m_last_id, m_last_exercise;
     std::string m_key;  ///< (exercise, id) as one text, for the lookup
-    std::size_t m_last_track = absent;
+    std::size_t m_last_track = absent;  ///< the last track met by text (m_last_id, m_last_exercise)
+    std::uint64_t m_last_integer = 0;
+    std::size_t m_last_integer_track = absent;  ///< the last track met by number (m_last_integer)
     struct RoleConflict {
         std::size_t track, first_line, other_line;
         std::string other;

@@ -11,8 +11,12 @@ namespace {
 /// `v` as an integer multiple of 1/scale when that reads back as exactly `v`.
 template <typename Int>
 bool scaled(double v, double scale, Int lo, Int hi, Int& out) noexcept {
-    if (!std::isfinite(v)) return false;
-    const double s = std::round(v * scale);
+    // The nearest integer to v * scale by adding and taking away 1.5 * 2^52 (exact below 2^51;
+    // which one of two equally near is taken does not matter: neither passes the test below).
+    const double x = v * scale;
+    if (!(x >= static_cast<double>(lo) - 1 && x <= static_cast<double>(hi) + 1)) return false;  // NaN and infinities too
+    constexpr double magic = 6755399441055744.0;
+    const double s = (x + magic) - magic;  // IEEE arithmetic: not folded (no -ffast-math)
     if (!(s >= static_cast<double>(lo) && s <= static_cast<double>(hi))) return false;
     if (s / scale != v || (s == 0.0 && std::signbit(v))) return false;  // -0.0 stays exact too
     out = static_cast<Int>(s);
@@ -48,19 +52,25 @@ const PackedFix& PackedFixes::operator[](std::size_t i) const noexcept {
     return m_chunks[growing_chunks + j / max_chunk][j % max_chunk];
 }
 
-void PackedFixes::push_back(const PackedFix& f) {
-    if (m_size == m_capacity) {
+void PackedFixes::push_back_slow(const PackedFix& f) {
+    if (m_size == m_capacity) {  // a new chunk, filled from its start
         const std::size_t n = chunk_size(m_chunks.size());
         m_chunks.push_back(std::make_unique_for_overwrite<PackedFix[]>(n));
         m_capacity += n;
+        m_next = m_chunks.back().get();
+        m_end = m_next + n;
+        *m_next++ = f;
+        ++m_size;
+        return;
     }
-    (*this)[m_size++] = f;
+    (*this)[m_size++] = f;  // after truncate(): until the next chunk
 }
 
 void PackedFixes::clear() noexcept {
     m_chunks.clear();
     m_chunks.shrink_to_fit();
     m_size = m_capacity = 0;
+    m_next = m_end = nullptr;
 }
 
 std::size_t PackedFixes::capacity_bytes() const noexcept { return m_capacity * sizeof(PackedFix); }

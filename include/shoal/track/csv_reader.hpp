@@ -47,6 +47,9 @@ public:
     /// The next record's fields (views valid until the next call); false at the end, or, when
     /// the text is not complete, when the next record may go on beyond it.
     bool next(std::vector<std::string_view>& fields);
+    /// Whether a field of the record last returned held "" (its view then points into the
+    /// splitter, valid only until the next call; the others point into the text).
+    bool unescaped() const noexcept { return !m_unescaped.empty(); }
     /// 1-based line on which the record last returned starts.
     std::size_t line() const noexcept { return m_record_line; }
     /// Bytes of the current text taken by the records returned so far.

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <shoal/hull/hull.hpp>
@@ -34,13 +35,32 @@ static_assert(sizeof(PackedFix) == 32);
 /// holds more than 256 unused slots (or half its size when small) and nothing is copied as it grows.
 class PackedFixes {
 public:
+    PackedFixes() = default;
+    PackedFixes(PackedFixes&& o) noexcept { *this = std::move(o); }
+    PackedFixes& operator=(PackedFixes&& o) noexcept {
+        if (this == &o) return *this;
+        m_chunks = std::move(o.m_chunks);
+        m_size = std::exchange(o.m_size, 0);
+        m_capacity = std::exchange(o.m_capacity, 0);
+        m_next = std::exchange(o.m_next, nullptr);
+        m_end = std::exchange(o.m_end, nullptr);
+        o.m_chunks.clear();
+        return *this;
+    }
     std::size_t size() const noexcept { return m_size; }
     bool empty() const noexcept { return m_size == 0; }
     PackedFix& operator[](std::size_t i) noexcept;
     const PackedFix& operator[](std::size_t i) const noexcept;
-    void push_back(const PackedFix& f);
+    void push_back(const PackedFix& f) {
+        if (m_next == m_end) return push_back_slow(f);
+        *m_next++ = f;
+        ++m_size;
+    }
     /// Keeps the first `n` fixes (n <= size()); the storage stays.
-    void truncate(std::size_t n) noexcept { m_size = n < m_size ? n : m_size; }
+    void truncate(std::size_t n) noexcept {
+        m_size = n < m_size ? n : m_size;
+        m_next = m_end = nullptr;
+    }
     /// Frees everything.
     void clear() noexcept;
     /// Bytes allocated for fixes.
@@ -49,8 +69,11 @@ public:
 private:
     static constexpr std::size_t first_chunk = 4, max_chunk = 256, growing_chunks = 7;  // 4 .. 256
     static std::size_t chunk_size(std::size_t k) noexcept { return k < growing_chunks ? first_chunk << k : max_chunk; }
+    void push_back_slow(const PackedFix& f);
     std::vector<std::unique_ptr<PackedFix[]>> m_chunks;
     std::size_t m_size = 0, m_capacity = 0;
+    PackedFix* m_next = nullptr;  ///< where fix m_size goes, while it is in the last chunk
+    PackedFix* m_end = nullptr;   ///< the last chunk's end
 };
 
 /// The values of a fix that do not fit in PackedFix.
