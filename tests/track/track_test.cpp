@@ -14,12 +14,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "test_support.hpp"
+#include <shoal/track/packed_track.hpp>
 #include <shoal/track/track.hpp>
 #include <shoal/util/error.hpp>
 
@@ -344,6 +347,66 @@ TEST(ReadVessels, TwoTablesThatDisagreeAboutAVesselKeepTheFirstAndSaySoOnce) {
     EXPECT_DOUBLE_EQ(all.at("111").draught_m, 3.5);
     EXPECT_EQ(all.at("111").draught_source, "vessels file B");
     EXPECT_EQ(all.at("333").source, "vessels file B");
+}
+
+}  // namespace
+
+namespace {
+
+/// The same double, bit for bit (NaN and -0.0 included).
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(PackedTrack, EveryFixComesBackBitForBit) {
+    // Fixes packed as a reader packs them (AIS's 1e-7 degrees and hundredths, and values that
+    // are not: any double, -0.0, NaN, halves of the last unit, lines over 2^32), across chunk
+    // boundaries, after truncate() and in a moved track: each unpacks to the very fix packed.
+    std::mt19937_64 rng(15);
+    std::uniform_real_distribution<double> u(0, 1);
+    auto value = [&](double lo, double hi, double scale) {
+        switch (rng() % 8) {
+            case 0: return lo + (hi - lo) * u(rng);                                      // any double
+            case 1: return -0.0;
+            case 2: return std::round((lo + (hi - lo) * u(rng)) * scale) / scale + 0.5 / scale;  // half a unit off
+            case 3: return hi;
+            default: return std::round((lo + (hi - lo) * u(rng)) * scale) / scale;         // as AIS writes it
+        }
+    };
+    for (int round = 0; round < 20; ++round) {
+        PackedTrack t;
+        std::vector<Fix> want;
+        const std::size_t n = 1 + rng() % 3000;
+        for (std::size_t i = 0; i < n; ++i) {
+            Fix f;
+            f.time_s = 1.7e9 + static_cast<double>(i);
+            f.position = {value(-180, 180, 1e7), value(-90, 90, 1e7)};
+            f.heading_deg = rng() % 5 == 0 ? NAN : value(0, 359.99, 100);
+            f.cog_deg = rng() % 5 == 0 ? NAN : value(0, 359.99, 100);
+            f.sog_kn = rng() % 5 == 0 ? NAN : value(0, 102.2, 100);
+            f.line = rng() % 50 == 0 ? (std::size_t{1} << 33) + i : i + 2;
+            f.nav_status = static_cast<std::uint8_t>(rng() % 16);
+            t.push_back(f);
+            want.push_back(f);
+            if (rng() % 500 == 0) {  // drop some, go on
+                const std::size_t keep = want.size() / 2;
+                t.fixes.truncate(keep);
+                want.resize(keep);
+            }
+        }
+        PackedTrack moved = std::move(t);
+        Fix extra;
+        extra.time_s = 1.8e9;
+        extra.position = {24.5, 60.25};
+        moved.push_back(extra);
+        want.push_back(extra);
+        ASSERT_EQ(moved.size(), want.size());
+        for (std::size_t i = 0; i < want.size(); ++i) {
+            const Fix g = moved.fix(i), &w = want[i];
+            ASSERT_TRUE(same_bits(g.time_s, w.time_s) && same_bits(g.position.lat, w.position.lat) && same_bits(g.position.lon, w.position.lon) &&
+                        same_bits(g.heading_deg, w.heading_deg) && same_bits(g.cog_deg, w.cog_deg) && same_bits(g.sog_kn, w.sog_kn) &&
+                        g.line == w.line && g.nav_status == w.nav_status)
+                << "round " << round << " fix " << i << ": lat " << w.position.lat << " lon " << w.position.lon;
+        }
+    }
 }
 
 }  // namespace
