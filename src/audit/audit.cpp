@@ -122,15 +122,17 @@ ReadResult read_exercises(const std::vector<std::string>& inputs, const track::R
     std::vector<track::PackedTrackFile> read(files.size());
     result.files.resize(files.size());
     FirstFailure failure;
-    // A core the files leave free reads a big CSV file with two threads (ReadOptions::threads).
-    track::ReadOptions per_file = options;
-    if (thread_count(jobs) > files.size()) per_file.threads = std::max(per_file.threads, 2u);
+    // The jobs the files leave free each read a big CSV file with a second thread
+    // (ReadOptions::threads): the first `spare` files.
+    const std::size_t spare = thread_count(jobs) > files.size() ? thread_count(jobs) - files.size() : 0;
     parallel_for(
         files.size(), thread_count(jobs),
         [&](std::size_t k, unsigned) {
             FileResult& fr = result.files[k];
             fr.file = files[k];
             try {
+                track::ReadOptions per_file = options;
+                if (k < spare) per_file.threads = std::max(per_file.threads, 2u);
                 read[k] = track::read_tracks_packed(files[k], per_file);
                 fr.format = read[k].format;
                 fr.read = read[k].report;

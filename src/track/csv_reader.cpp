@@ -639,6 +639,7 @@ public:
     }
 
     void apply(const ParsedBlock& b) {
+        if (b.rows.empty()) return;  // (a header still going on: the parser's columns are not set)
         const std::size_t k = m_parser.vessel_columns().size();
         const std::string_view* vessel = b.vessel.data();
         for (const ParsedRow& r : b.rows) {
@@ -869,9 +870,21 @@ private:
 PackedTrackFile read_csv_text_packed(std::string_view text, const std::string& file, const ReadOptions& options) {
     CsvRowParser parser(file, options);
     CsvTrackAssembler tracks(file, options, parser);
+    // In pieces of 1 MiB or more (a record or a first line that does not fit widens its piece),
+    // so that the parsed rows held are a piece's, not the whole text's.
+    constexpr std::size_t piece = std::size_t{1} << 20;
     ParsedBlock block;
-    parser.feed(text, true, block);
-    tracks.apply(block);
+    std::size_t at = 0, size = std::min(piece, text.size());
+    while (size < text.size() && !CsvSplitter::holds_first_line(text.substr(0, size))) size = std::min(text.size(), size * 2);
+    for (;;) {
+        const bool complete = at + size == text.size();
+        const std::size_t taken = parser.feed(text.substr(at, size), complete, block);
+        tracks.apply(block);
+        block.clear();
+        if (complete) break;
+        at += taken;
+        size = taken > 0 ? std::min(piece, text.size() - at) : std::min(text.size() - at, 2 * size);
+    }
     return tracks.finish();
 }
 

@@ -47,8 +47,8 @@ struct ReadOptions {
     std::string role_column;
     /// Threads a CSV file too big to be read whole (over 1 MiB) is read with: 2 or more, one
     /// reads, splits and parses its rows while another makes the tracks of them (the same
-    /// tracks, fixes and messages as with 1). The audit gives 2 to each file when `--jobs`
-    /// leaves a core free (fewer files than jobs).
+    /// tracks, fixes and messages as with 1). The audit gives 2 to as many files as `--jobs`
+    /// leaves jobs free (jobs minus files).
     unsigned threads = 1;
 };
 
