@@ -420,10 +420,8 @@ struct Pending {
     double tod;
 };
 
-/// A record's fields that give its vessel's data (name, dimensions, draught, ship type): empty
-/// where the file has no such column.
-/// The columns that give a vessel's data, in the order CsvRowParser::vessel_columns() lists
-/// those the file has.
+/// The fields that give a vessel's data (name, dimensions, draught, ship type); a row keeps
+/// those the file has, in this order (CsvRowParser::vessel_slot).
 enum VesselField : unsigned { vessel_name, vessel_a, vessel_b, vessel_c, vessel_d, vessel_length, vessel_width, vessel_draught, vessel_ship_type, vessel_fields };
 
 constexpr std::size_t no_skip = static_cast<std::size_t>(-1);
@@ -448,8 +446,8 @@ struct ParsedBlock {
     std::string text;               ///< the block's bytes (the rows' views point into them)
     std::deque<std::string> owned;  ///< fields not in `text` (unescaped, or of a long record)
     std::vector<ParsedRow> rows;
-    /// The vessel fields of every row not skipped by the parser, those of the file's
-    /// vessel_columns() each: row after row.
+    /// The vessel fields of every row not skipped by the parser, CsvRowParser::vessel_count()
+    /// a row, row after row.
     std::vector<std::string_view> vessel;
     std::vector<std::string> skips;
     void clear() {
@@ -487,8 +485,11 @@ public:
             m_header_read = true;
             const std::array<std::size_t, vessel_fields> cols{m_cols.name,   m_cols.dims[0], m_cols.dims[1], m_cols.dims[2],   m_cols.dims[3],
                                                               m_cols.length, m_cols.width,   m_cols.draught, m_cols.ship_type};
-            for (unsigned k = 0; k < vessel_fields; ++k)
-                if (cols[k] != absent) m_vessel_cols.emplace_back(static_cast<VesselField>(k), cols[k]);
+            for (unsigned k = 0; k < vessel_fields; ++k) {
+                if (cols[k] == absent) continue;
+                m_vessel_slot[k] = m_vessel_cols.size();
+                m_vessel_cols.push_back(cols[k]);
+            }
         }
         // A record over the line limit is a bad row wherever it lies, whole in a block or at the
         // end of the file without a line end (the stream reader catches longer ones unheld).
@@ -509,8 +510,10 @@ public:
     char separator() const noexcept { return m_split ? m_split->separator() : ','; }
     /// The header's columns and its decimal comma (set by the first feed()).
     const Columns& columns() const noexcept { return m_cols; }
-    /// The vessel fields the file has, and their columns (ParsedBlock::vessel).
-    const std::vector<std::pair<VesselField, std::size_t>>& vessel_columns() const noexcept { return m_vessel_cols; }
+    /// How many vessel fields the file has (each row's share of ParsedBlock::vessel), and where
+    /// field `w` lies in a row's share (`absent`: the file has no such column).
+    std::size_t vessel_count() const noexcept { return m_vessel_cols.size(); }
+    std::size_t vessel_slot(VesselField w) const noexcept { return m_vessel_slot[w]; }
     bool decimal_comma() const noexcept { return m_decimal_comma; }
 
     /// A record longer than the line limit, its fields cut short: a bad row, reported with its
@@ -613,7 +616,7 @@ private:
         const std::size_t at = out.vessel.size();
         out.vessel.resize(at + m_vessel_cols.size());
         std::string_view* v = out.vessel.data() + at;
-        for (const auto& [what, col] : m_vessel_cols) *v++ = field(f, col, copy, out);
+        for (const std::size_t col : m_vessel_cols) *v++ = field(f, col, copy, out);
     }
 
     std::optional<CsvSplitter> m_split;
@@ -623,7 +626,12 @@ private:
     const std::string& m_file;
     const ReadOptions& m_options;
     Columns m_cols;
-    std::vector<std::pair<VesselField, std::size_t>> m_vessel_cols;
+    std::vector<std::size_t> m_vessel_cols;  ///< the columns of the vessel fields the file has, in VesselField order
+    std::array<std::size_t, vessel_fields> m_vessel_slot = [] {
+        std::array<std::size_t, vessel_fields> a{};
+        a.fill(absent);
+        return a;
+    }();
     bool m_decimal_comma = false;
 };
 
@@ -640,7 +648,7 @@ public:
 
     void apply(const ParsedBlock& b) {
         if (b.rows.empty()) return;  // (a header still going on: the parser's columns are not set)
-        const std::size_t k = m_parser.vessel_columns().size();
+        const std::size_t k = m_parser.vessel_count();
         const std::string_view* vessel = b.vessel.data();
         for (const ParsedRow& r : b.rows) {
             ++m_out.report.rows;
@@ -757,12 +765,10 @@ private:
     }
 
     void vessel_data(PackedTrack& t, const std::string_view* fields) {
-        if (m_slots.empty()) {  // where each vessel field lies among a row's
-            m_slots.assign(vessel_fields, absent);
-            const auto& vc = m_parser.vessel_columns();
-            for (std::size_t k = 0; k < vc.size(); ++k) m_slots[vc[k].first] = k;
-        }
-        auto at = [&](VesselField w) { return m_slots[w] == absent ? std::string_view{} : fields[m_slots[w]]; };
+        auto at = [&](VesselField w) {
+            const std::size_t k = m_parser.vessel_slot(w);
+            return k == absent ? std::string_view{} : fields[k];
+        };
         const Columns& c = cols();
         if (c.name != absent && t.name.empty() && !at(vessel_name).empty()) t.name = to_utf8(at(vessel_name));
         if (c.dims[0] != absent && !t.dims) {
@@ -845,7 +851,6 @@ private:
     const std::string& m_file;
     const ReadOptions& m_options;
     const CsvRowParser& m_parser;
-    std::vector<std::size_t> m_slots;  ///< per VesselField: its place among a row's vessel fields, or absent
     PackedTrackFile m_out;
     std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;  ///< ids that are not integer_id()s
     IntegerIndex m_integer_index;
