@@ -96,6 +96,9 @@ public:
     /// The least clearance of the open pass (IntervalEvents::near_min).
     double near_min() const noexcept { return m_intervals.near_min(); }
 
+    /// The deepest penetration of the open contact so far; -infinity when none is open.
+    double contact_depth() const noexcept { return m_intervals.in_contact() ? m_ground.penetration_m : -INFINITY; }
+
     /// How far clearance is searched: the lookahead beyond the margin (or the watch, when larger).
     double search_m() const { return std::max(m_opt.margin_m, m_opt.watch_clearance_m) + m_opt.lookahead_m; }
 
@@ -477,7 +480,8 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     for (std::size_t i = 0; i < t.fixes.size(); ++i) {
         const bool gap = have_prev && t.fixes[i].time_s - t.fixes[i - 1].time_s > opt.max_gap_s;
         const bool jump = have_prev && t.fixes[i].jump_before;
-        if (!have_prev || gap || jump) {
+        const bool continues = have_prev && !gap && !jump;
+        if (!continues) {
             if (have_prev) {
                 end_poses();
                 events.end_piece();
@@ -527,13 +531,23 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 events.add(s);
                 events.watch(s, false);
             }
+            since_contact_m += carry_per_step;  // the last step, to fix i
+            since_clear_m += carry_per_step;
         }
         Sample s{i, 0.0, {}};
-        s.contact = events.check(i, 0.0, true);
-        contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
-        contact_checker = &events.checker_at(i, 0.0);
-        since_contact_m = 0;
-        checked(s.contact, *contact_checker);
+        // A fix proved in contact by the last fix checked, and no deeper than the open
+        // contact's deepest (penetration moves no more than the hull's points), adds nothing
+        // to its event: it is not checked, and that last fix stays the reference.
+        const PoseChecker& at_fix = events.checker_at(i, 0.0);
+        if (continues && still_in_contact(at_fix) && contact_depth_m + slack(since_contact_m) <= events.contact_depth()) {
+            s.contact = events.carried(i, 0.0, 0);
+        } else {
+            s.contact = events.check(i, 0.0, true);
+            contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
+            contact_checker = &at_fix;
+            since_contact_m = 0;
+            checked(s.contact, at_fix);
+        }
         if (t.fixes[i].heading_source == track::HeadingSource::none && circle) ++sum.unknown_heading_fixes;
         if (!s.contact.covered) ++sum.uncovered_fixes;
         note(s.contact);

@@ -26,6 +26,7 @@ struct Ring {
     const coast::Polyline* line;
     double area;  ///< signed: > 0 a shell, < 0 a hole
     geo::LonLat min, max;
+    geo::GeomPtr polygon = {};  ///< the ring as a valid polygon (repaired if need be), made at its first tile
 };
 
 /// What a feature groups: kind, danger, depth (NaN compares equal to NaN here, and last).
@@ -90,6 +91,8 @@ std::set<ChartTile> tiles_near(const std::vector<std::vector<geo::LonLat>>& line
 }
 
 std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles) {
+    const geo::GeosContext ctx;
+    auto own = [&](GEOSGeometry* g, const char* what) { return geo::own(ctx, g, what); };
     std::map<Group, std::vector<Ring>> groups;
     for (const auto& pl : coast.polylines) {
         if (!pl.land_left || pl.points.size() < 4 || !(pl.points.front() == pl.points.back())) continue;
@@ -99,18 +102,16 @@ std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const st
             r.min = {std::min(r.min.lon, p.lon), std::min(r.min.lat, p.lat)};
             r.max = {std::max(r.max.lon, p.lon), std::max(r.max.lat, p.lat)};
         }
-        groups[{pl.hazard.kind, pl.hazard.danger, pl.hazard.depth_m}].push_back(r);
+        groups[{pl.hazard.kind, pl.hazard.danger, pl.hazard.depth_m}].push_back(std::move(r));
     }
     for (auto& [g, rings] : groups)
         std::stable_sort(rings.begin(), rings.end(), [](const Ring& a, const Ring& b) { return std::fabs(a.area) > std::fabs(b.area); });
 
-    const geo::GeosContext ctx;
-    auto own = [&](GEOSGeometry* g, const char* what) { return geo::own(ctx, g, what); };
     std::vector<ChartFeature> out;
     for (const ChartTile& t : tiles) {
         const double x0 = (t.col - col_offset) * chart_tile_deg, y0 = (t.row - row_offset) * chart_tile_deg;
         const double x1 = x0 + chart_tile_deg, y1 = y0 + chart_tile_deg;
-        for (const auto& [g, rings] : groups) {
+        for (auto& [g, rings] : groups) {
             geo::GeomPtr acc;
             // Runs of rings of one sign are unioned together, then added to or taken from the result.
             std::vector<geo::GeomPtr> run;
@@ -126,19 +127,21 @@ std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const st
                 if (run_sign > 0) acc = acc ? own(GEOSUnion_r(ctx, acc.get(), u.get()), "union of chart areas") : std::move(u);
                 else if (acc) acc = own(GEOSDifference_r(ctx, acc.get(), u.get()), "holes of chart areas");
             };
-            for (const Ring& r : rings) {
+            for (Ring& r : rings) {
                 if (r.max.lon < x0 || r.min.lon > x1 || r.max.lat < y0 || r.min.lat > y1) continue;
                 const int sign = r.area > 0 ? 1 : -1;
                 if (sign != run_sign) {
                     flush();
                     run_sign = sign;
                 }
-                std::vector<geo::XY> pts;
-                pts.reserve(r.line->points.size());
-                for (const auto& p : r.line->points) pts.push_back({p.lon, p.lat});
-                geo::GeomPtr poly = geo::make_polygon(ctx, {pts});
-                if (!GEOSisValid_r(ctx, poly.get())) poly = own(GEOSMakeValid_r(ctx, poly.get()), "repairing a chart ring");
-                geo::GeomPtr clipped = own(GEOSClipByRect_r(ctx, poly.get(), x0, y0, x1, y1), "clipping a chart ring");
+                if (!r.polygon) {  // once, not at every tile it crosses (a mainland's ring crosses many)
+                    std::vector<geo::XY> pts;
+                    pts.reserve(r.line->points.size());
+                    for (const auto& p : r.line->points) pts.push_back({p.lon, p.lat});
+                    r.polygon = geo::make_polygon(ctx, {pts});
+                    if (!GEOSisValid_r(ctx, r.polygon.get())) r.polygon = own(GEOSMakeValid_r(ctx, r.polygon.get()), "repairing a chart ring");
+                }
+                geo::GeomPtr clipped = own(GEOSClipByRect_r(ctx, r.polygon.get(), x0, y0, x1, y1), "clipping a chart ring");
                 if (GEOSisEmpty_r(ctx, clipped.get())) continue;
                 run.push_back(std::move(clipped));
             }
