@@ -12,4 +12,9 @@ namespace shoal::report {
 /// where), unless a file of that name exists that shoal did not write (a warning then).
 std::vector<StagedOutput> stage_geojson_text(const std::string& path, std::string_view text, std::vector<std::string>* warnings);
 
+/// Appends `v` as printf's "%.7f" (fields::coordinate_decimals) prints it, as GDAL writes
+/// GeoJSON coordinates, its trailing zeros dropped ("24.5", "60.2761559"); `null` when not
+/// finite. The coordinates of the layer files beside a report.
+void append_coordinate(std::string& out, double v);
+
 }  // namespace shoal::report

@@ -307,6 +307,19 @@ std::vector<OutputSpec> report_outputs(const std::string& path, const std::strin
     return out;
 }
 
+void append_coordinate(std::string& out, double v) {
+    if (!std::isfinite(v)) {
+        out += "null";
+        return;
+    }
+    char buf[400];
+    const auto printed = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, fields::coordinate_decimals);
+    const char* end = printed.ptr;
+    while (end[-1] == '0') --end;
+    if (end[-1] == '.') ++end;  // "24.0": a number with a fraction, as before
+    out.append(buf, static_cast<std::size_t>(end - buf));
+}
+
 namespace {
 
 /// The QGIS style REPORT.qml staged beside a GeoJSON report at `path`, unless a file of that
@@ -319,33 +332,36 @@ void stage_style_beside(const std::string& path, std::vector<StagedOutput>& out,
     }
 }
 
-/// `v` rounded to fields::coordinate_decimals as printf's "%.7f" rounds it (the decimal
-/// nearest the double, ties to even), as GDAL writes GeoJSON coordinates.
-double decimal_coordinate(double v) {
-    char buf[400];
-    const auto printed = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, fields::coordinate_decimals);
-    double out = v;
-    if (printed.ec == std::errc()) std::from_chars(buf, printed.ptr, out);
-    return out;
+void append_position(std::string& out, geo::LonLat p) {
+    out += '[';
+    append_coordinate(out, p.lon);
+    out += ',';
+    append_coordinate(out, p.lat);
+    out += ']';
 }
 
-json position(geo::LonLat p) { return {decimal_coordinate(p.lon), decimal_coordinate(p.lat)}; }
-
-/// A ring's GeoJSON coordinates, rounded as GDAL rounds them, running counter-clockwise
-/// (`ccw`: a polygon's shell) or clockwise (a hole), as RFC 7946 has them. `ring` is closed.
-json ring_coordinates(const std::vector<geo::LonLat>& ring, bool ccw) {
+/// Appends a ring's GeoJSON coordinates, running counter-clockwise (`ccw`: a polygon's shell)
+/// or clockwise (a hole), as RFC 7946 has them. `ring` is closed.
+void append_ring(std::string& out, const std::vector<geo::LonLat>& ring, bool ccw) {
     double area2 = 0;  // twice the signed area in degrees: > 0 counter-clockwise
     for (std::size_t i = 0; i + 1 < ring.size(); ++i) area2 += ring[i].lon * ring[i + 1].lat - ring[i + 1].lon * ring[i].lat;
     const bool reverse = area2 != 0 && (area2 > 0) != ccw;
-    json a = json::array();
-    for (std::size_t k = 0; k < ring.size(); ++k) a.push_back(position(ring[reverse ? ring.size() - 1 - k : k]));
-    return a;
+    out += '[';
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+        if (k) out += ',';
+        append_position(out, ring[reverse ? ring.size() - 1 - k : k]);
+    }
+    out += ']';
 }
 
-json polygon_geometry(const std::vector<std::vector<geo::LonLat>>& rings) {
-    json c = json::array();
-    for (std::size_t k = 0; k < rings.size(); ++k) c.push_back(ring_coordinates(rings[k], k == 0));
-    return {{"type", "Polygon"}, {"coordinates", std::move(c)}};
+/// Appends a polygon's coordinates: its shell, then its holes.
+void append_polygon(std::string& out, const std::vector<std::vector<geo::LonLat>>& rings) {
+    out += '[';
+    for (std::size_t k = 0; k < rings.size(); ++k) {
+        if (k) out += ',';
+        append_ring(out, rings[k], k == 0);
+    }
+    out += ']';
 }
 
 /// A map layer of the report (tracks, hulls, poses, coast) as a GeoJSON FeatureCollection
@@ -359,14 +375,20 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
     buf += "{\n\"type\": \"FeatureCollection\",\n\"name\": " + json(name_of(which)).dump() + ",\n\"description\": " +
            json(std::string(sidecar_mark)).dump() + ",\n\"features\": [";
     bool first = true;
-    auto feature = [&](json properties, json geometry) {
-        json f;
-        f["type"] = "Feature";
-        f["properties"] = std::move(properties);
-        f["geometry"] = std::move(geometry);
+    // A feature is its properties as nlohmann writes them and its geometry written here
+    // (`type` and the text of its `coordinates`), one line.
+    std::string coordinates;
+    auto feature = [&](const json& properties, const char* type) {
         buf += first ? "\n" : ",\n";
         first = false;
-        buf += f.dump();
+        buf += "{\"type\":\"Feature\",\"properties\":";
+        buf += properties.dump();
+        buf += ",\"geometry\":{\"type\":\"";
+        buf += type;
+        buf += "\",\"coordinates\":";
+        buf += coordinates;
+        buf += "}}";
+        coordinates.clear();
         if (buf.size() >= chunk) {
             sink(buf);
             buf.clear();
@@ -375,30 +397,51 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
     switch (which) {
         case MapLayer::tracks:
             for (const auto& t : fields::track_rows(r)) {
-                json lines = json::array();
-                for (const auto& piece : t.track.lines) {
-                    json line = json::array();
-                    for (const auto& p : piece) line.push_back(position(p));
-                    if (line.size() == 1) line.push_back(line[0]);  // a piece of one fix: a line of no length
-                    lines.push_back(std::move(line));
+                coordinates += '[';
+                for (std::size_t k = 0; k < t.track.lines.size(); ++k) {
+                    const auto& piece = t.track.lines[k];
+                    coordinates += k ? ",[" : "[";
+                    for (std::size_t i = 0; i < piece.size(); ++i) {
+                        if (i) coordinates += ',';
+                        append_position(coordinates, piece[i]);
+                    }
+                    if (piece.size() == 1) {  // a piece of one fix: a line of no length
+                        coordinates += ',';
+                        append_position(coordinates, piece[0]);
+                    }
+                    coordinates += ']';
                 }
-                feature(object_of(fields::track_fields(), t, r), {{"type", "MultiLineString"}, {"coordinates", std::move(lines)}});
+                coordinates += ']';
+                feature(object_of(fields::track_fields(), t, r), "MultiLineString");
             }
             break;
         case MapLayer::hulls:
-            for (const auto& h : fields::hull_rows(r)) feature(object_of(fields::hull_fields(), h, r), polygon_geometry({h.ring}));
+            for (const auto& h : fields::hull_rows(r)) {
+                coordinates += '[';
+                append_ring(coordinates, h.ring, true);
+                coordinates += ']';
+                feature(object_of(fields::hull_fields(), h, r), "Polygon");
+            }
             break;
         case MapLayer::poses:
             for (const auto& t : r.tracks)
-                for (const auto& p : t.poses)
-                    feature(object_of(fields::pose_fields(), fields::PoseRow{t.summary, p}, r), polygon_geometry({pose_outline(p.hull)}));
+                for (const auto& p : t.poses) {
+                    coordinates += '[';
+                    append_ring(coordinates, pose_outline(p.hull), true);
+                    coordinates += ']';
+                    feature(object_of(fields::pose_fields(), fields::PoseRow{t.summary, p}, r), "Polygon");
+                }
             break;
         case MapLayer::coast: {
             if (!info.chart) throw LibraryError("the coast layer without a chart");
             for (const ChartFeature& c : chart_features_near(r, *info.chart)) {
-                json polygons = json::array();
-                for (const auto& rings : c.polygons) polygons.push_back(polygon_geometry(rings)["coordinates"]);
-                feature(object_of(fields::coast_fields(), fields::coast_row(c), r), {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}});
+                coordinates += '[';
+                for (std::size_t k = 0; k < c.polygons.size(); ++k) {
+                    if (k) coordinates += ',';
+                    append_polygon(coordinates, c.polygons[k]);
+                }
+                coordinates += ']';
+                feature(object_of(fields::coast_fields(), fields::coast_row(c), r), "MultiPolygon");
             }
             break;
         }

@@ -12,14 +12,17 @@
 #include <ogrsf_frmts.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "report/geojson_output.hpp"
 #include "report/report_fields.hpp"
 #include "test_support.hpp"
 #include <shoal/audit/audit.hpp>
@@ -342,6 +345,36 @@ TEST(ReportFields, TheStreamedGeoJsonIsTheDocumentsDump) {
     test::TempDir dir;
     write_geojson(dir.file("big.geojson"), many, info);
     EXPECT_EQ(slurp(dir.file("big.geojson")), big);
+}
+
+/// The layer files' coordinates: glibc's printf "%.7f" (an independent formatter) with its
+/// trailing zeros dropped, one kept after the point; the text reads back as printf's rounding.
+TEST(ReportFields, LayerCoordinatesAreWhatPrintfWritesWithoutTrailingZeros) {
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> lon(-180, 180), small(-1e-6, 1e-6);
+    std::vector<double> values{0.0, -0.0, 1e-9, -1e-9, 5e-8, -5e-8, 1.5e-7, 179.99999995, -179.99999995, 24.0, 60.5, 24.525563, 1e300, -1e300};
+    for (int i = 0; i < 200000; ++i) values.push_back(lon(rng));
+    for (int i = 0; i < 20000; ++i) values.push_back(small(rng));
+    for (int i = 0; i < 20000; ++i) values.push_back(std::round(lon(rng) * 1e7) / 1e7);  // decimals of 7 digits, as read
+    for (int i = 0; i < 20000; ++i) values.push_back((std::floor(lon(rng) * 1e7) + 0.5) / 1e7);  // halfway, near enough
+    std::size_t shortened = 0;
+    for (const double v : values) {
+        char buf[512];
+        std::snprintf(buf, sizeof buf, "%.7f", v);
+        std::string expected = buf;
+        while (expected.back() == '0') expected.pop_back();
+        if (expected.back() == '.') expected += '0';
+        shortened += expected.size() < std::strlen(buf);
+        std::string got;
+        append_coordinate(got, v);
+        ASSERT_EQ(got, expected) << "the double " << v;
+        EXPECT_EQ(std::strtod(got.c_str(), nullptr), std::strtod(buf, nullptr)) << got;
+    }
+    EXPECT_GT(shortened, 20000u);
+    std::string nan;
+    append_coordinate(nan, NAN);
+    append_coordinate(nan, INFINITY);
+    EXPECT_EQ(nan, "nullnull");
 }
 
 TEST(ReportFields, ValuesAreRoundedAsTheTableSaysAndNotFiniteIsNull) {
