@@ -10,6 +10,7 @@
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/util/error.hpp>
 #include "audit/interval_events.hpp"
+#include "audit/pose_outline.hpp"
 #include "detail/parse_util.hpp"
 
 namespace shoal::audit {
@@ -58,7 +59,8 @@ public:
     EventBuilder(const track::Track& t, const geo::LocalFrame& frame, const Motion& motion, const PoseChecker& checker,
                  const PoseChecker* unknown_heading, const SweepOptions& options, const SweepContext& context, TrackResult& out)
         : m_track(t), m_frame(frame), m_motion(motion), m_checker(checker), m_circle(unknown_heading), m_opt(options),
-          m_ctx(context), m_out(out) {}
+          m_ctx(context), m_out(out), m_corners(drawn_corners(checker.hull())),
+          m_circle_corners(unknown_heading ? drawn_corners(unknown_heading->hull()) : std::vector<std::size_t>{}) {}
 
     /// The checker for poses between fix i and i+1 (f > 0) or at fix i: the hull's circle while
     /// the heading is unknown at either end.
@@ -338,12 +340,20 @@ public:
         p.covered = c.covered;
         p.fix_index = i;
         p.fix_line = fix.line;
-        for (const XY& q : check::hull_outline(used.hull(), m_motion.pose(i, 0.0))) p.hull.push_back(m_frame.inverse(q));
+        // The corners the drawn outline keeps (pose_outline.hpp), placed at the pose.
+        const std::vector<XY> outline = check::hull_outline(used.hull(), m_motion.pose(i, 0.0));
+        for (const std::size_t k : &used != &m_checker ? m_circle_corners : m_corners) p.hull.push_back(m_frame.inverse(outline[k]));
         if (!p.hull.empty()) p.hull.push_back(p.hull.front());
         return p;
     }
 
 private:
+    /// The corners of `h`'s outline the poses layer draws (pose_outline_corners, in the hull's metres).
+    static std::vector<std::size_t> drawn_corners(const hull::Hull& h) {
+        std::vector<XY> ring = h.contour();
+        if (!ring.empty()) ring.push_back(ring.front());
+        return pose_outline_corners(ring);
+    }
 
     const track::Track& m_track;
     const geo::LocalFrame& m_frame;
@@ -357,6 +367,7 @@ private:
     const char* m_piece_after = "track start";
     detail::IntervalEvents<Sample, true> m_intervals;
     Event m_ground;  ///< the open contact, from its first contact
+    std::vector<std::size_t> m_corners, m_circle_corners;  ///< drawn corners of the hull's outline, of its circle's
     std::optional<ClearanceSample> m_watch_pending;  ///< the last sample over the watch, not kept (yet)
     bool m_watch_last_kept = false;                  ///< the last sample was kept
 };

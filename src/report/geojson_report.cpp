@@ -20,7 +20,6 @@
 #include "report/gpkg_output.hpp"
 #include "report/qgis_project.hpp"
 #include "report/part_order.hpp"
-#include "report/pose_outline.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/version.hpp>
@@ -427,7 +426,7 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
             for (const auto& t : r.tracks)
                 for (const auto& p : t.poses) {
                     coordinates += '[';
-                    append_ring(coordinates, pose_outline(p.hull), true);
+                    append_ring(coordinates, p.hull, true);
                     coordinates += ']';
                     feature(object_of(fields::pose_fields(), fields::PoseRow{t.summary, p}, r), "Polygon");
                 }

@@ -8,7 +8,6 @@
 #include "report/chart_layer.hpp"
 #include "report/gpkg_output.hpp"
 #include "report/part_order.hpp"
-#include "report/pose_outline.hpp"
 #include "report/qgis_project.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
@@ -108,7 +107,7 @@ void fill_poses(OGRLayer& poses, const audit::AuditResult& r) {
     for (const auto& t : r.tracks)
         for (const auto& p : t.poses) {
             OGRLinearRing ring;
-            for (const auto& q : pose_outline(p.hull)) ring.addPoint(q.lon, q.lat);
+            for (const auto& q : p.hull) ring.addPoint(q.lon, q.lat);
             OGRPolygon poly;
             poly.addRing(&ring);
             put(poses, fields::pose_fields(), fields::PoseRow{t.summary, p}, r, &poly);

@@ -558,3 +558,88 @@ TEST(Sweep, ContactKindsFollowWhatWasObserved) {
 
 }  // namespace
 }  // namespace shoal::audit
+
+#include "audit/pose_outline.hpp"
+#include "detail/geos_context.hpp"
+
+namespace shoal::audit {
+namespace {
+
+/// The poses' outlines (Pose::hull, as the poses layer draws them): the corners kept of the
+/// hull's outline placed at the fix (the full outline placed independently here, from the
+/// track's motion), in order from the bow tip, within 1 % of the hull's length of the full
+/// outline by GEOS's Hausdorff distance, a valid polygon, fewer points; the hull's circle too.
+TEST(Sweep, KeptPosesDrawTheHullsOutlineWithinOnePercentOfItsLength) {
+    const Solent solent;
+    const geo::LocalFrame& f = solent.frame;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const geo::GeosContext ctx;
+    std::size_t poses = 0;
+    for (const char* dims : {"60,15,6,6", "150,35,14,14", "12,3,2,2", "300,50,25,25"}) {
+        const hull::Hull hull = hull::Hull::from_dims_string(dims);
+        const hull::Hull circle = circle_hull(hull);
+        const DetectorChecker fast(solent.grid, hull), round(solent.grid, circle);
+        for (int k = 0; k < 6; ++k) {
+            track::Track t;
+            t.id = std::string(dims) + " " + std::to_string(k);
+            const geo::Box ext = solent.grid.extent();
+            XY p{ext.minx + (ext.maxx - ext.minx) * unit(rng), ext.miny + (ext.maxy - ext.miny) * unit(rng)};
+            double hdg = 360 * unit(rng);
+            for (int i = 0; i < 40; ++i) {
+                track::Fix fix;
+                fix.time_s = 1.6e9 + 60.0 * i;
+                fix.position = f.inverse(p);
+                fix.heading_used_deg = hdg;
+                fix.heading_source = k == 5 ? track::HeadingSource::none : track::HeadingSource::heading;
+                fix.line = static_cast<std::size_t>(i + 2);
+                t.fixes.push_back(fix);
+                hdg = std::fmod(hdg + 40 * (unit(rng) - 0.5) + 360, 360);
+                const double h = hdg * std::numbers::pi / 180;
+                p = p + 300 * XY{std::sin(h), std::cos(h)};
+            }
+            SweepOptions o;
+            o.pose_interval_s = 0;  // every fix
+            const SweepContext ctx_circle{.unknown_heading = &round};
+            const TrackResult r = sweep_track(t, f, fast, o, k == 5 ? ctx_circle : SweepContext{});
+            const std::vector<LocalFix> fixes_local = project_fixes(t, f);
+            const Motion motion(t, fixes_local);
+            ASSERT_EQ(r.poses.size(), t.fixes.size()) << t.id;
+            for (const Pose& pose : r.poses) {
+                SCOPED_TRACE(t.id + " fix " + std::to_string(pose.fix_index));
+                const hull::Hull& used = k == 5 ? circle : hull;
+                std::vector<geo::LonLat> full;
+                for (const XY& q : check::hull_outline(used, motion.pose(pose.fix_index, 0.0))) full.push_back(f.inverse(q));
+                full.push_back(full.front());
+                ASSERT_GE(pose.hull.size(), pose_outline_min_corners + 1);
+                EXPECT_LT(pose.hull.size(), full.size()) << "fewer points";
+                EXPECT_EQ(pose.hull.front(), full.front()) << "the bow tip (or the circle's first point) is kept";
+                EXPECT_EQ(pose.hull.back(), pose.hull.front()) << "closed";
+                std::size_t at = 0;
+                for (std::size_t i = 0; i + 1 < pose.hull.size(); ++i) {
+                    while (at + 1 < full.size() && !(full[at] == pose.hull[i])) ++at;
+                    ASSERT_LT(at + 1, full.size()) << "corner " << i << " is one of the outline's own, in order";
+                }
+                auto local = [&](const std::vector<geo::LonLat>& ring) {
+                    std::vector<XY> xy;
+                    for (const auto& q : ring) xy.push_back(f.forward(q));
+                    return xy;
+                };
+                const std::vector<XY> a = local(full);
+                double length = 0;
+                for (const XY& u : a)
+                    for (const XY& v : a) length = std::max(length, geo::distance(u, v));
+                const geo::GeomPtr ga = geo::make_polygon(ctx, {a}), gb = geo::make_polygon(ctx, {local(pose.hull)});
+                double hausdorff = 0;
+                ASSERT_EQ(GEOSHausdorffDistance_r(ctx, ga.get(), gb.get(), &hausdorff), 1);
+                EXPECT_LE(hausdorff, 0.0101 * length);
+                EXPECT_EQ(GEOSisValid_r(ctx, gb.get()), 1);
+                ++poses;
+            }
+        }
+    }
+    EXPECT_EQ(poses, 4u * 6u * 40u);
+}
+
+}  // namespace
+}  // namespace shoal::audit

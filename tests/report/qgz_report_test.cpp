@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "detail/geos_context.hpp"
-#include "report/pose_outline.hpp"
+#include "audit/pose_outline.hpp"
 #include "run_shoal.hpp"
 #include "xml_support.hpp"
 #include <shoal/hull/hull.hpp>
@@ -374,11 +374,11 @@ TEST(PoseOutline, WithinOnePercentOfTheLengthOfTheOutlineByGeosHausdorffAndFewer
         for (double heading : {0.0, 37.0, 90.0, 211.5}) {
             const shoal::hull::Hull h = shoal::hull::Hull::from_dims_string(dims);
             const auto ring = ring_at(h, 60.1, heading);
-            const auto out = shoal::report::pose_outline(ring);
+            const auto out = shoal::audit::pose_outline(ring);
             SCOPED_TRACE(std::string(dims) + " heading " + std::to_string(heading));
             ASSERT_EQ(ring.size(), 37u);
             EXPECT_LT(out.size(), 20u) << "36 points come out as fewer";
-            EXPECT_GE(out.size(), shoal::report::pose_outline_min_corners + 1);
+            EXPECT_GE(out.size(), shoal::audit::pose_outline_min_corners + 1);
             EXPECT_EQ(out.front(), ring.front()) << "the bow tip is kept";
             EXPECT_EQ(out.back(), out.front()) << "closed";
             // A subsequence of the outline's own vertices, in order.
@@ -437,9 +437,9 @@ TEST(PoseOutline, RandomNotchedOutlinesComeOutSimpleWithinOnePercentAndTheirOwnV
         ++valid;
         std::vector<shoal::geo::LonLat> ring;
         for (const XY& p : xy) ring.push_back({25 + p.x / kx, 60.1 + p.y / m});
-        const auto out = shoal::report::pose_outline(ring);
+        const auto out = shoal::audit::pose_outline(ring);
         SCOPED_TRACE("outline " + std::to_string(k) + " of " + std::to_string(n) + " points");
-        ASSERT_GE(out.size(), shoal::report::pose_outline_min_corners + 1);
+        ASSERT_GE(out.size(), shoal::audit::pose_outline_min_corners + 1);
         EXPECT_EQ(out.front(), ring.front());
         EXPECT_EQ(out.back(), out.front());
         std::size_t at = 0;
@@ -471,8 +471,8 @@ TEST(PoseOutline, ASliverThatDouglasPeuckerWouldCollapseKeepsItsCorners) {
     for (int i = 0; i <= 20; ++i) ring.push_back({25 + 5.0 * i / kx, 60.1});
     for (int i = 20; i >= 0; --i) ring.push_back({25 + 5.0 * i / kx, 60.1 + 0.5 / m});
     ring.push_back(ring.front());
-    const auto out = shoal::report::pose_outline(ring);
-    ASSERT_GE(out.size(), shoal::report::pose_outline_min_corners + 1);
+    const auto out = shoal::audit::pose_outline(ring);
+    ASSERT_GE(out.size(), shoal::audit::pose_outline_min_corners + 1);
     EXPECT_LT(out.size(), ring.size());
     EXPECT_EQ(out.front(), ring.front());
     EXPECT_EQ(out.back(), out.front());
@@ -482,10 +482,10 @@ TEST(PoseOutline, ASliverThatDouglasPeuckerWouldCollapseKeepsItsCorners) {
 
 TEST(PoseOutline, AFourCorneredOutlineIsKeptWhole) {
     const std::vector<shoal::geo::LonLat> box{{25, 60}, {25.001, 60}, {25.001, 60.0002}, {25, 60.0002}, {25, 60}};
-    EXPECT_EQ(shoal::report::pose_outline(box), box);
+    EXPECT_EQ(shoal::audit::pose_outline(box), box);
     // A rectangle with a point 1 mm off one side: the point goes, the four corners stay.
     const std::vector<shoal::geo::LonLat> bumped{{25, 60}, {25.0005, 60.00000001}, {25.001, 60}, {25.001, 60.0002}, {25, 60.0002}, {25, 60}};
-    const auto out = shoal::report::pose_outline(bumped);
+    const auto out = shoal::audit::pose_outline(bumped);
     EXPECT_EQ(out, box);
 }
 

@@ -1,27 +1,23 @@
-#include "report/pose_outline.hpp"
+#include "audit/pose_outline.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "detail/geos_context.hpp"
 #include <shoal/util/error.hpp>
 
-namespace shoal::report {
+namespace shoal::audit {
 
-std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
-    if (ring.size() < 4 || ring.size() <= pose_outline_min_corners + 1) return ring;
-    // Local metres around the first vertex (an equirectangular frame: the hull is tens or
-    // hundreds of metres, where it is exact to far under a millimetre).
-    constexpr double metres_per_deg = 6371008.8 * M_PI / 180;
-    const double lon0 = ring[0].lon, lat0 = ring[0].lat, kx = std::cos(lat0 * M_PI / 180) * metres_per_deg;
-    std::vector<geo::XY> xy;
-    xy.reserve(ring.size());
-    for (const auto& p : ring) xy.push_back({(p.lon - lon0) * kx, (p.lat - lat0) * metres_per_deg});
+std::vector<std::size_t> pose_outline_corners(const std::vector<geo::XY>& xy) {
+    std::vector<std::size_t> all(xy.empty() ? 0 : xy.size() - 1);
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    if (xy.size() < 4 || xy.size() <= pose_outline_min_corners + 1) return all;
     double length2 = 0;  // squared: one square root, not one per pair
     for (std::size_t i = 0; i + 1 < xy.size(); ++i)
         for (std::size_t j = i + 1; j + 1 < xy.size(); ++j) length2 = std::max(length2, geo::norm2(xy[i] - xy[j]));
     const double length = std::sqrt(length2);
-    if (!(length > 0)) return ring;
+    if (!(length > 0)) return all;
 
     thread_local geo::GeosContext ctx;
     // Douglas-Peucker (GEOSSimplify) on the outline as a closed line, a tenth of the cost of
@@ -45,24 +41,39 @@ std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
         const geo::GeomPtr simple = geo::own(ctx, GEOSTopologyPreserveSimplify_r(ctx, poly.get(), tolerance), "simplifying a hull outline");
         geo::collect_polygons(ctx, simple.get(), rings);
     }
-    if (rings.size() != 1 || rings[0].empty()) return ring;
+    if (rings.size() != 1 || rings[0].empty()) return all;
     const std::vector<geo::XY>& kept = rings[0][0];
-    if (kept.size() < pose_outline_min_corners + 1) return ring;
+    if (kept.size() < pose_outline_min_corners + 1) return all;
     // The kept vertices are vertices of the outline, in its order (GEOS may start the ring
-    // elsewhere or turn it): each is found again, so the layer holds the outline's own lon/lat.
-    std::vector<bool> keep(ring.size(), false);
+    // elsewhere or turn it): each is found again, so the drawn outline holds its own points.
+    std::vector<bool> keep(xy.size(), false);
     for (const geo::XY& q : kept) {
         const auto at = std::find(xy.begin(), xy.end() - 1, q);
-        if (at == xy.end() - 1) return ring;  // not one of ours: keep the outline whole
+        if (at == xy.end() - 1) return all;  // not one of ours: keep the outline whole
         keep[static_cast<std::size_t>(at - xy.begin())] = true;
     }
     keep[0] = true;
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i + 1 < xy.size(); ++i)
+        if (keep[i]) out.push_back(i);
+    if (out.size() < pose_outline_min_corners) return all;
+    return out;
+}
+
+std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
+    if (ring.size() < 4 || ring.size() <= pose_outline_min_corners + 1) return ring;
+    constexpr double metres_per_deg = 6371008.8 * M_PI / 180;
+    const double lon0 = ring[0].lon, lat0 = ring[0].lat, kx = std::cos(lat0 * M_PI / 180) * metres_per_deg;
+    std::vector<geo::XY> xy;
+    xy.reserve(ring.size());
+    for (const auto& p : ring) xy.push_back({(p.lon - lon0) * kx, (p.lat - lat0) * metres_per_deg});
+    const std::vector<std::size_t> corners = pose_outline_corners(xy);
+    if (corners.size() + 1 == ring.size()) return ring;
     std::vector<geo::LonLat> out;
-    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
-        if (keep[i]) out.push_back(ring[i]);
-    if (out.size() < pose_outline_min_corners) return ring;
+    out.reserve(corners.size() + 1);
+    for (const std::size_t i : corners) out.push_back(ring[i]);
     out.push_back(out.front());
     return out;
 }
 
-}  // namespace shoal::report
+}  // namespace shoal::audit
