@@ -64,6 +64,7 @@ ChartTile tile_of(geo::LonLat p) {
 
 std::set<ChartTile> tiles_near(const std::vector<std::vector<geo::LonLat>>& lines, double margin_m) {
     std::set<ChartTile> out;
+    ChartTile last_a{0, 0}, last_b{-1, -1};  // the tiles marked last (none yet)
     auto mark = [&](geo::LonLat p) {
         if (!std::isfinite(p.lon) || !std::isfinite(p.lat)) return;
         const Eigen::Vector2d m = geo::metres_per_degree(std::clamp(p.lat, -89.0, 89.0));
@@ -71,6 +72,9 @@ std::set<ChartTile> tiles_near(const std::vector<std::vector<geo::LonLat>>& line
         const double dlon = margin_m / std::max(1.0, m.x());
         const ChartTile a = tile_of({p.lon - dlon, std::max(-90.0, p.lat - dlat)});
         const ChartTile b = tile_of({p.lon + dlon, std::min(89.999999, p.lat + dlat)});
+        if (a == last_a && b == last_b) return;  // the tiles of the point before
+        last_a = a;
+        last_b = b;
         for (int r = a.row; r <= b.row; ++r)
             for (int c = a.col; c <= b.col; ++c) out.insert({c, r});
     };
