@@ -4,6 +4,7 @@
 #include <optional>
 #include <numbers>
 
+
 #include <Eigen/LU>
 
 #include <shoal/audit/motion.hpp>
@@ -447,29 +448,39 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         const double clear = std::isinf(c.clearance_m) ? near_m + opt.lookahead_m : c.clearance_m;
         budget_m = c.collision ? 0 : std::max(0.0, clear - near_m);
     };
-    // SweepOptions::carry_over: the penetration found at the last fix in contact (0: none),
-    // the checker that found it, and the hull motion (metres) since that fix; the clearance of
-    // the last checked pose clear (NaN: none), its checker and the motion since.
-    double contact_depth_m = 0, since_contact_m = 0;
+    // SweepOptions::carry_over: the penetration found at the last fix checked in contact (0:
+    // none), the checker and the pose that found it; the clearance of the last checked pose
+    // clear (NaN: none), its checker and pose. How far a pose is from one of them bounds how
+    // far any hull point is (local metres): the translation plus the change of the placement
+    // (rotation and the frame's scale) on the hull's radius. Penetration and clearance move
+    // no more than the hull's points, whatever the path between the two poses.
+    double contact_depth_m = 0;
     const PoseChecker* contact_checker = nullptr;
-    double clear_ref_m = NAN, since_clear_m = 0;
+    check::LocalPose contact_pose;
+    double clear_ref_m = NAN;
     const PoseChecker* clear_checker = nullptr;
-    // The motion bound with a 1 % and 1 cm allowance (the local scale of the frame, rounding).
+    check::LocalPose clear_pose;
+    auto apart = [&](const check::LocalPose& a, const check::LocalPose& b) {
+        const XY d = b.position - a.position;
+        return std::hypot(d.x, d.y) + radius * largest_stretch(b.ship_to_local - a.ship_to_local);
+    };
+    // The bound with a 1 % and 1 cm allowance (rounding).
     auto slack = [](double motion_m) { return motion_m * 1.01 + 0.01; };
-    auto still_in_contact = [&](const PoseChecker& c) {
-        return opt.carry_over && &c == contact_checker && slack(since_contact_m) < contact_depth_m;
+    auto still_in_contact = [&](const PoseChecker& c, const check::LocalPose& pose) {
+        return opt.carry_over && &c == contact_checker && contact_depth_m > 0 && slack(apart(contact_pose, pose)) < contact_depth_m;
     };
     // The clearance a pose is known to have at least, when that is all that matters of it; NaN else.
-    auto known_near = [&](const PoseChecker& c) -> double {
+    auto known_near = [&](const PoseChecker& c, const check::LocalPose& pose) -> double {
         if (!opt.carry_over || opt.watch_clearance_m > 0 || &c != clear_checker || !std::isfinite(clear_ref_m)) return NAN;
-        const double lower = clear_ref_m - slack(since_clear_m), upper = clear_ref_m + slack(since_clear_m);
+        const double moved = slack(apart(clear_pose, pose));
+        const double lower = clear_ref_m - moved, upper = clear_ref_m + moved;
         const bool known = lower > 0 && upper < opt.margin_m && lower > events.near_min() && lower >= sum.min_clearance_m;
         return known ? lower : NAN;
     };
-    auto checked = [&](const check::Contact& c, const PoseChecker& by) {  // a pose checked in full
+    auto checked = [&](const check::Contact& c, const PoseChecker& by, const check::LocalPose& pose) {  // a pose checked in full
         clear_ref_m = !c.collision && std::isfinite(c.clearance_m) ? c.clearance_m : NAN;
         clear_checker = &by;
-        since_clear_m = 0;
+        clear_pose = pose;
     };
     bool have_prev = false;
     std::vector<geo::LonLat>* line = nullptr;
@@ -510,19 +521,9 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             const double motion_m = std::hypot(d.x, d.y) + radius * rot;
             const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil(motion_m / opt.step_m)));
             const double per_step = motion_m / static_cast<double>(n);
-            // For the carried contact, a bound in local metres on every hull point's motion per
-            // step: the frame's local scale on the turn (its largest stretch, at either fix) and
-            // the change of the scale along the interval.
-            const Eigen::Matrix2d& j0 = local[i - 1].jacobian;
-            const Eigen::Matrix2d& j1 = local[i].jacobian;
-            const double stretch = std::max(largest_stretch(j0), largest_stretch(j1));
-            const double carry_per_step =
-                (std::hypot(d.x, d.y) + radius * (stretch * rot + (j1 - j0).norm())) / static_cast<double>(n);
             double moved = 0;
             for (std::size_t k = 1; k < n; ++k) {
                 moved += per_step;
-                since_contact_m += carry_per_step;
-                since_clear_m += carry_per_step;
                 if (moved < budget_m) continue;  // proved clear of the margin by the last check
                 budget_m = 0;
                 moved = 0;
@@ -530,34 +531,34 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 // Proved in contact by the last fix's penetration, or near and not the nearest by
                 // the last clearance checked, or checked.
                 const PoseChecker& by = events.checker_at(s.i, s.f);
-                if (still_in_contact(by)) {
+                const check::LocalPose pose = motion.pose(s.i, s.f);
+                if (still_in_contact(by, pose)) {
                     s.contact = events.carried(s.i, s.f, 0);
-                } else if (const double near = known_near(by); !std::isnan(near)) {
+                } else if (const double near = known_near(by, pose); !std::isnan(near)) {
                     s.contact = events.carried(s.i, s.f, near);
                 } else {
                     s.contact = events.check(s.i, s.f, false);
-                    checked(s.contact, by);
+                    checked(s.contact, by, pose);
                 }
                 note(s.contact);
                 events.add(s);
                 events.watch(s, false);
             }
-            since_contact_m += carry_per_step;  // the last step, to fix i
-            since_clear_m += carry_per_step;
         }
         Sample s{i, 0.0, {}};
         // A fix proved in contact by the last fix checked, and no deeper than the open
         // contact's deepest (penetration moves no more than the hull's points), adds nothing
         // to its event: it is not checked, and that last fix stays the reference.
         const PoseChecker& at_fix = events.checker_at(i, 0.0);
-        if (continues && still_in_contact(at_fix) && contact_depth_m + slack(since_contact_m) <= events.contact_depth()) {
+        const check::LocalPose pose = motion.pose(i, 0.0);
+        if (continues && still_in_contact(at_fix, pose) && contact_depth_m + slack(apart(contact_pose, pose)) <= events.contact_depth()) {
             s.contact = events.carried(i, 0.0, 0);
         } else {
             s.contact = events.check(i, 0.0, true);
             contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
             contact_checker = &at_fix;
-            since_contact_m = 0;
-            checked(s.contact, at_fix);
+            contact_pose = pose;
+            checked(s.contact, at_fix, pose);
         }
         if (t.fixes[i].heading_source == track::HeadingSource::none && circle) ++sum.unknown_heading_fixes;
         if (!s.contact.covered) ++sum.uncovered_fixes;
