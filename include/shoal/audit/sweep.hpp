@@ -32,17 +32,21 @@ struct SweepOptions {
     double time_tolerance_s = 0.01;  ///< bisection stops when the contact time is known this well
     /// The clearance search reaches this far beyond the margin; a pose found clear by d metres
     /// lets the sweep skip checks for the next d - margin metres of hull motion (they cannot
-    /// come within the margin). Fixes are always checked.
+    /// come within the margin). Fixes are checked unless carry_over proves them as below.
     double lookahead_m = 500.0;
-    /// Answers that carry over, with the same events, poses and figures as every pose checked:
-    /// a fix found in contact with penetration p is still in contact while no hull point has
-    /// moved p since (a hull point p deep in land, or a coast vertex p inside the hull, cannot
-    /// have left), so the poses swept after it are not checked until then (a vessel crossing
-    /// land or lying alongside); and within the margin, a pose whose clearance is known to lie
-    /// between the last checked one's plus or minus the motion since, all of it under the
-    /// margin and over the least clearance of the pass so far (it cannot be the pass's nearest),
-    /// is not checked either (unless watch_clearance_m keeps every value). False: every pose
-    /// swept is checked.
+    /// Answers that carry over, with the same events, poses and figures as every pose checked.
+    /// How far a pose is from a checked one bounds how far every hull point is from its place
+    /// there (the translation plus the change of placement on the hull's radius, whatever the
+    /// path between), and penetration and clearance move no more than the hull's points. So: a
+    /// fix found in contact with penetration p proves in contact every pose less than p from
+    /// it (a hull point p deep in land, or a coast vertex p inside the hull, cannot have left),
+    /// and those swept are not checked (a vessel crossing land or lying alongside); a later
+    /// fix so proved is not checked either when it cannot be deeper than the contact's deepest
+    /// so far (it adds nothing to its event; the checked fix stays the reference); and within
+    /// the margin, a pose whose clearance is known to lie between the last checked one's plus
+    /// or minus that distance, all of it under the margin and over the least clearance of the
+    /// pass so far (it cannot be the pass's nearest), is not checked either (unless
+    /// watch_clearance_m keeps every value). False: every pose swept and every fix is checked.
     bool carry_over = true;
     /// Assessment (assessment.hpp): clearance is followed up to this (metres) as it is up to
     /// the margin, and every checked pose under it is kept in TrackResult::clearance (with the
@@ -162,7 +166,7 @@ struct Pose {
     bool contact = false;           ///< the hull touched land or a hazard at the fix
     bool covered = true;            ///< the hull lay inside the coastline's area
     std::size_t fix_index = 0, fix_line = 0;
-    std::vector<geo::LonLat> hull;  ///< hull outline (closed ring)
+    std::vector<geo::LonLat> hull;  ///< hull outline as drawn (closed ring): its corners kept by the simplification of audit/pose_outline.hpp
 };
 
 /// A checked pose's clearance, kept when SweepOptions::watch_clearance_m asks for it.
