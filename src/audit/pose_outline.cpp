@@ -60,20 +60,4 @@ std::vector<std::size_t> pose_outline_corners(const std::vector<geo::XY>& xy) {
     return out;
 }
 
-std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring) {
-    if (ring.size() < 4 || ring.size() <= pose_outline_min_corners + 1) return ring;
-    constexpr double metres_per_deg = 6371008.8 * M_PI / 180;
-    const double lon0 = ring[0].lon, lat0 = ring[0].lat, kx = std::cos(lat0 * M_PI / 180) * metres_per_deg;
-    std::vector<geo::XY> xy;
-    xy.reserve(ring.size());
-    for (const auto& p : ring) xy.push_back({(p.lon - lon0) * kx, (p.lat - lat0) * metres_per_deg});
-    const std::vector<std::size_t> corners = pose_outline_corners(xy);
-    if (corners.size() + 1 == ring.size()) return ring;
-    std::vector<geo::LonLat> out;
-    out.reserve(corners.size() + 1);
-    for (const std::size_t i : corners) out.push_back(ring[i]);
-    out.push_back(out.front());
-    return out;
-}
-
 }  // namespace shoal::audit

@@ -28,9 +28,4 @@ inline constexpr std::size_t pose_outline_min_corners = 4;
 /// pose_outline_min_corners corners.
 std::vector<std::size_t> pose_outline_corners(const std::vector<geo::XY>& ring);
 
-/// `ring` (closed: first == last, lon/lat) simplified as above, in local metres around its
-/// first vertex (an equirectangular frame: a hull is tens or hundreds of metres, where it is
-/// true to far under a millimetre); returned as it is when nothing is left out.
-std::vector<geo::LonLat> pose_outline(const std::vector<geo::LonLat>& ring);
-
 }  // namespace shoal::audit
