@@ -4,7 +4,6 @@
 #include <optional>
 #include <numbers>
 
-
 #include <Eigen/LU>
 
 #include <shoal/audit/motion.hpp>
