@@ -5,7 +5,6 @@
 #include <numeric>
 
 #include "detail/geos_context.hpp"
-#include <shoal/util/error.hpp>
 
 namespace shoal::audit {
 

@@ -1,5 +1,6 @@
 #pragma once
-// A GeoJSON report's text staged at its path, with its QGIS style beside it (as stage_geojson).
+// A GeoJSON report's text staged at its path, with its QGIS style beside it (as stage_geojson);
+// how the layer files beside a report write a coordinate.
 #include <string>
 #include <string_view>
 #include <vector>

@@ -315,7 +315,7 @@ void append_coordinate(std::string& out, double v) {
     const auto printed = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, fields::coordinate_decimals);
     const char* end = printed.ptr;
     while (end[-1] == '0') --end;
-    if (end[-1] == '.') ++end;  // "24.0": a number with a fraction, as before
+    if (end[-1] == '.') ++end;  // "24.0": still a number with a fraction
     out.append(buf, static_cast<std::size_t>(end - buf));
 }
 
