@@ -385,6 +385,10 @@ struct Scratch {
     AlignedHull hull;
     std::vector<XY> inside_candidates;
     std::vector<grid::ChunkRun> runs;
+    /// The hull point found deepest by this thread's last penetration: the next one starts
+    /// there (a hull moves little between the poses of a track, and its deepest point found
+    /// first lets the rest be skipped). The order changes only which points are searched.
+    std::size_t deepest = 0;
 };
 
 Scratch& scratch() {
@@ -473,7 +477,9 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
             };
             std::array<Known, 8> known;
             std::size_t n_known = 0, next_known = 0;
-            for (std::size_t i = 0; i < h.n; ++i) {
+            const std::size_t first = s.deepest < h.n ? s.deepest : 0;
+            for (std::size_t step = 0; step < h.n; ++step) {
+                const std::size_t i = first + step < h.n ? first + step : first + step - h.n;
                 const XY p = h.to_local(h.pt(i));
                 double most = INFINITY;
                 bool on_land = false;
@@ -486,7 +492,10 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
                 if (!on_land && m_grid.winding(p) <= 0) continue;
                 double d = nearest_coast(p, most, nullptr);
                 if (std::isinf(d)) d = nearest_coast(p, INFINITY, nullptr);
-                depth = std::max(depth, d);
+                if (d > depth) {
+                    depth = d;
+                    s.deepest = i;
+                }
                 known[next_known++ % known.size()] = {p, d};
                 n_known = std::min(n_known + 1, known.size());
             }

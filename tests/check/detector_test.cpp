@@ -10,6 +10,7 @@
 #include <numbers>
 #include <ogrsf_frmts.h>
 #include <random>
+#include <thread>
 
 #include <shoal/check/brute_force.hpp>
 #include <shoal/check/detector.hpp>
@@ -416,6 +417,47 @@ TEST(DetectorPenetration, AgreesWithGeos) {
     }
     EXPECT_GT(contacts, 600);
     EXPECT_GT(deep, 50) << "too few hulls deep in land to mean anything";
+}
+
+TEST(DetectorPenetration, TheSameWhateverPoseCameBefore) {
+    // The search starts from the hull point found deepest by the thread's last penetration:
+    // that changes which points are searched, never the depth. Tracks running into land and
+    // out (where the hint helps) and random poses (where it points anywhere), checked in
+    // order, in reverse and each on a fresh thread: the same depth, bit for bit.
+    const Solent solent;
+    const geo::LocalFrame& frame = solent.frame;
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
+    const Detector det(solent.grid, hull);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<LocalPose> poses;
+    for (int track = 0; track < 30; ++track) {
+        const auto& l = solent.lines[rng() % solent.lines.size()];
+        const XY on = l.points[rng() % l.points.size()];
+        const double a = 2 * std::numbers::pi * unit(rng), heading = a * 180 / std::numbers::pi;
+        const XY dir{std::sin(a), std::cos(a)};
+        for (int k = -40; k <= 40; ++k) poses.push_back(place(frame, Pose{frame.inverse(on + (25.0 * k) * dir), heading + 0.2 * k}));
+    }
+    for (int k = 0; k < 300; ++k) {
+        const auto& l = solent.lines[rng() % solent.lines.size()];
+        const XY on = l.points[rng() % l.points.size()];
+        poses.push_back(place(frame, Pose{frame.inverse(on + XY{400 * unit(rng) - 200, 400 * unit(rng) - 200}), 360 * unit(rng)}));
+    }
+    const CheckOptions asked{INFINITY, true, false};
+    std::vector<double> forward, backward(poses.size());
+    for (const LocalPose& p : poses) forward.push_back(det.check(p, asked).penetration_m);
+    for (std::size_t k = poses.size(); k-- > 0;) backward[k] = det.check(poses[k], asked).penetration_m;
+    int deep = 0;
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+        ASSERT_EQ(forward[k], backward[k]) << "pose " << k;
+        deep += forward[k] > 100;
+        if (k % 37 == 0) {
+            double fresh = NAN;
+            std::thread([&] { fresh = det.check(poses[k], asked).penetration_m; }).join();
+            ASSERT_EQ(forward[k], fresh) << "pose " << k;
+        }
+    }
+    EXPECT_GT(deep, 300) << "too few hulls deep in land to mean anything";
 }
 
 TEST(Placement, BowLandsWhereTheGeodesicPutsIt) {
