@@ -10,6 +10,7 @@
 //
 // Usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS]
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -23,6 +24,7 @@
 #include "geos_tree.hpp"
 #include <shoal/check/detector.hpp>
 #include <shoal/coast/coastline.hpp>
+#include <shoal/geo/jacobian_field.hpp>
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/io/pose_csv.hpp>
@@ -69,12 +71,28 @@ int main(int argc, char** argv) {
         const shoal::coast::Coastline coast = shoal::coast::import_coastline({coast_path});
         const shoal::geo::LocalFrame frame = shoal::geo::LocalFrame::transverse_mercator(
             {(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
-        shoal::bench::GeosTree tree(shoal::coast::project(coast, frame), chunk);
+        const std::vector<shoal::coast::LocalPolyline> lines = shoal::coast::project(coast, frame);
+        // Placed as shoal probe places them (check::place a block at a time, the Jacobian
+        // from a field over the coast's box): placing is not the check being compared.
+        shoal::geo::Box box;
+        for (const auto& l : lines)
+            for (const shoal::geo::XY& q : l.points) box.extend(q);
+        const shoal::geo::JacobianField field(frame, box);
+        shoal::bench::GeosTree tree(lines, chunk);
         std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
         out.reserve(out.size() + poses.poses.size() * 48);
-        for (const auto& p : poses.poses) {
-            const shoal::check::LocalPose lp = shoal::check::place(frame, shoal::check::Pose{{p.lon, p.lat}, p.heading_deg});
-            const shoal::bench::Answer a = tree.check(shoal::check::hull_outline(hull, lp), INFINITY);
+        constexpr std::size_t block = 4096;
+        std::vector<shoal::check::Pose> todo;
+        std::vector<shoal::check::LocalPose> placed;
+        for (std::size_t k = 0; k < poses.poses.size(); ++k) {
+            const shoal::io::PoseRow& p = poses.poses[k];
+            if (k % block == 0) {
+                todo.clear();
+                for (std::size_t m = k; m < std::min(poses.poses.size(), k + block); ++m)
+                    todo.push_back({{poses.poses[m].lon, poses.poses[m].lat}, poses.poses[m].heading_deg});
+                placed = shoal::check::place(frame, field, todo);
+            }
+            const shoal::bench::Answer a = tree.check(shoal::check::hull_outline(hull, placed[k % block]), INFINITY);
             append_fixed(out, p.lat, 7);
             out += ',';
             append_fixed(out, p.lon, 7);

@@ -4,14 +4,17 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include <shoal/check/detector.hpp>
+#include <shoal/geo/jacobian_field.hpp>
 #include <shoal/io/pose_csv.hpp>
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/output_file.hpp>
@@ -64,8 +67,21 @@ public:
         asked.want_penetration = false;
         asked.want_polyline = false;
         std::size_t uncovered = 0;
-        for (const auto& p : poses.poses) {
-            const check::Contact c = detector.check(check::Pose{{p.lon, p.lat}, p.heading_deg}, asked);
+        // Poses placed a block at a time: one projection each, the Jacobian from a field
+        // fitted once over the chart.
+        const geo::JacobianField field(g.frame(), g.extent());
+        constexpr std::size_t block = 4096;
+        std::vector<check::Pose> todo;
+        std::vector<check::LocalPose> placed;
+        for (std::size_t k = 0; k < poses.poses.size(); ++k) {
+            const io::PoseRow& p = poses.poses[k];
+            if (k % block == 0) {
+                todo.clear();
+                for (std::size_t m = k; m < std::min(poses.poses.size(), k + block); ++m)
+                    todo.push_back({{poses.poses[m].lon, poses.poses[m].lat}, poses.poses[m].heading_deg});
+                placed = check::place(g.frame(), field, todo);
+            }
+            const check::Contact c = detector.check(placed[k % block], asked);
             append_fixed(out, p.lat, 7);
             out += ',';
             append_fixed(out, p.lon, 7);

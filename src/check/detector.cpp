@@ -17,12 +17,36 @@ namespace shoal::check {
 using geo::XY;
 using grid::visit_chunks;
 
+namespace {
+/// Columns: the ship's forward and starboard unit vectors in (east, north) metres. (The
+/// audit's audit::ship_to_en rounds the heading's radians otherwise; each keeps its own.)
+Eigen::Matrix2d ship_to_en(double heading_deg) {
+    const double h = heading_deg * std::numbers::pi / 180.0;
+    Eigen::Matrix2d m;
+    m << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
+    return m;
+}
+}  // namespace
+
 LocalPose place(const geo::LocalFrame& frame, const Pose& pose) {
-    const double h = pose.heading_deg * std::numbers::pi / 180.0;
-    // Columns: the ship's forward and starboard unit vectors in (east, north) metres.
-    Eigen::Matrix2d ship_to_en;
-    ship_to_en << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
-    return {frame.forward(pose.position), frame.jacobian(pose.position) * ship_to_en};
+    return {frame.forward(pose.position), frame.jacobian(pose.position) * ship_to_en(pose.heading_deg)};
+}
+
+std::vector<LocalPose> place(const geo::LocalFrame& frame, const geo::JacobianField& field, std::span<const Pose> poses) {
+    std::vector<double> xs(poses.size()), ys(poses.size());
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+        xs[k] = poses[k].position.lon;
+        ys[k] = poses[k].position.lat;
+    }
+    std::size_t bad = 0;
+    if (!frame.forward(xs, ys, &bad)) frame.forward(poses[bad].position);  // throws its message
+    std::vector<LocalPose> out(poses.size());
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+        const XY p{xs[k], ys[k]};
+        const Eigen::Matrix2d j = field.covers(p) ? field.at(p) : frame.jacobian(poses[k].position);
+        out[k] = {p, j * ship_to_en(poses[k].heading_deg)};
+    }
+    return out;
 }
 
 std::vector<XY> hull_outline(const hull::Hull& hull, const LocalPose& pose) {

@@ -16,6 +16,7 @@
 #include <shoal/check/detector.hpp>
 #include "detail/geos_context.hpp"
 #include <shoal/grid/coast_grid.hpp>
+#include <shoal/util/error.hpp>
 
 namespace shoal::check {
 namespace {
@@ -458,6 +459,51 @@ TEST(DetectorPenetration, TheSameWhateverPoseCameBefore) {
         }
     }
     EXPECT_GT(deep, 300) << "too few hulls deep in land to mean anything";
+}
+
+TEST(Placement, ManyPosesAtOnceAsOneByOne) {
+    // check::place for a batch: the same positions as one by one (one batch projection), the
+    // Jacobian from a field over the chart where it covers the pose, to well under 1e-8 of
+    // the frame's own (which carries ~3e-9 of rounding); outside the field, the same bits.
+    const geo::LocalFrame frame = geo::LocalFrame::transverse_mercator({24.9, 60.1});
+    const XY c = frame.forward({24.9, 60.1});
+    const geo::JacobianField field(frame, geo::Box{c.x - 60e3, c.y - 40e3, c.x + 60e3, c.y + 40e3});
+    ASSERT_GT(field.degree(), 0);
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<Pose> poses;
+    for (int k = 0; k < 5000; ++k)  // a third outside the field
+        poses.push_back({{24.9 + 3.6 * (unit(rng) - 0.5), 60.1 + 1.1 * (unit(rng) - 0.5)}, 360 * unit(rng)});
+    const std::vector<LocalPose> batch = place(frame, field, poses);
+    ASSERT_EQ(batch.size(), poses.size());
+    int outside = 0;
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+        const LocalPose one = place(frame, poses[k]);
+        ASSERT_EQ(batch[k].position, one.position) << "pose " << k;
+        if (field.covers(one.position)) {
+            ASSERT_LT((batch[k].ship_to_local - one.ship_to_local).cwiseAbs().maxCoeff(), 1e-8) << "pose " << k;
+        } else {
+            ++outside;
+            ASSERT_EQ(batch[k].ship_to_local, one.ship_to_local) << "pose " << k;
+        }
+    }
+    EXPECT_GT(outside, 1000);
+    EXPECT_LT(outside, 4000);
+    // A pose that cannot be projected: the error place() gives for it.
+    poses[17].position.lon = NAN;
+    std::string one_by_one;
+    try {
+        place(frame, poses[17]);
+    } catch (const InputError& e) {
+        one_by_one = e.what();
+    }
+    ASSERT_FALSE(one_by_one.empty());
+    try {
+        place(frame, field, poses);
+        ADD_FAILURE() << "no error for a pose that cannot be projected";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), one_by_one);
+    }
 }
 
 TEST(Placement, BowLandsWhereTheGeodesicPutsIt) {
