@@ -3,11 +3,14 @@
 
 #include <pybind11/numpy.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <shoal/check/detector.hpp>
+#include <shoal/geo/jacobian_field.hpp>
 #include <shoal/util/error.hpp>
 
 #include "detail/parse_util.hpp"
@@ -22,7 +25,8 @@ class PyDetector {
 public:
     PyDetector(GridHandle grid, const py::object& ship, const py::object& dims, const py::object& ukc, const py::object& hazard_depth_m)
         : m_grid(std::move(grid)), m_hull(hull_of(ship, dims, &m_label)),
-          m_detector(*m_grid.grid, m_hull, plan_depth(m_grid, m_hull, hazard_depth_m, ukc).depth_m) {}
+          m_detector(*m_grid.grid, m_hull, plan_depth(m_grid, m_hull, hazard_depth_m, ukc).depth_m),
+          m_field(m_grid.grid->frame(), m_grid.grid->extent()) {}
 
     py::dict check(const Array& lat, const Array& lon, const Array& heading, double max_clearance_m) const {
         if (!(max_clearance_m > 0)) throw py::value_error("max_clearance_m must be > 0 (metres; inf: no limit)");
@@ -46,26 +50,55 @@ public:
             // A frame of this call's own: PROJ transformations are not shared between threads.
             const geo::LocalFrame frame(m_grid.grid->frame());
             const check::CheckOptions options{.max_clearance_m = max_clearance_m, .want_penetration = true, .want_polyline = false};
+            std::size_t first_bad_at = n;
+            auto fail = [&](std::size_t k, const std::string& what) {
+                pc[k] = false, pv[k] = false, pcl[k] = NAN, ppe[k] = NAN;
+                ++bad;
+                if (k < first_bad_at) {
+                    first_bad_at = k;
+                    first_bad = "pose " + std::to_string(k) + ": " + what;
+                }
+            };
+            std::vector<std::size_t> valid;
             for (std::size_t k = 0; k < n; ++k) {
                 std::string what;
                 if (track::detail::position_problem(plat[k], plon[k], what) || !std::isfinite(phead[k])) {
                     if (what.empty()) what = "heading " + track::detail::fmt(phead[k]) + " is not a number";
+                    fail(k, what);
                 } else {
+                    valid.push_back(k);
+                }
+            }
+            // Placed as `shoal probe` places them: a block at a time (one projection each, the
+            // Jacobian from the field); a block with a pose PROJ cannot take is placed pose
+            // by pose, so that only that pose fails.
+            constexpr std::size_t block = 4096;
+            std::vector<check::Pose> todo;
+            std::vector<check::LocalPose> placed;
+            for (std::size_t from = 0; from < valid.size(); from += block) {
+                const std::size_t to = std::min(valid.size(), from + block);
+                todo.clear();
+                for (std::size_t v = from; v < to; ++v) todo.push_back({{plon[valid[v]], plat[valid[v]]}, phead[valid[v]]});
+                try {
+                    placed = check::place(frame, m_field, todo);
+                } catch (const InputError&) {
+                    placed.clear();
+                }
+                for (std::size_t v = from; v < to; ++v) {
+                    const std::size_t k = valid[v];
                     try {
-                        const check::Contact c = m_detector.check(check::place(frame, check::Pose{{plon[k], plat[k]}, phead[k]}), options);
+                        const check::LocalPose pose = placed.empty() ? check::place(frame, todo[v - from]) : placed[v - from];
+                        const check::Contact c = m_detector.check(pose, options);
                         // As `shoal probe`: a contact found is real, chart or not; outside the chart
                         // no clearance is claimed.
                         pc[k] = c.collision;
                         pv[k] = c.covered;
                         pcl[k] = c.collision ? 0.0 : c.covered ? c.clearance_m : NAN;
                         ppe[k] = c.collision ? c.penetration_m : NAN;
-                        continue;
                     } catch (const InputError& e) {
-                        what = e.what();
+                        fail(k, e.what());
                     }
                 }
-                pc[k] = false, pv[k] = false, pcl[k] = NAN, ppe[k] = NAN;
-                if (bad++ == 0) first_bad = "pose " + std::to_string(k) + ": " + what;
             }
         }
         if (bad)
@@ -88,6 +121,7 @@ private:
     std::string m_label;
     hull::Hull m_hull;
     check::Detector m_detector;
+    geo::JacobianField m_field;  ///< the frame's Jacobian over the grid, for placing poses
 };
 
 }  // namespace
