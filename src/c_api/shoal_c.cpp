@@ -23,6 +23,7 @@ struct shoal_grid {
 struct shoal_detector {
     std::shared_ptr<const shoal::grid::CoastGrid> grid;  // keeps the grid alive
     shoal::check::Detector detector;
+    shoal::geo::JacobianField field;  // the frame's Jacobian over the grid: one projection per check
 };
 
 namespace {
@@ -54,13 +55,15 @@ R execute(F&& f, R error_value) noexcept {
 /// At limiting depth `limit` (none: land only).
 shoal_detector* make_detector(const shoal_grid* grid, shoal::hull::Hull hull, std::optional<double> limit) {
     if (!grid) throw std::invalid_argument("shoal_detector: the grid is NULL");
-    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull), limit)};
+    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull), limit),
+                              shoal::geo::JacobianField(grid->grid->frame(), grid->grid->extent())};
 }
 
 /// At the grid's default limiting depth.
 shoal_detector* make_detector(const shoal_grid* grid, shoal::hull::Hull hull) {
     if (!grid) throw std::invalid_argument("shoal_detector: the grid is NULL");
-    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull))};
+    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull)),
+                              shoal::geo::JacobianField(grid->grid->frame(), grid->grid->extent())};
 }
 
 /// At limiting depth `depth_m` as the C API gives it (NaN: land only; infinite is refused).
@@ -126,7 +129,7 @@ int shoal_check(const shoal_detector* detector, double lat, double lon, double h
                 throw std::invalid_argument("shoal_check: lat must be in [-90, 90], lon in [-180, 180] and the heading finite");
             if (!(max_clearance_m > 0)) throw std::invalid_argument("shoal_check: max_clearance_m must be > 0");
             const shoal::check::Contact c =
-                detector->detector.check(shoal::check::Pose{{lon, lat}, heading_deg},
+                detector->detector.check(shoal::check::place(detector->grid->frame(), detector->field, shoal::check::Pose{{lon, lat}, heading_deg}),
                                          {.max_clearance_m = max_clearance_m, .want_penetration = false, .want_polyline = false});
             out->covered = c.covered ? 1 : 0;
             out->contact = c.collision ? 1 : 0;  // a contact found is real, chart or not

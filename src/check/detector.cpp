@@ -32,6 +32,17 @@ LocalPose place(const geo::LocalFrame& frame, const Pose& pose) {
     return {frame.forward(pose.position), frame.jacobian(pose.position) * ship_to_en(pose.heading_deg)};
 }
 
+namespace {
+LocalPose place_at(const geo::LocalFrame& frame, const geo::JacobianField& field, XY p, const Pose& pose) {
+    const Eigen::Matrix2d j = field.covers(p) ? field.at(p) : frame.jacobian(pose.position);
+    return {p, j * ship_to_en(pose.heading_deg)};
+}
+}  // namespace
+
+LocalPose place(const geo::LocalFrame& frame, const geo::JacobianField& field, const Pose& pose) {
+    return place_at(frame, field, frame.forward(pose.position), pose);
+}
+
 std::vector<LocalPose> place(const geo::LocalFrame& frame, const geo::JacobianField& field, std::span<const Pose> poses) {
     std::vector<double> xs(poses.size()), ys(poses.size());
     for (std::size_t k = 0; k < poses.size(); ++k) {
@@ -41,11 +52,7 @@ std::vector<LocalPose> place(const geo::LocalFrame& frame, const geo::JacobianFi
     std::size_t bad = 0;
     if (!frame.forward(xs, ys, &bad)) frame.forward(poses[bad].position);  // throws its message
     std::vector<LocalPose> out(poses.size());
-    for (std::size_t k = 0; k < poses.size(); ++k) {
-        const XY p{xs[k], ys[k]};
-        const Eigen::Matrix2d j = field.covers(p) ? field.at(p) : frame.jacobian(poses[k].position);
-        out[k] = {p, j * ship_to_en(poses[k].heading_deg)};
-    }
+    for (std::size_t k = 0; k < poses.size(); ++k) out[k] = place_at(frame, field, {xs[k], ys[k]}, poses[k]);
     return out;
 }
 
