@@ -71,7 +71,7 @@ public:
             }
             // Placed as `shoal probe` places them: a block at a time (one projection each, the
             // Jacobian from the field); a block with a pose PROJ cannot take is placed pose
-            // by pose, so that only that pose fails.
+            // by pose (the same way), so that only that pose fails.
             constexpr std::size_t block = 4096;
             std::vector<check::Pose> todo;
             std::vector<check::LocalPose> placed;
@@ -87,7 +87,7 @@ public:
                 for (std::size_t v = from; v < to; ++v) {
                     const std::size_t k = valid[v];
                     try {
-                        const check::LocalPose pose = placed.empty() ? check::place(frame, todo[v - from]) : placed[v - from];
+                        const check::LocalPose pose = placed.empty() ? check::place(frame, m_field, todo[v - from]) : placed[v - from];
                         const check::Contact c = m_detector.check(pose, options);
                         // As `shoal probe`: a contact found is real, chart or not; outside the chart
                         // no clearance is claimed.

@@ -50,8 +50,12 @@ std::vector<LocalPose> place(const geo::LocalFrame& frame, const geo::JacobianFi
         ys[k] = poses[k].position.lat;
     }
     std::size_t bad = 0;
-    if (!frame.forward(xs, ys, &bad)) frame.forward(poses[bad].position);  // throws its message
     std::vector<LocalPose> out(poses.size());
+    if (!frame.forward(xs, ys, &bad)) {
+        // Pose by pose, as one by one: the first that fails throws its own message.
+        for (std::size_t k = 0; k < poses.size(); ++k) out[k] = place(frame, field, poses[k]);
+        return out;
+    }
     for (std::size_t k = 0; k < poses.size(); ++k) out[k] = place_at(frame, field, {xs[k], ys[k]}, poses[k]);
     return out;
 }

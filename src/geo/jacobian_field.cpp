@@ -57,7 +57,6 @@ JacobianField::JacobianField(const LocalFrame& frame, const Box& box)
     } catch (const InputError&) {
         return;
     }
-    m_worst = INFINITY;
     for (int n = 4; n <= max_degree; n += 2) {
         if (!fit(frame, n)) break;
         double worst = 0;

@@ -71,11 +71,11 @@ struct CheckOptions {
 /// Where the hull of `hull` lies for `pose` in `frame`: heading corrected for meridian
 /// convergence and the frame's scale applied, so points land where geodesics put them.
 LocalPose place(const geo::LocalFrame& frame, const Pose& pose);
-/// `place` with one projection: the Jacobian taken from `field` where it covers the position
-/// (else from the frame, as `place` does).
+/// `place` with one projection: the Jacobian taken from `field` (fitted to a frame of the same
+/// definition as `frame`) where it covers the position, else from the frame as `place` does.
 LocalPose place(const geo::LocalFrame& frame, const geo::JacobianField& field, const Pose& pose);
 /// The same for many poses, their positions projected in one batch. Throws InputError, as
-/// `place` does, for the first pose that cannot be projected.
+/// one by one, for the first pose that cannot be placed.
 std::vector<LocalPose> place(const geo::LocalFrame& frame, const geo::JacobianField& field, std::span<const Pose> poses);
 /// The hull's outline in local metres for a pose.
 std::vector<geo::XY> hull_outline(const hull::Hull& hull, const LocalPose& pose);

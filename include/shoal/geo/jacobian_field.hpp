@@ -6,6 +6,7 @@
 /// the central difference).
 
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 #include <shoal/geo/local_frame.hpp>
@@ -23,8 +24,9 @@ public:
     static constexpr double tolerance = 5e-10;
 
     /// Fits the Jacobian of `frame` over `box` (local metres) with the lowest degree (4 to
-    /// 16) that stays within `tolerance`. When none does, or the frame cannot take a node
-    /// back to WGS84, the field covers nothing (`covers` is false everywhere).
+    /// 16) that stays within `tolerance`. When none does, or the frame fails at a node, the
+    /// field covers nothing (`covers` is false everywhere). It holds no reference to the
+    /// frame: use it only with frames of the same definition.
     JacobianField(const LocalFrame& frame, const Box& box);
 
     /// Whether p lies in the fitted box (and a fit was kept).
@@ -35,7 +37,8 @@ public:
     Eigen::Matrix2d at(XY p) const noexcept;
 
     /// The degree kept (0: none) and the largest difference found at the check points (with
-    /// no fit kept: the least of the fits tried, INFINITY when the frame failed first).
+    /// no fit kept: the least of the fits tried; INFINITY when none could be tried: an empty
+    /// box, or the frame failing on the check lattice).
     int degree() const noexcept { return m_degree; }
     double worst_difference() const noexcept { return m_worst; }
 
@@ -47,7 +50,7 @@ private:
 
     double m_x0 = 0, m_y0 = 0, m_x1 = 0, m_y1 = 0;
     int m_degree = 0;
-    double m_worst = 0;
+    double m_worst = INFINITY;
     /// (n + 1)^2 coefficients per entry, entry-major: c[e][i * (n + 1) + j] multiplies
     /// T_i(u) T_j(v), for entries (0,0), (0,1), (1,0), (1,1).
     std::vector<double> m_coef;
