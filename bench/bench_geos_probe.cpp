@@ -10,7 +10,6 @@
 //
 // Usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS]
 
-#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -72,8 +71,8 @@ int main(int argc, char** argv) {
         const shoal::geo::LocalFrame frame = shoal::geo::LocalFrame::transverse_mercator(
             {(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
         const std::vector<shoal::coast::LocalPolyline> lines = shoal::coast::project(coast, frame);
-        // Placed as shoal probe places them (check::place a block at a time, the Jacobian
-        // from a field over the coast's box): placing is not the check being compared.
+        // Placed as shoal probe places them (check::place_each, the Jacobian from a field
+        // over the coast's box): placing is not the check being compared.
         shoal::geo::Box box;
         for (const auto& l : lines)
             for (const shoal::geo::XY& q : l.points) box.extend(q);
@@ -81,18 +80,11 @@ int main(int argc, char** argv) {
         shoal::bench::GeosTree tree(lines, chunk);
         std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
         out.reserve(out.size() + poses.poses.size() * 48);
-        constexpr std::size_t block = 4096;
-        std::vector<shoal::check::Pose> todo;
-        std::vector<shoal::check::LocalPose> placed;
-        for (std::size_t k = 0; k < poses.poses.size(); ++k) {
-            const shoal::io::PoseRow& p = poses.poses[k];
-            if (k % block == 0) {
-                todo.clear();
-                for (std::size_t m = k; m < std::min(poses.poses.size(), k + block); ++m)
-                    todo.push_back({{poses.poses[m].lon, poses.poses[m].lat}, poses.poses[m].heading_deg});
-                placed = shoal::check::place(frame, field, todo);
-            }
-            const shoal::bench::Answer a = tree.check(shoal::check::hull_outline(hull, placed[k % block]), INFINITY);
+        const std::vector<shoal::io::PoseRow>& rows = poses.poses;
+        auto pose_of = [&](std::size_t k) { return shoal::check::Pose{{rows[k].lon, rows[k].lat}, rows[k].heading_deg}; };
+        shoal::check::place_each(frame, field, rows.size(), pose_of, [&](std::size_t k, const shoal::check::LocalPose& placed) {
+            const shoal::io::PoseRow& p = rows[k];
+            const shoal::bench::Answer a = tree.check(shoal::check::hull_outline(hull, placed), INFINITY);
             append_fixed(out, p.lat, 7);
             out += ',';
             append_fixed(out, p.lon, 7);
@@ -101,7 +93,7 @@ int main(int argc, char** argv) {
             out += a.collision ? ",1," : ",0,";
             append_fixed(out, a.collision ? 0.0 : a.clearance, 3);
             out += ",1\n";
-        }
+        });
         FILE* f = output.empty() ? stdout : std::fopen(output.c_str(), "wb");
         if (!f) throw std::runtime_error("cannot write " + output + ": " + std::strerror(errno));
         const bool ok = std::fwrite(out.data(), 1, out.size(), f) == out.size();

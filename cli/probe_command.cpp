@@ -4,7 +4,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -70,18 +69,11 @@ public:
         // Poses placed a block at a time: one projection each, the Jacobian from a field
         // fitted once over the chart.
         const geo::JacobianField field(g.frame(), g.extent());
-        constexpr std::size_t block = 4096;
-        std::vector<check::Pose> todo;
-        std::vector<check::LocalPose> placed;
-        for (std::size_t k = 0; k < poses.poses.size(); ++k) {
-            const io::PoseRow& p = poses.poses[k];
-            if (k % block == 0) {
-                todo.clear();
-                for (std::size_t m = k; m < std::min(poses.poses.size(), k + block); ++m)
-                    todo.push_back({{poses.poses[m].lon, poses.poses[m].lat}, poses.poses[m].heading_deg});
-                placed = check::place(g.frame(), field, todo);
-            }
-            const check::Contact c = detector.check(placed[k % block], asked);
+        const std::vector<io::PoseRow>& rows = poses.poses;
+        auto pose_of = [&](std::size_t k) { return check::Pose{{rows[k].lon, rows[k].lat}, rows[k].heading_deg}; };
+        check::place_each(g.frame(), field, rows.size(), pose_of, [&](std::size_t k, const check::LocalPose& placed) {
+            const io::PoseRow& p = rows[k];
+            const check::Contact c = detector.check(placed, asked);
             append_fixed(out, p.lat, 7);
             out += ',';
             append_fixed(out, p.lon, 7);
@@ -96,7 +88,7 @@ public:
                 out += ",,,0\n";
             }
             uncovered += c.covered ? 0 : 1;
-        }
+        });
         if (uncovered)
             std::fprintf(stderr, "shoal: warning: %zu of %zu poses lie (partly) outside the chart's area: covered 0, collision and clearance unknown\n",
                          uncovered, poses.poses.size());

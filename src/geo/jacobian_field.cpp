@@ -62,10 +62,7 @@ JacobianField::JacobianField(const LocalFrame& frame, const Box& box)
         double worst = 0;
         for (std::size_t k = 0; k < points.size(); ++k) worst = std::max(worst, (at(points[k]) - want[k]).cwiseAbs().maxCoeff());
         m_worst = std::min(m_worst, worst);
-        if (worst <= tolerance) {
-            m_worst = worst;
-            return;
-        }
+        if (worst <= tolerance) return;
     }
     m_degree = 0;
     m_coef.clear();

@@ -5,6 +5,7 @@
 /// until no nearer coastline can exist.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -77,6 +78,21 @@ LocalPose place(const geo::LocalFrame& frame, const geo::JacobianField& field, c
 /// The same for many poses, their positions projected in one batch. Throws InputError, as
 /// one by one, for the first pose that cannot be placed.
 std::vector<LocalPose> place(const geo::LocalFrame& frame, const geo::JacobianField& field, std::span<const Pose> poses);
+/// Places poses 0 .. n-1 (`pose_of(k)` gives pose k) a block of 4,096 at a time, as the batch
+/// `place` does, and hands each to `use(k, local_pose)` in order: one projection a pose, and
+/// memory bounded whatever n.
+template <class PoseOf, class Use>
+void place_each(const geo::LocalFrame& frame, const geo::JacobianField& field, std::size_t n, PoseOf&& pose_of, Use&& use) {
+    constexpr std::size_t block = 4096;
+    std::vector<Pose> todo;
+    for (std::size_t from = 0; from < n; from += block) {
+        const std::size_t to = std::min(n, from + block);
+        todo.clear();
+        for (std::size_t k = from; k < to; ++k) todo.push_back(pose_of(k));
+        const std::vector<LocalPose> placed = place(frame, field, todo);
+        for (std::size_t k = from; k < to; ++k) use(k, placed[k - from]);
+    }
+}
 /// The hull's outline in local metres for a pose.
 std::vector<geo::XY> hull_outline(const hull::Hull& hull, const LocalPose& pose);
 
