@@ -8,16 +8,19 @@
 // land rings). It writes probe's columns (covered is always 1: the GEOS checker has no chart
 // extent), so the answers can be compared with probe's, row by row.
 //
-// Usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS]
+// Usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS] [--jobs N]
 
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "geos_tree.hpp"
@@ -38,14 +41,14 @@ void append_fixed(std::string& out, double v, int precision) {
 }
 
 int usage() {
-    std::fprintf(stderr, "usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS]\n");
+    std::fprintf(stderr, "usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS] [--jobs N]\n");
     return 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string coast_path, dims, poses_path, output, chunk_text = "8";
+    std::string coast_path, dims, poses_path, output, chunk_text = "8", jobs_text = "1";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const bool more = i + 1 < argc;
@@ -53,6 +56,7 @@ int main(int argc, char** argv) {
         else if (a == "--dims" && more) dims = argv[++i];
         else if ((a == "-o" || a == "--output") && more) output = argv[++i];
         else if (a == "--chunk" && more) chunk_text = argv[++i];
+        else if (a == "--jobs" && more) jobs_text = argv[++i];
         else if (!a.empty() && a[0] != '-' && poses_path.empty()) poses_path = a;
         else return usage();
     }
@@ -60,6 +64,12 @@ int main(int argc, char** argv) {
     const auto [end, ec] = std::from_chars(chunk_text.data(), chunk_text.data() + chunk_text.size(), chunk);
     if (ec != std::errc() || end != chunk_text.data() + chunk_text.size() || chunk == 0) {
         std::fprintf(stderr, "bench_geos_probe: --chunk '%s' is not a whole number of segments >= 1\n", chunk_text.c_str());
+        return 2;
+    }
+    unsigned jobs = 0;
+    const auto [jend, jec] = std::from_chars(jobs_text.data(), jobs_text.data() + jobs_text.size(), jobs);
+    if (jec != std::errc() || jend != jobs_text.data() + jobs_text.size() || jobs > 256) {
+        std::fprintf(stderr, "bench_geos_probe: --jobs '%s' is not a number of threads from 0 (every core) to 256\n", jobs_text.c_str());
         return 2;
     }
     if (coast_path.empty() || dims.empty() || poses_path.empty()) return usage();
@@ -77,23 +87,32 @@ int main(int argc, char** argv) {
         for (const auto& l : lines)
             for (const shoal::geo::XY& q : l.points) box.extend(q);
         const shoal::geo::JacobianField field(frame, box);
-        shoal::bench::GeosTree tree(lines, chunk);
-        std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
-        out.reserve(out.size() + poses.poses.size() * 48);
+        // One tree a thread (each its own GEOS context): GEOS objects are not shared by threads.
+        const unsigned threads = jobs ? jobs : std::max(1u, std::thread::hardware_concurrency());
+        std::vector<std::unique_ptr<shoal::bench::GeosTree>> trees;
+        for (unsigned w = 0; w < threads; ++w) trees.push_back(std::make_unique<shoal::bench::GeosTree>(lines, chunk));
         const std::vector<shoal::io::PoseRow>& rows = poses.poses;
+        std::vector<std::string> pieces((rows.size() + shoal::check::placement_block - 1) / shoal::check::placement_block);
         auto pose_of = [&](std::size_t k) { return shoal::check::Pose{{rows[k].lon, rows[k].lat}, rows[k].heading_deg}; };
-        shoal::check::place_each(frame, field, rows.size(), pose_of, [&](std::size_t k, const shoal::check::LocalPose& placed) {
-            const shoal::io::PoseRow& p = rows[k];
-            const shoal::bench::Answer a = tree.check(shoal::check::hull_outline(hull, placed), INFINITY);
-            append_fixed(out, p.lat, 7);
-            out += ',';
-            append_fixed(out, p.lon, 7);
-            out += ',';
-            append_fixed(out, p.heading_deg, 1);
-            out += a.collision ? ",1," : ",0,";
-            append_fixed(out, a.collision ? 0.0 : a.clearance, 3);
-            out += ",1\n";
+        shoal::check::place_in_blocks(frame, field, rows.size(), pose_of, threads,
+                                      [&](std::size_t from, std::span<const shoal::check::LocalPose> placed, unsigned worker) {
+            std::string& out = pieces[from / shoal::check::placement_block];
+            out.reserve(placed.size() * 48);
+            for (std::size_t i = 0; i < placed.size(); ++i) {
+                const shoal::io::PoseRow& p = rows[from + i];
+                const shoal::bench::Answer a = trees[worker]->check(shoal::check::hull_outline(hull, placed[i]), INFINITY);
+                append_fixed(out, p.lat, 7);
+                out += ',';
+                append_fixed(out, p.lon, 7);
+                out += ',';
+                append_fixed(out, p.heading_deg, 1);
+                out += a.collision ? ",1," : ",0,";
+                append_fixed(out, a.collision ? 0.0 : a.clearance, 3);
+                out += ",1\n";
+            }
         });
+        std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
+        for (const std::string& piece : pieces) out += piece;
         FILE* f = output.empty() ? stdout : std::fopen(output.c_str(), "wb");
         if (!f) throw std::runtime_error("cannot write " + output + ": " + std::strerror(errno));
         const bool ok = std::fwrite(out.data(), 1, out.size(), f) == out.size();

@@ -4,10 +4,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <span>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -15,7 +17,6 @@
 #include <shoal/check/detector.hpp>
 #include <shoal/geo/jacobian_field.hpp>
 #include <shoal/io/pose_csv.hpp>
-#include <shoal/util/atomic_file.hpp>
 #include <shoal/util/output_file.hpp>
 #include <shoal/util/printable.hpp>
 
@@ -35,7 +36,7 @@ class ProbeCommand final : public Command {
 public:
     void setup(CLI::App& app) override {
         m_sub = app.add_subcommand("probe", "Check single poses (lat,lon,heading per CSV row): collision and clearance");
-        m_sub->footer("Usage: shoal probe --coast COAST_OR_GRID --ship SHIP.json POSES.csv [-o OUT.csv]\n"
+        m_sub->footer("Usage: shoal probe --coast COAST_OR_GRID --ship SHIP.json POSES.csv [-o OUT.csv] [--jobs N]\n"
                       "Writes lat,lon,heading,collision,clearance_m,covered per pose (collision 0/1; clearance 0 when touching;\n"
                       "covered 0 for a pose outside the chart, whose collision and clearance are then empty).\n"
                       "A bad row is reported on stderr with its line number and skipped.\n"
@@ -44,6 +45,7 @@ public:
         m_opts.add(*m_sub);
         m_sub->add_option("poses", m_poses, "CSV of poses: lat,lon,heading (a header line is optional)")->required();
         m_sub->add_option("-o,--output", m_output, "Write the CSV here instead of stdout (written atomically)");
+        m_sub->add_option("--jobs,-j", m_jobs, "Threads checking poses (default: all cores); the output is the same whatever the number");
     }
     int run() override {
         check_outputs({{m_output, "-o", "the poses CSV"}}, m_opts.inputs({m_poses}));
@@ -59,40 +61,54 @@ public:
         if (depth.source == grid::DepthPlan::Source::grid_default)
             std::fprintf(stderr, "shoal: limiting depth %.2f m (the grid's default, import --hazard-depth)\n", *depth.depth_m);
         const check::Detector detector(g, hull, depth.depth_m);
-        std::string out = "lat,lon,heading,collision,clearance_m,covered\n";
-        out.reserve(out.size() + poses.poses.size() * 48);
         // Only what is written: no penetration depth, no enclosing polyline.
         check::CheckOptions asked;
         asked.want_penetration = false;
         asked.want_polyline = false;
-        std::size_t uncovered = 0;
-        // Poses placed a block at a time: one projection each, the Jacobian from a field
-        // fitted once over the chart.
+        // Poses placed a block at a time (one projection each, the Jacobian from a field fitted
+        // once over the chart) and checked on --jobs threads; each block's rows are written
+        // into a piece of their own, and the pieces go out in input order.
         const geo::JacobianField field(g.frame(), g.extent());
         const std::vector<io::PoseRow>& rows = poses.poses;
+        std::vector<std::string> pieces((rows.size() + check::placement_block - 1) / check::placement_block);
+        std::atomic<std::size_t> uncovered{0};
         auto pose_of = [&](std::size_t k) { return check::Pose{{rows[k].lon, rows[k].lat}, rows[k].heading_deg}; };
-        check::place_each(g.frame(), field, rows.size(), pose_of, [&](std::size_t k, const check::LocalPose& placed) {
-            const io::PoseRow& p = rows[k];
-            const check::Contact c = detector.check(placed, asked);
-            append_fixed(out, p.lat, 7);
-            out += ',';
-            append_fixed(out, p.lon, 7);
-            out += ',';
-            append_fixed(out, p.heading_deg, 1);
-            // Outside the chart nothing is claimed: no collision found there means nothing.
-            if (c.covered || c.collision) {
-                out += c.collision ? ",1," : ",0,";
-                append_fixed(out, c.collision ? 0.0 : c.clearance_m, 3);
-                out += c.covered ? ",1\n" : ",0\n";
-            } else {
-                out += ",,,0\n";
+        check::place_in_blocks(g.frame(), field, rows.size(), pose_of, m_jobs, [&](std::size_t from, std::span<const check::LocalPose> placed, unsigned) {
+            std::string& out = pieces[from / check::placement_block];
+            out.reserve(placed.size() * 48);
+            std::size_t outside = 0;
+            for (std::size_t i = 0; i < placed.size(); ++i) {
+                const io::PoseRow& p = rows[from + i];
+                const check::Contact c = detector.check(placed[i], asked);
+                append_fixed(out, p.lat, 7);
+                out += ',';
+                append_fixed(out, p.lon, 7);
+                out += ',';
+                append_fixed(out, p.heading_deg, 1);
+                // Outside the chart nothing is claimed: no collision found there means nothing.
+                if (c.covered || c.collision) {
+                    out += c.collision ? ",1," : ",0,";
+                    append_fixed(out, c.collision ? 0.0 : c.clearance_m, 3);
+                    out += c.covered ? ",1\n" : ",0\n";
+                } else {
+                    out += ",,,0\n";
+                }
+                outside += c.covered ? 0 : 1;
             }
-            uncovered += c.covered ? 0 : 1;
+            uncovered += outside;
         });
         if (uncovered)
             std::fprintf(stderr, "shoal: warning: %zu of %zu poses lie (partly) outside the chart's area: covered 0, collision and clearance unknown\n",
-                         uncovered, poses.poses.size());
-        write_file_atomically(m_output, out);
+                         uncovered.load(), poses.poses.size());
+        StagedOutput output(m_output);
+        output.write_streamed([&](const StagedOutput::Sink& sink) {
+            sink("lat,lon,heading,collision,clearance_m,covered\n");
+            for (std::string& piece : pieces) {
+                sink(piece);
+                std::string().swap(piece);
+            }
+        });
+        output.commit();
         return exit_ok;
     }
 
@@ -100,6 +116,7 @@ private:
     CoastAndShip m_opts;
     std::string m_poses;
     std::string m_output;
+    unsigned m_jobs = 0;
 };
 
 }  // namespace

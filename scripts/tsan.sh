@@ -2,8 +2,9 @@
 # The parallel audit under ThreadSanitizer (GCC, -fsanitize=thread), in build-tsan/:
 #   1. `shoal check --jobs 2` on the example's 96 AIS vessels, plain and in exercise mode
 #      (--encounters), GeoJSON and GeoPackage, with the grid built (and cached) by the run;
-#   2. the tests that run the audit on several threads (audit_test, cli_test, bad_input_test),
-#      and those that read a CSV file on two threads (track_test).
+#   2. the tests that run the audit on several threads (audit_test, cli_test, bad_input_test;
+#      cli_test also runs `shoal probe --jobs 2` and 3), those that read a CSV file on two
+#      threads (track_test), and poses placed in blocks on threads (check_test).
 # Any data race or other report from ThreadSanitizer makes it fail (halt_on_error).
 # GDAL, GEOS and PROJ are not instrumented: races inside them are not seen, only ours.
 #
@@ -14,7 +15,7 @@ cd "$(dirname "$0")/.."
 build=build-tsan
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHOAL_BUILD_BENCH=OFF \
   -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
-cmake --build "$build" -j "$(nproc)" --target shoal_cli audit_test cli_test bad_input_test track_test
+cmake --build "$build" -j "$(nproc)" --target shoal_cli audit_test cli_test bad_input_test track_test check_test
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 history_size=4 suppressions=$PWD/.ci/tsan.supp"
 shoal="$build/cli/shoal"
 out="$build/tsan-out"
@@ -42,4 +43,5 @@ echo "== tests that run the audit on several threads, under ThreadSanitizer =="
 "$build/tests/cli_test" --gtest_brief=1
 "$build/tests/bad_input_test" --gtest_brief=1
 "$build/tests/track_test" --gtest_brief=1 --gtest_filter='Input.ACsvReadByTwoThreads*'
+"$build/tests/check_test" --gtest_brief=1 --gtest_filter='Placement.InBlocks*'
 echo "ThreadSanitizer: no report"

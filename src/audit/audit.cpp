@@ -18,39 +18,16 @@
 #include <shoal/track/merge.hpp>
 #include <shoal/util/error.hpp>
 
+#include "detail/parallel.hpp"
+
 namespace shoal::audit {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Runs `work(k, worker)` for k in [0, n) on `jobs` threads (work must not throw); calls
-/// `tick` on this thread about ten times a second meanwhile, and once at the end.
-template <typename Work>
-void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<void()>& tick) {
-    std::atomic<std::size_t> next{0};
-    std::atomic<unsigned> finished{0};
-    const auto threads = static_cast<unsigned>(std::clamp<std::size_t>(n, 1, std::max(1u, jobs)));
-    auto worker = [&](unsigned w) {
-        for (std::size_t k; (k = next.fetch_add(1)) < n;) work(k, w);
-        finished.fetch_add(1);
-    };
-    std::vector<std::thread> pool;
-    for (unsigned w = 0; w < threads; ++w) pool.emplace_back(worker, w);
-    for (int i = 0; tick && finished.load() < threads; ++i) {
-        if (i % 5 == 0) tick();
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    for (auto& t : pool) t.join();
-    if (tick) tick();
-}
-
-/// Threads: all cores by default; never more than 4 per core (each holds a PROJ context and
-/// buffers: -j 100000 would start 100,000 threads), nor more than there is work (parallel_for).
-unsigned thread_count(unsigned jobs) {
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    return std::clamp(jobs ? jobs : cores, 1u, 4 * cores);
-}
+using detail::parallel_for;
+using detail::thread_count;
 
 /// The first exception a worker met that is not bad input (a bug, a library failure): the
 /// workers go on, and it is thrown again on the calling thread once they have all finished.

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <exception>
 #include <cmath>
 #include <numbers>
 #include <span>
 
+#include "detail/parallel.hpp"
 #include "grid/outward.hpp"
 
 #if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)
@@ -58,6 +61,33 @@ std::vector<LocalPose> place(const geo::LocalFrame& frame, const geo::JacobianFi
     }
     for (std::size_t k = 0; k < poses.size(); ++k) out[k] = place_at(frame, field, {xs[k], ys[k]}, poses[k]);
     return out;
+}
+
+void place_in_blocks(const geo::LocalFrame& frame, const geo::JacobianField& field, std::size_t n,
+                     const std::function<Pose(std::size_t)>& pose_of, unsigned jobs,
+                     const std::function<void(std::size_t from, std::span<const LocalPose> placed, unsigned worker)>& use) {
+    constexpr std::size_t block = placement_block;
+    const std::size_t blocks = (n + block - 1) / block;
+    // The first block (in input order) that failed, and what it threw: the blocks after it
+    // are not started, those before it still are (one of them may fail first).
+    std::atomic<std::size_t> first_failed{blocks};
+    std::vector<std::exception_ptr> failures(blocks);
+    detail::parallel_for(blocks, detail::thread_count(jobs), [&](std::size_t b, unsigned worker) {
+        if (b > first_failed.load()) return;
+        try {
+            const std::size_t from = b * block, to = std::min(n, from + block);
+            std::vector<Pose> todo;
+            todo.reserve(to - from);
+            for (std::size_t k = from; k < to; ++k) todo.push_back(pose_of(k));
+            const std::vector<LocalPose> placed = place(frame, field, todo);
+            use(from, placed, worker);
+        } catch (...) {
+            failures[b] = std::current_exception();
+            for (std::size_t seen = first_failed.load(); b < seen && !first_failed.compare_exchange_weak(seen, b);) {
+            }
+        }
+    });
+    if (first_failed.load() < blocks) std::rethrow_exception(failures[first_failed.load()]);
 }
 
 std::vector<XY> hull_outline(const hull::Hull& hull, const LocalPose& pose) {

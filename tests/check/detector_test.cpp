@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <numbers>
 #include <ogrsf_frmts.h>
+#include <mutex>
 #include <random>
+#include <span>
 #include <thread>
 
 #include <shoal/check/brute_force.hpp>
@@ -504,6 +506,60 @@ TEST(Placement, ManyPosesAtOnceAsOneByOne) {
         ADD_FAILURE() << "no error for a pose that cannot be projected";
     } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()), one_by_one);
+    }
+}
+
+TEST(Placement, InBlocksOnThreadsAsTheBatch) {
+    // place_in_blocks on 1, 2 and 5 threads: every pose handed over once, in its block's
+    // order, placed as the batch place() places it (the same bits); a worker number below the
+    // threads asked. A pose PROJ refuses in block 2 and one in block 5: the error is block 2's,
+    // as one by one, whatever the threads.
+    const geo::LocalFrame frame = geo::LocalFrame::transverse_mercator({24.9, 60.1});
+    const XY c = frame.forward({24.9, 60.1});
+    const geo::JacobianField field(frame, geo::Box{c.x - 60e3, c.y - 40e3, c.x + 60e3, c.y + 40e3});
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<Pose> poses;
+    for (std::size_t k = 0; k < 6 * placement_block + 123; ++k)
+        poses.push_back({{24.9 + 3.6 * (unit(rng) - 0.5), 60.1 + 1.1 * (unit(rng) - 0.5)}, 360 * unit(rng)});
+    const std::vector<LocalPose> batch = place(frame, field, poses);
+    auto pose_of = [&](std::size_t k) { return poses[k]; };
+    for (unsigned jobs : {1u, 2u, 5u}) {
+        std::vector<LocalPose> got(poses.size());
+        std::vector<int> times(poses.size(), 0);
+        std::mutex m;
+        place_in_blocks(frame, field, poses.size(), pose_of, jobs, [&](std::size_t from, std::span<const LocalPose> placed, unsigned worker) {
+            const std::lock_guard lock(m);
+            EXPECT_LT(worker, jobs);
+            EXPECT_EQ(from % placement_block, 0u);
+            for (std::size_t i = 0; i < placed.size(); ++i) {
+                got[from + i] = placed[i];
+                ++times[from + i];
+            }
+        });
+        for (std::size_t k = 0; k < poses.size(); ++k) {
+            ASSERT_EQ(times[k], 1) << "pose " << k << ", " << jobs << " threads";
+            ASSERT_EQ(got[k].position, batch[k].position) << "pose " << k << ", " << jobs << " threads";
+            ASSERT_EQ(got[k].ship_to_local, batch[k].ship_to_local) << "pose " << k << ", " << jobs << " threads";
+        }
+    }
+    const std::size_t bad2 = 2 * placement_block + 77, bad5 = 5 * placement_block + 3;
+    poses[bad2].position.lat = NAN;
+    poses[bad5].position.lon = NAN;
+    std::string one_by_one;
+    try {
+        place(frame, poses[bad2]);
+    } catch (const InputError& e) {
+        one_by_one = e.what();
+    }
+    ASSERT_FALSE(one_by_one.empty());
+    for (unsigned jobs : {1u, 2u, 5u}) {
+        try {
+            place_in_blocks(frame, field, poses.size(), pose_of, jobs, [](std::size_t, std::span<const LocalPose>, unsigned) {});
+            ADD_FAILURE() << "no error for a pose that cannot be projected, " << jobs << " threads";
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()), one_by_one) << jobs << " threads";
+        }
     }
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <random>
 #include <set>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -111,6 +112,46 @@ TEST(Cli, ProbeWritesOneRowPerPoseAndSkipsBadRows) {
     ASSERT_EQ(out.status, 0) << out.err;
     EXPECT_NE(out.out.find("10.0000000,10.0000000,0.0,,,0\n"), std::string::npos) << out.out;
     EXPECT_NE(out.err.find("outside the chart"), std::string::npos) << out.err;
+}
+
+TEST(Cli, ProbeOnSeveralThreadsWritesWhatOneThreadWrites) {
+    // 13,000 poses over the Solent (land, shore, water, some partly off the chart): more than
+    // three blocks of poses placed and checked at once. --jobs 1, 2 and 3 write the same bytes,
+    // one row per pose in input order; the rows of a random sample are the single poses'.
+    const fs::path poses = temp_dir() / "many-poses.csv";
+    std::vector<std::string> rows;
+    {
+        std::mt19937_64 rng(15);
+        std::uniform_real_distribution<double> unit(0, 1);
+        std::ofstream out(poses);
+        out << "lat,lon,heading\n";
+        for (int k = 0; k < 13000; ++k) {
+            char row[96];
+            std::snprintf(row, sizeof row, "%.7f,%.7f,%.1f\n", 50.55 + 0.4 * unit(rng), -1.8 + 0.9 * unit(rng), 360 * unit(rng));
+            rows.push_back(row);
+            out << row;
+        }
+    }
+    const std::string grid = (temp_dir() / "solent-many.shoalgrid").string();
+    ASSERT_EQ(shoal("import " + data("coast/uk_solent_land.geojson") + " -o '" + grid + "'").status, 0);
+    std::string first;
+    for (const char* jobs : {"1", "2", "3"}) {
+        const Outcome r = shoal("probe --coast '" + grid + "' --dims 100,20,8,8 --jobs " + std::string(jobs) + " '" + poses.string() + "'");
+        ASSERT_EQ(r.status, 0) << r.err;
+        ASSERT_EQ(lines_of(r.out), 13001u) << jobs << " threads";
+        if (first.empty()) first = r.out;
+        else ASSERT_EQ(r.out, first) << jobs << " threads: not the bytes of one thread";
+    }
+    const fs::path one = temp_dir() / "one-pose.csv";
+    for (int k : {0, 4095, 4096, 8191, 8192, 12287, 12288, 12999}) {
+        std::ofstream(one) << rows[static_cast<std::size_t>(k)];
+        const Outcome r = shoal("probe --coast '" + grid + "' --dims 100,20,8,8 --jobs 1 '" + one.string() + "'");
+        ASSERT_EQ(r.status, 0) << r.err;
+        const std::string answer = r.out.substr(r.out.find('\n') + 1);
+        std::size_t at = 0;
+        for (int line = 0; line <= k; ++line) at = first.find('\n', at) + 1;
+        EXPECT_EQ(first.substr(at, first.find('\n', at) + 1 - at), answer) << "pose " << k;
+    }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
 #include <span>
@@ -78,21 +79,19 @@ LocalPose place(const geo::LocalFrame& frame, const geo::JacobianField& field, c
 /// The same for many poses, their positions projected in one batch. Throws InputError, as
 /// one by one, for the first pose that cannot be placed.
 std::vector<LocalPose> place(const geo::LocalFrame& frame, const geo::JacobianField& field, std::span<const Pose> poses);
-/// Places poses 0 .. n-1 (`pose_of(k)` gives pose k) a block of 4,096 at a time, as the batch
-/// `place` does, and hands each to `use(k, local_pose)` in order: one projection a pose, and
-/// memory bounded whatever n.
-template <class PoseOf, class Use>
-void place_each(const geo::LocalFrame& frame, const geo::JacobianField& field, std::size_t n, PoseOf&& pose_of, Use&& use) {
-    constexpr std::size_t block = 4096;
-    std::vector<Pose> todo;
-    for (std::size_t from = 0; from < n; from += block) {
-        const std::size_t to = std::min(n, from + block);
-        todo.clear();
-        for (std::size_t k = from; k < to; ++k) todo.push_back(pose_of(k));
-        const std::vector<LocalPose> placed = place(frame, field, todo);
-        for (std::size_t k = from; k < to; ++k) use(k, placed[k - from]);
-    }
-}
+/// How many poses place_in_blocks places at once.
+inline constexpr std::size_t placement_block = 4096;
+/// Poses 0 .. n-1 (`pose_of(k)` gives pose k) placed placement_block at a time, as the batch
+/// `place` does (one projection a pose), on `jobs` threads (0: every core; at most 4 a core):
+/// `use(from, placed, worker)` is called once per block, on the thread that placed it, with
+/// the poses from, from + 1, ... in order; `worker` (0 .. threads - 1) is that thread's number,
+/// for state of its own. Blocks come in any order, several at once; `pose_of` is called from
+/// every thread. Throws, on the calling thread once the threads have stopped, what the first
+/// block in input order that failed threw (InputError for a pose that cannot be placed, as one
+/// by one; or what `use` threw); the blocks after it may not have been handed over.
+void place_in_blocks(const geo::LocalFrame& frame, const geo::JacobianField& field, std::size_t n,
+                     const std::function<Pose(std::size_t)>& pose_of, unsigned jobs,
+                     const std::function<void(std::size_t from, std::span<const LocalPose> placed, unsigned worker)>& use);
 /// The hull's outline in local metres for a pose.
 std::vector<geo::XY> hull_outline(const hull::Hull& hull, const LocalPose& pose);
 

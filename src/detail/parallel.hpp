@@ -1,0 +1,43 @@
+#pragma once
+/// Work spread over threads: the audit's tracks, probe's blocks of poses.
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <thread>
+#include <vector>
+
+namespace shoal::detail {
+
+/// Threads for `jobs` (0: every core): never more than 4 per core (each holds a PROJ context
+/// and buffers: -j 100000 would start 100,000 threads).
+inline unsigned thread_count(unsigned jobs) {
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    return std::clamp(jobs ? jobs : cores, 1u, 4 * cores);
+}
+
+/// Runs `work(k, worker)` for k in [0, n) on `jobs` threads, never more than there is work
+/// (work must not throw); `worker` is the thread's number, 0 .. threads - 1. Calls `tick` on
+/// this thread about ten times a second meanwhile, and once at the end.
+template <typename Work>
+void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<void()>& tick = {}) {
+    std::atomic<std::size_t> next{0};
+    std::atomic<unsigned> finished{0};
+    const auto threads = static_cast<unsigned>(std::clamp<std::size_t>(n, 1, std::max(1u, jobs)));
+    auto worker = [&](unsigned w) {
+        for (std::size_t k; (k = next.fetch_add(1)) < n;) work(k, w);
+        finished.fetch_add(1);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned w = 0; w < threads; ++w) pool.emplace_back(worker, w);
+    for (int i = 0; tick && finished.load() < threads; ++i) {
+        if (i % 5 == 0) tick();
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    for (auto& t : pool) t.join();
+    if (tick) tick();
+}
+
+}  // namespace shoal::detail
