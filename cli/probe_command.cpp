@@ -61,10 +61,11 @@ public:
         if (depth.source == grid::DepthPlan::Source::grid_default)
             std::fprintf(stderr, "shoal: limiting depth %.2f m (the grid's default, import --hazard-depth)\n", *depth.depth_m);
         const check::Detector detector(g, hull, depth.depth_m);
-        // Only what is written: no penetration depth, no enclosing polyline.
+        // Only what is written: no penetration depth, no enclosing polyline, not where a contact is.
         check::CheckOptions asked;
         asked.want_penetration = false;
         asked.want_polyline = false;
+        asked.want_contact_point = false;
         // Poses placed a block at a time (one projection each, the Jacobian from a field fitted
         // once over the chart) and checked on --jobs threads; each block's rows are written
         // into a piece of their own, and the pieces go out in input order.

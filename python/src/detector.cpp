@@ -49,7 +49,7 @@ public:
             py::gil_scoped_release nogil;
             // A frame of this call's own: PROJ transformations are not shared between threads.
             const geo::LocalFrame frame(m_grid.grid->frame());
-            const check::CheckOptions options{.max_clearance_m = max_clearance_m, .want_penetration = true, .want_polyline = false};
+            const check::CheckOptions options{.max_clearance_m = max_clearance_m, .want_penetration = true, .want_polyline = false, .want_contact_point = false};
             std::size_t first_bad_at = n;
             auto fail = [&](std::size_t k, const std::string& what) {
                 pc[k] = false, pv[k] = false, pcl[k] = NAN, ppe[k] = NAN;

@@ -75,9 +75,15 @@ public:
     /// The pose check at fix interval i, fraction f. The polyline of a hull wholly inside land
     /// (a search of the grid's rings) is left out: only an event's first sample needs it, and
     /// make_event asks for it then.
-    check::Contact check(std::size_t i, double f, bool penetration) const {
-        return checker_at(i, f).check(m_motion.pose(i, f), {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false});
+    /// `where`: the contact point matters (CheckOptions::want_contact_point): only at a sample
+    /// that may be an event's first contact, i.e. unless the sample before was in contact.
+    check::Contact check(std::size_t i, double f, bool penetration, bool where = true) const {
+        return checker_at(i, f).check(m_motion.pose(i, f), {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false,
+                                                             .want_contact_point = where});
     }
+
+    /// An open contact goes on: the next sample in contact is not its first.
+    bool in_contact() const noexcept { return m_intervals.in_contact(); }
 
     /// The answer at fix interval i, fraction f, when what matters of it is known
     /// (SweepOptions::carry_over): in contact (`clearance_m` 0), or clear by at least
@@ -385,11 +391,12 @@ class RepeatingChecker final : public PoseChecker {
 public:
     explicit RepeatingChecker(const PoseChecker& inner) : m_inner(inner) {}
     check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
-        // An answer with the polyline also serves a question without it (make_event asks for
-        // the polyline of an event's first sample; the same pose at the next fixes costs nothing).
+        // An answer with the polyline (or the contact point) also serves a question without it
+        // (make_event asks for the polyline of an event's first sample; the same pose at the
+        // next fixes costs nothing).
         if (!(m_have && pose.position == m_pose.position && pose.ship_to_local == m_pose.ship_to_local &&
               options.max_clearance_m == m_options.max_clearance_m && options.want_penetration == m_options.want_penetration &&
-              (m_options.want_polyline || !options.want_polyline))) {
+              (m_options.want_polyline || !options.want_polyline) && (m_options.want_contact_point || !options.want_contact_point))) {
             m_contact = m_inner.check(pose, options);
             m_pose = pose;
             m_options = options;
@@ -536,7 +543,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 } else if (const double near = known_near(by, pose); !std::isnan(near)) {
                     s.contact = events.carried(s.i, s.f, near);
                 } else {
-                    s.contact = events.check(s.i, s.f, false);
+                    s.contact = events.check(s.i, s.f, false, !events.in_contact());
                     checked(s.contact, by, pose);
                 }
                 note(s.contact);
@@ -553,7 +560,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         if (continues && still_in_contact(at_fix, pose) && contact_depth_m + slack(apart(contact_pose, pose)) <= events.contact_depth()) {
             s.contact = events.carried(i, 0.0, 0);
         } else {
-            s.contact = events.check(i, 0.0, true);
+            s.contact = events.check(i, 0.0, true, !continues || !events.in_contact());
             contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
             contact_checker = &at_fix;
             contact_pose = pose;

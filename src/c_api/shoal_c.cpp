@@ -130,7 +130,7 @@ int shoal_check(const shoal_detector* detector, double lat, double lon, double h
             if (!(max_clearance_m > 0)) throw std::invalid_argument("shoal_check: max_clearance_m must be > 0");
             const shoal::check::Contact c =
                 detector->detector.check(shoal::check::place(detector->grid->frame(), detector->field, shoal::check::Pose{{lon, lat}, heading_deg}),
-                                         {.max_clearance_m = max_clearance_m, .want_penetration = false, .want_polyline = false});
+                                         {.max_clearance_m = max_clearance_m, .want_penetration = false, .want_polyline = false, .want_contact_point = false});
             out->covered = c.covered ? 1 : 0;
             out->contact = c.collision ? 1 : 0;  // a contact found is real, chart or not
             out->clearance_m = c.collision ? 0.0 : !c.covered ? -1.0 : std::min(c.clearance_m, max_clearance_m);

@@ -332,6 +332,7 @@ struct Search {
     bool found = false;        // best2 is a distance found (hull_pt, coast_pt are set)
     XY hull_pt, coast_pt;      // aligned frame
     bool crossing = false;
+    std::size_t crossing_edge = 0;  // the hull edge that crosses (when crossing)
     std::vector<XY>& inside_candidates;  // coast vertices (aligned) that may lie inside the hull
     const grid::Segment* seg = nullptr;       // the segment being measured
     const grid::Segment* best_seg = nullptr;  // the segment realising best2 (when found)
@@ -429,6 +430,7 @@ struct Search {
                     hull_pt = on_hull;
                     coast_pt = on_coast;
                     crossing = true;
+                    crossing_edge = e;
                     return;
                 }
                 // Disjoint: the nearest pair has an end of one segment. Each hull vertex is
@@ -454,6 +456,9 @@ struct Scratch {
     /// there (a hull moves little between the poses of a track, and its deepest point found
     /// first lets the rest be skipped). The order changes only which points are searched.
     std::size_t deepest = 0;
+    /// The hull point this thread last found on land (or nearest the land side of a crossing):
+    /// tried first when the contact point is not asked for (CheckOptions::want_contact_point).
+    std::size_t on_land = 0;
 };
 
 Scratch& scratch() {
@@ -488,7 +493,7 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     // clearance found so far (the limit grown by a hair, so that one exactly at it counts).
     const double limit = options.max_clearance_m;
     const double bound = std::isfinite(limit) ? limit * (1 + 1e-9) + 1e-9 : INFINITY;
-    Search search{h, bound * bound, false, {}, {}, false, s.inside_candidates, nullptr, nullptr, s.runs};
+    Search search{h, bound * bound, false, {}, {}, false, 0, s.inside_candidates, nullptr, nullptr, s.runs};
     Contact out;
     const geo::Box ext = m_grid.extent();
     const geo::Box& lb = h.local_box;
@@ -499,12 +504,25 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     const int i0 = std::max(0, m_grid.col_of(lb.minx)), i1 = std::min(nx - 1, m_grid.col_of(lb.maxx));
     const int j0 = std::max(0, m_grid.row_of(lb.miny)), j1 = std::min(ny - 1, m_grid.row_of(lb.maxy));
     const bool block_valid = i0 <= i1 && j0 <= j1;
-    if (block_valid) {  // the block's chunks together, nearest first
+    // A hull point on land is a collision, whatever else the hull meets: when where is not
+    // asked, the point this thread last found on land is tried first (one cell's winding).
+    bool found_on_land = false;
+    if (!options.want_contact_point && !options.want_polyline) {
+        const XY q = h.to_local(h.pt(s.on_land < h.n ? s.on_land : 0));
+        if (m_grid.winding(q) > 0) {
+            found_on_land = true;
+            out.collision = true;
+            out.hull_point = out.coast_point = q;
+        }
+    }
+    if (block_valid && !found_on_land) {  // the block's chunks together, nearest first
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i) search.gather(m_grid, m_grid.segments(i, j));
         search.drain(true);
     }
-    if (!search.crossing) {
+    if (found_on_land) {
+        // Nothing more to find: where does not matter.
+    } else if (!search.crossing) {
         // No edge crossing: the hull is wholly in water, wholly in land, or holds an islet.
         bool on_boundary = false;
         const XY p0 = h.to_local(h.pt(0));
@@ -527,6 +545,10 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         out.hull_point = h.to_local(search.hull_pt);
         out.coast_point = h.to_local(search.coast_pt);
         out.polyline = m_grid.polyline_of(*search.best_seg);
+        // The end of the crossed hull edge on the land side of the coast segment (land lies on
+        // its left): the next pose's first try.
+        const XY a = h.to_aligned(search.best_seg->a), b = h.to_aligned(search.best_seg->b);
+        s.on_land = geo::orient(a, b, h.pt(search.crossing_edge)) > 0 ? search.crossing_edge : (search.crossing_edge + 1) % h.n;
     }
     if (out.collision) {
         out.clearance_m = 0;
@@ -560,6 +582,7 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
                 if (d > depth) {
                     depth = d;
                     s.deepest = i;
+                    s.on_land = i;
                 }
                 known[next_known++ % known.size()] = {p, d};
                 n_known = std::min(n_known + 1, known.size());

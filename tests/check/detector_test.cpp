@@ -377,6 +377,64 @@ TEST(DetectorOptions, AskingLessChangesNothingElse) {
     EXPECT_GT(deep, 500);
 }
 
+TEST(DetectorOptions, NotAskingWhereChangesNothingElse) {
+    // CheckOptions::want_contact_point false (probe, the C API, the sweep once a contact is
+    // open): a collision may be answered by the hull point the thread last found on land,
+    // before any search. Tracks running into land and out (where that point is on land again),
+    // and random poses (where it is anywhere), in order: collision, covered, clearance and
+    // penetration the full check's, bit for bit; a contact point that differs from the full
+    // check's is a vertex of the hull's outline that GEOS finds in the land polygons.
+    const Solent solent;
+    const geo::LocalFrame& frame = solent.frame;
+    const LandOracle oracle(solent.path, frame);
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
+    const Detector det(solent.grid, hull);
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<LocalPose> poses;
+    for (int track = 0; track < 40; ++track) {
+        const auto& l = solent.lines[rng() % solent.lines.size()];
+        const XY on = l.points[rng() % l.points.size()];
+        const double a = 2 * std::numbers::pi * unit(rng), heading = a * 180 / std::numbers::pi;
+        const XY dir{std::sin(a), std::cos(a)};
+        for (int k = -40; k <= 40; ++k) poses.push_back(place(frame, Pose{frame.inverse(on + (20.0 * k) * dir), heading + 0.3 * k}));
+    }
+    for (int k = 0; k < 1000; ++k) {
+        const auto& l = solent.lines[rng() % solent.lines.size()];
+        const XY on = l.points[rng() % l.points.size()];
+        poses.push_back(place(frame, Pose{frame.inverse(on + XY{600 * unit(rng) - 300, 600 * unit(rng) - 300}), 360 * unit(rng)}));
+    }
+    int elsewhere = 0, contacts = 0;
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+        for (const bool penetration : {false, true}) {
+            const double limit = k % 2 ? 550.0 : INFINITY;
+            const Contact lean = det.check(poses[k], {.max_clearance_m = limit, .want_penetration = penetration, .want_polyline = false,
+                                                      .want_contact_point = false});
+            const Contact full = det.check(poses[k], {.max_clearance_m = limit, .want_penetration = penetration, .want_polyline = false});
+            ASSERT_EQ(lean.collision, full.collision) << "pose " << k;
+            ASSERT_EQ(lean.covered, full.covered) << "pose " << k;
+            ASSERT_EQ(lean.clearance_m, full.clearance_m) << "pose " << k;
+            ASSERT_EQ(lean.penetration_m, full.penetration_m) << "pose " << k;
+            if (!lean.collision) {
+                ASSERT_EQ(lean.hull_point, full.hull_point) << "pose " << k;
+                ASSERT_EQ(lean.coast_point, full.coast_point) << "pose " << k;
+                continue;
+            }
+            contacts += !penetration;
+            if (lean.hull_point == full.hull_point && lean.coast_point == full.coast_point) continue;
+            elsewhere += !penetration;
+            const std::vector<XY> outline = hull_outline(hull, poses[k]);
+            double nearest = INFINITY;  // a vertex up to the rounding of placing it
+            for (const XY& v : outline) nearest = std::min(nearest, std::sqrt(geo::norm2(v - lean.hull_point)));
+            ASSERT_LT(nearest, 1e-6) << "pose " << k << ": not a hull vertex";
+            ASSERT_EQ(lean.coast_point, lean.hull_point) << "pose " << k;
+            ASSERT_GE(oracle.depth(lean.hull_point), 0) << "pose " << k << ": GEOS finds the point in water";
+        }
+    }
+    EXPECT_GT(contacts, 1500);
+    EXPECT_GT(elsewhere, 500) << "too few contacts answered by a point on land to mean anything";
+}
+
 TEST(DetectorPenetration, AgreesWithGeos) {
     // Penetration, as documented: the deepest of the hull points in land (their distance to
     // the coast) and of the coast vertices inside the hull (their distance to its outline),

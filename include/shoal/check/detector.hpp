@@ -66,8 +66,16 @@ struct CheckOptions {
     bool want_penetration = true;
     /// Find `Contact::polyline` for a hull wholly inside land or over an islet (a search of
     /// the grid's rings); when false it is left no_polyline in those two cases. The polyline
-    /// of a crossing edge or of the clearance costs nothing and is always given.
+    /// of a crossing edge or of the clearance costs nothing and is always given (but see
+    /// want_contact_point).
     bool want_polyline = true;
+    /// Say where a collision is: `Contact::hull_point` and `coast_point` the point the full
+    /// search finds (a crossing of a hull edge, else the hull point or coast vertex found
+    /// inside), and the polyline it crossed. When false (and want_polyline false), a collision
+    /// may be answered by the first hull point found on land, before any search: both points
+    /// are then that point and the polyline no_polyline. Collision, covered, clearance and
+    /// penetration are the same either way.
+    bool want_contact_point = true;
 };
 
 /// Where the hull of `hull` lies for `pose` in `frame`: heading corrected for meridian
