@@ -348,12 +348,6 @@ struct Search {
         grid::gather_chunks(grid, segs, [&](const geo::Box& cb) { return box_dist2(cb, lb); }, best2, runs);
     }
 
-    /// The segments `segs` of one cell of `grid`, nearest chunk first (see drain).
-    void read(const grid::CoastGrid& grid, std::span<const grid::Segment> segs, bool collect) {
-        gather(grid, segs);
-        drain(collect);
-    }
-
     /// Reads the chunks gathered, nearest first, so that the bound shrinks before the far ones
     /// are looked at (a search for the unlimited clearance starts with no bound at all): each
     /// segment is moved to the aligned frame and tested against the hull's box at the distance
@@ -614,13 +608,15 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     }
 
     // Clearance: rings of cells outward until no cell can hold a nearer segment, each ring
-    // cut to the cells nearer the hull's box than the clearance found so far (or the limit).
-    // A hull wholly outside the grid starts from the nearest cells.
+    // cut to the cells nearer the hull's box than the clearance found so far (or the limit),
+    // and its chunks read together, nearest first. A hull wholly outside the grid starts
+    // from the nearest cells.
     struct Clearance {
         Search& search;
         const grid::CoastGrid& grid;
         double max_m;
-        void operator()(std::span<const grid::Segment> segs) { search.read(grid, segs, false); }
+        void operator()(std::span<const grid::Segment> segs) { search.gather(grid, segs); }
+        void ring_done() { search.drain(false); }
         bool wants(double gap) const { return !(gap * gap >= search.best2 || gap > max_m); }
         double reach() const { return std::min(search.best(), max_m); }
     } clearance{search, m_grid, options.max_clearance_m};

@@ -107,7 +107,10 @@ enum class FirstBlock { read, skip };
 ///   bool wants(double gap) const: go on, `gap` being the distance from `from` to the nearest
 ///     cell not read yet (the search ends too when no cell is left);
 ///   double reach() const: how far from `from` a cell of the next ring may still matter
-///     (INFINITY: all of it); a ring's rows and columns are cut to the cells within it.
+///     (INFINITY: all of it); a ring's rows and columns are cut to the cells within it;
+///   optionally void ring_done(): called after the first block and after each ring, before
+///     wants() and reach() are asked again (a visitor that gathers a ring's chunks reads
+///     them there, nearest first over the whole ring).
 /// Rings are read top row, bottom row, then the left and the right column.
 template <class Visitor>
 void visit_outward(const CoastGrid& grid, const geo::Box& from, Visitor& visit, FirstBlock first = FirstBlock::read) {
@@ -121,9 +124,14 @@ void visit_outward(const CoastGrid& grid, const geo::Box& from, Visitor& visit, 
         const std::span<const Segment> segs = grid.segments(i, j);
         if (!segs.empty()) visit(segs);
     };
-    if (first == FirstBlock::read)
+    auto ring_done = [&] {
+        if constexpr (requires { visit.ring_done(); }) visit.ring_done();
+    };
+    if (first == FirstBlock::read) {
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i) read_cell(i, j);
+        ring_done();
+    }
     const geo::XY org = grid.origin();
     for (;;) {
         // Distance from the box to the nearest point outside the block read so far.
@@ -157,6 +165,7 @@ void visit_outward(const CoastGrid& grid, const geo::Box& from, Visitor& visit, 
             for (int j = a; j <= b; ++j) read_cell(ni0, j);
         if (ni1 > i1 && cut(org.x + ni1 * cell, org.x + (ni1 + 1) * cell, j0, j1, true, a, b))
             for (int j = a; j <= b; ++j) read_cell(ni1, j);
+        ring_done();
         i0 = ni0, i1 = ni1, j0 = nj0, j1 = nj1;
     }
 }
