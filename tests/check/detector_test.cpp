@@ -330,6 +330,32 @@ struct Solent {
     grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);
 };
 
+/// Poses over the Solent, seeded by `seed`: `tracks` straight runs of 81 poses `step_m` apart
+/// through a random coastline vertex (into land and out), turning `turn_deg` a pose; then
+/// `random` poses anywhere within a square of side `spread_m` around a random coastline vertex,
+/// at random headings.
+std::vector<LocalPose> runs_into_land_and_random(const Solent& solent, std::uint64_t seed, int tracks, double step_m, double turn_deg,
+                                                 int random, double spread_m) {
+    const geo::LocalFrame& frame = solent.frame;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<LocalPose> poses;
+    for (int track = 0; track < tracks; ++track) {
+        const auto& l = solent.lines[rng() % solent.lines.size()];
+        const XY on = l.points[rng() % l.points.size()];
+        const double a = 2 * std::numbers::pi * unit(rng), heading = a * 180 / std::numbers::pi;
+        const XY dir{std::sin(a), std::cos(a)};
+        for (int k = -40; k <= 40; ++k) poses.push_back(place(frame, Pose{frame.inverse(on + (step_m * k) * dir), heading + turn_deg * k}));
+    }
+    for (int k = 0; k < random; ++k) {
+        const auto& l = solent.lines[rng() % solent.lines.size()];
+        const XY on = l.points[rng() % l.points.size()];
+        poses.push_back(place(frame, Pose{frame.inverse(on + XY{spread_m * unit(rng) - spread_m / 2, spread_m * unit(rng) - spread_m / 2}),
+                                          360 * unit(rng)}));
+    }
+    return poses;
+}
+
 /// Asking for less (no penetration, no enclosing polyline: what probe and the sweep ask)
 /// changes nothing else: the same flags, clearance and points as the full check on random
 /// poses near the coast and deep inland, and the same polyline wherever one is given.
@@ -389,21 +415,7 @@ TEST(DetectorOptions, NotAskingWhereChangesNothingElse) {
     const LandOracle oracle(solent.path, frame);
     const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
     const Detector det(solent.grid, hull);
-    std::mt19937_64 rng(21);
-    std::uniform_real_distribution<double> unit(0, 1);
-    std::vector<LocalPose> poses;
-    for (int track = 0; track < 40; ++track) {
-        const auto& l = solent.lines[rng() % solent.lines.size()];
-        const XY on = l.points[rng() % l.points.size()];
-        const double a = 2 * std::numbers::pi * unit(rng), heading = a * 180 / std::numbers::pi;
-        const XY dir{std::sin(a), std::cos(a)};
-        for (int k = -40; k <= 40; ++k) poses.push_back(place(frame, Pose{frame.inverse(on + (20.0 * k) * dir), heading + 0.3 * k}));
-    }
-    for (int k = 0; k < 1000; ++k) {
-        const auto& l = solent.lines[rng() % solent.lines.size()];
-        const XY on = l.points[rng() % l.points.size()];
-        poses.push_back(place(frame, Pose{frame.inverse(on + XY{600 * unit(rng) - 300, 600 * unit(rng) - 300}), 360 * unit(rng)}));
-    }
+    const std::vector<LocalPose> poses = runs_into_land_and_random(solent, 21, 40, 20.0, 0.3, 1000, 600.0);
     int elsewhere = 0, contacts = 0;
     for (std::size_t k = 0; k < poses.size(); ++k) {
         for (const bool penetration : {false, true}) {
@@ -488,24 +500,9 @@ TEST(DetectorPenetration, TheSameWhateverPoseCameBefore) {
     // before the hint): the same depth, bit for bit. (DetectorPenetration.AgreesWithGeos
     // holds the depth to GEOS's.)
     const Solent solent;
-    const geo::LocalFrame& frame = solent.frame;
     const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
     const Detector det(solent.grid, hull);
-    std::mt19937_64 rng(5);
-    std::uniform_real_distribution<double> unit(0, 1);
-    std::vector<LocalPose> poses;
-    for (int track = 0; track < 30; ++track) {
-        const auto& l = solent.lines[rng() % solent.lines.size()];
-        const XY on = l.points[rng() % l.points.size()];
-        const double a = 2 * std::numbers::pi * unit(rng), heading = a * 180 / std::numbers::pi;
-        const XY dir{std::sin(a), std::cos(a)};
-        for (int k = -40; k <= 40; ++k) poses.push_back(place(frame, Pose{frame.inverse(on + (25.0 * k) * dir), heading + 0.2 * k}));
-    }
-    for (int k = 0; k < 300; ++k) {
-        const auto& l = solent.lines[rng() % solent.lines.size()];
-        const XY on = l.points[rng() % l.points.size()];
-        poses.push_back(place(frame, Pose{frame.inverse(on + XY{400 * unit(rng) - 200, 400 * unit(rng) - 200}), 360 * unit(rng)}));
-    }
+    const std::vector<LocalPose> poses = runs_into_land_and_random(solent, 5, 30, 25.0, 0.2, 300, 400.0);
     const CheckOptions asked{INFINITY, true, false};
     std::vector<double> forward, backward(poses.size());
     for (const LocalPose& p : poses) forward.push_back(det.check(p, asked).penetration_m);
