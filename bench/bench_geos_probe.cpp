@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
         const shoal::geo::LocalFrame frame = shoal::geo::LocalFrame::transverse_mercator(
             {(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
         const std::vector<shoal::coast::LocalPolyline> lines = shoal::coast::project(coast, frame);
-        // Placed as shoal probe places them (check::place_each, the Jacobian from a field
+        // Placed as shoal probe places them (check::place_in_blocks, the Jacobian from a field
         // over the coast's box): placing is not the check being compared.
         shoal::geo::Box box;
         for (const auto& l : lines)

@@ -72,7 +72,8 @@ struct CheckOptions {
     /// Say where a collision is: `Contact::hull_point` and `coast_point` the point the full
     /// search finds (a crossing of a hull edge, else the hull point or coast vertex found
     /// inside), and the polyline it crossed. When false (and want_polyline false), a collision
-    /// may be answered by the first hull point found on land, before any search: both points
+    /// may be answered by the hull point this thread last found on land, tried before any
+    /// search (one winding test): both points
     /// are then that point and the polyline no_polyline. Collision, covered, clearance and
     /// penetration are the same either way.
     bool want_contact_point = true;
