@@ -10,7 +10,6 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <thread>
 #include <tuple>
 
 #include <shoal/audit/worst_pairs.hpp>

@@ -5,7 +5,6 @@
 /// until no nearer coastline can exist.
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -73,9 +72,8 @@ struct CheckOptions {
     /// search finds (a crossing of a hull edge, else the hull point or coast vertex found
     /// inside), and the polyline it crossed. When false (and want_polyline false), a collision
     /// may be answered by the hull point this thread last found on land, tried before any
-    /// search (one winding test): both points
-    /// are then that point and the polyline no_polyline. Collision, covered, clearance and
-    /// penetration are the same either way.
+    /// search (one winding test): both points are then that point and the polyline
+    /// no_polyline. Collision, covered, clearance and penetration are the same either way.
     bool want_contact_point = true;
 };
 
