@@ -62,8 +62,7 @@ ChartTile tile_of(geo::LonLat p) {
     return {static_cast<int>(std::floor(p.lon / chart_tile_deg)) + col_offset, static_cast<int>(std::floor(p.lat / chart_tile_deg)) + row_offset};
 }
 
-std::set<ChartTile> tiles_near(const std::vector<std::vector<geo::LonLat>>& lines, double margin_m) {
-    std::set<ChartTile> out;
+void add_tiles_near(std::set<ChartTile>& out, const std::vector<geo::LonLat>& line, double margin_m) {
     ChartTile last_a{0, 0}, last_b{-1, -1};  // the tiles marked last (none yet)
     auto mark = [&](geo::LonLat p) {
         if (!std::isfinite(p.lon) || !std::isfinite(p.lat)) return;
@@ -78,19 +77,23 @@ std::set<ChartTile> tiles_near(const std::vector<std::vector<geo::LonLat>>& line
         for (int r = a.row; r <= b.row; ++r)
             for (int c = a.col; c <= b.col; ++c) out.insert({c, r});
     };
-    for (const auto& line : lines)
-        for (std::size_t i = 0; i < line.size(); ++i) {
-            mark(line[i]);
-            if (i == 0) continue;
-            // Points along the segment no further apart than a quarter of a tile.
-            const geo::LonLat a = line[i - 1], b = line[i];
-            const double span = std::max(std::fabs(b.lon - a.lon), std::fabs(b.lat - a.lat));
-            const int n = static_cast<int>(std::min(1e5, std::ceil(span / (chart_tile_deg / 4))));
-            for (int k = 1; k < n; ++k) {
-                const double f = static_cast<double>(k) / n;
-                mark({a.lon + f * (b.lon - a.lon), a.lat + f * (b.lat - a.lat)});
-            }
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        mark(line[i]);
+        if (i == 0) continue;
+        // Points along the segment no further apart than a quarter of a tile.
+        const geo::LonLat a = line[i - 1], b = line[i];
+        const double span = std::max(std::fabs(b.lon - a.lon), std::fabs(b.lat - a.lat));
+        const int n = static_cast<int>(std::min(1e5, std::ceil(span / (chart_tile_deg / 4))));
+        for (int k = 1; k < n; ++k) {
+            const double f = static_cast<double>(k) / n;
+            mark({a.lon + f * (b.lon - a.lon), a.lat + f * (b.lat - a.lat)});
         }
+    }
+}
+
+std::set<ChartTile> tiles_near(const std::vector<std::vector<geo::LonLat>>& lines, double margin_m) {
+    std::set<ChartTile> out;
+    for (const auto& line : lines) add_tiles_near(out, line, margin_m);
     return out;
 }
 
@@ -206,9 +209,10 @@ std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast
 }
 
 std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart) {
-    std::vector<std::vector<geo::LonLat>> lines;
-    for (const auto& t : r.tracks) lines.insert(lines.end(), t.summary.lines.begin(), t.summary.lines.end());
-    return chart_features(chart, tiles_near(lines));
+    std::set<ChartTile> tiles;  // the tracks' lines are read where they are (a copy would be 16 bytes a fix)
+    for (const auto& t : r.tracks)
+        for (const auto& line : t.summary.lines) add_tiles_near(tiles, line);
+    return chart_features(chart, tiles);
 }
 
 }  // namespace shoal::report
