@@ -242,17 +242,36 @@ std::string format_iso8601(double t, int decimals) {
     const std::int64_t m = mp < 10 ? mp + 3 : mp - 9;
     const std::int64_t y = yoe + era * 400 + (m <= 2 ? 1 : 0);
 
-    std::array<char, 64> buf{};
-    int n = std::snprintf(buf.data(), buf.size(), "%04lld-%02lld-%02lldT%02lld:%02lld:%02lld", static_cast<long long>(y),
-                          static_cast<long long>(m), static_cast<long long>(d), static_cast<long long>(sod / 3600),
-                          static_cast<long long>(sod / 60 % 60), static_cast<long long>(sod % 60));
-    std::string out(buf.data(), static_cast<std::size_t>(std::max(n, 0)));
-    if (frac != 0) {
-        n = std::snprintf(buf.data(), buf.size(), ".%0*lld", decimals, static_cast<long long>(frac));
-        out.append(buf.data(), static_cast<std::size_t>(std::max(n, 0)));
+    // Digits written here (snprintf's "%04lld-%02lld-..." costs a microsecond a time, and the
+    // report's layers write two times a pose); a year outside 0-9999 as snprintf writes it.
+    char buf[64];
+    char* p = buf;
+    auto digits = [&p](std::int64_t v, int width) {
+        for (int k = width - 1; k >= 0; --k, v /= 10) p[k] = static_cast<char>('0' + v % 10);
+        p += width;
+    };
+    if (y >= 0 && y <= 9999) {
+        digits(y, 4);
+    } else {
+        const int n = std::snprintf(buf, sizeof buf, "%04lld", static_cast<long long>(y));
+        p += std::clamp(n, 0, 40);
     }
-    out += 'Z';
-    return out;
+    *p++ = '-';
+    digits(m, 2);
+    *p++ = '-';
+    digits(d, 2);
+    *p++ = 'T';
+    digits(sod / 3600, 2);
+    *p++ = ':';
+    digits(sod / 60 % 60, 2);
+    *p++ = ':';
+    digits(sod % 60, 2);
+    if (frac != 0) {
+        *p++ = '.';
+        digits(frac, decimals);
+    }
+    *p++ = 'Z';
+    return std::string(buf, p);
 }
 
 }  // namespace shoal::track

@@ -13,7 +13,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <optional>
+#include <random>
 #include <string>
 
 namespace {
@@ -135,6 +139,41 @@ TEST(FormatIso8601, RoundTripsThroughTheParser) {
         const std::string s = format_iso8601(t, 3);
         ASSERT_EQ(parse_iso8601(s), t) << s;
     }
+}
+
+/// Against glibc's gmtime_r and snprintf (an independent calendar and formatter), on random
+/// times from year 1 to 9999 at every number of decimals, and years past 9999.
+TEST(FormatIso8601, WritesWhatGmtimeAndPrintfWrite) {
+    std::mt19937_64 rng(7);
+    std::uniform_int_distribution<long long> seconds(-62135596800LL, 253402300799LL);  // 0001-01-01 .. 9999-12-31
+    std::uniform_int_distribution<long long> ticks(0, 999999999);
+    auto expected = [](long long secs, long long frac, int decimals) {
+        const std::time_t t = static_cast<std::time_t>(secs);
+        std::tm tm{};
+        gmtime_r(&t, &tm);
+        char buf[96];
+        int n = std::snprintf(buf, sizeof buf, "%04lld-%02d-%02dT%02d:%02d:%02d", tm.tm_year + 1900LL, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour,
+                              tm.tm_min, tm.tm_sec);
+        if (frac != 0) n += std::snprintf(buf + n, sizeof buf - static_cast<std::size_t>(n), ".%0*lld", decimals, frac);
+        return std::string(buf, static_cast<std::size_t>(n)) + "Z";
+    };
+    int checked = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const int decimals = i % 10;
+        const long long scale = static_cast<long long>(std::pow(10.0, decimals));
+        const long long secs = i % 7 == 0 ? seconds(rng) % 100000 : seconds(rng);  // some near the epoch, on both sides
+        const long long frac = i % 3 == 0 ? 0 : ticks(rng) % scale;
+        // A time whose ticks at `decimals` are exact: decimals where a double holds them.
+        if (std::fabs(static_cast<double>(secs)) * static_cast<double>(scale) > 1e14) continue;
+        const double t = static_cast<double>(secs * scale + frac) / static_cast<double>(scale);
+        ASSERT_EQ(format_iso8601(t, decimals), expected(secs, frac, decimals)) << secs << " + " << frac << " at " << decimals;
+        ++checked;
+    }
+    EXPECT_GT(checked, 80000);
+    EXPECT_EQ(format_iso8601(253402300800.0, 0), expected(253402300800LL, 0, 0));  // 10000-01-01: five digits
+    EXPECT_EQ(format_iso8601(253402300800.0, 0), "10000-01-01T00:00:00Z");
+    EXPECT_EQ(format_iso8601(-62135596801.0, 0), expected(-62135596801LL, 0, 0));  // year 0
+    EXPECT_EQ(format_iso8601(-62198755200.0, 0), expected(-62198755200LL, 0, 0));  // year -1 ("-001")
 }
 
 TEST(DayClock, NumbersDaysAcrossMidnightAndDatesEarlierTimes) {
