@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "report/report_fields.hpp"
 #include <shoal/util/output_file.hpp>
 
 namespace shoal::report {
@@ -17,5 +18,12 @@ std::vector<StagedOutput> stage_geojson_text(const std::string& path, std::strin
 /// GeoJSON coordinates, its trailing zeros dropped ("24.5", "60.2761559"); `null` when not
 /// finite. The coordinates of the layer files beside a report.
 void append_coordinate(std::string& out, double v);
+
+/// Appends a row of `table` as a JSON object, the same bytes as nlohmann's dump() of the object
+/// of its fields (present in `r`, in the table's order) would be: how the layer files write
+/// their properties, without building the object. Instantiated for the rows of the layer files
+/// (fields::TrackRow, HullRow, PoseRow, CoastRow).
+template <class Row>
+void append_object(std::string& out, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r);
 
 }  // namespace shoal::report

@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "detail/parallel.hpp"
 #include "detail/qgis_styles.hpp"
 #include "report/chart_layer.hpp"
 #include "report/geojson_output.hpp"
@@ -311,6 +312,32 @@ void append_coordinate(std::string& out, double v) {
         out += "null";
         return;
     }
+    static_assert(fields::coordinate_decimals == 7, "the digits below are for 7 decimals");
+    const double a = std::fabs(v);
+    if (a < 4e8) {
+        // The nearest integer to a * 1e7, with ties to even, as printf rounds: p = a * 1e7 is
+        // rounded, e its exact error (fma). p can only land on a half when a * 1e7 is at or
+        // near it (halves are doubles here), and then e says on which side a * 1e7 is.
+        const double p = a * 1e7;
+        const double e = std::fma(a, 1e7, -p);
+        const double f = std::floor(p);
+        double r = std::nearbyint(p);  // to even at a half (the default rounding mode)
+        if (p - f == 0.5 && e != 0) r = e > 0 ? f + 1 : f;
+        const auto n = static_cast<std::uint64_t>(r);
+        char buf[32];
+        char* end = buf;
+        if (std::signbit(v)) *end++ = '-';  // "-0.0" for a negative that rounds to zero, as printf
+        end = std::to_chars(end, buf + sizeof buf, n / 10000000).ptr;
+        *end++ = '.';
+        std::uint64_t frac = n % 10000000;
+        char digits[7];
+        for (int k = 6; k >= 0; --k, frac /= 10) digits[k] = static_cast<char>('0' + frac % 10);
+        int keep = 7;
+        while (keep > 1 && digits[keep - 1] == '0') --keep;  // one digit after the point at least
+        out.append(buf, static_cast<std::size_t>(end - buf));
+        out.append(digits, static_cast<std::size_t>(keep));
+        return;
+    }
     char buf[400];
     const auto printed = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, fields::coordinate_decimals);
     const char* end = printed.ptr;
@@ -363,90 +390,179 @@ void append_polygon(std::string& out, const std::vector<std::vector<geo::LonLat>
     out += ']';
 }
 
+/// Appends `s` as nlohmann's dump() writes a JSON string: printable ASCII here, anything
+/// else (escapes, UTF-8 and its checks) by nlohmann itself.
+void append_string(std::string& out, const std::string& s) {
+    for (const char c : s)
+        if (c < 0x20 || c > 0x7e || c == '"' || c == '\\') {
+            out += json(s).dump();
+            return;
+        }
+    out += '"';
+    out += s;
+    out += '"';
+}
+
+/// Appends to_json(v).dump(): numbers by nlohmann's own shortest form (nlohmann::detail::to_chars,
+/// what its serializer calls), so that the text is the same to the byte.
+void append_value(std::string& out, const fields::Value& v) {
+    char buf[64];
+    std::visit([&](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, std::monostate>) {
+            out += "null";
+        } else if constexpr (std::is_same_v<T, std::string>) {
+            append_string(out, x);
+        } else if constexpr (std::is_same_v<T, bool>) {
+            out += x ? "true" : "false";
+        } else if constexpr (std::is_same_v<T, std::int64_t>) {
+            out.append(buf, static_cast<std::size_t>(std::to_chars(buf, buf + sizeof buf, x).ptr - buf));
+        } else if (!std::isfinite(x)) {
+            out += "null";
+        } else {
+            out.append(buf, static_cast<std::size_t>(nlohmann::detail::to_chars(buf, buf + sizeof buf, x) - buf));
+        }
+    }, v);
+}
+
+}  // namespace
+
+template <class Row>
+void append_object(std::string& out, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r) {
+    out += '{';
+    bool first = true;
+    for (const auto& f : table) {
+        if (f.present && !f.present(r)) continue;
+        if (!first) out += ',';
+        first = false;
+        append_string(out, f.name);
+        out += ':';
+        append_value(out, fields::value_of(f, row));
+    }
+    out += '}';
+}
+template void append_object(std::string&, const std::vector<fields::Field<fields::TrackRow>>&, const fields::TrackRow&, const audit::AuditResult&);
+template void append_object(std::string&, const std::vector<fields::Field<fields::HullRow>>&, const fields::HullRow&, const audit::AuditResult&);
+template void append_object(std::string&, const std::vector<fields::Field<fields::PoseRow>>&, const fields::PoseRow&, const audit::AuditResult&);
+template void append_object(std::string&, const std::vector<fields::Field<fields::CoastRow>>&, const fields::CoastRow&, const audit::AuditResult&);
+
+namespace {
+
+/// Writes the features `feature(k, out)` appends for k in [0, n), one a line, comma-separated:
+/// in blocks on `jobs` threads, handed to `sink` in order of k (a few blocks held at once).
+template <class Feature>
+void write_features(std::size_t n, unsigned jobs, const Feature& feature, const StagedOutput::Sink& sink) {
+    // Blocks of at most 1,024 features, and some 16 for each thread (a layer of a few tracks,
+    // each a long line, is spread too).
+    const unsigned threads = detail::thread_count(jobs);
+    const std::size_t block = std::clamp<std::size_t>(n / (16 * std::size_t{threads}), 1, 1024);
+    const std::size_t blocks = (n + block - 1) / block, window = 4 * std::size_t{threads};
+    std::vector<std::string> text(std::min(blocks, window));
+    std::vector<std::exception_ptr> failed(text.size());
+    for (std::size_t b0 = 0; b0 < blocks; b0 += window) {
+        const std::size_t m = std::min(window, blocks - b0);
+        detail::parallel_for(m, threads, [&](std::size_t i, unsigned) {
+            std::string& out = text[i];
+            out.clear();
+            try {
+                for (std::size_t k = (b0 + i) * block, e = std::min(n, k + block); k < e; ++k) {
+                    out += k ? ",\n{\"type\":\"Feature\",\"properties\":" : "\n{\"type\":\"Feature\",\"properties\":";
+                    feature(k, out);
+                    out += "}}";
+                }
+            } catch (...) {
+                failed[i] = std::current_exception();
+            }
+        });
+        for (std::size_t i = 0; i < m; ++i) {
+            if (failed[i]) std::rethrow_exception(failed[i]);
+            sink(text[i]);
+        }
+    }
+}
+
+/// A layer's feature: its properties, then `"geometry":{"type":TYPE,"coordinates":` (the
+/// caller appends the coordinates; write_features closes the feature).
+template <class Row>
+void open_feature(std::string& out, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r, const char* type) {
+    append_object(out, table, row, r);
+    out += ",\"geometry\":{\"type\":\"";
+    out += type;
+    out += "\",\"coordinates\":";
+}
+
 /// A map layer of the report (tracks, hulls, poses, coast) as a GeoJSON FeatureCollection
 /// (RFC 7946: WGS84 longitude, latitude to 7 decimals, shells counter-clockwise), marked as
-/// shoal's in its "description"; one feature per line, written as it is made. The features,
-/// their properties and geometries are those of the GeoPackage's layer (gpkg_report.cpp).
+/// shoal's in its "description"; one feature per line, written as it is made (write_features).
+/// The features, their properties and geometries are those of the GeoPackage's layer
+/// (gpkg_report.cpp).
 void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& info, const StagedOutput::Sink& sink) {
-    std::string buf;
-    constexpr std::size_t chunk = std::size_t{1} << 20;
-    buf.reserve(chunk + 65536);
-    buf += "{\n\"type\": \"FeatureCollection\",\n\"name\": " + json(name_of(which)).dump() + ",\n\"description\": " +
-           json(std::string(sidecar_mark)).dump() + ",\n\"features\": [";
-    bool first = true;
-    // A feature is its properties as nlohmann writes them and its geometry written here
-    // (`type` and the text of its `coordinates`), one line.
-    std::string coordinates;
-    auto feature = [&](const json& properties, const char* type) {
-        buf += first ? "\n" : ",\n";
-        first = false;
-        buf += "{\"type\":\"Feature\",\"properties\":";
-        buf += properties.dump();
-        buf += ",\"geometry\":{\"type\":\"";
-        buf += type;
-        buf += "\",\"coordinates\":";
-        buf += coordinates;
-        buf += "}}";
-        coordinates.clear();
-        if (buf.size() >= chunk) {
-            sink(buf);
-            buf.clear();
-        }
-    };
+    sink("{\n\"type\": \"FeatureCollection\",\n\"name\": " + json(name_of(which)).dump() + ",\n\"description\": " +
+         json(std::string(sidecar_mark)).dump() + ",\n\"features\": [");
     switch (which) {
-        case MapLayer::tracks:
-            for (const auto& t : fields::track_rows(r)) {
-                coordinates += '[';
-                for (std::size_t k = 0; k < t.track.lines.size(); ++k) {
-                    const auto& piece = t.track.lines[k];
-                    coordinates += k ? ",[" : "[";
+        case MapLayer::tracks: {
+            const std::vector<fields::TrackRow> rows = fields::track_rows(r);
+            write_features(rows.size(), info.jobs, [&](std::size_t k, std::string& out) {
+                const fields::TrackRow& t = rows[k];
+                open_feature(out, fields::track_fields(), t, r, "MultiLineString");
+                out += '[';
+                for (std::size_t j = 0; j < t.track.lines.size(); ++j) {
+                    const auto& piece = t.track.lines[j];
+                    out += j ? ",[" : "[";
                     for (std::size_t i = 0; i < piece.size(); ++i) {
-                        if (i) coordinates += ',';
-                        append_position(coordinates, piece[i]);
+                        if (i) out += ',';
+                        append_position(out, piece[i]);
                     }
                     if (piece.size() == 1) {  // a piece of one fix: a line of no length
-                        coordinates += ',';
-                        append_position(coordinates, piece[0]);
+                        out += ',';
+                        append_position(out, piece[0]);
                     }
-                    coordinates += ']';
+                    out += ']';
                 }
-                coordinates += ']';
-                feature(object_of(fields::track_fields(), t, r), "MultiLineString");
-            }
+                out += ']';
+            }, sink);
             break;
-        case MapLayer::hulls:
-            for (const auto& h : fields::hull_rows(r)) {
-                coordinates += '[';
-                append_ring(coordinates, h.ring, true);
-                coordinates += ']';
-                feature(object_of(fields::hull_fields(), h, r), "Polygon");
-            }
+        }
+        case MapLayer::hulls: {
+            const std::vector<fields::HullRow> rows = fields::hull_rows(r);
+            write_features(rows.size(), info.jobs, [&](std::size_t k, std::string& out) {
+                open_feature(out, fields::hull_fields(), rows[k], r, "Polygon");
+                out += '[';
+                append_ring(out, rows[k].ring, true);
+                out += ']';
+            }, sink);
             break;
-        case MapLayer::poses:
-            for (const auto& t : r.tracks)
-                for (const auto& p : t.poses) {
-                    coordinates += '[';
-                    append_ring(coordinates, p.hull, true);
-                    coordinates += ']';
-                    feature(object_of(fields::pose_fields(), fields::PoseRow{t.summary, p}, r), "Polygon");
-                }
+        }
+        case MapLayer::poses: {
+            std::vector<std::size_t> before{0};  // poses of the tracks before track k
+            for (const auto& t : r.tracks) before.push_back(before.back() + t.poses.size());
+            write_features(before.back(), info.jobs, [&](std::size_t k, std::string& out) {
+                const std::size_t t = static_cast<std::size_t>(std::upper_bound(before.begin(), before.end(), k) - before.begin()) - 1;
+                const audit::Pose& p = r.tracks[t].poses[k - before[t]];
+                open_feature(out, fields::pose_fields(), fields::PoseRow{r.tracks[t].summary, p}, r, "Polygon");
+                out += '[';
+                append_ring(out, p.hull, true);
+                out += ']';
+            }, sink);
             break;
+        }
         case MapLayer::coast: {
             if (!info.chart) throw LibraryError("the coast layer without a chart");
-            for (const ChartFeature& c : chart_features_near(r, *info.chart)) {
-                coordinates += '[';
-                for (std::size_t k = 0; k < c.polygons.size(); ++k) {
-                    if (k) coordinates += ',';
-                    append_polygon(coordinates, c.polygons[k]);
+            const std::vector<ChartFeature> rows = chart_features_near(r, *info.chart);
+            write_features(rows.size(), info.jobs, [&](std::size_t k, std::string& out) {
+                const ChartFeature& c = rows[k];
+                open_feature(out, fields::coast_fields(), fields::coast_row(c), r, "MultiPolygon");
+                out += '[';
+                for (std::size_t j = 0; j < c.polygons.size(); ++j) {
+                    if (j) out += ',';
+                    append_polygon(out, c.polygons[j]);
                 }
-                coordinates += ']';
-                feature(object_of(fields::coast_fields(), fields::coast_row(c), r), "MultiPolygon");
-            }
+                out += ']';
+            }, sink);
             break;
         }
     }
-    buf += "\n]\n}\n";
-    sink(buf);
+    sink("\n]\n}\n");
 }
 
 /// A map layer of the report as GeoJSON at `path` (write_layer).
@@ -552,9 +668,33 @@ std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::Au
                                         std::vector<std::string>* warnings) {
     std::vector<StagedOutput> out;
     out.emplace_back(path);
-    out.back().write_streamed([&](const StagedOutput::Sink& sink) { write_report(result, info, sink); });
-    stage_style_beside(path, out, warnings);
-    stage_project_beside(path, result, info, out, warnings);
+    // The report on a thread of its own while the QGIS project's layer files are written.
+    std::exception_ptr report_failed;
+    auto write = [&] {
+        try {
+            out.front().write_streamed([&](const StagedOutput::Sink& sink) { write_report(result, info, sink); });
+        } catch (...) {
+            report_failed = std::current_exception();
+        }
+    };
+    std::thread report;
+    try {
+        report = std::thread(write);
+    } catch (const std::system_error&) {  // no thread to be had: written here
+        write();
+    }
+    std::exception_ptr beside_failed;
+    std::vector<StagedOutput> beside;
+    try {
+        stage_style_beside(path, beside, warnings);
+        stage_project_beside(path, result, info, beside, warnings);
+    } catch (...) {
+        beside_failed = std::current_exception();
+    }
+    if (report.joinable()) report.join();
+    if (report_failed) std::rethrow_exception(report_failed);
+    if (beside_failed) std::rethrow_exception(beside_failed);
+    for (StagedOutput& s : beside) out.push_back(std::move(s));
     return out;
 }
 

@@ -12,6 +12,7 @@
 #include <ogrsf_frmts.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,8 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "report/geojson_output.hpp"
@@ -357,6 +360,9 @@ TEST(ReportFields, LayerCoordinatesAreWhatPrintfWritesWithoutTrailingZeros) {
     for (int i = 0; i < 20000; ++i) values.push_back(small(rng));
     for (int i = 0; i < 20000; ++i) values.push_back(std::round(lon(rng) * 1e7) / 1e7);  // decimals of 7 digits, as read
     for (int i = 0; i < 20000; ++i) values.push_back((std::floor(lon(rng) * 1e7) + 0.5) / 1e7);  // halfway, near enough
+    for (int j = -46080; j < 46080; j += 7) values.push_back((2 * j + 1) / 256.0);  // exactly halfway: ties to even, as printf
+    for (double big : {3.99999999e8, 4e8, 4.00000001e8, 123456789.12345675, 1e9 + 0.00000005, -7e8})
+        values.push_back(big);  // either side of the fast path's limit
     std::size_t shortened = 0;
     for (const double v : values) {
         char buf[512];
@@ -375,6 +381,68 @@ TEST(ReportFields, LayerCoordinatesAreWhatPrintfWritesWithoutTrailingZeros) {
     append_coordinate(nan, NAN);
     append_coordinate(nan, INFINITY);
     EXPECT_EQ(nan, "nullnull");
+}
+
+/// The layer files' properties, written without building a JSON object, are what nlohmann's
+/// dump() writes of the object of the same fields: random poses and names (quotes, control
+/// characters, UTF-8; numbers not finite, negative zero, huge, tiny, random bits).
+TEST(ReportFields, LayerPropertiesAreWhatNlohmannWritesOfTheFields) {
+    std::mt19937_64 rng(11);
+    const std::vector<std::string> pieces{"a", "Z", "9", " ", "\"", "\\", "/", "\n", "\t", "\x01", "\x1f", "\x7f", "\xc3\xa9", "\xe2\x82\xac", "\xf0\x9f\x9a\xa2"};
+    auto text = [&] {
+        std::string t;
+        for (std::size_t k = rng() % 12; k > 0; --k) t += pieces[rng() % (k % 3 == 0 ? pieces.size() : 4)];
+        return t;
+    };
+    auto number = [&] {
+        switch (rng() % 8) {
+            case 0: return std::vector<double>{NAN, INFINITY, -INFINITY, -0.0, 0.0, 1e300, 1e-300, 5e-324}[rng() % 8];
+            case 1: { double d; const std::uint64_t bits = rng(); std::memcpy(&d, &bits, sizeof d); return d; }
+            case 2: return std::uniform_real_distribution<double>(-1e6, 1e6)(rng);
+            default: return std::uniform_real_distribution<double>(0, 400)(rng);
+        }
+    };
+    const audit::AuditResult r;
+    for (int i = 0; i < 20000; ++i) {
+        audit::TrackSummary t;
+        t.id = text();
+        t.name = text();
+        audit::Pose p;
+        p.time_s = 1.7e9 + number();
+        p.until_s = number();
+        p.speed_kn = number();
+        p.heading_deg = number();
+        p.clearance_m = number();
+        p.contact = rng() % 2;
+        p.covered = rng() % 2;
+        p.fix_index = rng() % 1000000;
+        p.fix_line = rng();
+        const fields::PoseRow row{t, p};
+        nlohmann::ordered_json expected = nlohmann::ordered_json::object();
+        for (const auto& f : fields::pose_fields())
+            std::visit([&](const auto& x) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) expected[f.name] = nullptr;
+                else expected[f.name] = x;
+            }, fields::value_of(f, row));
+        std::string got;
+        append_object(got, fields::pose_fields(), row, r);
+        ASSERT_EQ(got, expected.dump()) << i;
+        const fields::CoastRow coast{text(), "land", "", number()};
+        nlohmann::ordered_json c = nlohmann::ordered_json::object();
+        for (const auto& f : fields::coast_fields())
+            std::visit([&](const auto& x) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) c[f.name] = nullptr;
+                else c[f.name] = x;
+            }, fields::value_of(f, coast));
+        got.clear();
+        append_object(got, fields::coast_fields(), coast, r);
+        ASSERT_EQ(got, c.dump()) << i;
+    }
+    // Not UTF-8: nlohmann's error, as from its dump().
+    audit::TrackSummary bad;
+    bad.id = "MMSI \xff";
+    std::string got;
+    EXPECT_THROW(append_object(got, fields::pose_fields(), fields::PoseRow{bad, audit::Pose{}}, r), nlohmann::json::type_error);
 }
 
 TEST(ReportFields, ValuesAreRoundedAsTheTableSaysAndNotFiniteIsNull) {
