@@ -449,14 +449,24 @@ template void append_object(std::string&, const std::vector<fields::Field<fields
 namespace {
 
 /// Writes the features `feature(k, out)` appends for k in [0, n), one a line, comma-separated:
-/// in blocks on `jobs` threads, handed to `sink` in order of k (a few blocks held at once).
-template <class Feature>
-void write_features(std::size_t n, unsigned jobs, const Feature& feature, const StagedOutput::Sink& sink) {
-    // Blocks of at most 1,024 features, and some 16 for each thread (a layer of a few tracks,
-    // each a long line, is spread too).
+/// in blocks on `jobs` threads, handed to `sink` in order of k. A block holds features of
+/// some 16,000 points in all (`points(k)`: feature k's), so that the blocks held at once, four
+/// a thread, are a few megabytes whatever the features (a year's track is one feature).
+template <class Points, class Feature>
+void write_features(std::size_t n, unsigned jobs, const Points& points, const Feature& feature, const StagedOutput::Sink& sink) {
+    constexpr std::size_t block_points = 16384;
+    std::vector<std::size_t> starts;  // the first feature of each block
+    for (std::size_t k = 0, in_block = block_points; k < n; ++k) {
+        if (in_block >= block_points) {
+            starts.push_back(k);
+            in_block = 0;
+        }
+        in_block += std::max<std::size_t>(1, points(k));
+    }
+    starts.push_back(n);
+    const std::size_t blocks = starts.size() - 1;
     const unsigned threads = detail::thread_count(jobs);
-    const std::size_t block = std::clamp<std::size_t>(n / (16 * std::size_t{threads}), 1, 1024);
-    const std::size_t blocks = (n + block - 1) / block, window = 4 * std::size_t{threads};
+    const std::size_t window = 4 * std::size_t{threads};
     std::vector<std::string> text(std::min(blocks, window));
     std::vector<std::exception_ptr> failed(text.size());
     for (std::size_t b0 = 0; b0 < blocks; b0 += window) {
@@ -465,7 +475,7 @@ void write_features(std::size_t n, unsigned jobs, const Feature& feature, const 
             std::string& out = text[i];
             out.clear();
             try {
-                for (std::size_t k = (b0 + i) * block, e = std::min(n, k + block); k < e; ++k) {
+                for (std::size_t k = starts[b0 + i]; k < starts[b0 + i + 1]; ++k) {
                     out += k ? ",\n{\"type\":\"Feature\",\"properties\":" : "\n{\"type\":\"Feature\",\"properties\":";
                     feature(k, out);
                     out += "}}";
@@ -502,7 +512,12 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
     switch (which) {
         case MapLayer::tracks: {
             const std::vector<fields::TrackRow> rows = fields::track_rows(r);
-            write_features(rows.size(), info.jobs, [&](std::size_t k, std::string& out) {
+            auto points = [&](std::size_t k) {
+                std::size_t n = 0;
+                for (const auto& piece : rows[k].track.lines) n += piece.size();
+                return n;
+            };
+            write_features(rows.size(), info.jobs, points, [&](std::size_t k, std::string& out) {
                 const fields::TrackRow& t = rows[k];
                 open_feature(out, fields::track_fields(), t, r, "MultiLineString");
                 out += '[';
@@ -525,7 +540,7 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
         }
         case MapLayer::hulls: {
             const std::vector<fields::HullRow> rows = fields::hull_rows(r);
-            write_features(rows.size(), info.jobs, [&](std::size_t k, std::string& out) {
+            write_features(rows.size(), info.jobs, [&](std::size_t k) { return rows[k].ring.size(); }, [&](std::size_t k, std::string& out) {
                 open_feature(out, fields::hull_fields(), rows[k], r, "Polygon");
                 out += '[';
                 append_ring(out, rows[k].ring, true);
@@ -536,9 +551,13 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
         case MapLayer::poses: {
             std::vector<std::size_t> before{0};  // poses of the tracks before track k
             for (const auto& t : r.tracks) before.push_back(before.back() + t.poses.size());
-            write_features(before.back(), info.jobs, [&](std::size_t k, std::string& out) {
-                const std::size_t t = static_cast<std::size_t>(std::upper_bound(before.begin(), before.end(), k) - before.begin()) - 1;
-                const audit::Pose& p = r.tracks[t].poses[k - before[t]];
+            auto pose = [&](std::size_t k) -> std::pair<std::size_t, const audit::Pose*> {
+                const auto t = static_cast<std::size_t>(std::upper_bound(before.begin(), before.end(), k) - before.begin()) - 1;
+                return {t, &r.tracks[t].poses[k - before[t]]};
+            };
+            write_features(before.back(), info.jobs, [&](std::size_t k) { return pose(k).second->hull.size(); }, [&](std::size_t k, std::string& out) {
+                const auto [t, pp] = pose(k);
+                const audit::Pose& p = *pp;
                 open_feature(out, fields::pose_fields(), fields::PoseRow{r.tracks[t].summary, p}, r, "Polygon");
                 out += '[';
                 append_ring(out, p.hull, true);
@@ -549,7 +568,13 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
         case MapLayer::coast: {
             if (!info.chart) throw LibraryError("the coast layer without a chart");
             const std::vector<ChartFeature> rows = chart_features_near(r, *info.chart);
-            write_features(rows.size(), info.jobs, [&](std::size_t k, std::string& out) {
+            auto points = [&](std::size_t k) {
+                std::size_t n = 0;
+                for (const auto& polygon : rows[k].polygons)
+                    for (const auto& ring : polygon) n += ring.size();
+                return n;
+            };
+            write_features(rows.size(), info.jobs, points, [&](std::size_t k, std::string& out) {
                 const ChartFeature& c = rows[k];
                 open_feature(out, fields::coast_fields(), fields::coast_row(c), r, "MultiPolygon");
                 out += '[';

@@ -101,6 +101,72 @@ long long feature_count(const fs::path& path) {
     return ds->GetLayer(0)->GetFeatureCount();
 }
 
+/// Every layer file beside the GeoJSON report dir()/STEM.geojson holds the features of the
+/// GeoPackage report `g`'s layer (written there by GDAL), field by field, and its geometries
+/// to 7 decimals (printf's rounding), each of the layer's type, RFC 7946's way round: shells
+/// counter-clockwise, holes clockwise.
+void expect_layer_files_hold_the_geopackages(GDALDataset& g, const std::string& stem) {
+    for (const char* layer : {"hulls", "poses", "tracks", "coast"}) {
+        SCOPED_TRACE(layer);
+        GDALDatasetUniquePtr j(GDALDataset::Open((dir() / (stem + "." + std::string(layer) + ".geojson")).c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+        ASSERT_TRUE(j);
+        OGRLayer* a = g.GetLayerByName(layer);
+        OGRLayer* b = j->GetLayer(0);
+        ASSERT_EQ(a->GetFeatureCount(), b->GetFeatureCount());
+        const OGRwkbGeometryType type = a->GetGeomType();
+        a->ResetReading();
+        b->ResetReading();
+        for (;;) {
+            OGRFeatureUniquePtr fa(a->GetNextFeature()), fb(b->GetNextFeature());
+            if (!fa || !fb) {
+                EXPECT_EQ(!fa, !fb);
+                break;
+            }
+            ASSERT_EQ(fa->GetFieldCount(), fb->GetFieldCount());
+            for (int k = 0; k < fa->GetFieldCount(); ++k)
+                EXPECT_STREQ(fa->GetFieldAsString(k), fb->GetFieldAsString(k)) << fa->GetFieldDefnRef(k)->GetNameRef();
+            const OGRGeometry* ga = fa->GetGeometryRef();
+            const OGRGeometry* gb = fb->GetGeometryRef();
+            ASSERT_TRUE(ga && gb);
+            EXPECT_EQ(wkbFlatten(gb->getGeometryType()), wkbFlatten(type));
+            // Rings as lists of points, each the GeoPackage's rounded, turned as RFC 7946 wants.
+            auto rings_of = [](const OGRGeometry* geom) {
+                std::vector<std::vector<std::pair<std::string, std::string>>> out;
+                auto add = [&](const OGRLineString& ls, int turn) {  // turn: +1 ccw, -1 cw, 0 as it is
+                    std::vector<std::pair<std::string, std::string>> pts;
+                    double area2 = 0;
+                    for (int i = 0; i + 1 < ls.getNumPoints(); ++i) area2 += ls.getX(i) * ls.getY(i + 1) - ls.getX(i + 1) * ls.getY(i);
+                    char x[64], y[64];
+                    for (int i = 0; i < ls.getNumPoints(); ++i) {
+                        std::snprintf(x, sizeof x, "%.7f", ls.getX(i));  // the GeoPackage's rounded; the file's as it is
+                        std::snprintf(y, sizeof y, "%.7f", ls.getY(i));
+                        pts.push_back({x, y});
+                    }
+                    if (turn != 0 && area2 != 0 && (area2 > 0) != (turn > 0)) std::reverse(pts.begin(), pts.end());
+                    out.push_back(std::move(pts));
+                };
+                auto polygon = [&](const OGRPolygon& p) {
+                    for (int k = 0; k <= p.getNumInteriorRings(); ++k) add(k == 0 ? *p.getExteriorRing() : *p.getInteriorRing(k - 1), k == 0 ? 1 : -1);
+                };
+                switch (wkbFlatten(geom->getGeometryType())) {
+                    case wkbPolygon: polygon(*geom->toPolygon()); break;
+                    case wkbMultiPolygon: for (const OGRPolygon* p : *geom->toMultiPolygon()) polygon(*p); break;
+                    case wkbLineString: add(*geom->toLineString(), 0); break;
+                    case wkbMultiLineString: for (const OGRLineString* l : *geom->toMultiLineString()) add(*l, 0); break;
+                    default: ADD_FAILURE() << "geometry type " << geom->getGeometryName();
+                }
+                return out;
+            };
+            EXPECT_EQ(rings_of(ga), rings_of(gb));
+            if (wkbFlatten(gb->getGeometryType()) == wkbPolygon) {  // as written: the shell counter-clockwise
+                const OGRLinearRing* shell = gb->toPolygon()->getExteriorRing();
+                EXPECT_FALSE(shell->isClockwise());
+            }
+        }
+    }
+
+}
+
 TEST(GeojsonProject, TheQgzHoldsTheQgsWhoseLayersAreTheFilesBesideTheReport) {
     const fs::path report = dir() / "run.geojson";
     const auto r = shoal(check_args(report));
@@ -164,72 +230,47 @@ TEST(GeojsonProject, TheQgzHoldsTheQgsWhoseLayersAreTheFilesBesideTheReport) {
     ASSERT_TRUE(g);
     EXPECT_EQ(g->GetLayerByName("poses")->GetFeatureCount(), feature_count(dir() / "run.poses.geojson"));
     EXPECT_EQ(g->GetLayerByName("coast")->GetFeatureCount(), feature_count(dir() / "run.coast.geojson"));
-    // Every layer file holds the GeoPackage layer's features (written there by GDAL), field by
-    // field, and its geometries to 7 decimals (printf's rounding), each of the layer's type,
-    // RFC 7946's way round: shells counter-clockwise, holes clockwise.
-    for (const char* layer : {"hulls", "poses", "tracks", "coast"}) {
-        SCOPED_TRACE(layer);
-        GDALDatasetUniquePtr j(GDALDataset::Open((dir() / ("run." + std::string(layer) + ".geojson")).c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-        ASSERT_TRUE(j);
-        OGRLayer* a = g->GetLayerByName(layer);
-        OGRLayer* b = j->GetLayer(0);
-        ASSERT_EQ(a->GetFeatureCount(), b->GetFeatureCount());
-        const OGRwkbGeometryType type = a->GetGeomType();
-        a->ResetReading();
-        b->ResetReading();
-        for (;;) {
-            OGRFeatureUniquePtr fa(a->GetNextFeature()), fb(b->GetNextFeature());
-            if (!fa || !fb) {
-                EXPECT_EQ(!fa, !fb);
-                break;
-            }
-            ASSERT_EQ(fa->GetFieldCount(), fb->GetFieldCount());
-            for (int k = 0; k < fa->GetFieldCount(); ++k)
-                EXPECT_STREQ(fa->GetFieldAsString(k), fb->GetFieldAsString(k)) << fa->GetFieldDefnRef(k)->GetNameRef();
-            const OGRGeometry* ga = fa->GetGeometryRef();
-            const OGRGeometry* gb = fb->GetGeometryRef();
-            ASSERT_TRUE(ga && gb);
-            EXPECT_EQ(wkbFlatten(gb->getGeometryType()), wkbFlatten(type));
-            // Rings as lists of points, each the GeoPackage's rounded, turned as RFC 7946 wants.
-            auto rings_of = [](const OGRGeometry* geom) {
-                std::vector<std::vector<std::pair<std::string, std::string>>> out;
-                auto add = [&](const OGRLineString& ls, int turn) {  // turn: +1 ccw, -1 cw, 0 as it is
-                    std::vector<std::pair<std::string, std::string>> pts;
-                    double area2 = 0;
-                    for (int i = 0; i + 1 < ls.getNumPoints(); ++i) area2 += ls.getX(i) * ls.getY(i + 1) - ls.getX(i + 1) * ls.getY(i);
-                    char x[64], y[64];
-                    for (int i = 0; i < ls.getNumPoints(); ++i) {
-                        std::snprintf(x, sizeof x, "%.7f", ls.getX(i));  // the GeoPackage's rounded; the file's as it is
-                        std::snprintf(y, sizeof y, "%.7f", ls.getY(i));
-                        pts.push_back({x, y});
-                    }
-                    if (turn != 0 && area2 != 0 && (area2 > 0) != (turn > 0)) std::reverse(pts.begin(), pts.end());
-                    out.push_back(std::move(pts));
-                };
-                auto polygon = [&](const OGRPolygon& p) {
-                    for (int k = 0; k <= p.getNumInteriorRings(); ++k) add(k == 0 ? *p.getExteriorRing() : *p.getInteriorRing(k - 1), k == 0 ? 1 : -1);
-                };
-                switch (wkbFlatten(geom->getGeometryType())) {
-                    case wkbPolygon: polygon(*geom->toPolygon()); break;
-                    case wkbMultiPolygon: for (const OGRPolygon* p : *geom->toMultiPolygon()) polygon(*p); break;
-                    case wkbLineString: add(*geom->toLineString(), 0); break;
-                    case wkbMultiLineString: for (const OGRLineString* l : *geom->toMultiLineString()) add(*l, 0); break;
-                    default: ADD_FAILURE() << "geometry type " << geom->getGeometryName();
-                }
-                return out;
-            };
-            EXPECT_EQ(rings_of(ga), rings_of(gb));
-            if (wkbFlatten(gb->getGeometryType()) == wkbPolygon) {  // as written: the shell counter-clockwise
-                const OGRLinearRing* shell = gb->toPolygon()->getExteriorRing();
-                EXPECT_FALSE(shell->isClockwise());
-            }
-        }
-    }
+    expect_layer_files_hold_the_geopackages(*g, "run");
 
     // The same run, the same bytes (GDAL's zip stamps no date).
     const std::string before = slurp(qgz);
     ASSERT_EQ(shoal(check_args(report)).status, 1);
     EXPECT_EQ(slurp(qgz), before);
+}
+
+/// Layer files of many features are written in blocks on threads: any number of threads
+/// writes the same bytes, and they still hold the GeoPackage's features in its order.
+TEST(GeojsonProject, LayerFilesOfManyBlocksAreTheSameOnAnyNumberOfThreads) {
+    const fs::path csv = dir() / "many.csv";
+    {
+        std::ofstream f(csv);
+        f << "mmsi,timestamp,lat,lon,sog,cog,heading\n";
+        char line[128];
+        for (int v = 0; v < 6; ++v)  // eastwards along the Solent, some across the Isle of Wight
+            for (int i = 0; i < 1500; ++i) {
+                std::snprintf(line, sizeof line, "%d,%.0f,%.5f,%.5f,9,90,90\n", 311000000 + v, 1714557600.0 + 10.0 * i, 50.62 + 0.03 * v,
+                              -1.6 + 0.0004 * i);
+                f << line;
+            }
+    }
+    std::vector<std::string> texts;
+    for (const char* jobs : {"1", "3"}) {
+        const std::string stem = std::string("many") + jobs;
+        const std::string args = "check --coast '" + std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson' --dims 50,10,5,5 --no-progress '" +
+                                 csv.string() + "' --poses-interval 0 --jobs " + jobs + " -o '";
+        const auto r = shoal(args + (dir() / (stem + ".geojson")).string() + "'");
+        ASSERT_LE(r.status, 1) << r.err;
+        std::string text;
+        for (const char* layer : {"poses", "tracks", "hulls", "coast"}) text += slurp(dir() / (stem + "." + layer + ".geojson"));
+        texts.push_back(text);
+        ASSERT_LE(shoal(args + (dir() / (stem + ".gpkg")).string() + "'").status, 1);
+        GDALDatasetUniquePtr g(GDALDataset::Open((dir() / (stem + ".gpkg")).c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+        ASSERT_TRUE(g);
+        EXPECT_EQ(g->GetLayerByName("poses")->GetFeatureCount(), 9000) << "a pose at every fix";
+        expect_layer_files_hold_the_geopackages(*g, stem);
+    }
+    EXPECT_GT(texts[0].size(), std::size_t{4} << 20) << "a few megabytes: many blocks of 16,384 points";
+    EXPECT_TRUE(texts[0] == texts[1]) << "one thread and three write the same bytes";
 }
 
 TEST(GeojsonProject, AFileShoalDidNotWriteIsLeftAloneAndNoProjectIsWritten) {
