@@ -549,12 +549,14 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         if (options.want_penetration) {
             double depth = 0;
             // Hull points on land: how far inside. A point nearer than d to a point found d
-            // deep lies on land too (no winding test) and at most d + their distance deep: it
-            // is not searched when that cannot raise the depth, else searched within it (the
-            // bounds a hair loose: the same depth comes out as from a search of each point).
+            // deep lies on land too (no winding test), and is at most as deep as it is far
+            // from that point's nearest coast point: it is not searched when that cannot raise
+            // the depth, else searched within it (the bounds a hair loose: the same depth
+            // comes out as from a search of each point).
             struct Known {
                 XY p;
                 double d;
+                XY coast;  ///< the nearest coast point of p
             };
             std::array<Known, 8> known;
             std::size_t n_known = 0, next_known = 0;
@@ -567,18 +569,19 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
                 for (std::size_t k = 0; k < n_known; ++k) {
                     const double gap = std::sqrt(geo::norm2(p - known[k].p)) * (1 + 1e-9) + 1e-9;
                     on_land = on_land || gap < known[k].d * (1 - 1e-9);
-                    most = std::min(most, (known[k].d + gap) * (1 + 1e-9) + 1e-9);
+                    most = std::min(most, std::sqrt(geo::norm2(p - known[k].coast)) * (1 + 1e-9) + 1e-9);
                 }
                 if (most <= depth) continue;
                 if (!on_land && m_grid.winding(p) <= 0) continue;
-                double d = nearest_coast(p, most, nullptr);
-                if (std::isinf(d)) d = nearest_coast(p, INFINITY, nullptr);
+                XY coast{INFINITY, INFINITY};  // none found: no bound from this point
+                double d = nearest_coast(p, most, &coast);
+                if (std::isinf(d)) d = nearest_coast(p, INFINITY, &coast);
                 if (d > depth) {
                     depth = d;
                     s.deepest = i;
                     s.on_land = i;
                 }
-                known[next_known++ % known.size()] = {p, d};
+                known[next_known++ % known.size()] = {p, d, coast};
                 n_known = std::min(n_known + 1, known.size());
             }
             const std::size_t n = h.n;
