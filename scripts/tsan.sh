@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The parallel audit under ThreadSanitizer (GCC, -fsanitize=thread), in build-tsan/:
 #   1. `shoal check --jobs 2` on the example's 96 AIS vessels, plain and in exercise mode
-#      (--encounters), GeoJSON and GeoPackage, with the grid built (and cached) by the run;
+#      (--encounters), GeoJSON and GeoPackage, with the grid built (and cached) by the run; the
+#      GeoJSON run's layer files (a pose at every fix) compared with those of --jobs 1;
 #   2. the tests that run the audit on several threads (audit_test, cli_test, bad_input_test;
 #      cli_test also runs `shoal probe --jobs 2` and 3), those that read a CSV file on two
 #      threads (track_test), and poses placed in blocks on threads (check_test).
@@ -28,13 +29,15 @@ run() {  # exit status 1 (groundings found) is a result, not a failure
 }
 echo "== shoal check --jobs 2 under ThreadSanitizer =="
 run check --coast "$ex/data/gof_helsinki_land.geojson" --ship "$ex/ship.json" "$ex/data/aava_n2k_fixes.csv" \
-  -o "$out/traffic.geojson" --jobs 2 --margin 50
+  -o "$out/traffic.geojson" --jobs 2 --margin 50 --poses-interval 0
 run check --coast "$ex/data/gof_helsinki_land.geojson" --ship "$ex/ship.json" "$ex/data/aava_n2k_fixes.csv" \
   "$ex/data/plaka_first_hour.nmea" -o "$out/traffic.gpkg" --jobs 2 --encounters --plot "$out/traffic.svg"
 run check --coast "$ex/data/gof_helsinki_land.geojson" --ship "$ex/ship.json" "$ex/data/aava_n2k_fixes.csv" \
-  -o "$out/traffic-1.geojson" --jobs 1 --margin 50
+  -o "$out/traffic-1.geojson" --jobs 1 --margin 50 --poses-interval 0
 cmp "$out/traffic.geojson" "$out/traffic-1.geojson"
-for layer in hulls poses tracks coast; do  # the QGIS project's layer files, written on two threads
+# The QGIS project's layer files, written in blocks on two threads while the report is written
+# on a third (a pose at every fix: many blocks).
+for layer in hulls poses tracks coast; do
   cmp "$out/traffic.$layer.geojson" "$out/traffic-1.$layer.geojson"
 done
 echo "reports of --jobs 1 and --jobs 2 (and their layer files) are byte-identical"

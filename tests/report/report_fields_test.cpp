@@ -403,6 +403,21 @@ TEST(ReportFields, LayerPropertiesAreWhatNlohmannWritesOfTheFields) {
         }
     };
     const audit::AuditResult r;
+    // The oracle: the row's fields in a JSON object, dumped by nlohmann.
+    auto nlohmann_dump = [&](const auto& table, const auto& row) {
+        nlohmann::ordered_json o = nlohmann::ordered_json::object();
+        for (const auto& f : table)
+            std::visit([&](const auto& x) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) o[f.name] = nullptr;
+                else o[f.name] = x;
+            }, fields::value_of(f, row));
+        return o.dump();
+    };
+    auto written = [&](const auto& table, const auto& row) {
+        std::string out;
+        append_object(out, table, row, r);
+        return out;
+    };
     for (int i = 0; i < 20000; ++i) {
         audit::TrackSummary t;
         t.id = text();
@@ -418,25 +433,9 @@ TEST(ReportFields, LayerPropertiesAreWhatNlohmannWritesOfTheFields) {
         p.fix_index = rng() % 1000000;
         p.fix_line = rng();
         const fields::PoseRow row{t, p};
-        nlohmann::ordered_json expected = nlohmann::ordered_json::object();
-        for (const auto& f : fields::pose_fields())
-            std::visit([&](const auto& x) {
-                if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) expected[f.name] = nullptr;
-                else expected[f.name] = x;
-            }, fields::value_of(f, row));
-        std::string got;
-        append_object(got, fields::pose_fields(), row, r);
-        ASSERT_EQ(got, expected.dump()) << i;
+        ASSERT_EQ(written(fields::pose_fields(), row), nlohmann_dump(fields::pose_fields(), row)) << i;
         const fields::CoastRow coast{text(), "land", "", number()};
-        nlohmann::ordered_json c = nlohmann::ordered_json::object();
-        for (const auto& f : fields::coast_fields())
-            std::visit([&](const auto& x) {
-                if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) c[f.name] = nullptr;
-                else c[f.name] = x;
-            }, fields::value_of(f, coast));
-        got.clear();
-        append_object(got, fields::coast_fields(), coast, r);
-        ASSERT_EQ(got, c.dump()) << i;
+        ASSERT_EQ(written(fields::coast_fields(), coast), nlohmann_dump(fields::coast_fields(), coast)) << i;
     }
     // Not UTF-8: nlohmann's error, as from its dump().
     audit::TrackSummary bad;
