@@ -78,7 +78,11 @@ public:
     /// `where`: the contact point matters (CheckOptions::want_contact_point): only at a sample
     /// that may be an event's first contact, i.e. unless the sample before was in contact.
     check::Contact check(std::size_t i, double f, bool penetration, bool where = true) const {
-        return checker_at(i, f).check(m_motion.pose(i, f), {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false,
+        return check(i, f, m_motion.pose(i, f), penetration, where);
+    }
+    /// The same, `pose` being m_motion.pose(i, f) (placed once by the caller).
+    check::Contact check(std::size_t i, double f, const check::LocalPose& pose, bool penetration, bool where) const {
+        return checker_at(i, f).check(pose, {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false,
                                                              .want_contact_point = where});
     }
 
@@ -90,10 +94,9 @@ public:
     /// `clearance_m`, under the margin and over the least clearance of the pass so far. Where
     /// the contact is, only an event's first sample reports (always checked); the clearance of
     /// such a clear pose no one reads (it is not the pass's nearest, and no clearance is
-    /// watched), only that it is near.
-    check::Contact carried(std::size_t i, double f, double clearance_m) const {
+    /// watched), only that it is near. `pose` is m_motion.pose(i, f).
+    check::Contact carried(std::size_t i, double f, const check::LocalPose& pose, double clearance_m) const {
         check::Contact c;
-        const check::LocalPose pose = m_motion.pose(i, f);
         c.collision = clearance_m == 0;
         c.clearance_m = clearance_m;
         c.covered = checker_at(i, f).covered(pose);
@@ -539,11 +542,11 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 const PoseChecker& by = events.checker_at(s.i, s.f);
                 const check::LocalPose pose = motion.pose(s.i, s.f);
                 if (still_in_contact(by, pose)) {
-                    s.contact = events.carried(s.i, s.f, 0);
+                    s.contact = events.carried(s.i, s.f, pose, 0);
                 } else if (const double near = known_near(by, pose); !std::isnan(near)) {
-                    s.contact = events.carried(s.i, s.f, near);
+                    s.contact = events.carried(s.i, s.f, pose, near);
                 } else {
-                    s.contact = events.check(s.i, s.f, false, !events.in_contact());
+                    s.contact = events.check(s.i, s.f, pose, false, !events.in_contact());
                     checked(s.contact, by, pose);
                 }
                 note(s.contact);
@@ -558,9 +561,9 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         const PoseChecker& at_fix = events.checker_at(i, 0.0);
         const check::LocalPose pose = motion.pose(i, 0.0);
         if (continues && still_in_contact(at_fix, pose) && contact_depth_m + slack(apart(contact_pose, pose)) <= events.contact_depth()) {
-            s.contact = events.carried(i, 0.0, 0);
+            s.contact = events.carried(i, 0.0, pose, 0);
         } else {
-            s.contact = events.check(i, 0.0, true, !continues || !events.in_contact());
+            s.contact = events.check(i, 0.0, pose, true, !continues || !events.in_contact());
             contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
             contact_checker = &at_fix;
             contact_pose = pose;
