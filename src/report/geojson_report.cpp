@@ -598,9 +598,13 @@ StagedOutput stage_layer_file(const std::string& path, MapLayer which, const aud
     return out;
 }
 
-/// The layer files `layers`, staged in that order: each written by one thread of its own (at
-/// most RunInfo::jobs at once; they share nothing but the result they read). The first failure is thrown
-/// once every file is done (the others' temporary files are removed with them).
+/// The layer files `layers`, staged in that order: each file by a thread of its own (at most
+/// RunInfo::jobs files at once; they share nothing but the result they read), and each file's
+/// blocks of features by RunInfo::jobs threads (write_features). More threads than cores, but
+/// one file's thread waits on its disk (the fsync of a file of hundreds of megabytes) while
+/// the others write (on 2 cores, the near-coast set's report and layers took 0.95 s so, 1.32 s
+/// with the files one after another). The first failure is thrown once every file is done (the others'
+/// temporary files are removed with them).
 std::vector<StagedOutput> stage_layer_files(const std::vector<const ProjectFiles::Layer*>& layers, const audit::AuditResult& r,
                                             const RunInfo& info) {
     const std::size_t n = layers.size();
