@@ -603,8 +603,8 @@ StagedOutput stage_layer_file(const std::string& path, MapLayer which, const aud
 /// blocks of features by RunInfo::jobs threads (write_features). More threads than cores, but
 /// one file's thread waits on its disk (the fsync of a file of hundreds of megabytes) while
 /// the others write (on 2 cores, the near-coast set's report and layers took 0.95 s so, 1.32 s
-/// with the files one after another). The first failure is thrown once every file is done (the others'
-/// temporary files are removed with them).
+/// with the files one after another). The first failure is thrown once every file is done
+/// (the others' temporary files are removed with them).
 std::vector<StagedOutput> stage_layer_files(const std::vector<const ProjectFiles::Layer*>& layers, const audit::AuditResult& r,
                                             const RunInfo& info) {
     const std::size_t n = layers.size();
@@ -697,7 +697,8 @@ std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::Au
                                         std::vector<std::string>* warnings) {
     std::vector<StagedOutput> out;
     out.emplace_back(path);
-    // The report on a thread of its own while the QGIS project's layer files are written.
+    // The report on a thread of its own while the QGIS project's layer files are written
+    // (not with RunInfo::jobs 1: one thread was asked for).
     std::exception_ptr report_failed;
     auto write = [&] {
         try {
@@ -708,7 +709,8 @@ std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::Au
     };
     std::thread report;
     try {
-        report = std::thread(write);
+        if (info.jobs == 1) write();
+        else report = std::thread(write);
     } catch (const std::system_error&) {  // no thread to be had: written here
         write();
     }

@@ -50,8 +50,9 @@ struct RunInfo {
     /// GeoPackage's stored project; beside a GeoJSON report REPORT.qgz and the layer files it
     /// opens). false (--no-project): the events, tracks and hulls only.
     bool project = true;
-    /// Threads that write the layer files of a GeoJSON report's QGIS project, each file in one
-    /// (0: all cores; the CLI passes --jobs).
+    /// Threads that write a GeoJSON report's QGIS project layer files, in blocks of features,
+    /// the report itself on one more meanwhile (1: one thread at work at a time, one file after
+    /// another; 0: all cores; the CLI passes --jobs).
     unsigned jobs = 0;
 };
 
