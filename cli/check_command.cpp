@@ -173,6 +173,8 @@ public:
         if (!m_debrief.empty()) report::check_debrief_folder(m_debrief);
         if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
         m_audit.sweep.pose_interval_s = m_poses_interval_s;
+        // The poses go to the QGIS project's poses layer, the picture and the debrief only.
+        m_audit.sweep.keep_poses = !m_no_project || !m_plot.empty() || !m_debrief.empty();
         m_audit.sweep.pose_max_interval_s = std::max(audit::SweepOptions{}.pose_max_interval_s, m_poses_interval_s);
         audit::check_step(m_audit.sweep.step_m);
         // Exercises and roles (issue 18): either option turns exercise mode on.

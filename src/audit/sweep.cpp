@@ -574,7 +574,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         note(s.contact);
         events.add(s);
         events.watch(s, !have_prev);
-        {
+        if (opt.keep_poses) {
             const int state = state_of(s.contact);
             const bool first = out.poses.size() == piece_poses;
             bool take = first || state != last_state || !(opt.pose_interval_s > 0);

@@ -389,6 +389,15 @@ TEST(Sweep, CarriedContactsAreTheFullChecks) {
         const TrackResult carried = sweep_track(t, f, fast, carry);
         saved += full_calls - fast.calls;
         expect_same_results(carried, every_pose, t.id);
+        // No poses kept (check --no-project): none, and all else the same.
+        SweepOptions no_poses = carry;
+        no_poses.keep_poses = false;
+        TrackResult lean = sweep_track(t, f, fast, no_poses);
+        EXPECT_TRUE(lean.poses.empty()) << t.id;
+        EXPECT_FALSE(carried.poses.empty()) << t.id;
+        EXPECT_EQ(lean.summary.lines, carried.summary.lines) << t.id;
+        lean.poses = carried.poses;
+        expect_same_results(lean, carried, t.id + " without poses");
         contacts += carried.summary.groundings + carried.summary.alongside + carried.summary.contacts_at_start;
         passes += carried.summary.close_passes;
         if (k % 4 != 1) continue;

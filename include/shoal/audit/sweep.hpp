@@ -74,6 +74,10 @@ struct SweepOptions {
     double pose_interval_s = 120.0;
     double pose_distance_m = 300.0;
     double pose_max_interval_s = 900.0;
+    /// Keep those poses at all (TrackResult::poses). False: none kept, their outlines never
+    /// projected back to lon/lat (a run whose report has no poses layer, no picture and no
+    /// debrief: `check --no-project`); everything else the same.
+    bool keep_poses = true;
 };
 
 /// What an event is, decided at the first contact of each interval from what was observed.
