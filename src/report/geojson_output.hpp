@@ -19,9 +19,9 @@ std::vector<StagedOutput> stage_geojson_text(const std::string& path, std::strin
 /// finite. The coordinates of the layer files beside a report.
 void append_coordinate(std::string& out, double v);
 
-/// Appends a row of `table` as a JSON object, the same bytes as nlohmann's dump() of the object
-/// of its fields (present in `r`, in the table's order) would be: how the layer files write
-/// their properties, without building the object. Instantiated for the rows of the layer files
+/// Appends a row of `table` as a JSON object: nlohmann's dump() of the object of its fields
+/// (present in `r`, in the table's order), one object a thread reused from row to row. How the
+/// layer files write their properties. Instantiated for the rows of the layer files
 /// (fields::TrackRow, HullRow, PoseRow, CoastRow).
 template <class Row>
 void append_object(std::string& out, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r);

@@ -390,56 +390,19 @@ void append_polygon(std::string& out, const std::vector<std::vector<geo::LonLat>
     out += ']';
 }
 
-/// Appends `s` as nlohmann's dump() writes a JSON string: printable ASCII here, anything
-/// else (escapes, UTF-8 and its checks) by nlohmann itself.
-void append_string(std::string& out, const std::string& s) {
-    for (const char c : s)
-        if (c < 0x20 || c > 0x7e || c == '"' || c == '\\') {
-            out += json(s).dump();
-            return;
-        }
-    out += '"';
-    out += s;
-    out += '"';
-}
-
-/// Appends to_json(v).dump(): numbers by nlohmann's own shortest form (nlohmann::detail::to_chars,
-/// what its serializer calls), so that the text is the same to the byte.
-void append_value(std::string& out, const fields::Value& v) {
-    char buf[64];
-    std::visit([&](const auto& x) {
-        using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, std::monostate>) {
-            out += "null";
-        } else if constexpr (std::is_same_v<T, std::string>) {
-            append_string(out, x);
-        } else if constexpr (std::is_same_v<T, bool>) {
-            out += x ? "true" : "false";
-        } else if constexpr (std::is_same_v<T, std::int64_t>) {
-            out.append(buf, static_cast<std::size_t>(std::to_chars(buf, buf + sizeof buf, x).ptr - buf));
-        } else if (!std::isfinite(x)) {
-            out += "null";
-        } else {
-            out.append(buf, static_cast<std::size_t>(nlohmann::detail::to_chars(buf, buf + sizeof buf, x) - buf));
-        }
-    }, v);
-}
-
 }  // namespace
 
 template <class Row>
 void append_object(std::string& out, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r) {
-    out += '{';
-    bool first = true;
+    // object_of's object, one a thread reused (its entries' room kept): built anew for every
+    // row, the near-coast set's report and layer files took 0.87-1.01 s to write, 0.71-0.83 s so.
+    thread_local json o = json::object();
+    o.clear();
     for (const auto& f : table) {
         if (f.present && !f.present(r)) continue;
-        if (!first) out += ',';
-        first = false;
-        append_string(out, f.name);
-        out += ':';
-        append_value(out, fields::value_of(f, row));
+        o[f.name] = to_json(fields::value_of(f, row));
     }
-    out += '}';
+    out += o.dump();
 }
 template void append_object(std::string&, const std::vector<fields::Field<fields::TrackRow>>&, const fields::TrackRow&, const audit::AuditResult&);
 template void append_object(std::string&, const std::vector<fields::Field<fields::HullRow>>&, const fields::HullRow&, const audit::AuditResult&);

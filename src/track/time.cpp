@@ -242,8 +242,8 @@ std::string format_iso8601(double t, int decimals) {
     const std::int64_t m = mp < 10 ? mp + 3 : mp - 9;
     const std::int64_t y = yoe + era * 400 + (m <= 2 ? 1 : 0);
 
-    // Digits written here (snprintf's "%04lld-%02lld-..." costs a microsecond a time, and the
-    // report's layers write two times a pose); a year outside 0-9999 as snprintf writes it.
+    // Digits written here (snprintf's "%04lld-%02lld-..." cost most of a microsecond a time,
+    // and the report's layers write two times a pose); a year outside 0-9999 as snprintf does.
     char buf[64];
     char* p = buf;
     auto digits = [&p](std::int64_t v, int width) {
