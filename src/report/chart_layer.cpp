@@ -91,12 +91,6 @@ void add_tiles_near(std::set<ChartTile>& out, const std::vector<geo::LonLat>& li
     }
 }
 
-std::set<ChartTile> tiles_near(const std::vector<std::vector<geo::LonLat>>& lines, double margin_m) {
-    std::set<ChartTile> out;
-    for (const auto& line : lines) add_tiles_near(out, line, margin_m);
-    return out;
-}
-
 std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles) {
     const geo::GeosContext ctx;
     auto own = [&](GEOSGeometry* g, const char* what) { return geo::own(ctx, g, what); };

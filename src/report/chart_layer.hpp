@@ -42,10 +42,9 @@ std::optional<ChartTile> parse_tile_key(const std::string& key);
 /// The tile holding lon/lat `p`.
 ChartTile tile_of(geo::LonLat p);
 
-/// Adds to `out` the tiles within `margin_m` of the polyline `line` (every point and the segments between them).
+/// Adds to `out` the tiles within `margin_m` of the polyline `line` (every point and the
+/// segments between them).
 void add_tiles_near(std::set<ChartTile>& out, const std::vector<geo::LonLat>& line, double margin_m = chart_margin_m);
-/// The tiles within `margin_m` of the polylines `lines` (add_tiles_near of each).
-std::set<ChartTile> tiles_near(const std::vector<std::vector<geo::LonLat>>& lines, double margin_m = chart_margin_m);
 
 struct ChartFeature {
     ChartTile tile;

@@ -135,14 +135,19 @@ TEST(ChartLayer, TilesEqualGeosIntersectionOfTheChartWithEachTile) {
 }
 
 TEST(ChartLayer, TilesNearATrackFollowItsSegmentsAndTheMargin) {
+    auto tiles_near = [](const std::vector<geo::LonLat>& line, double margin_m) {
+        std::set<ChartTile> out;
+        add_tiles_near(out, line, margin_m);
+        return out;
+    };
     // A segment 0.5 degrees long along a parallel: every tile it crosses, and the rows within 2 km.
-    const std::set<ChartTile> t = tiles_near({{{10.01, 56.025}, {10.51, 56.025}}}, 2000.0);
+    const std::set<ChartTile> t = tiles_near({{10.01, 56.025}, {10.51, 56.025}}, 2000.0);
     for (double lon = 10.01; lon < 10.51; lon += 0.01) EXPECT_TRUE(t.count(tile_of({lon, 56.025}))) << lon;
     // 2 km is 0.018 degrees of latitude: 56.025 +- 0.018 stays within row 56.00-56.05.
     for (const ChartTile& x : t) EXPECT_EQ(x.row, tile_of({10.0, 56.025}).row);
     EXPECT_EQ(tile_key(tile_of({10.01, 56.025})), "R2920C3800");
     // Near a tile edge, the margin reaches the next row.
-    const std::set<ChartTile> u = tiles_near({{{10.02, 56.049}}}, 2000.0);
+    const std::set<ChartTile> u = tiles_near({{10.02, 56.049}}, 2000.0);
     EXPECT_TRUE(u.count(tile_of({10.02, 56.06})));
     EXPECT_TRUE(u.count(tile_of({10.02, 56.04})));
 }
