@@ -634,6 +634,13 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
 }
 
 bool Detector::covers(const LocalPose& pose) const noexcept {
+    // Most poses lie well inside: then so does the square around the position that holds the
+    // hull at any heading (its radius stretched by the placement, at most by the matrix's
+    // Frobenius norm; grown by far more than rounding), and the hull's box is not needed.
+    const geo::Box ext = m_grid.extent();
+    const double r = m_hull.radius() * std::sqrt(pose.ship_to_local.squaredNorm()) * (1 + 1e-9) + 1e-6;
+    const XY p = pose.position;
+    if (p.x - r >= ext.minx && p.y - r >= ext.miny && p.x + r <= ext.maxx && p.y + r <= ext.maxy) return true;
     const std::vector<XY>& c = m_hull.contour();
     return inside_extent(local_hull_box(c.data(), c.size(), pose.ship_to_local, pose.position), m_grid.extent());
 }

@@ -356,6 +356,39 @@ std::vector<LocalPose> runs_into_land_and_random(const Solent& solent, std::uint
     return poses;
 }
 
+/// Detector::covers (what the sweep asks of a pose it does not check) is whether every point of
+/// the hull's outline lies inside the grid's extent, and what check() says: on poses inside,
+/// outside and across the Solent grid's edges and corners, at random headings, as placed.
+TEST(DetectorCovers, WhetherTheOutlineLiesInsideTheExtent) {
+    const Solent solent;
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 35, 14, 14});
+    const Detector det(solent.grid, hull);
+    const geo::Box ext = solent.grid.extent();
+    std::mt19937_64 rng(15);
+    std::uniform_real_distribution<double> unit(0, 1);
+    int inside = 0, outside = 0;
+    for (int k = 0; k < 20000; ++k) {
+        // Near an edge or a corner (within the hull's radius and a little more) half the time.
+        XY p{ext.minx + (ext.maxx - ext.minx) * unit(rng), ext.miny + (ext.maxy - ext.miny) * unit(rng)};
+        const double off = (unit(rng) - 0.5) * 2.4 * hull.radius();
+        switch (k % 4) {
+            case 0: p.x = (k % 8 ? ext.minx : ext.maxx) + off; break;
+            case 1: p.y = (k % 8 != 1 ? ext.miny : ext.maxy) + off; break;
+            case 2: p = {(k % 16 < 8 ? ext.minx : ext.maxx) + off, (k % 16 < 8 ? ext.miny : ext.maxy) + (unit(rng) - 0.5) * 2.4 * hull.radius()}; break;
+            default: break;
+        }
+        const LocalPose pose = place(solent.frame, Pose{solent.frame.inverse(p), 360 * unit(rng)});
+        bool expected = true;
+        for (const XY& q : hull_outline(hull, pose))
+            expected = expected && q.x >= ext.minx && q.x <= ext.maxx && q.y >= ext.miny && q.y <= ext.maxy;
+        ASSERT_EQ(det.covers(pose), expected) << "pose " << k;
+        ASSERT_EQ(det.check(pose, {.max_clearance_m = 50, .want_penetration = false}).covered, expected) << "pose " << k;
+        ++(expected ? inside : outside);
+    }
+    EXPECT_GT(inside, 5000);
+    EXPECT_GT(outside, 2000);
+}
+
 /// Asking for less (no penetration, no enclosing polyline: what probe and the sweep ask)
 /// changes nothing else: the same flags, clearance and points as the full check on random
 /// poses near the coast and deep inland, and the same polyline wherever one is given.
@@ -385,6 +418,8 @@ TEST(DetectorOptions, AskingLessChangesNothingElse) {
             const Contact full = det.check(pose, {limit, true, true});
             const Contact lean = det.check(pose, {limit, false, false});
             ASSERT_EQ(lean.collision, full.collision) << k;
+            // Whether it touches, nothing else (the sweep's bisection): no clearance searched.
+            ASSERT_EQ(det.check(pose, {0.0, false, false}).collision, full.collision) << k;
             ASSERT_EQ(lean.covered, full.covered) << k;
             ASSERT_EQ(lean.clearance_m, full.clearance_m) << k;
             ASSERT_EQ(lean.hull_point, full.hull_point) << k;
