@@ -281,7 +281,9 @@ private:
     }
 
     /// Between a sample without contact (`clear`) and one with (`hit`), the moment of change.
-    /// Returns the sample on the contact side. `forward`: clear is earlier than hit.
+    /// Returns the sample on the contact side: going forward (clear is earlier than hit), with
+    /// its contact as check() gives it; going back, only its moment is meant (the contact is
+    /// `hit`'s).
     Sample bisect(Sample clear, Sample hit, bool forward) const {
         // Both lie in one fix interval (consecutive samples), or hit is the next fix (f = 0).
         std::size_t i = clear.i;
@@ -292,11 +294,16 @@ private:
             f_clear = 1.0;
         }
         const double duration = m_track.fixes[i + 1].time_s - m_track.fixes[i].time_s;
+        // The steps ask only whether the hull touches: no clearance searched, no contact point
+        // (collision is the same whatever else is asked: CheckOptions). The contact at the
+        // moment found, when it is an event's first, is then checked as other samples are.
+        const double f_start = f_hit;
         f_hit = detail::bisect_change(f_clear, f_hit, duration, m_opt.time_tolerance_s, 50, [&](double mid) {
-            const check::Contact c = check(i, mid, false);
-            if (c.collision) hit.contact = c;
-            return c.collision;
+            return checker_at(i, mid)
+                .check(m_motion.pose(i, mid), {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = false})
+                .collision;
         });
+        if (forward && f_hit != f_start) hit.contact = check(i, f_hit, false);
         if (f_hit >= 1.0) return Sample{i + 1, 0.0, hit.contact};
         hit.i = i;
         hit.f = f_hit;

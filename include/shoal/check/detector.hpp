@@ -60,6 +60,7 @@ struct Contact {
 
 struct CheckOptions {
     /// Search for clearance no further than this (metres); beyond it clearance is INFINITY.
+    /// Collision does not depend on it: 0 asks whether the hull touches and little else.
     double max_clearance_m = INFINITY;
     /// Compute penetration depth on collision (extra nearest-segment searches).
     bool want_penetration = true;
