@@ -5,6 +5,7 @@
 #include <exception>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
@@ -92,8 +93,9 @@ json point_feature(geo::LonLat p, json properties) {
 }
 
 /// Writes the report to a sink as nlohmann's dump(1) of the whole document would, one
-/// member or element at a time (only one feature is ever held as JSON), in pieces of about
-/// a mebibyte.
+/// member or element at a time (only one feature a thread is ever held as JSON; the events'
+/// features are made on threads, a few blocks of them held as text: values()), in pieces of
+/// about a mebibyte.
 class Stream {
 public:
     explicit Stream(const StagedOutput::Sink& sink) : m_sink(sink) { m_buf.reserve(chunk + 4096); }
@@ -109,16 +111,50 @@ public:
         if (!m_buf.empty()) m_sink(m_buf);
         m_buf.clear();
     }
-    /// A value nested `depth` levels deep: its dump(1) with every line after the first
-    /// indented by `depth` (JSON strings hold no raw newline).
+    /// A value nested `depth` levels deep (see render).
     void value(const json& j, int depth) {
+        render(j, depth, m_buf);
+        if (m_buf.size() >= chunk) flush();
+    }
+    /// Appends to `out` what value(j, depth) writes: j's dump(1) with every line after the
+    /// first indented by `depth` (JSON strings hold no raw newline).
+    static void render(const json& j, int depth, std::string& out) {
         const std::string d = j.dump(1);
         std::size_t from = 0;
         for (std::size_t nl; (nl = d.find('\n', from)) != std::string::npos; from = nl + 1) {
-            put(std::string_view(d).substr(from, nl + 1 - from));
-            put(std::string_view(spaces, static_cast<std::size_t>(depth)));
+            out.append(d, from, nl + 1 - from);
+            out.append(spaces, static_cast<std::size_t>(depth));
         }
-        put(std::string_view(d).substr(from));
+        out.append(d, from);
+    }
+    /// Elements 0 .. n-1 of an open array nested `depth` levels deep, value(make(k), depth + 1)
+    /// each: made and rendered a block at a time on `jobs` threads, written in order.
+    void values(std::size_t n, int depth, unsigned jobs, const std::function<json(std::size_t)>& make) {
+        constexpr std::size_t block = 512;
+        const unsigned threads = detail::thread_count(jobs);
+        const std::size_t blocks = (n + block - 1) / block, window = 4 * std::size_t{threads};
+        std::vector<std::vector<std::string>> text(std::min(blocks, window));
+        std::vector<std::exception_ptr> failed(text.size());
+        for (std::size_t b0 = 0; b0 < blocks; b0 += window) {
+            const std::size_t m = std::min(window, blocks - b0);
+            detail::parallel_for(m, threads, [&](std::size_t i, unsigned) {
+                std::vector<std::string>& out = text[i];
+                out.clear();
+                try {
+                    for (std::size_t k = (b0 + i) * block, end = std::min(n, k + block); k < end; ++k)
+                        render(make(k), depth + 1, out.emplace_back());
+                } catch (...) {
+                    failed[i] = std::current_exception();
+                }
+            });
+            for (std::size_t i = 0; i < m; ++i) {
+                if (failed[i]) std::rethrow_exception(failed[i]);
+                for (const std::string& v : text[i]) {
+                    item(depth);
+                    put(v);
+                }
+            }
+        }
     }
 
     /// An object or an array nested `depth` levels deep, its members or elements written by
@@ -225,11 +261,13 @@ void write_report(const audit::AuditResult& r, const RunInfo& info, const Staged
     out.close('}', 1);
     out.key(0, "features");
     out.open('[');
+    std::vector<std::pair<const audit::TrackSummary*, const audit::Event*>> events;
     for (const auto& t : r.tracks)
-        for (const auto& e : t.events) {
-            out.item(1);
-            out.value(point_feature(e.point, object_of(fields::event_fields(), fields::EventRow{t.summary, e}, r)), 2);
-        }
+        for (const auto& e : t.events) events.emplace_back(&t.summary, &e);
+    out.values(events.size(), 1, info.jobs, [&](std::size_t k) {
+        const auto [t, e] = events[k];
+        return point_feature(e->point, object_of(fields::event_fields(), fields::EventRow{*t, *e}, r));
+    });
     for (const auto& e : r.encounters.events) {
         out.item(1);
         out.value(point_feature(e.point, object_of(fields::encounter_fields(), fields::EncounterRow{r, e}, r)), 2);

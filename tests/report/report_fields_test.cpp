@@ -345,9 +345,28 @@ TEST(ReportFields, TheStreamedGeoJsonIsTheDocumentsDump) {
     const std::string big = geojson(many, info);
     ASSERT_GT(big.size(), std::size_t{3} << 19) << "more than one piece of a mebibyte";
     EXPECT_EQ(nlohmann::ordered_json::parse(big).dump(1) + "\n", big);
+    // The features are made a block of 512 at a time on threads: any number writes the same,
+    // the events in their order (each told apart here by its start).
+    std::vector<std::string> order;
+    for (auto& t : many.tracks)
+        for (auto& e : t.events) {
+            e.start_s = 1.7e9 + static_cast<double>(order.size());
+            e.end_s = e.start_s + 10;
+            order.push_back(iso_time(e.start_s));
+        }
+    ASSERT_GT(order.size(), 3u * 512u) << "several blocks";
+    const std::string told = geojson(many, info);
+    const auto doc = nlohmann::ordered_json::parse(told);
+    ASSERT_GE(doc["features"].size(), order.size()) << "the events first, then the encounters'";
+    for (std::size_t k = 0; k < order.size(); ++k) ASSERT_EQ(doc["features"][k]["properties"]["start"], order[k]) << k;
+    for (const unsigned jobs : {1u, 3u}) {
+        RunInfo on = info;
+        on.jobs = jobs;
+        EXPECT_TRUE(geojson(many, on) == told) << jobs << " threads";
+    }
     test::TempDir dir;
     write_geojson(dir.file("big.geojson"), many, info);
-    EXPECT_EQ(slurp(dir.file("big.geojson")), big);
+    EXPECT_TRUE(slurp(dir.file("big.geojson")) == told) << "the file is the text";
 }
 
 /// The layer files' coordinates: glibc's printf "%.7f" (an independent formatter) with its
