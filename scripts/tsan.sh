@@ -5,7 +5,8 @@
 #      GeoJSON run's layer files (a pose at every fix) compared with those of --jobs 1;
 #   2. the tests that run the audit on several threads (audit_test, cli_test, bad_input_test;
 #      cli_test also runs `shoal probe --jobs 2` and 3), those that read a CSV file on two
-#      threads (track_test), and poses placed in blocks on threads (check_test).
+#      threads (track_test), poses placed in blocks on threads (check_test), and the report's
+#      events made on threads (report_test).
 # Any data race or other report from ThreadSanitizer makes it fail (halt_on_error).
 # GDAL, GEOS and PROJ are not instrumented: races inside them are not seen, only ours.
 #
@@ -16,7 +17,7 @@ cd "$(dirname "$0")/.."
 build=build-tsan
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHOAL_BUILD_BENCH=OFF \
   -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
-cmake --build "$build" -j "$(nproc)" --target shoal_cli audit_test cli_test bad_input_test track_test check_test
+cmake --build "$build" -j "$(nproc)" --target shoal_cli audit_test cli_test bad_input_test track_test check_test report_test
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 history_size=4 suppressions=$PWD/.ci/tsan.supp"
 shoal="$build/cli/shoal"
 out="$build/tsan-out"
@@ -47,4 +48,5 @@ echo "== tests that run the audit on several threads, under ThreadSanitizer =="
 "$build/tests/bad_input_test" --gtest_brief=1
 "$build/tests/track_test" --gtest_brief=1 --gtest_filter='Input.ACsvReadByTwoThreads*'
 "$build/tests/check_test" --gtest_brief=1 --gtest_filter='Placement.InBlocks*'
+"$build/tests/report_test" --gtest_brief=1 --gtest_filter='ReportFields.TheStreamedGeoJsonIsTheDocumentsDump'
 echo "ThreadSanitizer: no report"
