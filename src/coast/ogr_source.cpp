@@ -29,6 +29,13 @@ GDALDatasetUniquePtr open_vector(const std::string& path) {
 
 bool is_s57(GDALDataset& ds) { return std::string(ds.GetDriver()->GetDescription()) == "S57"; }
 
+bool may_be_s57(const std::string& path) {
+    detail::register_drivers();
+    detail::QuietErrors quiet;
+    const char* const s57_only[] = {"S57", nullptr};
+    return GDALIdentifyDriverEx(path.c_str(), GDAL_OF_VECTOR, s57_only, nullptr) != nullptr;
+}
+
 std::string layer_names(GDALDataset& ds) {
     std::string s;
     for (OGRLayer* l : ds.GetLayers()) s += (s.empty() ? "" : ", ") + std::string(l->GetName());

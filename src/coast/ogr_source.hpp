@@ -23,6 +23,9 @@ GDALDatasetUniquePtr open_vector(const std::string& path);
 
 /// Whether `ds` is an S-57 chart (ENC).
 bool is_s57(GDALDataset& ds);
+/// Whether GDAL's S-57 driver claims `path` (it reads the file's first bytes only): a file it
+/// does not claim is no chart, and need not be opened (opening a GeoJSON coast parses it whole).
+bool may_be_s57(const std::string& path);
 /// "A, B, C" (or "none"): the layer names of `ds`, for messages.
 std::string layer_names(GDALDataset& ds);
 /// The layers of `ds` named in `names`, in that order, those it has.

@@ -430,6 +430,11 @@ TEST(ExpectedAreasS57, ChartAsUserFileAndOtherSources) {
     const ExpectedAreas none = ExpectedAreas::load({}, {coast_file("uk_solent_land.geojson")}, annapolis_frame(),
                                                    tolerance_m, nullptr);
     EXPECT_TRUE(none.empty());
+    // A source the S-57 driver does not claim is not opened at all: a file no driver reads
+    // costs nothing (opened, it would throw "not a vector dataset"), and the chart beside it
+    // still gives its areas.
+    const ExpectedAreas beside = ExpectedAreas::load({}, {coast_file("not_a_dataset.txt"), s57}, annapolis_frame(), tolerance_m, nullptr);
+    EXPECT_EQ(beside.count(AreaRole::structure), 151u);
 }
 
 // ---------------------------------------------------------------------------------------------
