@@ -338,6 +338,7 @@ struct Search {
     const grid::Segment* best_seg = nullptr;  // the segment realising best2 (when found)
 
     std::vector<grid::ChunkRun>& runs;        // chunks gathered, not read yet
+    std::vector<std::pair<double, std::size_t>>& order;  // edges(): the hull's chunks to read, nearest first
 
     double best() const noexcept { return std::sqrt(best2); }
 
@@ -408,8 +409,18 @@ struct Search {
             const double dd = point_segment_d2(p, a, sd, s_inv, &f);
             if (dd < best2) { best2 = dd; hull_pt = p; coast_pt = f; found = true; best_seg = seg; }
         };
+        // Chunks nearest first while nothing is found (the bound is the search limit): the
+        // first segment of a search would otherwise meet every edge. Later ones, in order.
+        order.clear();
         for (std::size_t c = 0; c < n_chunks; ++c) {
-            if (box_dist2(hull.chunk_box[c], sb) >= best2) continue;
+            const double cd2 = box_dist2(hull.chunk_box[c], sb);
+            if (cd2 < best2) order.push_back({cd2, c});
+        }
+        if (!found)
+            for (std::size_t k = 1; k < order.size(); ++k)
+                for (std::size_t m = k; m > 0 && order[m].first < order[m - 1].first; --m) std::swap(order[m], order[m - 1]);
+        for (const auto& [cd2, c] : order) {
+            if (cd2 >= best2) continue;
             const std::size_t e_end = std::min(n, (c + 1) * chunk_edges);
             for (std::size_t e = c * chunk_edges; e < e_end; ++e) {
                 const double de2 = box_dist2(hull.edge_box[e], sb);
@@ -446,6 +457,7 @@ struct Scratch {
     AlignedHull hull;
     std::vector<XY> inside_candidates;
     std::vector<grid::ChunkRun> runs;
+    std::vector<std::pair<double, std::size_t>> order;
     /// The hull point found deepest by this thread's last penetration: the next one starts
     /// there (a hull moves little between the poses of a track, and its deepest point found
     /// first lets the rest be skipped). The order changes only which points are searched.
@@ -487,7 +499,11 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
     // clearance found so far (the limit grown by a hair, so that one exactly at it counts).
     const double limit = options.max_clearance_m;
     const double bound = std::isfinite(limit) ? limit * (1 + 1e-9) + 1e-9 : INFINITY;
-    Search search{h, bound * bound, false, {}, {}, false, 0, s.inside_candidates, nullptr, nullptr, s.runs};
+    // CheckOptions::clearance_hint_m: the search's first bound when it is under the limit's
+    // (grown by the same hair); searched again without it when nothing lies within.
+    const double hint = options.clearance_hint_m;
+    const double hint_bound = hint > 0 && std::isfinite(hint) ? std::min(bound, hint * (1 + 1e-9) + 1e-9) : bound;
+    Search search{h, hint_bound * hint_bound, false, {}, {}, false, 0, s.inside_candidates, nullptr, nullptr, s.runs, s.order};
     Contact out;
     const geo::Box ext = m_grid.extent();
     const geo::Box& lb = h.local_box;
@@ -624,6 +640,12 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
         double reach() const { return std::min(search.best(), max_m); }
     } clearance{search, m_grid, options.max_clearance_m};
     grid::visit_outward(m_grid, lb, clearance, block_valid ? grid::FirstBlock::skip : grid::FirstBlock::read);
+    if (!search.found && hint_bound < bound) {
+        // The hint was too small: the whole search again, at the limit. (The hull's block was
+        // read at the hint's bound: its far segments were passed over.)
+        search.best2 = bound * bound;
+        grid::visit_outward(m_grid, lb, clearance, grid::FirstBlock::read);
+    }
     if (search.found && search.best() <= options.max_clearance_m) {
         out.clearance_m = search.best();
         out.hull_point = h.to_local(search.hull_pt);

@@ -438,6 +438,60 @@ TEST(DetectorOptions, AskingLessChangesNothingElse) {
     EXPECT_GT(deep, 500);
 }
 
+/// CheckOptions::clearance_hint_m changes no answer, bit for bit, whatever the hint: at the
+/// clearance (a hair over, a hair under), well over it, far under it (the search runs again
+/// without it), and hints that mean none (0, negative, NaN, infinite). Random poses near the
+/// coast, inland and in open water, with the sweep's search limit, a short one and none.
+TEST(DetectorOptions, AClearanceHintChangesNoAnswer) {
+    const Solent solent;
+    const geo::LocalFrame& frame = solent.frame;
+    const auto& lines = solent.lines;
+    const grid::CoastGrid& grid = solent.grid;
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
+    const Detector det(grid, hull);
+    std::mt19937_64 rng(1515);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const geo::Box ext = grid.extent();
+    int clear = 0, beyond = 0;
+    for (int k = 0; k < 3000; ++k) {
+        XY pos;
+        if (k % 4 == 0) {
+            pos = {ext.minx + unit(rng) * (ext.maxx - ext.minx), ext.miny + unit(rng) * (ext.maxy - ext.miny)};
+        } else {
+            const auto& l = lines[rng() % lines.size()];
+            const XY on = l.points[rng() % l.points.size()];
+            const double r = 4 * hull.radius() * unit(rng), a = 2 * std::numbers::pi * unit(rng);
+            pos = on + XY{r * std::cos(a), r * std::sin(a)};
+        }
+        const LocalPose pose = place(frame, Pose{frame.inverse(pos), 360 * unit(rng)});
+        for (const double limit : {40.0, 550.0, static_cast<double>(INFINITY)}) {
+            for (const bool penetration : {true, false}) {
+                const CheckOptions plain{.max_clearance_m = limit, .want_penetration = penetration, .want_polyline = false};
+                const Contact want = det.check(pose, plain);
+                const double c = want.clearance_m;
+                clear += !want.collision && std::isfinite(c);
+                beyond += !want.collision && !std::isfinite(c);
+                const double base = std::isfinite(c) && c > 0 ? c : 30.0;
+                for (const double hint : {base, base * (1 + 1e-12), base * (1 - 1e-12), base + 5, base * 0.5, base * 0.01, 1e7, 0.0, -1.0,
+                                          static_cast<double>(NAN), static_cast<double>(INFINITY)}) {
+                    CheckOptions o = plain;
+                    o.clearance_hint_m = hint;
+                    const Contact got = det.check(pose, o);
+                    ASSERT_EQ(got.collision, want.collision) << k << " hint " << hint;
+                    ASSERT_EQ(got.covered, want.covered) << k << " hint " << hint;
+                    ASSERT_EQ(got.clearance_m, want.clearance_m) << k << " hint " << hint;
+                    ASSERT_EQ(got.hull_point, want.hull_point) << k << " hint " << hint;
+                    ASSERT_EQ(got.coast_point, want.coast_point) << k << " hint " << hint;
+                    ASSERT_EQ(got.polyline, want.polyline) << k << " hint " << hint;
+                    ASSERT_EQ(got.penetration_m, want.penetration_m) << k << " hint " << hint;
+                }
+            }
+        }
+    }
+    EXPECT_GT(clear, 3000);
+    EXPECT_GT(beyond, 1000);
+}
+
 TEST(DetectorOptions, NotAskingWhereChangesNothingElse) {
     // CheckOptions::want_contact_point false (probe, the C API, the sweep once a contact is
     // open): a collision may be answered by the hull point the thread last found on land,

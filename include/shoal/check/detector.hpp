@@ -76,6 +76,12 @@ struct CheckOptions {
     /// search (one winding test): both points are then that point and the polyline
     /// no_polyline. Collision, covered, clearance and penetration are the same either way.
     bool want_contact_point = true;
+    /// A clearance the hull is known to have at most (metres): say, the last pose's clearance
+    /// plus how far any hull point moved since. The clearance search starts with it as its
+    /// bound, so the far coast is passed over from the first segment on; when nothing lies
+    /// that near (a hint too small), it searches again without. The answer is the same
+    /// whatever the hint; only the time changes. INFINITY (or NaN, or <= 0): no hint.
+    double clearance_hint_m = INFINITY;
 };
 
 /// Where the hull of `hull` lies for `pose` in `frame`: heading corrected for meridian
