@@ -81,9 +81,10 @@ public:
         return check(i, f, m_motion.pose(i, f), penetration, where);
     }
     /// The same, `pose` being m_motion.pose(i, f) (placed once by the caller).
-    check::Contact check(std::size_t i, double f, const check::LocalPose& pose, bool penetration, bool where) const {
+    /// `hint`: CheckOptions::clearance_hint_m.
+    check::Contact check(std::size_t i, double f, const check::LocalPose& pose, bool penetration, bool where, double hint = INFINITY) const {
         return checker_at(i, f).check(pose, {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false,
-                                                             .want_contact_point = where});
+                                             .want_contact_point = where, .clearance_hint_m = hint});
     }
 
     /// An open contact goes on: the next sample in contact is not its first.
@@ -493,6 +494,12 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         const bool known = lower > 0 && upper < opt.margin_m && lower > events.near_min() && lower >= sum.min_clearance_m;
         return known ? lower : NAN;
     };
+    // The clearance a pose has at most, from the last pose checked clear (CheckOptions::
+    // clearance_hint_m: it only speeds the search); INFINITY when there is none.
+    auto hint = [&](const PoseChecker& c, const check::LocalPose& pose) -> double {
+        if (&c != clear_checker || !std::isfinite(clear_ref_m)) return INFINITY;
+        return clear_ref_m + slack(apart(clear_pose, pose));
+    };
     auto checked = [&](const check::Contact& c, const PoseChecker& by, const check::LocalPose& pose) {  // a pose checked in full
         clear_ref_m = !c.collision && std::isfinite(c.clearance_m) ? c.clearance_m : NAN;
         clear_checker = &by;
@@ -553,7 +560,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 } else if (const double near = known_near(by, pose); !std::isnan(near)) {
                     s.contact = events.carried(s.i, s.f, pose, near);
                 } else {
-                    s.contact = events.check(s.i, s.f, pose, false, !events.in_contact());
+                    s.contact = events.check(s.i, s.f, pose, false, !events.in_contact(), hint(by, pose));
                     checked(s.contact, by, pose);
                 }
                 note(s.contact);
@@ -570,7 +577,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         if (continues && still_in_contact(at_fix, pose) && contact_depth_m + slack(apart(contact_pose, pose)) <= events.contact_depth()) {
             s.contact = events.carried(i, 0.0, pose, 0);
         } else {
-            s.contact = events.check(i, 0.0, pose, true, !continues || !events.in_contact());
+            s.contact = events.check(i, 0.0, pose, true, !continues || !events.in_contact(), continues ? hint(at_fix, pose) : INFINITY);
             contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
             contact_checker = &at_fix;
             contact_pose = pose;
