@@ -389,31 +389,34 @@ TEST(DetectorCovers, WhetherTheOutlineLiesInsideTheExtent) {
     EXPECT_GT(outside, 2000);
 }
 
+/// A random pose for the CheckOptions tests: every fourth (by `k`) anywhere over the Solent
+/// grid (deep inland, open water), the others within `reach` metres of a random coast vertex.
+LocalPose options_pose(const Solent& solent, double reach, int k, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> unit(0, 1);
+    const geo::Box ext = solent.grid.extent();
+    XY pos;
+    if (k % 4 == 0) {
+        pos = {ext.minx + unit(rng) * (ext.maxx - ext.minx), ext.miny + unit(rng) * (ext.maxy - ext.miny)};
+    } else {
+        const auto& l = solent.lines[rng() % solent.lines.size()];
+        const XY on = l.points[rng() % l.points.size()];
+        const double r = reach * unit(rng), a = 2 * std::numbers::pi * unit(rng);
+        pos = on + XY{r * std::cos(a), r * std::sin(a)};
+    }
+    return place(solent.frame, Pose{solent.frame.inverse(pos), 360 * unit(rng)});
+}
+
 /// Asking for less (no penetration, no enclosing polyline: what probe and the sweep ask)
 /// changes nothing else: the same flags, clearance and points as the full check on random
 /// poses near the coast and deep inland, and the same polyline wherever one is given.
 TEST(DetectorOptions, AskingLessChangesNothingElse) {
     const Solent solent;
-    const geo::LocalFrame& frame = solent.frame;
-    const auto& lines = solent.lines;
-    const grid::CoastGrid& grid = solent.grid;
     const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
-    const Detector det(grid, hull);
+    const Detector det(solent.grid, hull);
     std::mt19937_64 rng(15);
-    std::uniform_real_distribution<double> unit(0, 1);
-    const geo::Box ext = grid.extent();
     int left_out = 0, deep = 0;
     for (int k = 0; k < 4000; ++k) {
-        XY pos;
-        if (k % 4 == 0) {  // anywhere: deep inland (hull wholly on land), open water
-            pos = {ext.minx + unit(rng) * (ext.maxx - ext.minx), ext.miny + unit(rng) * (ext.maxy - ext.miny)};
-        } else {
-            const auto& l = lines[rng() % lines.size()];
-            const XY on = l.points[rng() % l.points.size()];
-            const double r = 2.5 * hull.radius() * unit(rng), a = 2 * std::numbers::pi * unit(rng);
-            pos = on + XY{r * std::cos(a), r * std::sin(a)};
-        }
-        const LocalPose pose = place(frame, Pose{frame.inverse(pos), 360 * unit(rng)});
+        const LocalPose pose = options_pose(solent, 2.5 * hull.radius(), k, rng);
         for (const double limit : {100.0, static_cast<double>(INFINITY)}) {
             const Contact full = det.check(pose, {limit, true, true});
             const Contact lean = det.check(pose, {limit, false, false});
@@ -444,26 +447,12 @@ TEST(DetectorOptions, AskingLessChangesNothingElse) {
 /// coast, inland and in open water, with the sweep's search limit, a short one and none.
 TEST(DetectorOptions, AClearanceHintChangesNoAnswer) {
     const Solent solent;
-    const geo::LocalFrame& frame = solent.frame;
-    const auto& lines = solent.lines;
-    const grid::CoastGrid& grid = solent.grid;
     const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");
-    const Detector det(grid, hull);
+    const Detector det(solent.grid, hull);
     std::mt19937_64 rng(1515);
-    std::uniform_real_distribution<double> unit(0, 1);
-    const geo::Box ext = grid.extent();
     int clear = 0, beyond = 0;
     for (int k = 0; k < 3000; ++k) {
-        XY pos;
-        if (k % 4 == 0) {
-            pos = {ext.minx + unit(rng) * (ext.maxx - ext.minx), ext.miny + unit(rng) * (ext.maxy - ext.miny)};
-        } else {
-            const auto& l = lines[rng() % lines.size()];
-            const XY on = l.points[rng() % l.points.size()];
-            const double r = 4 * hull.radius() * unit(rng), a = 2 * std::numbers::pi * unit(rng);
-            pos = on + XY{r * std::cos(a), r * std::sin(a)};
-        }
-        const LocalPose pose = place(frame, Pose{frame.inverse(pos), 360 * unit(rng)});
+        const LocalPose pose = options_pose(solent, 4 * hull.radius(), k, rng);
         for (const double limit : {40.0, 550.0, static_cast<double>(INFINITY)}) {
             for (const bool penetration : {true, false}) {
                 const CheckOptions plain{.max_clearance_m = limit, .want_penetration = penetration, .want_polyline = false};
