@@ -444,7 +444,8 @@ TEST(DetectorOptions, AskingLessChangesNothingElse) {
 /// CheckOptions::clearance_hint_m changes no answer, bit for bit, whatever the hint: at the
 /// clearance (a hair over, a hair under), well over it, far under it (the search runs again
 /// without it), and hints that mean none (0, negative, NaN, infinite). Random poses near the
-/// coast, inland and in open water, with the sweep's search limit, a short one and none.
+/// coast, inland and in open water, with the sweep's search limit, a short one and none. (On a
+/// projected chart no two pairs of points are exactly equally near: the points are pinned too.)
 TEST(DetectorOptions, AClearanceHintChangesNoAnswer) {
     const Solent solent;
     const hull::Hull hull = hull::Hull::from_dimensions({150, 40, 14, 18}, "test ship");

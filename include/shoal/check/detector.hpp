@@ -80,7 +80,9 @@ struct CheckOptions {
     /// plus how far any hull point moved since. The clearance search starts with it as its
     /// bound, so the far coast is passed over from the first segment on; when nothing lies
     /// that near (a hint too small), it searches again without. The answer is the same
-    /// whatever the hint; only the time changes. INFINITY (or NaN, or <= 0): no hint.
+    /// whatever the hint; only the time changes (but for an exact tie: when two pairs of
+    /// hull and coast points are exactly equally near, either may be given). INFINITY (or
+    /// NaN, or <= 0): no hint.
     double clearance_hint_m = INFINITY;
 };
 
