@@ -416,13 +416,7 @@ struct Search {
             const double cd2 = box_dist2(hull.chunk_box[c], sb);
             if (cd2 < best2) order.push_back({cd2, c});
         }
-        // (Ties by chunk, the order read otherwise: both sorts give the same order.)
-        if (!found && order.size() > 16) {
-            std::sort(order.begin(), order.end());
-        } else if (!found) {
-            for (std::size_t k = 1; k < order.size(); ++k)
-                for (std::size_t m = k; m > 0 && order[m].first < order[m - 1].first; --m) std::swap(order[m], order[m - 1]);
-        }
+        if (!found) std::sort(order.begin(), order.end());  // ties by chunk: the order read otherwise
         for (const auto& [cd2, c] : order) {
             if (cd2 >= best2) continue;
             const std::size_t e_end = std::min(n, (c + 1) * chunk_edges);
