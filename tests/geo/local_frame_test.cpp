@@ -14,6 +14,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <shoal/util/error.hpp>
@@ -172,6 +173,54 @@ TEST(LocalFrame, TransverseMercatorRebuiltFromItsDefinitionIsTheSame) {
         EXPECT_EQ(g.forward(p), f.forward(p));
         EXPECT_EQ(copy.forward(p), f.forward(p));
         EXPECT_EQ(assigned.forward(p), f.forward(p));
+    }
+}
+
+// shoal's own transverse Mercator is made from its PROJ pipeline, with no GDAL parse and no
+// search of PROJ's database; the same text given as a user's CRS goes through both. The two
+// must give the same numbers, bit for bit: forward, inverse, in a batch, on the thread that
+// made the frame and on others (each makes its own copy of the operation).
+TEST(LocalFrame, OwnTransverseMercatorEqualsPROJsSearchedOperationBitForBit) {
+    std::mt19937_64 rng(20261205);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<LonLat> centres{{0, 0}, {-180, 0}, {180, 89.5}, {24.5, 59.85}, {-1.35, 50.75}, {151.2, -33.9}};
+    for (int k = 0; k < 24; ++k) centres.push_back({-180 + 360 * u(rng), -85 + 170 * u(rng)});
+    unsigned seed = 1;
+    for (const LonLat c : centres) {
+        const LocalFrame own = LocalFrame::transverse_mercator(c);
+        const LocalFrame searched = LocalFrame::from_user_crs(own.definition());
+        const LocalFrame rebuilt = LocalFrame::from_definition(own.definition());
+        const auto pts = points_around(c, 200e3, 300, seed++);
+        std::vector<double> xs, ys, xs2, ys2;
+        for (const LonLat& p : pts) {
+            const XY a = own.forward(p), b = searched.forward(p);
+            ASSERT_EQ(a.x, b.x) << own.definition() << " at " << p.lon << ", " << p.lat;
+            ASSERT_EQ(a.y, b.y) << own.definition() << " at " << p.lon << ", " << p.lat;
+            ASSERT_EQ(rebuilt.forward(p), a);
+            // A local point off the projected ones (a hull's corner), back to lon/lat.
+            const XY q{a.x + 50 * (u(rng) - 0.5), a.y + 50 * (u(rng) - 0.5)};
+            const LonLat ia = own.inverse(q), ib = searched.inverse(q);
+            ASSERT_EQ(ia.lon, ib.lon) << own.definition();
+            ASSERT_EQ(ia.lat, ib.lat) << own.definition();
+            xs.push_back(p.lon);
+            ys.push_back(p.lat);
+        }
+        xs2 = xs;
+        ys2 = ys;
+        std::size_t bad = 0;
+        ASSERT_TRUE(own.forward(xs, ys, &bad));
+        ASSERT_TRUE(searched.forward(xs2, ys2, &bad));
+        EXPECT_EQ(xs, xs2);
+        EXPECT_EQ(ys, ys2);
+        // On another thread each frame makes its own operation (from the pipeline, or by the search).
+        std::vector<XY> there_own, there_searched;
+        std::thread([&] {
+            for (const LonLat& p : pts) {
+                there_own.push_back(own.forward(p));
+                there_searched.push_back(searched.forward(p));
+            }
+        }).join();
+        for (std::size_t i = 0; i < pts.size(); ++i) ASSERT_EQ(there_own[i], there_searched[i]);
     }
 }
 

@@ -48,7 +48,8 @@ public:
     double max_scale_error(LonLat min, LonLat max) const;
 
 private:
-    LocalFrame(std::string definition, std::string description);
+    /// `own_tmerc`: the definition may be shoal's own transverse Mercator, made without GDAL.
+    LocalFrame(std::string definition, std::string description, bool own_tmerc);
     struct Impl;
     std::unique_ptr<Impl> m_impl;
     std::string m_definition;
