@@ -66,16 +66,27 @@ std::string tmerc_definition(double lat, double lon) {
     return buf;
 }
 
-/// For exactly the text tmerc_definition() writes (a finite centre): the PROJ pipeline that
-/// PROJ's own search (WGS84 to that CRS, lon/lat order) gives for it, degrees to radians then
-/// the projection, with the definition's numbers. Made from it, a frame needs no GDAL parse of
-/// the CRS (which opens PROJ's database in a context of its own) and no search: a tenth of
-/// the instructions a run spends before its first row (tests: the same numbers as the
-/// searched operation, bit for bit, on random centres and points). Else "".
+/// PROJ, reading a PROJ string into a CRS, rounds an angle within about 1e-8 of a whole
+/// degree to it (PROJ 9.1: 12.000000001 becomes 12); the pipeline below would not.
+bool near_whole_degree(double v) {
+    const double r = std::round(v);
+    return v != r && std::fabs(v - r) <= 1.5e-8;
+}
+
+/// For exactly the text tmerc_definition() writes (a finite centre, not within 1.5e-8 of a
+/// whole degree, written with decimal points): the PROJ pipeline that PROJ's own search (WGS84
+/// to that CRS, lon/lat order) gives for it, degrees to radians then the projection, with the
+/// definition's numbers. Made from it, a frame needs no GDAL parse of the CRS (which opens
+/// PROJ's database in a context of its own) and no search: a tenth of the instructions a run
+/// spends before its first row (tests: the same numbers as the searched operation, bit for
+/// bit, on random centres, centres a hair off whole degrees, and points). Else "".
 std::string own_tmerc_pipeline(const std::string& definition) {
     double lat = NAN, lon = NAN;
     if (std::sscanf(definition.c_str(), "+proj=tmerc +lat_0=%lf +lon_0=%lf", &lat, &lon) != 2) return "";
-    if (!(std::fabs(lat) <= 90 && std::fabs(lon) <= 180) || definition != tmerc_definition(lat, lon)) return "";
+    if (!(std::fabs(lat) <= 90 && std::fabs(lon) <= 180) || near_whole_degree(lat) || near_whole_degree(lon)) return "";
+    // A locale with decimal commas (set by a program linking shoal) would write "59,85", which
+    // PROJ reads as 59: only the C locale's text is taken.
+    if (definition != tmerc_definition(lat, lon) || definition.find(',', 0) < definition.find("+towgs84")) return "";
     char buf[256];
     std::snprintf(buf, sizeof buf,
                   "+proj=pipeline +step +proj=unitconvert +xy_in=deg +xy_out=rad +step +proj=tmerc +lat_0=%.9f +lon_0=%.9f +k=1 "
@@ -176,6 +187,8 @@ LocalFrame LocalFrame::from_definition(const std::string& definition) {
     }
     return from_user_crs(definition);
 }
+
+bool LocalFrame::made_from_pipeline() const noexcept { return m_impl && !m_impl->pipeline.empty(); }
 
 LocalFrame::LocalFrame(const LocalFrame& other)
     : LocalFrame(other.m_definition, other.m_description, other.m_impl && !other.m_impl->pipeline.empty()) {}

@@ -44,6 +44,10 @@ public:
     /// Human-readable description, e.g. "transverse Mercator centred on 23.91E 60.10N".
     const std::string& description() const noexcept { return m_description; }
 
+    /// Whether the transformation was made from shoal's own transverse Mercator pipeline (no
+    /// GDAL parse, no search of PROJ's database; the same numbers): for tests and diagnostics.
+    bool made_from_pipeline() const noexcept;
+
     /// Largest relative scale error of the frame over the lon/lat box, sampled on a grid.
     double max_scale_error(LonLat min, LonLat max) const;
 
