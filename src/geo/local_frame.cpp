@@ -84,15 +84,13 @@ std::string own_tmerc_pipeline(const std::string& definition) {
     double lat = NAN, lon = NAN;
     if (std::sscanf(definition.c_str(), "+proj=tmerc +lat_0=%lf +lon_0=%lf", &lat, &lon) != 2) return "";
     if (!(std::fabs(lat) <= 90 && std::fabs(lon) <= 180) || near_whole_degree(lat) || near_whole_degree(lon)) return "";
-    // A locale with decimal commas (set by a program linking shoal) would write "59,85", which
-    // PROJ reads as 59: only the C locale's text is taken.
-    if (definition != tmerc_definition(lat, lon) || definition.find(',', 0) < definition.find("+towgs84")) return "";
-    char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "+proj=pipeline +step +proj=unitconvert +xy_in=deg +xy_out=rad +step +proj=tmerc +lat_0=%.9f +lon_0=%.9f +k=1 "
-                  "+x_0=0 +y_0=0 +ellps=WGS84",
-                  lat, lon);
-    return buf;
+    if (definition != tmerc_definition(lat, lon)) return "";
+    // The projection's step is the definition up to its datum shift (a null one, which the
+    // search drops). A locale with decimal commas (set by a program linking shoal) would have
+    // written "59,85", which PROJ reads as 59: only the C locale's text is taken.
+    const std::string tmerc = definition.substr(0, definition.find(" +towgs84"));
+    if (tmerc.find(',') != std::string::npos) return "";
+    return "+proj=pipeline +step +proj=unitconvert +xy_in=deg +xy_out=rad +step " + tmerc;
 }
 
 std::atomic<std::uint64_t> next_frame_serial{1};
@@ -191,7 +189,7 @@ LocalFrame LocalFrame::from_definition(const std::string& definition) {
 bool LocalFrame::made_from_pipeline() const noexcept { return m_impl && !m_impl->pipeline.empty(); }
 
 LocalFrame::LocalFrame(const LocalFrame& other)
-    : LocalFrame(other.m_definition, other.m_description, other.m_impl && !other.m_impl->pipeline.empty()) {}
+    : LocalFrame(other.m_definition, other.m_description, other.made_from_pipeline()) {}
 LocalFrame& LocalFrame::operator=(const LocalFrame& other) {
     if (this != &other) *this = LocalFrame(other);
     return *this;
