@@ -16,6 +16,7 @@
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/audit/shard.hpp>
+#include <shoal/coast/chart_scale.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/report/debrief.hpp>
 #include <shoal/report/plot.hpp>
@@ -60,9 +61,13 @@ public:
                       "Tracks: CSV with a header (AIS exports too), GPX, GeoJSON, NMEA 0183 logs; folders are searched.\n"
                       "Shallow water and dangers count as hazards for each vessel's limiting depth: its draught (AIS, --vessels) + --ukc,\n"
                       "else the ship file's draught + --ukc, else the grid's default; --hazard-depth sets one for every vessel.\n"
-                      "Contacts are groundings only when they begin under way after the vessel was seen clear; contacts of a\n"
-                      "vessel stopped or under --berthing-speed are alongside, those at a track's first fix in_contact_at_start,\n"
-                      "those inside --berths areas expected_contact. Wild fixes (over --max-speed) are dropped and listed.\n"
+                      "--world simulated (exercise mode's default): the chart is the world, a contact that begins under way after\n"
+                      "the vessel was seen clear is a grounding. --world real (the default otherwise): the chart is a model, and a\n"
+                      "contact is a grounding when the vessel's motion says so (it stopped where it touched and lay there, AIS status\n"
+                      "aground, a touch and go); one it sailed on through is chart_disagrees; an arrival where vessels berth is\n"
+                      "alongside. Contacts of a vessel stopped or under --berthing-speed are alongside, those at a track's first\n"
+                      "fix in_contact_at_start, those inside --berths areas expected_contact. Wild fixes (over --max-speed) are\n"
+                      "dropped and listed.\n"
                       "Exit status: 0 no grounding, 1 at least one grounding (or ship collision), 2 bad usage or unreadable input.");
         m_opts.add(*m_sub);
         m_sub->add_option("tracks", m_tracks, "Track files or folders")->required();
@@ -133,6 +138,20 @@ public:
             ->check(finite)->check(positive);
         m_sub->add_option("--stop-time", m_audit.sweep.stop_duration_s, "Stopped: a stay of at least this many seconds (default 120)")
             ->check(finite)->check(positive);
+        m_sub->add_option("--world", m_world,
+                          "simulated: the chart is the world (a contact under way is a grounding); real: the chart is a model and the "
+                          "vessel's own motion and the run's traffic decide (default: simulated in exercise mode, else real)")
+            ->check(CLI::IsMember({"simulated", "real"}));
+        m_sub->add_option("--chart-scale", m_chart_scale,
+                          "The chart's compilation scale denominator (250000 for GSHHG full): a contact within its positional "
+                          "tolerance, 0.5 mm at that scale, is said so and graded lower (default: an S-57 chart's DSPM CSCALE, else none)")
+            ->check(finite)->check(positive);
+        m_sub->add_option("--berth-radius", m_audit.evidence.berth_radius_m,
+                          "Real world: stays of vessels within this many metres make a learned berth (default 300)")
+            ->check(finite)->check(positive);
+        m_sub->add_option("--ground-time", m_audit.evidence.ground_stay_s,
+                          "Real world: a vessel aground lies where it touched at least this many seconds (default 300)")
+            ->check(finite)->check(positive);
         m_sub->add_option("--max-speed", m_audit.wild.max_speed_kn,
                           "Fastest plausible speed, knots: a fix that implies more against its neighbours is dropped as an "
                           "outlier, a jump that persists starts a new piece of track (default 60)")
@@ -197,6 +216,8 @@ public:
             m_audit.assessment = &m_assessment;
             m_audit.encounters = true;
         }
+        // The world: a simulator exercise's chart is the world; real traffic's is a model.
+        m_audit.world = !m_world.empty() ? *audit::parse_world(m_world) : m_audit.encounters ? audit::World::simulated : audit::World::real;
         const hull::Hull hull = m_opts.load_hull();
         if (!m_date.empty()) {
             const auto day = track::parse_date(m_date);
@@ -221,6 +242,12 @@ public:
             std::fprintf(stderr, "shoal: %zu expected-contact areas (berths, harbours, anchorages) and %zu shore constructions\n",
                          areas.count(coast::AreaRole::expected), areas.count(coast::AreaRole::structure));
         m_audit.areas = &areas;
+        // The chart's positional tolerance: 0.5 mm at its compilation scale.
+        {
+            std::optional<double> scale = m_chart_scale;
+            if (!scale) scale = coast::compilation_scale(grid::coast_sources(m_opts.coast, g));
+            if (scale) m_audit.evidence.chart_tolerance_m = coast::positional_tolerance_m(*scale);
+        }
         // Static data: the first table that names a vessel gives its data (track::merge_vessels).
         std::vector<std::string> vessel_warnings;
         m_vessels = track::read_vessels_files(m_vessel_files, &vessel_warnings);
@@ -347,6 +374,8 @@ private:
     std::string m_plot;
     std::string m_debrief;
     std::string m_shard;
+    std::string m_world;
+    std::optional<double> m_chart_scale;
     std::vector<std::string> m_berths;
     std::vector<std::string> m_vessel_files;
     std::map<std::string, track::VesselInfo> m_vessels;

@@ -226,7 +226,9 @@ def audit(fixes, grid, *, ship=None, dims=None, columns=None, file="DataFrame", 
     berthing_speed_kn (1, at most 5), stop_diameter_m (50), stop_time_s (120), jobs (0: all cores),
     encounters (False), ship_margin_m (20), max_encounters_per_ship (20; 0: no limit), berths
     (paths), berth_tolerance_m (10), vessels (vessels CSV paths), ukc, hazard_depth_m (the limiting
-    depth wanted; a grid built for another is warned about), progress (a callable(done, total) called about ten times a second).
+    depth wanted; a grid built for another is warned about), progress (a callable(done, total) called about ten times a second),
+    world ("real": the chart is a model, the vessels' motion and the run's traffic decide a
+    contact's kind; "simulated": the chart is the world; default real, simulated with encounters).
     geo: GeoDataFrames (True), DataFrames (False), or GeoDataFrames when geopandas imports (None).
 
     A bad row (no position, an impossible time, ...) costs that row: it is listed in `problems`

@@ -209,7 +209,7 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
                    double stop_time_s, unsigned jobs, bool encounters, double ship_margin_m, std::size_t max_encounters_per_ship,
                    const py::object& berths,
                    double berth_tolerance_m, const py::object& vessels, const py::object& ukc, const py::object& hazard_depth_m,
-                   const py::object& progress) {
+                   const py::object& progress, const py::object& world) {
     std::string label;
     const hull::Hull hull = hull_of(ship, dims, &label);
     plan_depth(g, hull, hazard_depth_m, ukc);  // validates and warns as the CLI does
@@ -227,6 +227,13 @@ py::dict run_audit(const GridHandle& g, const py::dict& cols, const std::string&
     options.sweep.stop_duration_s = positive("stop_time_s", stop_time_s);
     options.jobs = jobs;
     options.encounters = encounters;
+    // As the CLI: real traffic's world unless an exercise (encounters).
+    options.world = encounters ? audit::World::simulated : audit::World::real;
+    if (!world.is_none()) {
+        const auto w = audit::parse_world(py::cast<std::string>(world));
+        if (!w) throw py::value_error("world must be 'simulated' or 'real', not '" + py::cast<std::string>(py::str(world)) + "'");
+        options.world = *w;
+    }
     options.encounter.ship_margin_m = positive("ship_margin_m", ship_margin_m, true);
     options.max_encounters_per_ship = max_encounters_per_ship;
     positive("berth_tolerance_m", berth_tolerance_m, false, coast::ExpectedAreas::max_tolerance_m, "a berth grown by more is no berth");
@@ -339,7 +346,7 @@ void bind_audit(py::module_& m) {
           py::arg("ship_margin_m") = encounter.ship_margin_m,
           py::arg("max_encounters_per_ship") = audit::AuditOptions{}.max_encounters_per_ship, py::arg("berths") = py::none(), py::arg("berth_tolerance_m") = 10.0,
           py::arg("vessels") = py::none(), py::arg("ukc") = py::none(), py::arg("hazard_depth_m") = py::none(),
-          py::arg("progress") = py::none(),
+          py::arg("progress") = py::none(), py::arg("world") = py::none(),
           "The audit behind shoal.audit: `columns` maps id, time (epoch seconds), lat, lon, heading, cog, sog, a, b, c, d, "
           "draught, ship_type, name, nav_status, line to arrays or lists; returns every layer of the report as columns.");
 }

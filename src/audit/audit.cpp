@@ -51,6 +51,10 @@ struct TrackSource {
     std::function<std::size_t(std::size_t)> fixes;  ///< fixes of track k, for the progress
     std::function<track::Track(std::size_t)> take;  ///< track k, once
     std::function<std::size_t(std::size_t)> position;  ///< position of track k among the run's (null: k)
+    /// The run's other tracks (another shard's): not audited, but their traffic is evidence
+    /// in the real world. take_other(k) gives track k of them, once.
+    std::size_t others = 0;
+    std::function<track::Track(std::size_t)> take_other;
 };
 
 AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
@@ -160,8 +164,12 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
                                                                 : std::nullopt),
                      options.shard.count) == options.shard.index)
             chosen.push_back(k);
-    for (std::size_t k = 0, c = 0; k < packed.size(); ++k) {  // the others are never unpacked: freed now
+    // The others are never swept. In the real world their traffic is evidence (every shard
+    // learns from every track read, as one run does); else they are freed now.
+    std::vector<std::size_t> others;
+    for (std::size_t k = 0, c = 0; k < packed.size(); ++k) {
         if (c < chosen.size() && chosen[c] == k) ++c;
+        else if (options.world == World::real) others.push_back(k);
         else packed[k].release_fixes();
     }
     TrackSource source{chosen.size(), [&](std::size_t k) { return packed[chosen[k]].size(); },
@@ -170,7 +178,12 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
                            packed[chosen[k]].release_fixes();
                            return t;
                        },
-                       [&](std::size_t k) { return chosen[k]; }};
+                       [&](std::size_t k) { return chosen[k]; }, others.size(),
+                       [&](std::size_t k) {
+                           track::Track t = packed[others[k]].unpack();
+                           packed[others[k]].release_fixes();
+                           return t;
+                       }};
     AuditResult result = audit(source, grid, default_hull, hull_label, options);
     result.files = std::move(read.files);
     result.read_s = read.read_s;
@@ -182,7 +195,7 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
 AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                          const std::string& hull_label, const AuditOptions& options) {
     TrackSource source{tracks.size(), [&](std::size_t k) { return tracks[k].fixes.size(); },
-                       [&](std::size_t k) { return std::move(tracks[k]); }, {}};
+                       [&](std::size_t k) { return std::move(tracks[k]); }, {}, 0, {}};
     return audit(source, grid, default_hull, hull_label, options);
 }
 
@@ -211,6 +224,20 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
     std::atomic<std::size_t> done{0};
     FirstFailure failure;
     const auto t1 = Clock::now();
+    const bool real = options.world == World::real;
+    result.world = options.world;
+    result.chart_tolerance_m = options.evidence.chart_tolerance_m;
+    // Outliers dropped, static data joined, motion and headings resolved (the real world holds
+    // no heading for a vessel at rest with neither heading nor COG: it may have swung).
+    auto prepare = [&](track::Track& t) {
+        if (options.vessels) join_static_data(t, *options.vessels);
+        track::WildFixOptions wo = options.wild;
+        wo.max_gap_s = options.sweep.max_gap_s;
+        std::vector<track::WildFix> wild = track::drop_wild_fixes(t, wo);
+        track::resolve_motion(t, options.sweep.motion());
+        track::resolve_headings(t, 0.5, options.sweep.max_gap_s, !real);
+        return wild;
+    };
     std::function<void()> tick;
     if (options.progress) tick = [&] { options.progress(done.load(), total_fixes); };
     parallel_for(
@@ -220,12 +247,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
             swept[k].summary.id = t.id;
             swept[k].summary.file = t.file;
             try {
-                if (options.vessels) join_static_data(t, *options.vessels);
-                track::WildFixOptions wo = options.wild;
-                wo.max_gap_s = options.sweep.max_gap_s;
-                std::vector<track::WildFix> wild = track::drop_wild_fixes(t, wo);
-                track::resolve_motion(t, options.sweep.motion());
-                track::resolve_headings(t, 0.5, options.sweep.max_gap_s);
+                std::vector<track::WildFix> wild = prepare(t);
                 std::string label = hull_label;
                 hull::Hull hull = default_hull;
                 if (t.dims && hull::Hull::plausible(*t.dims)) {
@@ -241,6 +263,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 context.unknown_heading = &circle;
                 context.areas = options.areas;
                 swept[k] = sweep_track(t, *frames[w], detector, sweep_options, context);
+                if (real) gather_evidence(t, hull.length(), *frames[w], grid, sweep_options, options.evidence, swept[k]);
                 swept[k].summary.fixes += wild.size();  // fixes read, the wild ones among them
                 swept[k].summary.wild_fixes = std::move(wild);
                 swept[k].summary.hull = label;
@@ -274,6 +297,46 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         },
         tick);
     failure.rethrow();
+    if (real) {
+        // The run's traffic: every track read, this shard's and the others'.
+        std::vector<TrackResult> other(source.others);
+        parallel_for(
+            source.others, jobs,
+            [&](std::size_t k, unsigned w) {
+                try {
+                    track::Track t = source.take_other(k);
+                    prepare(t);
+                    const double length = t.dims && hull::Hull::plausible(*t.dims) ? t.dims->a + t.dims->b : default_hull.length();
+                    other[k] = traffic_of(t, length, *frames[w], grid, sweep_options, options.evidence);
+                } catch (const InputError&) {  // that shard reports it
+                } catch (...) {
+                    failure.keep(std::current_exception());
+                }
+            },
+            {});
+        failure.rethrow();
+        std::vector<const TrackResult*> all;
+        std::vector<std::string> ids;
+        for (std::size_t k = 0; k < source.count; ++k)
+            if (errors[k].empty()) {
+                all.push_back(&swept[k]);
+                ids.push_back(swept[k].summary.id);
+            }
+        for (const TrackResult& o : other) {
+            all.push_back(&o);
+            ids.push_back(o.summary.id);
+        }
+        const Traffic traffic = learn_traffic(all, ids, *frames[0], options.evidence);
+        for (std::size_t k = 0, m = 0; k < source.count; ++k)
+            if (errors[k].empty()) decide_kinds(swept[k], traffic.berth_stays[m++], options.evidence);
+        result.places = traffic.places;
+    } else {
+        for (auto& r : swept) grade_simulated(r);
+    }
+    for (auto& r : swept) {  // what the evidence needed, no longer
+        std::vector<Stay>().swap(r.stays);
+        std::vector<geo::XY>().swap(r.over_land);
+    }
     result.sweep_s = std::chrono::duration<double>(Clock::now() - t1).count();
 
     std::vector<const track::Track*> exercise;
@@ -300,6 +363,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         result.alongside += s.alongside;
         result.contacts_at_start += s.contacts_at_start;
         result.expected_contacts += s.expected_contacts;
+        result.chart_disagreements += s.chart_disagreements;
         result.wild_fixes += s.wild_fixes.size();
         result.jumps += s.jumps;
         result.unknown_heading_fixes += s.unknown_heading_fixes;

@@ -24,6 +24,7 @@ const char* to_string(EventKind k) noexcept {
         case EventKind::contact_at_start: return "in_contact_at_start";
         case EventKind::expected_contact: return "expected_contact";
         case EventKind::close_pass: return "close_pass";
+        case EventKind::chart_disagrees: return "chart_disagrees";
     }
     return "grounding";
 }
@@ -190,6 +191,7 @@ private:
             case EventKind::alongside: ++sum.alongside; break;
             case EventKind::contact_at_start: ++sum.contacts_at_start; break;
             case EventKind::expected_contact: ++sum.expected_contacts; break;
+            case EventKind::chart_disagrees: ++sum.chart_disagreements; break;
             case EventKind::close_pass: break;
         }
     }

@@ -127,6 +127,7 @@ std::string kind_heading(audit::EventKind k) {
     case audit::EventKind::contact_at_start: return "In contact at the first fix";
     case audit::EventKind::expected_contact: return "Contact in an expected-contact area";
     case audit::EventKind::close_pass: return "Close pass";
+    case audit::EventKind::chart_disagrees: return "The chart disagrees with the traffic (not a grounding)";
     }
     return "Event";
 }

@@ -63,6 +63,8 @@ constexpr const char* slate = "#6a7f95";
 constexpr const char* slate_dark = "#3e4f60";
 constexpr const char* green = "#33a02c";
 constexpr const char* green_dark = "#1d6419";
+constexpr const char* teal = "#17becf";       ///< the chart disagrees with the traffic
+constexpr const char* teal_dark = "#0b6f7a";
 constexpr const char* contact_violet = "#8a76b8";  ///< a track with contacts, none of them a grounding
 constexpr const char* clear_grey = "#7f8b96";
 constexpr const char* ink = "#222222";
@@ -140,15 +142,16 @@ KindStyle kind_style(EventKind k) noexcept {
     case EventKind::contact_at_start: return {slate, slate_dark};
     case EventKind::expected_contact: return {green, green_dark};
     case EventKind::close_pass: return {amber, amber_dark};
+    case EventKind::chart_disagrees: return {teal, teal_dark};
     }
     return {red, red_dark};
 }
 
 /// Every kind, most severe first: the order of the zoomed panels.
 constexpr EventKind kinds_by_severity[] = {EventKind::grounding, EventKind::alongside, EventKind::contact_at_start,
-                                           EventKind::expected_contact, EventKind::close_pass};
+                                           EventKind::expected_contact, EventKind::close_pass, EventKind::chart_disagrees};
 
-/// The place of `k` in kinds_by_severity (0 to 4).
+/// The place of `k` in kinds_by_severity (0 to 5).
 std::size_t severity(EventKind k) noexcept {
     switch (k) {
     case EventKind::grounding: return 0;
@@ -156,6 +159,7 @@ std::size_t severity(EventKind k) noexcept {
     case EventKind::contact_at_start: return 2;
     case EventKind::expected_contact: return 3;
     case EventKind::close_pass: return 4;
+    case EventKind::chart_disagrees: return 5;
     }
     return 0;
 }
@@ -168,6 +172,7 @@ std::string count_text(EventKind k, std::size_t n) {
     case EventKind::contact_at_start: return plural(n, "in contact at the start", "in contact at the start");
     case EventKind::expected_contact: return plural(n, "expected contact", "expected contacts");
     case EventKind::close_pass: return plural(n, "close pass", "close passes");
+    case EventKind::chart_disagrees: return plural(n, "where the chart disagrees", "where the chart disagrees");
     }
     return std::to_string(n);
 }
@@ -194,6 +199,7 @@ std::string kind_words(const Event& e) {
         return s;
     }
     case EventKind::close_pass: return "close pass";
+    case EventKind::chart_disagrees: return "the chart disagrees with the traffic (not a grounding)";
     }
     return audit::to_string(e.kind);
 }
@@ -840,7 +846,8 @@ std::string marker_shape(EventKind k, XY p, double size, std::string* tag) {
         *tag = "polygon";
         return "<polygon points=\"" + page_points({{p.x, p.y - s}, {p.x + s, p.y}, {p.x, p.y + s}, {p.x - s, p.y}}) + "\"";
     }
-    case EventKind::close_pass: {
+    case EventKind::close_pass:
+    case EventKind::chart_disagrees: {
         const double s = size * 1.25;
         *tag = "polygon";
         return "<polygon points=\"" + page_points({{p.x, p.y - s}, {p.x + s * 0.9, p.y + s * 0.6}, {p.x - s * 0.9, p.y + s * 0.6}}) +
@@ -1210,7 +1217,7 @@ std::vector<LegendItem> legend_items(const grid::CoastGrid& g, const Scene& scen
         return marker_shape(k, {11, 6}, big ? 5 : 4, &tag) + " fill=\"" + kind_style(k).fill + "\" stroke=\"#ffffff\" stroke-width=\"" +
                (big ? "1.5" : "1") + "\" stroke-linejoin=\"round\"/>";
     };
-    bool kind_present[5] = {false, false, false, false, false};
+    bool kind_present[6] = {false, false, false, false, false, false};
     bool unknown_heading = false;
     for (const EventDraw& e : scene.events) {
         kind_present[severity(e.event->kind)] = true;
@@ -1242,6 +1249,8 @@ std::vector<LegendItem> legend_items(const grid::CoastGrid& g, const Scene& scen
         items.push_back({marker(EventKind::contact_at_start), "in contact at the first fix"});
     if (kind_present[severity(EventKind::expected_contact)])
         items.push_back({marker(EventKind::expected_contact), "contact in a berth or harbour area"});
+    if (kind_present[severity(EventKind::chart_disagrees)])
+        items.push_back({marker(EventKind::chart_disagrees), "the chart disagrees with the traffic (sailed through)"});
     items.push_back({marker(EventKind::close_pass), "close pass"});
     return items;
 }
@@ -1321,7 +1330,7 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
     const std::vector<EventDraw*> order = order_events(scene);
     // Zoomed panels in that order, up to the limit; what is left out is counted by kind.
     std::size_t zoom_count = 0;
-    std::size_t left_out[5] = {0, 0, 0, 0, 0};
+    std::size_t left_out[6] = {0, 0, 0, 0, 0, 0};
     for (EventDraw* e : order) {
         if (zoom_count < options.max_zoom_panels && e->point_ok) e->zoom = ++zoom_count;
         else ++left_out[severity(e->event->kind)];

@@ -31,6 +31,8 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.grid_fingerprint = grid::fingerprint_hex(grid.source().fingerprint);
     info.ship = ship;
     info.sweep = options.sweep;
+    info.world = options.world;
+    info.evidence = options.evidence;
     info.wild = options.wild;
     info.berths = joined(berths);
     info.ship_margin_m = options.encounter.ship_margin_m;

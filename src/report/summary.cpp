@@ -15,7 +15,14 @@ constexpr std::size_t table_lines = 50;
 
 std::string summary_table(const audit::AuditResult& r) {
     std::string out;
-    char line[512];
+    char line[1024];
+    if (r.world == audit::World::real)
+        std::snprintf(line, sizeof line,
+                      "world: real (the chart is a model: a contact is a grounding when the vessel's motion says so)%s\n",
+                      std::isfinite(r.chart_tolerance_m) ? (", chart tolerance " + std::to_string(static_cast<int>(std::lround(r.chart_tolerance_m))) + " m").c_str() : "");
+    else
+        std::snprintf(line, sizeof line, "world: simulated (the chart is the world: a contact under way is a grounding)\n");
+    out += line;
     std::snprintf(line, sizeof line, "%-24s %9s %9s %7s %9s %5s %8s %5s %5s %10s  %s\n", "track", "fixes", "uncovered", "aground",
                   "alongside", "start", "expected", "close", "wild", "least m", "file");
     out += line;
@@ -44,21 +51,31 @@ std::string summary_table(const audit::AuditResult& r) {
     out += line;
     std::snprintf(line, sizeof line,
                   "contacts by kind: %zu grounding%s (under way, seen clear before), %zu alongside (stopped or under the berthing "
-                  "speed), %zu in contact at the start (not seen begin), %zu in expected-contact areas; %zu wild fixes dropped, "
-                  "%zu jumps, %zu fixes with no heading known (judged by the hull's circle)\n",
-                  r.groundings, r.groundings == 1 ? "" : "s", r.alongside, r.contacts_at_start, r.expected_contacts, r.wild_fixes,
-                  r.jumps, r.unknown_heading_fixes);
+                  "speed), %zu in contact at the start (not seen begin), %zu in expected-contact areas, %zu where the chart "
+                  "disagrees with the traffic; %zu wild fixes dropped, %zu jumps, %zu fixes with no heading known (judged by the hull's circle)\n",
+                  r.groundings, r.groundings == 1 ? "" : "s", r.alongside, r.contacts_at_start, r.expected_contacts, r.chart_disagreements,
+                  r.wild_fixes, r.jumps, r.unknown_heading_fixes);
     out += line;
+    if (!r.places.empty()) {
+        std::size_t berths = 0, water = 0;
+        for (const auto& p : r.places) ++(p.kind == audit::LearnedPlace::Kind::berth ? berths : water);
+        std::snprintf(line, sizeof line, "learned from the traffic: %zu berths (places where vessels stay), %zu cells of water the chart lacks (vessels under way on charted land)\n",
+                      berths, water);
+        out += line;
+    }
+    // Every grounding: who, when, where, and why.
     for (const auto& t : r.tracks)
         for (const auto& e : t.events) {
             if (e.kind != audit::EventKind::grounding) continue;
-            char speed[48] = "speed unknown";
+            const std::string who = t.summary.name.empty() ? t.summary.id : t.summary.id + " " + t.summary.name;
+            std::string when = iso_time(e.start_s);
+            if (std::isfinite(e.evidence.start_not_before_s) && e.start_s - e.evidence.start_not_before_s > 60)
+                when = "between " + iso_time(e.evidence.start_not_before_s) + " and " + iso_time(e.start_s);
+            char speed[64] = "speed unknown";
             if (std::isfinite(e.speed_kn)) std::snprintf(speed, sizeof speed, "%.1f kn (%s)", e.speed_kn, track::to_string(e.speed_source));
-            char stop[48] = "did not stop";
-            if (std::isfinite(e.stopped_after_s)) std::snprintf(stop, sizeof stop, "stopped %.0f s after", e.stopped_after_s);
-            std::snprintf(line, sizeof line, "  grounding %s  %-16.16s %s, %.0f s in contact, %s, penetration %.1f m%s\n",
-                          iso_time(e.start_s).c_str(), printable(t.summary.id).c_str(), speed, e.end_s - e.start_s, stop, e.penetration_m,
-                          e.reported_aground ? ", AIS status aground" : "");
+            std::snprintf(line, sizeof line, "  grounding %s  %s at %.5f, %.5f: %s, %.0f s in contact, penetration %.1f m, grade %d: %s\n",
+                          when.c_str(), printable(who).c_str(), e.ship.lat, e.ship.lon, speed, e.end_s - e.start_s, e.penetration_m,
+                          e.evidence.grade, printable(e.evidence.reason).c_str());
             out += line;
         }
     if (r.has_encounters) {

@@ -186,7 +186,7 @@ void normalise(Track& track, ReadReport& report) {
     fixes.resize(kept);
 }
 
-void resolve_headings(Track& track, double moving_kn, double max_gap_s) {
+void resolve_headings(Track& track, double moving_kn, double max_gap_s, bool hold_at_rest) {
     auto& fx = track.fixes;
     const std::size_t n = fx.size();
     double previous = NAN;
@@ -197,11 +197,11 @@ void resolve_headings(Track& track, double moving_kn, double max_gap_s) {
         const bool has_prev = i > 0;
         double used = NAN;
         HeadingSource source = HeadingSource::none;
+        bool moving = false;
         if (std::isfinite(f.heading_deg)) {
             used = f.heading_deg;
             source = HeadingSource::heading;
         } else {
-            bool moving = false;
             if (std::isfinite(f.speed_used_kn)) {
                 moving = f.speed_used_kn >= moving_kn;
             } else if (std::isfinite(f.sog_kn)) {
@@ -228,7 +228,7 @@ void resolve_headings(Track& track, double moving_kn, double max_gap_s) {
                 }
             }
         }
-        if (std::isnan(used) && std::isfinite(previous)) {
+        if (std::isnan(used) && std::isfinite(previous) && (hold_at_rest || moving || std::isfinite(f.cog_deg))) {
             used = previous;
             source = HeadingSource::previous;
         }

@@ -385,6 +385,7 @@ audit::TrackResult hand_track(const std::string& id, const std::string& name, st
         case audit::EventKind::contact_at_start: ++t.summary.contacts_at_start; break;
         case audit::EventKind::expected_contact: ++t.summary.expected_contacts; break;
         case audit::EventKind::close_pass: ++t.summary.close_passes; break;
+        case audit::EventKind::chart_disagrees: ++t.summary.chart_disagreements; break;
         }
     }
     t.summary.lines.push_back(line);

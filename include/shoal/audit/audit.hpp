@@ -12,6 +12,7 @@
 #include <shoal/audit/assessment.hpp>
 #include <shoal/audit/colreg.hpp>
 #include <shoal/audit/encounters.hpp>
+#include <shoal/audit/evidence.hpp>
 #include <shoal/audit/exercise.hpp>
 #include <shoal/audit/shard.hpp>
 #include <shoal/audit/sweep.hpp>
@@ -23,6 +24,12 @@ namespace shoal::audit {
 
 struct AuditOptions {
     SweepOptions sweep;
+    /// Whether the chart is the world (a simulator exercise) or a model of it (real traffic:
+    /// the vessel's motion and the run's traffic decide a contact's kind, evidence.hpp). The
+    /// library's default is the simulator's; `shoal check` and the Python module choose real
+    /// outside exercise mode.
+    World world = World::simulated;
+    EvidenceOptions evidence;  ///< the real world's rules
     unsigned jobs = 0;  ///< worker threads; 0 = all cores
     track::ReadOptions read;
     /// Called on the calling thread about ten times a second: fixes swept so far, fixes in all.
@@ -86,6 +93,12 @@ struct AuditResult {
     std::size_t fixes = 0, poses = 0, uncovered_fixes = 0, skipped_rows = 0;
     std::size_t groundings = 0, close_passes = 0;
     std::size_t alongside = 0, contacts_at_start = 0, expected_contacts = 0;
+    std::size_t chart_disagreements = 0;  ///< real world: contacts the traffic contradicts
+    World world = World::real;            ///< the world the kinds were decided in
+    double chart_tolerance_m = NAN;       ///< EvidenceOptions::chart_tolerance_m used
+    /// Real world: what the run's traffic taught (learned berths, water the chart lacks),
+    /// learned from every track read (all shards alike).
+    std::vector<LearnedPlace> places;
     std::size_t wild_fixes = 0, jumps = 0, unknown_heading_fixes = 0;
     /// What the user should hear about the run as a whole: most fixes uncovered (swapped
     /// latitude and longitude?), tracks broken into lone fixes by jumps.

@@ -87,8 +87,12 @@ enum class EventKind {
     contact_at_start,   ///< already in contact at the first fix of a track or of a piece (after a gap or jump): not seen
     expected_contact,   ///< contact inside an area where contact is expected (berth, harbour, anchorage)
     close_pass,         ///< clearance under the margin, never contact
+    /// Real world (evidence.hpp): a contact the traffic contradicts: the vessel sailed on
+    /// through it, it exists only on the straight line between fixes minutes apart, or it is
+    /// deeper than the hull could go. A place where the chart lacks water, not a grounding.
+    chart_disagrees,
 };
-/// "grounding", "alongside", "in_contact_at_start", "expected_contact", "close_pass".
+/// "grounding", "alongside", "in_contact_at_start", "expected_contact", "close_pass", "chart_disagrees".
 const char* to_string(EventKind k) noexcept;
 /// A contact of any kind (every kind but close_pass).
 constexpr bool is_contact(EventKind k) noexcept { return k != EventKind::close_pass; }
@@ -127,6 +131,32 @@ struct Event {
     std::string unseen_after;       ///< contact_at_start: "track start", "gap" or "jump"
     std::string area_kind, area_name;  ///< expected_contact: the area ("berth", "harbour", "anchorage", "area") and its name
     std::string structure;          ///< the contact point is on a shore construction (S-57 SLCONS): its kind ("pier", "wharf", ...)
+
+    /// Real world (evidence.hpp): what the vessel's own motion and the run's traffic say.
+    struct Evidence {
+        int grade = 0;                   ///< 1-4: how strong the evidence for the kind is (4 strongest); 0: not graded (close passes)
+        std::string reason;              ///< what decided the kind, in words
+        std::string disagreement;        ///< chart_disagrees: "sailed_through", "between_fixes", "deeper_than_hull"
+        double start_not_before_s = NAN; ///< the last fix at which the vessel was seen clear before the contact
+        double speed_before_kn = NAN, speed_before_age_s = NAN;  ///< the fix before the contact: its speed, how long before
+        double speed_after_kn = NAN, speed_after_age_s = NAN;    ///< the first fix at or after it
+        double stop_distance_m = NAN;    ///< from the ship at first contact to where it came to rest (NaN: it did not)
+        double stay_s = NAN;             ///< how long it then lay there, across gaps
+        double deceleration_kn_s = NAN;  ///< from the fix before to the first fix at rest, when both lie within the abrupt window
+        std::size_t berth_stays = 0;     ///< other vessels' stays (or this one's other stays) at that place in the run
+        std::size_t pieces = 1;          ///< pieces of track (after gaps) this one stay spans
+        bool within_chart_tolerance = false;  ///< penetration within the chart's positional tolerance
+        // What the rules read (evidence.cpp), not reported as such.
+        bool seen_clear_before = false;  ///< the fix before was clear (also across a gap, not a jump)
+        std::size_t stay = static_cast<std::size_t>(-1);  ///< index of the stay that follows, in TrackResult::stays
+        bool prompt_stop = false;        ///< that stay begins at the first fix after the contact or within the abrupt window
+        bool bracket_dense = false;      ///< the fixes around the contact both lie within the abrupt window of it
+        bool between_fixes_only = false; ///< no fix lies in the contact, and the fixes around it are far apart
+        bool left_contact = false;       ///< the contact ended before the track did (the vessel came clear again)
+        bool moored_at_stay = false;     ///< AIS status moored or at anchor during the stay
+        bool aground_at_stay = false;    ///< AIS status aground during the stay
+        double gap_distance_m = NAN;     ///< from the fix before to the first fix after
+    } evidence;
 };
 
 /// Figures of one swept track.
@@ -149,6 +179,9 @@ struct TrackSummary {
     std::size_t poses = 0;            ///< poses checked (fixes and swept poses between them)
     std::size_t groundings = 0, close_passes = 0;
     std::size_t alongside = 0, contacts_at_start = 0, expected_contacts = 0;
+    std::size_t chart_disagreements = 0;  ///< real world: contacts the traffic contradicts (EventKind::chart_disagrees)
+    double cadence_s = NAN;           ///< the track's own fix interval: the median time between fixes
+    double hull_length_m = NAN;       ///< the length of the hull it was checked with
     std::vector<track::WildFix> wild_fixes;  ///< fixes dropped as outliers (never swept)
     std::size_t jumps = 0;            ///< persistent jumps (each starts a new piece)
     std::size_t unknown_heading_fixes = 0;  ///< fixes checked by the hull's circle: no heading known yet
@@ -184,9 +217,22 @@ struct ClearanceSample {
     bool after_break = false;
 };
 
+/// A stay: consecutive fixes of one vessel lying within a small box (evidence.hpp), across
+/// gaps but not across a jump.
+struct Stay {
+    std::size_t first = 0, last = 0;  ///< fix indices
+    double start_s = 0, end_s = 0;
+    geo::XY local;                    ///< the first fix, local metres
+    bool moored = false, aground = false;  ///< AIS status moored / at anchor, aground at a fix of it
+};
+
 struct TrackResult {
     TrackSummary summary;
     std::vector<Event> events;
+    /// Real world (evidence.hpp): the track's stays and the local positions of fixes under way
+    /// whose reference point lies on charted land (the run's traffic learns from both).
+    std::vector<Stay> stays;
+    std::vector<geo::XY> over_land;
     std::vector<Pose> poses;  ///< in time order
     /// SweepOptions::watch_clearance_m > 0: the checked poses under it and their neighbours, in time order.
     std::vector<ClearanceSample> clearance;

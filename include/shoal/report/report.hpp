@@ -35,6 +35,8 @@ struct RunInfo {
     std::string grid_fingerprint;
     std::string ship;         ///< the default hull: ship name or "--dims a,b,c,d"
     audit::SweepOptions sweep;
+    audit::World world = audit::World::real;  ///< the world the contacts' kinds were decided in
+    audit::EvidenceOptions evidence;          ///< the real world's rules
     track::WildFixOptions wild;
     std::string berths;        ///< the --berths sources (expected-contact areas), comma-separated
     double ship_margin_m = 0;  ///< exercise mode: close quarters under this

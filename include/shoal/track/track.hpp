@@ -115,7 +115,9 @@ void normalise(Track& track, ReadReport& report);
 /// orientation is unknown). Fills heading_used_deg and heading_source.
 /// The last known heading is not carried across a gap over `max_gap_s` or a jump
 /// (Fix::jump_before): after them the orientation is unknown again until seen.
-void resolve_headings(Track& track, double moving_kn = 0.5, double max_gap_s = INFINITY);
+/// `hold_at_rest` false (the real world): a fix not moving with neither heading nor COG gets no
+/// heading (HeadingSource::none): a vessel at rest may have swung, whatever its course was.
+void resolve_headings(Track& track, double moving_kn = 0.5, double max_gap_s = INFINITY, bool hold_at_rest = true);
 
 /// Great-circle distance in metres (haversine, mean Earth radius).
 double distance_m(geo::LonLat a, geo::LonLat b) noexcept;
