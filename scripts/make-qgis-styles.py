@@ -27,6 +27,7 @@ MAGENTA, VIOLET = "#c51b7d", "#756bb1"
 RED, AMBER, GREEN, GREY = "#e31a1c", "#ff9f00", "#33a02c", "#6a7f95"
 BLUE, PURPLE = "#1f78b4", "#6a3d9a"
 STEEL = "#4a7fa8"
+TEAL = "#17becf"  # the chart disagrees with the traffic, as in the --plot picture
 ORANGE_RED = "#d7301f"
 VIOLET_TRACK = "#8a76b8"  # as in the --plot picture
 
@@ -100,6 +101,7 @@ for expr, colour, shape, size, label in (
         ("\"kind\" = 'in_contact_at_start'", GREY, "circle", "2.6", "in contact at the first fix (not seen begin)"),
         ("\"kind\" = 'expected_contact'", GREEN, "circle", "2.6", "contact in a berth, harbour or anchorage area"),
         ("\"kind\" = 'close_pass'", AMBER, "triangle", "4.2", "close pass"),
+        ("\"kind\" = 'chart_disagrees'", TEAL, "triangle", "2.6", "the chart disagrees with the traffic (sailed through, between fixes: not a grounding)"),
         # a GeoJSON report holds exercise-mode encounters in the same layer: drawn as in `encounters`
         ("\"kind\" = 'collision'", MAGENTA, "diamond", "4.2", "ship-ship collision"),
         ("\"kind\" = 'close_quarters'", VIOLET, "pentagon", "4.2", "ship-ship close quarters"),
@@ -221,4 +223,16 @@ for expr, fill, colour, style, label in (
     root.appendChild(QgsRuleBasedRenderer.Rule(sym, 0, 0, expr, label))
 coast.setRenderer(QgsRuleBasedRenderer(root))
 save(coast, "coast")
+# learned (--world real): what the run's traffic teaches: places where vessels stay (learned
+# berths, blue circles) and cells where vessels under way pass over charted land (water the chart
+# lacks, teal squares): a chart correction to open beside the chart. Not temporal.
+learned = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=vessels:integer&field=label:string", "learned", "memory")
+root = QgsRuleBasedRenderer.Rule(None)
+for expr, colour, shape, size, label in (
+        ("\"kind\" = 'learned_berth'", "31,120,180,170", "circle", "4.0", "learned berth: vessels stay here"),
+        ("\"kind\" = 'chart_lacks_water'", "23,190,207,150", "square", "3.0", "water the chart lacks: vessels under way on charted land")):
+    sym = QgsMarkerSymbol.createSimple({"name": shape, "color": colour, "outline_color": "#0b3c5d", "outline_width": "0.2", "size": size})
+    root.appendChild(QgsRuleBasedRenderer.Rule(sym, 0, 0, expr, label))
+learned.setRenderer(QgsRuleBasedRenderer(root))
+save(learned, "learned")
 app.exitQgis()

@@ -311,7 +311,7 @@ struct ProjectFiles {
     std::vector<Layer> layers;
 };
 
-constexpr MapLayer side_layers[] = {MapLayer::hulls, MapLayer::poses, MapLayer::tracks, MapLayer::coast};  // top of the map first
+constexpr MapLayer side_layers[] = {MapLayer::hulls, MapLayer::poses, MapLayer::tracks, MapLayer::learned, MapLayer::coast};  // top of the map first
 
 ProjectFiles project_files(const std::string& report) {
     ProjectFiles f;
@@ -446,6 +446,7 @@ template void append_object(std::string&, const std::vector<fields::Field<fields
 template void append_object(std::string&, const std::vector<fields::Field<fields::HullRow>>&, const fields::HullRow&, const audit::AuditResult&);
 template void append_object(std::string&, const std::vector<fields::Field<fields::PoseRow>>&, const fields::PoseRow&, const audit::AuditResult&);
 template void append_object(std::string&, const std::vector<fields::Field<fields::CoastRow>>&, const fields::CoastRow&, const audit::AuditResult&);
+template void append_object(std::string&, const std::vector<fields::Field<fields::LearnedRow>>&, const fields::LearnedRow&, const audit::AuditResult&);
 
 namespace {
 
@@ -566,6 +567,13 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
             }, sink);
             break;
         }
+        case MapLayer::learned: {
+            write_features(r.places.size(), info.jobs, [](std::size_t) { return std::size_t{1}; }, [&](std::size_t k, std::string& out) {
+                open_feature(out, fields::learned_fields(), fields::LearnedRow{r.places[k]}, r, "Point");
+                append_position(out, r.places[k].position);
+            }, sink);
+            break;
+        }
         case MapLayer::coast: {
             if (!info.chart) throw LibraryError("the coast layer without a chart");
             const std::vector<ChartFeature> rows = chart_features_near(r, *info.chart);
@@ -676,15 +684,18 @@ void stage_project_beside(const std::string& path, const audit::AuditResult& r, 
     std::vector<ProjectLayer> layers{{"events", "Point", "./" + name + "|geometrytype=Point"}};
     std::vector<const ProjectFiles::Layer*> written;
     for (const auto& l : f.layers)
-        if (l.which != MapLayer::coast || info.chart) written.push_back(&l);
+        if ((l.which != MapLayer::coast || info.chart) && (l.which != MapLayer::learned || r.world == audit::World::real)) written.push_back(&l);
     std::vector<StagedOutput> files_out = stage_layer_files(written, r, info);
     for (std::size_t k = 0; k < written.size(); ++k) {
         const auto& l = *written[k];
         out.push_back(std::move(files_out[k]));
         std::string warning;  // checked above: shoal's, or none
         if (std::optional<StagedOutput> s = stage_sidecar_style(l.qml, name_of(l.which), warning)) out.push_back(std::move(*s));
-        const char* type = l.which == MapLayer::tracks ? "MultiLineString" : l.which == MapLayer::coast ? "MultiPolygon" : "Polygon";
-        layers.push_back({name_of(l.which), l.which == MapLayer::tracks ? "Line" : "Polygon",
+        const char* type = l.which == MapLayer::tracks    ? "MultiLineString"
+                           : l.which == MapLayer::coast   ? "MultiPolygon"
+                           : l.which == MapLayer::learned ? "Point"
+                                                          : "Polygon";
+        layers.push_back({name_of(l.which), l.which == MapLayer::tracks ? "Line" : l.which == MapLayer::learned ? "Point" : "Polygon",
                           "./" + std::filesystem::path(l.geojson).filename().string() + "|geometrytype=" + type});
     }
     StagedOutput qgz(f.qgz);

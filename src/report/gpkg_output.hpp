@@ -17,26 +17,27 @@ class OGRLayer;
 namespace shoal::report {
 
 /// The layers and tables of a GeoPackage report; null: not in this report. Rows are written
-/// in this order too: events, encounters, breaches, tracks, hulls, poses, coast, problems,
+/// in this order too: events, encounters, breaches, tracks, hulls, poses, coast, learned, problems,
 /// approaches, scores, run, summary, part.
 struct GpkgLayers {
     OGRLayer *events = nullptr, *tracks = nullptr, *hulls = nullptr, *poses = nullptr, *coast = nullptr, *encounters = nullptr,
              *problems = nullptr, *approaches = nullptr, *run = nullptr, *summary = nullptr;
     OGRLayer *breaches = nullptr, *scores = nullptr;  ///< --assess
+    OGRLayer* learned = nullptr;  ///< --world real: what the run's traffic taught
     /// A shard's report only: one row, field `order`, the JSON of report/part_order.hpp.
     OGRLayer* part = nullptr;
 };
 
 /// Creates the empty layers of a report of the shape of `shape` (exercise mode:
-/// has_encounters; --assess: has_assessment; a shard: shard), each with the fields report_fields.hpp lists for it; the
+/// has_encounters; --assess: has_assessment; a shard: shard; --world real: world), each with the fields report_fields.hpp lists for it; the
 /// `coast` layer when `chart`, the `poses` layer when `poses`.
 GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& shape, bool chart, bool poses);
 
 /// The map layers a GeoJSON report lacks (it holds the events), each written into a file of
 /// its own beside it (geojson_report.cpp, write_layer): the same fields, rows and geometries
 /// as the GeoPackage's layers of those names.
-enum class MapLayer { tracks, hulls, poses, coast };
-/// "tracks", "hulls", "poses", "coast": the layer's name and its style's.
+enum class MapLayer { tracks, hulls, poses, coast, learned };
+/// "tracks", "hulls", "poses", "coast", "learned": the layer's name and its style's.
 const char* name_of(MapLayer which) noexcept;
 
 /// A GeoPackage report staged at `path`: created as every report is (a fixed "current date":

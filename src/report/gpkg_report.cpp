@@ -157,6 +157,11 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
     fill_hulls(hulls, r);
     if (layers.poses) fill_poses(*layers.poses, r);
     if (coast) fill_coast(*coast, r, *info.chart);
+    if (layers.learned)
+        for (const auto& p : r.places) {
+            const OGRPoint pt = point(p.position);
+            put(*layers.learned, fields::learned_fields(), fields::LearnedRow{p}, r, &pt);
+        }
     for (const auto& p : fields::problem_rows(r)) put(problems, fields::problem_fields(), p, r, nullptr);
     if (approaches)
         for (const auto& a : r.encounters.approaches) put(*approaches, fields::approach_fields(), fields::ApproachRow{r, a}, r, nullptr);
@@ -181,6 +186,8 @@ GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& r, bool c
     l.hulls = &make_layer(ds, "hulls", wkbPolygon, fields::hull_fields(), r);
     if (poses) l.poses = &make_layer(ds, "poses", wkbPolygon, fields::pose_fields(), r);
     if (chart) l.coast = &make_layer(ds, "coast", wkbMultiPolygon, fields::coast_fields(), r);
+    // --world real: the places the run's traffic taught (learned berths, water the chart lacks).
+    if (r.world == audit::World::real) l.learned = &make_layer(ds, "learned", wkbPoint, fields::learned_fields(), r);
     // Exercise mode: ship-to-ship encounters, their own layer (hull footprints of both ships
     // go into `hulls` with kind collision / close_quarters).
     if (r.has_encounters) l.encounters = &make_layer(ds, "encounters", wkbPoint, fields::encounter_fields(), r);
@@ -205,6 +212,7 @@ const char* name_of(MapLayer which) noexcept {
         case MapLayer::hulls: return "hulls";
         case MapLayer::poses: return "poses";
         case MapLayer::coast: return "coast";
+        case MapLayer::learned: return "learned";
     }
     return "";
 }

@@ -573,6 +573,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
     audit::AuditResult shape;  // what decides which layers and fields the report has
     shape.has_encounters = first.GetLayerByName("encounters") != nullptr;
     shape.has_assessment = first.GetLayerByName("breaches") != nullptr;
+    shape.world = first.GetLayerByName("learned") ? audit::World::real : audit::World::simulated;
     const bool chart = first.GetLayerByName("coast") != nullptr;
     // The poses layer and the stored project go together (check --no-project: neither).
     const bool project = first.GetLayerByName("poses") != nullptr;
@@ -611,6 +612,19 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
             });
             rows.erase(std::remove_if(rows.begin(), rows.end(), [](const auto& r) { return r.first.back() != 0; }), rows.end());
             put_rows(out.coast, rows);
+        }
+        if (out.learned) {
+            // What the traffic taught is the same in every shard of a set of inputs (each learns
+            // from every track read): the first part of each set gives it.
+            std::vector<std::pair<Key, OGRFeatureUniquePtr>> rows;
+            for (const std::size_t k : plan.first_of_set) {
+                OGRLayer* in = parts[k].gpkg->GetLayerByName("learned");
+                if (!in) throw not_a_part(parts[k].path, "no layer learned");
+                in->ResetReading();
+                for (std::size_t i = 0; OGRFeatureUniquePtr f{in->GetNextFeature()}; ++i)
+                    rows.push_back({Key{as_key(parts[k].set), as_key(i)}, std::move(f)});
+            }
+            put_rows(out.learned, rows);
         }
         {
             std::vector<std::pair<Key, OGRFeatureUniquePtr>> rows;

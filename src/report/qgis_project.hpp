@@ -59,6 +59,6 @@ bool is_shoal_qgz(const std::string& path, const std::string& member);
 void add_qgis_project(GDALDataset& gpkg, const std::string& file_name, const ProjectView& view);
 
 /// The report's map layers, top of the map first (QGIS's layer tree order).
-inline constexpr const char* report_layers_top_first[] = {"breaches", "events", "encounters", "hulls", "poses", "tracks", "coast"};
+inline constexpr const char* report_layers_top_first[] = {"breaches", "events", "encounters", "hulls", "poses", "tracks", "learned", "coast"};
 
 }  // namespace shoal::report

@@ -82,7 +82,7 @@ void add_layer_styles(GDALDataset& ds) {
     exec(ds,
          "INSERT INTO gpkg_contents (table_name, data_type, identifier, description, last_change) "
          "VALUES ('layer_styles', 'attributes', 'layer_styles', 'QGIS styles of the layers', '2000-01-01T00:00:00.000Z')");
-    for (const char* layer : {"events", "tracks", "hulls", "encounters", "breaches", "poses", "coast"}) {
+    for (const char* layer : {"events", "tracks", "hulls", "encounters", "breaches", "poses", "coast", "learned"}) {
         OGRLayer* l = ds.GetLayerByName(layer);
         if (!l) continue;
         const char* geom = l->GetGeometryColumn();

@@ -405,6 +405,15 @@ const std::vector<Field<RunRow>>& summary_fields() {
         {"contacts_at_start", integer, none, -1, [](const R& x) { return count(x.result.contacts_at_start); }},
         {"expected_contacts", integer, none, -1, [](const R& x) { return count(x.result.expected_contacts); }},
         {"chart_disagreements", integer, none, -1, [](const R& x) { return count(x.result.chart_disagreements); }},
+        // Every shard learns from every track read: counted once per set of inputs.
+        {"learned_berths", integer, none, -1,
+         [](const R& x) { return count(static_cast<std::size_t>(std::count_if(x.result.places.begin(), x.result.places.end(), [](const auto& p) {
+             return p.kind == audit::LearnedPlace::Kind::berth;
+         }))); }, nullptr, Merge::per_input},
+        {"water_cells", integer, none, -1,
+         [](const R& x) { return count(static_cast<std::size_t>(std::count_if(x.result.places.begin(), x.result.places.end(), [](const auto& p) {
+             return p.kind == audit::LearnedPlace::Kind::water;
+         }))); }, nullptr, Merge::per_input},
         {"close_passes", integer, none, -1, [](const R& x) { return count(x.result.close_passes); }},
         {"wild_fixes", integer, none, -1, [](const R& x) { return count(x.result.wild_fixes); }},
         {"jumps", integer, none, -1, [](const R& x) { return count(x.result.jumps); }},
@@ -445,6 +454,28 @@ const std::vector<Field<BreachRow>>& breach_fields() {
         {"other_track", text_t, none, -1, [](const B& x) { return x.breach.other.empty() ? null : text(x.breach.other); }},
         {"detail", text_t, none, -1, [](const B& x) { return text(x.breach.detail); }},
         {"label", text_t, none, -1, [](const B& x) { return text(x.breach.criterion + " " + iso_time(x.breach.start_s).substr(11)); }},
+    };
+    return f;
+}
+
+const std::vector<Field<LearnedRow>>& learned_fields() {
+    using L = LearnedRow;
+    static const std::vector<Field<LearnedRow>> f = {
+        {"kind", text_t, none, -1, [](const L& x) { return text(audit::to_string(x.place.kind)); }},
+        {"vessels", integer, none, -1, [](const L& x) { return count(x.place.vessels); }},
+        {"count", integer, none, -1, [](const L& x) { return count(x.place.count); }},
+        {"hours", real, "h", 2, [](const L& x) { return x.place.kind == audit::LearnedPlace::Kind::berth ? Value(x.place.hours) : null; }},
+        {"size_m", real, metres, 1, [](const L& x) { return Value(x.place.size_m); }},
+        {"first", datetime, utc, -1, [](const L& x) { return std::isfinite(x.place.first_s) ? text(iso_time(x.place.first_s)) : null; }},
+        {"last", datetime, utc, -1, [](const L& x) { return std::isfinite(x.place.last_s) ? text(iso_time(x.place.last_s)) : null; }},
+        {"lat", real, wgs84, coordinate_decimals, [](const L& x) { return Value(x.place.position.lat); }},
+        {"lon", real, wgs84, coordinate_decimals, [](const L& x) { return Value(x.place.position.lon); }},
+        {"label", text_t, none, -1,
+         [](const L& x) {
+             const auto n = std::to_string(x.place.vessels);
+             return text(x.place.kind == audit::LearnedPlace::Kind::berth ? "berth: " + std::to_string(x.place.count) + " stays, " + n + " vessels"
+                                                                            : "water: " + n + " vessels under way");
+         }},
     };
     return f;
 }

@@ -17,6 +17,7 @@
 ///   problems            `shoal.problems[]` (null keys left out)  table `problems`
 ///   closest_approaches  `shoal.closest_approaches[]`             table `closest_approaches` (exercise mode)
 ///   breaches            Point features, kind "breach" (--assess) Point layer `breaches` (--assess)
+///   learned             (none: REPORT.learned.geojson beside it)  Point layer `learned` (--world real)
 ///   scores              `shoal.assessment.scores[]`              table `scores` (--assess)
 ///   criteria            `shoal.assessment.criteria[]`            (none)
 ///   run                 members of `shoal`                       table `run` (one row)
@@ -142,6 +143,10 @@ struct ScoreRow {
 struct CriterionRow {
     const audit::Criterion& criterion;
 };
+/// A place the run's traffic taught (--world real): the `learned` layer.
+struct LearnedRow {
+    const audit::LearnedPlace& place;
+};
 
 const std::vector<Field<EventRow>>& event_fields();
 const std::vector<Field<EncounterRow>>& encounter_fields();
@@ -154,6 +159,7 @@ const std::vector<Field<ApproachRow>>& approach_fields();
 const std::vector<Field<RunRow>>& run_fields();
 const std::vector<Field<RunRow>>& summary_fields();
 const std::vector<Field<BreachRow>>& breach_fields();
+const std::vector<Field<LearnedRow>>& learned_fields();
 const std::vector<Field<ScoreRow>>& score_fields();
 const std::vector<Field<CriterionRow>>& criterion_fields();
 

@@ -447,7 +447,7 @@ protected:
     /// `shoal check --dims 2,2,1,1` of `track`; the report.
     json check(const std::string& track, const std::string& name) const {
         const std::string report = m_dir.file(name + ".geojson");
-        const Outcome o = shoal({"check", "--coast", s_grid, "--dims", "2,2,1,1", "--jobs", "2", track, "-o", report}, m_dir.path());
+        const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "2,2,1,1", "--jobs", "2", track, "-o", report}, m_dir.path());
         EXPECT_EQ(o.status, 1) << "a grounding found: exit status 1\n" << o.err;  // the ferry's, at least
         std::ifstream in(report);
         if (!in) {
@@ -550,7 +550,7 @@ TEST_F(AivdmAudit, EachVesselsShipTypeFromItsTypeFiveIsReportedWithItsMeaningAnd
     const std::string log = file("voyages.nmea", aivdm_log(m_fleet, m_reports, 0));
     const json ais = check(log, "ais");
     const std::string gpkg = m_dir.file("ais.gpkg");
-    const Outcome o = shoal({"check", "--coast", s_grid, "--dims", "2,2,1,1", log, "-o", gpkg}, m_dir.path());
+    const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "2,2,1,1", log, "-o", gpkg}, m_dir.path());
     ASSERT_EQ(o.status, 1) << o.err;
     const auto in_gpkg = gpkg_ship_types(gpkg);
     const auto t = tracks(ais);

@@ -209,7 +209,8 @@ protected:
     }
     /// `shoal check` of `tracks` against the Solent grid with a 60 m ship, report to `report`.
     Outcome check(const std::vector<std::string>& tracks, const std::string& report, std::vector<std::string> more = {}) const {
-        std::vector<std::string> args{"check", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", "2", "-o", report};
+        // Synthetic voyages crossing land at speed: the simulator's world (the chart is the world).
+        std::vector<std::string> args{"check", "--world", "simulated", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", "2", "-o", report};
         args.insert(args.end(), tracks.begin(), tracks.end());
         args.insert(args.end(), more.begin(), more.end());
         return shoal(args);
@@ -304,7 +305,7 @@ TEST_F(BadInput, GpxAndGeoJsonCutShortAreUnreadableFilesAndTheBatchGoesOn) {
 
 TEST_F(BadInput, ShipFileCutShortSaysWhereTheJsonEnds) {
     const std::string ship = file("ship.json", slurp(data_path("ships/tanker.json")).substr(0, 60));
-    const Outcome o = shoal({"check", "--coast", s_grid, "--ship", ship, good_tracks(), "-o", m_dir.file("r.geojson")});
+    const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--ship", ship, good_tracks(), "-o", m_dir.file("r.geojson")});
     EXPECT_EQ(o.status, 2);
     EXPECT_NE(o.err.find("In ship file '" + ship + "': not valid JSON at byte"), std::string::npos) << o.err;
     EXPECT_EQ(lines_of(o.err), 1u) << o.err;
@@ -459,10 +460,10 @@ TEST_F(BadInput, AFolderWhereAFileIsExpectedIsNamed) {
         std::vector<std::string> args;
         std::string expect;
     } cases[] = {
-        {{"check", "--coast", d, "--dims", "50,10,5,5", good, "-o", r}, "'" + d + "': not a vector dataset OGR can read"},
-        {{"check", "--coast", s_grid, "--ship", d, good, "-o", r}, "Cannot open ship file '" + d + "': it is a folder"},
-        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", d, "-o", r}, d + ": folder holds no track files"},
-        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", good, "-o", d}, "cannot write '" + d + "': it is a directory"},
+        {{"check", "--world", "simulated", "--coast", d, "--dims", "50,10,5,5", good, "-o", r}, "'" + d + "': not a vector dataset OGR can read"},
+        {{"check", "--world", "simulated", "--coast", s_grid, "--ship", d, good, "-o", r}, "Cannot open ship file '" + d + "': it is a folder"},
+        {{"check", "--world", "simulated", "--coast", s_grid, "--dims", "50,10,5,5", d, "-o", r}, d + ": folder holds no track files"},
+        {{"check", "--world", "simulated", "--coast", s_grid, "--dims", "50,10,5,5", good, "-o", d}, "cannot write '" + d + "': it is a directory"},
         {{"info", d}, "'" + d + "' is a directory, not a grid file"},
         {{"probe", "--coast", s_grid, "--dims", "50,10,5,5", d}, "'" + d + "' is a directory, not a CSV file"},
         {{"import", d, "-o", m_dir.file("x.shoalgrid")}, "'" + d + "': not a vector dataset OGR can read"},
@@ -498,16 +499,16 @@ TEST_F(BadInput, AnUnreadableFileIsNamedWithTheReason) {
         args.insert(args.begin(), as.begin(), as.end());
         return wait_for(spawn(args, m_dir.path()), m_dir.path());
     };
-    const Outcome t = run({"check", "--coast", grid, "--dims", "50,10,5,5", locked_track, good, "-o", r});
+    const Outcome t = run({"check", "--world", "simulated", "--coast", grid, "--dims", "50,10,5,5", locked_track, good, "-o", r});
     EXPECT_EQ(t.status, 1) << t.err;  // the readable file is still checked
     EXPECT_NE(t.err.find(locked_track + ": cannot read (Permission denied) (file skipped)"), std::string::npos) << t.err;
     struct Case {
         std::vector<std::string> args;
         std::string expect;
     } cases[] = {
-        {{"check", "--coast", grid, "--ship", locked_ship, good, "-o", r}, "Cannot open ship file '" + locked_ship + "': Permission denied"},
-        {{"check", "--coast", locked_coast, "--dims", "50,10,5,5", good, "-o", r}, "'" + locked_coast + "': cannot read (Permission denied)"},
-        {{"check", "--coast", locked_grid, "--dims", "50,10,5,5", good, "-o", r}, "'" + locked_grid + "': cannot read (Permission denied)"},
+        {{"check", "--world", "simulated", "--coast", grid, "--ship", locked_ship, good, "-o", r}, "Cannot open ship file '" + locked_ship + "': Permission denied"},
+        {{"check", "--world", "simulated", "--coast", locked_coast, "--dims", "50,10,5,5", good, "-o", r}, "'" + locked_coast + "': cannot read (Permission denied)"},
+        {{"check", "--world", "simulated", "--coast", locked_grid, "--dims", "50,10,5,5", good, "-o", r}, "'" + locked_grid + "': cannot read (Permission denied)"},
         {{"info", locked_grid}, "cannot open grid file '" + locked_grid + "': Permission denied"},
         {{"import", locked_coast, "-o", m_dir.file("x.shoalgrid")}, "'" + locked_coast + "': cannot read (Permission denied)"},
     };
@@ -536,7 +537,7 @@ TEST_F(BadInput, AGridOfAnotherFormatVersionOrCutShortAsksForARebuild) {
     const Outcome c = check({good_tracks()}, m_dir.file("r.geojson"));  // the good grid still works
     EXPECT_EQ(c.status, 1) << c.err;
     for (const std::string& g : {version, cut}) {
-        const Outcome o = shoal({"check", "--coast", g, "--dims", "50,10,5,5", good_tracks(), "-o", m_dir.file("x.geojson")});
+        const Outcome o = shoal({"check", "--world", "simulated", "--coast", g, "--dims", "50,10,5,5", good_tracks(), "-o", m_dir.file("x.geojson")});
         EXPECT_EQ(o.status, 2) << o.err;
         EXPECT_EQ(lines_of(o.err), 1u) << o.err;
         EXPECT_NE(o.err.find("rebuild it with shoal import"), std::string::npos) << o.err;
@@ -550,7 +551,7 @@ TEST_F(BadInput, AGridOfAnotherFormatVersionOrCutShortAsksForARebuild) {
 TEST_F(BadInput, ACachedGridCutShortOrOfAnotherVersionIsRebuiltWithAWarning) {
     const std::string coast = data_path("coast/uk_solent_land.geojson");
     auto run = [&](const std::string& report) {
-        return shoal({"check", "--coast", coast, "--cell", "2000", "--dims", "50,10,5,5", good_tracks(), "-o", report});
+        return shoal({"check", "--world", "simulated", "--coast", coast, "--cell", "2000", "--dims", "50,10,5,5", good_tracks(), "-o", report});
     };
     const Outcome first = run(m_dir.file("first.geojson"));
     ASSERT_EQ(first.status, 1) << first.err;
@@ -597,11 +598,11 @@ TEST_F(BadInput, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
         std::vector<std::string> args;
         std::string input;
     } cases[] = {
-        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", tracks, "-o", tracks}, tracks},
-        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", tracks, "-o", other_path}, tracks},
-        {{"check", "--coast", s_grid, "--dims", "50,10,5,5", m_dir.path().string(), "-o", tracks}, tracks},
-        {{"check", "--coast", coast, "--dims", "50,10,5,5", tracks, "-o", coast}, coast},
-        {{"check", "--coast", s_grid, "--ship", ship, tracks, "-o", ship}, ship},
+        {{"check", "--world", "simulated", "--coast", s_grid, "--dims", "50,10,5,5", tracks, "-o", tracks}, tracks},
+        {{"check", "--world", "simulated", "--coast", s_grid, "--dims", "50,10,5,5", tracks, "-o", other_path}, tracks},
+        {{"check", "--world", "simulated", "--coast", s_grid, "--dims", "50,10,5,5", m_dir.path().string(), "-o", tracks}, tracks},
+        {{"check", "--world", "simulated", "--coast", coast, "--dims", "50,10,5,5", tracks, "-o", coast}, coast},
+        {{"check", "--world", "simulated", "--coast", s_grid, "--ship", ship, tracks, "-o", ship}, ship},
         {{"probe", "--coast", s_grid, "--dims", "50,10,5,5", poses, "-o", poses}, poses},
         {{"import", coast, "-o", coast}, coast},
     };
@@ -642,7 +643,7 @@ TEST_F(BadInput, AWriteThatFailsHalfwayLeavesNoTemporaryAndTheEarlierReport) {
     // A regular file that cannot grow past 4 KB (ulimit -f, SIGXFSZ ignored): the report's
     // temporary file fills up as on a full disk.
     const std::string r = file("r.geojson", "{\"an\": \"earlier report\"}\n");
-    const std::string cmd = "trap '' XFSZ; ulimit -f 4; exec '" + std::string(SHOAL_BINARY) + "' check --coast '" + s_grid +
+    const std::string cmd = "trap '' XFSZ; ulimit -f 4; exec '" + std::string(SHOAL_BINARY) + "' check --world simulated --coast '" + s_grid +
                             "' --dims 50,10,5,5 '" + good_tracks() + "' -o '" + r + "'";
     const Outcome o = wait_for(spawn({"/bin/sh", "-c", cmd}, m_dir.path()), m_dir.path());
     EXPECT_EQ(o.status, 2) << o.err;
@@ -759,7 +760,7 @@ TEST_F(BadInput, AStepUnderACentimetreIsRefusedAndHugeJobCountsAreCapped) {
     // threads started (5.3 GB resident); now the run stays the size of one with a few threads.
     const std::string a = m_dir.file("j1.geojson"), b = m_dir.file("jmany.geojson");
     auto run_jobs = [&](const std::string& jobs, const std::string& out) {
-        return shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", jobs, "-o", out, tracks});
+        return shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", jobs, "-o", out, tracks});
     };
     const Outcome one = run_jobs("1", a), many = run_jobs("100000", b);
     EXPECT_EQ(one.status, 1);
@@ -802,14 +803,14 @@ TEST_F(BadInput, AGridCacheInAFolderOthersMayWriteIsNotTrusted) {
     fs::create_directories(shared);
     fs::permissions(shared, fs::perms::all);  // 0777
     const std::string coast = data_path("coast/uk_solent_land.geojson");
-    const Outcome r = shoal({"check", "--coast", coast, "--cache-dir", shared.string(), "--dims", "50,10,5,5", "-o",
+    const Outcome r = shoal({"check", "--world", "simulated", "--coast", coast, "--cache-dir", shared.string(), "--dims", "50,10,5,5", "-o",
                              m_dir.file("shared.geojson"), good_tracks()});
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find("the grid cache is not private"), std::string::npos) << r.err;
     EXPECT_TRUE(fs::is_empty(shared)) << "nothing cached there";
     // A folder of the user's own is used, created 0700.
     const fs::path own = fs::path(m_dir.path()) / "own-cache";
-    EXPECT_EQ(shoal({"check", "--coast", coast, "--cache-dir", own.string(), "--dims", "50,10,5,5", "-o", m_dir.file("own.geojson"),
+    EXPECT_EQ(shoal({"check", "--world", "simulated", "--coast", coast, "--cache-dir", own.string(), "--dims", "50,10,5,5", "-o", m_dir.file("own.geojson"),
                      good_tracks()})
                   .status,
               1);
@@ -861,7 +862,7 @@ namespace {
 
 TEST_F(BadInput, ALandOnlyGridWithAShipThatHasADraughtIsSaid) {
     const std::string ship = file("deep.json", R"({"name":"deep","a":50,"b":10,"c":5,"d":5,"draught":6.8})");
-    const Outcome o = shoal({"check", "--coast", s_grid, "--ship", ship, "-o", m_dir.file("deep.geojson"), good_tracks()});
+    const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--ship", ship, "-o", m_dir.file("deep.geojson"), good_tracks()});
     EXPECT_EQ(o.status, 1) << o.err;
     EXPECT_NE(o.err.find("holds land only"), std::string::npos) << o.err;
     EXPECT_NE(o.err.find("limiting depth 6.80 m (the ship's draught"), std::string::npos) << o.err;
@@ -1033,7 +1034,7 @@ TEST_F(BadInput, StandardInputDevStdinAFifoAZipAndAGzipGiveTheReportOfThePlainFi
     ASSERT_EQ(base.status, 1) << base.err;  // vessel A grounds
     const nlohmann::json want = summary_counts(report(plain));
     ASSERT_EQ(want["tracks"], 2);
-    const std::string cmd = std::string(SHOAL_BINARY) + " check --coast " + s_grid + " --dims 50,10,5,5 -o ";
+    const std::string cmd = std::string(SHOAL_BINARY) + " check --world simulated --coast " + s_grid + " --dims 50,10,5,5 -o ";
     const std::string fifo = m_dir.file("fifo.csv"), gz = m_dir.file("good.dat"), zip = m_dir.file("good.zip");
     ASSERT_EQ(std::system(("gzip -c " + good + " > " + gz).c_str()), 0);
     const bool have_zip = std::system(("zip -q -j " + zip + " " + good + " 2>/dev/null").c_str()) == 0;
@@ -1092,7 +1093,7 @@ TEST_F(BadInput, ADailyExportAsZipAndAsCsvGzGivesThePlainCsvsWholeReport) {
 
 TEST_F(BadInput, DevZeroAsShipOrTrackIsRefusedAtTheReadLimit) {
     const std::string r = m_dir.file("r.geojson");
-    const Outcome ship = shoal({"check", "--coast", s_grid, "--ship", "/dev/zero", good_tracks(), "-o", r});
+    const Outcome ship = shoal({"check", "--world", "simulated", "--coast", s_grid, "--ship", "/dev/zero", good_tracks(), "-o", r});
     EXPECT_EQ(ship.status, 2) << ship.err;
     EXPECT_NE(ship.err.find("/dev/zero: larger than 1 MiB, the most a ship file may be"), std::string::npos) << ship.err;
     const Outcome track = check({"/dev/zero"}, r);
@@ -1113,7 +1114,7 @@ TEST_F(BadInput, ACoastBerthsOrGridOnADeviceOrAFifoIsRefusedNamingIt) {
         const Outcome import = shoal({"import", source, "-o", g});
         EXPECT_EQ(import.status, 2) << import.err;
         EXPECT_NE(import.err.find(said), std::string::npos) << import.err;
-        const Outcome coast = shoal({"check", "--coast", source, "--dims", "50,10,5,5", good_tracks(), "-o", r});
+        const Outcome coast = shoal({"check", "--world", "simulated", "--coast", source, "--dims", "50,10,5,5", good_tracks(), "-o", r});
         EXPECT_EQ(coast.status, 2) << coast.err;
         EXPECT_NE(coast.err.find(said), std::string::npos) << coast.err;
         const Outcome berths = check({good_tracks()}, r, {"--berths", source});
@@ -1166,7 +1167,7 @@ TEST_F(BadInput, AVesselsTableInAZipIsJoinedAndItsBadRowsAndConflictsAreSaid) {
 
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {
     const std::string r = m_dir.file("r.geojson");
-    const Outcome o = shoal({"check", "--coast", s_grid, "--dims", "100000,10,5,5", good_tracks(), "-o", r});
+    const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "100000,10,5,5", good_tracks(), "-o", r});
     EXPECT_EQ(o.status, 2) << o.err;
     EXPECT_NE(o.err.find("a length (a + b) of 100010 m is more than the 500 m of any ship"), std::string::npos) << o.err;
 }
@@ -1242,7 +1243,7 @@ TEST_F(BadInput, AnExerciseFileOrAMergePartOnDevZeroIsRefusedAtItsFirstByte) {
     EXPECT_FALSE(fs::exists(r));
     // A good exercise file on a pipe is read as from a file: vessel A, a trainee, still grounds.
     const std::string roles = file("roles.json", R"({"tracks": [{"track": "111111111", "role": "trainee"}]})");
-    const std::string line = "cat '" + roles + "' | '" + SHOAL_BINARY + "' check --coast '" + s_grid + "' --dims 50,10,5,5 -o '" + r +
+    const std::string line = "cat '" + roles + "' | '" + SHOAL_BINARY + "' check --world simulated --coast '" + s_grid + "' --dims 50,10,5,5 -o '" + r +
                              "' --roles - '" + good_tracks() + "'";
     const Outcome piped = wait_for(spawn({"/bin/sh", "-c", line}, m_dir.path()), m_dir.path());
     EXPECT_EQ(piped.status, 1) << piped.err;
@@ -1300,7 +1301,7 @@ TEST_F(BadInput, WithoutHomeTheGridCacheIsTheUsersOwnNeverASharedFolder) {
     ASSERT_NE(pw, nullptr);
     const fs::path want = fs::path(pw->pw_dir) / ".cache" / "shoal";
     const std::string coast = file("home-test-coast.geojson", slurp(data_path("coast/uk_solent_land.geojson")));
-    const std::string line = "unset HOME XDG_CACHE_HOME SHOAL_CACHE_DIR; exec '" + std::string(SHOAL_BINARY) + "' check -v --coast '" + coast +
+    const std::string line = "unset HOME XDG_CACHE_HOME SHOAL_CACHE_DIR; exec '" + std::string(SHOAL_BINARY) + "' check -v --world simulated --coast '" + coast +
                              "' --cell 2000 --dims 50,10,5,5 -o '" + m_dir.file("home.geojson") + "' '" + good_tracks() + "'";
     const Outcome o = wait_for(spawn({"/bin/sh", "-c", line}, m_dir.path()), m_dir.path());
     EXPECT_EQ(o.status, 1) << o.err;
@@ -1345,6 +1346,9 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
         {"check", "--berthing-speed", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--stop-diameter", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--stop-time", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--chart-scale", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--berth-radius", {"nan", "inf", "-1", "0"}, {"1e300"}},
+        {"check", "--ground-time", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--max-speed", {"nan", "inf", "-1", "0"}, {"1e300"}},
         {"check", "--poses-interval", {"nan", "inf", "-1", "1e300"}, {"0"}},
         {"check", "--ukc", {"nan", "inf", "-1"}, {"0", "1e300"}},
@@ -1376,7 +1380,7 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
             const std::string opt = std::string(o.option) + "=" + value;
             const std::string cmd = o.command;
             if (cmd == "check")
-                return shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--encounters", "-o", m_dir.file("opt.geojson"), tracks, opt});
+                return shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "50,10,5,5", "--encounters", "-o", m_dir.file("opt.geojson"), tracks, opt});
             if (cmd == "probe") return shoal({"probe", "--coast", s_grid, "--dims", "50,10,5,5", poses, opt});
             return shoal({"import", coast, "-o", m_dir.file("opt.shoalgrid"), opt});
         };
@@ -1396,7 +1400,7 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
     // --dims: each of its four numbers.
     for (const char* v : hostile_values) {
         const std::string dims = std::string(v) + ",10,5,5";
-        const Outcome r = shoal({"check", "--coast", s_grid, "--dims", dims, "-o", m_dir.file("dims.geojson"), tracks});
+        const Outcome r = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", dims, "-o", m_dir.file("dims.geojson"), tracks});
         EXPECT_EQ(r.status, 2) << dims << "\n" << r.err;
         EXPECT_TRUE(r.err.find("--dims") != std::string::npos || r.err.find("AIS dimensions") != std::string::npos) << dims << "\n" << r.err;
     }

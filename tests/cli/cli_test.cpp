@@ -195,7 +195,7 @@ bool validates_against_schema(const fs::path& report) {
 TEST(CliCheck, GroundingGivesExitOneAndAReportThatValidatesAndReadsBack) {
     const fs::path tracks = solent_tracks();
     const fs::path report = temp_dir() / "solent.geojson";
-    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() +
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + tracks.string() +
                             "' -o '" + report.string() + "' --jobs 2");
     EXPECT_EQ(r.status, 1) << r.err << r.out;
     EXPECT_NE(r.err.find("line 8"), std::string::npos) << "the bad row is reported with its line: " << r.err;
@@ -230,7 +230,7 @@ TEST(CliCheck, GroundingGivesExitOneAndAReportThatValidatesAndReadsBack) {
 
 TEST(CliCheck, PlotIsAnSvgWithTheEvents) {
     const fs::path svg = temp_dir() / "run.svg";
-    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" +
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" +
                             solent_tracks().string() + "' -o '" + (temp_dir() / "plot.geojson").string() + "' --plot '" + svg.string() + "'");
     ASSERT_EQ(r.status, 1) << r.err;
     const std::string text = slurp(svg);
@@ -255,7 +255,7 @@ TEST(CliCheck, EncountersFindTwoShipsCrossingAtTheSameSpot) {
         }
     }
     const fs::path report = temp_dir() / "exercise.geojson";
-    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() +
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + tracks.string() +
                             "' -o '" + report.string() + "' --encounters");
     EXPECT_EQ(r.status, 1) << "a collision counts like a grounding: " << r.err << r.out;
     EXPECT_TRUE(validates_against_schema(report));
@@ -298,7 +298,7 @@ TEST(CliCheck, ExercisesByFolderAreAuditedApartWithRolesAndSituations) {
         out << R"({"default_role": "target", "tracks": [{"track": "333333333", "role": "trainee"}, {"track": "555555555", "role": "own ship"}]})";
     }
     const fs::path report = temp_dir() / "morning.geojson";
-    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + (root / "ex1").string() + "' '" +
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + (root / "ex1").string() + "' '" +
                             (root / "ex2").string() + "' -o '" + report.string() + "' --exercise-by folder --roles '" + roles.string() + "'");
     EXPECT_EQ(r.status, 1) << r.err << r.out;  // a collision in each exercise
     EXPECT_TRUE(validates_against_schema(report));
@@ -328,7 +328,7 @@ TEST(CliCheck, ExercisesByFolderAreAuditedApartWithRolesAndSituations) {
 
     // A bad exercise file: exit 2, the file and the entry named.
     std::ofstream(temp_dir() / "bad_roles.json") << R"({"tracks": [{"track": "333333333", "role": "pilot"}]})";
-    const Outcome bad = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + (root / "ex1").string() +
+    const Outcome bad = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + (root / "ex1").string() +
                               "' -o '" + (temp_dir() / "bad.geojson").string() + "' --roles '" + (temp_dir() / "bad_roles.json").string() + "'");
     EXPECT_EQ(bad.status, 2);
     EXPECT_NE(bad.err.find("bad_roles.json"), std::string::npos) << bad.err;
@@ -359,7 +359,7 @@ TEST(CliCheck, ExercisesByAColumnOfOneFileAreAuditedApartWithRolesFromAColumn) {
         }
     }
     const fs::path report = temp_dir() / "column_exercises.geojson";
-    const std::string check = "check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
+    const std::string check = "check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
                               report.string() + "' --exercise-by column:exercise --role-column ROLE";
     const Outcome r = shoal(check);
     EXPECT_EQ(r.status, 0) << "no collision within an exercise: " << r.err << r.out;
@@ -387,13 +387,13 @@ TEST(CliCheck, ExercisesByAColumnOfOneFileAreAuditedApartWithRolesFromAColumn) {
     }
 
     // A file without the column: exit 2, the file and the column named.
-    const Outcome missing = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
+    const Outcome missing = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
                                   (temp_dir() / "missing.geojson").string() + "' --exercise-by column:drill");
     EXPECT_EQ(missing.status, 2) << missing.err;
     EXPECT_NE(missing.err.find("column_exercises.csv: the header has no column 'drill', the exercise column (--exercise-by column:NAME)"),
               std::string::npos)
         << missing.err;
-    const Outcome nameless = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
+    const Outcome nameless = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
                                    (temp_dir() / "nameless.geojson").string() + "' --exercise-by column:");
     EXPECT_EQ(nameless.status, 2);
     EXPECT_NE(nameless.err.find("--exercise-by 'column:' names no column"), std::string::npos) << nameless.err;
@@ -413,7 +413,7 @@ TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
     std::string reports[2];
     for (int jobs : {1, 2}) {
         const fs::path report = temp_dir() / ("jobs" + std::to_string(jobs) + ".geojson");
-        shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' '" +
+        shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + tracks.string() + "' '" +
               tracks.string() + "' -o '" + report.string() + "' --jobs " + std::to_string(jobs));
         reports[jobs - 1] = slurp(report);
     }
@@ -423,7 +423,7 @@ TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
 
 TEST(CliCheck, GeoPackageHasStyledLayersInWgs84) {
     const fs::path report = temp_dir() / "solent.gpkg";
-    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" +
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" +
                             solent_tracks().string() + "' -o '" + report.string() + "'");
     ASSERT_EQ(r.status, 1) << r.err;
     GDALAllRegister();
@@ -465,7 +465,7 @@ TEST(CliCheck, UnreadableTrackFileIsReportedAndTheBatchGoesOn) {
     const fs::path bad = temp_dir() / "garbage.csv";
     std::ofstream(bad) << "this,is,not\na,track,file\n";
     const fs::path report = temp_dir() / "batch.geojson";
-    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + bad.string() + "' '" +
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" + bad.string() + "' '" +
                             solent_tracks().string() + "' -o '" + report.string() + "'");
     EXPECT_EQ(r.status, 1) << r.err;  // the good file still grounds
     EXPECT_NE(r.err.find("garbage.csv"), std::string::npos) << r.err;
@@ -474,7 +474,7 @@ TEST(CliCheck, UnreadableTrackFileIsReportedAndTheBatchGoesOn) {
 }
 
 TEST(CliCheck, MissingReportFolderIsAClearErrorBeforeAnyWork) {
-    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" +
+    const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" +
                             solent_tracks().string() + "' -o /nonexistent/dir/r.geojson");
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;

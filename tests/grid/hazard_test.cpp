@@ -870,7 +870,7 @@ TEST(HazardCli, CheckReportsWhatWasHitAndTheReportValidates) {
         out << row;
     }
     const std::string report = dir.file("r.geojson");
-    const Outcome r = shoal_run(dir, "check --coast '" + cut() + "' --ship '" + ship + "' --ukc 0.5 --cell 300 '" + tracks +
+    const Outcome r = shoal_run(dir, "check --world simulated --coast '" + cut() + "' --ship '" + ship + "' --ukc 0.5 --cell 300 '" + tracks +
                                          "' -o '" + report + "'");
     ASSERT_EQ(r.status, 1) << r.err << r.out;
     EXPECT_THAT(r.err, HasSubstr("limiting depth 5.00 m (ship file draught 4.50 m + under-keel clearance 0.50 m)"));
@@ -904,7 +904,7 @@ TEST(HazardCli, CheckReportsWhatWasHitAndTheReportValidates) {
 
     // The GeoPackage has the same fields.
     const std::string gpkg = dir.file("r.gpkg");
-    ASSERT_EQ(shoal_run(dir, "check --coast '" + cut() + "' --ship '" + ship + "' --ukc 0.5 --cell 300 '" + tracks + "' -o '" + gpkg + "'").status, 1);
+    ASSERT_EQ(shoal_run(dir, "check --world simulated --coast '" + cut() + "' --ship '" + ship + "' --ukc 0.5 --cell 300 '" + tracks + "' -o '" + gpkg + "'").status, 1);
     GDALDatasetUniquePtr ds(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR));
     ASSERT_TRUE(ds);
     OGRLayer* events = ds->GetLayerByName("events");
@@ -965,7 +965,7 @@ TEST(HazardCli, FleetWithTwoDraughtsInOneCheck) {
         }
     }
     const std::string report = dir.file("fleet.geojson");
-    const Outcome r = shoal_run(dir, "check -v --coast '" + cut() + "' --dims 45,15,5,5 --ukc 0.5 --cell 300 '" + tracks + "' -o '" + report + "'");
+    const Outcome r = shoal_run(dir, "check -v --world simulated --coast '" + cut() + "' --dims 45,15,5,5 --ukc 0.5 --cell 300 '" + tracks + "' -o '" + report + "'");
     ASSERT_EQ(r.status, 1) << r.err << r.out;
     EXPECT_THAT(r.err, HasSubstr("built and cached"));
     const auto bytes = test::read_bytes(report);

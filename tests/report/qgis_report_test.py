@@ -56,7 +56,7 @@ def run_check(report):
     for stale in (report, report[:-len(".geojson")] + ".qgz"):
         if os.path.exists(stale):
             os.remove(stale)
-    run = subprocess.run([shoal, "check", "--coast", os.path.join(data, "coast", "uk_solent_land.geojson"), "--dims", "50,10,5,5",
+    run = subprocess.run([shoal, "check", "--world", "simulated", "--coast", os.path.join(data, "coast", "uk_solent_land.geojson"), "--dims", "50,10,5,5",
                           tracks, "-o", report], capture_output=True, text=True)
     check(run.returncode == 1, f"shoal check -o {os.path.basename(report)} exits 1 (a grounding): {run.returncode} {run.stderr.strip()[-300:]}")
     if not os.path.exists(report):
@@ -195,7 +195,7 @@ with open(clear_tracks, "w") as f:
     for i in range(11):
         f.write(f"222222222,2024-05-01T10:{i:02d}:00Z,50.7000,{-1.05 + 0.002 * i:.4f},8,90,90\n")
 clear = os.path.join(work, "clear.geojson")
-run = subprocess.run([shoal, "check", "--coast", os.path.join(data, "coast", "uk_solent_land.geojson"), "--dims", "50,10,5,5",
+run = subprocess.run([shoal, "check", "--world", "simulated", "--coast", os.path.join(data, "coast", "uk_solent_land.geojson"), "--dims", "50,10,5,5",
                       clear_tracks, "-o", clear], capture_output=True, text=True)
 check(run.returncode == 0, f"shoal check -o clear.geojson exits 0: {run.returncode} {run.stderr.strip()[-300:]}")
 check(project.read(os.path.join(work, "clear.qgz")), "QGIS reads clear.qgz")

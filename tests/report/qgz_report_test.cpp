@@ -78,7 +78,7 @@ std::string tracks() {
 }
 
 std::string check_args(const fs::path& out, const std::string& more = "") {
-    return "check --coast '" + std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson' --dims 50,10,5,5 --no-progress '" + tracks() +
+    return "check --world simulated --coast '" + std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson' --dims 50,10,5,5 --no-progress '" + tracks() +
            "' -o '" + out.string() + "' " + more;
 }
 
@@ -256,7 +256,7 @@ TEST(GeojsonProject, LayerFilesOfManyBlocksAreTheSameOnAnyNumberOfThreads) {
     std::vector<std::string> texts;
     for (const char* jobs : {"1", "3"}) {
         const std::string stem = std::string("many") + jobs;
-        const std::string args = "check --coast '" + std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson' --dims 50,10,5,5 --no-progress '" +
+        const std::string args = "check --world simulated --coast '" + std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson' --dims 50,10,5,5 --no-progress '" +
                                  csv.string() + "' --poses-interval 0 --jobs " + jobs + " -o '";
         const auto r = shoal(args + (dir() / (stem + ".geojson")).string() + "'");
         ASSERT_LE(r.status, 1) << r.err;

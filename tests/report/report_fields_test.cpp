@@ -534,6 +534,7 @@ TEST(ReportFields, TheUserGuideNamesEveryField) {
     named(fields::breach_fields(), "breaches");
     named(fields::score_fields(), "scores");
     named(fields::criterion_fields(), "criteria");
+    named(fields::learned_fields(), "learned");
 }
 
 }  // namespace
