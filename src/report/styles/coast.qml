@@ -20,7 +20,7 @@
       <rule key="{1a6c14cf-33fe-4056-b5b5-fe6c378a78e2}" label="shallow, 2 to 5 m" symbol="3" filter="&quot;kind&quot; = 'shallow' AND to_real(&quot;depth_m&quot;) &lt; 5"/>
       <rule key="{ecb05fcd-68aa-4fb3-a300-a03a28304bf2}" label="shallow, 5 m or more (under the limiting depth)" symbol="4" filter="&quot;kind&quot; = 'shallow' AND to_real(&quot;depth_m&quot;) >= 5"/>
       <rule key="{a06eb9a5-70ce-4c56-aa92-e4f9476b5b40}" label="shallow, depth not charted" symbol="5" filter="&quot;kind&quot; = 'shallow'"/>
-      <rule key="{04d02665-0cd6-4b67-b260-e0217d6b3b02}" label="danger (rock, wreck, obstruction)" symbol="6" filter="&quot;kind&quot; = 'danger'"/>
+      <rule key="{04d02665-0cd6-4b67-b260-e0217d6b3b02}" label="danger (rock, wreck, obstruction) or structure (pier, wharf, pontoon, dolphin, hulk)" symbol="6" filter="&quot;kind&quot; IN ('danger', 'structure')"/>
     </rules>
     <symbols>
       <symbol type="fill" force_rhr="0" alpha="1" clip_to_extent="1" name="0">

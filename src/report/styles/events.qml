@@ -14,9 +14,9 @@
   </temporal>
   <renderer-v2 type="RuleRenderer" forceraster="0" symbollevels="0" referencescale="-1" enableorderby="0">
     <rules key="{a517cc39-135a-4889-bf6e-0d89ba4bfba4}">
-      <rule key="{cb65b5df-a027-43e8-bd6e-569bfca0c3dd}" label="aground on land" symbol="0" filter="&quot;kind&quot; = 'grounding' AND (&quot;hit&quot; IS NULL OR &quot;hit&quot; NOT IN ('shallow', 'danger'))"/>
+      <rule key="{cb65b5df-a027-43e8-bd6e-569bfca0c3dd}" label="aground on land" symbol="0" filter="&quot;kind&quot; = 'grounding' AND (&quot;hit&quot; IS NULL OR &quot;hit&quot; NOT IN ('shallow', 'danger', 'structure'))"/>
       <rule key="{820bd653-ef41-41e9-ba1b-c595d990fc4f}" label="aground in shallow water" symbol="1" filter="&quot;kind&quot; = 'grounding' AND &quot;hit&quot; = 'shallow'"/>
-      <rule key="{9dd94540-d15d-4d5f-92be-4dd708b365ab}" label="aground on a danger (rock, wreck, obstruction)" symbol="2" filter="&quot;kind&quot; = 'grounding' AND &quot;hit&quot; = 'danger'"/>
+      <rule key="{9dd94540-d15d-4d5f-92be-4dd708b365ab}" label="aground on a danger or structure (rock, wreck, obstruction; pier, wharf, pontoon, dolphin, hulk)" symbol="2" filter="&quot;kind&quot; = 'grounding' AND &quot;hit&quot; IN ('danger', 'structure')"/>
       <rule key="{56e389a4-8d01-4f20-a462-d2d462977912}" label="alongside (stopped or berthing: not a grounding)" symbol="3" filter="&quot;kind&quot; = 'alongside'"/>
       <rule key="{9ab0552e-49d9-4088-af41-dcacb77c50e8}" label="in contact at the first fix (not seen begin)" symbol="4" filter="&quot;kind&quot; = 'in_contact_at_start'"/>
       <rule key="{8c50d64c-6611-4045-94d2-c7cac9c4c9e1}" label="contact in a berth, harbour or anchorage area" symbol="5" filter="&quot;kind&quot; = 'expected_contact'"/>
