@@ -89,6 +89,11 @@ void print_grid(const grid::CoastGrid& g) {
         if (!std::isnan(s.limiting_depth_m)) std::snprintf(dflt, sizeof dflt, "%.2f m (--hazard-depth)", s.limiting_depth_m);
         std::printf("limiting depth: chosen per vessel at check time (draught + --ukc, or --hazard-depth); default %s\n", dflt);
     }
+    if (s.structure_features > 0)
+        std::printf("structures:     %llu piers, wharves, pontoons, dolphins, hulks ... (%llu polylines), hazards for every vessel; "
+                    "lines as %.1f m wide bands, points as %.1f m circles\n",
+                    static_cast<unsigned long long>(s.structure_features), static_cast<unsigned long long>(s.structure_polylines),
+                    2 * coast::structure_line_half_width_m, coast::structure_point_radius_m);
     if (!g.has_land_side())
         std::printf("note:           only lines, no land polygons: a ship inside land, away from the coastline, is not seen\n");
 }

@@ -94,9 +94,9 @@ events = QgsVectorLayer("Point?crs=EPSG:4326&field=kind:string&field=hit:string&
 temporal(events, "start", accumulate=True)  # an event appears at its time and stays
 root = QgsRuleBasedRenderer.Rule(None)
 for expr, colour, shape, size, label in (
-        ("\"kind\" = 'grounding' AND (\"hit\" IS NULL OR \"hit\" NOT IN ('shallow', 'danger'))", RED, "circle", "4.2", "aground on land"),
+        ("\"kind\" = 'grounding' AND (\"hit\" IS NULL OR \"hit\" NOT IN ('shallow', 'danger', 'structure'))", RED, "circle", "4.2", "aground on land"),
         ("\"kind\" = 'grounding' AND \"hit\" = 'shallow'", BLUE, "square", "4.0", "aground in shallow water"),
-        ("\"kind\" = 'grounding' AND \"hit\" = 'danger'", PURPLE, "star", "5.2", "aground on a danger (rock, wreck, obstruction)"),
+        ("\"kind\" = 'grounding' AND \"hit\" IN ('danger', 'structure')", PURPLE, "star", "5.2", "aground on a danger or structure (rock, wreck, obstruction; pier, wharf, pontoon, dolphin, hulk)"),
         ("\"kind\" = 'alongside'", STEEL, "circle", "2.8", "alongside (stopped or berthing: not a grounding)"),
         ("\"kind\" = 'in_contact_at_start'", GREY, "circle", "2.6", "in contact at the first fix (not seen begin)"),
         ("\"kind\" = 'expected_contact'", GREEN, "circle", "2.6", "contact in a berth, harbour or anchorage area"),
@@ -218,7 +218,7 @@ for expr, fill, colour, style, label in (
         ("\"kind\" = 'shallow' AND to_real(\"depth_m\") < 5", "#98c2e4", "#4a7fa8", "solid", "shallow, 2 to 5 m"),
         ("\"kind\" = 'shallow' AND to_real(\"depth_m\") >= 5", "#c3dcf0", "#4a7fa8", "solid", "shallow, 5 m or more (under the limiting depth)"),
         ("\"kind\" = 'shallow'", "#98c2e4", "#4a7fa8", "dense4", "shallow, depth not charted"),
-        ("\"kind\" = 'danger'", "#6a3d9a", "#3f1f66", "bdiagonal", "danger (rock, wreck, obstruction)")):
+        ("\"kind\" IN ('danger', 'structure')", "#6a3d9a", "#3f1f66", "bdiagonal", "danger (rock, wreck, obstruction) or structure (pier, wharf, pontoon, dolphin, hulk)")):
     sym = QgsFillSymbol.createSimple({"color": fill, "outline_color": colour, "outline_style": "no", "style": style})
     root.appendChild(QgsRuleBasedRenderer.Rule(sym, 0, 0, expr, label))
 coast.setRenderer(QgsRuleBasedRenderer(root))

@@ -255,8 +255,9 @@ private:
                 e.area_kind = area->kind;
                 e.area_name = area->name;
             }
-            if (const coast::ExpectedArea* st = m_ctx.areas->find(first.contact.coast_point, coast::AreaRole::structure))
-                e.structure = st->kind;
+            if (e.structure.empty())  // what was hit, when it is a structure, else the area the contact point lies on
+                if (const coast::ExpectedArea* st = m_ctx.areas->find(first.contact.coast_point, coast::AreaRole::structure))
+                    e.structure = st->kind;
         }
         // The rules: a contact not seen begin; a vessel stopped, under the berthing speed, or
         // moored / at anchor by its AIS status and slow; else a grounding. Inside an area
@@ -331,6 +332,8 @@ private:
                 e.hit = hit.kind;
                 e.charted_depth_m = hit.depth_m;
                 e.danger = hit.danger;
+                e.hit_name = hit.name;
+                if (hit.kind == coast::HazardKind::structure) e.structure = coast::to_string(hit.structure);
             }
         }
         e.ship = m_frame.inverse(pose.position);

@@ -6,10 +6,12 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <iterator>
 #include <memory>
 #include <numbers>
 
 #include "coast/ogr_source.hpp"
+#include "coast/s57_structure.hpp"
 #include "detail/geos_context.hpp"
 #include "detail/parse_util.hpp"
 #include <shoal/geo/local_frame.hpp>
@@ -45,6 +47,7 @@ const char* to_string(HazardKind k) noexcept {
     case HazardKind::land: return "land";
     case HazardKind::shallow: return "shallow";
     case HazardKind::danger: return "danger";
+    case HazardKind::structure: return "structure";
     }
     return "?";
 }
@@ -64,17 +67,20 @@ namespace {
 using detail::QuietErrors;
 using detail::register_drivers;
 
-/// A polygon, line or (danger) point part as read, in source coordinates until transformed.
+/// A polygon, line or (danger, structure) point part as read, in source coordinates until
+/// transformed.
 struct RawPart {
     bool polygon = false;
     std::vector<std::vector<LonLat>> rings;  // one entry for a line, one of one point for a point
     std::int64_t fid = -1;
     bool point = false;
     double depth_m = NAN;  // the feature's charted depth (hazard layers)
+    StructureKind structure = StructureKind::none;  // the feature's kind (structure layers)
+    std::string name;      // the feature's name
 };
 
 /// What a layer holds, from its name (S-57 object classes, in any OGR source) or from the
-/// depth field: land, depth areas or dangers, and the attribute holding their depth.
+/// depth field: land, depth areas, dangers or structures, and the attribute holding a depth.
 struct LayerRole {
     HazardKind kind = HazardKind::land;
     DangerKind danger = DangerKind::none;
@@ -83,6 +89,7 @@ struct LayerRole {
 
 LayerRole role_of(OGRLayer& layer, const ImportOptions& options) {
     const std::string name = ogr::upper(layer.GetName());
+    if (s57::is_structure_class(name)) return {HazardKind::structure, DangerKind::none, ""};
     if (name == "DEPARE" || name == "DRGARE") return {HazardKind::shallow, DangerKind::none, "DRVAL1"};
     if (name == "UWTROC") return {HazardKind::danger, DangerKind::rock, "VALSOU"};
     if (name == "WRECKS") return {HazardKind::danger, DangerKind::wreck, "VALSOU"};
@@ -105,7 +112,7 @@ public:
         stats.kind = m_role.kind;
         stats.depth_field = m_role.field;
         int depth_index = -1;
-        if (m_role.kind != HazardKind::land) {
+        if (m_role.kind == HazardKind::shallow || m_role.kind == HazardKind::danger) {
             const char* what = m_role.kind == HazardKind::danger ? "dangers" : "depth areas";
             depth_index = m_layer.GetLayerDefn()->GetFieldIndex(m_role.field.c_str());
             if (depth_index < 0)
@@ -113,10 +120,19 @@ public:
                                  m_role.field + " for their depth");
         }
         m_layer_index = static_cast<std::uint32_t>(m_out.layers.size());
+        const s57::StructureFields names = s57::structure_fields(m_layer.GetName(), *m_layer.GetLayerDefn());
         m_layer.ResetReading();
         std::vector<RawPart> parts;
         for (auto& feature : m_layer) {
             ++stats.features;
+            StructureKind structure = StructureKind::none;
+            if (m_role.kind == HazardKind::structure) {
+                structure = s57::structure_kind(names, *feature);
+                if (!is_hazard(structure)) {  // a mooring buoy, a chain: not a hard structure
+                    ++stats.not_hazards;
+                    continue;
+                }
+            }
             double depth = NAN;
             // Every depth area and danger is kept with its charted depth: which of them is a
             // hazard is decided at check time, for each vessel's own limiting depth.
@@ -134,10 +150,19 @@ public:
             const std::uint64_t points_before = stats.points_skipped;
             collect(*g, feature->GetFID(), parts, stats);
             if (parts.size() == before && stats.points_skipped == points_before) ++stats.empty_skipped;
-            if (parts.size() > before && m_role.kind != HazardKind::land) {
+            if (parts.size() > before && m_role.kind == HazardKind::structure) {
+                ++stats.structures;
+            } else if (parts.size() > before && m_role.kind != HazardKind::land) {
                 ++stats.hazards;
                 if (std::isnan(depth)) ++stats.unknown_depth;
-                for (std::size_t i = before; i < parts.size(); ++i) parts[i].depth_m = depth;
+            }
+            if (parts.size() > before) {
+                std::string name = s57::feature_name(names, *feature);
+                for (std::size_t i = before; i < parts.size(); ++i) {
+                    parts[i].depth_m = depth;
+                    parts[i].structure = structure;
+                    parts[i].name = name;
+                }
             }
         }
         if (stats.features == 0)
@@ -145,10 +170,12 @@ public:
         stats.crs = to_wgs84(parts);
         const std::size_t first_new = m_out.polylines.size();
         for (auto& part : parts) {
-            if (part.point)
-                add_danger_point(part);
-            else if (part.polygon)
+            if (part.polygon)
                 add_polygon(part, stats);
+            else if (m_role.kind == HazardKind::structure)
+                add_structure_outline(part, stats);
+            else if (part.point)
+                add_danger_point(part);
             else
                 add_line(part, stats);
         }
@@ -171,7 +198,9 @@ private:
         case wkbPolygon: {
             const auto& poly = *g.toPolygon();
             if (poly.IsEmpty()) return;
-            RawPart part{true, {}, fid};
+            RawPart part;
+            part.polygon = true;
+            part.fid = fid;
             for (const OGRLinearRing* ring : poly) {
                 part.rings.push_back(points_of(*ring));
                 stats.vertices += part.rings.back().size();
@@ -184,13 +213,16 @@ private:
         case wkbLinearRing: {
             const auto& line = *g.toSimpleCurve();
             if (line.IsEmpty()) return;
-            parts.push_back(RawPart{false, {points_of(line)}, fid});
+            RawPart part;
+            part.rings.push_back(points_of(line));
+            part.fid = fid;
+            parts.push_back(std::move(part));
             stats.vertices += parts.back().rings[0].size();
             ++stats.lines;
             return;
         }
         case wkbPoint:
-            if (m_role.kind == HazardKind::danger) {  // a point danger: a small polygon around it
+            if (has_point_hazards()) {  // a point danger or structure: a small polygon around it
                 const auto& pt = *g.toPoint();
                 RawPart part;
                 part.point = true;
@@ -198,12 +230,13 @@ private:
                 part.rings.push_back({LonLat{pt.getX(), pt.getY()}});
                 parts.push_back(std::move(part));
                 ++stats.vertices;
+                ++stats.points;
                 return;
             }
             ++stats.points_skipped;
             return;
         case wkbMultiPoint:
-            if (m_role.kind == HazardKind::danger) {
+            if (has_point_hazards()) {
                 for (const OGRGeometry* sub : *g.toGeometryCollection()) collect(*sub, fid, parts, stats);
                 return;
             }
@@ -270,9 +303,48 @@ private:
         m_out.polylines.push_back(Polyline{std::move(pts), false, m_layer_index, part.fid, hazard_of(part)});
     }
 
+    bool has_point_hazards() const noexcept { return m_role.kind == HazardKind::danger || m_role.kind == HazardKind::structure; }
+
     Hazard hazard_of(const RawPart& part) const {
-        if (m_role.kind == HazardKind::land) return {};
-        return {m_role.kind, m_role.danger, part.depth_m};
+        Hazard h;
+        h.name = part.name;
+        if (m_role.kind == HazardKind::land) return h;
+        h.kind = m_role.kind;
+        h.danger = m_role.danger;
+        h.structure = part.structure;
+        h.depth_m = part.depth_m;
+        return h;
+    }
+
+    /// A structure drawn as a line or a point: the polygon around it within
+    /// structure_line_half_width_m or structure_point_radius_m (circumscribed, see
+    /// structure_quadrant_segments), buffered with GEOS in metres of a local equirectangular
+    /// scale at the feature's first vertex (geo::metres_per_degree there; over a pier's length
+    /// the scale changes by a few parts in 10,000 of the width), then turned back into degrees.
+    void add_structure_outline(RawPart& part, LayerStats& stats) {
+        auto& pts = part.rings[0];
+        drop_repeats(pts);
+        if (pts.empty()) {
+            ++stats.empty_skipped;
+            return;
+        }
+        const LonLat origin = pts.front();
+        const Eigen::Vector2d mpd = geo::metres_per_degree(origin.lat);
+        std::vector<geo::XY> xy(pts.size());
+        for (std::size_t i = 0; i < pts.size(); ++i) xy[i] = {(pts[i].lon - origin.lon) * mpd.x(), (pts[i].lat - origin.lat) * mpd.y()};
+        const bool point = xy.size() == 1;
+        geo::GeomPtr shape = point ? geo::own(m_geos, GEOSGeom_createPointFromXY_r(m_geos, 0.0, 0.0), "creating a point")
+                                   : geo::make_linestring(m_geos, xy.data(), xy.size());
+        constexpr int q = structure_quadrant_segments;
+        const double width = point ? structure_point_radius_m : structure_line_half_width_m;
+        const double radius = width / std::cos(std::numbers::pi / (4 * q));
+        geo::GeomPtr buffer = geo::own(m_geos, GEOSBuffer_r(m_geos, shape.get(), radius, q), "buffering a structure");
+        std::vector<std::vector<std::vector<geo::XY>>> polygons;
+        geo::collect_polygons(m_geos, buffer.get(), polygons);
+        for (auto& rings : polygons)
+            for (auto& ring : rings)
+                for (geo::XY& p : ring) p = {origin.lon + p.x / mpd.x(), origin.lat + p.y / mpd.y()};
+        add_rings(polygons, part);
     }
 
     /// A point danger: the polygon circumscribed about the circle of the danger radius.
@@ -320,7 +392,12 @@ private:
             ++stats.repaired;
             m_out.warnings.push_back(where(part.fid) + ": invalid polygon (" + why + ") repaired with GEOSMakeValid");
         }
-        for (auto& poly_rings : valid) {
+        add_rings(valid, part);
+    }
+
+    /// Appends the rings of `polygons` (x, y: lon, lat) as polylines, land on the left.
+    void add_rings(std::vector<std::vector<std::vector<geo::XY>>>& polygons, const RawPart& part) {
+        for (auto& poly_rings : polygons) {
             for (std::size_t r = 0; r < poly_rings.size(); ++r) {
                 std::vector<LonLat> ll(poly_rings[r].size());
                 for (std::size_t i = 0; i < ll.size(); ++i) ll[i] = {poly_rings[r][i].x, poly_rings[r][i].y};
@@ -372,12 +449,16 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
                                  (options.layers.size() > 1 ? " (nor the other ImportOptions::layers names)" : "") +
                                  "; its layers: " + ogr::layer_names(*ds));
         } else if (ogr::is_s57(*ds)) {
-            // Land, depth areas, dredged areas and dangers (each kept with its charted depth).
-            const std::vector<const char*> names = {"LNDARE", "COALNE", "DEPARE", "DRGARE", "UWTROC", "WRECKS", "OBSTRN"};
+            // Land, depth areas, dredged areas and dangers (each kept with its charted depth),
+            // and structures.
+            const std::vector<const char*> names(std::begin(s57_default_layers), std::end(s57_default_layers));
             chosen = ogr::layers_named(*ds, names);
-            if (chosen.empty())
-                throw InputError("S-57 chart '" + path + "' has none of the layers LNDARE, COALNE, DEPARE, DRGARE, UWTROC, WRECKS, OBSTRN"
+            if (chosen.empty()) {
+                std::string list;
+                for (const char* n : names) list += (list.empty() ? "" : ", ") + std::string(n);
+                throw InputError("S-57 chart '" + path + "' has none of the layers " + list +
                                  "; pick layers with ImportOptions::layers (its layers: " + ogr::layer_names(*ds) + ")");
+            }
         } else {
             for (OGRLayer* l : ds->GetLayers()) chosen.push_back(l);
             if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");

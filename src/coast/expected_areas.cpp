@@ -7,10 +7,8 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iterator>
 #include <mutex>
@@ -19,6 +17,7 @@
 #include <set>
 
 #include "coast/ogr_source.hpp"
+#include "coast/s57_structure.hpp"
 #include "detail/geos_context.hpp"
 #include "detail/parse_util.hpp"
 #include <shoal/geo/local_frame.hpp>
@@ -49,19 +48,14 @@ using geo::TreeDeleter;
 using geo::TreePtr;
 using ogr::upper;
 
-std::string lower(std::string s) {
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
 /// The S-57 object classes read, in the order a chart's layers are read.
-constexpr const char* s57_area_layers[] = {"BERTHS", "HRBARE", "ACHARE", "SLCONS"};
-constexpr const char* s57_area_layer_list = "BERTHS, HRBARE, ACHARE, SLCONS";
+constexpr const char* s57_area_layers[] = {"BERTHS", "HRBARE", "ACHARE", "SLCONS", "PONTON", "MORFAC", "HULKES"};
+constexpr const char* s57_area_layer_list = "BERTHS, HRBARE, ACHARE, SLCONS, PONTON, MORFAC, HULKES";
 
 /// What a layer holds, from its name: an S-57 object class, or (user files only) any area.
 struct LayerRole {
     AreaRole role = AreaRole::expected;
-    std::string kind = "area";  // for structures: taken per feature from CATSLC
+    std::string kind = "area";  // for structures: taken per feature (s57::structure_kind)
 };
 
 std::optional<LayerRole> s57_role(const std::string& layer_name) {
@@ -69,60 +63,8 @@ std::optional<LayerRole> s57_role(const std::string& layer_name) {
     if (name == "BERTHS") return LayerRole{AreaRole::expected, "berth"};
     if (name == "HRBARE") return LayerRole{AreaRole::expected, "harbour"};
     if (name == "ACHARE") return LayerRole{AreaRole::expected, "anchorage"};
-    if (name == "SLCONS") return LayerRole{AreaRole::structure, "structure"};
+    if (s57::is_structure_class(name)) return LayerRole{AreaRole::structure, "structure"};
     return std::nullopt;
-}
-
-/// S-57 attribute CATSLC (category of shoreline construction), values 1..17.
-constexpr const char* catslc_names[] = {"breakwater",    "groyne",   "mole",         "pier",
-                                        "promenade pier", "wharf",    "training wall", "rip rap",
-                                        "revetment",     "sea wall", "landing steps", "ramp",
-                                        "slipway",       "fender",   "solid face wharf", "open face wharf",
-                                        "log ramp"};
-
-const char* catslc_name(long v) noexcept {
-    constexpr long n = static_cast<long>(std::size(catslc_names));
-    return v >= 1 && v <= n ? catslc_names[v - 1] : "structure";
-}
-
-/// The kind of a shoreline construction from its CATSLC field: an Integer as GDAL's S-57
-/// driver gives it, an IntegerList, or text ("4", "4,6", or the name itself, as other
-/// converters write it). The first value counts; none or an unknown one: "structure".
-std::string catslc_kind(const OGRFeature& f, int index) {
-    if (index < 0 || !f.IsFieldSetAndNotNull(index)) return "structure";
-    const OGRFieldType type = f.GetFieldDefnRef(index)->GetType();
-    if (type == OFTInteger || type == OFTInteger64) return catslc_name(static_cast<long>(f.GetFieldAsInteger64(index)));
-    if (type == OFTIntegerList || type == OFTInteger64List) {
-        int n = 0;
-        const GIntBig* values = f.GetFieldAsInteger64List(index, &n);
-        return n > 0 ? catslc_name(static_cast<long>(values[0])) : "structure";
-    }
-    std::string text = f.GetFieldAsString(index);  // a StringList reads as "(2:4,6)"
-    if (const auto colon = text.find(':'); !text.empty() && text.front() == '(' && colon != std::string::npos)
-        text = text.substr(colon + 1);
-    text = text.substr(0, text.find_first_of(",)"));
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.erase(0, 1);
-    if (text.empty()) return "structure";
-    char* end = nullptr;
-    const long v = std::strtol(text.c_str(), &end, 10);
-    if (end && *end == '\0') return catslc_name(v);
-    const std::string name = lower(text);
-    for (const char* known : catslc_names)
-        if (name == known) return known;
-    return "structure";
-}
-
-/// Index of the first field called `name` in any case, or -1.
-int field_index(const OGRFeatureDefn& defn, const std::string& name) {
-    for (int i = 0; i < defn.GetFieldCount(); ++i)
-        if (upper(defn.GetFieldDefn(i)->GetNameRef()) == name) return i;
-    return -1;
-}
-
-std::string text_field(const OGRFeature& f, int index) {
-    if (index < 0 || !f.IsFieldSetAndNotNull(index)) return "";
-    return f.GetFieldAsString(index);
 }
 
 /// One feature's geometry as read: in source coordinates, then (after to_local) in local
@@ -157,20 +99,26 @@ public:
           m_tolerance_m(tolerance_m), m_geos(geos), m_warnings(warnings) {}
 
     std::vector<Built> read() {
-        OGRFeatureDefn& defn = *m_layer.GetLayerDefn();
-        const int objnam = field_index(defn, "OBJNAM");
-        const int name = field_index(defn, "NAME");
-        const int catslc = m_role.role == AreaRole::structure ? field_index(defn, "CATSLC") : -1;
+        const s57::StructureFields fields = s57::structure_fields(layer_name(), *m_layer.GetLayerDefn());
         std::vector<RawFeature> raws;
-        std::uint64_t features = 0, unusable = 0;
+        std::uint64_t features = 0, unusable = 0, not_structures = 0;
         m_layer.ResetReading();
         for (auto& feature : m_layer) {
             ++features;
             RawFeature raw;
             raw.area.role = m_role.role;
-            raw.area.kind = m_role.role == AreaRole::structure ? catslc_kind(*feature, catslc) : m_role.kind;
-            raw.area.name = text_field(*feature, objnam);
-            if (raw.area.name.empty()) raw.area.name = text_field(*feature, name);
+            raw.area.kind = m_role.kind;
+            if (m_role.role == AreaRole::structure) {
+                const StructureKind kind = s57::structure_kind(fields, *feature);
+                // A mooring buoy or a chain is no structure (coast::is_hazard); SLCONS of an
+                // unknown category stays "structure".
+                if (!is_hazard(kind)) {
+                    ++not_structures;
+                    continue;
+                }
+                raw.area.kind = to_string(kind);
+            }
+            raw.area.name = s57::feature_name(fields, *feature);
             raw.area.file = m_file;
             raw.area.layer = m_layer.GetName();
             raw.area.fid = feature->GetFID();
@@ -187,7 +135,7 @@ public:
             return InputError("layer '" + layer_name() + "' in '" + m_file + "' has no polygon, line or point to use as an area" + why);
         };
         if (raws.empty()) {
-            if (m_user)
+            if (m_user && (features == 0 || unusable > 0))
                 throw nothing_usable(features == 0 ? " (it has no features)" : " (" + std::to_string(features) + " features without one)");
             return {};
         }

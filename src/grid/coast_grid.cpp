@@ -122,7 +122,7 @@ bool depth_before(double a, double b) { return std::isnan(a) ? !std::isnan(b) : 
 void CoastGrid::assign_levels() {
     m_level_depth.clear();
     for (const coast::Hazard& h : m_hazards)
-        if (h.kind != coast::HazardKind::land) m_level_depth.push_back(h.depth_m);
+        if (!coast::for_every_vessel(h.kind)) m_level_depth.push_back(h.depth_m);
     std::sort(m_level_depth.begin(), m_level_depth.end(), depth_before);
     m_level_depth.erase(std::unique(m_level_depth.begin(), m_level_depth.end(),
                                     [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }),
@@ -134,7 +134,7 @@ void CoastGrid::assign_levels() {
     if (m_level_depth.empty()) return;
     m_poly_level.reserve(m_hazards.size());
     for (const coast::Hazard& h : m_hazards) {
-        if (h.kind == coast::HazardKind::land) {
+        if (coast::for_every_vessel(h.kind)) {  // land and structures: level 0, for every vessel
             m_poly_level.push_back(0);
             continue;
         }
@@ -381,6 +381,7 @@ CoastGrid CoastGrid::build(const coast::Coastline& coast, geo::LocalFrame frame,
         g.m_source.layers.push_back(l.file + ":" + l.layer);
         g.m_source.hazard_features += l.hazards;
         g.m_source.unknown_depth += l.unknown_depth;
+        g.m_source.structure_features += l.structures;
     }
     return g;
 }
@@ -402,6 +403,7 @@ CoastGrid CoastGrid::build(const std::vector<coast::LocalPolyline>& lines, geo::
         g.m_source.land_polylines += l.land_left ? 1 : 0;
         g.m_source.shallow_polylines += l.hazard.kind == coast::HazardKind::shallow ? 1 : 0;
         g.m_source.danger_polylines += l.hazard.kind == coast::HazardKind::danger ? 1 : 0;
+        g.m_source.structure_polylines += l.hazard.kind == coast::HazardKind::structure ? 1 : 0;
         g.m_hazards.push_back(l.hazard);
     }
     g.m_source.polylines = lines.size();
@@ -637,7 +639,7 @@ bool operator==(const CoastGrid& a, const CoastGrid& b) {
            a.m_seg_info == b.m_seg_info && a.m_segments.size() == b.m_segments.size() &&
            std::equal(a.m_hazards.begin(), a.m_hazards.end(), b.m_hazards.begin(), b.m_hazards.end(),
                       [](const coast::Hazard& p, const coast::Hazard& q) {
-                          return p.kind == q.kind && p.danger == q.danger &&
+                          return p.kind == q.kind && p.danger == q.danger && p.structure == q.structure && p.name == q.name &&
                                  (p.depth_m == q.depth_m || (std::isnan(p.depth_m) && std::isnan(q.depth_m)));
                       }) &&
            std::equal(a.m_segments.begin(), a.m_segments.end(), b.m_segments.begin(),

@@ -75,6 +75,11 @@ std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const c
     std::snprintf(hazards, sizeof hazards, "radius:%.17g", options.danger_radius_m);
     feed(hazards);
     feed("depth_field:" + options.depth_field);
+    // Structures: the widths lines and points become (constants of this shoal, fed so that a
+    // cache made by a shoal with other widths is not taken for this one's).
+    std::snprintf(hazards, sizeof hazards, "structures:%.17g,%.17g,%d", coast::structure_line_half_width_m,
+                  coast::structure_point_radius_m, coast::structure_quadrant_segments);
+    feed(hazards);
     feed("crs:" + crs);
     XXH3_64bits_update(st, &cell_m, sizeof cell_m);
     const std::uint64_t h = XXH3_64bits_digest(st);

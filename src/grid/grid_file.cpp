@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <type_traits>
+#include <unordered_map>
 
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/error.hpp>
@@ -148,20 +149,33 @@ std::vector<char> GridFile::serialize(const CoastGrid& g) {
     w.pod(s.danger_polylines);
     w.pod(s.hazard_features);
     w.pod(s.unknown_depth);
+    w.pod(s.structure_polylines);
+    w.pod(s.structure_features);
     w.vec(g.m_slot);
     w.vec(g.m_seg_offset);
     w.vec(g.m_ref_winding);
     w.vec(g.m_segments);
     w.vec(g.m_seg_info);
-    // Per polyline what it bounds: kind | danger << 4, and the charted depth (NaN unknown).
-    std::vector<std::uint8_t> kinds;
+    // Per polyline what it bounds: kind | danger << 4, the structure's kind, the charted depth
+    // (NaN unknown), and its name as an index into a table of the distinct names ("" first).
+    std::vector<std::uint8_t> kinds, structures;
     std::vector<double> depths;
+    std::vector<std::string> names{""};
+    std::unordered_map<std::string, std::uint32_t> name_index{{"", 0}};
+    std::vector<std::uint32_t> name_of;
     for (const coast::Hazard& h : g.m_hazards) {
         kinds.push_back(static_cast<std::uint8_t>(static_cast<unsigned>(h.kind) | static_cast<unsigned>(h.danger) << 4));
+        structures.push_back(static_cast<std::uint8_t>(h.structure));
         depths.push_back(h.depth_m);
+        const auto [it, added] = name_index.try_emplace(h.name, static_cast<std::uint32_t>(names.size()));
+        if (added) names.push_back(h.name);
+        name_of.push_back(it->second);
     }
     w.vec(kinds);
+    w.vec(structures);
     w.vec(depths);
+    w.strings(names);
+    w.vec(name_of);
     // Levels of charted depth (the depths themselves follow from the polylines').
     w.vec(g.m_lw_offset);
     w.vec(g.m_lw_level);
@@ -251,24 +265,39 @@ CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& nam
     s.danger_polylines = r.pod<std::uint64_t>();
     s.hazard_features = r.pod<std::uint64_t>();
     s.unknown_depth = r.pod<std::uint64_t>();
+    s.structure_polylines = r.pod<std::uint64_t>();
+    s.structure_features = r.pod<std::uint64_t>();
     g.m_slot = r.vec<std::uint32_t>();
     g.m_seg_offset = r.vec<std::uint32_t>();
     g.m_ref_winding = r.vec<std::int32_t>();
     g.m_segments = r.vec<Segment>();
     g.m_seg_info = r.vec<std::uint32_t>();
     const auto kinds = r.vec<std::uint8_t>();
+    const auto structures = r.vec<std::uint8_t>();
     const auto depths = r.vec<double>();
+    auto names = r.strings();
+    const auto name_of = r.vec<std::uint32_t>();
     g.m_lw_offset = r.vec<std::uint32_t>();
     g.m_lw_level = r.vec<std::uint16_t>();
     g.m_lw_winding = r.vec<std::int32_t>();
     g.m_land_level = r.vec<std::uint16_t>();
     if (!r.at_end()) r.fail("unexpected bytes after the arrays");
-    if (kinds.size() != depths.size()) r.fail("polyline table sizes");
+    if (kinds.size() != depths.size() || structures.size() != kinds.size() || name_of.size() != kinds.size())
+        r.fail("polyline table sizes");
     for (std::size_t k = 0; k < kinds.size(); ++k) {
         const unsigned kind = kinds[k] & 0x0Fu, danger = kinds[k] >> 4;
-        if (kind > static_cast<unsigned>(coast::HazardKind::danger) || danger > static_cast<unsigned>(coast::DangerKind::obstruction))
+        if (kind > static_cast<unsigned>(coast::HazardKind::structure) || danger > static_cast<unsigned>(coast::DangerKind::obstruction) ||
+            structures[k] > static_cast<unsigned>(coast::StructureKind::mooring_facility) ||
+            (kind == static_cast<unsigned>(coast::HazardKind::structure)) != (structures[k] != 0))
             r.fail("bad polyline kind");
-        g.m_hazards.push_back({static_cast<coast::HazardKind>(kind), static_cast<coast::DangerKind>(danger), depths[k]});
+        if (name_of[k] >= names.size()) r.fail("polyline name out of range");
+        coast::Hazard hz;
+        hz.kind = static_cast<coast::HazardKind>(kind);
+        hz.danger = static_cast<coast::DangerKind>(danger);
+        hz.structure = static_cast<coast::StructureKind>(structures[k]);
+        hz.depth_m = depths[k];
+        hz.name = names[name_of[k]];
+        g.m_hazards.push_back(std::move(hz));
     }
     for (std::uint32_t info : g.m_seg_info)
         if ((info & ~CoastGrid::boundary_bit) >= kinds.size()) r.fail("segment of a polyline out of range");

@@ -43,7 +43,10 @@ std::string event_label(const audit::Event& e) {
                     : e.kind == EventKind::expected_contact ? "contact in " + (e.area_kind.empty() ? std::string("area") : e.area_kind) + " "
                                                             : "close ";
     if (audit::is_contact(e.kind) && e.hit != coast::HazardKind::land) {
-        s += e.hit == coast::HazardKind::danger ? coast::to_string(e.danger) : coast::to_string(e.hit);
+        s += e.hit == coast::HazardKind::danger                               ? coast::to_string(e.danger)
+             : e.hit == coast::HazardKind::structure && !e.structure.empty() ? e.structure
+                                                                              : coast::to_string(e.hit);
+        if (e.hit == coast::HazardKind::structure && !e.hit_name.empty()) s += " '" + e.hit_name + "'";
         if (std::isfinite(e.charted_depth_m)) {
             char depth[32];
             std::snprintf(depth, sizeof depth, " %.1f m", e.charted_depth_m);

@@ -177,11 +177,15 @@ std::string count_text(EventKind k, std::size_t n) {
     return std::to_string(n);
 }
 
-/// What was hit when it is not land: "shallow 3.6 m", "rock", "wreck 2.1 m"; "" for land.
+/// What was hit when it is not land: "shallow 3.6 m", "rock", "wreck 2.1 m", "pier 'Pier 25'";
+/// "" for land.
 std::string hazard_text(const Event& e) {
     if (e.hit == coast::HazardKind::land) return {};
-    std::string s = e.hit == coast::HazardKind::danger ? coast::to_string(e.danger) : coast::to_string(e.hit);
+    std::string s = e.hit == coast::HazardKind::danger      ? coast::to_string(e.danger)
+                    : e.hit == coast::HazardKind::structure ? e.structure
+                                                            : coast::to_string(e.hit);
     if (s.empty()) s = coast::to_string(e.hit);
+    if (e.hit == coast::HazardKind::structure && !e.hit_name.empty()) s += " '" + e.hit_name + "'";
     if (std::isfinite(e.charted_depth_m)) s += " " + fixed_text(e.charted_depth_m, 1) + " m";
     return s;
 }
@@ -259,9 +263,10 @@ std::string evidence_text(const Event& e) {
         parts.push_back(std::isfinite(e.stopped_after_s) ? "stopped after " + duration_words(e.stopped_after_s)
                                                          : std::string("did not stop (in this piece)"));
         if (std::isfinite(e.reference_inside_m)) {
-            const std::string what = e.hit == coast::HazardKind::land      ? "land"
-                                     : e.hit == coast::HazardKind::shallow ? "the shallow area"
-                                                                           : "the danger";
+            const std::string what = e.hit == coast::HazardKind::land        ? "land"
+                                     : e.hit == coast::HazardKind::shallow   ? "the shallow area"
+                                     : e.hit == coast::HazardKind::structure ? "the structure"
+                                                                             : "the danger";
             parts.push_back(e.reference_inside_m >= 0
                                 ? "reference point " + fixed_text(e.reference_inside_m, 1) + " m inside " + what
                                 : "reference point " + fixed_text(-e.reference_inside_m, 1) + " m outside " + what + " (in water)");

@@ -107,6 +107,7 @@ const std::vector<Field<EventRow>>& event_fields() {
         {"charted_depth_m", real, metres, 2,
          [](const E& x) { return x.event.hit != coast::HazardKind::land ? Value(x.event.charted_depth_m) : null; }},
         {"danger", text_t, none, -1, [](const E& x) { return text(coast::to_string(x.event.danger)); }},
+        {"hit_name", text_t, none, -1, [](const E& x) { return text(x.event.hit_name); }},
         {"start", datetime, utc, -1, [](const E& x) { return text(iso_time(x.event.start_s)); }},
         {"end", datetime, utc, -1, [](const E& x) { return text(iso_time(x.event.end_s)); }},
         {"duration_s", real, seconds, 3, [](const E& x) { return Value(x.event.end_s - x.event.start_s); }},

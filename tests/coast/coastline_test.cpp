@@ -246,9 +246,10 @@ TEST(CoastImport, GeoPackageLayerChoice) {
     EXPECT_EQ(d.polylines.size(), static_cast<std::size_t>(solent_land_features));
 }
 
-TEST(CoastImport, S57ReadsLndareAndCoalneByDefault) {
+TEST(CoastImport, S57ReadsLndareCoalneAndStructuresByDefault) {
+    // The cut holds no depth area or danger: its default layers are land and SLCONS.
     const Coastline c = import_coastline({coast_file("US4MD81M_cut.000")});
-    ASSERT_EQ(c.layers.size(), 2u);
+    ASSERT_EQ(c.layers.size(), 3u);
     const LayerStats& land = layer_named(c, "LNDARE");
     EXPECT_EQ(land.features, s57_lndare_features);
     EXPECT_EQ(land.polygons, s57_lndare_polygons);
@@ -259,9 +260,15 @@ TEST(CoastImport, S57ReadsLndareAndCoalneByDefault) {
     EXPECT_EQ(coal.features, s57_coalne_features);
     EXPECT_EQ(coal.lines, s57_coalne_features);
     EXPECT_EQ(coal.vertices, s57_coalne_vertices);
+    const LayerStats& slcons = layer_named(c, "SLCONS");
+    EXPECT_EQ(slcons.kind, shoal::coast::HazardKind::structure);
+    EXPECT_EQ(slcons.features, s57_slcons_features);
+    EXPECT_EQ(slcons.structures, s57_slcons_features) << "every line and the point become structures";
+    EXPECT_EQ(slcons.points, s57_slcons_points);
     EXPECT_EQ(polylines_of_layer(c, "LNDARE"), static_cast<std::size_t>(s57_lndare_polygons));
     EXPECT_EQ(polylines_of_layer(c, "COALNE"), static_cast<std::size_t>(s57_coalne_features));
-    for (const auto& p : c.polylines) EXPECT_EQ(p.land_left, c.layers.at(p.layer).layer == "LNDARE");
+    EXPECT_GE(polylines_of_layer(c, "SLCONS"), static_cast<std::size_t>(s57_slcons_features));
+    for (const auto& p : c.polylines) EXPECT_EQ(p.land_left, c.layers.at(p.layer).layer != "COALNE");
     expect_land_on_the_left(c, coast_file("US4MD81M_cut.000"), "LNDARE");
 }
 
@@ -274,8 +281,9 @@ TEST(CoastImport, S57LayerChoice) {
     EXPECT_EQ(l.layer, "SLCONS");
     EXPECT_EQ(l.features, s57_slcons_features);
     EXPECT_EQ(l.lines, s57_slcons_lines);
-    EXPECT_EQ(l.points_skipped, s57_slcons_points);
-    EXPECT_EQ(l.vertices, s57_slcons_vertices);
+    EXPECT_EQ(l.points, s57_slcons_points) << "a point structure is read (a disc around it)";
+    EXPECT_EQ(l.points_skipped, 0u);
+    EXPECT_EQ(l.vertices, s57_slcons_vertices + s57_slcons_points);
 
     opt.layers = {"LNDARE"};
     const Coastline d = import_coastline({coast_file("US4MD81M_cut.000")}, opt);

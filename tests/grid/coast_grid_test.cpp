@@ -146,7 +146,7 @@ double grid_total_length(const CoastGrid& g) {
 struct RealCoast {
     const char* name;
     const char* file;
-    const char* import_layer;  ///< "" = the default layers
+    const char* import_layer;  ///< "" = the default layers; else layer names separated by commas
     const char* land_layer;    ///< layer of the land polygons ("" = none: lines only)
     double cell_m;
 };
@@ -158,7 +158,11 @@ protected:
     void SetUp() override {
         const RealCoast& rc = GetParam();
         shoal::coast::ImportOptions opt;
-        if (*rc.import_layer) opt.layers = {rc.import_layer};
+        for (std::string rest = rc.import_layer; !rest.empty();) {
+            const auto comma = rest.find(',');
+            opt.layers.push_back(rest.substr(0, comma));
+            rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        }
         m_coast = shoal::coast::import_coastline({t::data_path(rc.file)}, opt);
         m_frame = LocalFrame::transverse_mercator({(m_coast.min.lon + m_coast.max.lon) / 2, (m_coast.min.lat + m_coast.max.lat) / 2});
         m_grid = std::make_unique<CoastGrid>(CoastGrid::build(m_coast, m_frame, rc.cell_m));
@@ -333,7 +337,7 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(RealCoast{"solent_land", "coast/uk_solent_land.geojson", "", "uk_solent_land", 400.0},
                     RealCoast{"solent_shoreline", "coast/uk_solent_shoreline.geojson", "", "", 400.0},
                     RealCoast{"piraeus_shp", "coast/gr_saronic_piraeus_land.shp", "", "gr_saronic_piraeus_land", 500.0},
-                    RealCoast{"s57_lndare_coalne", "coast/US4MD81M_cut.000", "", "LNDARE", 300.0}),
+                    RealCoast{"s57_lndare_coalne", "coast/US4MD81M_cut.000", "LNDARE,COALNE", "LNDARE", 300.0}),
     [](const testing::TestParamInfo<RealCoast>& param_info) { return std::string(param_info.param.name); });
 
 // ---------------------------------------------------------------------------------------------

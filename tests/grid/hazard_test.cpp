@@ -7,7 +7,8 @@
 // - collision and clearance for random poses equal GEOS on the same hazard polygons, built
 //   straight from the OGR layers (land + shallow depth areas + danger polygons and circles),
 //   and what each contact hit is the feature GEOS finds nearest or touching (also on the
-//   whole US4MD81M cell when ../shared/data is there);
+//   whole US4MD81M cell when ../shared/data is there, with its structures: SLCONS and MORFAC
+//   as the documented bands and discs);
 // - the hazard table and the limiting depth survive the cache, whose key includes them;
 // - events say what was hit (land, shallow with its depth, danger with its kind) on
 //   hand-made tracks, through the library and through the `shoal` executable.
@@ -319,7 +320,13 @@ public:
                     {"DRGARE", HazardKind::shallow, DangerKind::none, "DRVAL1"},
                     {"UWTROC", HazardKind::danger, DangerKind::rock, "VALSOU"},
                     {"WRECKS", HazardKind::danger, DangerKind::wreck, "VALSOU"},
-                    {"OBSTRN", HazardKind::danger, DangerKind::obstruction, "VALSOU"}};
+                    {"OBSTRN", HazardKind::danger, DangerKind::obstruction, "VALSOU"},
+                    // Structures, hazards at any limit (docs/method.md): their kind is checked
+                    // by the structure tests; here only the class's.
+                    {"SLCONS", HazardKind::structure, DangerKind::none, nullptr},
+                    {"PONTON", HazardKind::structure, DangerKind::none, nullptr},
+                    {"HULKES", HazardKind::structure, DangerKind::none, nullptr},
+                    {"MORFAC", HazardKind::structure, DangerKind::none, nullptr}};
         for (const auto& def : defs) {
             OGRLayer* l = ds->GetLayerByName(def.name);
             if (!l) continue;
@@ -332,10 +339,17 @@ public:
                 }
                 const OGRGeometry* g = f->GetGeometryRef();
                 if (!g) continue;
+                const bool structure = def.kind == HazardKind::structure;
+                if (structure && std::string(def.name) == "MORFAC") {
+                    const int cat = f->GetFieldIndex("CATMOR");
+                    if (f->IsFieldSetAndNotNull(cat) && (f->GetFieldAsInteger(cat) == 6 || f->GetFieldAsInteger(cat) == 7)) continue;
+                }
                 const auto type = wkbFlatten(g->getGeometryType());
                 geo::GeomPtr geom{nullptr, {m_ctx.get()}};
                 m_box = {};
-                if (type == wkbPolygon) {
+                if (structure && (type == wkbLineString || type == wkbPoint)) {
+                    geom = structure_polygon(*g);
+                } else if (type == wkbPolygon) {
                     std::vector<std::vector<XY>> rings;
                     for (const OGRLinearRing* r : *g->toPolygon()) rings.push_back(project(*r));
                     geom = test::polygon(m_ctx, rings);
@@ -387,6 +401,37 @@ private:
         for (const XY& q : out) m_box.extend(q);
         return out;
     }
+    /// docs/method.md: a structure's line or point becomes the GEOS buffer (8 segments a quarter
+    /// circle) of the width / cos(pi / 32), made in metres of the equirectangular scale at its
+    /// first vertex and turned back into degrees; its vertices are then projected one by one.
+    geo::GeomPtr structure_polygon(const OGRGeometry& g) {
+        std::vector<LonLat> ll;
+        if (wkbFlatten(g.getGeometryType()) == wkbPoint) {
+            ll.push_back({g.toPoint()->getX(), g.toPoint()->getY()});
+        } else {
+            const OGRLineString& l = *g.toLineString();
+            for (int i = 0; i < l.getNumPoints(); ++i)
+                if (ll.empty() || !(ll.back() == LonLat{l.getX(i), l.getY(i)})) ll.push_back({l.getX(i), l.getY(i)});
+        }
+        const LonLat o = ll.front();
+        const Eigen::Vector2d mpd = geo::metres_per_degree(o.lat);
+        std::vector<XY> xy;
+        for (const LonLat& p : ll) xy.push_back({(p.lon - o.lon) * mpd.x(), (p.lat - o.lat) * mpd.y()});
+        const bool point = xy.size() == 1;
+        geo::GeomPtr shape = point ? test::point(m_ctx, xy[0]) : test::line(m_ctx, xy);
+        const double width = point ? coast::structure_point_radius_m : coast::structure_line_half_width_m;
+        geo::GeomPtr buffer = test::check(m_ctx, GEOSBuffer_r(m_ctx, shape.get(), width / std::cos(std::numbers::pi / 32), 8), "buffer");
+        std::vector<std::vector<std::vector<XY>>> polys;
+        geo::collect_polygons(m_ctx, buffer.get(), polys);
+        if (polys.size() != 1) throw std::runtime_error("a structure's buffer is not one polygon");
+        for (auto& ring : polys[0])
+            for (XY& p : ring) {
+                p = m_frame.forward(LonLat{o.lon + p.x / mpd.x(), o.lat + p.y / mpd.y()});
+                m_box.extend(p);
+            }
+        return test::polygon(m_ctx, polys[0]);
+    }
+
     /// docs/method.md: 16 vertices at radius / cos(pi / 16), counter-clockwise from east,
     /// turned into degrees with the metres per degree at the danger's latitude.
     std::vector<XY> danger_polygon(const OGRPoint& p, double radius_m) {
@@ -633,7 +678,8 @@ TEST(HazardLevels, AGridFileOfVersion2IsRefused) {
     const std::uint32_t v2 = 2;
     std::memcpy(old.data() + 8, &v2, sizeof v2);
     EXPECT_THAT([&] { grid::GridFile::parse(old, "old.shoalgrid"); },
-                ThrowsMessage<InputError>(HasSubstr("has format version 2; this shoal reads version 3: rebuild it with shoal import")));
+                ThrowsMessage<InputError>(HasSubstr("has format version 2; this shoal reads version " + std::to_string(grid::grid_format_version) +
+                                                     ": rebuild it with shoal import")));
     // A level out of range (the last land level), the checksum made right: damaged, said so.
     const std::uint16_t bad = 0xFFFF;
     std::memcpy(bytes.data() + bytes.size() - sizeof bad, &bad, sizeof bad);

@@ -112,10 +112,11 @@ struct Event {
     std::size_t fix_line = 0;       ///< its line (or point number) in the file
     std::vector<geo::LonLat> hull;  ///< hull outline at that moment (closed ring)
     /// What the hull touched (grounding) or came nearest to (close pass): land, shallow water
-    /// (a depth area under the limiting depth) or a danger.
+    /// (a depth area under the limiting depth), a danger or a structure.
     coast::HazardKind hit = coast::HazardKind::land;
     double charted_depth_m = NAN;   ///< its charted depth (least depth of the area, danger's sounding); NaN unknown or land
     coast::DangerKind danger = coast::DangerKind::none;  ///< the danger's kind (rock, wreck, obstruction)
+    std::string hit_name;           ///< the name of what was hit (coast::Hazard::name: "Pier 25"); "" when it has none
 
     // The evidence for the kind (contacts; for close passes the speed and heading at the least clearance).
     double speed_kn = NAN;          ///< speed at first contact: SOG of the last fix before it (else the next), else from positions

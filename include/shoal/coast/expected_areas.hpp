@@ -6,8 +6,9 @@
 ///
 /// Sources: any OGR vector files the user names (every layer; role *expected*, kind "area",
 /// or taken from the layer name when it is an S-57 object class), and the S-57 charts among
-/// the coastline sources (layers BERTHS, HRBARE, ACHARE as *expected*, SLCONS as
-/// *structure*, each when present). Polygons are kept as they are (an invalid one is
+/// the coastline sources (layers BERTHS, HRBARE, ACHARE as *expected*, SLCONS, PONTON,
+/// MORFAC and HULKES as *structure*, each when present; mooring buoys and chains, which are
+/// no structure (coast::is_hazard), left out). Polygons are kept as they are (an invalid one is
 /// repaired with GEOSMakeValid); lines and points, as S-57 berths and shoreline
 /// constructions often are, become the area within the tolerance of them.
 
@@ -24,7 +25,8 @@ namespace shoal::geo { class LocalFrame; }
 namespace shoal::coast {
 
 /// *expected*: a berth, harbour, anchorage or user area, where touching land is normal.
-/// *structure*: an S-57 shoreline construction (SLCONS: quay, pier, breakwater, ...).
+/// *structure*: an S-57 shoreline construction (SLCONS: quay, pier, breakwater, ...), pontoon
+/// (PONTON), mooring facility (MORFAC: dolphin, bollard, pile, ...) or hulk (HULKES).
 enum class AreaRole : std::uint8_t { expected, structure };
 
 const char* to_string(AreaRole r) noexcept;  ///< "expected", "structure"
@@ -33,10 +35,13 @@ const char* to_string(AreaRole r) noexcept;  ///< "expected", "structure"
 struct ExpectedArea {
     AreaRole role = AreaRole::expected;
     /// "berth" (S-57 BERTHS), "harbour" (HRBARE), "anchorage" (ACHARE), "area" (any other
-    /// layer of a user file); for structures the name of the S-57 CATSLC value ("breakwater",
-    /// "groyne", "mole", "pier", "promenade pier", "wharf", "training wall", "rip rap",
-    /// "revetment", "sea wall", "landing steps", "ramp", "slipway", "fender",
-    /// "solid face wharf", "open face wharf", "log ramp"), or "structure" when it has none.
+    /// layer of a user file); for structures coast::to_string(StructureKind): the name of the
+    /// S-57 CATSLC value ("breakwater", "groyne", "mole", "pier", "promenade pier", "wharf",
+    /// "training wall", "rip rap", "revetment", "sea wall", "landing steps", "ramp",
+    /// "slipway", "fender", "solid face wharf", "open face wharf", "log ramp", or "structure"
+    /// when it has none), "pontoon", "hulk", or of the CATMOR value ("dolphin", "deviation
+    /// dolphin", "bollard", "tie-up wall", "post or pile", or "mooring facility" when it has
+    /// none).
     std::string kind;
     /// The feature's OBJNAM, else its attribute called "name" (any case); "" when neither is set.
     std::string name;
@@ -66,11 +71,12 @@ public:
     /// Reads the areas and projects them into `frame`.
     ///
     /// `user_files`: OGR vector sources; every layer is read (an S-57 chart given here: its
-    /// layers BERTHS, HRBARE, ACHARE and SLCONS). A layer named BERTHS, HRBARE or ACHARE gives
-    /// that kind, SLCONS structures, any other layer kind "area".
+    /// layers BERTHS, HRBARE, ACHARE, SLCONS, PONTON, MORFAC and HULKES). A layer named
+    /// BERTHS, HRBARE or ACHARE gives that kind, SLCONS, PONTON, MORFAC and HULKES
+    /// structures, any other layer kind "area".
     /// `charts`: the coastline sources; those that are S-57 (GDAL driver "S57") give their
-    /// BERTHS, HRBARE and ACHARE (expected) and SLCONS (structure) when present; the others,
-    /// and absent layers, give nothing.
+    /// BERTHS, HRBARE and ACHARE (expected) and SLCONS, PONTON, MORFAC, HULKES (structure)
+    /// when present; the others, and absent layers, give nothing.
     ///
     /// Lines and points become buffers of `tolerance_m` metres (> 0), see
     /// expected_area_quadrant_segments. Coordinates in any CRS are transformed to WGS84 and
@@ -79,7 +85,7 @@ public:
     /// without usable geometry are reported in `warnings` (when not null).
     ///
     /// Throws InputError naming the file (and layer, feature) for: a missing file, one OGR
-    /// cannot read, an S-57 user file with none of the four layers, a user layer with no
+    /// cannot read, an S-57 user file with none of the seven layers, a user layer with no
     /// polygon, line or point at all, no CRS with coordinates that are not lon/lat, a vertex
     /// that cannot be transformed or projected. UsageError when tolerance_m is not > 0 and at
     /// most max_tolerance_m.

@@ -7,8 +7,8 @@
 /// reference point inside it is kept, so a point's side (land or water) is exact from that
 /// one cell's segments: count the signed crossings of the path from the reference point.
 ///
-/// "Land" here is anything the hull must not touch: land, and shallow water and dangers,
-/// stored exactly like land. Which one a segment bounds is kept per polyline (`hazard`).
+/// "Land" here is anything the hull must not touch: land, structures, and shallow water and
+/// dangers, stored exactly like land. Which one a segment bounds is kept per polyline (`hazard`).
 ///
 /// A grid built from a chart holds every depth area and danger with its charted depth; its
 /// own queries (state, segments, winding) see all of them. What is a hazard for one vessel
@@ -53,6 +53,8 @@ struct GridSource {
     std::uint64_t danger_polylines = 0;    ///< polylines bounding dangers
     std::uint64_t hazard_features = 0;     ///< depth areas and dangers kept (features)
     std::uint64_t unknown_depth = 0;       ///< of which with no depth in the chart (a hazard for any limit)
+    std::uint64_t structure_polylines = 0; ///< polylines bounding structures (piers, wharves, pontoons, dolphins, hulks)
+    std::uint64_t structure_features = 0;  ///< structures kept (features): hazards for every vessel
     std::vector<std::string> inputs;       ///< paths as given to import
     std::vector<std::string> layers;       ///< "file:layer" of every layer read
     std::vector<std::string> layer_option; ///< --layer names ("" = default set)
@@ -124,7 +126,8 @@ public:
     /// Reference point of cell (i, j) and its winding number (coast cells).
     geo::XY reference_point(int i, int j) const noexcept;
 
-    /// What polyline `k` bounds (land, shallow water, a danger); `k` < polyline_count().
+    /// What polyline `k` bounds (land, shallow water, a danger, a structure, with its kind and
+    /// name); `k` < polyline_count().
     const coast::Hazard& hazard(std::uint32_t k) const noexcept { return m_hazards[k]; }
     std::size_t polyline_count() const noexcept { return m_hazards.size(); }
     /// The polyline a segment was clipped from (`s` must be an element of some segments(i, j)).

@@ -4,10 +4,11 @@
 /// Layout (little-endian): magic "SHOALGRD", u32 format version, u32 byte-order mark
 /// 0x01020304, u64 payload size, u64 XXH3-64 checksum of the payload, then the payload
 /// (parameters, frame, source fingerprint and hazard parameters, then the grid's flat arrays
-/// and the per-polyline table of what each bounds, then the levels of charted depth: per coast
+/// and the per-polyline table of what each bounds: kind, danger, structure, depth, and name
+/// by index into a table of the distinct names; then the levels of charted depth: per coast
 /// cell the reference winding where it changes, per cell the first level a land cell is land
-/// at). Written to a
-/// temporary file in the same folder and renamed, so a reader never sees half a file.
+/// at). Written to a temporary file in the same folder and renamed, so a reader never sees
+/// half a file.
 
 #include <cstdint>
 #include <string>
@@ -19,8 +20,9 @@ namespace shoal::grid {
 
 inline constexpr char grid_magic[8] = {'S', 'H', 'O', 'A', 'L', 'G', 'R', 'D'};
 /// 2: hazard fields and per-polyline kinds (depth hazards); 3: every depth area and danger
-/// kept with its depth, and the levels of charted depth (CoastGrid::for_depth).
-inline constexpr std::uint32_t grid_format_version = 3;
+/// kept with its depth, and the levels of charted depth (CoastGrid::for_depth); 4: structures
+/// (kind structure, each polyline's structure kind and name, their counts in the source).
+inline constexpr std::uint32_t grid_format_version = 4;
 
 class GridFile {
 public:

@@ -115,7 +115,8 @@ std::string wild_fix_message(const audit::TrackSummary& track, const track::Wild
 std::string iso_time(double epoch_s);
 
 /// Short text for maps: "aground 10:03:12Z" (land), "aground shallow 3.6 m 10:03:12Z",
-/// "aground wreck 10:03:12Z" (a danger; its sounding when charted), "close 10:03:12Z".
+/// "aground wreck 10:03:12Z" (a danger; its sounding when charted), "aground pier 'Pier 25'
+/// 10:03:12Z" (a structure: its kind, and its name when it has one), "close 10:03:12Z".
 std::string event_label(const audit::Event& e);
 
 }  // namespace shoal::report
