@@ -90,6 +90,14 @@ double cadence(const track::Track& t) {
 void fill_traffic(const track::Track& t, const std::vector<XY>& p, double hull_length_m, const grid::CoastGrid& grid,
                   const SweepOptions& sweep, const EvidenceOptions& opt, TrackResult& r) {
     r.stays = find_stays(t, p, stay_diameter(sweep, hull_length_m), std::min(sweep.stop_duration_s, opt.ground_stay_s));
+    // Visits: a new one when the vessel went further than the berth radius between two stays.
+    for (std::size_t k = 1; k < r.stays.size(); ++k) {
+        const Stay& prev = r.stays[k - 1];
+        bool away = false;
+        for (std::size_t i = prev.last + 1; i < r.stays[k].first && !away; ++i) away = dist(p[i], prev.local) > opt.berth_radius_m;
+        away = away || dist(r.stays[k].local, prev.local) > opt.berth_radius_m;
+        r.stays[k].visit = prev.visit + (away ? 1 : 0);
+    }
     r.over_land.clear();
     for (std::size_t i = 0; i < t.fixes.size(); ++i) {
         const track::Fix& f = t.fixes[i];
@@ -163,10 +171,12 @@ void gather_evidence(const track::Track& t, double hull_length_m, const geo::Loc
             const std::size_t k = static_cast<std::size_t>(e_it - fx.begin());
             ev.left_contact = !(k < fx.size() && std::fabs(fx[k].time_s - e.end_s) <= 1e-6 && piece_end(k));
         }
-        // The stay that follows: the first one that reaches fix a.
+        // Where it came to rest: the first stay long enough (a vessel lying there) that reaches
+        // fix a. Shorter stays before it are a vessel creeping in (berthing, jitter at low speed).
         const XY at_contact = frame.forward(e.ship);
         if (have_a) {
-            const auto s_it = std::lower_bound(r.stays.begin(), r.stays.end(), a, [](const Stay& s, std::size_t i) { return s.last < i; });
+            auto s_it = std::lower_bound(r.stays.begin(), r.stays.end(), a, [](const Stay& s, std::size_t i) { return s.last < i; });
+            while (s_it != r.stays.end() && s_it->end_s - s_it->start_s < opt.ground_stay_s) ++s_it;
             if (s_it != r.stays.end()) {
                 const Stay& s = *s_it;
                 ev.stay = static_cast<std::size_t>(s_it - r.stays.begin());
@@ -216,13 +226,15 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
                     for (const std::size_t j : it->second)
                         if (j != i && dist(stay(all[i]).local, stay(all[j]).local) <= R) f(j);
     };
-    // Each stay's evidence: the others near it that did not begin while it lasted.
+    // Each stay's evidence: the others near it that did not begin while it lasted, of other
+    // vessels or of this one's other visits.
     for (std::size_t i = 0; i < all.size(); ++i) {
         const Stay& s = stay(all[i]);
         std::size_t n = 0;
         near(i, [&](std::size_t j) {
             const Stay& o = stay(all[j]);
-            if (!(o.start_s > s.start_s && o.start_s <= s.end_s)) ++n;
+            const bool same_visit = all[j].track == all[i].track && o.visit == s.visit;
+            if (!same_visit && !(o.start_s > s.start_s && o.start_s <= s.end_s)) ++n;
         });
         out.berth_stays[all[i].track][all[i].stay] = n;
     }
@@ -242,7 +254,9 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
     std::map<std::size_t, std::vector<std::size_t>> groups;
     for (std::size_t i = 0; i < all.size(); ++i) groups[find(i)].push_back(i);
     for (const auto& [root, members] : groups) {
-        if (members.size() < 2) continue;
+        std::set<std::pair<std::size_t, std::size_t>> visits;
+        for (const std::size_t i : members) visits.insert({all[i].track, stay(all[i]).visit});
+        if (visits.size() < 2) continue;  // one visit, its stay broken by jitter: not a place vessels come to
         LearnedPlace pl;
         pl.kind = LearnedPlace::Kind::berth;
         std::set<std::string> vessels;
@@ -258,7 +272,7 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
         c = (1.0 / static_cast<double>(members.size())) * c;
         for (const std::size_t i : members) pl.size_m = std::max(pl.size_m, dist(c, stay(all[i]).local));
         pl.local = c;
-        pl.count = members.size();
+        pl.count = visits.size();
         pl.vessels = vessels.size();
         out.places.push_back(pl);
     }
@@ -400,8 +414,8 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, const Evide
     }
     if (at_contact) {
         const bool abrupt = ev.deceleration_kn_s >= opt.abrupt_kn_s;
-        if (abrupt) {
-            set(EventKind::grounding, (berth ? 3 : 4) - tol_cut,
+        if (abrupt) {  // seen by the fixes, whatever the chart's accuracy
+            set(EventKind::grounding, berth ? 3 : 4,
                 "stopped abruptly at the contact (" + speed + ", at rest within " + fmt1(ev.stop_distance_m) + " m, " +
                     track::detail::fmt(std::round(ev.deceleration_kn_s * 100) / 100) + " kn/s) and lay there " + fmt1(ev.stay_s / 60) + " min" +
                     (berth ? " (" + berth_words() + ")" : ""));
@@ -434,6 +448,12 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, const Evide
         set(EventKind::grounding, 2 - tol_cut,
             "touch and go: slowed abruptly at the contact (" + speed + ", " + fmt1(ev.speed_after_kn) + " kn " + fmt1(ev.speed_after_age_s) +
                 " s after), then went on");
+        return;
+    }
+    if (lay_still && !under_way_before) {
+        set(EventKind::alongside, 3,
+            "touched at " + fmt1(ev.speed_before_kn) + " kn, under the " + fmt1(opt.under_way_kn) + " kn of a vessel under way, and came to rest " +
+                fmt1(ev.stop_distance_m) + " m on: berthing" + (berth ? " (" + berth_words() + ")" : ""));
         return;
     }
     if (lay_still) {

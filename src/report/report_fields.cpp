@@ -137,7 +137,10 @@ const std::vector<Field<EventRow>>& event_fields() {
         {"reason", text_t, none, -1, [](const E& x) { return text(x.event.evidence.reason); }},
         {"disagreement", text_t, none, -1, [](const E& x) { return text(x.event.evidence.disagreement); }},
         {"start_not_before", datetime, utc, -1,
-         [](const E& x) { return is_contact(x.event.kind) ? text(iso_time(x.event.evidence.start_not_before_s)) : null; }},
+         [](const E& x) {
+             const double nb = x.event.evidence.start_not_before_s;
+             return is_contact(x.event.kind) && std::isfinite(nb) ? text(iso_time(nb)) : null;
+         }},
         {"start_uncertainty_s", real, seconds, 1,
          [](const E& x) {
              const double nb = x.event.evidence.start_not_before_s;

@@ -94,7 +94,7 @@ struct AuditResult {
     std::size_t groundings = 0, close_passes = 0;
     std::size_t alongside = 0, contacts_at_start = 0, expected_contacts = 0;
     std::size_t chart_disagreements = 0;  ///< real world: contacts the traffic contradicts
-    World world = World::real;            ///< the world the kinds were decided in
+    World world = World::simulated;       ///< the world the kinds were decided in
     double chart_tolerance_m = NAN;       ///< EvidenceOptions::chart_tolerance_m used
     /// Real world: what the run's traffic taught (learned berths, water the chart lacks),
     /// learned from every track read (all shards alike).

@@ -88,7 +88,7 @@ struct LearnedPlace {
     geo::LonLat position;
     double size_m = 0;       ///< berth: the radius that holds its stays; water: the cell's side
     std::size_t vessels = 0; ///< distinct vessels
-    std::size_t count = 0;   ///< berth: stays; water: fixes
+    std::size_t count = 0;   ///< berth: visits (stays of a vessel that did not go away between count once); water: fixes
     double hours = 0;        ///< berth: hours of the stays together
     double first_s = NAN, last_s = NAN;
 };

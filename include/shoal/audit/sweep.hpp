@@ -225,6 +225,10 @@ struct Stay {
     double start_s = 0, end_s = 0;
     geo::XY local;                    ///< the first fix, local metres
     bool moored = false, aground = false;  ///< AIS status moored / at anchor, aground at a fix of it
+    /// Which visit of the vessel it belongs to: stays of one visit follow each other without
+    /// the vessel going away (further than the berth radius) between them (a stay broken by
+    /// GPS jitter or a shift along the quay is one visit).
+    std::size_t visit = 0;
 };
 
 struct TrackResult {

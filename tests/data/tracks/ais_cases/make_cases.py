@@ -879,6 +879,967 @@ def case_passes():
 
 
 # ---------------------------------------------------------------------------------------------
+# Real-world cases (shoal check --world real, the default outside exercise mode): helpers
+
+
+ARGS_DIMS = "--dims 100,20,8,8"
+HULL_RADIUS = 100.0  # --dims 100,20,8,8: the bow tip is the hull point farthest from the reference point
+# shoal's hull circle (heading unknown) is a 36-gon around the circle of that radius
+CIRCLE_R = HULL_RADIUS / math.cos(math.pi / 36)
+
+
+def circle(x, y, r=CIRCLE_R, n=36):
+    return polygon([(x + r * math.cos(2 * math.pi * k / n), y + r * math.sin(2 * math.pi * k / n)) for k in range(n)])
+
+
+def turn_deg(a, b):
+    d = (b - a) % 360.0
+    return d - 360.0 if d > 180.0 else d
+
+
+def interp_fix(fa, fb, t):
+    """Position and true heading on the written track between fixes fa and fb at time t: both
+    linear in time (the heading along the shorter turn), as a sweep between fixes does."""
+    f = (t - fa["t"]) / (fb["t"] - fa["t"])
+    x = fa["x"] + f * (fb["x"] - fa["x"])
+    y = fa["y"] + f * (fb["y"] - fa["y"])
+    h = None
+    if fa["heading"] is not None and fb["heading"] is not None:
+        h = (fa["heading"] + f * turn_deg(fa["heading"], fb["heading"])) % 360.0
+    return x, y, h
+
+
+def written_hull(site, fa, fb, t, outline=OUTLINE):
+    x, y, h = interp_fix(fa, fb, t)
+    return site.hull(x, y, h, outline)
+
+
+def contact_times(site, fa, fb, outline=OUTLINE, step=0.05, hull_of=None):
+    """Times (every `step` s) strictly between fixes fa and fb at which the hull on the written
+    track touches land."""
+    out = []
+    n = int(round((fb["t"] - fa["t"]) / step))
+    for k in range(1, n):
+        t = fa["t"] + k * step
+        h = hull_of(t) if hull_of else written_hull(site, fa, fb, t, outline)
+        if site.touches(h):
+            out.append(round(t, 3))
+    return out
+
+
+def max_penetration(site, hulls):
+    return max([site.penetration(h) for h in hulls] or [0.0])
+
+
+def tstr(fx):
+    return fx["time"].strftime("%Y-%m-%dT%H:%M:%SZ")
+
+# ---------------------------------------------------------------------------------------------
+# Case 8: aground, seen by sparse fixes (every 10 min), no heading and no COG
+
+
+C8_CLEAR_FIXES = 4        # fixes under way, 600 s apart, at 10 kn
+C8_BEFORE_SEEN_S = 180.0  # the bow touches this long before the first fix in contact
+C8_STOP_S = 10.0          # it stops, decelerating evenly, this long after touching
+C8_REST_S = 3 * 3600      # lies aground 3 h
+C8_EVERY_S = 600
+
+
+def case_aground_sparse(gap_s, mmsi, name, start, seed):
+    """The voyage of case 1 (10 kn, course 003, onto the south shore of island 1740), seen every
+    600 s; between the last clear fix and the first fix in contact gap_s seconds."""
+    mid_ll = ((C1_SEG[0][0] + C1_SEG[1][0]) / 2, C1_SEG[0][1])
+    site = Site(*mid_ll, half_km=15)
+    a, b = segment_by_vertices(site, C1_FID, *C1_SEG)
+    mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
+    th = math.radians(site.grid_az(C1_COURSE, mx, my))
+    ux, uy = math.sin(th), math.cos(th)
+    v = C1_SPEED_KN * KN
+    t_last_clear = C8_EVERY_S * (C8_CLEAR_FIXES - 1)
+    t_seen = t_last_clear + gap_s
+    t_touch = t_seen - C8_BEFORE_SEEN_S
+    decel = v / C8_STOP_S
+    d0 = DIMS[0] + v * t_touch  # the bow tip reaches the segment's midpoint at t_touch
+    sx, sy = mx - ux * d0, my - uy * d0
+
+    def ref(t):
+        if t <= t_touch:
+            s = v * t
+        else:
+            dt_ = min(t - t_touch, C8_STOP_S)
+            s = v * t_touch + v * dt_ - 0.5 * decel * dt_ * dt_
+        return sx + ux * s, sy + uy * s
+
+    T_tip = first_true(lambda t: site.touches(point(*site.hull_point(*ref(t), C1_COURSE, DIMS[0], 0.0))),
+                       t_touch - 20, t_touch + 5, 0.5)
+    assert abs(T_tip - t_touch) < 0.05, (T_tip, t_touch)
+    T_outline = first_true(lambda t: site.touches(site.hull(*ref(t), C1_COURSE)), t_touch - 20, t_touch + 5, 0.5)
+    vessel = Vessel(mmsi, name)
+    tr = Track(site, vessel, start, seed)
+    for i in range(C8_CLEAR_FIXES):
+        t = C8_EVERY_S * i
+        tr.add(t, *ref(t), C1_SPEED_KN, None, None, 0)
+    t = t_seen
+    while t <= t_seen + C8_REST_S:
+        tr.add(t, *ref(t), 0.0, None, None, 0)
+        t += C8_EVERY_S
+    fx = tr.fixes
+    last_clear, first_in = fx[C8_CLEAR_FIXES - 1], fx[C8_CLEAR_FIXES]
+    # Under way: heading unknown too (511, COG empty); whatever heading, the hull lies in its
+    # circle: the circle of every fix under way, and of every chord between them, is clear.
+    way = fx[:C8_CLEAR_FIXES]
+    way_dist = [point(f["x"], f["y"]).Distance(site.land) for f in way]
+    assert min(way_dist) > CIRCLE_R + 200, way_dist
+    for fa, fb in zip(way, way[1:]):
+        assert not site.touches(linestring([(fa["x"], fa["y"]), (fb["x"], fb["y"])]).Buffer(CIRCLE_R))
+    # At rest: every fix's circle overlaps land; so does the hull at the true heading (003).
+    rest = fx[C8_CLEAR_FIXES:]
+    rest_dist = [point(f["x"], f["y"]).Distance(site.land) for f in rest]
+    assert max(rest_dist) < HULL_RADIUS - 10
+    assert all(site.touches(site.hull(f["x"], f["y"], C1_COURSE)) for f in rest)
+    # The sweep from the last clear fix to the first fix in contact, positions interpolated
+    # linearly: when the circle (heading unknown at the later fix) and when the hull at the
+    # bearing between them would first touch.
+    def chord(t):
+        f = (t - last_clear["t"]) / (first_in["t"] - last_clear["t"])
+        return (last_clear["x"] + f * (first_in["x"] - last_clear["x"]),
+                last_clear["y"] + f * (first_in["y"] - last_clear["y"]))
+
+    bearing = site.true_az(math.degrees(math.atan2(first_in["x"] - last_clear["x"], first_in["y"] - last_clear["y"])),
+                           last_clear["x"], last_clear["y"])
+    t_circle = first_true(lambda t: site.touches(circle(*chord(t))), last_clear["t"], first_in["t"], 1.0)
+    t_circle_exact = first_true(lambda t: point(*chord(t)).Distance(site.land) <= HULL_RADIUS, last_clear["t"],
+                                first_in["t"], 1.0)
+    t_hull = first_true(lambda t: site.touches(site.hull(*chord(t), bearing)), last_clear["t"], first_in["t"], 1.0)
+    x_touch, y_touch = ref(t_touch)
+    x_rest, y_rest = ref(t_touch + C8_STOP_S)
+    chord_speed = math.hypot(first_in["x"] - last_clear["x"], first_in["y"] - last_clear["y"]) / gap_s / KN
+    lead = first_in["t"] - t_circle
+    geometry = dict(
+        site=dict(coast_feature_id=C1_FID, shore_segment_lonlat=C1_SEG,
+                  shore="south shore of an island east of Helsinki (case 1's), east-west, land to the north"),
+        course_true_deg=C1_COURSE, speed_kn=C1_SPEED_KN, fixes_every_s=C8_EVERY_S,
+        last_clear_fix_line=last_clear["line"], last_clear_fix_time=tstr(last_clear),
+        first_fix_in_contact_line=first_in["line"], first_fix_in_contact_time=tstr(first_in),
+        gap_s=gap_s,
+        true_bow_contact_s=round(T_tip, 2), true_bow_contact=iso(start, T_tip),
+        true_bow_contact_note="the bow tip touches %.0f s before the first fix in contact (un-jittered motion, bisected); "
+                              "the pointed-bow outline at %.2f s; it stops %.0f s later, %.1f m further on"
+                              % (C8_BEFORE_SEEN_S, T_outline, C8_STOP_S, 0.5 * v * C8_STOP_S),
+        fixes_under_way_reference_point_to_land_m=[r2(d) for d in way_dist],
+        fixes_at_rest_reference_point_to_land_m=[min(r2(d) for d in rest_dist), max(r2(d) for d in rest_dist)],
+        hull_radius_m=HULL_RADIUS, shoal_circle_radius_m=round(CIRCLE_R, 2),
+        at_rest_every_fix_in_contact="circle (heading unknown) and hull at heading 003 both overlap land at every fix at rest",
+        penetration_at_rest_heading_003_m=r2(site.penetration(site.hull(x_rest, y_rest, C1_COURSE))),
+        chord_speed_kn=round(chord_speed, 2),
+        sweep_circle_first_contact_s=round(t_circle, 2), sweep_circle_first_contact=iso(start, t_circle),
+        sweep_exact_circle_first_contact_s=round(t_circle_exact, 2),
+        sweep_hull_at_bearing_first_contact_s=round(t_hull, 2), bearing_true_deg=round(bearing, 2),
+        sweep_note="positions interpolated linearly from line %d to line %d: the hull's circle (shoal's 36-gon, radius "
+                   "%.2f m) first touches land %.1f s before the first fix in contact; the hull at the bearing %.1f s before"
+                   % (last_clear["line"], first_in["line"], CIRCLE_R, lead, first_in["t"] - t_hull),
+        true_stop_from_true_contact_m=r2(math.hypot(x_rest - x_touch, y_rest - y_touch)),
+        rest_from_sweep_contact_m=r2(math.hypot(first_in["x"] - chord(t_circle)[0], first_in["y"] - chord(t_circle)[1])),
+    )
+    return tr, geometry, site, last_clear, first_in, t_circle, start
+
+# ---------------------------------------------------------------------------------------------
+# Case 10: a ferry calling hourly at a pier the chart draws as land
+
+
+# Island GSHHG feature 1572 (1.3 km2, south-east of Helsinki), its north shore: an east-west
+# segment of 738 m at 60.10623 N, land to the south, open water north for 3 km.
+C10_FID = 1572
+C10_SEG = ((25.0449683, 60.1062486), (25.0582284, 60.1062181))
+C10_SHORE_TRUE = 90.0   # the shore runs east-west (true bearing of the segment, west to east, rounded)
+C10_ANGLE = 10          # the ferry's heading converges with the shore by this much (land to starboard)
+C10_HEADING = 100       # true heading while berthing and at the berth
+C10_CRUISE_KN = 12.0
+C10_DECEL_KN_S = 0.04   # even deceleration from 12 kn to rest in 300 s
+C10_STEADY_S = 60       # seconds at 12 kn before slowing
+C10_CONTACT_KN = 4.5    # the hull first touches the charted land at this speed (aimed at)
+C10_REST_S = 900        # lies 15 min
+C10_CALLS = 6
+C10_SIDE_MS = 0.6       # casting off: thrusters push it to port at this speed (ramp 10 s) for 60 s
+C10_DEP_S = 360         # seconds of departure recorded
+C10_DEP_TURN = 45.0     # degrees turned to port while leaving
+
+
+def ferry_call_motion(site, rx, ry):
+    """One call relative to its first fix (r = 0): (position, true heading, speed kn, status) at r,
+    for the approach, the stay and the departure. (rx, ry): the reference point at rest."""
+    a = C10_DECEL_KN_S * KN  # m/s^2
+    t_dec = C10_CRUISE_KN / C10_DECEL_KN_S
+    r_rest = C10_STEADY_S + t_dec
+    gh = math.radians(site.grid_az(C10_HEADING, rx, ry))
+    ux, uy = math.sin(gh), math.cos(gh)
+    px, py = -math.cos(gh), math.sin(gh)  # port
+
+    def to_go(r):  # distance still to run to the rest position
+        if r >= r_rest:
+            return 0.0
+        if r >= C10_STEADY_S:
+            return 0.5 * a * (r_rest - r) ** 2
+        return 0.5 * a * t_dec ** 2 + C10_CRUISE_KN * KN * (C10_STEADY_S - r)
+
+    def approach(r):
+        s = to_go(r)
+        v = 0.0 if r >= r_rest else (a * (r_rest - r) / KN if r >= C10_STEADY_S else C10_CRUISE_KN)
+        return rx - ux * s, ry - uy * s, float(C10_HEADING), v
+
+    return approach, r_rest, (ux, uy), (px, py)
+
+
+def ferry_departure(site, rx, ry, step=0.05):
+    """The departure from rest at (rx, ry), integrated: {t: (x, y, true heading, sog kn, cog true)}."""
+    gh0 = site.grid_az(C10_HEADING, rx, ry)
+    out = {}
+    x, y = rx, ry
+    n = int(round(C10_DEP_S / step))
+    for k in range(n + 1):
+        t = k * step
+        w = C10_SIDE_MS * min(t / 10.0, 1.0) if t <= 60 else max(0.0, C10_SIDE_MS * (70 - t) / 10.0)
+        u = 0.0 if t <= 70 else min((t - 70) * 0.05, C10_CRUISE_KN) * KN   # ahead from 70 s, +0.05 kn/s
+        dh = -C10_DEP_TURN * min(max((t - 40) / 90.0, 0.0), 1.0)
+        g = math.radians(gh0 + dh)
+        vx = u * math.sin(g) - w * math.cos(g)
+        vy = u * math.cos(g) + w * math.sin(g)
+        if k % 20 == 0:
+            sp = math.hypot(vx, vy)
+            cog = site.true_az(math.degrees(math.atan2(vx, vy)), x, y) if sp > 0 else None
+            out[round(t, 2)] = (x, y, site.true_az(gh0 + dh, x, y), sp / KN, cog)
+        x += vx * step
+        y += vy * step
+    return out
+
+
+def case_ferry():
+    mid_ll = ((C10_SEG[0][0] + C10_SEG[1][0]) / 2, (C10_SEG[0][1] + C10_SEG[1][1]) / 2)
+    site = Site(*mid_ll, half_km=6)
+    a, b = segment_by_vertices(site, C10_FID, *C10_SEG)
+    mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
+    # The rest position: the hull's middle over the segment's middle, the reference point at an
+    # offset d north of the shore line, chosen (bisected) so that the hull first touches the
+    # charted shore when the ferry is down to C10_CONTACT_KN.
+    s_c_target = (C10_CONTACT_KN * KN) ** 2 / (2 * C10_DECEL_KN_S * KN)
+
+    def rest_at(d):
+        gh = math.radians(site.grid_az(C10_HEADING, mx, my))
+        # the hull's middle (40 m ahead of the reference point) over the segment's middle
+        return mx - 40 * math.sin(gh), my - 40 * math.cos(gh) + d
+
+    def s_c(d):
+        rx, ry = rest_at(d)
+        approach, r_rest, _, _ = ferry_call_motion(site, rx, ry)
+        first = first_true(lambda r: site.touches(site.hull(*approach(r)[:3])), 0.0, r_rest, 2.0)
+        return None if first is None else 0.5 * C10_DECEL_KN_S * KN * (r_rest - first) ** 2
+
+    lo, hi = -60.0, 60.0  # d=-60 touches early, d=60 never
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        sc = s_c(mid)
+        if sc is not None and sc > s_c_target:
+            lo = mid
+        else:
+            hi = mid
+    d = hi
+    rx, ry = rest_at(d)
+    approach, r_rest, _, _ = ferry_call_motion(site, rx, ry)
+    dep = ferry_departure(site, rx, ry)
+    r_first = first_true(lambda r: site.touches(site.hull(*approach(r)[:3])), 0.0, r_rest, 2.0)
+    v_first = approach(r_first)[3]
+    pen_rest = site.penetration(site.hull(rx, ry, C10_HEADING))
+    # The un-jittered approach is clear until r_first (every second), the departure clear after the
+    # contact ends.
+    assert all(not site.touches(site.hull(*approach(float(r))[:3])) for r in range(0, int(r_first)))
+    dep_contact = [t for t in sorted(dep) if site.touches(site.hull(*dep[t][:3]))]
+    t_free = max(dep_contact)
+    dep_clear = min(site.clearance(site.hull(*dep[t][:3])) for t in sorted(dep) if t >= 70)
+    assert dep_clear > 10.0, dep_clear
+
+    vessel = Vessel(230990010, "FERRY HOURLY", vtype=60, draft=5.5, cargo=60)
+    start = dt.datetime(2024, 5, 10, 6, 0, 0)
+
+    def write(seed):
+        tr = Track(site, vessel, start, seed)
+        calls = []
+        for c in range(C10_CALLS):
+            t0 = 3600 * c
+            first_line = len(tr.fixes) + 2
+            r = 0
+            while r < r_rest:
+                x, y, h, v = approach(r)
+                tr.add(t0 + r, x, y, round(v, 1), float(C10_HEADING), C10_HEADING, 0)
+                r += 10
+            r = r_rest
+            while r <= r_rest + C10_REST_S:
+                tr.add(t0 + r, rx, ry, 0.0, None, C10_HEADING, 5)
+                r += 60
+            r_dep0 = r_rest + C10_REST_S
+            for k in range(1, C10_DEP_S // 10 + 1):
+                x, y, h, v, cog = dep[float(10 * k)]
+                tr.add(t0 + r_dep0 + 10 * k, x, y, round(v, 1), None if cog is None else round(cog, 1),
+                       int(round(h)) % 360, 0)
+            calls.append((first_line, len(tr.fixes) + 1, t0, t0 + r_dep0 + C10_DEP_S))
+        return tr, calls
+
+    def contiguous(tr, calls):
+        fx = tr.fixes
+        for first_line, last_line, t0, t1 in calls:
+            flags = [site.touches(site.hull(fx[i]["x"], fx[i]["y"], fx[i]["heading"]))
+                     for i in range(first_line - 2, last_line - 1)]
+            ins = [j for j, f in enumerate(flags) if f]
+            if not ins or not all(flags[ins[0]:ins[-1] + 1]):
+                return False
+        return True
+
+    # Jitter may make a fix just after the first touch look clear (the overlap grows 1-3 m in 10 s):
+    # the seed is the first from 20240510 whose every call is in contact from its first fix in
+    # contact to its last (one contact per call, as the ferry's real motion has).
+    seed = 20240510
+    tr, calls = write(seed)
+    tried = [seed]
+    while not contiguous(tr, calls):
+        seed += 1
+        tried.append(seed)
+        tr, calls = write(seed)
+    per_call = []
+    fx = tr.fixes
+    for first_line, last_line, t0, t1 in calls:
+        idx = list(range(first_line - 2, last_line - 1))
+        flags = [site.touches(site.hull(fx[i]["x"], fx[i]["y"], fx[i]["heading"])) for i in idx]
+        k = flags.index(True)
+        last_in = max(j for j, f in enumerate(flags) if f)
+        fa, fb = fx[idx[k - 1]], fx[idx[k]]
+        times = contact_times(site, fa, fb, step=0.1)
+        t_c = times[0] if times else fb["t"]
+        rest_i = next(i for i in idx if fx[i]["status"] == 5)
+        pens = [site.penetration(site.hull(fx[i]["x"], fx[i]["y"], C10_HEADING)) for i in idx if fx[i]["status"] == 5]
+        per_call.append(dict(
+            lines=[first_line, last_line], first_fix=tstr(fx[idx[0]]), last_fix=tstr(fx[idx[-1]]),
+            last_fix_clear_line=fa["line"], last_fix_clear_sog_kn=fa["sog"],
+            first_fix_in_contact_line=fb["line"], first_fix_in_contact_sog_kn=fb["sog"],
+            contact_written_track=iso(start, t_c),
+            rest_first_fix=tstr(fx[rest_i]), rest_first_fix_line=fx[rest_i]["line"],
+            last_fix_in_contact_line=fx[idx[last_in]]["line"],
+            penetration_at_rest_m=[r2(min(pens)), r2(max(pens))]))
+    geometry = dict(
+        site=dict(coast_feature_id=C10_FID, shore_segment_lonlat=C10_SEG,
+                  shore="north shore of an island south-east of Helsinki, east-west, land to the south, open water north"),
+        story="a pier (or linkspan) this chart does not draw: the charted shore lies some 20 m seaward of it",
+        heading_true_deg=C10_HEADING, converging_with_shore_deg=C10_ANGLE,
+        approach="12 kn for 60 s, then an even deceleration of 0.04 kn/s to rest in 300 s (926 m); fixes every 10 s "
+                 "under way, every 60 s at rest; Status 0 under way, 5 at rest",
+        rest_reference_point_lonlat=[round(v, 7) for v in site.ll(rx, ry)],
+        rest_reference_point_to_shore_line_m=r2(point(rx, ry).Distance(site.boundary)),
+        first_contact_s_after_call_start=round(r_first, 2), first_contact_speed_kn=round(v_first, 2),
+        first_contact_to_rest_s=round(r_rest - r_first, 2),
+        first_contact_to_rest_m=round(0.5 * C10_DECEL_KN_S * KN * (r_rest - r_first) ** 2, 1),
+        deceleration_kn_s=C10_DECEL_KN_S,
+        penetration_at_rest_m_unjittered=r2(pen_rest),
+        departure="thrusters push it 36 m to port in 60 s (easing off by 70 s), turning it 45 degrees to port from 40 s to "
+                  "130 s; ahead from 70 s (+0.05 kn/s to 12 kn); recorded 360 s",
+        departure_contact_ends_s=round(t_free, 2), departure_least_clearance_from_70s_m=r2(dep_clear),
+        calls=per_call, seeds_tried=tried,
+        note="the recording covers only a box around the pier: between calls the ferry is away "
+             "(gaps of 33 min, longer than --max-gap)",
+    )
+    return tr, geometry
+
+# ---------------------------------------------------------------------------------------------
+# Case 11: a transit straight through a narrow piece of charted land
+
+
+# A narrow peninsula (about 190 m wide, running north-south) at the south end of an island west
+# of central Helsinki (GSHHG feature 1524, 4.47 km2): open water on both sides for more than
+# 3 km along course 075.
+C11_FID = 1524
+C11_THROUGH = (24.8910, 60.1408)  # a point on the peninsula the course line passes through
+C11_COURSE = 75
+C11_SPEED_KN = 8.0
+C11_DURATION_S = 1500             # 25 min, the crossing in the middle
+C11_DIMS_LENGTH = DIMS[0] + DIMS[1]
+
+
+def case_canal():
+    site = Site(*C11_THROUGH, half_km=8)
+    v = C11_SPEED_KN * KN
+    th = math.radians(site.grid_az(C11_COURSE, 0.0, 0.0))
+    ux, uy = math.sin(th), math.cos(th)
+    half = v * C11_DURATION_S / 2
+
+    def ref(t):
+        s = v * t - half + DIMS[0] / 2 - DIMS[1] / 2  # the hull's middle passes the point at mid-time
+        return ux * s, uy * s
+
+    line = linestring([ref(0.0), ref(float(C11_DURATION_S))])
+    core = line.Intersection(site.land)
+    assert core.GetGeometryType() == ogr.wkbLineString, "the course line crosses land once"
+    assert any(core.Intersects(p) for p in site.fids[C11_FID]), "the land crossed is feature C11_FID"
+    width = core.Length()
+    # Nothing else within 60 m of the course line (the hull's half beam and the 50 m margin).
+    wide = linestring([ref(-20.0), ref(C11_DURATION_S + 20.0)]).Buffer(60.0).Intersection(site.land)
+    assert wide.GetGeometryType() == ogr.wkbPolygon, "one piece of land near the course line"
+    t_in = first_true(lambda t: site.touches(site.hull(*ref(t), C11_COURSE)), 0.0, C11_DURATION_S, 1.0)
+    t_out = first_true(lambda t: not site.touches(site.hull(*ref(t), C11_COURSE)), t_in + 1.0, C11_DURATION_S, 1.0)
+    pens = [(site.penetration(site.hull(*ref(float(t)), C11_COURSE)), t) for t in range(int(t_in), int(t_out) + 1)]
+    pen_max, t_pen = max(pens)
+    vessel = Vessel(230990011, "CANAL TRANSIT")
+    start = dt.datetime(2024, 5, 11, 13, 0, 0)
+    tr = Track(site, vessel, start, 20240511)
+    for t in range(0, C11_DURATION_S + 1, 10):
+        tr.add(t, *ref(t), C11_SPEED_KN, float(C11_COURSE), C11_COURSE, 0)
+    reps = [fix_report(site, fx) for fx in tr.fixes]
+    in_lines = [r["line"] for r in reps if r["contact"]]
+    assert in_lines == list(range(in_lines[0], in_lines[-1] + 1)), "one run of fixes in contact"
+    fa = tr.fixes[in_lines[0] - 3]
+    fb = tr.fixes[in_lines[0] - 2]
+    t_written = contact_times(site, fa, fb, step=0.05)[0]
+    fc, fd = tr.fixes[in_lines[-1] - 2], tr.fixes[in_lines[-1] - 1]
+    t_written_end = [t for t in contact_times(site, fc, fd, step=0.05)][-1]
+    pen_written = max(r["penetration_m"] for r in reps)
+    clear = [r["clearance_m"] for r in reps if not r["contact"]]
+    geometry = dict(
+        site=dict(coast_feature_id=C11_FID, point_lonlat=C11_THROUGH,
+                  land="a narrow north-south peninsula at the south end of an island west of central Helsinki, open "
+                       "water on both sides along the course for more than 3 km"),
+        course_true_deg=C11_COURSE, speed_kn=C11_SPEED_KN, duration_s=C11_DURATION_S,
+        land_crossed_along_course_m=r2(width),
+        first_contact_s=round(t_in, 2), first_contact=iso(start, t_in),
+        last_contact_s=round(t_out, 2), last_contact=iso(start, t_out),
+        contact_duration_s=round(t_out - t_in, 1),
+        max_penetration_m_unjittered=r2(pen_max), max_penetration_at=iso(start, t_pen),
+        max_penetration_m_written_fixes=r2(pen_written),
+        hull_length_plus_50_m=C11_DIMS_LENGTH + 50.0,
+        first_contact_written_track=iso(start, t_written), last_contact_written_track=iso(start, t_written_end),
+        fixes_in_contact_lines=[in_lines[0], in_lines[-1]],
+        least_clearance_of_other_fixes_m=min(clear),
+        nothing_else_within_60_m_of_the_course_line=True,
+    )
+    return tr, geometry
+
+# ---------------------------------------------------------------------------------------------
+# Case 12: touch and go: the bow clips a corner of land between two fixes
+
+
+# An islet's sharp south-west corner (GSHHG feature 1347, 0.023 km2, Espoo archipelago; an
+# interior angle of 44 degrees between edges of 264 m and 183 m).
+C12_FID = 1347
+C12_CORNER = (24.7432822, 60.0928817)
+C12_FIX_K = 18            # the last fix before the clip (fixes every 10 s from 0)
+C12_T_K = 10.0 * C12_FIX_K
+C12_STRIKE = C12_T_K + 6  # the strike: 10 kn falls to 4 kn in 3 s
+C12_TURN_FROM = C12_T_K - 15
+C12_TURN_TO = C12_T_K + 25
+C12_RATE = 2.0            # degrees per second to port (hard over), ...
+C12_RATE_HIT = 4.0        # ... 4 in the 4 s after the strike (the blow on the starboard bow)
+C12_DURATION_S = 600
+C12_AT_STRIKE = (80.0, -4.0, 20.0)  # the corner in the ship frame at the strike (x, y); heading = bisector + 90 + this
+
+
+def tg_speed(t):
+    if t < C12_STRIKE:
+        return 10.0
+    if t < C12_STRIKE + 3:
+        return 10.0 - 6.0 * (t - C12_STRIKE) / 3
+    if t < C12_T_K + 20:
+        return 4.0
+    if t < C12_T_K + 80:
+        return 4.0 + 3.0 * (t - C12_T_K - 20) / 60
+    return 7.0
+
+
+def tg_rate(t):
+    if t < C12_TURN_FROM or t >= C12_TURN_TO:
+        return 0.0
+    if C12_STRIKE <= t < C12_STRIKE + 4:
+        return C12_RATE_HIT
+    return C12_RATE
+
+
+def corner_and_bisector(site, fid, lonlat):
+    ds = ogr.Open(COAST)
+    feature = ds.GetLayer().GetFeature(fid)
+    ring = feature.GetGeometryRef().GetGeometryRef(0)
+    pts = [ring.GetPoint_2D(i) for i in range(ring.GetPointCount() - 1)]
+    i = [k for k, p in enumerate(pts) if abs(p[0] - lonlat[0]) < 1e-9 and abs(p[1] - lonlat[1]) < 1e-9]
+    assert len(i) == 1, "the corner is a vertex of the feature"
+    i = i[0]
+    a, v, b = [site.xy(*p) for p in (pts[i - 1], pts[i], pts[(i + 1) % len(pts)])]
+    e1, e2 = (a[0] - v[0], a[1] - v[1]), (b[0] - v[0], b[1] - v[1])
+    l1, l2 = math.hypot(*e1), math.hypot(*e2)
+    angle = math.degrees(math.acos((e1[0] * e2[0] + e1[1] * e2[1]) / l1 / l2))
+    bx, by = -(e1[0] / l1 + e2[0] / l2), -(e1[1] / l1 + e2[1] / l2)
+    return v, math.degrees(math.atan2(bx, by)), angle, (l1, l2)
+
+
+def case_touch_and_go():
+    site = Site(*C12_CORNER, half_km=5)
+    V, beta, angle, edges = corner_and_bisector(site, C12_FID, C12_CORNER)
+    # The motion in a frame where the first course is grid north, integrated every 0.01 s.
+    step = 0.01
+    path = {}
+    x = y = h = 0.0
+    for k in range(int(round(C12_DURATION_S / step)) + 1):
+        t = k * step
+        if k % 5 == 0:
+            path[round(t, 2)] = (x, y, h)
+        v = tg_speed(t) * KN
+        x += v * math.sin(math.radians(h)) * step
+        y += v * math.cos(math.radians(h)) * step
+        h -= tg_rate(t) * step
+    # Placed so that at the strike the corner lies at C12_AT_STRIKE's (x, y) in the ship frame,
+    # the heading then being the corner's outward bisector + 90 + C12_AT_STRIKE[2] degrees (grid).
+    xv, yv, delta = C12_AT_STRIKE
+    gp = path[round(C12_STRIKE, 2)]
+    hs = beta + 90.0 + delta
+    h0 = hs - gp[2]
+    f = (math.sin(math.radians(hs)), math.cos(math.radians(hs)))
+    s = (math.cos(math.radians(hs)), -math.sin(math.radians(hs)))
+    rx, ry = V[0] - xv * f[0] - yv * s[0], V[1] - xv * f[1] - yv * s[1]
+    c, si = math.cos(math.radians(h0)), math.sin(math.radians(h0))
+    ox, oy = rx - (gp[0] * c + gp[1] * si), ry - (-gp[0] * si + gp[1] * c)
+    world = {t: (ox + p[0] * c + p[1] * si, oy - p[0] * si + p[1] * c, h0 + p[2]) for t, p in path.items()}
+
+    def true_pose(t):
+        x_, y_, gh = world[round(t, 2)]
+        return x_, y_, site.true_az(gh, x_, y_)
+
+    # The real motion touches land only between fix k and fix k + 1.
+    phys = [t / 20.0 for t in range(0, 20 * C12_DURATION_S + 1) if site.touches(site.hull(*true_pose(t / 20.0)))]
+    assert phys and C12_T_K < phys[0] and phys[-1] < C12_T_K + 10, (phys[:1], phys[-1:])
+    pen_phys = max(site.penetration(site.hull(*true_pose(t))) for t in phys)
+    vessel = Vessel(230990012, "TOUCH AND GO")
+    start = dt.datetime(2024, 5, 12, 15, 0, 0)
+
+    def write(seed):
+        tr = Track(site, vessel, start, seed)
+        for i in range(C12_DURATION_S // 10 + 1):
+            t = 10.0 * i
+            x_, y_, th_ = true_pose(t)
+            tr.add(int(t), x_, y_, round(tg_speed(t), 1), round(th_, 1) % 360.0, int(round(th_)) % 360, 0)
+        return tr
+
+    def written_facts(tr):
+        fx = tr.fixes
+        clear = [site.clearance(site.hull(f["x"], f["y"], f["heading"])) for f in fx]
+        times = {}
+        for i in range(len(fx) - 1):
+            ts = contact_times(site, fx[i], fx[i + 1], step=0.05)
+            if ts:
+                times[i] = ts
+        return clear, times
+
+    # Jitter (3 m) is as large as the clip: the seed is the first from 20240612 whose written track
+    # (positions and heading linear between fixes) touches land between fix k and k + 1 only, at
+    # least 3 m deep, with every fix's hull at least 3 m clear.
+    seed = 20240612
+    tried = []
+    while True:
+        tried.append(seed)
+        tr = write(seed)
+        clear, times = written_facts(tr)
+        if list(times) == [C12_FIX_K] and min(clear) >= 3.0:
+            fa, fb = tr.fixes[C12_FIX_K], tr.fixes[C12_FIX_K + 1]
+            pen_w = max(site.penetration(written_hull(site, fa, fb, t)) for t in times[C12_FIX_K])
+            if pen_w >= 3.0:
+                break
+        seed += 1
+    ts = times[C12_FIX_K]
+    geometry = dict(
+        site=dict(coast_feature_id=C12_FID, corner_lonlat=C12_CORNER, corner_interior_angle_deg=round(angle, 1),
+                  corner_edges_m=[round(e, 1) for e in edges],
+                  land="a sharp corner of an islet in the Espoo archipelago; nothing else within 1 km of the track"),
+        motion="10 kn straight, turning to port at 2 deg/s from %s (hard over); at the strike (%s, 6 s after line %d) the "
+               "speed falls to 4 kn in 3 s and the blow on the starboard bow swings it at 4 deg/s for 4 s; turning ends at "
+               "%s (88 degrees in all); 4 kn, then up to 7 kn in 60 s and on, clear"
+               % (iso(start, C12_TURN_FROM), iso(start, C12_STRIKE), C12_FIX_K + 2, iso(start, C12_TURN_TO)),
+        last_fix_before_line=fa["line"], last_fix_before=tstr(fa), last_fix_before_sog_kn=fa["sog"],
+        last_fix_before_heading=fa["heading"],
+        first_fix_after_line=fb["line"], first_fix_after=tstr(fb), first_fix_after_sog_kn=fb["sog"],
+        first_fix_after_heading=fb["heading"],
+        speed_drop_kn_per_s=round((fa["sog"] - fb["sog"]) / 10.0, 2),
+        real_contact=[iso(start, phys[0]), iso(start, phys[-1])], real_contact_s=round(phys[-1] - phys[0], 2),
+        real_penetration_m=r2(pen_phys),
+        written_track_contact=[iso(start, ts[0]), iso(start, ts[-1])], written_track_contact_s=round(ts[-1] - ts[0], 2),
+        written_track_penetration_m=r2(pen_w),
+        written_fix_clearance_m=dict(before=r2(clear[C12_FIX_K]), after=r2(clear[C12_FIX_K + 1]), least=r2(min(clear)),
+                                     least_before_line=min(range(C12_FIX_K), key=lambda i: clear[i]) + 2,
+                                     least_before=r2(min(clear[:C12_FIX_K]))),
+        close_pass_note="the approach passes within the 50 m margin of the islet before the clip: a close pass may be "
+                        "reported besides the contact",
+        written_track_note="positions and heading linear between fixes; no other contact on the written track",
+        seeds_tried=tried,
+    )
+    return tr, geometry, start, ts
+
+# ---------------------------------------------------------------------------------------------
+# Case 13: a pilot boat berthing
+
+
+# Island GSHHG feature 1493 (0.89 km2, south of Helsinki), its west shore: a north-south
+# segment of 743 m at 24.9958 E, land to the east, open water west for 4 km.
+C13_FID = 1493
+C13_SEG = ((24.9958038, 60.1299763), (24.9957427, 60.1366445))
+C13_LENGTH, C13_WIDTH = 20, 6
+C13_DIMS = (C13_LENGTH / 2, C13_LENGTH / 2, C13_WIDTH / 2, C13_WIDTH / 2)  # shoal --hull-from-length-width
+C13_OUTLINE = shoal_outline(C13_DIMS)
+C13_HEADING = 20          # converging 20 degrees with the shore, starboard side to it
+C13_CONTACT_KN = 0.6      # the hull first touches the charted shore at this speed (aimed at)
+C13_REST_S = 3600
+
+
+def pilot_speed(r):
+    """Speed (kn) r seconds after the first fix: 15 kn for 60 s, down to 3 kn in 60 s, 3 kn for 30 s,
+    then evenly to rest in 120 s."""
+    if r < 60:
+        return 15.0
+    if r < 120:
+        return 15.0 - 12.0 * (r - 60) / 60
+    if r < 150:
+        return 3.0
+    if r < 270:
+        return 3.0 * (270 - r) / 120
+    return 0.0
+
+
+def pilot_to_go(r, dt_=0.01):
+    """Distance (m) still to run at r."""
+    n = int(round((270 - r) / dt_)) if r < 270 else 0
+    return sum(pilot_speed(r + (k + 0.5) * dt_) for k in range(n)) * KN * dt_
+
+
+def case_pilot():
+    mid_ll = ((C13_SEG[0][0] + C13_SEG[1][0]) / 2, (C13_SEG[0][1] + C13_SEG[1][1]) / 2)
+    site = Site(*mid_ll, half_km=6)
+    a, b = segment_by_vertices(site, C13_FID, *C13_SEG)
+    mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
+    assert point(mx + 5, my).Within(site.land) and not point(mx - 5, my).Within(site.land)
+    gh = math.radians(site.grid_az(C13_HEADING, mx, my))
+    ux, uy = math.sin(gh), math.cos(gh)
+    to_go = {r: pilot_to_go(float(r)) for r in range(0, 271, 10)}
+    # distance to go at the aimed contact speed (in the even deceleration from 3 kn)
+    r_c = 270 - C13_CONTACT_KN / 3.0 * 120
+    s_c_target = pilot_to_go(r_c)
+
+    def hull_at(rx, ry, s):
+        return site.hull(rx - ux * s, ry - uy * s, C13_HEADING, C13_OUTLINE)
+
+    def first_contact_to_go(d):
+        rx, ry = mx - d, my
+        lo, hi = 0.0, 300.0
+        if not site.touches(hull_at(rx, ry, 0.0)):
+            return None
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            if site.touches(hull_at(rx, ry, mid)):
+                lo = mid
+            else:
+                hi = mid
+        return lo
+
+    lo, hi = 0.0, 20.0  # reference point this far west of the shore at rest
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        s = first_contact_to_go(mid)
+        if s is not None and s > s_c_target:
+            lo = mid
+        else:
+            hi = mid
+    rx, ry = mx - hi, my
+    s_c = first_contact_to_go(hi)
+    assert abs(s_c - s_c_target) < 0.05, (s_c, s_c_target)
+    t_c = bisect(lambda r: site.touches(hull_at(rx, ry, pilot_to_go(r))), 150.0, 270.0, 0.01)
+    # nothing touched before that: the approach's hull every second
+    assert not any(site.touches(hull_at(rx, ry, pilot_to_go(float(r)))) for r in range(0, int(t_c)))
+    pen_rest = site.penetration(site.hull(rx, ry, C13_HEADING, C13_OUTLINE))
+    vessel = Vessel(230990013, "PILOT BERTHING", vtype=50, length=C13_LENGTH, width=C13_WIDTH, draft=2.0, cargo=50)
+    start = dt.datetime(2024, 5, 13, 4, 0, 0)
+    def write(seed):
+        tr = Track(site, vessel, start, seed)
+        for r in range(0, 270, 10):
+            s = to_go[r]
+            tr.add(r, rx - ux * s, ry - uy * s, round(pilot_speed(r), 1), float(C13_HEADING), C13_HEADING, 0)
+        for r in range(270, 270 + C13_REST_S + 1, 10):
+            tr.add(r, rx, ry, 0.0, None, C13_HEADING, 5 if r >= 300 else 0)
+        return tr
+
+    # Jitter (3 m) can put a fix of the last slow metres onto the shore early: the seed is the first
+    # from 20240713 whose written track first touches land after the SOG is under 1 kn (the fix
+    # before the contact under 1 kn), as the boat's real motion does.
+    seed = 20240713
+    tried = []
+    while True:
+        tried.append(seed)
+        tr = write(seed)
+        fx = tr.fixes
+        k = next(i for i in range(1, len(fx)) if site.touches(site.hull(fx[i]["x"], fx[i]["y"], C13_HEADING, C13_OUTLINE))
+                 or contact_times(site, fx[i - 1], fx[i], C13_OUTLINE, step=0.5))
+        if fx[k - 1]["sog"] < 1.0:
+            break
+        seed += 1
+    times = contact_times(site, fx[k - 1], fx[k], C13_OUTLINE, step=0.05)
+    t_written = times[0] if times else fx[k]["t"]
+    reps = [dict(fix_report(site, fx, C13_OUTLINE), sog=fx["sog"]) for fx in tr.fixes]
+    first_in = next(i for i, r in enumerate(reps) if r["contact"])
+    at_rest = reps[27:]
+    geometry = dict(
+        site=dict(coast_feature_id=C13_FID, shore_segment_lonlat=C13_SEG,
+                  shore="west shore of an island south of Helsinki, north-south, land to the east, open water west"),
+        hull="Length 20, Width 6 (AIS columns); shoal --hull-from-length-width: A=B=10, C=D=3 (reference point amidships)",
+        heading_true_deg=C13_HEADING, converging_with_shore_deg=20,
+        speeds="15 kn for 60 s, to 3 kn in 60 s, 3 kn for 30 s, then evenly to rest in 120 s (0.025 kn/s); fixes every "
+               "10 s; at rest from %s, Status 5 from 30 s later, 1 h" % iso(start, 270),
+        rest_reference_point_lonlat=[round(v, 7) for v in site.ll(rx, ry)],
+        rest_reference_point_to_shore_m=r2(point(rx, ry).Distance(site.boundary)),
+        first_contact_s=round(t_c, 2), first_contact=iso(start, t_c), first_contact_speed_kn=round(pilot_speed(t_c), 2),
+        first_contact_to_rest_m=round(s_c, 2),
+        penetration_at_rest_m_unjittered=r2(pen_rest),
+        first_written_fix_in_contact_line=reps[first_in]["line"], first_written_fix_in_contact_sog_kn=reps[first_in]["sog"],
+        fix_before_it_sog_kn=reps[first_in - 1]["sog"],
+        first_contact_written_track=iso(start, t_written), fix_before_written_contact_sog_kn=fx[k - 1]["sog"],
+        seeds_tried=tried,
+        at_rest_fixes=len(at_rest), at_rest_fixes_in_contact=sum(1 for r in at_rest if r["contact"]),
+        at_rest_penetration_m_max=max(r["penetration_m"] for r in at_rest),
+        at_rest_note="jitter (3 m) is half the boat's beam: at rest the hull touches and clears the shore from fix to fix",
+    )
+    return tr, geometry
+
+# ---------------------------------------------------------------------------------------------
+# Case 14: sparse fixes whose straight line cuts a skerry's corner
+
+
+# An islet 3.6 km from any other land (GSHHG feature 1280, 0.047 km2, south of Espoo): an
+# octagon; its north-east corner is the 105 m edge from (24.7407797, 60.0108034) to
+# (24.7399405, 60.0112459).
+C14_FID = 1280
+C14_CORNER_EDGE = ((24.7407797, 60.0108034), (24.7399405, 60.0112459))
+C14_SPEED_KN = 12.0
+C14_EVERY_S = 180
+C14_TURN = 60.0          # degrees to port between the two fixes around the islet (an arc)
+C14_LEG_FIXES = 3        # fixes on each straight leg besides the two around the islet
+C14_PEN = 25.0           # the straight line's hull sweep reaches this far into the islet (aimed at)
+
+
+def case_skerry():
+    ds = ogr.Open(COAST)
+    feature = ds.GetLayer().GetFeature(C14_FID)
+    c = feature.GetGeometryRef().Centroid()
+    site = Site(c.GetX(), c.GetY(), half_km=5)
+    isl = site.fids[C14_FID][0]
+    others = [p for fid, ps in site.fids.items() if fid != C14_FID for p in ps]
+    nearest_other = min([isl.Distance(p) for p in others] or [1e9])
+    assert nearest_other > 3000, nearest_other
+    (p0, p1) = [site.xy(*ll) for ll in C14_CORNER_EDGE]
+    qx, qy = (p0[0] + p1[0]) / 2, (p0[1] + p1[1]) / 2
+    ex, ey = p1[0] - p0[0], p1[1] - p0[1]
+    el = math.hypot(ex, ey)
+    mx_, my_ = ey / el, -ex / el           # normal of the edge
+    if point(qx + 5 * mx_, qy + 5 * my_).Within(site.land):
+        mx_, my_ = -mx_, -my_              # pointing out of the islet
+    m_az = math.degrees(math.atan2(mx_, my_))
+    v = C14_SPEED_KN * KN
+    arc = v * C14_EVERY_S
+    R = arc / math.radians(C14_TURN)
+    half = math.radians(C14_TURN / 2)
+    # grid headings: at the arc's middle the outward normal is to starboard (a turn to port)
+    h_mid = m_az - 90.0
+    h_in, h_out = h_mid + C14_TURN / 2, h_mid - C14_TURN / 2
+
+    def layout(e):
+        """The path when the chord between the two fixes around the islet lies e metres out from
+        the corner edge's middle: {t: (x, y, grid heading)} at the fixes, and the arc as a function."""
+        cx, cy = qx + mx_ * (e - R * math.cos(half)), qy + my_ * (e - R * math.cos(half))  # turn centre
+
+        def on_arc(phi):  # phi: angle from the arc's middle, + towards the start
+            a = math.radians(m_az) + phi
+            return cx + R * math.sin(a), cy + R * math.cos(a), h_mid + math.degrees(phi)
+
+        # phi = +half at the first fix (A), -half at the second (B); the turn goes from A to B
+        ax, ay, _ = on_arc(half)
+        bx, by, _ = on_arc(-half)
+        fixes = []
+        ti, to_ = math.radians(h_in), math.radians(h_out)
+        for k in range(C14_LEG_FIXES, 0, -1):
+            fixes.append((ax - math.sin(ti) * arc * k, ay - math.cos(ti) * arc * k, h_in))
+        fixes.append((ax, ay, h_in))
+        fixes.append((bx, by, h_out))
+        for k in range(1, C14_LEG_FIXES + 1):
+            fixes.append((bx + math.sin(to_) * arc * k, by + math.cos(to_) * arc * k, h_out))
+        return fixes, on_arc
+
+    def chord_hulls(fixes, steps=360):
+        (ax, ay, ha), (bx, by, hb) = fixes[C14_LEG_FIXES], fixes[C14_LEG_FIXES + 1]
+        out = []
+        for k in range(1, steps):
+            f = k / steps
+            x, y = ax + f * (bx - ax), ay + f * (by - ay)
+            gh = ha + f * turn_deg(ha, hb)
+            out.append(site.hull(x, y, site.true_az(gh, x, y)))
+        return out
+
+    lo, hi = -200.0, 200.0
+    for _ in range(16):
+        e = 0.5 * (lo + hi)
+        fixes, _ = layout(e)
+        if max_penetration(site, chord_hulls(fixes, 45)) > C14_PEN:
+            lo = e
+        else:
+            hi = e
+    fixes, on_arc = layout(hi)
+    pen_chord = max_penetration(site, chord_hulls(fixes))
+    arc_poses = [on_arc(half - 2 * half * k / 360) for k in range(361)]
+    arc_clear = min(site.clearance(site.hull(x, y, site.true_az(gh, x, y))) for x, y, gh in arc_poses)
+    vessel = Vessel(230990014, "SKERRY SPARSE")
+    start = dt.datetime(2024, 5, 14, 16, 0, 0)
+    tr = Track(site, vessel, start, 20240514)
+    for i, (x, y, gh) in enumerate(fixes):
+        th_ = site.true_az(gh, x, y)
+        tr.add(C14_EVERY_S * i, x, y, C14_SPEED_KN, round(th_, 1) % 360.0, int(round(th_)) % 360, 0)
+    fx = tr.fixes
+    clear = [site.clearance(site.hull(f["x"], f["y"], f["heading"])) for f in fx]
+    assert min(clear) > 100.0, clear
+    fa, fb = fx[C14_LEG_FIXES], fx[C14_LEG_FIXES + 1]
+    ts = contact_times(site, fa, fb, step=0.25)
+    pen_w = max(site.penetration(written_hull(site, fa, fb, t)) for t in ts)
+    for i in range(len(fx) - 1):
+        if i != C14_LEG_FIXES:
+            assert not contact_times(site, fx[i], fx[i + 1], step=1.0), i
+    ref_in = [t for t in ts if point(*interp_fix(fa, fb, t)[:2]).Within(site.land)]
+    geometry = dict(
+        site=dict(coast_feature_id=C14_FID, corner_edge_lonlat=C14_CORNER_EDGE,
+                  land="an octagonal islet (185 m x 285 m) south of Espoo, %.1f km from any other land" % (nearest_other / 1000)),
+        speed_kn=C14_SPEED_KN, fixes_every_s=C14_EVERY_S,
+        real_path="straight, then an arc of %.0f m radius turning %.0f degrees to port around the islet between line %d "
+                  "and line %d, then straight; heading = course" % (R, C14_TURN, fa["line"], fb["line"]),
+        real_path_least_hull_clearance_m=r2(arc_clear),
+        headings_true_deg=[f["heading"] for f in fx],
+        fixes_hull_clearance_m=[r2(c) for c in clear],
+        around_the_islet_lines=[fa["line"], fb["line"]], around_the_islet_times=[tstr(fa), tstr(fb)],
+        straight_line_contact=[iso(start, ts[0]), iso(start, ts[-1])],
+        straight_line_contact_note="positions and heading linear between line %d and line %d (the written, jittered fixes): "
+                                   "the hull cuts the islet's north-east corner" % (fa["line"], fb["line"]),
+        straight_line_penetration_m=r2(pen_w), straight_line_penetration_m_unjittered=r2(pen_chord),
+        reference_point_on_land_along_straight_line=bool(ref_in),
+        other_fix_to_fix_lines_clear=True,
+    )
+    return tr, geometry, start, ts
+
+# ---------------------------------------------------------------------------------------------
+# Real-world cases: what a correct audit reports
+
+
+def case_sparse_600():
+    tr, geometry, site, last_clear, first_in, t_circle, start = case_aground_sparse(
+        600, 230990008, "AGROUND SPARSE", dt.datetime(2024, 5, 8, 9, 0, 0), 20240508)
+    lead = math.ceil(first_in["t"] - t_circle) + 1.0
+    expect = dict(
+        exit_status=1, groundings=1, events=1, grade=3,
+        start_earliest=iso(start, first_in["t"] - lead), start_latest=tstr(first_in),
+        start_window_note="the contact lies between line %d (clear) and line %d (in contact); swept with positions "
+                          "interpolated between them it begins %.1f s before line %d (geometry.sweep_note): start is that "
+                          "or the first fix in contact, no earlier than %.0f s before it"
+                          % (last_clear["line"], first_in["line"], first_in["t"] - t_circle, first_in["line"], lead),
+        start_not_before=tstr(last_clear), start_not_before_tolerance_s=1.0,
+        start_uncertainty_is_start_minus_start_not_before=True, uncertainty_tolerance_s=1.0,
+        speed_before_kn=[9.5, 10.5],
+        rule="under way (10 kn) and seen clear at line %d; at rest in contact from line %d for 3 h within 170 m of where "
+             "it touched; fixes 600 s apart (sparse), no berth (one vessel, Status 0, no --berths): grounding, grade 3"
+             % (last_clear["line"], first_in["line"]))
+    return tr, geometry, expect
+
+
+def case_sparse_840():
+    tr, geometry, site, last_clear, first_in, t_circle, start = case_aground_sparse(
+        840, 230990009, "AGROUND SPARSE GAP", dt.datetime(2024, 5, 9, 9, 0, 0), 20240509)
+    expect = dict(
+        exit_status=1, groundings=1, events=1,
+        start=tstr(first_in), start_tolerance_s=1.0,
+        start_not_before=tstr(last_clear), start_not_before_tolerance_s=1.0,
+        start_uncertainty_s=840.0, uncertainty_tolerance_s=1.0,
+        speed_before_kn=[9.5, 10.5],
+        rule="a gap of 840 s (> --max-gap 600) between line %d (clear, 10 kn) and line %d; from line %d it lies still in "
+             "contact for 3 h where no other vessel stays: a grounding inside the gap, start = line %d, "
+             "start_not_before = line %d" % (last_clear["line"], first_in["line"], first_in["line"], first_in["line"],
+                                              last_clear["line"]))
+    return tr, geometry, expect
+
+
+def case_ferry_expect():
+    tr, geometry = case_ferry()
+    expect = dict(
+        exit_status=0, groundings=0, contact_events=C10_CALLS, kinds=["alongside"],
+        calls=[[c["first_fix"], c["last_fix"]] for c in geometry["calls"]],
+        rule="each call: the hull touches the charted shore under way (4.4-4.8 kn at the fix before) and comes to rest "
+             "%.0f s later, slowing evenly at 0.04 kn/s (not abrupt: under 0.2 kn/s); moored (Status 5) where the ferry "
+             "lies every hour: alongside, one event per call (its contact lasts from the approach to the departure)"
+             % geometry["first_contact_to_rest_s"])
+    return tr, geometry, expect
+
+
+def case_canal_expect():
+    tr, geometry = case_canal()
+    expect = dict(
+        exit_status=0, groundings=0, contact_events=1, kind="chart_disagrees",
+        disagreement="sailed_through",
+        start=geometry["first_contact_written_track"], start_tolerance_s=2.0,
+        simulated=dict(exit_status=1, groundings=1, contact_events=1),
+        rule="it goes on through %.0f m of charted land at 8 kn without slowing; deepest %.0f m inside (under hull "
+             "length + 50 m = 170 m): chart_disagrees, sailed_through. --world simulated: a grounding"
+             % (geometry["land_crossed_along_course_m"], geometry["max_penetration_m_unjittered"]))
+    return tr, geometry, expect
+
+
+def case_touch_and_go_expect():
+    tr, geometry, start, ts = case_touch_and_go()
+    expect = dict(
+        exit_status=1, groundings=1, contact_events=1, grade=2, reason_contains="touch and go",
+        start_earliest=geometry["last_fix_before"], start_latest=geometry["first_fix_after"],
+        rule="the contact lies between two fixes 10 s apart; 10 kn before, 4 kn after (<= half), a drop of 0.6 kn/s "
+             "(>= 0.2): touch and go, a grounding of grade 2")
+    return tr, geometry, expect
+
+
+def case_pilot_expect():
+    tr, geometry = case_pilot()
+    expect = dict(
+        exit_status=0, groundings=0, contact_events=1, kinds=["alongside"],
+        rule="the boat touches the shore at 0.6 kn (the fix before under 1 kn) after slowing evenly over 2 min, and "
+             "lies there 1 h (Status 5): alongside; its touches while lying there (jitter) are the same stay: one event")
+    return tr, geometry, expect
+
+
+def case_skerry_expect():
+    tr, geometry, start, ts = case_skerry()
+    a, b = geometry["around_the_islet_times"]
+    expect = dict(
+        exit_status=0, groundings=0, contact_events=1, kind="chart_disagrees", disagreement="between_fixes",
+        start_earliest=a, start_latest=b,
+        simulated=dict(exit_status=1, groundings=1, contact_events=1),
+        rule="only the straight line between two fixes 180 s apart touches land (both fixes clear, 12 kn before and "
+             "after): chart_disagrees, between_fixes. --world simulated: a grounding")
+    return tr, geometry, expect
+
+
+REAL_WORLD_CASES = [
+    ("aground_sparse.csv", case_sparse_600, ARGS_DIMS,
+     "case 1's voyage (10 kn onto an island) seen every 600 s, no heading and no COG: aground 3 h (SOG 0, Status 0)"),
+    ("aground_sparse_gap.csv", case_sparse_840, ARGS_DIMS,
+     "the same with 840 s (a gap longer than --max-gap) between the last clear fix and the first fix in contact"),
+    ("ferry_hourly.csv", case_ferry_expect, ARGS_DIMS,
+     "a ferry calls hourly for 6 h at a pier the chart draws as land: 12 kn, slowing evenly (0.04 kn/s), 15 min moored"),
+    ("canal_transit.csv", case_canal_expect, ARGS_DIMS,
+     "8 kn for 25 min straight through a 187 m wide piece of charted land (a canal the chart lacks)"),
+    ("touch_and_go.csv", case_touch_and_go_expect, ARGS_DIMS,
+     "10 kn, turning hard, the bow clips an islet's corner between two fixes 10 s apart; 4 kn after, then on at 7 kn"),
+    ("pilot_berthing.csv", case_pilot_expect, ARGS_DIMS + " --hull-from-length-width",
+     "a 20 m pilot boat (Length 20, Width 6) comes in at 15 kn, slows to rest in 2 min touching the shore at 0.6 kn, lies 1 h"),
+    ("skerry_sparse.csv", case_skerry_expect, ARGS_DIMS,
+     "12 kn, fixes 180 s apart: the straight line between two fixes cuts an islet's corner the vessel went round"),
+]
+
+
+# ---------------------------------------------------------------------------------------------
 
 
 CASES = [
@@ -922,6 +1883,20 @@ def main():
             lines=[2, len(tr.fixes) + 1], first_fix=tr.fixes[0]["time"].strftime("%Y-%m-%dT%H:%M:%SZ"),
             last_fix=tr.fixes[-1]["time"].strftime("%Y-%m-%dT%H:%M:%SZ"),
             expect=expect, geometry=geometry)
+        print("%-28s %4d fixes %6d bytes" % (name, len(tr.fixes), os.path.getsize(path)))
+    # The real-world cases (tests/cli/real_world_test.cpp): `args` are the options of their
+    # command, `shoal check --coast COAST ARGS FILE -o REPORT`.
+    for name, fn, args, what in REAL_WORLD_CASES:
+        tr, geometry, expect = fn()
+        path = os.path.join(HERE, name)
+        tr.write(path)
+        out["cases"][name] = dict(
+            what=what, args=args, command="shoal check --coast %s %s FILE -o REPORT.geojson" % (COAST_REL, args),
+            mmsi=tr.vessel.mmsi, vessel_name=tr.vessel.name, seed=tr.seed, fixes=len(tr.fixes),
+            lines=[2, len(tr.fixes) + 1], first_fix=tr.fixes[0]["time"].strftime("%Y-%m-%dT%H:%M:%SZ"),
+            last_fix=tr.fixes[-1]["time"].strftime("%Y-%m-%dT%H:%M:%SZ"),
+            expect=expect, geometry=geometry)
+        assert os.path.getsize(path) < 60000, name
         print("%-28s %4d fixes %6d bytes" % (name, len(tr.fixes), os.path.getsize(path)))
     with open(os.path.join(HERE, "expected.json"), "w", newline="\n") as f:
         json.dump(out, f, indent=1, default=str)
