@@ -517,6 +517,10 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         clear_pose = pose;
     };
     bool have_prev = false;
+    // The fix before was in contact. While it was not, a contact between fixes has no fix to
+    // measure its penetration at: the swept poses in contact measure it (all of them are
+    // checked then, whether answers carry over or not, so the figure is the same either way).
+    bool fix_in_contact = false;
     std::vector<geo::LonLat>* line = nullptr;
     // Poses for the report (SweepOptions::pose_interval_s): the last kept one of this piece,
     // and the fix before (kept when the piece ends or the state changes).
@@ -571,7 +575,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 } else if (const double near = known_near(by, pose); !std::isnan(near)) {
                     s.contact = events.carried(s.i, s.f, pose, near);
                 } else {
-                    s.contact = events.check(s.i, s.f, pose, false, !events.in_contact(), hint(by, pose));
+                    s.contact = events.check(s.i, s.f, pose, !fix_in_contact, !events.in_contact(), hint(by, pose));
                     checked(s.contact, by, pose);
                 }
                 note(s.contact);
@@ -616,6 +620,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             last_state = state;
         }
         have_prev = true;
+        fix_in_contact = s.contact.collision;
         line->push_back(t.fixes[i].position);
     }
     end_poses();

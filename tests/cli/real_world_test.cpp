@@ -247,6 +247,9 @@ TEST(CliRealWorld, BowClippingACornerWithAnAbruptSlowdownIsATouchAndGoGroundingO
     EXPECT_EQ(int_of(g[0], "grade"), e["grade"].get<int>()) << r.describe();
     EXPECT_NE(str_of(g[0], "reason").find(e["reason_contains"].get<std::string>()), std::string::npos) << r.describe();
     expect_start_within(g[0], e["start_earliest"], e["start_latest"], r.describe());
+    // The clip reaches no fix: its penetration is the deepest swept pose's (the poses a step
+    // apart: within half a metre of the written track's, derived with OGR).
+    EXPECT_NEAR(g[0]["penetration_m"].get<double>(), r.geometry["written_track_penetration_m"].get<double>(), 0.5) << r.describe();
 }
 
 TEST(CliRealWorld, PilotBoatSlowingToRestAgainstTheShoreIsAlongsideAndOneEvent) {
@@ -272,6 +275,9 @@ TEST(CliRealWorld, StraightLineBetweenSparseFixesCuttingAnIsletIsBetweenFixesBut
     EXPECT_EQ(str_of(c[0], "kind"), e["kind"].get<std::string>()) << r.describe();
     EXPECT_EQ(str_of(c[0], "disagreement"), e["disagreement"].get<std::string>()) << r.describe();
     expect_start_within(c[0], e["start_earliest"], e["start_latest"], r.describe());
+    // No fix lies in the contact: the deepest swept pose gives its penetration (OGR on the
+    // straight line between the written fixes: 26.96 m).
+    EXPECT_NEAR(c[0]["penetration_m"].get<double>(), r.geometry["straight_line_penetration_m"].get<double>(), 0.5) << r.describe();
 
     const CaseRun s = run("skerry_sparse.csv", "simulated");
     const auto& es = e["simulated"];
