@@ -450,7 +450,7 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, const Evide
                 " s after), then went on");
         return;
     }
-    if (lay_still && !under_way_before) {
+    if (lay_still && ev.speed_before_kn < opt.under_way_kn) {
         set(EventKind::alongside, 3,
             "touched at " + fmt1(ev.speed_before_kn) + " kn, under the " + fmt1(opt.under_way_kn) + " kn of a vessel under way, and came to rest " +
                 fmt1(ev.stop_distance_m) + " m on: berthing" + (berth ? " (" + berth_words() + ")" : ""));
