@@ -58,7 +58,7 @@ run gr_saronic "$g/gr_saronic_piraeus_land.geojson" "$t/gpsd/gpsd_gr_saronic_fix
 run dk_aislib "$dk" "$t/dma/dma_aislib_dk_fixes.csv"
 /usr/bin/python3 - "$out" <<'PY'
 import collections, glob, json, sys
-kinds = ['grounding', 'alongside', 'in_contact_at_start', 'expected_contact', 'close_pass']
+kinds = ['grounding', 'alongside', 'in_contact_at_start', 'expected_contact', 'chart_disagrees', 'close_pass']
 print('| set | ' + ' | '.join(kinds) + ' | wild fixes | jumps | fixes with no heading |')
 print('|---' * (len(kinds) + 4) + '|')
 total = collections.Counter()

@@ -328,7 +328,10 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         }
         const Traffic traffic = learn_traffic(all, ids, *frames[0], options.evidence);
         for (std::size_t k = 0, m = 0; k < source.count; ++k)
-            if (errors[k].empty()) decide_kinds(swept[k], traffic.berth_stays[m++], options.evidence);
+            if (errors[k].empty()) {
+                decide_kinds(swept[k], traffic.berth_stays[m], traffic.own_visits[m], options.evidence);
+                ++m;
+            }
         result.places = traffic.places;
     } else {
         for (auto& r : swept) grade_simulated(r);

@@ -199,6 +199,7 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
                       const EvidenceOptions& opt) {
     Traffic out;
     out.berth_stays.resize(tracks.size());
+    out.own_visits.resize(tracks.size());
     // Stays, keyed by cell of the berth radius, in an order that does not depend on the tracks'.
     struct Ref {
         std::size_t track, stay;
@@ -207,6 +208,7 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
     std::vector<Ref> all;
     for (std::size_t k = 0; k < tracks.size(); ++k) {
         out.berth_stays[k].assign(tracks[k]->stays.size(), 0);
+        out.own_visits[k].assign(tracks[k]->stays.size(), 0);
         for (std::size_t s = 0; s < tracks[k]->stays.size(); ++s) all.push_back({k, s});
     }
     auto stay = [&](const Ref& r) -> const Stay& { return tracks[r.track]->stays[r.stay]; };
@@ -230,13 +232,17 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
     // vessels or of this one's other visits.
     for (std::size_t i = 0; i < all.size(); ++i) {
         const Stay& s = stay(all[i]);
-        std::size_t n = 0;
+        std::size_t n = 0, own = 0;
         near(i, [&](std::size_t j) {
             const Stay& o = stay(all[j]);
-            const bool same_visit = all[j].track == all[i].track && o.visit == s.visit;
-            if (!same_visit && !(o.start_s > s.start_s && o.start_s <= s.end_s)) ++n;
+            const bool same_track = all[j].track == all[i].track;
+            if (!(same_track && o.visit == s.visit) && !(o.start_s > s.start_s && o.start_s <= s.end_s)) {
+                ++n;
+                own += same_track;
+            }
         });
         out.berth_stays[all[i].track][all[i].stay] = n;
+        out.own_visits[all[i].track][all[i].stay] = own;
     }
     // Learned berths: stays joined when within the radius of each other (single linkage),
     // kept with two stays or more.
@@ -337,7 +343,7 @@ void recount(TrackResult& r) {
 
 /// The kind a contact has by the real world's rules (its sweep kind, the simulated world's,
 /// is the starting point), its grade and reason.
-void decide(Event& e, double hull_length_m, std::size_t berth_stays, const EvidenceOptions& opt) {
+void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t own_visits, const EvidenceOptions& opt) {
     Event::Evidence& ev = e.evidence;
     ev.berth_stays = berth_stays;
     const double tol = opt.chart_tolerance_m;
@@ -414,6 +420,13 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, const Evide
     }
     if (at_contact) {
         const bool abrupt = ev.deceleration_kn_s >= opt.abrupt_kn_s;
+        if (abrupt && own_visits > 0) {  // the vessel comes here on other visits and stops so every time: its berth
+            set(EventKind::alongside, 3,
+                "stopped quickly at the contact (" + speed + ", " + track::detail::fmt(std::round(ev.deceleration_kn_s * 100) / 100) +
+                    " kn/s) where it lies on " + std::to_string(own_visits) + " other visit" + (own_visits == 1 ? "" : "s") +
+                    " in the run: its own berth (" + berth_words() + ")");
+            return;
+        }
         if (abrupt) {  // seen by the fixes, whatever the chart's accuracy
             set(EventKind::grounding, berth ? 3 : 4,
                 "stopped abruptly at the contact (" + speed + ", at rest within " + fmt1(ev.stop_distance_m) + " m, " +
@@ -473,11 +486,12 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, const Evide
 
 }  // namespace
 
-void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, const EvidenceOptions& opt) {
+void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, const std::vector<std::size_t>& own_visits,
+                  const EvidenceOptions& opt) {
     for (Event& e : r.events) {
         if (!is_contact(e.kind)) continue;
         const std::size_t s = e.evidence.stay;
-        decide(e, r.summary.hull_length_m, s < berth_stays.size() ? berth_stays[s] : 0, opt);
+        decide(e, r.summary.hull_length_m, s < berth_stays.size() ? berth_stays[s] : 0, s < own_visits.size() ? own_visits[s] : 0, opt);
     }
     // One event per stay: a contact that begins and ends within the stay that the one before
     // it ended in (the vessel has not moved) is part of it.

@@ -33,6 +33,7 @@ TEST(Traffic, ResponderArrivingDuringAStayIsNoBerthButEarlierAndLaterStaysAre) {
     far.stays = {stay_at(400, 0, 0, 9000)};
     const Traffic t = learn_traffic({&a, &tug, &before, &after, &far}, {"A", "TUG", "B", "C", "FAR"}, frame(), {});
     EXPECT_EQ(t.berth_stays[0][0], 2u) << "before and after count, the tug does not";
+    EXPECT_EQ(t.own_visits[0][0], 0u);
     // The tug's own stay: A began before it (and lies within 300 m), B and C too (B ended
     // before; C began after the tug left): three.
     EXPECT_EQ(t.berth_stays[1][0], 3u);
@@ -58,6 +59,7 @@ TEST(Traffic, AStayBrokenByJitterIsOneVisitAndNoEvidenceForItself) {
     ferry.stays = {stay_at(0, 0, 0, 900, 0), stay_at(10, 0, 3600, 4500, 1), stay_at(0, 10, 7200, 8100, 2)};
     const Traffic f = learn_traffic({&ferry}, {"FERRY"}, frame(), {});
     EXPECT_EQ(f.berth_stays[0], (std::vector<std::size_t>{2, 2, 2}));
+    EXPECT_EQ(f.own_visits[0], (std::vector<std::size_t>{2, 2, 2})) << "all its own";
     ASSERT_EQ(f.places.size(), 1u);
     EXPECT_EQ(f.places[0].vessels, 1u);
     EXPECT_EQ(f.places[0].count, 3u);
@@ -101,7 +103,7 @@ TEST(Traffic, BerthEvidenceEqualsABruteForceCountOnRandomStays) {
         for (std::size_t k = 0; k < tracks.size(); ++k)
             for (std::size_t i = 0; i < tracks[k].stays.size(); ++i) {
                 const Stay& s = tracks[k].stays[i];
-                std::size_t want = 0;
+                std::size_t want = 0, own = 0;
                 for (std::size_t j = 0; j < tracks.size(); ++j)
                     for (std::size_t m = 0; m < tracks[j].stays.size(); ++m) {
                         const Stay& o = tracks[j].stays[m];
@@ -110,8 +112,10 @@ TEST(Traffic, BerthEvidenceEqualsABruteForceCountOnRandomStays) {
                         if (std::hypot(o.local.x - s.local.x, o.local.y - s.local.y) > 300) continue;
                         if (o.start_s > s.start_s && o.start_s <= s.end_s) continue;
                         ++want;
+                        own += j == k;
                     }
                 EXPECT_EQ(got.berth_stays[k][i], want) << "round " << round << " track " << k << " stay " << i;
+                EXPECT_EQ(got.own_visits[k][i], own) << "round " << round << " track " << k << " stay " << i;
             }
     }
 }

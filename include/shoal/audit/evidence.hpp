@@ -102,14 +102,17 @@ struct Traffic {
     /// during it (responders, salvage and queues arriving after a vessel stopped do not make
     /// its place a berth). Indexed like the tracks given.
     std::vector<std::vector<std::size_t>> berth_stays;
+    /// Of those, the stays of the same track's other visits (a ferry's other calls).
+    std::vector<std::vector<std::size_t>> own_visits;
 };
 Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::vector<std::string>& ids, const geo::LocalFrame& frame,
                       const EvidenceOptions& options);
 
-/// Step 3, for one track (`berth_stays`: Traffic::berth_stays of it): each contact's kind,
+/// Step 3, for one track (`berth_stays`, `own_visits`: Traffic's of it): each contact's kind,
 /// grade and reason by the real world's rules, then one event per stay; recounts r.summary's
 /// kinds.
-void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, const EvidenceOptions& options);
+void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, const std::vector<std::size_t>& own_visits,
+                  const EvidenceOptions& options);
 
 /// The simulated world's grades: every contact's kind stands by the chart (grade 4), with its
 /// reason; recounts nothing.
