@@ -384,6 +384,9 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
                                     " target" + (targets == 1 ? "" : "s")
                               : "")));
     row(out, "Chart", esc(info.coast));
+    row(out, "World", info.world == audit::World::simulated
+                          ? esc("simulated: the chart is the world (a contact under way is a grounding)")
+                          : esc("real: the chart is a model (a contact is a grounding when the vessel's motion says so)"));
     row(out, "Grid", esc(info.frame + "; cells of " + fixed(info.cell_m, 0) + " m; fingerprint " + info.grid_fingerprint));
     row(out, "Hull", esc(info.ship));
     std::string rules = "close pass under " + fixed(info.sweep.margin_m, 1) + " m; step " + fixed(info.sweep.step_m, 2) + " m; limiting depth " +

@@ -221,6 +221,7 @@ TEST(Debrief, PagePerExerciseListsEveryTraineeEveryEncounterAndEveryEventInTimeO
     EXPECT_EQ(html.find("<img"), std::string::npos) << "the hostile id must be escaped";
     EXPECT_EQ(html.find("<b>"), std::string::npos);
     EXPECT_NE(html.find("@page"), std::string::npos);
+    EXPECT_NE(html.find("simulated: the chart is the world"), std::string::npos) << "the page says which world";
     EXPECT_NE(html.find("@media print"), std::string::npos);
 
     std::string error;
