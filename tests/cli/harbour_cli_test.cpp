@@ -102,6 +102,9 @@ TEST(HarbourCli, TheShipRunningIntoPier23HitsItWhenTheChartSaysSo) {
     ASSERT_EQ(ev.size(), 1u) << "it stops in contact and lies there";
     const json& e = ev[0];
     EXPECT_EQ(e["kind"], "grounding") << e.dump();
+    // The chart's tolerance from its own compilation scale (DSPM CSCALE 1:15,000): 0.5 mm, 7.5 m.
+    EXPECT_EQ(doc["shoal"]["world"], "real");
+    EXPECT_DOUBLE_EQ(doc["shoal"]["chart_tolerance_m"].get<double>(), 7.5);
     EXPECT_GE(e["grade"].get<int>(), 3) << e.dump();
     EXPECT_THAT(e["reason"].get<std::string>(), HasSubstr("stopped abruptly")) << e.dump();
     EXPECT_EQ(e["hit"], "structure");

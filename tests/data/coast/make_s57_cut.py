@@ -54,7 +54,10 @@ def cut(src_path, out_path, box, layers):
             for k in ("0", "1"):
                 want[f.GetField("NAME_RCNM_" + k)].add(f.GetField("NAME_RCID_" + k))
     drv = ogr.GetDriverByName("S57")
-    out = drv.CreateDataSource(out_path)
+    # The cell's compilation scale (DSPM CSCALE) is kept: it is the chart's positional
+    # tolerance (shoal check reads it); GDAL's writer would put its default, 1:52,000.
+    dsid = src.GetLayerByName("DSID").GetNextFeature()
+    out = drv.CreateDataSource(out_path, options=["S57_CSCL=%d" % dsid.GetField("DSPM_CSCL")])
     for name, rcnm in (("IsolatedNode", INODE), ("ConnectedNode", CNODE), ("Edge", EDGE)):
         layer = src.GetLayerByName(name)
         olayer = out.GetLayerByName(name)
