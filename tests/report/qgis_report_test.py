@@ -206,6 +206,30 @@ check(layers["events"].featureCount() == 0 and layers["events"].geometryType() =
       f"no event: events a Point layer ({layers['events'].geometryType()}), hulls a Polygon one ({layers['hulls'].geometryType()}), both empty")
 del layers
 project.clear()
+# The real world (the default outside exercise mode): a ferry calling hourly at one pier teaches
+# a learned berth; the `learned` layer is in both projects and opens styled, rule by rule.
+helsinki = os.path.join(data, "..", "..", "examples", "data", "gof_helsinki_land.geojson")
+ferry = os.path.join(data, "tracks", "ais_cases", "ferry_hourly.csv")
+for name in ("ferry.geojson", "ferry.gpkg"):
+    out = os.path.join(work, name)
+    run = subprocess.run([shoal, "check", "--coast", helsinki, "--dims", "100,20,8,8", ferry, "-o", out], capture_output=True, text=True)
+    check(run.returncode == 0, f"shoal check -o {name} (real world) exits 0: {run.returncode} {run.stderr.strip()[-300:]}")
+check(project.read(os.path.join(work, "ferry.qgz")), "QGIS reads ferry.qgz")
+layers = {l.name(): l for l in project.mapLayers().values()}
+learned = layers.get("learned")
+check(learned is not None and learned.isValid() and learned.featureCount() >= 1 and learned.geometryType() == 0,
+      f"ferry.qgz has a valid Point layer learned with the ferry's berth: {sorted(layers)}")
+if learned is not None:
+    rules = [r.label() for r in learned.renderer().rootRule().children()] if learned.renderer().type() == "RuleRenderer" else []
+    check(any("learned berth" in r for r in rules) and any("water the chart lacks" in r for r in rules),
+          f"the learned layer beside the GeoJSON is styled by kind: {rules}")
+del layers, learned
+project.clear()
+gl = QgsVectorLayer(os.path.join(work, "ferry.gpkg") + "|layername=learned", "learned", "ogr")
+msg, ok = gl.loadDefaultStyle()
+check(gl.isValid() and ok and gl.renderer().type() == "RuleRenderer" and gl.featureCount() >= 1,
+      f"the GeoPackage's learned layer loads its style from layer_styles: {ok} {msg} {gl.renderer().type() if gl.renderer() else None}")
+del gl
 app.exitQgis()
 if failures:
     print(f"{len(failures)} checks failed")
