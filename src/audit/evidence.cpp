@@ -324,21 +324,10 @@ bool berthing_structure(const std::string& kind) {
 
 std::string fmt1(double v) { return track::detail::fmt(std::round(v * 10) / 10); }
 
-void count_kind(TrackSummary& sum, EventKind k) {
-    switch (k) {
-        case EventKind::grounding: ++sum.groundings; break;
-        case EventKind::alongside: ++sum.alongside; break;
-        case EventKind::contact_at_start: ++sum.contacts_at_start; break;
-        case EventKind::expected_contact: ++sum.expected_contacts; break;
-        case EventKind::chart_disagrees: ++sum.chart_disagreements; break;
-        case EventKind::close_pass: break;
-    }
-}
-
 void recount(TrackResult& r) {
     TrackSummary& s = r.summary;
     s.groundings = s.alongside = s.contacts_at_start = s.expected_contacts = s.chart_disagreements = 0;
-    for (const Event& e : r.events) count_kind(s, e.kind);
+    for (const Event& e : r.events) count_contact(s, e.kind);
 }
 
 /// The kind a contact has by the real world's rules (its sweep kind, the simulated world's,

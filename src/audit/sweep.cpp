@@ -29,6 +29,17 @@ const char* to_string(EventKind k) noexcept {
     return "grounding";
 }
 
+void count_contact(TrackSummary& sum, EventKind k) noexcept {
+    switch (k) {
+        case EventKind::grounding: ++sum.groundings; break;
+        case EventKind::alongside: ++sum.alongside; break;
+        case EventKind::contact_at_start: ++sum.contacts_at_start; break;
+        case EventKind::expected_contact: ++sum.expected_contacts; break;
+        case EventKind::chart_disagrees: ++sum.chart_disagreements; break;
+        case EventKind::close_pass: break;
+    }
+}
+
 hull::Hull circle_hull(const hull::Hull& h) {
     constexpr int n = 36;
     const double r = h.radius() / std::cos(std::numbers::pi / n);
@@ -185,15 +196,7 @@ private:
         m_ground.end_s = end_s;
         m_ground.min_clearance_m = 0;
         m_out.events.push_back(m_ground);
-        TrackSummary& sum = m_out.summary;
-        switch (m_ground.kind) {
-            case EventKind::grounding: ++sum.groundings; break;
-            case EventKind::alongside: ++sum.alongside; break;
-            case EventKind::contact_at_start: ++sum.contacts_at_start; break;
-            case EventKind::expected_contact: ++sum.expected_contacts; break;
-            case EventKind::chart_disagrees: ++sum.chart_disagreements; break;
-            case EventKind::close_pass: break;
-        }
+        count_contact(m_out.summary, m_ground.kind);
     }
     void near_closed(double start_s, double end_s, const Sample& nearest) {
         Event e = make_event(EventKind::close_pass, nearest);

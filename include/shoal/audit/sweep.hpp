@@ -194,6 +194,10 @@ struct TrackSummary {
     Role role = Role::trainee;        ///< exercise mode: trainee or target
 };
 
+/// Adds a contact of kind `k` to the summary's count of its kind (close passes are counted
+/// where they are made).
+void count_contact(TrackSummary& summary, EventKind k) noexcept;
+
 /// The hull at a fix, kept for the report's `poses` layer (thinned: SweepOptions::pose_interval_s).
 struct Pose {
     double time_s = 0;
