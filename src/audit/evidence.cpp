@@ -445,8 +445,9 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t
             "contact only on the straight line between fixes " + fmt1(ev.speed_before_age_s + ev.speed_after_age_s) + " s apart");
         return;
     }
-    if (!too_deep && ev.left_contact && ev.bracket_dense && ev.speed_before_kn >= opt.under_way_kn && ev.speed_after_kn <= 0.5 * ev.speed_before_kn &&
-        (ev.speed_before_kn - ev.speed_after_kn) / (ev.speed_before_age_s + ev.speed_after_age_s) >= opt.abrupt_kn_s) {
+    const double bracket_s = ev.speed_before_age_s + ev.speed_after_age_s;
+    if (!too_deep && ev.left_contact && ev.bracket_dense && bracket_s > 0 && ev.speed_before_kn >= opt.under_way_kn &&
+        ev.speed_after_kn <= 0.5 * ev.speed_before_kn && (ev.speed_before_kn - ev.speed_after_kn) / bracket_s >= opt.abrupt_kn_s) {
         set(EventKind::grounding, 2 - tol_cut,
             "touch and go: slowed abruptly at the contact (" + speed + ", " + fmt1(ev.speed_after_kn) + " kn " + fmt1(ev.speed_after_age_s) +
                 " s after), then went on");
