@@ -204,7 +204,9 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
     struct Ref {
         std::size_t track, stay;
     };
-    const double R = opt.berth_radius_m;
+    // Cells of the radius (a metre at least: a cell index must stay a whole number however small
+    // a radius is asked for).
+    const double R = std::max(opt.berth_radius_m, 1.0);
     std::vector<Ref> all;
     for (std::size_t k = 0; k < tracks.size(); ++k) {
         out.berth_stays[k].assign(tracks[k]->stays.size(), 0);
@@ -226,7 +228,7 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
             for (long long dy = -1; dy <= 1; ++dy)
                 if (auto it = cells.find({cx + dx, cy + dy}); it != cells.end())
                     for (const std::size_t j : it->second)
-                        if (j != i && dist(stay(all[i]).local, stay(all[j]).local) <= R) f(j);
+                        if (j != i && dist(stay(all[i]).local, stay(all[j]).local) <= opt.berth_radius_m) f(j);
     };
     // Each stay's evidence: the others near it that did not begin while it lasted, of other
     // vessels or of this one's other visits.
