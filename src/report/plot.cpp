@@ -1034,6 +1034,7 @@ std::vector<TitleLine> zoom_title(const EventDraw& e) {
     std::string kind = kind_words(ev);
     const std::string hazard = audit::is_contact(ev.kind) ? hazard_text(ev) : "";
     if (!hazard.empty()) kind += ", " + hazard;
+    if (ev.evidence.grade > 0) kind += ", grade " + std::to_string(ev.evidence.grade);
     lines.push_back({kind, kind_style(ev.kind).dark, 11, true});
     lines.push_back({speed_text(ev) + speed_when(ev) + ", " + depth_text(ev), ink, 11, false});
     lines.push_back({"from " + date_clock_text(ev.start_s) + " UTC for " + duration_words(ev.end_s - ev.start_s), ink, 11, false});
@@ -1519,6 +1520,7 @@ std::string event_description(const audit::TrackSummary& t, const audit::Event& 
          heading_text(ev, true);
     const std::string evidence = evidence_text(ev);
     if (!evidence.empty()) s += "; " + evidence;
+    if (ev.evidence.grade > 0) s += "; grade " + std::to_string(ev.evidence.grade) + ": " + ev.evidence.reason;
     return s;
 }
 

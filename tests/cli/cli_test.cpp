@@ -237,6 +237,7 @@ TEST(CliCheck, PlotIsAnSvgWithTheEvents) {
     EXPECT_NE(text.find("<svg"), std::string::npos);
     EXPECT_NE(text.find("http://www.w3.org/2000/svg"), std::string::npos);
     EXPECT_NE(text.find("event grounding"), std::string::npos);
+    EXPECT_NE(text.find("grade 4"), std::string::npos) << "each contact's grade (the simulated world: 4) in its panel and tooltip";
 }
 
 TEST(CliCheck, EncountersFindTwoShipsCrossingAtTheSameSpot) {
