@@ -76,6 +76,71 @@ SHOAL_C_API void shoal_detector_free(shoal_detector* detector);
 SHOAL_C_API int shoal_check(const shoal_detector* detector, double lat, double lon, double heading_deg,
                             double max_clearance_m, shoal_contact* out);
 
+/* ---- Contact for a simulator's collision response (docs/simulator.md) ---- */
+
+/* What a contact region's hull overlaps. */
+enum shoal_hazard_kind {
+    SHOAL_HAZARD_LAND = 1,      /* land (coastline) */
+    SHOAL_HAZARD_SHALLOW = 2,   /* a depth area charted shallower than the detector's limiting depth (or of unknown depth) */
+    SHOAL_HAZARD_DANGER = 3,    /* a rock, wreck or obstruction (S-57 UWTROC, WRECKS, OBSTRN) */
+    SHOAL_HAZARD_STRUCTURE = 4, /* a pier, wharf, pontoon, dolphin, hulk ... (S-57 SLCONS, PONTON, MORFAC, HULKES) */
+    SHOAL_HAZARD_SHIP = 5       /* another ship's hull (shoal_ship_contacts) */
+};
+
+/* One connected region where the hull overlaps a hazard, at its deepest point. */
+typedef struct shoal_contact_point {
+    double x_m, y_m;     /* the region's deepest hull point, ship frame: x forward, y starboard, metres
+                            from the position reference point */
+    double nx, ny;       /* unit normal, ship frame: moving the hull point along it by depth_m frees it
+                            (towards the nearest point of the hazard's boundary) */
+    double depth_m;      /* >= 0: the point's distance to the hazard's boundary */
+    double lat, lon;     /* the hull point, WGS84 */
+    double coast_lat, coast_lon; /* the nearest boundary point, WGS84 */
+    int hazard;          /* enum shoal_hazard_kind */
+    double charted_depth_m;      /* a shallow area's least charted depth or a danger's sounding (metres);
+                                    NAN for land, structures, ships and unknown depths */
+    const char* name;    /* the hazard's charted name ("Pier 25"), "" when none; valid while the grid lives */
+} shoal_contact_point;
+
+/* All contact regions of the hull at a pose (as shoal_check places it), deepest first: writes
+ * at most `capacity` of them to out (out may be NULL when capacity is 0) and returns how many
+ * there are (0: no contact), or -1 on error (shoal_last_error()). A region is a connected part
+ * of the hull's overlap with land and hazards; for a hull that only touches, depth_m is 0. */
+SHOAL_C_API int shoal_contacts(const shoal_detector* detector, double lat, double lon, double heading_deg,
+                               shoal_contact_point* out, int capacity);
+
+/* What a bridge simulator asks beside the contacts every frame. */
+typedef struct shoal_surroundings {
+    int covered;          /* 1: the hull and the reach of the searches lie inside the chart; 0: not, and a
+                             distance below says only what the chart holds */
+    double port_m;        /* how far the hull can move to port (ship frame -y) before it touches a hazard */
+    double starboard_m;   /* ... to starboard (+y) */
+    double ahead_m;       /* ... ahead (+x) */
+    double astern_m;      /* ... astern (-x); each 0 in contact, capped at max_m */
+    double least_depth_m; /* the least charted depth of the depth areas the hull overlaps (metres); NAN when
+                             the grid charts no depth there or the area's depth is unknown; 0 on land */
+} shoal_surroundings;
+
+/* The clearances of the hull at a pose along its four axes (searched to max_m > 0) and the least
+ * charted depth under it. Fills *out and returns 0; non-zero on error. */
+SHOAL_C_API int shoal_surroundings_at(const shoal_detector* detector, double lat, double lon, double heading_deg,
+                                      double max_m, shoal_surroundings* out);
+
+/* Two ships' hulls (each detector's hull at its pose; positions in WGS84, placed in a's grid's
+ * frame): *out says whether they touch or overlap and their clearance; `points` receives at
+ * most `capacity` regions where a's hull overlaps b's (ship frame of a, hazard SHOAL_HAZARD_SHIP,
+ * the normal freeing a's point out of b's hull), deepest first. Returns how many regions there
+ * are (0: none), or -1 on error. */
+typedef struct shoal_ship_contact {
+    int contact;          /* 1: the hulls touch or overlap */
+    double clearance_m;   /* hull-to-hull distance, 0 on contact */
+    double a_lat, a_lon;  /* the closest point of a's hull (a contact point on contact) */
+    double b_lat, b_lon;  /* ... of b's hull */
+} shoal_ship_contact;
+SHOAL_C_API int shoal_ship_contacts(const shoal_detector* a, double lat_a, double lon_a, double heading_a_deg,
+                                    const shoal_detector* b, double lat_b, double lon_b, double heading_b_deg,
+                                    shoal_ship_contact* out, shoal_contact_point* points, int capacity);
+
 #ifdef __cplusplus
 }
 #endif
