@@ -1,0 +1,813 @@
+// Contact regions (include/shoal/check/contacts.hpp).
+//
+// The hazards' boundary near the hull is gathered as segments (the grid's, clipped to the
+// hull's box grown by a reach G), cut where boundaries of different polylines cross, and each
+// piece kept when water lies on its right (land is on the left of a boundary): a piece inside
+// another hazard (a pier's root over land, a shallow area's edge along the shore) is not where
+// the hull gets free, so it is not a boundary of the union. Then:
+//  1. the hull outline is cut where it crosses those pieces; its pieces inside the hazards and
+//     the boundary pieces inside the hull bound the overlap, and are joined into connected
+//     regions where they meet (a union-find); a closed ring of boundary inside the hull is an
+//     islet (its own region) or a pond (part of the region around it);
+//  2. each region's deepest point: the distance to the boundary, d, is largest either on the
+//     outline's pieces (a branch and bound along each) or at an interior point (a branch and
+//     bound over square cells of the region's box cut to the hull). Bounds of a cell: d at its
+//     centre plus its radius (d is 1-Lipschitz), and the exact maximum over the cell of the
+//     lesser distance to the two nearest boundary pieces (at the cell's corners or where the
+//     two distances are equal on its edges), which is tight along a straight boundary and on
+//     the ridge between two (a pier across the hull);
+//  3. when a depth reaches the reach G, a nearer boundary may lie beyond it: G is grown and the
+//     search done again, so the answer is exact for a hull however deep in land.
+
+#include <shoal/check/contacts.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numeric>
+#include <queue>
+#include <utility>
+
+namespace shoal::check {
+
+using geo::Box;
+using geo::XY;
+
+double local_scale(const LocalPose& pose) noexcept {
+    const Eigen::Matrix2d& m = pose.ship_to_local;
+    return std::sqrt(std::fabs(m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0)));
+}
+
+namespace {
+
+constexpr std::uint32_t no_polyline = grid::CoastGrid::no_polyline;
+
+struct RawSegment {
+    XY a, b;
+    std::uint32_t polyline = no_polyline;
+    bool boundary = true;  // land on the left
+};
+
+/// What the hull must not overlap: its boundary segments in a box, and membership.
+struct Obstacle {
+    std::function<void(const Box&, std::vector<RawSegment>&)> collect;
+    std::function<bool(XY)> inside;
+};
+
+/// A piece of the union's boundary, land on its left.
+struct Site {
+    XY a, b;
+    std::uint32_t polyline = no_polyline;
+};
+
+double dist2_to(XY p, XY a, XY b, XY* foot) noexcept {
+    double t;
+    const double d2 = geo::point_segment_dist2(p, a, b, &t);
+    if (foot) *foot = a + t * (b - a);
+    return d2;
+}
+
+/// Liang-Barsky: clips segment ab to `box`; false when nothing is left.
+bool clip_to(XY& a, XY& b, const Box& box) noexcept {
+    double t0 = 0, t1 = 1;
+    const XY d = b - a;
+    const double p[4] = {-d.x, d.x, -d.y, d.y};
+    const double q[4] = {a.x - box.minx, box.maxx - a.x, a.y - box.miny, box.maxy - a.y};
+    for (int k = 0; k < 4; ++k) {
+        if (p[k] == 0) {
+            if (q[k] < 0) return false;
+            continue;
+        }
+        const double r = q[k] / p[k];
+        if (p[k] < 0) t0 = std::max(t0, r);
+        else t1 = std::min(t1, r);
+        if (t0 > t1) return false;
+    }
+    const XY a0 = a;
+    if (t0 > 0) a = a0 + t0 * d;
+    if (t1 < 1) b = a0 + t1 * d;
+    return true;
+}
+
+/// Parameters of the crossing of segments ab and cd (touching counts): t on ab, u on cd.
+/// Collinear overlaps give the overlap's ends that lie on the other segment.
+void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
+    if (!geo::segments_intersect(a, b, c, d)) return;
+    const XY r = b - a, s = d - c;
+    const double den = geo::cross(r, s);
+    if (den != 0) {
+        const double t = std::clamp(geo::cross(c - a, s) / den, 0.0, 1.0);
+        const double u = std::clamp(geo::cross(c - a, r) / den, 0.0, 1.0);
+        out.emplace_back(t, u);
+        return;
+    }
+    // Collinear: the ends of either segment that lie on the other.
+    const double rr = geo::norm2(r), ss = geo::norm2(s);
+    auto param = [](XY p, XY o, XY v, double vv) { return vv > 0 ? geo::dot(p - o, v) / vv : 0.0; };
+    for (XY p : {c, d}) {
+        const double t = param(p, a, r, rr);
+        if (t >= 0 && t <= 1) out.emplace_back(t, param(p, c, s, ss));
+    }
+    for (XY p : {a, b}) {
+        const double u = param(p, c, s, ss);
+        if (u >= 0 && u <= 1) out.emplace_back(param(p, a, r, rr), u);
+    }
+}
+
+/// Even-odd point in polygon (closed ring, last point = first).
+bool in_polygon(const std::vector<XY>& ring, XY p) noexcept {
+    bool in = false;
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
+        const XY a = ring[i], b = ring[i + 1];
+        if ((a.y > p.y) != (b.y > p.y)) {
+            const double x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+            if (p.x < x) in = !in;
+        }
+    }
+    return in;
+}
+
+struct UnionFind {
+    std::vector<int> parent;
+    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    int find(int x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    void join(int a, int b) { parent[find(a)] = find(b); }
+};
+
+/// Sutherland-Hodgman: the box cut to a convex ring (counter-clockwise, closed).
+std::vector<XY> clip_box_to_convex(const Box& box, const std::vector<XY>& ccw) {
+    std::vector<XY> poly{{box.minx, box.miny}, {box.maxx, box.miny}, {box.maxx, box.maxy}, {box.minx, box.maxy}};
+    std::vector<XY> next;
+    for (std::size_t i = 0; i + 1 < ccw.size() && !poly.empty(); ++i) {
+        const XY a = ccw[i], b = ccw[i + 1];
+        next.clear();
+        for (std::size_t k = 0; k < poly.size(); ++k) {
+            const XY p = poly[k], q = poly[(k + 1) % poly.size()];
+            const double op = geo::orient(a, b, p), oq = geo::orient(a, b, q);
+            if (op >= 0) next.push_back(p);
+            if ((op > 0 && oq < 0) || (op < 0 && oq > 0)) next.push_back(p + (op / (op - oq)) * (q - p));
+        }
+        poly.swap(next);
+    }
+    return poly;
+}
+
+/// The search over one set of boundary pieces.
+class Search {
+public:
+    Search(const std::vector<XY>& ring, bool convex, std::vector<Site> sites, const Obstacle& obstacle, double tol)
+        : m_ring(ring), m_convex(convex), m_sites(std::move(sites)), m_obstacle(obstacle), m_tol(tol) {}
+
+    struct Near {
+        double d = INFINITY;
+        XY foot;
+        int site = -1;
+    };
+
+    Near nearest(XY p) const noexcept {
+        Near n;
+        double best2 = INFINITY;
+        for (std::size_t k = 0; k < m_sites.size(); ++k) {
+            XY f;
+            const double d2 = dist2_to(p, m_sites[k].a, m_sites[k].b, &f);
+            if (d2 < best2) best2 = d2, n.foot = f, n.site = static_cast<int>(k);
+        }
+        n.d = std::sqrt(best2);
+        return n;
+    }
+
+    /// The nearest site whose nearest point is not `first`'s (a second site for the bound).
+    int second(XY p, const Near& first) const noexcept {
+        int best = -1;
+        double best2 = INFINITY;
+        const double apart2 = (100 * m_tol) * (100 * m_tol);
+        for (std::size_t k = 0; k < m_sites.size(); ++k) {
+            if (static_cast<int>(k) == first.site) continue;
+            XY f;
+            const double d2 = dist2_to(p, m_sites[k].a, m_sites[k].b, &f);
+            if (d2 < best2 && geo::norm2(f - first.foot) > apart2) best2 = d2, best = static_cast<int>(k);
+        }
+        return best;
+    }
+
+    double dist_to_site(XY p, int k) const noexcept { return std::sqrt(dist2_to(p, m_sites[k].a, m_sites[k].b, nullptr)); }
+
+    /// Exact max over polygon `v` (or segment, 2 points) of min(dist to site i, dist to site j).
+    double two_site_bound(const std::vector<XY>& v, int i, int j) const {
+        double best = 0;
+        auto value = [&](XY p) { return std::min(dist_to_site(p, i), dist_to_site(p, j)); };
+        for (XY p : v) best = std::max(best, value(p));
+        const std::size_t edges = v.size() == 2 ? 1 : v.size();
+        const Site* s[2] = {&m_sites[i], &m_sites[j]};
+        for (std::size_t e = 0; e < edges; ++e) {
+            const XY p = v[e], d = v[(e + 1) % v.size()] - p;
+            double breaks[6] = {0, 1};
+            int nb = 2;
+            for (const Site* st : s) {
+                const XY ab = st->b - st->a;
+                const double ll = geo::norm2(ab);
+                if (ll == 0) continue;
+                // u(t) = ((p - a) + t d) . ab / |ab|^2, linear in t.
+                const double u0 = geo::dot(p - st->a, ab) / ll, du = geo::dot(d, ab) / ll;
+                if (du != 0)
+                    for (double target : {0.0, 1.0}) {
+                        const double t = (target - u0) / du;
+                        if (t > 0 && t < 1 && nb < 6) breaks[nb++] = t;
+                    }
+            }
+            for (int a = 1; a < nb; ++a)  // insertion sort (std::sort on 6 doubles trips GCC 12's -Warray-bounds)
+                for (int b = a; b > 0 && breaks[b - 1] > breaks[b]; --b) std::swap(breaks[b - 1], breaks[b]);
+            for (int k = 0; k + 1 < nb; ++k) {
+                const double t0 = breaks[k], t1 = breaks[k + 1];
+                if (!(t1 > t0)) continue;
+                const double tm = (t0 + t1) / 2;
+                // Each squared distance as A t^2 + B t + C on [t0, t1].
+                double A = 0, B = 0, C = 0;
+                for (int w = 0; w < 2; ++w) {
+                    const Site* st = s[w];
+                    const XY ab = st->b - st->a;
+                    const double ll = geo::norm2(ab);
+                    const double um = ll > 0 ? geo::dot(p + tm * d - st->a, ab) / ll : 0.0;
+                    double a2, b1, c0;
+                    if (ll == 0 || um <= 0 || um >= 1) {
+                        const XY e0 = p - (ll == 0 || um <= 0 ? st->a : st->b);
+                        a2 = geo::norm2(d), b1 = 2 * geo::dot(e0, d), c0 = geo::norm2(e0);
+                    } else {
+                        const double inv = 1 / std::sqrt(ll);
+                        const double alpha = geo::cross(ab, p - st->a) * inv, beta = geo::cross(ab, d) * inv;
+                        a2 = beta * beta, b1 = 2 * alpha * beta, c0 = alpha * alpha;
+                    }
+                    const double sign = w == 0 ? 1.0 : -1.0;
+                    A += sign * a2, B += sign * b1, C += sign * c0;
+                }
+                double roots[2];
+                int nr = 0;
+                const double scale = std::fabs(A) + std::fabs(B) + std::fabs(C);
+                if (std::fabs(A) > 1e-14 * scale) {
+                    const double disc = B * B - 4 * A * C;
+                    if (disc >= 0) {
+                        const double sq = std::sqrt(disc);
+                        const double q = -0.5 * (B + (B >= 0 ? sq : -sq));
+                        roots[nr++] = q / A;
+                        if (q != 0) roots[nr++] = C / q;
+                    }
+                } else if (std::fabs(B) > 1e-14 * scale) {
+                    roots[nr++] = -C / B;
+                }
+                for (int r = 0; r < nr; ++r)
+                    if (roots[r] >= t0 && roots[r] <= t1) best = std::max(best, value(p + roots[r] * d));
+            }
+        }
+        return best;
+    }
+
+    /// Signed distance: > 0 inside the hazards.
+    double signed_d(XY p, Near* n) const {
+        *n = nearest(p);
+        return m_obstacle.inside(p) ? n->d : -n->d;
+    }
+
+    const std::vector<Site>& sites() const noexcept { return m_sites; }
+
+    /// Upper bound of d over polygon `v` around `c` (a point of it, with its nearest `n` and
+    /// signed distance `sd`; `r` the farthest vertex from c).
+    double bound(const std::vector<XY>& v, XY c, const Near& n, double sd, double r) const {
+        double b = sd + r;
+        if (n.site < 0) return b;
+        double single = 0;
+        for (XY p : v) single = std::max(single, dist_to_site(p, n.site));
+        b = std::min(b, single);
+        const int j = second(c, n);
+        if (j >= 0) b = std::min(b, two_site_bound(v, n.site, j));
+        return b;
+    }
+
+    const std::vector<XY>& ring() const noexcept { return m_ring; }
+    bool convex() const noexcept { return m_convex; }
+    const Obstacle& obstacle() const noexcept { return m_obstacle; }
+    double tol() const noexcept { return m_tol; }
+
+private:
+    const std::vector<XY>& m_ring;
+    bool m_convex;
+    std::vector<Site> m_sites;
+    const Obstacle& m_obstacle;
+    double m_tol;
+};
+
+struct Best {
+    double d = -INFINITY;
+    XY point, foot;
+    int site = -1;
+};
+
+/// A piece of the overlap's boundary: of the hull outline (edge, params) or of a site.
+struct Piece {
+    XY a, b;
+    bool outline = false;
+};
+
+/// Branch and bound of d along segment pa-pb (an outline piece inside the hazards).
+void along(const Search& s, XY pa, XY pb, Best& best) {
+    struct Interval {
+        double t0, t1, f0, f1;
+        Search::Near n0, n1;
+    };
+    const XY d = pb - pa;
+    const double len = std::sqrt(geo::norm2(d));
+    auto eval = [&](double t, Search::Near& n) {
+        const XY p = pa + t * d;
+        n = s.nearest(p);
+        const double f = n.d;  // the piece lies in the hazards: d >= 0
+        if (f > best.d) best = {f, p, n.foot, n.site};
+        return f;
+    };
+    Interval root{0, 1, 0, 0, {}, {}};
+    root.f0 = eval(0, root.n0);
+    root.f1 = eval(1, root.n1);
+    std::vector<Interval> stack{root};
+    int steps = 0;
+    while (!stack.empty() && ++steps < 100000) {
+        const Interval iv = stack.back();
+        stack.pop_back();
+        const double h = (iv.t1 - iv.t0) * len;
+        if (h <= s.tol()) continue;
+        const double tm = (iv.t0 + iv.t1) / 2;
+        Search::Near nm;
+        const double fm = eval(tm, nm);
+        for (int side = 0; side < 2; ++side) {
+            const double a = side == 0 ? iv.t0 : tm, b = side == 0 ? tm : iv.t1;
+            const double fa = side == 0 ? iv.f0 : fm, fb = side == 0 ? fm : iv.f1;
+            const Search::Near& na = side == 0 ? iv.n0 : nm;
+            const Search::Near& nb = side == 0 ? nm : iv.n1;
+            const XY qa = pa + a * d, qb = pa + b * d;
+            double bnd = (fa + fb + (b - a) * len) / 2;  // Lipschitz tent
+            for (const Search::Near* n : {&na, &nb})
+                if (n->site >= 0) bnd = std::min(bnd, std::max(s.dist_to_site(qa, n->site), s.dist_to_site(qb, n->site)));
+            if (na.site >= 0 && nb.site >= 0 && na.site != nb.site) bnd = std::min(bnd, s.two_site_bound({qa, qb}, na.site, nb.site));
+            if (bnd > best.d + s.tol()) stack.push_back({a, b, fa, fb, na, nb});
+        }
+    }
+}
+
+struct Region {
+    std::vector<int> pieces;
+    bool has_outline = false;
+    Best best;
+};
+
+}  // namespace
+
+namespace {
+
+/// The regions of hull `ring` (closed: last point = first) against `obstacle`; depths in local metres.
+std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Obstacle& obstacle, double scale) {
+    std::vector<XY> ring = open_ring;
+    if (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
+    if (ring.size() < 3) return {};
+    // Counter-clockwise.
+    double area2 = 0;
+    for (std::size_t i = 0; i < ring.size(); ++i) area2 += geo::cross(ring[i], ring[(i + 1) % ring.size()]);
+    if (area2 < 0) std::reverse(ring.begin(), ring.end());
+    ring.push_back(ring.front());
+    const std::size_t n_edges = ring.size() - 1;
+    bool convex = true;
+    for (std::size_t i = 0; i < n_edges && convex; ++i)
+        convex = geo::orient(ring[i], ring[i + 1], ring[(i + 2) % n_edges]) >= 0;
+
+    Box hbox;
+    for (XY p : ring) hbox.extend(p);
+    const double extent = std::max(hbox.maxx - hbox.minx, hbox.maxy - hbox.miny);
+    const double magnitude = std::max({std::fabs(hbox.minx), std::fabs(hbox.maxx), std::fabs(hbox.miny), std::fabs(hbox.maxy)});
+    const double tol = 1e-6 + 1e-12 * magnitude;  // local metres
+    const double eps = 1e-6 + 1e-11 * magnitude;  // offset for side tests
+
+    // The reach: start with the depth of the deepest hull vertex in the hazards (a cheap
+    // lower bound of the answer, usually the answer) plus margin; grow while a depth reaches it.
+    double reach = std::max(1.0, 0.25 * extent);
+    for (int attempt = 0; attempt < 64; ++attempt) {
+        const Box box = hbox.grown(reach);
+        std::vector<RawSegment> raw;
+        obstacle.collect(box, raw);
+        std::vector<RawSegment> bounds, lines;
+        for (RawSegment r : raw) {
+            if (!clip_to(r.a, r.b, box)) continue;
+            if (r.a == r.b) continue;
+            (r.boundary ? bounds : lines).push_back(r);
+        }
+        // Cut where boundaries of different polylines cross; keep pieces with water on the right.
+        std::vector<Site> sites;
+        {
+            std::vector<std::vector<double>> cuts(bounds.size());
+            std::vector<std::pair<double, double>> tu;
+            for (std::size_t i = 0; i < bounds.size(); ++i)
+                for (std::size_t j = i + 1; j < bounds.size(); ++j) {
+                    if (bounds[i].polyline == bounds[j].polyline) continue;
+                    tu.clear();
+                    crossings(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
+                    for (auto [t, u] : tu) cuts[i].push_back(t), cuts[j].push_back(u);
+                }
+            for (std::size_t i = 0; i < bounds.size(); ++i) {
+                auto& c = cuts[i];
+                c.push_back(0), c.push_back(1);
+                std::sort(c.begin(), c.end());
+                const XY a = bounds[i].a, d = bounds[i].b - bounds[i].a;
+                const double len = std::sqrt(geo::norm2(d));
+                const XY right{d.y / len, -d.x / len};
+                for (std::size_t k = 0; k + 1 < c.size(); ++k) {
+                    if (!((c[k + 1] - c[k]) * len > tol)) continue;
+                    const XY p = a + c[k] * d, q = a + c[k + 1] * d;
+                    const XY mid = 0.5 * (p + q);
+                    if (obstacle.inside(mid + eps * right)) continue;  // buried in another hazard
+                    if (!obstacle.inside(mid - eps * right)) continue;  // not a boundary of the union here
+                    sites.push_back({p, q, bounds[i].polyline});
+                }
+            }
+        }
+        Search search(ring, convex, std::move(sites), obstacle, tol);
+        const std::vector<Site>& S = search.sites();
+
+        // 1. Pieces of the overlap's boundary, and where they meet.
+        std::vector<Piece> pieces;
+        struct Cross {
+            int edge;
+            double t;
+            int site;
+            double u;
+        };
+        std::vector<Cross> xs;
+        {
+            std::vector<std::pair<double, double>> tu;
+            for (std::size_t e = 0; e < n_edges; ++e)
+                for (std::size_t k = 0; k < S.size(); ++k) {
+                    tu.clear();
+                    crossings(ring[e], ring[e + 1], S[k].a, S[k].b, tu);
+                    for (auto [t, u] : tu) xs.push_back({static_cast<int>(e), t, static_cast<int>(k), u});
+                }
+        }
+        // Outline pieces inside, per edge; remember which piece ends at each crossing.
+        std::vector<int> piece_at_cross_out(xs.size() * 2, -1);  // outline piece before / after crossing
+        std::vector<int> first_piece(n_edges, -1), last_piece(n_edges, -1);
+        std::vector<std::pair<double, int>> ts;
+        for (std::size_t e = 0; e < n_edges; ++e) {
+            const XY a = ring[e], d = ring[e + 1] - ring[e];
+            const double len = std::sqrt(geo::norm2(d));
+            ts.clear();
+            ts.emplace_back(0.0, -1);
+            ts.emplace_back(1.0, -1);
+            for (std::size_t x = 0; x < xs.size(); ++x)
+                if (xs[x].edge == static_cast<int>(e)) ts.emplace_back(xs[x].t, static_cast<int>(x));
+            std::sort(ts.begin(), ts.end());
+            // Groups of parameters closer than the tolerance: one point of the outline each.
+            struct Group {
+                double t;
+                std::vector<int> crossings;
+                bool start = false, end = false;
+            };
+            std::vector<Group> groups;
+            for (auto [t, x] : ts) {
+                if (groups.empty() || (t - groups.back().t) * len > tol) groups.push_back({t, {}});
+                Group& g = groups.back();
+                if (x >= 0) g.crossings.push_back(x);
+                if (t == 0.0) g.start = true;
+                if (t == 1.0) g.end = true;
+            }
+            if (groups.size() == 1) continue;  // an edge shorter than the tolerance
+            for (std::size_t k = 0; k + 1 < groups.size(); ++k) {
+                const XY p = a + groups[k].t * d, q = a + groups[k + 1].t * d;
+                if (!obstacle.inside(0.5 * (p + q))) continue;
+                const int id = static_cast<int>(pieces.size());
+                pieces.push_back({groups[k].start ? ring[e] : p, groups[k + 1].end ? ring[e + 1] : q, true});
+                if (groups[k].start) first_piece[e] = id;
+                if (groups[k + 1].end) last_piece[e] = id;
+                for (int x : groups[k].crossings) piece_at_cross_out[2 * x + 1] = id;
+                for (int x : groups[k + 1].crossings) piece_at_cross_out[2 * x] = id;
+            }
+        }
+        const std::size_t n_outline = pieces.size();
+        // Boundary pieces inside the hull.
+        std::vector<int> piece_at_cross_site(xs.size() * 2, -1);
+        std::vector<std::vector<std::pair<double, int>>> us(S.size());
+        for (std::size_t x = 0; x < xs.size(); ++x) us[xs[x].site].emplace_back(xs[x].u, static_cast<int>(x));
+        for (std::size_t k = 0; k < S.size(); ++k) {
+            auto& u = us[k];
+            u.emplace_back(0.0, -1);
+            u.emplace_back(1.0, -1);
+            std::sort(u.begin(), u.end());
+            const XY a = S[k].a, d = S[k].b - S[k].a;
+            const double len = std::sqrt(geo::norm2(d));
+            std::vector<std::pair<double, std::vector<int>>> groups;
+            for (auto [v, x] : u) {
+                if (groups.empty() || (v - groups.back().first) * len > tol) groups.push_back({v, {}});
+                if (x >= 0) groups.back().second.push_back(x);
+            }
+            for (std::size_t c = 0; c + 1 < groups.size(); ++c) {
+                const XY p = c == 0 ? a : a + groups[c].first * d;
+                const XY q = c + 2 == groups.size() ? S[k].b : a + groups[c + 1].first * d;
+                if (!in_polygon(ring, 0.5 * (p + q))) continue;
+                const int id = static_cast<int>(pieces.size());
+                pieces.push_back({p, q, false});
+                for (int x : groups[c].second) piece_at_cross_site[2 * x + 1] = id;
+                for (int x : groups[c + 1].second) piece_at_cross_site[2 * x] = id;
+            }
+        }
+        UnionFind uf(pieces.size());
+        // Outline pieces meeting at a vertex.
+        for (std::size_t e = 0; e < n_edges; ++e) {
+            const int a = last_piece[e], b = first_piece[(e + 1) % n_edges];
+            if (a >= 0 && b >= 0) uf.join(a, b);
+        }
+        // Pieces meeting at a crossing.
+        for (std::size_t x = 0; x < xs.size(); ++x) {
+            int ids[4] = {piece_at_cross_out[2 * x], piece_at_cross_out[2 * x + 1], piece_at_cross_site[2 * x],
+                          piece_at_cross_site[2 * x + 1]};
+            int first = -1;
+            for (int id : ids)
+                if (id >= 0) {
+                    if (first < 0) first = id;
+                    else uf.join(first, id);
+                }
+        }
+        // Boundary pieces meeting end to end (along a polyline, across a cell border, where
+        // two hazards' boundaries cross).
+        {
+            const double join = 1e3 * tol;
+            std::vector<int> order;
+            for (std::size_t i = n_outline; i < pieces.size(); ++i) order.push_back(static_cast<int>(i));
+            for (std::size_t ii = 0; ii < order.size(); ++ii)
+                for (std::size_t jj = ii + 1; jj < order.size(); ++jj) {
+                    const Piece& p = pieces[order[ii]];
+                    const Piece& q = pieces[order[jj]];
+                    if (uf.find(order[ii]) == uf.find(order[jj])) continue;
+                    const double j2 = join * join;
+                    if (dist2_to(p.a, q.a, q.b, nullptr) <= j2 || dist2_to(p.b, q.a, q.b, nullptr) <= j2 ||
+                        dist2_to(q.a, p.a, p.b, nullptr) <= j2 || dist2_to(q.b, p.a, p.b, nullptr) <= j2)
+                        uf.join(order[ii], order[jj]);
+                }
+            // Crossing points shared by outline pieces of neighbouring crossings at one point
+            // (a boundary vertex on the outline) are joined through the crossings above.
+        }
+        // The hull wholly inside the hazards: the whole outline is one piece chain (joined above).
+        std::vector<Region> regions;
+        std::vector<int> region_of_root(pieces.size(), -1);
+        for (std::size_t i = 0; i < pieces.size(); ++i) {
+            const int r = uf.find(static_cast<int>(i));
+            if (region_of_root[r] < 0) {
+                region_of_root[r] = static_cast<int>(regions.size());
+                regions.emplace_back();
+            }
+            Region& g = regions[region_of_root[r]];
+            g.pieces.push_back(static_cast<int>(i));
+            g.has_outline = g.has_outline || pieces[i].outline;
+        }
+        // A closed ring inside the hull: an islet (counter-clockwise: land inside) is a region;
+        // a pond (clockwise) belongs to the region around it.
+        std::vector<int> merged_into(regions.size(), -1);
+        for (std::size_t g = 0; g < regions.size(); ++g) {
+            if (regions[g].has_outline) continue;
+            double a2 = 0;
+            for (int i : regions[g].pieces) a2 += geo::cross(pieces[i].a, pieces[i].b);
+            if (a2 >= 0) continue;
+            // A point just inside the hazards beside the pond: its nearest other piece's region.
+            const Piece& p = pieces[regions[g].pieces.front()];
+            const XY d = p.b - p.a;
+            const double len = std::sqrt(geo::norm2(d));
+            const XY probe = 0.5 * (p.a + p.b) + (eps / len) * XY{-d.y, d.x};
+            double best2 = INFINITY;
+            int into = -1;
+            for (std::size_t h = 0; h < regions.size(); ++h) {
+                if (h == g || merged_into[h] >= 0) continue;
+                for (int i : regions[h].pieces) {
+                    const double d2 = dist2_to(probe, pieces[i].a, pieces[i].b, nullptr);
+                    if (d2 < best2) best2 = d2, into = static_cast<int>(h);
+                }
+            }
+            if (into >= 0) merged_into[g] = into;
+        }
+        for (std::size_t g = 0; g < regions.size(); ++g)
+            if (merged_into[g] >= 0) {
+                int to = merged_into[g];
+                while (merged_into[to] >= 0) to = merged_into[to];
+                for (int i : regions[g].pieces) regions[to].pieces.push_back(i);
+                regions[g].pieces.clear();
+            }
+        std::vector<int> piece_region(pieces.size(), -1);
+        for (std::size_t g = 0; g < regions.size(); ++g)
+            for (int i : regions[g].pieces) piece_region[i] = static_cast<int>(g);
+
+        // 2. Deepest points: along the outline pieces, then inside.
+        for (Region& g : regions)
+            for (int i : g.pieces)
+                if (pieces[i].outline) along(search, pieces[i].a, pieces[i].b, g.best);
+        std::vector<int> live;
+        for (std::size_t g = 0; g < regions.size(); ++g)
+            if (!regions[g].pieces.empty()) live.push_back(static_cast<int>(g));
+        if (!live.empty() && !S.empty()) {
+            // Islets: a start at their boundary (depth 0).
+            for (int g : live)
+                if (regions[g].best.d < 0) {
+                    const Piece& p = pieces[regions[g].pieces.front()];
+                    regions[g].best = {0, p.a, p.a, -1};
+                }
+            auto region_at = [&](XY q) {
+                if (live.size() == 1) return live.front();
+                double best2 = INFINITY;
+                int r = -1;
+                for (std::size_t i = 0; i < pieces.size(); ++i) {
+                    if (piece_region[i] < 0 || regions[piece_region[i]].pieces.empty()) continue;
+                    const double d2 = dist2_to(q, pieces[i].a, pieces[i].b, nullptr);
+                    if (d2 < best2) best2 = d2, r = piece_region[i];
+                }
+                return r;
+            };
+            auto least_best_near = [&](XY q, double r, int own) {
+                if (live.size() == 1) return regions[live.front()].best.d;
+                double least = own >= 0 ? regions[own].best.d : INFINITY;
+                const double r2 = r * r;
+                for (std::size_t i = 0; i < pieces.size(); ++i) {
+                    const int g = piece_region[i];
+                    if (g < 0 || regions[g].pieces.empty()) continue;
+                    if (dist2_to(q, pieces[i].a, pieces[i].b, nullptr) <= r2) least = std::min(least, regions[g].best.d);
+                }
+                return least;
+            };
+            Box rbox;
+            for (int g : live)
+                for (int i : regions[g].pieces) rbox.extend(pieces[i].a), rbox.extend(pieces[i].b);
+            const double side = std::max(std::min(rbox.maxx - rbox.minx, rbox.maxy - rbox.miny), tol);
+            // Best first: the cell of the highest bound is cut next (a cell's bound is its parent's
+            // until it is looked at), so the search ends when no cell can beat what was found.
+            struct Cell {
+                Box box;
+                double bound;
+                bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
+            };
+            std::priority_queue<Cell> queue;
+            for (double x = rbox.minx; x < rbox.maxx || x == rbox.minx; x += side)
+                for (double y = rbox.miny; y < rbox.maxy || y == rbox.miny; y += side)
+                    queue.push({{x, y, x + side, y + side}, INFINITY});
+            int steps = 0;
+            std::vector<XY> poly;
+            while (!queue.empty() && ++steps < 100000) {
+                const Cell cell = queue.top();
+                queue.pop();
+                if (live.size() == 1 && cell.bound <= regions[live.front()].best.d + tol) break;
+                if (convex) {
+                    poly = clip_box_to_convex(cell.box, ring);
+                    if (poly.size() < 3) continue;
+                } else {
+                    poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
+                            {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
+                }
+                XY c{0, 0};
+                for (XY p : poly) c = c + p;
+                c = (1.0 / static_cast<double>(poly.size())) * c;
+                double r = 0;
+                for (XY p : poly) r = std::max(r, std::sqrt(geo::norm2(p - c)));
+                Search::Near n;
+                const double sd = search.signed_d(c, &n);
+                int own = -1;
+                if (sd > 0 && (convex || in_polygon(ring, c))) {
+                    own = region_at(c);
+                    if (own >= 0 && sd > regions[own].best.d) regions[own].best = {sd, c, n.foot, n.site};
+                }
+                if (r <= tol) continue;
+                const double least = least_best_near(c, r, own);
+                const double b = search.bound(poly, c, n, sd, r);
+                if (b <= least + tol) continue;
+                const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
+                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b});
+                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b});
+                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b});
+                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b});
+            }
+        }
+        // 3. A depth at the reach: a nearer boundary may lie beyond it.
+        bool again = false;
+        for (int g : live)
+            if (regions[g].best.d >= reach - 2 * tol) again = true;
+        if (S.empty() && !live.empty()) again = true;  // inside everything within reach
+        if (S.empty() && live.empty() && lines.empty()) {
+            // Nothing within reach: the hull overlaps nothing, or lies wholly inside.
+            if (!obstacle.inside(ring.front())) return {};
+            again = true;
+        }
+        if (again && reach < 1e8) {
+            reach *= 4;
+            continue;
+        }
+
+        std::vector<ContactRegion> out;
+        for (int g : live) {
+            const Best& b = regions[g].best;
+            if (!(b.d >= 0)) continue;
+            ContactRegion cr;
+            cr.hull_point = b.point;
+            cr.coast_point = b.foot;
+            cr.depth_m = b.d / scale;
+            cr.polyline = b.site >= 0 ? S[b.site].polyline : no_polyline;
+            const XY v = b.foot - b.point;
+            const double len = std::sqrt(geo::norm2(v));
+            if (len > 0) {
+                cr.normal = (1 / len) * v;
+            } else if (b.site >= 0) {
+                const XY d = S[b.site].b - S[b.site].a;
+                const double l = std::sqrt(geo::norm2(d));
+                cr.normal = {d.y / l, -d.x / l};  // towards the water side
+            } else {
+                cr.normal = {1, 0};
+            }
+            out.push_back(cr);
+        }
+        // Lines without a land side crossing the hull: a region of depth 0 each (per polyline).
+        std::vector<std::uint32_t> seen;
+        for (const RawSegment& l : lines) {
+            if (std::find(seen.begin(), seen.end(), l.polyline) != seen.end()) continue;
+            XY at;
+            bool hit = in_polygon(ring, l.a) ? (at = l.a, true) : in_polygon(ring, l.b) ? (at = l.b, true) : false;
+            for (std::size_t e = 0; e < n_edges && !hit; ++e) {
+                std::vector<std::pair<double, double>> tu;
+                crossings(ring[e], ring[e + 1], l.a, l.b, tu);
+                if (!tu.empty()) at = ring[e] + tu.front().first * (ring[e + 1] - ring[e]), hit = true;
+            }
+            if (!hit || obstacle.inside(at)) continue;
+            seen.push_back(l.polyline);
+            const XY d = l.b - l.a;
+            const double len = std::sqrt(geo::norm2(d));
+            ContactRegion cr;
+            cr.hull_point = cr.coast_point = at;
+            cr.normal = {d.y / len, -d.x / len};
+            cr.polyline = l.polyline;
+            out.push_back(cr);
+        }
+        std::stable_sort(out.begin(), out.end(), [](const ContactRegion& a, const ContactRegion& b) { return a.depth_m > b.depth_m; });
+        return out;
+    }
+    return {};
+}
+
+}  // namespace
+
+std::vector<ContactRegion> contact_regions(const Detector& detector, const LocalPose& pose) {
+    const grid::CoastGrid& g = detector.grid();
+    Obstacle o;
+    o.collect = [&g](const Box& box, std::vector<RawSegment>& out) {
+        const geo::Box ext = g.extent();
+        const int i0 = std::max(0, g.col_of(std::max(box.minx, ext.minx))), i1 = std::min(g.nx() - 1, g.col_of(std::min(box.maxx, ext.maxx)));
+        const int j0 = std::max(0, g.row_of(std::max(box.miny, ext.miny))), j1 = std::min(g.ny() - 1, g.row_of(std::min(box.maxy, ext.maxy)));
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) {
+                const auto segs = g.segments(i, j);
+                for (std::size_t k = 0; k < segs.size(); ++k) {
+                    const grid::Segment& s = segs[k];
+                    if (std::max(s.a.x, s.b.x) < box.minx || std::min(s.a.x, s.b.x) > box.maxx ||
+                        std::max(s.a.y, s.b.y) < box.miny || std::min(s.a.y, s.b.y) > box.maxy)
+                        continue;
+                    out.push_back({s.a, s.b, g.polyline_of(s), g.segment_is_boundary(i, j, k)});
+                }
+            }
+    };
+    o.inside = [&g](XY p) { return g.winding(p) > 0; };
+    const std::vector<XY> outline = hull_outline(detector.hull(), pose);
+    std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose));
+    if (out.empty()) {
+        // A touch the search above cannot see as a region (a hull vertex exactly on the
+        // boundary): the check's contact point, depth 0.
+        const Contact c = detector.check(pose, {.max_clearance_m = 0, .want_penetration = false});
+        if (c.collision) {
+            ContactRegion cr;
+            cr.hull_point = c.hull_point;
+            cr.coast_point = c.coast_point;
+            cr.polyline = c.polyline;
+            const XY centre = pose.position;
+            const XY v = c.hull_point - centre;
+            const double len = std::sqrt(geo::norm2(v));
+            cr.normal = len > 0 ? (-1 / len) * v : XY{1, 0};
+            out.push_back(cr);
+        }
+    }
+    return out;
+}
+
+std::vector<ContactRegion> hull_contact_regions(const std::vector<XY>& a, const std::vector<XY>& b, double scale) {
+    std::vector<XY> ring = b;
+    if (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
+    if (ring.size() < 3) return {};
+    double area2 = 0;
+    for (std::size_t i = 0; i < ring.size(); ++i) area2 += geo::cross(ring[i], ring[(i + 1) % ring.size()]);
+    if (area2 < 0) std::reverse(ring.begin(), ring.end());
+    ring.push_back(ring.front());
+    Obstacle o;
+    o.collect = [&ring](const Box&, std::vector<RawSegment>& out) {
+        for (std::size_t i = 0; i + 1 < ring.size(); ++i) out.push_back({ring[i], ring[i + 1], 0, true});
+    };
+    o.inside = [&ring](XY p) { return in_polygon(ring, p); };
+    std::vector<ContactRegion> out = regions_of(a, o, scale);
+    for (ContactRegion& r : out) r.polyline = no_polyline;
+    return out;
+}
+
+}  // namespace shoal::check

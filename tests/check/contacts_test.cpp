@@ -1,0 +1,385 @@
+// Contact regions against GEOS on the same shapes: for every region, the hull point lies in a
+// component of GEOS's intersection of the hull with the land (the union of the rings, overlaps
+// and all), at the given distance from the land's boundary (GEOSDistance), the coast point on
+// that boundary, the normal from one to the other; nothing of the component is deeper (GEOS's
+// largest empty circle of the boundary within the component, and a grid of samples); one region
+// per component. On random jagged coasts with piers over the land, islets, hulls convex and
+// not, and hand-made shapes with hand-derived answers.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <shoal/check/contacts.hpp>
+#include <shoal/check/detector.hpp>
+#include <shoal/grid/coast_grid.hpp>
+#include <shoal/hull/hull.hpp>
+#include "detail/geos_context.hpp"
+#include "pathological_shapes.hpp"
+
+namespace shoal::check {
+namespace {
+
+using geo::XY;
+
+geo::LocalFrame any_frame() { return geo::LocalFrame::transverse_mercator({0, 0}); }
+
+coast::LocalPolyline ring_of(std::vector<XY> r) {
+    if (!(r.front() == r.back())) r.push_back(r.front());
+    return {std::move(r), true};
+}
+
+std::vector<XY> rect(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}; }
+
+/// The land (union of the rings) in GEOS, and the answers to check a region against.
+class Oracle {
+public:
+    explicit Oracle(const std::vector<coast::LocalPolyline>& rings) {
+        std::vector<GEOSGeometry*> parts;
+        for (const auto& r : rings) parts.push_back(geo::make_polygon(m_ctx, {r.points}).release());
+        geo::GeomPtr coll = geo::own(m_ctx, GEOSGeom_createCollection_r(m_ctx, GEOS_GEOMETRYCOLLECTION, parts.data(), static_cast<unsigned>(parts.size())), "collection");
+        m_land = geo::own(m_ctx, GEOSUnaryUnion_r(m_ctx, coll.get()), "union");
+        m_boundary = geo::own(m_ctx, GEOSBoundary_r(m_ctx, m_land.get()), "boundary");
+        for (const auto& r : rings) m_vertices.insert(m_vertices.end(), r.points.begin(), r.points.end());
+        // And where two rings' boundaries cross.
+        geo::GeomPtr noded = geo::own(m_ctx, GEOSNode_r(m_ctx, m_boundary.get()), "node");
+        geo::GeomPtr pts = geo::own(m_ctx, GEOSGeom_extractUniquePoints_r(m_ctx, noded.get()), "points");
+        for (int i = 0; i < GEOSGetNumGeometries_r(m_ctx, pts.get()); ++i) {
+            double x, y;
+            GEOSGeomGetX_r(m_ctx, GEOSGetGeometryN_r(m_ctx, pts.get(), i), &x), GEOSGeomGetY_r(m_ctx, GEOSGetGeometryN_r(m_ctx, pts.get(), i), &y);
+            m_vertices.push_back({x, y});
+        }
+    }
+    const geo::GeosContext& ctx() const { return m_ctx; }
+
+    /// Whether p is a vertex of the land's boundary (to a micrometre).
+    bool at_vertex(XY p) const {
+        for (const XY& v : m_vertices)
+            if (geo::distance(v, p) < 1e-6) return true;
+        return false;
+    }
+
+    double to_boundary(XY p) const {
+        geo::GeomPtr pt = geo::own(m_ctx, GEOSGeom_createPointFromXY_r(m_ctx, p.x, p.y), "point");
+        double d = -1;
+        GEOSDistance_r(m_ctx, m_boundary.get(), pt.get(), &d);
+        return d;
+    }
+    bool in_land(XY p) const {
+        geo::GeomPtr pt = geo::own(m_ctx, GEOSGeom_createPointFromXY_r(m_ctx, p.x, p.y), "point");
+        return GEOSIntersects_r(m_ctx, m_land.get(), pt.get()) == 1;
+    }
+
+    /// Checks `regions` of `hull` (open ring) against GEOS; returns the number of failures.
+    int verify(const std::vector<XY>& hull_open, const std::vector<ContactRegion>& regions, const std::string& what,
+               bool sample = true) const {
+        std::vector<XY> hull = hull_open;
+        hull.push_back(hull.front());
+        geo::GeomPtr hp = geo::make_polygon(m_ctx, {hull});
+        geo::GeomPtr inter = geo::own(m_ctx, GEOSIntersection_r(m_ctx, hp.get(), m_land.get()), "intersection");
+        std::vector<const GEOSGeometry*> comps;
+        for (int i = 0; i < GEOSGetNumGeometries_r(m_ctx, inter.get()); ++i) {
+            const GEOSGeometry* g = GEOSGetGeometryN_r(m_ctx, inter.get(), i);
+            double area = 0;
+            GEOSArea_r(m_ctx, g, &area);
+            if (GEOSGeomTypeId_r(m_ctx, g) == GEOS_POLYGON && area > 1e-6) comps.push_back(g);
+        }
+        int failures = 0;
+        auto fail = [&](const std::string& msg) {
+            if (++failures <= 5) ADD_FAILURE() << what << ": " << msg;
+        };
+        std::size_t deep_regions = 0;
+        for (const ContactRegion& r : regions) deep_regions += r.depth_m > 1e-6 ? 1 : 0;
+        if (deep_regions != comps.size() && regions.size() != comps.size())
+            fail("regions " + std::to_string(regions.size()) + ", GEOS components " + std::to_string(comps.size()));
+        std::vector<bool> matched(comps.size(), false);
+        for (const ContactRegion& r : regions) {
+            const double d = to_boundary(r.hull_point);
+            if (std::fabs(d - r.depth_m) > 1e-6) fail("depth " + std::to_string(r.depth_m) + " but GEOS says " + std::to_string(d));
+            if (r.depth_m > 1e-6 && !in_land(r.hull_point)) fail("the hull point is not in land");
+            if (to_boundary(r.coast_point) > 1e-6) fail("the coast point is not on the boundary");
+            const double nl = std::hypot(r.normal.x, r.normal.y);
+            if (std::fabs(nl - 1) > 1e-9) fail("normal not unit");
+            const XY moved = r.hull_point + r.depth_m * r.normal;
+            if (geo::distance(moved, r.coast_point) > 1e-6) fail("point + depth * normal is not the coast point");
+            if (r.depth_m > 1e-3) {
+                // Moved less is still in land; moved a little more is free.
+                if (!in_land(r.hull_point + (r.depth_m - 1e-3) * r.normal)) fail("moved less than depth is already free");
+                // ... unless the nearest point is the tip of a water inlet sharper than a right
+                // angle: past the tip lies land again, whatever the way out.
+                if (in_land(r.hull_point + (r.depth_m + 1e-3) * r.normal) && !at_vertex(r.coast_point)) {
+                    char buf[300];
+                    std::snprintf(buf, sizeof buf, "moved depth + 1 mm is not free: point (%.4f %.4f) coast (%.4f %.4f) depth %.4f normal (%.4f %.4f)",
+                                  r.hull_point.x, r.hull_point.y, r.coast_point.x, r.coast_point.y, r.depth_m, r.normal.x, r.normal.y);
+                    fail(buf);
+                }
+            }
+            // Its component, and nothing of it deeper.
+            geo::GeomPtr pt = geo::own(m_ctx, GEOSGeom_createPointFromXY_r(m_ctx, r.hull_point.x, r.hull_point.y), "pt");
+            int k = -1;
+            double best = INFINITY;
+            for (std::size_t c = 0; c < comps.size(); ++c) {
+                double dc = 0;
+                GEOSDistance_r(m_ctx, comps[c], pt.get(), &dc);
+                if (dc < best) best = dc, k = static_cast<int>(c);
+            }
+            if (k < 0 || best > 1e-6) {
+                if (r.depth_m > 1e-6) fail("the hull point is in no component of the intersection");
+                continue;
+            }
+            if (matched[k] && r.depth_m > 1e-6) fail("two regions in one component");
+            matched[k] = true;
+            // GEOS's largest empty circle of the boundary, centre within the component.
+            double env_w = 0;
+            {
+                double xmin, ymin, xmax, ymax;
+                GEOSGeom_getXMin_r(m_ctx, comps[k], &xmin), GEOSGeom_getXMax_r(m_ctx, comps[k], &xmax);
+                GEOSGeom_getYMin_r(m_ctx, comps[k], &ymin), GEOSGeom_getYMax_r(m_ctx, comps[k], &ymax);
+                env_w = std::max(xmax - xmin, ymax - ymin);
+                if (sample) {
+                    const int n = 40;
+                    for (int i = 0; i <= n; ++i)
+                        for (int j = 0; j <= n; ++j) {
+                            const XY q{xmin + (xmax - xmin) * i / n, ymin + (ymax - ymin) * j / n};
+                            geo::GeomPtr qp = geo::own(m_ctx, GEOSGeom_createPointFromXY_r(m_ctx, q.x, q.y), "q");
+                            if (GEOSIntersects_r(m_ctx, comps[k], qp.get()) != 1) continue;
+                            const double dq = to_boundary(q);
+                            if (dq > r.depth_m + 1e-6) {
+                                fail("a sample of the region is deeper: " + std::to_string(dq) + " > " + std::to_string(r.depth_m));
+                                i = n + 1;
+                                break;
+                            }
+                        }
+                }
+            }
+            // Independently: a branch and bound of GEOS's distance to the boundary over the
+            // component (d is 1-Lipschitz: a cell holds nothing deeper than d at its centre plus
+            // its half-diagonal), to 5 mm.
+            const double deepest = max_depth(comps[k], 5e-3);
+            if (deepest > r.depth_m + 1e-6) fail("GEOS finds a deeper point: " + std::to_string(deepest) + " > " + std::to_string(r.depth_m));
+            (void)env_w;
+        }
+        for (std::size_t c = 0; c < comps.size(); ++c)
+            if (!matched[c]) fail("a component of the intersection has no region");
+        return failures;
+    }
+
+    /// The greatest distance to the land's boundary of a point of polygon `comp`, to `tol`
+    /// (a lower bound, at most tol under the truth).
+    double max_depth(const GEOSGeometry* comp, double tol) const {
+        if (!m_prepared_boundary) m_prepared_boundary = geo::PreparedPtr(GEOSPrepare_r(m_ctx, m_boundary.get()), {m_ctx.get()});
+        const geo::PreparedPtr pc(GEOSPrepare_r(m_ctx, comp), {m_ctx.get()});
+        double xmin, ymin, xmax, ymax;
+        GEOSGeom_getXMin_r(m_ctx, comp, &xmin), GEOSGeom_getXMax_r(m_ctx, comp, &xmax);
+        GEOSGeom_getYMin_r(m_ctx, comp, &ymin), GEOSGeom_getYMax_r(m_ctx, comp, &ymax);
+        const double side = std::max(xmax - xmin, ymax - ymin);
+        struct Cell { double x, y, h; };  // centre, half side
+        std::vector<Cell> stack{{(xmin + xmax) / 2, (ymin + ymax) / 2, side / 2}};
+        double best = 0;
+        while (!stack.empty()) {
+            const Cell c = stack.back();
+            stack.pop_back();
+            geo::GeomPtr pt = geo::own(m_ctx, GEOSGeom_createPointFromXY_r(m_ctx, c.x, c.y), "pt");
+            double d = 0;
+            GEOSPreparedDistance_r(m_ctx, m_prepared_boundary.get(), pt.get(), &d);
+            double to_comp = 0;
+            GEOSPreparedDistance_r(m_ctx, pc.get(), pt.get(), &to_comp);
+            const double r = c.h * std::sqrt(2.0);
+            if (to_comp > r) continue;                      // the cell misses the component
+            if (to_comp == 0) best = std::max(best, d);     // the centre is in it
+            if (d + r <= best + tol) continue;
+            const double q = c.h / 2;
+            for (int i = -1; i <= 1; i += 2)
+                for (int j = -1; j <= 1; j += 2) stack.push_back({c.x + i * q, c.y + j * q, q});
+        }
+        return best;
+    }
+
+private:
+    mutable geo::PreparedPtr m_prepared_boundary;
+    std::vector<XY> m_vertices;
+    geo::GeosContext m_ctx;
+    geo::GeomPtr m_land, m_boundary;
+};
+
+struct Scene {
+    std::vector<coast::LocalPolyline> rings;
+    grid::CoastGrid grid;
+    Oracle oracle;
+    Scene(std::vector<coast::LocalPolyline> r, double cell)
+        : rings(std::move(r)), grid(grid::CoastGrid::build(rings, any_frame(), cell)), oracle(rings) {}
+};
+
+TEST(ContactRegions, BowIntoAStraightQuay) {
+    // Land south of y = 0; the ship heads south with its bow 2 m past the quay's edge.
+    Scene s({ring_of(rect(-1000, -1000, 1000, 0))}, 100);
+    const hull::Hull hull = hull::Hull::from_dimensions({100, 20, 8, 8});
+    const Detector det(s.grid, hull);
+    const LocalPose p = LocalPose::at({0, 98}, 180);
+    const auto regions = contact_regions(det, p);
+    ASSERT_EQ(regions.size(), 1u);
+    EXPECT_NEAR(regions[0].depth_m, 2, 1e-9);
+    EXPECT_NEAR(regions[0].normal.x, 0, 1e-12);
+    EXPECT_NEAR(regions[0].normal.y, 1, 1e-12);
+    EXPECT_NEAR(regions[0].hull_point.y, -2, 1e-9);
+    EXPECT_EQ(s.oracle.verify(hull_outline(hull, p), regions, "bow"), 0);
+}
+
+TEST(ContactRegions, SidePressedIntoAQuayAlongItsLength) {
+    // The starboard side parallel to the quay, 0.5 m into it: the depth is the same along the
+    // side; any point of it, one step of the search.
+    Scene s({ring_of(rect(-1000, -1000, 1000, 0))}, 100);
+    const hull::Hull hull = hull::Hull::from_dimensions({100, 20, 8, 8});
+    const Detector det(s.grid, hull);
+    const LocalPose p = LocalPose::at({0, 7.5}, 90);  // heading east: starboard is south, at y = -0.5
+    const auto regions = contact_regions(det, p);
+    ASSERT_EQ(regions.size(), 1u);
+    EXPECT_NEAR(regions[0].depth_m, 0.5, 1e-9);
+    EXPECT_NEAR(regions[0].normal.y, 1, 1e-12);
+    EXPECT_EQ(s.oracle.verify(hull_outline(hull, p), regions, "side"), 0);
+}
+
+TEST(ContactRegions, PierAcrossTheHullAndTheShoreAtOnce) {
+    // A pier 4 m wide crossing the hull amidships (no hull vertex on it), and the shore under the
+    // bow: two regions; the pier's depth is half its width, its normal across the pier.
+    Scene s({ring_of(rect(-2, -200, 2, 60)), ring_of(rect(-1000, 80, 1000, 1000))}, 50);
+    const hull::Hull hull = hull::Hull::from_dimensions({60, 40, 10, 10});
+    const Detector det(s.grid, hull);
+    const LocalPose p = LocalPose::at({0, 25}, 0);  // heading north: bow at y = 85, 5 m into the shore
+    const auto regions = contact_regions(det, p);
+    ASSERT_EQ(regions.size(), 2u);
+    EXPECT_NEAR(regions[0].depth_m, 5, 1e-6);
+    EXPECT_NEAR(regions[1].depth_m, 2, 1e-6);
+    EXPECT_NEAR(std::fabs(regions[1].normal.x), 1, 1e-9);
+    EXPECT_EQ(s.oracle.verify(hull_outline(hull, p), regions, "pier and shore"), 0);
+}
+
+TEST(ContactRegions, THeadPierUnderTheHullIsDeepestInside) {
+    // A stem 2 m wide with a head 30 x 12 m wholly under a wide hull: the outline only crosses
+    // the stem (1 m deep), the head's middle is 6 m deep.
+    std::vector<XY> t{{-1, -300}, {1, -300}, {1, 0}, {15, 0}, {15, 12}, {-15, 12}, {-15, 0}, {-1, 0}, {-1, -300}};
+    Scene s({ring_of(t)}, 50);
+    const hull::Hull hull = hull::Hull::from_dimensions({60, 40, 30, 30});
+    const Detector det(s.grid, hull);
+    const LocalPose p = LocalPose::at({0, 10}, 0);
+    const auto regions = contact_regions(det, p);
+    ASSERT_EQ(regions.size(), 1u);
+    // Deepest where the top edge and the stem's corners (+-1, 0) are equally far: y = 143/24.
+    EXPECT_NEAR(regions[0].depth_m, 145.0 / 24, 1e-6);
+    EXPECT_EQ(s.oracle.verify(hull_outline(hull, p), regions, "T head"), 0);
+}
+
+TEST(ContactRegions, DolphinWhollyUnderTheHull) {
+    std::vector<XY> octagon;
+    for (int k = 0; k < 8; ++k) octagon.push_back({50 + 1.5 * std::cos(k * std::numbers::pi / 4), 3 + 1.5 * std::sin(k * std::numbers::pi / 4)});
+    Scene s({ring_of(octagon)}, 50);
+    const hull::Hull hull = hull::Hull::from_dimensions({100, 20, 10, 10});
+    const Detector det(s.grid, hull);
+    const LocalPose p = LocalPose::at({0, 0}, 90);
+    ASSERT_TRUE(det.check(p).collision);
+    const auto regions = contact_regions(det, p);
+    ASSERT_EQ(regions.size(), 1u);
+    EXPECT_NEAR(regions[0].depth_m, 1.5 * std::cos(std::numbers::pi / 8), 1e-6);
+    EXPECT_EQ(s.oracle.verify(hull_outline(hull, p), regions, "dolphin"), 0);
+}
+
+TEST(ContactRegions, HullWhollyInsideAnIsland) {
+    Scene s({ring_of(rect(0, 0, 4000, 3000))}, 500);
+    const hull::Hull hull = hull::Hull::from_dimensions({100, 20, 8, 8});
+    const Detector det(s.grid, hull);
+    const LocalPose p = LocalPose::at({2000, 2900}, 0);  // bow 20 m from the north shore; stern 120 m
+    const auto regions = contact_regions(det, p);
+    ASSERT_EQ(regions.size(), 1u);
+    // The deepest hull point: the stern corners are 80 m + ... from the north shore and far from
+    // the others; the deepest is the stern's middle at y = 2880: 120 m.
+    EXPECT_NEAR(regions[0].depth_m, 120, 1e-6);
+    EXPECT_EQ(s.oracle.verify(hull_outline(hull, p), regions, "inside"), 0);
+}
+
+TEST(ContactRegions, PierRootOverTheLandIsNotItsBoundary) {
+    // A pier drawn over the land at its root (overlapping rings): the pier's sides inside the land
+    // and the shore inside the pier bound nothing; the bow in the root is as deep as the union says.
+    Scene s({ring_of(rect(-1000, -1000, 1000, 0)), ring_of(rect(-5, -50, 5, 100))}, 50);
+    const hull::Hull hull = hull::Hull::from_dimensions({100, 20, 8, 8});
+    const Detector det(s.grid, hull);
+    for (double y : {95.0, 80.0, 10.0, 3.0}) {
+        const LocalPose p = LocalPose::at({0.5, y + 100}, 180);  // heading south, bow at (0.5, y)
+        const auto regions = contact_regions(det, p);
+        EXPECT_EQ(s.oracle.verify(hull_outline(hull, p), regions, "pier root at " + std::to_string(y)), 0);
+    }
+}
+
+TEST(ContactRegions, RandomJaggedCoastsAgreeWithGeos) {
+    std::mt19937_64 rng(37);
+    std::uniform_real_distribution<double> unit(0, 1);
+    int poses = 0, contacts = 0, failures = 0;
+    for (int scene = 0; scene < 6; ++scene) {
+        std::vector<coast::LocalPolyline> rings;
+        // An island of jagged coast, piers over its edge, islets off it.
+        std::vector<XY> island = test::star_ring(60 + 40 * scene, 400, 25, 100 + scene);
+        rings.push_back(ring_of(island));
+        for (int k = 0; k < 6; ++k) {
+            const double a = unit(rng) * 2 * std::numbers::pi, w = 1 + 6 * unit(rng), len = 30 + 60 * unit(rng);
+            const XY c{std::cos(a), std::sin(a)}, nrm{-std::sin(a), std::cos(a)};
+            const XY base = 360 * c;
+            rings.push_back(ring_of({base - w * nrm, base + len * c - w * nrm, base + len * c + w * nrm, base + w * nrm}));
+        }
+        for (int k = 0; k < 4; ++k) {
+            const double a = unit(rng) * 2 * std::numbers::pi, r0 = 460 + 40 * unit(rng), rad = 2 + 8 * unit(rng);
+            std::vector<XY> islet;
+            for (int v = 0; v < 7; ++v) {
+                const double t = 2 * std::numbers::pi * v / 7;
+                islet.push_back({r0 * std::cos(a) + rad * (1 + 0.3 * unit(rng)) * std::cos(t), r0 * std::sin(a) + rad * (1 + 0.3 * unit(rng)) * std::sin(t)});
+            }
+            rings.push_back(ring_of(islet));
+        }
+        Scene s(rings, 40 + 30 * scene);
+        const hull::Hull convex = hull::Hull::from_dimensions({60 + 80 * unit(rng), 10 + 20 * unit(rng), 5 + 10 * unit(rng), 5 + 10 * unit(rng)});
+        std::vector<XY> wavy = test::wavy_hull(48);
+        for (XY& q : wavy) q = 0.5 * q;
+        const hull::Hull nonconvex = hull::Hull::from_contour(wavy);
+        for (const hull::Hull* hull : {&convex, &nonconvex}) {
+            const Detector det(s.grid, *hull);
+            for (int i = 0; i < 60; ++i) {
+                const double a = unit(rng) * 2 * std::numbers::pi, r = 330 + 190 * unit(rng);
+                const LocalPose p = LocalPose::at({r * std::cos(a), r * std::sin(a)}, 360 * unit(rng));
+                const Contact c = det.check(p, {.max_clearance_m = 0});
+                const auto regions = contact_regions(det, p);
+                ++poses;
+                if (c.collision) {
+                    ++contacts;
+                    EXPECT_FALSE(regions.empty()) << "scene " << scene << " pose " << i << ": a collision with no region";
+                } else {
+                    EXPECT_TRUE(regions.empty()) << "scene " << scene << " pose " << i << ": regions without a collision";
+                }
+                failures += s.oracle.verify(hull_outline(*hull, p), regions, "scene " + std::to_string(scene) + " pose " + std::to_string(i), i % 4 == 0);
+            }
+        }
+    }
+    std::printf("%d poses, %d in contact, %d failures\n", poses, contacts, failures);
+    EXPECT_GT(contacts, poses / 5);
+}
+
+TEST(HullContactRegions, RandomHullsAgreeWithGeos) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(0, 1);
+    int overlaps = 0;
+    for (int i = 0; i < 200; ++i) {
+        const hull::Hull a = hull::Hull::from_dimensions({40 + 100 * unit(rng), 10 + 30 * unit(rng), 5 + 10 * unit(rng), 5 + 10 * unit(rng)});
+        const hull::Hull b = hull::Hull::from_dimensions({40 + 100 * unit(rng), 10 + 30 * unit(rng), 5 + 10 * unit(rng), 5 + 10 * unit(rng)});
+        const auto pa = hull_outline(a, LocalPose::at({0, 0}, 360 * unit(rng)));
+        const auto pb = hull_outline(b, LocalPose::at({-80 + 160 * unit(rng), -80 + 160 * unit(rng)}, 360 * unit(rng)));
+        std::vector<XY> ring = pb;
+        ring.push_back(ring.front());
+        const Oracle oracle({ring_of(ring)});
+        const auto regions = hull_contact_regions(pa, pb);
+        overlaps += regions.empty() ? 0 : 1;
+        EXPECT_EQ(oracle.verify(pa, regions, "pair " + std::to_string(i), i % 5 == 0), 0);
+    }
+    EXPECT_GT(overlaps, 40);
+}
+
+}  // namespace
+}  // namespace shoal::check
