@@ -10,8 +10,13 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include <Eigen/LU>
+
+#include <shoal/check/contacts.hpp>
 #include <shoal/check/detector.hpp>
+#include <shoal/check/hull_contact.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/version.hpp>
@@ -70,6 +75,45 @@ shoal_detector* make_detector(const shoal_grid* grid, shoal::hull::Hull hull) {
 shoal_detector* make_detector_at(const shoal_grid* grid, shoal::hull::Hull hull, double depth_m) {
     if (std::isinf(depth_m)) throw std::invalid_argument("shoal_detector: the limiting depth must be finite (or NAN: land only)");
     return make_detector(grid, std::move(hull), std::isnan(depth_m) ? std::nullopt : std::optional<double>(depth_m));
+}
+
+void check_pose(const char* fn, double lat, double lon, double heading_deg) {
+    if (!(std::fabs(lat) <= 90) || !(std::fabs(lon) <= 180) || !std::isfinite(heading_deg))
+        throw std::invalid_argument(std::string(fn) + ": lat must be in [-90, 90], lon in [-180, 180] and the heading finite");
+}
+
+shoal::check::LocalPose place(const shoal_detector* d, double lat, double lon, double heading_deg) {
+    return shoal::check::place(d->grid->frame(), d->field, shoal::check::Pose{{lon, lat}, heading_deg});
+}
+
+/// A region in the ship frame of `pose` (x forward, y starboard, metres on the ground).
+void to_ship_frame(const shoal::check::LocalPose& pose, const shoal::geo::LocalFrame& frame, const shoal::check::ContactRegion& r,
+                   shoal_contact_point& out) {
+    const Eigen::Matrix2d inv = pose.ship_to_local.inverse();
+    const Eigen::Vector2d p = inv * Eigen::Vector2d(r.hull_point.x - pose.position.x, r.hull_point.y - pose.position.y);
+    Eigen::Vector2d n = inv * Eigen::Vector2d(r.normal.x, r.normal.y);
+    n.normalize();
+    out.x_m = p.x(), out.y_m = p.y();
+    out.nx = n.x(), out.ny = n.y();
+    out.depth_m = r.depth_m;
+    const shoal::geo::LonLat h = frame.inverse(r.hull_point), c = frame.inverse(r.coast_point);
+    out.lat = h.lat, out.lon = h.lon;
+    out.coast_lat = c.lat, out.coast_lon = c.lon;
+}
+
+int hazard_code(shoal::coast::HazardKind k) {
+    switch (k) {
+        case shoal::coast::HazardKind::land: return SHOAL_HAZARD_LAND;
+        case shoal::coast::HazardKind::shallow: return SHOAL_HAZARD_SHALLOW;
+        case shoal::coast::HazardKind::danger: return SHOAL_HAZARD_DANGER;
+        case shoal::coast::HazardKind::structure: return SHOAL_HAZARD_STRUCTURE;
+    }
+    return SHOAL_HAZARD_LAND;
+}
+
+void check_out(const char* fn, const void* out, int capacity) {
+    if (capacity < 0) throw std::invalid_argument(std::string(fn) + ": capacity must be >= 0");
+    if (capacity > 0 && !out) throw std::invalid_argument(std::string(fn) + ": the output array is NULL with a capacity of " + std::to_string(capacity));
 }
 
 }  // namespace
@@ -137,6 +181,77 @@ int shoal_check(const shoal_detector* detector, double lat, double lon, double h
             return 0;
         },
         1);
+}
+
+int shoal_contacts(const shoal_detector* detector, double lat, double lon, double heading_deg, shoal_contact_point* out, int capacity) {
+    return execute(
+        [&] {
+            if (!detector) throw std::invalid_argument("shoal_contacts: the detector is NULL");
+            check_pose("shoal_contacts", lat, lon, heading_deg);
+            check_out("shoal_contacts", out, capacity);
+            const shoal::check::LocalPose pose = place(detector, lat, lon, heading_deg);
+            const std::vector<shoal::check::ContactRegion> regions = shoal::check::contact_regions(detector->detector, pose);
+            const shoal::grid::CoastGrid& g = detector->detector.grid();
+            for (std::size_t i = 0; i < regions.size() && i < static_cast<std::size_t>(capacity); ++i) {
+                shoal_contact_point& o = out[i];
+                to_ship_frame(pose, g.frame(), regions[i], o);
+                o.hazard = SHOAL_HAZARD_LAND;
+                o.charted_depth_m = NAN;
+                o.name = "";
+                if (regions[i].polyline != shoal::grid::CoastGrid::no_polyline && regions[i].polyline < g.polyline_count()) {
+                    const shoal::coast::Hazard& h = g.hazard(regions[i].polyline);
+                    o.hazard = hazard_code(h.kind);
+                    if (h.kind == shoal::coast::HazardKind::shallow || h.kind == shoal::coast::HazardKind::danger) o.charted_depth_m = h.depth_m;
+                    o.name = h.name.c_str();
+                }
+            }
+            return static_cast<int>(std::min<std::size_t>(regions.size(), 1 << 30));
+        },
+        -1);
+}
+
+int shoal_ship_contacts(const shoal_detector* a, double lat_a, double lon_a, double heading_a_deg, const shoal_detector* b, double lat_b,
+                        double lon_b, double heading_b_deg, shoal_ship_contact* out, shoal_contact_point* points, int capacity) {
+    return execute(
+        [&] {
+            if (!a || !b || !out) throw std::invalid_argument("shoal_ship_contacts: a detector or the result is NULL");
+            check_pose("shoal_ship_contacts", lat_a, lon_a, heading_a_deg);
+            check_pose("shoal_ship_contacts", lat_b, lon_b, heading_b_deg);
+            check_out("shoal_ship_contacts", points, capacity);
+            // Both hulls in a's frame.
+            const shoal::check::LocalPose pa = place(a, lat_a, lon_a, heading_a_deg);
+            const shoal::check::LocalPose pb = place(a, lat_b, lon_b, heading_b_deg);
+            const shoal::check::HullContact hc = shoal::check::hull_contact(a->detector.hull(), pa, b->detector.hull(), pb);
+            const shoal::geo::LocalFrame& frame = a->grid->frame();
+            const double scale = shoal::check::local_scale(pa);
+            out->contact = hc.collision ? 1 : 0;
+            out->clearance_m = hc.collision ? 0.0 : hc.clearance_m / scale;
+            const shoal::geo::LonLat ca = frame.inverse(hc.on_a), cb = frame.inverse(hc.on_b);
+            out->a_lat = ca.lat, out->a_lon = ca.lon, out->b_lat = cb.lat, out->b_lon = cb.lon;
+            if (!hc.collision) return 0;
+            const std::vector<shoal::check::ContactRegion> regions = shoal::check::hull_contact_regions(
+                shoal::check::hull_outline(a->detector.hull(), pa), shoal::check::hull_outline(b->detector.hull(), pb), scale);
+            for (std::size_t i = 0; i < regions.size() && i < static_cast<std::size_t>(capacity); ++i) {
+                to_ship_frame(pa, frame, regions[i], points[i]);
+                points[i].hazard = SHOAL_HAZARD_SHIP;
+                points[i].charted_depth_m = NAN;
+                points[i].name = "";
+            }
+            // Touching outlines overlap in no area: the contact point, depth 0.
+            if (regions.empty() && capacity > 0) {
+                shoal::check::ContactRegion r;
+                r.hull_point = r.coast_point = hc.on_a;
+                const shoal::geo::XY v = pa.position - hc.on_a;
+                const double len = std::hypot(v.x, v.y);
+                r.normal = len > 0 ? shoal::geo::XY{v.x / len, v.y / len} : shoal::geo::XY{1, 0};
+                to_ship_frame(pa, frame, r, points[0]);
+                points[0].hazard = SHOAL_HAZARD_SHIP;
+                points[0].charted_depth_m = NAN;
+                points[0].name = "";
+            }
+            return regions.empty() ? 1 : static_cast<int>(regions.size());
+        },
+        -1);
 }
 
 }  // extern "C"

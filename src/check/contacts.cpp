@@ -274,14 +274,13 @@ public:
 
     /// Upper bound of d over polygon `v` around `c` (a point of it, with its nearest `n` and
     /// signed distance `sd`; `r` the farthest vertex from c).
-    double bound(const std::vector<XY>& v, XY c, const Near& n, double sd, double r) const {
+    double bound(const std::vector<XY>& v, const Near& n, int second_site, double sd, double r) const {
         double b = sd + r;
         if (n.site < 0) return b;
         double single = 0;
         for (XY p : v) single = std::max(single, dist_to_site(p, n.site));
         b = std::min(b, single);
-        const int j = second(c, n);
-        if (j >= 0) b = std::min(b, two_site_bound(v, n.site, j));
+        if (second_site >= 0) b = std::min(b, two_site_bound(v, n.site, second_site));
         return b;
     }
 
@@ -364,7 +363,8 @@ struct Region {
 namespace {
 
 /// The regions of hull `ring` (closed: last point = first) against `obstacle`; depths in local metres.
-std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Obstacle& obstacle, double scale) {
+std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Obstacle& obstacle, double scale,
+                                      double depth_hint) {
     std::vector<XY> ring = open_ring;
     if (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
     if (ring.size() < 3) return {};
@@ -375,8 +375,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
     ring.push_back(ring.front());
     const std::size_t n_edges = ring.size() - 1;
     bool convex = true;
-    for (std::size_t i = 0; i < n_edges && convex; ++i)
-        convex = geo::orient(ring[i], ring[i + 1], ring[(i + 2) % n_edges]) >= 0;
+    for (std::size_t i = 0; i < n_edges && convex; ++i) {  // (collinear points: rounding either way)
+        const XY a = ring[i], b = ring[i + 1], c = ring[(i + 2) % n_edges];
+        convex = geo::orient(a, b, c) >= -1e-9 * std::sqrt(geo::norm2(b - a) * geo::norm2(c - b));
+    }
 
     Box hbox;
     for (XY p : ring) hbox.extend(p);
@@ -387,7 +389,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
 
     // The reach: start with the depth of the deepest hull vertex in the hazards (a cheap
     // lower bound of the answer, usually the answer) plus margin; grow while a depth reaches it.
-    double reach = std::max(1.0, 0.25 * extent);
+    double reach = std::max({1.0, 1e-3 * extent, 1.25 * depth_hint});
     for (int attempt = 0; attempt < 64; ++attempt) {
         const Box box = hbox.grown(reach);
         std::vector<RawSegment> raw;
@@ -674,9 +676,21 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
                     own = region_at(c);
                     if (own >= 0 && sd > regions[own].best.d) regions[own].best = {sd, c, n.foot, n.site};
                 }
-                if (r <= tol) continue;
+                if (r <= tol || sd < -r) continue;  // small enough, or all water
+                if (!convex && !in_polygon(ring, c)) {  // outside the hull: does the cell reach it?
+                    double near2 = INFINITY;
+                    for (std::size_t e = 0; e < n_edges; ++e) near2 = std::min(near2, dist2_to(c, ring[e], ring[e + 1], nullptr));
+                    if (near2 > r * r) continue;
+                }
+                // One boundary piece nearest all over the cell (the next one farther by more
+                // than the cell's diameter): d is a distance to one segment there, with no
+                // maximum inside; the region's deepest point is on the outline (searched
+                // above) or at a maximum of d in another cell.
+                const int j = n.site >= 0 ? search.second(c, n) : -1;
+                if (j < 0 || search.dist_to_site(c, j) - n.d > 2 * r) continue;
                 const double least = least_best_near(c, r, own);
-                const double b = search.bound(poly, c, n, sd, r);
+                const double b = search.bound(poly, n, j, sd, r);
+
                 if (b <= least + tol) continue;
                 const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
                 queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b});
@@ -771,13 +785,20 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
             }
     };
     o.inside = [&g](XY p) { return g.winding(p) > 0; };
+    // No contact, no region: the pose check answers that in a microsecond.
+    const Contact c = detector.check(pose, {.max_clearance_m = 0, .want_penetration = false});
+    if (!c.collision) return {};
     const std::vector<XY> outline = hull_outline(detector.hull(), pose);
-    std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose));
+    // The reach: the deepest hull vertex's distance to the nearest segment (a lower bound of
+    // the answer, which is often at a vertex).
+    double hint = 0;
+    for (const XY& v : outline)
+        if (g.winding(v) > 0) hint = std::max(hint, std::sqrt(g.nearest_segment(v).dist2));
+    std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose), hint);
     if (out.empty()) {
         // A touch the search above cannot see as a region (a hull vertex exactly on the
         // boundary): the check's contact point, depth 0.
-        const Contact c = detector.check(pose, {.max_clearance_m = 0, .want_penetration = false});
-        if (c.collision) {
+        {
             ContactRegion cr;
             cr.hull_point = c.hull_point;
             cr.coast_point = c.coast_point;
@@ -805,7 +826,7 @@ std::vector<ContactRegion> hull_contact_regions(const std::vector<XY>& a, const 
         for (std::size_t i = 0; i + 1 < ring.size(); ++i) out.push_back({ring[i], ring[i + 1], 0, true});
     };
     o.inside = [&ring](XY p) { return in_polygon(ring, p); };
-    std::vector<ContactRegion> out = regions_of(a, o, scale);
+    std::vector<ContactRegion> out = regions_of(a, o, scale, 0);
     for (ContactRegion& r : out) r.polyline = no_polyline;
     return out;
 }

@@ -218,3 +218,165 @@ TEST(CApi, DetectorsAtTheirOwnLimitingDepthShareOneGrid) {
 }
 
 }  // namespace
+
+// ---- contacts (shoal_contacts, shoal_ship_contacts) ----
+
+namespace {
+
+/// A quay: land south of latitude 60.1 (a rectangle 0.02 x 0.04 degrees), imported once.
+const std::string& quay_grid() {
+    static const std::string path = [] {
+        // The edge along 60.1 N with a vertex every 0.0005 degrees: a parallel is curved in the
+        // local frame (a chord of 0.04 degrees would lie 0.17 m north of it at its middle).
+        const fs::path geojson = temp_dir() / "quay.geojson";
+        std::ostringstream ring;
+        ring << "[24.98,60.08],[25.02,60.08]";
+        for (int k = 80; k >= 0; --k) ring << ",[" << 24.98 + 0.0005 * k << ",60.1]";
+        ring << ",[24.98,60.08]";
+        std::ofstream(geojson) << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"Test Quay"},)"
+                               << R"("geometry":{"type":"Polygon","coordinates":[[)" << ring.str() << "]]}}]}";
+        const std::string g = (temp_dir() / "quay.shoalgrid").string();
+        EXPECT_EQ(run("'" SHOAL_BINARY "' import '" + geojson.string() + "' --cell 200 -o '" + g + "' > /dev/null"), 0);
+        return g;
+    }();
+    return path;
+}
+
+constexpr double metres_per_degree_lat = 111'412.0;  // at 60 N (WGS84: 111,412 m)
+
+}  // namespace
+
+TEST(CApiContacts, BowIntoAStraightQuayFromTheNorth) {
+    shoal_grid* grid = shoal_grid_load(quay_grid().c_str());
+    ASSERT_NE(grid, nullptr) << shoal_last_error();
+    shoal_detector* d = shoal_detector_new(grid, 100, 20, 8, 8);
+    ASSERT_NE(d, nullptr);
+    // Heading south, the bow (100 m ahead of the reference point) 2 m past the quay's edge.
+    const double lat = 60.1 + (100 - 2) / metres_per_degree_lat;
+    std::array<shoal_contact_point, 4> pts{};
+    ASSERT_EQ(shoal_contacts(d, lat, 25.0, 180.0, pts.data(), 4), 1) << (shoal_last_error() ? shoal_last_error() : "");
+    const shoal_contact_point& p = pts[0];
+    EXPECT_NEAR(p.depth_m, 2.0, 0.02);
+    EXPECT_NEAR(p.x_m, 100, 0.05);   // the bow
+    EXPECT_NEAR(p.y_m, 0, 0.05);
+    EXPECT_NEAR(p.nx, -1, 1e-3);     // astern frees it
+    EXPECT_NEAR(p.ny, 0, 1e-3);
+    EXPECT_NEAR(p.coast_lat, 60.1, 1e-7);
+    EXPECT_NEAR(p.lat, 60.1 - 2 / metres_per_degree_lat, 1e-6);
+    EXPECT_EQ(p.hazard, SHOAL_HAZARD_LAND);
+    EXPECT_TRUE(std::isnan(p.charted_depth_m));
+    ASSERT_NE(p.name, nullptr);
+    // Count only: capacity 0 and no array.
+    EXPECT_EQ(shoal_contacts(d, lat, 25.0, 180.0, nullptr, 0), 1);
+    // Clear of the quay: none.
+    EXPECT_EQ(shoal_contacts(d, lat + 10 / metres_per_degree_lat, 25.0, 180.0, pts.data(), 4), 0);
+    shoal_detector_free(d);
+    shoal_grid_free(grid);
+}
+
+TEST(CApiContacts, EveryCheckedContactHasARegionAndNoOtherPoseHasOne) {
+    shoal_grid* grid = shoal_grid_load(solent_grid().c_str());
+    ASSERT_NE(grid, nullptr);
+    shoal_detector* d = shoal_detector_new(grid, 150, 35, 14, 15);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> lat(50.70, 50.85), lon(-1.45, -1.05), hdg(0, 360);
+    int contacts = 0;
+    std::array<shoal_contact_point, 8> pts{};
+    for (int i = 0; i < 1500; ++i) {
+        const double la = lat(rng), lo = lon(rng), h = hdg(rng);
+        shoal_contact c{};
+        ASSERT_EQ(shoal_check(d, la, lo, h, 1.0, &c), 0);
+        const int n = shoal_contacts(d, la, lo, h, pts.data(), 8);
+        ASSERT_GE(n, 0) << shoal_last_error();
+        EXPECT_EQ(n > 0, c.contact == 1) << la << " " << lo << " " << h;
+        for (int k = 0; k < std::min(n, 8); ++k) {
+            EXPECT_GE(pts[k].depth_m, 0);
+            EXPECT_NEAR(std::hypot(pts[k].nx, pts[k].ny), 1, 1e-9);
+            if (k > 0) {
+                EXPECT_GE(pts[k - 1].depth_m, pts[k].depth_m);  // deepest first
+            }
+        }
+        contacts += n > 0;
+    }
+    EXPECT_GT(contacts, 100);
+    shoal_detector_free(d);
+    shoal_grid_free(grid);
+}
+
+TEST(CApiContacts, AHarbourStructureIsNamedAndKindOfStructure) {
+    // The allision track of the Tacoma chart: its fixes walked until the hull touches a pier.
+    const std::string g = (temp_dir() / "tacoma.shoalgrid").string();
+    ASSERT_EQ(run("'" SHOAL_BINARY "' import '" SHOAL_TEST_DATA "coast/US5WA22M_tacoma_cut.000' -o '" + g + "' > /dev/null"), 0);
+    shoal_grid* grid = shoal_grid_load(g.c_str());
+    ASSERT_NE(grid, nullptr);
+    shoal_detector* d = shoal_detector_new(grid, 48, 12, 6, 6);
+    std::ifstream in(SHOAL_TEST_DATA "tracks/tacoma_pier_collision.csv");
+    std::string line;
+    std::getline(in, line);
+    bool structure = false;
+    std::array<shoal_contact_point, 8> pts{};
+    while (std::getline(in, line) && !structure) {
+        std::stringstream ss(line);
+        std::vector<std::string> f;
+        for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+        const double la = std::stod(f[2]), lo = std::stod(f[3]), h = std::stod(f[6]);
+        const int n = shoal_contacts(d, la, lo, h, pts.data(), 8);
+        ASSERT_GE(n, 0);
+        for (int k = 0; k < std::min(n, 8); ++k)
+            if (pts[k].hazard == SHOAL_HAZARD_STRUCTURE) {
+                structure = true;
+                EXPECT_TRUE(std::isnan(pts[k].charted_depth_m));
+                ASSERT_NE(pts[k].name, nullptr);
+            }
+    }
+    EXPECT_TRUE(structure) << "the allision track never touches a structure";
+    shoal_detector_free(d);
+    shoal_grid_free(grid);
+}
+
+TEST(CApiContacts, TwoShipsSideBySideAndBowIntoSide) {
+    shoal_grid* grid = shoal_grid_load(quay_grid().c_str());
+    shoal_detector* a = shoal_detector_new(grid, 60, 20, 5, 5);
+    shoal_detector* b = shoal_detector_new(grid, 60, 20, 5, 5);
+    const double lat = 60.2, lon = 25.0;
+    const double m_per_deg_lon = 55'463.0;  // at 60.2 N (WGS84: N cos(lat) pi / 180)
+    shoal_ship_contact sc{};
+    std::array<shoal_contact_point, 4> pts{};
+    // Both heading north, 30 m apart east-west: 20 m between their sides.
+    ASSERT_EQ(shoal_ship_contacts(a, lat, lon, 0, b, lat, lon + 30 / m_per_deg_lon, 0, &sc, pts.data(), 4), 0);
+    EXPECT_EQ(sc.contact, 0);
+    EXPECT_NEAR(sc.clearance_m, 20, 0.2);
+    // 9 m apart: a's starboard side 1 m inside b's port side; a's point there is freed by 1 m to port.
+    const int n = shoal_ship_contacts(a, lat, lon, 0, b, lat, lon + 9 / m_per_deg_lon, 0, &sc, pts.data(), 4);
+    ASSERT_EQ(n, 1) << (shoal_last_error() ? shoal_last_error() : "");
+    EXPECT_EQ(sc.contact, 1);
+    EXPECT_EQ(sc.clearance_m, 0);
+    EXPECT_EQ(pts[0].hazard, SHOAL_HAZARD_SHIP);
+    EXPECT_NEAR(pts[0].y_m, 5, 0.02);      // on a's starboard side
+    EXPECT_NEAR(pts[0].depth_m, 1, 0.02);
+    EXPECT_NEAR(pts[0].nx, 0, 1e-3);
+    EXPECT_NEAR(pts[0].ny, -1, 1e-3);      // to port
+    shoal_detector_free(a);
+    shoal_detector_free(b);
+    shoal_grid_free(grid);
+}
+
+TEST(CApiContacts, BadArgumentsAreMinusOneWithAMessage) {
+    shoal_grid* grid = shoal_grid_load(quay_grid().c_str());
+    shoal_detector* d = shoal_detector_new(grid, 100, 20, 8, 8);
+    shoal_contact_point p{};
+    EXPECT_EQ(shoal_contacts(nullptr, 60, 25, 0, &p, 1), -1);
+    EXPECT_NE(shoal_last_error(), nullptr);
+    EXPECT_EQ(shoal_contacts(d, 91, 25, 0, &p, 1), -1);
+    EXPECT_EQ(shoal_contacts(d, 60, 25, NAN, &p, 1), -1);
+    EXPECT_EQ(shoal_contacts(d, 60, 25, 0, &p, -1), -1);
+    EXPECT_EQ(shoal_contacts(d, 60, 25, 0, nullptr, 3), -1);
+    EXPECT_NE(std::string(shoal_last_error()).find("NULL"), std::string::npos);
+    shoal_ship_contact sc{};
+    EXPECT_EQ(shoal_ship_contacts(d, 60, 25, 0, nullptr, 60, 25, 0, &sc, nullptr, 0), -1);
+    EXPECT_EQ(shoal_ship_contacts(d, 60, 25, 0, d, 60, 25, 0, nullptr, nullptr, 0), -1);
+    EXPECT_EQ(shoal_contacts(d, 60.2, 25, 0, &p, 1), 0);
+    EXPECT_EQ(shoal_last_error(), nullptr);
+    shoal_detector_free(d);
+    shoal_grid_free(grid);
+}
