@@ -3,6 +3,8 @@
 # `cmake --install BUILD --prefix P`, then the per-frame examples of examples/simulator built
 # against P: the C++ one with find_package(Shoal CONFIG) and the C one both with CMake and with
 # `pkg-config --cflags --libs shoal_c`; the C program's answers must equal `shoal probe`'s.
+# The C programs run with no LD_LIBRARY_PATH (shoal_c.pc's rpath, CMake's own), and neither
+# they nor libshoal_c.so.1 may need GDAL (the C API's lean runtime: PROJ and GEOS only).
 #   scripts/test-install.sh BUILD_DIR [WORK_DIR]
 set -euo pipefail
 src="$(cd "$(dirname "$0")/.." && pwd)"
@@ -27,7 +29,21 @@ cmake --build "$work/sim" > "$work/sim-build.log"
 # The C program with pkg-config only.
 export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
 cc -std=c11 -Wall -Wextra -Werror "$src/examples/simulator/frame_check.c" $(pkg-config --cflags --libs shoal_c) -lm -o "$work/frame_check_pc"
-export LD_LIBRARY_PATH="$prefix/lib"
+# No GDAL in the C API's runtime, and libshoal_c found in the prefix without LD_LIBRARY_PATH.
+unset LD_LIBRARY_PATH
+if readelf -d "$prefix/lib/libshoal_c.so.1" | grep NEEDED | grep -qi gdal; then
+  echo "test-install: libshoal_c.so.1 needs GDAL:"; readelf -d "$prefix/lib/libshoal_c.so.1" | grep NEEDED; exit 1
+fi
+for exe in "$work/frame_check_pc" "$work/sim/frame_check_c"; do
+  ldd "$exe" > "$work/ldd.txt"
+  if grep -qi 'libgdal' "$work/ldd.txt"; then echo "test-install: $exe loads GDAL:"; grep -i gdal "$work/ldd.txt"; exit 1; fi
+  if grep -q 'not found' "$work/ldd.txt"; then echo "test-install: $exe cannot start without LD_LIBRARY_PATH:"; grep 'not found' "$work/ldd.txt"; exit 1; fi
+  loaded="$(awk '$1 == "libshoal_c.so.1" {print $3}' "$work/ldd.txt")"
+  if [ -z "$loaded" ] || [ "$(realpath "$loaded")" != "$(realpath "$prefix/lib/libshoal_c.so.1")" ]; then
+    echo "test-install: $exe does not load the installed libshoal_c.so.1:"; grep shoal_c "$work/ldd.txt"; exit 1
+  fi
+  echo "test-install: $(basename "$exe"): $(grep -c '=>' "$work/ldd.txt") shared libraries, no GDAL"
+done
 "$prefix/bin/shoal" import "$src/examples/data/gof_helsinki_land.geojson" -o "$work/helsinki.shoalgrid" > /dev/null
 # Poses: the example's, and a few hundred around Helsinki (some outside the chart).
 {

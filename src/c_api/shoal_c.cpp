@@ -4,8 +4,12 @@
 
 #include <shoal/shoal.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <exception>
+#include <filesystem>
 #include <memory>
 #include <new>
 #include <optional>
@@ -19,6 +23,7 @@
 #include <shoal/check/hull_contact.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
+#include <shoal/util/error.hpp>
 #include <shoal/version.hpp>
 
 struct shoal_grid {
@@ -55,6 +60,25 @@ R execute(F&& f, R error_value) noexcept {
         fail("unknown error");
     }
     return error_value;
+}
+
+/// A ship file as Hull::load reads it, from a plain file: Hull::load reads through GDAL's virtual
+/// file layer (gzip, zip, standard input, /vsi paths), which libshoal_c does without (no GDAL
+/// at run time). The same messages for a missing file, a folder and one too large.
+shoal::hull::Hull load_ship_file(const std::string& path) {
+    using shoal::hull::Hull;
+    const std::string opening = "Cannot open ship file '" + path + "': ";
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw shoal::InputError{opening + "it is a folder"};
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!f) throw shoal::InputError{opening + (errno == ENOENT ? "no such file" : std::strerror(errno))};
+    std::string text(Hull::max_file_bytes + 1, '\0');
+    text.resize(std::fread(text.data(), 1, text.size(), f.get()));
+    if (std::ferror(f.get())) throw shoal::InputError{path + ": cannot read (" + std::strerror(errno) + ")"};
+    static_assert(Hull::max_file_bytes == std::size_t{1} << 20, "the message below says 1 MiB");
+    if (text.size() > Hull::max_file_bytes)
+        throw shoal::InputError{path + ": larger than 1 MiB, the most a ship file may be; not read further"};
+    return Hull::parse(text, path);
 }
 
 /// At limiting depth `limit` (none: land only).
@@ -144,7 +168,7 @@ shoal_detector* shoal_detector_from_ship_file(const shoal_grid* grid, const char
     return execute(
         [&] {
             if (!ship_json) throw std::invalid_argument("shoal_detector_from_ship_file: the path is NULL");
-            return make_detector(grid, shoal::hull::Hull::load(ship_json));
+            return make_detector(grid, load_ship_file(ship_json));
         },
         static_cast<shoal_detector*>(nullptr));
 }
@@ -158,7 +182,7 @@ shoal_detector* shoal_detector_from_ship_file_at_depth(const shoal_grid* grid, c
     return execute(
         [&] {
             if (!ship_json) throw std::invalid_argument("shoal_detector_from_ship_file_at_depth: the path is NULL");
-            return make_detector_at(grid, shoal::hull::Hull::load(ship_json), limiting_depth_m);
+            return make_detector_at(grid, load_ship_file(ship_json), limiting_depth_m);
         },
         static_cast<shoal_detector*>(nullptr));
 }

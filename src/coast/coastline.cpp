@@ -481,35 +481,3 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
 }
 
 }  // namespace shoal::coast
-
-namespace shoal::coast {
-
-std::vector<LocalPolyline> project(const Coastline& coast, const geo::LocalFrame& frame) {
-    std::vector<LocalPolyline> out;
-    out.reserve(coast.polylines.size());
-    std::vector<double> xs, ys;
-    for (const Polyline& pl : coast.polylines) {
-        xs.resize(pl.points.size());
-        ys.resize(pl.points.size());
-        for (std::size_t i = 0; i < pl.points.size(); ++i) { xs[i] = pl.points[i].lon; ys[i] = pl.points[i].lat; }
-        std::size_t bad = 0;
-        if (!frame.forward(xs, ys, &bad)) {
-            const LayerStats& l = coast.layers.at(pl.layer);
-            char buf[96];
-            std::snprintf(buf, sizeof buf, " (lon %.6f, lat %.6f)", pl.points[bad].lon, pl.points[bad].lat);
-            throw InputError("In '" + l.file + "' layer '" + l.layer + "' feature " + std::to_string(pl.fid) +
-                             ": a vertex" + buf + " cannot be projected into the local frame (" + frame.description() +
-                             "); choose a CRS that covers the data with BuildRequest::crs");
-        }
-        LocalPolyline lp;
-        lp.land_left = pl.land_left;
-        lp.hazard = pl.hazard;
-        lp.points.resize(xs.size());
-        for (std::size_t i = 0; i < xs.size(); ++i) lp.points[i] = {xs[i], ys[i]};
-        lp.points.erase(std::unique(lp.points.begin(), lp.points.end()), lp.points.end());
-        out.push_back(std::move(lp));
-    }
-    return out;
-}
-
-}  // namespace shoal::coast

@@ -7,8 +7,6 @@
 #include <cstdio>
 #include <numbers>
 #include <thread>
-#include <cpl_error.h>
-#include <ogr_spatialref.h>
 #include <proj.h>
 
 #include <shoal/util/error.hpp>
@@ -95,15 +93,71 @@ std::string own_tmerc_pipeline(const std::string& definition) {
 
 std::atomic<std::uint64_t> next_frame_serial{1};
 
+/// The user's CRS as PROJ reads it (what GDAL's SetFromUserInput hands PROJ for the same text:
+/// "EPSG:32633", a URN, WKT, PROJJSON, a name, or a PROJ string, made a CRS with +type=crs as
+/// GDAL does). PROJ only, no GDAL: the grid-loading path (libshoal_c) needs no GDAL at run time.
+struct UserCrs {
+    std::string wkt;   ///< WKT2_2019, for the operation from WGS84
+    std::string name;  ///< the CRS's name, or ""
+};
+
+/// The horizontal CRS of `crs` (a bound CRS's source, a compound CRS's first component) is
+/// projected. Takes ownership of nothing.
+bool is_projected(PJ_CONTEXT* ctx, const PJ* crs) {
+    switch (proj_get_type(crs)) {
+    case PJ_TYPE_PROJECTED_CRS: return true;
+    case PJ_TYPE_BOUND_CRS: {
+        PJ* base = proj_get_source_crs(ctx, crs);
+        const bool p = base && is_projected(ctx, base);
+        if (base) proj_destroy(base);
+        return p;
+    }
+    case PJ_TYPE_COMPOUND_CRS: {
+        PJ* horizontal = proj_crs_get_sub_crs(ctx, crs, 0);
+        const bool p = horizontal && is_projected(ctx, horizontal);
+        if (horizontal) proj_destroy(horizontal);
+        return p;
+    }
+    default: return false;
+    }
+}
+
+/// Throws UsageError naming `text` when PROJ cannot read it as a CRS, or it is not projected.
+UserCrs read_user_crs(const std::string& text) {
+    std::string input = text;
+    const auto first = input.find_first_not_of(" \t\n");
+    if (first != std::string::npos && input[first] == '+' && input.find("+type=crs") == std::string::npos) input += " +type=crs";
+    PJ_CONTEXT* ctx = proj_context_create();
+    proj_log_level(ctx, PJ_LOG_NONE);  // PROJ's complaint about a bad definition: the error below says it
+    if (input.find("+init=") != std::string::npos) proj_context_use_proj4_init_rules(ctx, 1);  // "+init=epsg:32633", as GDAL reads it
+    PJ* crs = input.empty() ? nullptr : proj_create(ctx, input.c_str());
+    UserCrs out;
+    const bool is_crs = crs && proj_is_crs(crs);
+    const bool projected = is_crs && is_projected(ctx, crs);
+    if (projected) {
+        const char* const options[] = {"MULTILINE=NO", nullptr};
+        const char* wkt = proj_as_wkt(ctx, crs, PJ_WKT2_2019, options);
+        out.wkt = wkt ? wkt : "";
+        const char* name = proj_get_name(crs);
+        out.name = name ? name : "";
+    }
+    if (crs) proj_destroy(crs);
+    proj_context_destroy(ctx);
+    if (!is_crs) throw UsageError("CRS '" + text + "' is not one GDAL understands");
+    if (!projected) throw UsageError("CRS '" + text + "' is not a projected CRS in metres; give a projected one (e.g. a UTM zone)");
+    if (out.wkt.empty()) throw UsageError("CRS '" + text + "' cannot be written as WKT");
+    return out;
+}
+
 }  // namespace
 
-/// GDAL reads the user's CRS; the transformations themselves run in PROJ directly. A PROJ
+/// PROJ reads the user's CRS and runs the transformations (no GDAL). A PROJ
 /// object must not be used by two threads at once, so the thread that made the frame uses the
 /// frame's own, and any other thread a copy of its own, made on its first use there and kept in
 /// a small per-thread cache keyed by the frame's serial number (never reused). A frame (and the
 /// grid or detector holding it) may then be used by several threads at once, with no lock.
 struct LocalFrame::Impl {
-    OGRSpatialReference local;  ///< empty for shoal's own transverse Mercator (pipeline set)
+    std::string local_name;  ///< the user CRS's name; empty for shoal's own transverse Mercator (pipeline set)
     std::string local_wkt;
     std::string pipeline;  ///< own_tmerc_pipeline() of the definition, or ""
     Projection own;
@@ -150,19 +204,9 @@ LocalFrame::LocalFrame(std::string definition, std::string description, bool own
         if (!m_impl->own.make(m_impl->pipeline, "")) throw UsageError("PROJ cannot make the transverse Mercator '" + m_definition + "'");
         return;
     }
-    // GDAL would print PROJ's complaint about a bad definition on stderr; the error below says it.
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    const OGRErr parsed = m_impl->local.SetFromUserInput(m_definition.c_str());
-    CPLPopErrorHandler();
-    if (parsed != OGRERR_NONE) throw UsageError("CRS '" + m_definition + "' is not one GDAL understands");
-    if (!m_impl->local.IsProjected())
-        throw UsageError("CRS '" + m_definition + "' is not a projected CRS in metres; give a projected one (e.g. a UTM zone)");
-    m_impl->local.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    char* wkt = nullptr;
-    const char* options[] = {"FORMAT=WKT2_2019", nullptr};
-    m_impl->local.exportToWkt(&wkt, options);
-    m_impl->local_wkt = wkt ? wkt : "";
-    CPLFree(wkt);
+    UserCrs crs = read_user_crs(m_definition);
+    m_impl->local_wkt = std::move(crs.wkt);
+    m_impl->local_name = std::move(crs.name);
     if (!m_impl->own.make("", m_impl->local_wkt)) throw UsageError("no transformation between WGS84 and CRS '" + m_definition + "'");
 }
 
@@ -172,8 +216,8 @@ LocalFrame LocalFrame::transverse_mercator(LonLat centre) {
 
 LocalFrame LocalFrame::from_user_crs(const std::string& crs) {
     LocalFrame f(crs, "", false);
-    const char* name = f.m_impl->local.GetName();
-    f.m_description = std::string(name ? name : "user CRS") + " (" + crs + ")";
+    const std::string& name = f.m_impl->local_name;
+    f.m_description = (name.empty() ? std::string("user CRS") : name) + " (" + crs + ")";
     return f;
 }
 

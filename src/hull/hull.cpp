@@ -18,7 +18,6 @@
 #include <nlohmann/json.hpp>
 
 #include <shoal/util/error.hpp>
-#include "detail/input_file.hpp"
 #include "detail/json_message.hpp"
 
 namespace shoal::hull {
@@ -441,18 +440,6 @@ Hull Hull::from_dims_string(const std::string& text) {
 }
 
 bool Hull::plausible(const Dimensions& dims) noexcept { return dims.a + dims.b <= max_length_m && dims.c + dims.d <= max_beam_m; }
-
-Hull Hull::load(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw InputError{"Cannot open ship file '" + path + "': it is a folder"};
-    std::string text;
-    try {
-        text = detail::read_input(path, max_file_bytes, "a ship file");
-    } catch (const detail::InputOpenError& e) {
-        throw InputError{"Cannot open ship file '" + path + "': " + (e.reason == "is a folder" ? "it is a folder" : e.reason)};
-    }
-    return parse(text, path);
-}
 
 Hull Hull::parse(std::string_view text, const std::string& name) {
     const ShipFileReader reader{name, text};
