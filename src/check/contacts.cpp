@@ -127,6 +127,37 @@ bool in_polygon(const std::vector<XY>& ring, XY p) noexcept {
     return in;
 }
 
+/// Joins the pieces of one straight segment that the grid's cells cut apart (they overlap by
+/// the clip slack): one site each, so that a point near a cell border has one nearest site.
+void merge_collinear(std::vector<Site>& sites, double tol) {
+    if (sites.size() > 512) return;
+    for (bool merged = true; merged;) {
+        merged = false;
+        for (std::size_t i = 0; i < sites.size(); ++i)
+            for (std::size_t j = i + 1; j < sites.size(); ++j) {
+                Site& a = sites[i];
+                const Site& b = sites[j];
+                if (a.polyline != b.polyline) continue;
+                const XY d = a.b - a.a;
+                const double len = std::sqrt(geo::norm2(d));
+                if (!(len > 0)) continue;
+                const XY u = (1 / len) * d;
+                // b on a's line, in the same direction, and touching or overlapping a.
+                if (std::fabs(geo::cross(u, b.a - a.a)) > tol || std::fabs(geo::cross(u, b.b - a.a)) > tol) continue;
+                const double t0 = geo::dot(b.a - a.a, u), t1 = geo::dot(b.b - a.a, u);
+                if (!(t1 > t0)) continue;
+                if (t0 > len + tol || t1 < -tol) continue;
+                const double lo = std::min(0.0, t0), hi = std::max(len, t1);
+                const XY origin = a.a;
+                a.a = lo < 0 ? b.a : origin;
+                a.b = hi > len ? b.b : a.b;
+                sites.erase(sites.begin() + static_cast<std::ptrdiff_t>(j));
+                merged = true;
+                --j;
+            }
+    }
+}
+
 struct UnionFind {
     std::vector<int> parent;
     explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
@@ -429,6 +460,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
                 }
             }
         }
+        merge_collinear(sites, tol);
         Search search(ring, convex, std::move(sites), obstacle, tol);
         const std::vector<Site>& S = search.sites();
 
@@ -639,7 +671,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
             Box rbox;
             for (int g : live)
                 for (int i : regions[g].pieces) rbox.extend(pieces[i].a), rbox.extend(pieces[i].b);
-            const double side = std::max(std::min(rbox.maxx - rbox.minx, rbox.maxy - rbox.miny), tol);
+            const double side = std::max(std::max(rbox.maxx - rbox.minx, rbox.maxy - rbox.miny), tol);
             // Best first: the cell of the highest bound is cut next (a cell's bound is its parent's
             // until it is looked at), so the search ends when no cell can beat what was found.
             struct Cell {
@@ -657,12 +689,16 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
                 const Cell cell = queue.top();
                 queue.pop();
                 if (live.size() == 1 && cell.bound <= regions[live.front()].best.d + tol) break;
-                if (convex) {
-                    poly = clip_box_to_convex(cell.box, ring);
+                if (cell.box.minx > hbox.maxx || cell.box.maxx < hbox.minx || cell.box.miny > hbox.maxy || cell.box.maxy < hbox.miny)
+                    continue;
+                poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
+                        {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
+                if (convex) {  // cut to the hull (a box wholly in it needs no cutting)
+                    bool inside = true;
+                    for (XY q : poly)
+                        for (std::size_t e = 0; e < n_edges && inside; ++e) inside = geo::orient(ring[e], ring[e + 1], q) >= 0;
+                    if (!inside) poly = clip_box_to_convex(cell.box, ring);
                     if (poly.size() < 3) continue;
-                } else {
-                    poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
-                            {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
                 }
                 XY c{0, 0};
                 for (XY p : poly) c = c + p;
@@ -672,12 +708,13 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
                 Search::Near n;
                 const double sd = search.signed_d(c, &n);
                 int own = -1;
-                if (sd > 0 && (convex || in_polygon(ring, c))) {
+                const bool in_hull = convex || in_polygon(ring, c);
+                if (sd > 0 && in_hull) {
                     own = region_at(c);
                     if (own >= 0 && sd > regions[own].best.d) regions[own].best = {sd, c, n.foot, n.site};
                 }
                 if (r <= tol || sd < -r) continue;  // small enough, or all water
-                if (!convex && !in_polygon(ring, c)) {  // outside the hull: does the cell reach it?
+                if (!in_hull) {  // outside the hull: does the cell reach it?
                     double near2 = INFINITY;
                     for (std::size_t e = 0; e < n_edges; ++e) near2 = std::min(near2, dist2_to(c, ring[e], ring[e + 1], nullptr));
                     if (near2 > r * r) continue;
