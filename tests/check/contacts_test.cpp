@@ -75,7 +75,7 @@ public:
 
     /// Checks `regions` of `hull` (open ring) against GEOS; returns the number of failures.
     int verify(const std::vector<XY>& hull_open, const std::vector<ContactRegion>& regions, const std::string& what,
-               bool sample = true) const {
+               bool sample = true, double oracle_tol = 1e-2) const {
         std::vector<XY> hull = hull_open;
         hull.push_back(hull.front());
         geo::GeomPtr hp = geo::make_polygon(m_ctx, {hull});
@@ -157,8 +157,8 @@ public:
             }
             // Independently: a branch and bound of GEOS's distance to the boundary over the
             // component (d is 1-Lipschitz: a cell holds nothing deeper than d at its centre plus
-            // its half-diagonal), to 1 cm.
-            const double deepest = max_depth(comps[k], 1e-2);
+            // its half-diagonal), to oracle_tol: a point it finds deeper is a real counterexample.
+            const double deepest = max_depth(comps[k], oracle_tol);
             if (deepest > r.depth_m + 1e-6) fail("GEOS finds a deeper point: " + std::to_string(deepest) + " > " + std::to_string(r.depth_m));
             (void)env_w;
         }
@@ -355,7 +355,8 @@ TEST(ContactRegions, RandomJaggedCoastsAgreeWithGeos) {
                 } else {
                     EXPECT_TRUE(regions.empty()) << "scene " << scene << " pose " << i << ": regions without a collision";
                 }
-                failures += s.oracle.verify(hull_outline(*hull, p), regions, "scene " + std::to_string(scene) + " pose " + std::to_string(i), i % 4 == 0);
+                failures += s.oracle.verify(hull_outline(*hull, p), regions, "scene " + std::to_string(scene) + " pose " + std::to_string(i), i % 4 == 0,
+                                          i % 9 == 0 ? 1e-2 : 0.25);
             }
         }
     }
