@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <shoal/check/detector.hpp>
+#include <shoal/check/surroundings.hpp>
 #include <shoal/geo/jacobian_field.hpp>
 #include <shoal/util/error.hpp>
 
@@ -112,6 +113,28 @@ public:
         return out;
     }
 
+    py::dict surroundings(double lat, double lon, double heading, double max_m) const {
+        std::string what;
+        if (track::detail::position_problem(lat, lon, what)) throw py::value_error("pose: " + what);
+        if (!std::isfinite(heading)) throw py::value_error("heading " + track::detail::fmt(heading) + " is not a number");
+        if (!(max_m > 0)) throw py::value_error("max_m must be > 0 (metres; inf: no limit)");
+        check::Surroundings r;
+        {
+            py::gil_scoped_release nogil;
+            // A frame of this call's own: PROJ transformations are not shared between threads.
+            const geo::LocalFrame frame(m_grid.grid->frame());
+            r = check::surroundings(m_detector, *m_grid.grid, check::place(frame, m_field, check::Pose{{lon, lat}, heading}), max_m);
+        }
+        py::dict out;
+        out["covered"] = r.covered;
+        out["port_m"] = r.port_m;
+        out["starboard_m"] = r.starboard_m;
+        out["ahead_m"] = r.ahead_m;
+        out["astern_m"] = r.astern_m;
+        out["least_depth_m"] = r.least_depth_m;
+        return out;
+    }
+
     const GridHandle& grid() const noexcept { return m_grid; }
     const hull::Hull& hull() const noexcept { return m_hull; }
     const std::string& label() const noexcept { return m_label; }
@@ -140,6 +163,14 @@ void bind_detector(py::module_& m) {
              "chart, inf beyond max_clearance_m), covered (bool: the hull's box lies inside the grid), penetration_m (on contact). "
              "The same answers as `shoal probe` on the same poses. An invalid pose (NaN, |lat| > 90, ...) gets covered False, "
              "clearance NaN, and one warning says how many there were.")
+        .def("surroundings", &PyDetector::surroundings, py::arg("lat"), py::arg("lon"), py::arg("heading"), py::kw_only(),
+             py::arg("max_m") = INFINITY,
+             "What a bridge simulator asks beside the contacts, for one pose (WGS84 degrees, true heading in degrees), without "
+             "the GIL. Returns a dict: port_m, starboard_m, ahead_m, astern_m (how far the hull can move along each of its axes "
+             "before it touches land or a hazard, metres on the ground; 0 in contact, capped at max_m, inf with no limit when "
+             "nothing lies that way), least_depth_m (the least charted depth of the depth areas and dangers the hull touches; "
+             "0 on land; NaN where none is charted or its depth is unknown), covered (bool: the hull and the reach of the "
+             "searches lie inside the grid). The same numbers as the C API's shoal_surroundings_at.")
         .def_property_readonly("grid", [](const PyDetector& d) { return d.grid(); })
         .def_property_readonly("hull_label", &PyDetector::label, "where the hull came from, as the report's hull field says it")
         .def_property_readonly("dims", [](const PyDetector& d) {
