@@ -12,12 +12,16 @@
 #include <numbers>
 #include <optional>
 #include <random>
+#include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <shoal/check/detector.hpp>
 #include <shoal/check/surroundings.hpp>
 #include <shoal/coast/coastline.hpp>
 #include <shoal/grid/coast_grid.hpp>
+#include <shoal/grid/grid_builder.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/util/error.hpp>
 #include "test_support.hpp"
@@ -355,6 +359,60 @@ TEST(Surroundings, TravelStopsAtTheDetectorsHazardsOnly) {
     EXPECT_EQ(least_charted_depth(base, hull, LocalPose::at({0, 40}, 90)), 3);
 }
 
+/// The S-57 cut off Annapolis (land, depth areas, dangers; tests/grid/hazard_test.cpp) as one
+/// grid holding every depth, 300 m cells.
+const grid::CoastGrid& annapolis_cut() {
+    static const grid::CoastGrid g = [] {
+        grid::BuildRequest r;
+        r.cell_m = 300;
+        std::vector<std::string> warnings;
+        return grid::build_grid({test::data_path("coast/US4MD81M_hazard_cut.000")}, r, &warnings);
+    }();
+    return g;
+}
+
+/// Random poses over a grid's extent (local metres, scale 1).
+std::vector<LocalPose> poses_over(const grid::CoastGrid& g, int n, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const geo::Box e = g.extent();
+    std::vector<LocalPose> out;
+    for (int k = 0; k < n; ++k)
+        out.push_back(LocalPose::at({e.minx + (e.maxx - e.minx) * unit(rng), e.miny + (e.maxy - e.miny) * unit(rng)}, 360 * unit(rng)));
+    return out;
+}
+
+TEST(Surroundings, LeastDepthOnAChartEqualsALinearScanOfItsLevels) {
+    // The binary search assumes that touching grows with the level; a scan of every level
+    // from 0 up, with a check at each, does not.
+    const grid::CoastGrid& base = annapolis_cut();
+    const std::span<const double> depths = base.charted_depths();
+    ASSERT_GT(depths.size(), 5u);
+    const hull::Hull hull = hull::Hull::from_dimensions({45, 15, 5, 5});
+    int land = 0, known = 0, unknown = 0;
+    for (const LocalPose& p : poses_over(base, 3000, 17)) {
+        double want = NAN;
+        for (std::size_t level = 0; level <= depths.size(); ++level) {
+            const std::optional<double> limit = level == 0 ? std::nullopt
+                                                : std::isnan(depths[level - 1]) ? std::optional<double>(-INFINITY)
+                                                                                : std::optional<double>(std::nextafter(depths[level - 1], INFINITY));
+            ASSERT_EQ(base.level_of(limit), level);
+            if (Detector(base, hull, limit).check(p).collision) {
+                want = level == 0 ? 0.0 : depths[level - 1];
+                break;
+            }
+        }
+        const double got = least_charted_depth(base, hull, p);
+        EXPECT_TRUE(got == want || (std::isnan(got) && std::isnan(want))) << "at " << p.position.x << "," << p.position.y;
+        land += want == 0;
+        known += want > 0 || want < 0;
+        unknown += std::isnan(want);
+    }
+    std::printf("on the Annapolis cut: %d poses on land, %d over a known depth, %d none or unknown\n", land, known, unknown);
+    EXPECT_GT(land, 100);
+    EXPECT_GT(known, 100);
+}
+
 // ---------------------------------------------------------------- cost
 
 /// A diagnosis figure, not a limit: the time per surroundings call near jagged islands.
@@ -375,6 +433,42 @@ TEST(SurroundingsCost, PerCall) {
         for (const LocalPose& p : poses) sum += s.detector.check(p, {.max_clearance_m = max_m}).clearance_m > 0;
         const double check_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t1).count() / poses.size();
         std::printf("max_m %g: surroundings %.1f us per call; Detector::check to the same reach %.1f us (%g)\n", max_m, us, check_us, sum);
+    }
+}
+
+/// Diagnosis figures on charts: the Solent (land only, 500 m cells) and the Annapolis cut
+/// (9 charted depths: the least depth's binary search makes 4-5 checks).
+TEST(SurroundingsCost, PerCallOnCharts) {
+    grid::BuildRequest r;
+    r.cell_m = 500;
+    std::vector<std::string> warnings;
+    const grid::CoastGrid solent = grid::build_grid({test::data_path("coast/uk_solent_land.geojson")}, r, &warnings);
+    const hull::Hull hull = hull::Hull::from_dimensions({150, 35, 14, 15});
+    auto per_call_us = [](const std::vector<LocalPose>& poses, auto&& f) {
+        const auto t0 = std::chrono::steady_clock::now();
+        double sum = 0;
+        for (const LocalPose& p : poses) sum += f(p);
+        const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / static_cast<double>(poses.size());
+        return sum == -1 ? 0 : us;  // sum used
+    };
+    for (const auto& [name, g] : {std::pair<const char*, const grid::CoastGrid*>{"Solent", &solent}, {"Annapolis cut", &annapolis_cut()}}) {
+        const Detector d(*g, hull, 8.0);
+        // Afloat: the poses clear of land and hazards, as a simulator's ship mostly is.
+        std::vector<LocalPose> poses;
+        for (const LocalPose& p : poses_over(*g, 6000, 23))
+            if (!d.check(p).collision) poses.push_back(p);
+        for (double max_m : {500.0, 2000.0, double{INFINITY}}) {
+            const double all = per_call_us(poses, [&](const LocalPose& p) { return surroundings(d, *g, p, max_m).ahead_m; });
+            const double ahead = per_call_us(poses, [&](const LocalPose& p) {
+                return travel_distance(d, p, {p.ship_to_local(0, 0), p.ship_to_local(1, 0)}, max_m);
+            });
+            const double check = per_call_us(poses, [&](const LocalPose& p) { return d.check(p, {.max_clearance_m = max_m}).clearance_m; });
+            std::printf("%s, max_m %g: surroundings %.1f us per call; one travel_distance %.1f us; Detector::check to max_m %.1f us\n",
+                        name, max_m, all, ahead, check);
+        }
+        const double depth = per_call_us(poses, [&](const LocalPose& p) { return least_charted_depth(*g, hull, p); });
+        std::printf("%s: least_charted_depth %.1f us per call (%zu charted depths); %zu poses afloat\n", name, depth,
+                    g->charted_depths().size(), poses.size());
     }
 }
 
