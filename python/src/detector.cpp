@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +23,47 @@ namespace shoal::python {
 namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// Copies of a frame for one pose at a time: each call leases one (made when none is free) and
+/// gives it back, so no two threads use one at once and a frame is not made for every call.
+class FramePool {
+public:
+    class Lease {
+    public:
+        Lease(FramePool& pool, const geo::LocalFrame& like) : m_pool(pool), m_frame(pool.take(like)) {}
+        ~Lease() { m_pool.give(std::move(m_frame)); }
+        Lease(const Lease&) = delete;
+        Lease& operator=(const Lease&) = delete;
+        const geo::LocalFrame& get() const noexcept { return *m_frame; }
+
+    private:
+        FramePool& m_pool;
+        std::unique_ptr<geo::LocalFrame> m_frame;
+    };
+
+private:
+    std::unique_ptr<geo::LocalFrame> take(const geo::LocalFrame& like) {
+        {
+            const std::lock_guard<std::mutex> lock(m_mutex);
+            if (!m_free.empty()) {
+                std::unique_ptr<geo::LocalFrame> f = std::move(m_free.back());
+                m_free.pop_back();
+                return f;
+            }
+        }
+        return std::make_unique<geo::LocalFrame>(like);
+    }
+    void give(std::unique_ptr<geo::LocalFrame> f) noexcept {
+        const std::lock_guard<std::mutex> lock(m_mutex);
+        try {
+            m_free.push_back(std::move(f));
+        } catch (...) {  // out of memory: the frame goes
+        }
+    }
+
+    std::mutex m_mutex;
+    std::vector<std::unique_ptr<geo::LocalFrame>> m_free;
+};
 
 class PyDetector {
 public:
@@ -121,9 +164,10 @@ public:
         check::Surroundings r;
         {
             py::gil_scoped_release nogil;
-            // A frame of this call's own: PROJ transformations are not shared between threads.
-            const geo::LocalFrame frame(m_grid.grid->frame());
-            r = check::surroundings(m_detector, *m_grid.grid, check::place(frame, m_field, check::Pose{{lon, lat}, heading}), max_m);
+            // A frame this call alone uses (PROJ transformations are not shared between
+            // threads), kept for the next call: a copy of a frame costs far more than the call.
+            const FramePool::Lease frame(*m_frames, m_grid.grid->frame());
+            r = check::surroundings(m_detector, *m_grid.grid, check::place(frame.get(), m_field, check::Pose{{lon, lat}, heading}), max_m);
         }
         py::dict out;
         out["covered"] = r.covered;
@@ -145,6 +189,7 @@ private:
     hull::Hull m_hull;
     check::Detector m_detector;
     geo::JacobianField m_field;  ///< the frame's Jacobian over the grid, for placing poses
+    std::unique_ptr<FramePool> m_frames = std::make_unique<FramePool>();  ///< frames for surroundings()
 };
 
 }  // namespace

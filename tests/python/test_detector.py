@@ -263,6 +263,29 @@ class DetectorSurroundings(unittest.TestCase):
         self.assertIn("nan", depths)
         self.assertGreater(len(depths), 3)
 
+    def test_threads_share_a_detector(self):
+        # Each call leases a frame of its own: four threads at once give what one gives alone.
+        det = shoal.Detector(self.cut, dims=(45, 15, 5, 5), hazard_depth_m=4.5)
+        rng = np.random.default_rng(8)
+        lo_lon, lo_lat, hi_lon, hi_lat = self.cut.bounds
+        poses = [(rng.uniform(lo_lat, hi_lat), rng.uniform(lo_lon, hi_lon), rng.uniform(0, 360)) for _ in range(800)]
+        alone = [det.surroundings(*p, max_m=2000.0) for p in poses]
+        results = [None] * 4
+
+        def work(t):
+            results[t] = [det.surroundings(*p, max_m=2000.0) for p in poses[t::4]]
+
+        threads = [threading.Thread(target=work, args=(t,)) for t in range(4)]
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        for t in range(4):
+            for got, want in zip(results[t], alone[t::4]):
+                self.assertEqual(got["covered"], want["covered"])
+                for f in FIELDS:
+                    self.assertTrue(same(got[f], want[f]), (f, got[f], want[f]))
+
     def test_bad_arguments_are_value_errors(self):
         det = shoal.Detector(self.solent, dims=(150, 35, 14, 15))
         with self.assertRaisesRegex(ValueError, "max_m must be > 0"):
