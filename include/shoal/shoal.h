@@ -121,8 +121,12 @@ typedef struct shoal_surroundings {
                              the grid charts no depth there or the area's depth is unknown; 0 on land */
 } shoal_surroundings;
 
-/* The clearances of the hull at a pose along its four axes (searched to max_m > 0) and the least
- * charted depth under it. Fills *out and returns 0; non-zero on error. */
+/* The clearances of the hull at a pose along its four axes (searched to max_m > 0, metres on the
+ * ground; INFINITY allowed: a distance is then INFINITY when nothing lies that way on the chart)
+ * and the least charted depth under it. The distances are to the detector's hazards (land, and
+ * what its limiting depth makes a hazard); the least depth reads every depth area and danger of
+ * the grid the detector was made from. Fills *out and returns 0; non-zero on error (bad
+ * arguments; shoal_last_error() tells why). */
 SHOAL_C_API int shoal_surroundings_at(const shoal_detector* detector, double lat, double lon, double heading_deg,
                                       double max_m, shoal_surroundings* out);
 

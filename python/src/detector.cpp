@@ -5,11 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <shoal/check/detector.hpp>
+#include <shoal/check/surroundings.hpp>
 #include <shoal/geo/jacobian_field.hpp>
 #include <shoal/util/error.hpp>
 
@@ -20,6 +23,47 @@ namespace shoal::python {
 namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// Copies of a frame for one pose at a time: each call leases one (made when none is free) and
+/// gives it back, so no two threads use one at once and a frame is not made for every call.
+class FramePool {
+public:
+    class Lease {
+    public:
+        Lease(FramePool& pool, const geo::LocalFrame& like) : m_pool(pool), m_frame(pool.take(like)) {}
+        ~Lease() { m_pool.give(std::move(m_frame)); }
+        Lease(const Lease&) = delete;
+        Lease& operator=(const Lease&) = delete;
+        const geo::LocalFrame& get() const noexcept { return *m_frame; }
+
+    private:
+        FramePool& m_pool;
+        std::unique_ptr<geo::LocalFrame> m_frame;
+    };
+
+private:
+    std::unique_ptr<geo::LocalFrame> take(const geo::LocalFrame& like) {
+        {
+            const std::lock_guard<std::mutex> lock(m_mutex);
+            if (!m_free.empty()) {
+                std::unique_ptr<geo::LocalFrame> f = std::move(m_free.back());
+                m_free.pop_back();
+                return f;
+            }
+        }
+        return std::make_unique<geo::LocalFrame>(like);
+    }
+    void give(std::unique_ptr<geo::LocalFrame> f) noexcept {
+        const std::lock_guard<std::mutex> lock(m_mutex);
+        try {
+            m_free.push_back(std::move(f));
+        } catch (...) {  // out of memory: the frame goes
+        }
+    }
+
+    std::mutex m_mutex;
+    std::vector<std::unique_ptr<geo::LocalFrame>> m_free;
+};
 
 class PyDetector {
 public:
@@ -112,6 +156,29 @@ public:
         return out;
     }
 
+    py::dict surroundings(double lat, double lon, double heading, double max_m) const {
+        std::string what;
+        if (track::detail::position_problem(lat, lon, what)) throw py::value_error("pose: " + what);
+        if (!std::isfinite(heading)) throw py::value_error("heading " + track::detail::fmt(heading) + " is not a number");
+        if (!(max_m > 0)) throw py::value_error("max_m must be > 0 (metres; inf: no limit)");
+        check::Surroundings r;
+        {
+            py::gil_scoped_release nogil;
+            // A frame this call alone uses (PROJ transformations are not shared between
+            // threads), kept for the next call: a copy of a frame costs far more than the call.
+            const FramePool::Lease frame(*m_frames, m_grid.grid->frame());
+            r = check::surroundings(m_detector, *m_grid.grid, check::place(frame.get(), m_field, check::Pose{{lon, lat}, heading}), max_m);
+        }
+        py::dict out;
+        out["covered"] = r.covered;
+        out["port_m"] = r.port_m;
+        out["starboard_m"] = r.starboard_m;
+        out["ahead_m"] = r.ahead_m;
+        out["astern_m"] = r.astern_m;
+        out["least_depth_m"] = r.least_depth_m;
+        return out;
+    }
+
     const GridHandle& grid() const noexcept { return m_grid; }
     const hull::Hull& hull() const noexcept { return m_hull; }
     const std::string& label() const noexcept { return m_label; }
@@ -122,6 +189,7 @@ private:
     hull::Hull m_hull;
     check::Detector m_detector;
     geo::JacobianField m_field;  ///< the frame's Jacobian over the grid, for placing poses
+    std::unique_ptr<FramePool> m_frames = std::make_unique<FramePool>();  ///< frames for surroundings()
 };
 
 }  // namespace
@@ -140,6 +208,14 @@ void bind_detector(py::module_& m) {
              "chart, inf beyond max_clearance_m), covered (bool: the hull's box lies inside the grid), penetration_m (on contact). "
              "The same answers as `shoal probe` on the same poses. An invalid pose (NaN, |lat| > 90, ...) gets covered False, "
              "clearance NaN, and one warning says how many there were.")
+        .def("surroundings", &PyDetector::surroundings, py::arg("lat"), py::arg("lon"), py::arg("heading"), py::kw_only(),
+             py::arg("max_m") = INFINITY,
+             "What a bridge simulator asks beside the contacts, for one pose (WGS84 degrees, true heading in degrees), without "
+             "the GIL. Returns a dict: port_m, starboard_m, ahead_m, astern_m (how far the hull can move along each of its axes "
+             "before it touches land or a hazard, metres on the ground; 0 in contact, capped at max_m, inf with no limit when "
+             "nothing lies that way), least_depth_m (the least charted depth of the depth areas and dangers the hull touches; "
+             "0 on land; NaN where none is charted or its depth is unknown), covered (bool: the hull and the reach of the "
+             "searches lie inside the grid). The same numbers as the C API's shoal_surroundings_at.")
         .def_property_readonly("grid", [](const PyDetector& d) { return d.grid(); })
         .def_property_readonly("hull_label", &PyDetector::label, "where the hull came from, as the report's hull field says it")
         .def_property_readonly("dims", [](const PyDetector& d) {

@@ -21,6 +21,7 @@
 #include <shoal/check/contacts.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/check/hull_contact.hpp>
+#include <shoal/check/surroundings.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/util/error.hpp>
@@ -276,6 +277,28 @@ int shoal_ship_contacts(const shoal_detector* a, double lat_a, double lon_a, dou
             return regions.empty() ? 1 : static_cast<int>(regions.size());
         },
         -1);
+}
+
+int shoal_surroundings_at(const shoal_detector* detector, double lat, double lon, double heading_deg, double max_m,
+                          shoal_surroundings* out) {
+    return execute(
+        [&] {
+            if (!detector || !out) throw std::invalid_argument("shoal_surroundings_at: the detector or the result is NULL");
+            if (!(std::fabs(lat) <= 90) || !(std::fabs(lon) <= 180) || !std::isfinite(heading_deg))
+                throw std::invalid_argument("shoal_surroundings_at: lat must be in [-90, 90], lon in [-180, 180] and the heading finite");
+            if (!(max_m > 0)) throw std::invalid_argument("shoal_surroundings_at: max_m must be > 0 (metres; INFINITY: no limit)");
+            const shoal::check::Surroundings r = shoal::check::surroundings(
+                detector->detector, *detector->grid,
+                shoal::check::place(detector->grid->frame(), detector->field, shoal::check::Pose{{lon, lat}, heading_deg}), max_m);
+            out->covered = r.covered ? 1 : 0;
+            out->port_m = r.port_m;
+            out->starboard_m = r.starboard_m;
+            out->ahead_m = r.ahead_m;
+            out->astern_m = r.astern_m;
+            out->least_depth_m = r.least_depth_m;
+            return 0;
+        },
+        1);
 }
 
 }  // extern "C"

@@ -6,6 +6,12 @@
 #include <shoal/shoal.h>
 #include <shoal/version.hpp>
 
+#include <shoal/check/detector.hpp>
+#include <shoal/check/surroundings.hpp>
+#include <shoal/geo/jacobian_field.hpp>
+#include <shoal/grid/grid_file.hpp>
+#include <shoal/hull/hull.hpp>
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -214,6 +220,116 @@ TEST(CApi, DetectorsAtTheirOwnLimitingDepthShareOneGrid) {
     EXPECT_EQ(shoal_detector_new_at_depth(grid, 45, 15, 5, 5, INFINITY), nullptr);
     EXPECT_NE(std::string(shoal_last_error()).find("finite"), std::string::npos);
     for (shoal_detector* d : {shallow, deep, land, dflt, ship}) shoal_detector_free(d);
+    shoal_grid_free(grid);
+}
+
+/// NaN equal to NaN, else the same double.
+bool same(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+/// shoal_surroundings_at on the S-57 cut (depth areas, dangers, land) at random poses: the
+/// same numbers as check::surroundings on the same grid file, detector and placement, and
+/// the same again from two threads at once.
+TEST(CApi, SurroundingsEqualTheLibrarys) {
+    const std::string g = (temp_dir() / "cut-surroundings.shoalgrid").string();
+    ASSERT_EQ(run("'" SHOAL_BINARY "' import '" SHOAL_TEST_DATA "coast/US4MD81M_hazard_cut.000' --cell 300 -o '" + g + "' > /dev/null"), 0);
+    shoal_grid* grid = shoal_grid_load(g.c_str());
+    ASSERT_NE(grid, nullptr) << shoal_last_error();
+    shoal_detector* det = shoal_detector_new_at_depth(grid, 45, 15, 5, 5, 4.5);
+    ASSERT_NE(det, nullptr) << shoal_last_error();
+    const shoal::grid::CoastGrid base = shoal::grid::GridFile::load(g);
+    const shoal::check::Detector cpp(base, shoal::hull::Hull::from_dimensions({45, 15, 5, 5}), 4.5);
+    const shoal::geo::JacobianField field(base.frame(), base.extent());
+    const shoal::geo::Box ext = base.extent();
+    const shoal::geo::LonLat sw = base.frame().inverse({ext.minx, ext.miny}), ne = base.frame().inverse({ext.maxx, ext.maxy});
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> lat(sw.lat, ne.lat), lon(sw.lon, ne.lon), hdg(0, 360);
+    struct Query {
+        double lat, lon, hdg, max_m;
+        shoal_surroundings alone;
+    };
+    std::vector<Query> queries(1200);
+    int on_land = 0, known = 0, unknown = 0, contact = 0, covered = 0;
+    for (std::size_t k = 0; k < queries.size(); ++k) {
+        Query& q = queries[k];
+        q = {lat(rng), lon(rng), hdg(rng), k % 3 == 0 ? INFINITY : 300.0 + static_cast<double>(k), {}};
+        ASSERT_EQ(shoal_surroundings_at(det, q.lat, q.lon, q.hdg, q.max_m, &q.alone), 0) << shoal_last_error();
+        EXPECT_EQ(shoal_last_error(), nullptr);
+        const shoal::check::Surroundings want =
+            shoal::check::surroundings(cpp, base, shoal::check::place(base.frame(), field, {{q.lon, q.lat}, q.hdg}), q.max_m);
+        const shoal_surroundings& r = q.alone;
+        const std::string where = "pose " + std::to_string(k);
+        EXPECT_EQ(r.covered, want.covered ? 1 : 0) << where;
+        EXPECT_EQ(r.port_m, want.port_m) << where;
+        EXPECT_EQ(r.starboard_m, want.starboard_m) << where;
+        EXPECT_EQ(r.ahead_m, want.ahead_m) << where;
+        EXPECT_EQ(r.astern_m, want.astern_m) << where;
+        EXPECT_TRUE(same(r.least_depth_m, want.least_depth_m)) << where << ": " << r.least_depth_m << " vs " << want.least_depth_m;
+        on_land += r.least_depth_m == 0;
+        known += r.least_depth_m > 0 || r.least_depth_m < 0;
+        unknown += std::isnan(r.least_depth_m);
+        contact += r.port_m == 0 && r.starboard_m == 0 && r.ahead_m == 0 && r.astern_m == 0;
+        covered += r.covered;
+    }
+    std::printf("%zu poses: least depth 0 (land) %d, known %d, NaN %d; in contact %d; covered %d\n", queries.size(), on_land, known,
+                unknown, contact, covered);
+    EXPECT_GT(on_land, 20);
+    EXPECT_GT(known, 200);
+    EXPECT_GT(contact, 20);
+    EXPECT_GT(covered, 100);
+    // Two threads at once: the same answers.
+    std::vector<int> mismatches(2, 0);
+    std::vector<std::thread> pool;
+    for (int t = 0; t < 2; ++t)
+        pool.emplace_back([&, t] {
+            for (std::size_t k = static_cast<std::size_t>(t); k < queries.size(); k += 2) {
+                const Query& q = queries[k];
+                shoal_surroundings r{};
+                if (shoal_surroundings_at(det, q.lat, q.lon, q.hdg, q.max_m, &r) != 0 || r.covered != q.alone.covered ||
+                    r.port_m != q.alone.port_m || r.starboard_m != q.alone.starboard_m || r.ahead_m != q.alone.ahead_m ||
+                    r.astern_m != q.alone.astern_m || !same(r.least_depth_m, q.alone.least_depth_m))
+                    ++mismatches[static_cast<std::size_t>(t)];
+            }
+        });
+    for (std::thread& th : pool) th.join();
+    EXPECT_EQ(mismatches[0] + mismatches[1], 0);
+    shoal_detector_free(det);
+    shoal_grid_free(grid);
+}
+
+TEST(CApi, SurroundingsRefuseBadArgumentsWithAMessage) {
+    shoal_grid* grid = shoal_grid_load(solent_grid().c_str());
+    ASSERT_NE(grid, nullptr) << shoal_last_error();
+    shoal_detector* det = shoal_detector_new(grid, 100, 20, 8, 8);
+    ASSERT_NE(det, nullptr) << shoal_last_error();
+    shoal_surroundings r{};
+    auto refused = [&](const shoal_detector* d, double la, double lo, double h, double max_m, shoal_surroundings* out, const char* says) {
+        const int rc = shoal_surroundings_at(d, la, lo, h, max_m, out);
+        const char* msg = shoal_last_error();
+        return rc != 0 && msg && std::string(msg).find("shoal_surroundings_at") != std::string::npos &&
+               std::string(msg).find(says) != std::string::npos;
+    };
+    EXPECT_TRUE(refused(nullptr, 50.7, -1.3, 0, 100, &r, "NULL"));
+    EXPECT_TRUE(refused(det, 50.7, -1.3, 0, 100, nullptr, "NULL"));
+    EXPECT_TRUE(refused(det, 91, -1.3, 0, 100, &r, "lat"));
+    EXPECT_TRUE(refused(det, NAN, -1.3, 0, 100, &r, "lat"));
+    EXPECT_TRUE(refused(det, 50.7, -181, 0, 100, &r, "lon"));
+    EXPECT_TRUE(refused(det, 50.7, -1.3, NAN, 100, &r, "heading"));
+    EXPECT_TRUE(refused(det, 50.7, -1.3, INFINITY, 100, &r, "heading"));
+    EXPECT_TRUE(refused(det, 50.7, -1.3, 0, 0, &r, "max_m"));
+    EXPECT_TRUE(refused(det, 50.7, -1.3, 0, -5, &r, "max_m"));
+    EXPECT_TRUE(refused(det, 50.7, -1.3, 0, NAN, &r, "max_m"));
+    // INFINITY is allowed; a good call clears the message.
+    ASSERT_EQ(shoal_surroundings_at(det, 50.76, -1.30, 45, INFINITY, &r), 0) << shoal_last_error();
+    EXPECT_EQ(shoal_last_error(), nullptr);
+    EXPECT_EQ(r.ahead_m, 0) << "inland on the Isle of Wight";
+    EXPECT_EQ(r.least_depth_m, 0) << "on land";
+    // Open water in the Solent, east of Cowes: clear some way in every direction.
+    ASSERT_EQ(shoal_surroundings_at(det, 50.78, -1.20, 90, 5000, &r), 0) << shoal_last_error();
+    EXPECT_EQ(r.covered, 1);
+    EXPECT_GT(r.port_m, 0);
+    EXPECT_GT(r.ahead_m, 0);
+    EXPECT_TRUE(std::isnan(r.least_depth_m)) << "a grid of land only charts no depth";
+    shoal_detector_free(det);
     shoal_grid_free(grid);
 }
 

@@ -1,6 +1,9 @@
 """shoal.Detector against `shoal probe` on the same poses, and the GIL released while it checks."""
 import csv
+import ctypes
 import io
+import math
+import os
 import threading
 import unittest
 import warnings
@@ -162,6 +165,137 @@ class DetectorAgainstProbe(unittest.TestCase):
         # tanker.json has a draught: a land-only grid does not see shallow water for it.
         with self.assertWarnsRegex(UserWarning, "holds land only"):
             shoal.Detector(self.grid, ship=support.data("ships/tanker.json"), ukc=1.0)
+
+
+class CSurroundings(ctypes.Structure):
+    _fields_ = [("covered", ctypes.c_int)] + [
+        (name, ctypes.c_double) for name in ("port_m", "starboard_m", "ahead_m", "astern_m", "least_depth_m")
+    ]
+
+
+FIELDS = ("port_m", "starboard_m", "ahead_m", "astern_m", "least_depth_m")
+
+
+def c_api():
+    """libshoal_c of the build that made SHOAL_BINARY, through ctypes; None when it is not there."""
+    path = os.path.join(os.path.dirname(os.path.dirname(support.BINARY)), "src", "libshoal_c.so")
+    if not os.path.exists(path):
+        return None
+    lib = ctypes.CDLL(path)
+    lib.shoal_grid_load.restype = ctypes.c_void_p
+    lib.shoal_grid_load.argtypes = [ctypes.c_char_p]
+    lib.shoal_grid_free.argtypes = [ctypes.c_void_p]
+    lib.shoal_detector_new_at_depth.restype = ctypes.c_void_p
+    lib.shoal_detector_new_at_depth.argtypes = [ctypes.c_void_p] + [ctypes.c_double] * 5
+    lib.shoal_detector_free.argtypes = [ctypes.c_void_p]
+    lib.shoal_surroundings_at.restype = ctypes.c_int
+    lib.shoal_surroundings_at.argtypes = [ctypes.c_void_p] + [ctypes.c_double] * 4 + [ctypes.POINTER(CSurroundings)]
+    lib.shoal_last_error.restype = ctypes.c_char_p
+    return lib
+
+
+def same(a, b):
+    return a == b or (math.isnan(a) and math.isnan(b))
+
+
+class DetectorSurroundings(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.solent = shoal.Grid.load(support.grid_file(support.data("coast/uk_solent_land.geojson"), "solent.shoalgrid"))
+        cls.cut_path = support.grid_file(support.data("coast/US4MD81M_hazard_cut.000"), "cut.shoalgrid")
+        cls.cut = shoal.Grid.load(cls.cut_path)
+
+    def test_against_the_pose_check(self):
+        # Travel along any axis is at least the clearance (local metres there; the frame's
+        # scale is within 1e-3 of 1); in contact every distance is 0 and the depth 0 (land).
+        det = shoal.Detector(self.solent, dims=(150, 35, 14, 15))
+        rng = np.random.default_rng(37)
+        lo_lon, lo_lat, hi_lon, hi_lat = self.solent.bounds
+        contacts = clear = 0
+        for k in range(300):
+            lat, lon, hdg = rng.uniform(lo_lat, hi_lat), rng.uniform(lo_lon, hi_lon), rng.uniform(0, 360)
+            max_m = math.inf if k % 2 else 800.0
+            r = det.surroundings(lat, lon, hdg, max_m=max_m)
+            self.assertEqual(sorted(r), sorted(FIELDS + ("covered",)))
+            c = det.check(lat, lon, hdg)
+            where = "pose %d (%r, %r, %r)" % (k, lat, lon, hdg)
+            if c["contact"]:
+                contacts += 1
+                self.assertEqual([r[f] for f in FIELDS], [0.0] * 5, where)
+                continue
+            self.assertTrue(math.isnan(r["least_depth_m"]), where)  # land only: no depth charted
+            least = min(r[f] for f in FIELDS[:4])
+            self.assertLessEqual(max(r[f] for f in FIELDS[:4]), max_m, where)
+            if r["covered"]:
+                clear += 1
+                self.assertTrue(math.isfinite(least), where)
+                self.assertGreaterEqual(least, min(float(c["clearance_m"]) * (1 - 1e-3) - 1e-6, max_m), where)
+        self.assertGreater(contacts, 20)
+        self.assertGreater(clear, 20)
+
+    def test_the_same_numbers_as_the_c_api(self):
+        lib = c_api()
+        if lib is None:
+            self.skipTest("libshoal_c.so is not built beside %s" % support.BINARY)
+        grid = lib.shoal_grid_load(self.cut_path.encode())
+        self.assertTrue(grid, lib.shoal_last_error())
+        cdet = lib.shoal_detector_new_at_depth(grid, 45, 15, 5, 5, 4.5)
+        self.assertTrue(cdet, lib.shoal_last_error())
+        det = shoal.Detector(self.cut, dims=(45, 15, 5, 5), hazard_depth_m=4.5)
+        rng = np.random.default_rng(5)
+        lo_lon, lo_lat, hi_lon, hi_lat = self.cut.bounds
+        depths = set()
+        try:
+            for k in range(400):
+                lat, lon, hdg = rng.uniform(lo_lat, hi_lat), rng.uniform(lo_lon, hi_lon), rng.uniform(0, 360)
+                max_m = math.inf if k % 3 == 0 else 500.0
+                r = det.surroundings(lat, lon, hdg, max_m=max_m)
+                out = CSurroundings()
+                self.assertEqual(lib.shoal_surroundings_at(cdet, lat, lon, hdg, max_m, ctypes.byref(out)), 0, lib.shoal_last_error())
+                self.assertEqual(bool(out.covered), r["covered"])
+                for f in FIELDS:
+                    self.assertTrue(same(getattr(out, f), r[f]), "pose %d %s: %r vs %r" % (k, f, getattr(out, f), r[f]))
+                depths.add(r["least_depth_m"] if not math.isnan(r["least_depth_m"]) else "nan")
+        finally:
+            lib.shoal_detector_free(cdet)
+            lib.shoal_grid_free(grid)
+        self.assertIn(0.0, depths)  # land, known depths and none all occur
+        self.assertIn("nan", depths)
+        self.assertGreater(len(depths), 3)
+
+    def test_threads_share_a_detector(self):
+        # Each call leases a frame of its own: four threads at once give what one gives alone.
+        det = shoal.Detector(self.cut, dims=(45, 15, 5, 5), hazard_depth_m=4.5)
+        rng = np.random.default_rng(8)
+        lo_lon, lo_lat, hi_lon, hi_lat = self.cut.bounds
+        poses = [(rng.uniform(lo_lat, hi_lat), rng.uniform(lo_lon, hi_lon), rng.uniform(0, 360)) for _ in range(800)]
+        alone = [det.surroundings(*p, max_m=2000.0) for p in poses]
+        results = [None] * 4
+
+        def work(t):
+            results[t] = [det.surroundings(*p, max_m=2000.0) for p in poses[t::4]]
+
+        threads = [threading.Thread(target=work, args=(t,)) for t in range(4)]
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        for t in range(4):
+            for got, want in zip(results[t], alone[t::4]):
+                self.assertEqual(got["covered"], want["covered"])
+                for f in FIELDS:
+                    self.assertTrue(same(got[f], want[f]), (f, got[f], want[f]))
+
+    def test_bad_arguments_are_value_errors(self):
+        det = shoal.Detector(self.solent, dims=(150, 35, 14, 15))
+        with self.assertRaisesRegex(ValueError, "max_m must be > 0"):
+            det.surroundings(50.75, -1.3, 0.0, max_m=0)
+        with self.assertRaisesRegex(ValueError, "max_m must be > 0"):
+            det.surroundings(50.75, -1.3, 0.0, max_m=math.nan)
+        with self.assertRaisesRegex(ValueError, "latitude"):
+            det.surroundings(91.0, -1.3, 0.0)
+        with self.assertRaisesRegex(ValueError, "heading nan is not a number"):
+            det.surroundings(50.75, -1.3, math.nan)
 
 
 if __name__ == "__main__":
