@@ -2,7 +2,8 @@
 # The installed package as a simulator developer uses it (run by ctest as `install_test`):
 # `cmake --install BUILD --prefix P`, then the per-frame examples of examples/simulator built
 # against P: the C++ one with find_package(Shoal CONFIG) and the C one both with CMake and with
-# `pkg-config --cflags --libs shoal_c`; the C program's answers must equal `shoal probe`'s.
+# `pkg-config --cflags --libs shoal_c`; the C program's answers must equal `shoal probe`'s; the
+# berthing simulation's contact log must give hand-derived answers.
 # The C programs run with no LD_LIBRARY_PATH (shoal_c.pc's rpath, CMake's own), and neither
 # they nor libshoal_c.so.1 may need GDAL (the C API's lean runtime: PROJ and GEOS only).
 #   scripts/test-install.sh BUILD_DIR [WORK_DIR]
@@ -79,4 +80,14 @@ for k, row in enumerate(rows):
 print("test-install: shoal %s imported from %s, %d poses agree with shoal probe" % (shoal.__version__, sys.argv[1], len(rows)))
 ' "$pydir" "$work/helsinki.shoalgrid" "$work/poses.csv" "$work/probe.csv"
 fi
+# The berthing simulation (examples/simulator/berthing_sim.c, also with pkg-config only) on the
+# made-up quay and pier of berth.geojson: it asserts its own limits (no contact deepens more than
+# 5 cm a frame, none goes through), and its contact log must give the hand-derived answers of
+# check_berthing.awk (first contact frames, normals, hazard kinds and names, the resting depth).
+cc -std=c11 -Wall -Wextra -Werror "$src/examples/simulator/berthing_sim.c" $(pkg-config --cflags --libs shoal_c) -lm -o "$work/berthing_sim_pc"
+"$prefix/bin/shoal" import "$src/examples/simulator/berth.geojson" --ship-length 185 -o "$work/berth.shoalgrid" > /dev/null
+for exe in "$work/berthing_sim_pc" "$work/sim/berthing_sim"; do
+  "$exe" "$work/berth.shoalgrid" > "$work/berthing.log" || { echo "test-install: $exe failed"; tail -5 "$work/berthing.log"; exit 1; }
+  awk -f "$src/examples/simulator/check_berthing.awk" "$work/berthing.log" || { echo "test-install: $exe: its contact log is wrong"; exit 1; }
+done
 echo "test-install: installed package OK ($(wc -l < "$work/probe.csv") poses agree with shoal probe)"
