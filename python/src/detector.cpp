@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <shoal/check/contacts.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/check/surroundings.hpp>
 #include <shoal/geo/jacobian_field.hpp>
@@ -179,6 +180,33 @@ public:
         return out;
     }
 
+    /// Every contact region at one pose, deepest first, as shoal_contacts gives them.
+    py::list contacts(double lat, double lon, double heading) const {
+        std::string what;
+        if (track::detail::position_problem(lat, lon, what)) throw py::value_error("pose: " + what);
+        if (!std::isfinite(heading)) throw py::value_error("heading " + track::detail::fmt(heading) + " is not a number");
+        std::vector<check::ShipFrameContact> found;
+        {
+            py::gil_scoped_release nogil;
+            const FramePool::Lease frame(*m_frames, m_grid.grid->frame());
+            const check::LocalPose pose = check::place(frame.get(), m_field, check::Pose{{lon, lat}, heading});
+            for (const check::ContactRegion& r : check::contact_regions(m_detector, pose))
+                found.push_back(check::in_ship_frame(r, pose, frame.get(), &m_detector.grid()));
+        }
+        py::list out;
+        for (const check::ShipFrameContact& c : found) {
+            py::dict d;
+            d["x_m"] = c.x_m, d["y_m"] = c.y_m, d["nx"] = c.nx, d["ny"] = c.ny, d["depth_m"] = c.depth_m;
+            d["lat"] = c.point.lat, d["lon"] = c.point.lon, d["coast_lat"] = c.coast_point.lat, d["coast_lon"] = c.coast_point.lon;
+            d["hazard"] = c.hazard ? coast::to_string(c.hazard->kind) : "land";
+            const bool charted = c.hazard && (c.hazard->kind == coast::HazardKind::shallow || c.hazard->kind == coast::HazardKind::danger);
+            d["charted_depth_m"] = charted ? c.hazard->depth_m : NAN;
+            d["name"] = c.hazard ? c.hazard->name : std::string();
+            out.append(d);
+        }
+        return out;
+    }
+
     const GridHandle& grid() const noexcept { return m_grid; }
     const hull::Hull& hull() const noexcept { return m_hull; }
     const std::string& label() const noexcept { return m_label; }
@@ -189,7 +217,7 @@ private:
     hull::Hull m_hull;
     check::Detector m_detector;
     geo::JacobianField m_field;  ///< the frame's Jacobian over the grid, for placing poses
-    std::unique_ptr<FramePool> m_frames = std::make_unique<FramePool>();  ///< frames for surroundings()
+    std::unique_ptr<FramePool> m_frames = std::make_unique<FramePool>();  ///< frames for surroundings(), contacts()
 };
 
 }  // namespace
@@ -208,6 +236,13 @@ void bind_detector(py::module_& m) {
              "chart, inf beyond max_clearance_m), covered (bool: the hull's box lies inside the grid), penetration_m (on contact). "
              "The same answers as `shoal probe` on the same poses. An invalid pose (NaN, |lat| > 90, ...) gets covered False, "
              "clearance NaN, and one warning says how many there were.")
+        .def("contacts", &PyDetector::contacts, py::arg("lat"), py::arg("lon"), py::arg("heading"),
+             "Every region where the hull overlaps land or a hazard at one pose (WGS84 degrees, true heading in degrees), "
+             "deepest first, as the C API's shoal_contacts gives them, without the GIL: a list of dicts with x_m, y_m (the "
+             "region's deepest hull point, ship frame: x forward, y starboard, metres from the reference point), nx, ny (unit "
+             "normal, ship frame: moving the point along it by depth_m frees it), depth_m, lat, lon, coast_lat, coast_lon "
+             "(the nearest boundary point), hazard ('land', 'shallow', 'danger', 'structure'), charted_depth_m (NaN unless "
+             "shallow or danger), name. Empty when the hull is clear.")
         .def("surroundings", &PyDetector::surroundings, py::arg("lat"), py::arg("lon"), py::arg("heading"), py::kw_only(),
              py::arg("max_m") = INFINITY,
              "What a bridge simulator asks beside the contacts, for one pose (WGS84 degrees, true heading in degrees), without "

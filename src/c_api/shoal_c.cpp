@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/LU>
 
 #include <shoal/check/contacts.hpp>
 #include <shoal/check/detector.hpp>
@@ -111,19 +110,16 @@ shoal::check::LocalPose place(const shoal_detector* d, double lat, double lon, d
     return shoal::check::place(d->grid->frame(), d->field, shoal::check::Pose{{lon, lat}, heading_deg});
 }
 
-/// A region in the ship frame of `pose` (x forward, y starboard, metres on the ground).
-void to_ship_frame(const shoal::check::LocalPose& pose, const shoal::geo::LocalFrame& frame, const shoal::check::ContactRegion& r,
-                   shoal_contact_point& out) {
-    const Eigen::Matrix2d inv = pose.ship_to_local.inverse();
-    const Eigen::Vector2d p = inv * Eigen::Vector2d(r.hull_point.x - pose.position.x, r.hull_point.y - pose.position.y);
-    Eigen::Vector2d n = inv * Eigen::Vector2d(r.normal.x, r.normal.y);
-    n.normalize();
-    out.x_m = p.x(), out.y_m = p.y();
-    out.nx = n.x(), out.ny = n.y();
-    out.depth_m = r.depth_m;
-    const shoal::geo::LonLat h = frame.inverse(r.hull_point), c = frame.inverse(r.coast_point);
-    out.lat = h.lat, out.lon = h.lon;
-    out.coast_lat = c.lat, out.coast_lon = c.lon;
+/// A region as the C API gives it.
+void fill(const shoal::check::ShipFrameContact& c, int hazard, shoal_contact_point& out) {
+    out.x_m = c.x_m, out.y_m = c.y_m;
+    out.nx = c.nx, out.ny = c.ny;
+    out.depth_m = c.depth_m;
+    out.lat = c.point.lat, out.lon = c.point.lon;
+    out.coast_lat = c.coast_point.lat, out.coast_lon = c.coast_point.lon;
+    out.hazard = hazard;
+    out.charted_depth_m = NAN;
+    out.name = "";
 }
 
 int hazard_code(shoal::coast::HazardKind k) {
@@ -218,16 +214,13 @@ int shoal_contacts(const shoal_detector* detector, double lat, double lon, doubl
             const std::vector<shoal::check::ContactRegion> regions = shoal::check::contact_regions(detector->detector, pose);
             const shoal::grid::CoastGrid& g = detector->detector.grid();
             for (std::size_t i = 0; i < regions.size() && i < static_cast<std::size_t>(capacity); ++i) {
+                const shoal::check::ShipFrameContact c = shoal::check::in_ship_frame(regions[i], pose, g.frame(), &g);
                 shoal_contact_point& o = out[i];
-                to_ship_frame(pose, g.frame(), regions[i], o);
-                o.hazard = SHOAL_HAZARD_LAND;
-                o.charted_depth_m = NAN;
-                o.name = "";
-                if (regions[i].polyline != shoal::grid::CoastGrid::no_polyline && regions[i].polyline < g.polyline_count()) {
-                    const shoal::coast::Hazard& h = g.hazard(regions[i].polyline);
-                    o.hazard = hazard_code(h.kind);
-                    if (h.kind == shoal::coast::HazardKind::shallow || h.kind == shoal::coast::HazardKind::danger) o.charted_depth_m = h.depth_m;
-                    o.name = h.name.c_str();
+                fill(c, c.hazard ? hazard_code(c.hazard->kind) : SHOAL_HAZARD_LAND, o);
+                if (c.hazard) {
+                    if (c.hazard->kind == shoal::coast::HazardKind::shallow || c.hazard->kind == shoal::coast::HazardKind::danger)
+                        o.charted_depth_m = c.hazard->depth_m;
+                    o.name = c.hazard->name.c_str();
                 }
             }
             return static_cast<int>(std::min<std::size_t>(regions.size(), 1 << 30));
@@ -256,12 +249,8 @@ int shoal_ship_contacts(const shoal_detector* a, double lat_a, double lon_a, dou
             if (!hc.collision) return 0;
             const std::vector<shoal::check::ContactRegion> regions = shoal::check::hull_contact_regions(
                 shoal::check::hull_outline(a->detector.hull(), pa), shoal::check::hull_outline(b->detector.hull(), pb), scale);
-            for (std::size_t i = 0; i < regions.size() && i < static_cast<std::size_t>(capacity); ++i) {
-                to_ship_frame(pa, frame, regions[i], points[i]);
-                points[i].hazard = SHOAL_HAZARD_SHIP;
-                points[i].charted_depth_m = NAN;
-                points[i].name = "";
-            }
+            for (std::size_t i = 0; i < regions.size() && i < static_cast<std::size_t>(capacity); ++i)
+                fill(shoal::check::in_ship_frame(regions[i], pa, frame, nullptr), SHOAL_HAZARD_SHIP, points[i]);
             // Touching outlines overlap in no area: the contact point, depth 0.
             if (regions.empty() && capacity > 0) {
                 shoal::check::ContactRegion r;
@@ -269,10 +258,7 @@ int shoal_ship_contacts(const shoal_detector* a, double lat_a, double lon_a, dou
                 const shoal::geo::XY v = pa.position - hc.on_a;
                 const double len = std::hypot(v.x, v.y);
                 r.normal = len > 0 ? shoal::geo::XY{v.x / len, v.y / len} : shoal::geo::XY{1, 0};
-                to_ship_frame(pa, frame, r, points[0]);
-                points[0].hazard = SHOAL_HAZARD_SHIP;
-                points[0].charted_depth_m = NAN;
-                points[0].name = "";
+                fill(shoal::check::in_ship_frame(r, pa, frame, nullptr), SHOAL_HAZARD_SHIP, points[0]);
             }
             return regions.empty() ? 1 : static_cast<int>(regions.size());
         },

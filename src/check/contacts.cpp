@@ -38,6 +38,27 @@ double local_scale(const LocalPose& pose) noexcept {
     return std::sqrt(std::fabs(m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0)));
 }
 
+ShipFrameContact in_ship_frame(const ContactRegion& r, const LocalPose& pose, const geo::LocalFrame& frame, const grid::CoastGrid* grid) {
+    const Eigen::Matrix2d& m = pose.ship_to_local;
+    const double det = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0);
+    // The inverse map: local -> ship.
+    auto to_ship = [&](double x, double y) {
+        return XY{(m(1, 1) * x - m(0, 1) * y) / det, (-m(1, 0) * x + m(0, 0) * y) / det};
+    };
+    ShipFrameContact out;
+    const XY p = to_ship(r.hull_point.x - pose.position.x, r.hull_point.y - pose.position.y);
+    XY n = to_ship(r.normal.x, r.normal.y);
+    const double len = std::sqrt(geo::norm2(n));
+    if (len > 0) n = (1 / len) * n;
+    out.x_m = p.x, out.y_m = p.y;
+    out.nx = n.x, out.ny = n.y;
+    out.depth_m = r.depth_m;
+    out.point = frame.inverse(r.hull_point);
+    out.coast_point = frame.inverse(r.coast_point);
+    if (grid && r.polyline != grid::CoastGrid::no_polyline && r.polyline < grid->polyline_count()) out.hazard = &grid->hazard(r.polyline);
+    return out;
+}
+
 namespace {
 
 constexpr std::uint32_t no_polyline = grid::CoastGrid::no_polyline;
@@ -298,8 +319,24 @@ public:
     /// Signed distance: > 0 inside the hazards.
     double signed_d(XY p, Near* n) const {
         *n = nearest(p);
-        return m_obstacle.inside(p) ? n->d : -n->d;
+        return inside(p, *n) ? n->d : -n->d;
     }
+
+    /// Whether p is in the hazards, from its nearest boundary piece when that piece's nearest
+    /// point is inside it (p lies on the piece's land side, the left, or not), within the
+    /// reach; else from the obstacle (a winding number of the grid).
+    bool inside(XY p, const Near& n) const {
+        if (n.site >= 0 && n.d > 0 && n.d < m_reach) {
+            const Site& st = m_sites[n.site];
+            const XY ab = st.b - st.a;
+            const double ll = geo::norm2(ab), t = geo::dot(p - st.a, ab) / ll;
+            const double margin = 1e-9;
+            if (t > margin && t < 1 - margin) return geo::orient(st.a, st.b, p) > 0;
+        }
+        return m_obstacle.inside(p);
+    }
+    bool inside(XY p) const { return inside(p, nearest(p)); }
+    void set_reach(double r) noexcept { m_reach = r; }
 
     const std::vector<Site>& sites() const noexcept { return m_sites; }
 
@@ -326,6 +363,7 @@ private:
     std::vector<Site> m_sites;
     const Obstacle& m_obstacle;
     double m_tol;
+    double m_reach = 0;
 };
 
 struct Best {
@@ -443,25 +481,66 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
                     crossings(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
                     for (auto [t, u] : tu) cuts[i].push_back(t), cuts[j].push_back(u);
                 }
+            // Pieces between cuts. Whether a piece is buried (water side inside another hazard)
+            // can change only where another boundary crosses: pieces joined end to end
+            // without a crossing between them share the answer, found with one winding test.
+            struct Piece0 {
+                XY p, q;
+                std::size_t seg;
+                bool cut_start, cut_end;  // begins / ends at a crossing
+            };
+            std::vector<Piece0> raw_pieces;
             for (std::size_t i = 0; i < bounds.size(); ++i) {
                 auto& c = cuts[i];
-                c.push_back(0), c.push_back(1);
-                std::sort(c.begin(), c.end());
                 const XY a = bounds[i].a, d = bounds[i].b - bounds[i].a;
                 const double len = std::sqrt(geo::norm2(d));
-                const XY right{d.y / len, -d.x / len};
+                const double slack = tol / len;
+                bool cut_at_a = false, cut_at_b = false;
+                for (double t : c) cut_at_a = cut_at_a || t <= slack, cut_at_b = cut_at_b || t >= 1 - slack;
+                c.push_back(0), c.push_back(1);
+                std::sort(c.begin(), c.end());
                 for (std::size_t k = 0; k + 1 < c.size(); ++k) {
                     if (!((c[k + 1] - c[k]) * len > tol)) continue;
-                    const XY p = a + c[k] * d, q = a + c[k + 1] * d;
-                    const XY mid = 0.5 * (p + q);
-                    if (obstacle.inside(mid + eps * right)) continue;  // buried in another hazard
-                    if (!obstacle.inside(mid - eps * right)) continue;  // not a boundary of the union here
-                    sites.push_back({p, q, bounds[i].polyline});
+                    raw_pieces.push_back({a + c[k] * d, a + c[k + 1] * d, i, c[k] > slack || cut_at_a, c[k + 1] < 1 - slack || cut_at_b});
                 }
+            }
+            UnionFind same(raw_pieces.size());
+            {
+                // Ends that are not crossings, joined when they meet (within the clip slack).
+                struct End {
+                    XY at;
+                    std::uint32_t polyline;
+                    int piece;
+                };
+                std::vector<End> ends;
+                for (std::size_t k = 0; k < raw_pieces.size(); ++k) {
+                    const std::uint32_t pl = bounds[raw_pieces[k].seg].polyline;
+                    if (!raw_pieces[k].cut_start) ends.push_back({raw_pieces[k].p, pl, static_cast<int>(k)});
+                    if (!raw_pieces[k].cut_end) ends.push_back({raw_pieces[k].q, pl, static_cast<int>(k)});
+                }
+                std::sort(ends.begin(), ends.end(), [](const End& x, const End& y) { return x.at.x < y.at.x; });
+                const double join = 1e3 * tol;
+                for (std::size_t x = 0; x < ends.size(); ++x)
+                    for (std::size_t y = x + 1; y < ends.size() && ends[y].at.x - ends[x].at.x <= join; ++y)
+                        if (ends[x].polyline == ends[y].polyline && std::fabs(ends[y].at.y - ends[x].at.y) <= join)
+                            same.join(ends[x].piece, ends[y].piece);
+            }
+            std::vector<signed char> buried(raw_pieces.size(), -1);
+            for (std::size_t k = 0; k < raw_pieces.size(); ++k) {
+                const int root = same.find(static_cast<int>(k));
+                if (buried[root] < 0) {
+                    const Piece0& rp = raw_pieces[root];
+                    const XY d = rp.q - rp.p;
+                    const double len = std::sqrt(geo::norm2(d));
+                    const XY right{d.y / len, -d.x / len};
+                    buried[root] = obstacle.inside(0.5 * (rp.p + rp.q) + eps * right) ? 1 : 0;
+                }
+                if (buried[root] == 0) sites.push_back({raw_pieces[k].p, raw_pieces[k].q, bounds[raw_pieces[k].seg].polyline});
             }
         }
         merge_collinear(sites, tol);
         Search search(ring, convex, std::move(sites), obstacle, tol);
+        search.set_reach(reach);
         const std::vector<Site>& S = search.sites();
 
         // 1. Pieces of the overlap's boundary, and where they meet.
@@ -486,6 +565,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
         std::vector<int> piece_at_cross_out(xs.size() * 2, -1);  // outline piece before / after crossing
         std::vector<int> first_piece(n_edges, -1), last_piece(n_edges, -1);
         std::vector<std::pair<double, int>> ts;
+        int known = -1;  // whether the outline is in the hazards here: -1 not known
         for (std::size_t e = 0; e < n_edges; ++e) {
             const XY a = ring[e], d = ring[e + 1] - ring[e];
             const double len = std::sqrt(geo::norm2(d));
@@ -509,10 +589,18 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
                 if (t == 0.0) g.start = true;
                 if (t == 1.0) g.end = true;
             }
-            if (groups.size() == 1) continue;  // an edge shorter than the tolerance
+            if (groups.size() == 1) {  // an edge shorter than the tolerance
+                if (!groups[0].crossings.empty()) known = -1;
+                continue;
+            }
             for (std::size_t k = 0; k + 1 < groups.size(); ++k) {
                 const XY p = a + groups[k].t * d, q = a + groups[k + 1].t * d;
-                if (!obstacle.inside(0.5 * (p + q))) continue;
+                // The outline is in or out of the hazards from one crossing to the next: one
+                // test per stretch between crossings.
+                if (known < 0 || !groups[k].crossings.empty()) known = search.inside(0.5 * (p + q)) ? 1 : 0;
+                const bool in = known == 1;
+                if (!groups[k + 1].crossings.empty()) known = -1;
+                if (!in) continue;
                 const int id = static_cast<int>(pieces.size());
                 pieces.push_back({groups[k].start ? ring[e] : p, groups[k + 1].end ? ring[e + 1] : q, true});
                 if (groups[k].start) first_piece[e] = id;
@@ -674,15 +762,20 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
             const double side = std::max(std::max(rbox.maxx - rbox.minx, rbox.maxy - rbox.miny), tol);
             // Best first: the cell of the highest bound is cut next (a cell's bound is its parent's
             // until it is looked at), so the search ends when no cell can beat what was found.
+            // A cell carries its parent's centre, side and distance to the boundary: a centre
+            // nearer the parent's than that distance is on the same side (no winding number).
             struct Cell {
                 Box box;
                 double bound;
+                XY parent{};
+                double parent_clear = 0;  // the parent centre's distance to the boundary (a lower bound)
+                bool parent_inside = false;
                 bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
             };
             std::priority_queue<Cell> queue;
             for (double x = rbox.minx; x < rbox.maxx || x == rbox.minx; x += side)
                 for (double y = rbox.miny; y < rbox.maxy || y == rbox.miny; y += side)
-                    queue.push({{x, y, x + side, y + side}, INFINITY});
+                    queue.push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false});
             int steps = 0;
             std::vector<XY> poly;
             while (!queue.empty() && ++steps < 100000) {
@@ -706,7 +799,11 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
                 double r = 0;
                 for (XY p : poly) r = std::max(r, std::sqrt(geo::norm2(p - c)));
                 Search::Near n;
-                const double sd = search.signed_d(c, &n);
+                n = search.nearest(c);
+                const bool in_hazard = cell.parent_clear > 0 && geo::distance(c, cell.parent) < cell.parent_clear
+                                           ? cell.parent_inside
+                                           : search.inside(c, n);
+                const double sd = in_hazard ? n.d : -n.d;
                 int own = -1;
                 const bool in_hull = convex || in_polygon(ring, c);
                 if (sd > 0 && in_hull) {
@@ -730,10 +827,11 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
 
                 if (b <= least + tol) continue;
                 const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
-                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b});
-                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b});
-                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b});
-                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b});
+                const double clear_c = std::min(n.d, reach);
+                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard});
+                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard});
+                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard});
+                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard});
             }
         }
         // 3. A depth at the reach: a nearer boundary may lie beyond it.
@@ -823,18 +921,17 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
     };
     o.inside = [&g](XY p) { return g.winding(p) > 0; };
     // No contact, no region: the pose check answers that in a microsecond.
-    const Contact c = detector.check(pose, {.max_clearance_m = 0, .want_penetration = false});
-    if (!c.collision) return {};
+    // No contact, no region: the pose check answers that in a microsecond. On contact its
+    // penetration (how deep the hull reaches past the boundary) starts the reach.
+    const Contact pre = detector.check(pose, {.max_clearance_m = 0, .want_penetration = true, .want_polyline = false, .want_contact_point = false});
+    if (!pre.collision) return {};
     const std::vector<XY> outline = hull_outline(detector.hull(), pose);
-    // The reach: the deepest hull vertex's distance to the nearest segment (a lower bound of
-    // the answer, which is often at a vertex).
-    double hint = 0;
-    for (const XY& v : outline)
-        if (g.winding(v) > 0) hint = std::max(hint, std::sqrt(g.nearest_segment(v).dist2));
+    const double hint = std::isfinite(pre.penetration_m) ? pre.penetration_m * local_scale(pose) : 0.0;
     std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose), hint);
     if (out.empty()) {
         // A touch the search above cannot see as a region (a hull vertex exactly on the
         // boundary): the check's contact point, depth 0.
+        const Contact c = detector.check(pose, {.max_clearance_m = 0, .want_penetration = false});
         {
             ContactRegion cr;
             cr.hull_point = c.hull_point;

@@ -300,3 +300,58 @@ class DetectorSurroundings(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class CContactPoint(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_double) for n in ("x_m", "y_m", "nx", "ny", "depth_m", "lat", "lon", "coast_lat", "coast_lon")] + [
+        ("hazard", ctypes.c_int), ("charted_depth_m", ctypes.c_double), ("name", ctypes.c_char_p)]
+
+
+class DetectorContacts(unittest.TestCase):
+    """Detector.contacts: the regions shoal_contacts gives, on the Solent and the Annapolis cut."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.solent_path = support.grid_file(support.data("coast/uk_solent_land.geojson"), "solent.shoalgrid")
+        cls.solent = shoal.Grid.load(cls.solent_path)
+
+    def test_contacts_are_the_c_apis_and_only_where_the_check_finds_contact(self):
+        det = shoal.Detector(self.solent, dims=(150, 35, 14, 15))
+        lib = c_api()
+        cdet = cgrid = None
+        if lib is not None:
+            lib.shoal_contacts.restype = ctypes.c_int
+            lib.shoal_contacts.argtypes = [ctypes.c_void_p] + [ctypes.c_double] * 3 + [ctypes.POINTER(CContactPoint), ctypes.c_int]
+            cgrid = lib.shoal_grid_load(self.solent_path.encode())
+            cdet = lib.shoal_detector_new_at_depth(cgrid, 150, 35, 14, 15, math.nan)
+        rng = np.random.default_rng(11)
+        lo_lon, lo_lat, hi_lon, hi_lat = self.solent.bounds
+        hits = 0
+        for k in range(400):
+            lat, lon, hdg = rng.uniform(lo_lat, hi_lat), rng.uniform(lo_lon, hi_lon), rng.uniform(0, 360)
+            regions = det.contacts(lat, lon, hdg)
+            self.assertEqual(bool(regions), bool(det.check(lat, lon, hdg)["contact"]), "pose %d" % k)
+            depths = [r["depth_m"] for r in regions]
+            self.assertEqual(depths, sorted(depths, reverse=True))
+            for r in regions:
+                self.assertAlmostEqual(math.hypot(r["nx"], r["ny"]), 1.0, places=9)
+                self.assertEqual(r["hazard"], "land")
+            hits += bool(regions)
+            if cdet:
+                out = (CContactPoint * 8)()
+                n = lib.shoal_contacts(cdet, lat, lon, hdg, out, 8)
+                self.assertEqual(n, len(regions), lib.shoal_last_error())
+                for a, b in zip(out, regions):
+                    for f in ("x_m", "y_m", "nx", "ny", "depth_m", "lat", "lon", "coast_lat", "coast_lon"):
+                        self.assertEqual(getattr(a, f), b[f], "pose %d %s" % (k, f))
+        self.assertGreater(hits, 40)
+        if cdet:
+            lib.shoal_detector_free(cdet)
+            lib.shoal_grid_free(cgrid)
+
+    def test_bad_poses_are_value_errors(self):
+        det = shoal.Detector(self.solent, dims=(150, 35, 14, 15))
+        with self.assertRaises(ValueError):
+            det.contacts(91, 0, 0)
+        with self.assertRaises(ValueError):
+            det.contacts(50.8, -1.2, math.nan)

@@ -46,4 +46,20 @@ std::vector<ContactRegion> hull_contact_regions(const std::vector<geo::XY>& a, c
 /// Local metres per metre on the ground of a pose (the square root of its map's determinant).
 double local_scale(const LocalPose& pose) noexcept;
 
+/// A region as a simulator reads it: in the ship frame of its pose (x forward, y starboard,
+/// metres on the ground from the reference point), the points in WGS84, and what was hit.
+struct ShipFrameContact {
+    double x_m = 0, y_m = 0;  ///< the deepest hull point
+    double nx = 1, ny = 0;    ///< unit normal freeing it
+    double depth_m = 0;
+    geo::LonLat point, coast_point;
+    /// What the region overlaps (grid::CoastGrid::hazard of its polyline); null for a hull or
+    /// when the polyline is not known.
+    const coast::Hazard* hazard = nullptr;
+};
+
+/// `region` of the hull at `pose` in `frame`, with its hazard from `grid` (null: none).
+ShipFrameContact in_ship_frame(const ContactRegion& region, const LocalPose& pose, const geo::LocalFrame& frame,
+                               const grid::CoastGrid* grid);
+
 }  // namespace shoal::check
