@@ -165,7 +165,12 @@ public:
         : m_path(std::move(path)), m_watch([this, patience] {
               std::unique_lock<std::mutex> lock(m_mutex);
               if (!m_stop.wait_for(lock, patience, [this] { return m_done; }))
+              {
+                  // A reader first (releases a writer waiting for one), then a writer (releases a reader).
+                  const int rd = ::open(m_path.c_str(), O_RDONLY | O_NONBLOCK);
                   if (const int fd = ::open(m_path.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+                  if (rd >= 0) ::close(rd);
+              }
           }) {}
     FifoReleaser(const FifoReleaser&) = delete;
     FifoReleaser& operator=(const FifoReleaser&) = delete;
@@ -816,6 +821,31 @@ TEST_F(BadInput, AGridCacheInAFolderOthersMayWriteIsNotTrusted) {
               1);
     EXPECT_FALSE(fs::is_empty(own));
     EXPECT_EQ(fs::status(own).permissions() & (fs::perms::group_all | fs::perms::others_all), fs::perms::none);
+}
+
+TEST_F(BadInput, AFifoAtTheCachedGridsPathIsNamedAndNeverWaitedOn) {
+    // The cached grid's path is a FIFO: before, `check --coast SOURCE` waited on it for ever.
+    const fs::path own = fs::path(m_dir.path()) / "fifo-cache";
+    const std::string coast = data_path("coast/uk_solent_land.geojson");
+    const std::vector<std::string> args{"check", "--world", "simulated", "--coast", coast, "--cache-dir", own.string(), "--dims", "50,10,5,5", "-o",
+                                        m_dir.file("fifo-cache.geojson"), good_tracks()};
+    ASSERT_EQ(shoal(args).status, 1);
+    std::vector<std::string> cached = entries(own);
+    ASSERT_EQ(cached.size(), 1u);
+    const fs::path grid = own / cached[0];
+    for (const char* kind : {"fifo", "directory"}) {
+        fs::remove_all(grid);
+        if (std::string(kind) == "fifo") ASSERT_EQ(::mkfifo(grid.c_str(), 0600), 0);
+        else fs::create_directory(grid);
+        const FifoReleaser guard(grid.string(), std::chrono::seconds(30));
+        const auto t0 = std::chrono::steady_clock::now();
+        const Outcome r = shoal(args);
+        EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(25)) << kind << ": the run waited on the cache path";
+        EXPECT_EQ(r.status, 1) << kind << ": the grounding is still found\n" << r.err;
+        EXPECT_NE(r.err.find("shoal: warning: the cached grid's path '" + grid.string() + "' is a"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("not a regular file: not read or written; the grid is built for this run only"), std::string::npos) << r.err;
+        EXPECT_EQ(std::string(kind) == "fifo", fs::is_fifo(fs::symlink_status(grid))) << "left as it was";
+    }
 }
 
 }  // namespace
