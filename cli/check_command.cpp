@@ -254,7 +254,7 @@ public:
         print_warnings(vessel_warnings);
         if (!m_vessel_files.empty()) {
             m_audit.vessels = &m_vessels;
-            std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, *_vessels.csv in track folders)\n",
+            std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, and vessels tables in track folders and zips)\n",
                          m_vessels.size(), m_vessel_files.size());
         }
         Progress bar(m_progress.value_or(::isatty(2) != 0));

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include <shoal/track/csv_reader.hpp>
@@ -299,6 +300,32 @@ PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& o
     return out;
 }
 
+bool is_vessels_table(const std::string& path) {
+    // The first line, of at most 64 KiB (a header longer than that is no vessels table's).
+    VSILFILE* f = VSIFOpenL(path.c_str(), "rb");
+    if (!f) return false;
+    std::string head(64 * 1024, '\0');
+    head.resize(VSIFReadL(head.data(), 1, head.size(), f));
+    VSIFCloseL(f);
+    if (head.starts_with("\xEF\xBB\xBF")) head.erase(0, 3);
+    const std::size_t nl = head.find('\n');
+    if (nl == std::string::npos && head.size() == 64 * 1024) return false;
+    head.resize(std::min(nl, head.size()));
+    if (!head.empty() && head.back() == '\r') head.pop_back();
+    CsvSplitter split(head);
+    std::vector<std::string_view> f_names;
+    if (split.separator() == '\0' || !split.next(f_names)) return false;
+    std::set<std::string> names;
+    for (const auto h : f_names) names.insert(normalise_column_name(h));
+    const auto any = [&](std::initializer_list<const char*> candidates) {
+        return std::any_of(candidates.begin(), candidates.end(), [&](const char* c) { return names.contains(c); });
+    };
+    // A position makes it a track file; an MMSI and what a vessels table gives, a vessels table.
+    if (any({"lat", "latitude", "lon", "lng", "long", "longitude"})) return false;
+    return any({"mmsi"}) && any({"name", "vesselname", "vessel_name", "shipname", "shiptype", "ship_type", "vesseltype", "ship type", "draught_m",
+                                 "draught", "draft", "to_bow_m", "to_bow", "to_stern_m", "to_stern", "to_port_m", "to_port", "to_stbd_m", "to_stbd", "a", "b", "c", "d"});
+}
+
 std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings,
                                        std::vector<std::string>* vessels_files) {
     std::vector<std::string> out;
@@ -326,9 +353,9 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
         seen.push_back(std::move(key));
         out.push_back(file);
     };
-    auto is_vessels_file = [](const std::string& name) {
-        return name.size() >= 12 && lower_extension(name) == ".csv" && name.compare(name.size() - 12, 12, "_vessels.csv") == 0;
-    };
+    // A table of AIS static data (read with read_vessels) or a track file: told by the header's
+    // columns, never by the name (a track file named *_vessels.csv is a track file).
+    auto is_vessels_file = [](const std::string& path) { return lower_extension(path) == ".csv" && is_vessels_table(path); };
     // A zip of several files is a folder of them (its track files, in any sub-folder).
     auto take_file = [&](const std::string& file) {
         const std::vector<std::string> members = shoal::detail::zip_members(file);
@@ -338,9 +365,8 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
         }
         std::size_t found = 0;
         for (const std::string& m : members) {
-            const std::string name = fs::path(m).filename().string();
             if (!is_track_extension(lower_extension(m))) continue;
-            if (is_vessels_file(name)) {  // AIS static data, joined as one in a folder is
+            if (is_vessels_file(m)) {  // AIS static data, joined as one in a folder is
                 if (vessels_files) vessels_files->push_back(m);
                 continue;
             }
@@ -375,14 +401,13 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
             std::error_code entry_ec;
             // A bad entry (a symlink loop, a dangling link, no permission) costs that entry.
             const bool regular = entry.is_regular_file(entry_ec);
-            const std::string name = entry.path().filename().string();
             if (!is_track_extension(lower_extension(entry.path()))) continue;
             if (entry_ec) {
                 warn(entry.path().string() + ": cannot read (" + entry_ec.message() + "); skipped");
                 continue;
             }
             if (!regular) continue;
-            if (is_vessels_file(name)) {  // AIS static data, read with read_vessels
+            if (is_vessels_file(entry.path().string())) {  // AIS static data, read with read_vessels
                 if (vessels_files) vessels_files->push_back(entry.path().string());
                 continue;
             }

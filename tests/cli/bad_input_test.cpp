@@ -29,6 +29,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -1193,6 +1194,36 @@ TEST_F(BadInput, AVesselsTableInAZipIsJoinedAndItsBadRowsAndConflictsAreSaid) {
     const auto* b = track_entry(doc, "222222222");
     ASSERT_NE(b, nullptr);
     EXPECT_EQ((*b)["hull"], "AIS dimensions 9,4,2,2 (vessels file " + other + ")");
+}
+
+TEST_F(BadInput, AFilesHeaderNotItsNameTellsATrackFileFromAVesselsTableInAFolderOrAZip) {
+    // Vessel A's track (it grounds) in a file named like a vessels table; vessel B's in a plain
+    // one; the vessels table under a name that says nothing. Before: A's file was taken as a
+    // vessels table by its name (A never audited, exit 0) and the table as a bad track file.
+    std::string a_rows, b_rows;
+    std::istringstream rows(solent_rows());
+    for (std::string line; std::getline(rows, line);) (line.starts_with("111111111") ? a_rows : b_rows) += line + "\n";
+    const fs::path day = fs::path(m_dir.path()) / "named";
+    fs::create_directory(day);
+    write((day / "harbour_vessels.csv").string(), header + a_rows);
+    write((day / "clear.csv").string(), header + b_rows);
+    write((day / "fleet.csv").string(), "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n222222222,SMALL ONE,8,4,2,2,1.2\n");
+    const std::string zip = m_dir.file("named.zip");
+    const bool zipped = std::system(("cd " + day.string() + " && zip -q " + zip + " harbour_vessels.csv clear.csv fleet.csv 2>/dev/null").c_str()) == 0;
+    for (const std::string& input : {day.string(), zip}) {
+        if (input == zip && !zipped) continue;
+        const std::string r = m_dir.file("named.geojson");
+        const Outcome o = check({input}, r);
+        EXPECT_EQ(o.status, 1) << input << ": vessel A grounds\n" << o.err;
+        EXPECT_NE(o.err.find("static data of 1 vessels from 1 vessels files"), std::string::npos) << input << "\n" << o.err;
+        EXPECT_EQ(o.err.find("not a track format"), std::string::npos) << input << "\n" << o.err;
+        const auto doc = report(r);
+        EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1) << input;
+        const auto* b = track_entry(doc, "222222222");
+        ASSERT_NE(b, nullptr) << input;
+        EXPECT_EQ((*b)["hull"].get<std::string>().find("AIS dimensions 8,4,2,2 (vessels file "), 0u) << (*b)["hull"];
+        EXPECT_NE(track_entry(doc, "111111111"), nullptr) << input << ": A's track is audited";
+    }
 }
 
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {

@@ -81,13 +81,18 @@ TrackFile unpack(PackedTrackFile&& packed);
 /// `path` only breaks ties (its extension); the content decides.
 std::string sniff_format(std::string_view content, const std::string& path = {});
 
+/// Whether the CSV file at `path` (a file or a GDAL virtual path) is a table of AIS static data
+/// by its header: an MMSI column, a column a vessels table gives (name, ship type, draught,
+/// dimensions) and no position column. Its name does not matter; a file that cannot be read is not one.
+bool is_vessels_table(const std::string& path);
+
 /// Files named on a command line, with each folder replaced by the track files directly in it
-/// (extensions .csv .gpx .geojson .json .nmea .log .txt .zip .gz, any case, not `*_vessels.csv`,
-/// sorted by name; not recursive). Files are kept as given, whatever their extension. A file met again
+/// (extensions .csv .gpx .geojson .json .nmea .log .txt .zip .gz, any case, not vessels tables
+/// (is_vessels_table), sorted by name; not recursive). Files are kept as given, whatever their extension. A file met again
 /// (named twice, by a symlink to it, or inside a folder also given) is kept once; a folder entry
 /// that cannot be read (a symlink loop, a dangling link) is skipped; both are said in `warnings`.
 /// Throws InputError for a path that does not exist and for a folder without track files.
-/// The vessels files (`*_vessels.csv`) met in folders and in zips read as folders go to
+/// The vessels tables (CSV files by their header, is_vessels_table) met in folders and in zips read as folders go to
 /// `vessels_files` when given.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr,
                                        std::vector<std::string>* vessels_files = nullptr);
