@@ -156,6 +156,12 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
 AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
                          const AuditOptions& options) {
     std::vector<track::PackedTrack>& packed = read.tracks;
+    // Every entry of the exercise file names a track of the run (all shards': every track read).
+    if (options.encounters && options.roles) {
+        std::vector<std::pair<std::string, std::string>> ids;
+        for (const auto& t : packed) ids.emplace_back(t.id, exercise_key(options.exercise_by, t.file, t.exercise));
+        options.roles->check_entries_name_tracks(ids);
+    }
     // --shard: the tracks of this shard, by their position among all the tracks read.
     std::vector<std::size_t> chosen;
     for (std::size_t k = 0; k < packed.size(); ++k)
@@ -194,6 +200,11 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
 
 AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                          const std::string& hull_label, const AuditOptions& options) {
+    if (options.encounters && options.roles) {
+        std::vector<std::pair<std::string, std::string>> ids;
+        for (const auto& t : tracks) ids.emplace_back(t.id, exercise_key(options.exercise_by, t));
+        options.roles->check_entries_name_tracks(ids);
+    }
     TrackSource source{tracks.size(), [&](std::size_t k) { return tracks[k].fixes.size(); },
                        [&](std::size_t k) { return std::move(tracks[k]); }, {}, 0, {}};
     return audit(source, grid, default_hull, hull_label, options);

@@ -1226,6 +1226,32 @@ TEST_F(BadInput, AFilesHeaderNotItsNameTellsATrackFileFromAVesselsTableInAFolder
     }
 }
 
+TEST_F(BadInput, AnExerciseFileEntryNamingNoTrackIsAnErrorNamingTheEntryNotZeroTraineesScored) {
+    // A typo (8 digits for 9) made the trainee a target and "0 trainees scored", in silence.
+    const std::string tracks = good_tracks();
+    const std::string typo = file("typo_roles.json", R"({"tracks": [{"track": "11111111", "role": "trainee"}]})");
+    const std::string r = m_dir.file("typo.geojson");
+    const Outcome o = check({tracks}, r, {"--exercise-by", "run", "--roles", typo});
+    EXPECT_EQ(o.status, 2) << o.err;
+    EXPECT_NE(o.err.find("shoal: error: exercise file '" + typo + "': tracks[0] names track '11111111', which no track read has (it would make it a "
+                         "trainee; tracks read: '111111111', '222222222'): a typo?"),
+              std::string::npos)
+        << o.err;
+    EXPECT_FALSE(fs::exists(r)) << "no report of a run without its trainee";
+    // An entry of an exercise the track is not in: said the same way.
+    const std::string other = file("other_roles.json", R"({"tracks": [{"track": "111111111", "exercise": "nowhere", "role": "trainee"}]})");
+    const Outcome e = check({tracks}, r, {"--exercise-by", "file", "--roles", other});
+    EXPECT_EQ(e.status, 2) << e.err;
+    EXPECT_NE(e.err.find("tracks[0] names track '111111111' in exercise 'nowhere', which that exercise has no track of"), std::string::npos) << e.err;
+    // Entries that name tracks of the run are fine, in every shard (a shard checks against every track read).
+    const std::string good = file("good_roles.json", R"({"tracks": [{"track": "111111111", "role": "trainee"}, {"track": "222222222", "role": "target"}]})");
+    for (const char* shard : {"0/2", "1/2"}) {
+        const Outcome g = check({tracks}, m_dir.file("good-roles.geojson"), {"--exercise-by", "run", "--roles", good, "--shard", shard});
+        EXPECT_LE(g.status, 1) << shard << "\n" << g.err;
+        EXPECT_EQ(g.err.find("names track"), std::string::npos) << g.err;
+    }
+}
+
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {
     const std::string r = m_dir.file("r.geojson");
     const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "100000,10,5,5", good_tracks(), "-o", r});
