@@ -62,7 +62,8 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
 
 /// A vessels table's static data over the track's own: name, A,B,C,D, draught, ship type.
 void join_static_data(track::Track& t, const std::map<std::string, track::VesselInfo>& vessels) {
-    const auto it = vessels.find(t.id);
+    auto it = vessels.find(t.id);
+    if (it == vessels.end()) it = vessels.find(track::integral_id(t.id));  // a track's id written 230035780.0
     if (it == vessels.end()) return;
     const track::VesselInfo& v = it->second;
     if (!v.name.empty()) t.name = v.name;
@@ -161,6 +162,12 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
         std::vector<std::pair<std::string, std::string>> ids;
         for (const auto& t : packed) ids.emplace_back(t.id, exercise_key(options.exercise_by, t.file, t.exercise));
         options.roles->check_entries_name_tracks(ids);
+    }
+    // A vessels table none of whose vessels is a track read (all shards': every track) is said.
+    if (options.vessels) {
+        std::vector<std::string> ids;
+        for (const auto& t : packed) ids.push_back(t.id);
+        for (std::string& w : track::unmatched_vessels_tables(*options.vessels, ids)) read.warnings.push_back(std::move(w));
     }
     // --shard: the tracks of this shard, by their position among all the tracks read.
     std::vector<std::size_t> chosen;

@@ -438,6 +438,74 @@ std::string quoted(std::string_view v) {
 
 }  // namespace
 
+std::string integral_id(std::string_view id) {
+    const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+    std::size_t i = 0;
+    while (i < id.size() && digit(id[i])) ++i;
+    const std::string_view whole = id.substr(0, i);
+    if (whole.empty() || i == id.size()) return std::string(id);
+    std::string_view rest = id.substr(i);
+    std::string fraction;
+    if (rest.front() == '.') {
+        rest.remove_prefix(1);
+        std::size_t k = 0;
+        while (k < rest.size() && digit(rest[k])) ++k;
+        fraction = rest.substr(0, k);
+        rest.remove_prefix(k);
+    }
+    long exponent = 0;
+    if (!rest.empty()) {
+        if (rest.front() != 'e' && rest.front() != 'E') return std::string(id);
+        rest.remove_prefix(1);
+        bool negative = false;
+        if (!rest.empty() && (rest.front() == '+' || rest.front() == '-')) {
+            negative = rest.front() == '-';
+            rest.remove_prefix(1);
+        }
+        if (rest.empty() || rest.size() > 3 || !std::all_of(rest.begin(), rest.end(), digit)) return std::string(id);
+        exponent = std::stol(std::string(rest));
+        if (negative) exponent = -exponent;
+    }
+    // The digits, the point moved by the exponent: integral when every digit after it is 0, and
+    // exact only when no digit is missing (2.30036E+08 is a rounded MMSI: not one).
+    std::string digits = std::string(whole) + fraction;
+    const long point = static_cast<long>(whole.size()) + exponent;
+    if (point < 1 || point > static_cast<long>(digits.size()) || point > 18) return std::string(id);
+    for (std::size_t k = static_cast<std::size_t>(point); k < digits.size(); ++k)
+        if (digits[k] != '0') return std::string(id);
+    digits.resize(static_cast<std::size_t>(point));
+    return digits;
+}
+
+std::vector<std::string> unmatched_vessels_tables(const std::map<std::string, VesselInfo>& vessels, const std::vector<std::string>& track_ids) {
+    std::set<std::string> ids;
+    for (const std::string& id : track_ids) {
+        ids.insert(id);
+        ids.insert(integral_id(id));
+    }
+    std::map<std::string, std::pair<std::size_t, std::size_t>> by_table;  // table: (vessels, of them tracks)
+    std::map<std::string, std::string> example;
+    for (const auto& [id, v] : vessels)
+        for (const std::string& s : v.sources) {
+            auto& [n, matched] = by_table[s];
+            ++n;
+            if (ids.contains(id)) ++matched;
+            else example.try_emplace(s, id);
+        }
+    std::vector<std::string> out;
+    for (const auto& [table, count] : by_table) {
+        if (count.second > 0) continue;
+        std::string seen;
+        std::size_t k = 0;
+        for (const std::string& id : ids)
+            if (id == integral_id(id) && k++ < 3) seen += (seen.empty() ? "" : ", ") + quoted(std::string_view(id));
+        out.push_back(table + ": none of its " + std::to_string(count.first) + " vessels is a track read (its ids such as " + quoted(std::string_view(example[table])) +
+                      ", the tracks' such as " + (seen.empty() ? std::string("none") : seen) +
+                      "): its names, dimensions and draughts are not used (the default hull and draught serve)");
+    }
+    return out;
+}
+
 std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vector<std::string>* warnings) {
     std::string text;
     try {
@@ -501,7 +569,7 @@ std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vec
                  (decimal_comma ? std::string() : std::string(" (a decimal comma in a comma-separated file?)")));
             continue;
         }
-        const std::string id(detail::trim(f[mmsi]));
+        const std::string id = integral_id(detail::trim(f[mmsi]));  // 230035780.0, as a spreadsheet writes it: 230035780
         if (id.empty()) {
             skip("no mmsi");
             continue;
@@ -561,9 +629,11 @@ void merge_vessels(std::map<std::string, VesselInfo>& into, std::map<std::string
                    std::vector<std::string>* warnings) {
     for (auto& [id, v] : from) {
         v.source = source;
+        v.sources = {source};
         auto [it, fresh] = into.try_emplace(id, std::move(v));
         if (fresh) continue;
         VesselInfo& kept = it->second;
+        kept.sources.push_back(source);
         const VesselInfo& other = v;
         std::string differ;
         if (kept.dims && other.dims && !(*kept.dims == *other.dims))

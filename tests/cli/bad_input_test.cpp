@@ -1252,6 +1252,30 @@ TEST_F(BadInput, AnExerciseFileEntryNamingNoTrackIsAnErrorNamingTheEntryNotZeroT
     }
 }
 
+TEST_F(BadInput, AVesselsTableOfSpreadsheetIdsIsJoinedAndOneMatchingNoTrackIsSaid) {
+    // Ids written 111111111.0, as a spreadsheet saves them: before, matched no track, silently.
+    const std::string sheet = file("sheet.csv", "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n"
+                                                "111111111.0,SHEET ONE,8,4,2,2,1.2\n2.22222222E+08,SHEET TWO,9,4,2,2,1.2\n");
+    const std::string r = m_dir.file("sheet.geojson");
+    const Outcome o = check({good_tracks()}, r, {"--vessels", sheet});
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_EQ(o.err.find("none of its"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    ASSERT_NE(track_entry(doc, "111111111"), nullptr);
+    EXPECT_EQ((*track_entry(doc, "111111111"))["hull"], "AIS dimensions 8,4,2,2 (vessels file " + sheet + ")");
+    EXPECT_EQ((*track_entry(doc, "222222222"))["hull"], "AIS dimensions 9,4,2,2 (vessels file " + sheet + ")");
+    // A table whose ids match no track (a rounded id, another fleet's): said, naming it and its count.
+    const std::string other = file("other.csv", "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n"
+                                                "1.11111E+08,ROUNDED,8,4,2,2,1.2\n333333333,ELSEWHERE,9,4,2,2,1.2\n");
+    const Outcome w = check({good_tracks()}, r, {"--vessels", sheet, "--vessels", other});
+    EXPECT_EQ(w.status, 1) << w.err;
+    EXPECT_NE(w.err.find("shoal: warning: vessels file " + other + ": none of its 2 vessels is a track read (its ids such as '1.11111E+08', the "
+                         "tracks' such as '111111111', '222222222'): its names, dimensions and draughts are not used"),
+              std::string::npos)
+        << w.err;
+    EXPECT_EQ(w.err.find("vessels file " + sheet + ": none"), std::string::npos) << w.err;
+}
+
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {
     const std::string r = m_dir.file("r.geojson");
     const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "100000,10,5,5", good_tracks(), "-o", r});

@@ -107,7 +107,18 @@ struct VesselInfo {
     /// Where the dimensions, the draught and the ship type came from when not from `source` (merge_vessels
     /// took them from a later table that gave what the first lacked); empty: `source`.
     std::string dims_source, draught_source, ship_type_source;
+    std::vector<std::string> sources;      ///< every table that names it, in order (merge_vessels): which tables matched a track
 };
+
+/// An MMSI as a spreadsheet may write it, as digits: "230035780.0" and "2.30035780E+08" are
+/// "230035780" (an integral number whose every digit is written; "2.3003578E+08" is not one: its
+/// ninth digit is not written); anything else is returned as it is.
+std::string integral_id(std::string_view id);
+
+/// The warnings for the vessels tables of `vessels` (VesselInfo::sources) none of whose vessels
+/// is a track of `track_ids` (matched as join_static_data does: the id, or its integral_id):
+/// "vessels file F: none of its N vessels is a track read (...): its data are not used".
+std::vector<std::string> unmatched_vessels_tables(const std::map<std::string, VesselInfo>& vessels, const std::vector<std::string>& track_ids);
 
 /// The deepest draught a vessels table may give (metres): the deepest ships draw about 25 m
 /// (AIS gives at most 25.5); more is a wrong unit (decimetres) or a corrupt field.
