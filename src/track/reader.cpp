@@ -358,7 +358,9 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
     auto is_vessels_file = [](const std::string& path) { return lower_extension(path) == ".csv" && is_vessels_table(path); };
     // A zip of several files is a folder of them (its track files, in any sub-folder).
     auto take_file = [&](const std::string& file) {
-        const std::vector<std::string> members = shoal::detail::zip_members(file);
+        std::vector<std::string> notes;
+        const std::vector<std::string> members = shoal::detail::zip_members(file, &notes);
+        for (const std::string& n : notes) warn(n);
         if (members.size() <= 1) {
             take(file);
             return;

@@ -1276,6 +1276,28 @@ TEST_F(BadInput, AVesselsTableOfSpreadsheetIdsIsJoinedAndOneMatchingNoTrackIsSai
     EXPECT_EQ(w.err.find("vessels file " + sheet + ": none"), std::string::npos) << w.err;
 }
 
+TEST_F(BadInput, AZipMemberWhoseNameClimbsOutOfTheZipIsSaidAndReadInPlace) {
+    // tracks/zips/dotdot_member.zip: clear.csv, ../grounds.csv (vessel A grounds), sub/../hidden.csv.
+    // Before: GDAL leaves '..' members out of its listing: A's grounding missed, exit 0, no word.
+    const std::string zip = data_path("tracks/zips/dotdot_member.zip");
+    const std::string r = m_dir.file("dotdot.geojson");
+    const Outcome o = check({zip}, r);
+    EXPECT_EQ(o.status, 1) << "vessel A grounds\n" << o.err;
+    EXPECT_NE(o.err.find("shoal: warning: " + zip + ": member '../grounds.csv' has '..' in its path (extracted, it would land outside the zip's "
+                         "folder): read in place, never extracted"),
+              std::string::npos)
+        << o.err;
+    EXPECT_NE(o.err.find(zip + ": member 'sub/../hidden.csv' has '..' in its path (extracted, it would land outside the zip's folder): GDAL "
+                         "cannot read it; skipped"),
+              std::string::npos)
+        << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_NE(track_entry(doc, "111111111"), nullptr);
+    EXPECT_NE(track_entry(doc, "222222222"), nullptr);
+    EXPECT_FALSE(fs::exists(fs::path(zip).parent_path().parent_path() / "grounds.csv")) << "nothing extracted";
+}
+
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {
     const std::string r = m_dir.file("r.geojson");
     const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "100000,10,5,5", good_tracks(), "-o", r});
