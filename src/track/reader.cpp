@@ -365,9 +365,14 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
             take(file);
             return;
         }
-        std::size_t found = 0;
+        std::size_t found = 0, forks = 0;
         for (const std::string& m : members) {
             if (!is_track_extension(lower_extension(m))) continue;
+            // A zip made by macOS holds a resource fork (__MACOSX/.../._NAME) per file: not data.
+            if (m.find("/__MACOSX/") != std::string::npos || fs::path(m).filename().string().starts_with("._")) {
+                ++forks;
+                continue;
+            }
             if (is_vessels_file(m)) {  // AIS static data, joined as one in a folder is
                 if (vessels_files) vessels_files->push_back(m);
                 continue;
@@ -375,6 +380,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
             take(m);
             ++found;
         }
+        if (forks) warn(file + ": " + std::to_string(forks) + " macOS resource forks (__MACOSX/, ._NAME) skipped");
         if (found == 0) throw InputError(file + ": zip holds no track files (" + track_extensions_text() + ")");
     };
     for (const std::string& p : paths) {

@@ -1298,6 +1298,25 @@ TEST_F(BadInput, AZipMemberWhoseNameClimbsOutOfTheZipIsSaidAndReadInPlace) {
     EXPECT_FALSE(fs::exists(fs::path(zip).parent_path().parent_path() / "grounds.csv")) << "nothing extracted";
 }
 
+TEST_F(BadInput, EmptyPathsForPlotOrDebriefAreUsageErrorsAndMacosResourceForksInAZipCostOneLine) {
+    // --plot "" and --debrief "" did nothing, in silence.
+    for (const char* option : {"--plot", "--debrief", "--roles", "--vessels"}) {
+        const std::string r = m_dir.file("empty-option.geojson");
+        const Outcome o = check({good_tracks()}, r, {option, ""});
+        EXPECT_EQ(o.status, 2) << option << "\n" << o.err;
+        EXPECT_EQ(o.err, "shoal: usage error: " + std::string(option) + " '' is empty: give it a value, or leave the option out (see shoal check --help)\n");
+        EXPECT_FALSE(fs::exists(r));
+    }
+    // tracks/zips/macos.zip: two tracks, each with its __MACOSX/._NAME resource fork. Before: an
+    // error line per fork ("not a track format").
+    const std::string zip = data_path("tracks/zips/macos.zip");
+    const Outcome m = check({zip}, m_dir.file("macos.geojson"));
+    EXPECT_EQ(m.status, 1) << m.err;
+    EXPECT_EQ(m.err.find("__MACOSX/._"), std::string::npos) << m.err;
+    EXPECT_EQ(m.err.find("not a track format"), std::string::npos) << m.err;
+    EXPECT_NE(m.err.find("shoal: warning: " + zip + ": 2 macOS resource forks (__MACOSX/, ._NAME) skipped\n"), std::string::npos) << m.err;
+}
+
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {
     const std::string r = m_dir.file("r.geojson");
     const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "100000,10,5,5", good_tracks(), "-o", r});
