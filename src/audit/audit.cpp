@@ -553,7 +553,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
     // 4. Assessment: every trainee scored against the criteria.
     if (options.assessment) {
         AssessInput in{result, kept_of, grid, *frames[0], default_hull.draught(), options.sweep.step_m, options.sweep.max_gap_s,
-                       options.sweep.time_tolerance_s};
+                       options.sweep.time_tolerance_s, options.max_encounters_per_ship};
         result.assessment = assess(*options.assessment, in);
         result.has_assessment = true;
         result.warnings.insert(result.warnings.end(), result.assessment.warnings.begin(), result.assessment.warnings.end());

@@ -1317,6 +1317,37 @@ TEST_F(BadInput, EmptyPathsForPlotOrDebriefAreUsageErrorsAndMacosResourceForksIn
     EXPECT_NE(m.err.find("shoal: warning: " + zip + ": 2 macOS resource forks (__MACOSX/, ._NAME) skipped\n"), std::string::npos) << m.err;
 }
 
+TEST_F(BadInput, CpaBreachesAreListedAgainstAtMostMaxEncountersPerShipOthersAndScoredInFull) {
+    // A crowd of 30 trainees in open water, every pair within the CPA limit. Before: 870 breaches
+    // listed (30 x 29: one stdout line each, in the report too), whatever --max-encounters-per-ship.
+    std::string rows = header;
+    for (int i = 0; i < 30; ++i)
+        for (int minute : {0, 10}) rows += row(std::to_string(100000000 + i), minute, 50.70 + 0.002 * i, -1.05 + 0.0003 * (i % 5) + 0.0001 * minute);
+    const std::string crowd = file("crowd.csv", rows);
+    const std::string assess = file("cpa.json", R"({"criteria": [{"id": "cpa", "kind": "cpa", "limit": 10000, "penalty": 1}]})");
+    const std::string r = m_dir.file("crowd.geojson");
+    const Outcome o = check({crowd}, r, {"--assess", assess, "--max-encounters-per-ship", "3"});
+    EXPECT_LE(o.status, 1) << o.err;
+    EXPECT_NE(o.out.find("assessment: 1 criteria, 30 trainees scored, 90 breaches\n"), std::string::npos) << o.out.substr(0, 2000);
+    EXPECT_NE(o.out.find("penalty 29.00, 29 breaches"), std::string::npos) << "the score counts every breach";
+    EXPECT_NE(o.err.find("shoal: warning: assessment: 780 CPA breaches not listed, each trainee's listed against the 3 ships it came closest "
+                         "to (--max-encounters-per-ship); the scores count every one"),
+              std::string::npos)
+        << o.err;
+    std::size_t breach_lines = 0;
+    for (std::size_t at = o.out.find("  breach ["); at != std::string::npos; at = o.out.find("  breach [", at + 1)) ++breach_lines;
+    EXPECT_EQ(breach_lines, 90u);
+    // Each trainee's listed breaches are against the 3 ships it came closest to: its neighbours.
+    const auto doc = report(r);
+    std::size_t in_report = 0;
+    for (const auto& f : doc["features"])
+        if (f["properties"].contains("criterion")) ++in_report;
+    EXPECT_EQ(in_report, 90u);
+    // 0: no limit, every breach listed.
+    const Outcome all = check({crowd}, m_dir.file("crowd-all.geojson"), {"--assess", assess, "--max-encounters-per-ship", "0"});
+    EXPECT_NE(all.out.find("assessment: 1 criteria, 30 trainees scored, 870 breaches\n"), std::string::npos) << all.out.substr(0, 300);
+}
+
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {
     const std::string r = m_dir.file("r.geojson");
     const Outcome o = shoal({"check", "--world", "simulated", "--coast", s_grid, "--dims", "100000,10,5,5", good_tracks(), "-o", r});
