@@ -13,6 +13,7 @@
 #include <cpl_string.h>
 
 #include "detail/gdal_support.hpp"
+#include "detail/json_message.hpp"
 
 namespace shoal::detail {
 
@@ -169,16 +170,18 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
     CSLDestroy(names);
     // GDAL leaves out of its listing every member whose name holds a '..' component (unzip would
     // put it outside the folder): said, and read when GDAL reads it (only read, never extracted).
+    std::size_t climbing = 0;
     for (const std::string& name : zip_entry_names(path)) {
         if (name.empty() || name.back() == '/' || !has_parent_component(name)) continue;
         const std::string member = root + "/" + name;
         VSIStatBufL st;
         const bool readable = VSIStatL(member.c_str(), &st) == 0 && VSI_ISREG(st.st_mode);
         if (readable && std::find(out.begin(), out.end(), member) == out.end()) out.push_back(member);
-        if (notes)
-            notes->push_back(path + ": member '" + name + "' has '..' in its path (extracted, it would land outside the zip's folder): " +
+        if (notes && climbing++ < 10)  // the first ten, then a count (a hostile zip may hold 500,000)
+            notes->push_back(path + ": member '" + shortened(name, 240) + "' has '..' in its path (extracted, it would land outside the zip's folder): " +
                              (readable ? "read in place, never extracted" : "GDAL cannot read it; skipped"));
     }
+    if (notes && climbing > 10) notes->push_back(path + ": " + std::to_string(climbing - 10) + " more members with '..' in their paths");
     std::sort(out.begin(), out.end());
     return out;
 }
