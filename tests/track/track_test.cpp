@@ -240,12 +240,19 @@ TEST(SniffFormat, LooksAtContentFirst) {
 
 TEST(ExpandInputs, FoldersBecomeTheirTrackFilesSorted) {
     TempDir dir;
-    for (const char* name : {"b.GPX", "a.csv", "c_vessels.csv", "notes.md", "z.log", "m.geojson"})
+    for (const char* name : {"b.GPX", "a.csv", "notes.md", "z.log", "m.geojson"})
         write(dir.file(name), "x");
+    // A vessels table by its header, whatever its name; a track file named like one is a track file.
+    write(dir.file("c_vessels.csv"), "mmsi,name,draught_m\n111,A,3\n");
+    write(dir.file("fleet.csv"), "MMSI;Ship type;to_bow\n111;70;10\n");
+    write(dir.file("d_vessels.csv"), "mmsi,name,lat,lon,time\n111,A,50,1,2024-05-01T10:00:00Z\n");
     std::filesystem::create_directory(dir.path() / "sub.csv");
-    const auto files = expand_inputs({dir.path().string(), data_path("tracks/plaka_head400.log")});
-    EXPECT_THAT(files, ElementsAre(dir.file("a.csv"), dir.file("b.GPX"), dir.file("m.geojson"), dir.file("z.log"),
+    std::vector<std::string> tables;
+    const auto files = expand_inputs({dir.path().string(), data_path("tracks/plaka_head400.log")}, nullptr, &tables);
+    EXPECT_THAT(files, ElementsAre(dir.file("a.csv"), dir.file("b.GPX"), dir.file("d_vessels.csv"), dir.file("m.geojson"), dir.file("z.log"),
                                    data_path("tracks/plaka_head400.log")));
+    std::sort(tables.begin(), tables.end());
+    EXPECT_THAT(tables, ElementsAre(dir.file("c_vessels.csv"), dir.file("fleet.csv")));
 }
 
 TEST(ExpandInputs, StandardInputByAnyOfItsNamesIsReadOnce) {
