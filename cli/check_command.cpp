@@ -112,7 +112,7 @@ public:
             ->check(finite)->check(positive);
         m_sub->add_option("--max-encounters-per-ship", m_audit.max_encounters_per_ship,
                           "Exercise mode: each ship lists at most N other ships, those it came closest to (their collisions, close "
-                          "quarters, closest approach and situation); the summary counts the rest. 0: no limit (default 20)")
+                          "quarters, closest approach and situation; with --assess, a trainee's CPA breaches); the summary and the scores count the rest. 0: no limit (default 20)")
             ->check(finite)->check(non_negative)  // CLI11 would read -1 as the largest size_t
             ->check(at_most(max_listed_per_ship, "more ships than any exercise holds; 0 for no limit"));
         m_sub->add_option("--berths", m_berths,
@@ -254,7 +254,7 @@ public:
         print_warnings(vessel_warnings);
         if (!m_vessel_files.empty()) {
             m_audit.vessels = &m_vessels;
-            std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, *_vessels.csv in track folders)\n",
+            std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, and vessels tables in track folders and zips)\n",
                          m_vessels.size(), m_vessel_files.size());
         }
         Progress bar(m_progress.value_or(::isatty(2) != 0));

@@ -89,6 +89,17 @@ int main(int argc, char** argv) {
         const int rc = app.exit(e);
         return rc == 0 ? 0 : shoal::cli::exit_usage;
     }
+    // An option given an empty value (--plot "", --debrief "", a variable that expanded to
+    // nothing) would do nothing, in silence: a usage error naming it.
+    for (const CLI::App* sub : app.get_subcommands())
+        for (const CLI::Option* o : sub->get_options())
+            if (!o->get_positional() && o->get_type_size_min() > 0)
+                for (const std::string& value : o->results())
+                    if (value.empty()) {
+                        std::fprintf(stderr, "shoal: usage error: %s '' is empty: give it a value, or leave the option out (see shoal %s --help)\n",
+                                     o->get_name().c_str(), sub->get_name().c_str());
+                        return shoal::cli::exit_usage;
+                    }
     try {
         for (auto& c : commands)
             if (c->parsed()) return c->run();

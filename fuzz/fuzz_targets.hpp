@@ -335,6 +335,23 @@ inline void vessels(const std::uint8_t* data, std::size_t size) {
     }
 }
 
+/// Zip files read as folders (detail::zip_members, and the central directory read by
+/// zip_entry_names for the members GDAL does not list): no more names than entries fit in the
+/// bytes; every member a /vsizip/ path of the file; every note short and naming the file.
+inline void zip_members(const std::uint8_t* data, std::size_t size) {
+    const shoal::detail::MemoryFile memory(std::string(reinterpret_cast<const char*>(data), size), ".zip");
+    const std::vector<std::string> names = shoal::detail::zip_entry_names(memory.path());
+    if (names.size() > size / 46 + 1) broken("zip_members", "more names than central directory entries fit in the file");
+    std::vector<std::string> notes;
+    for (const std::string& m : shoal::detail::zip_members(memory.path(), &notes))
+        if (m.rfind("/vsizip/", 0) != 0) broken("zip_members", "a member that is not a /vsizip/ path");
+    if (notes.size() > 11) broken("zip_members", "more notes than the first ten and a count");
+    for (const std::string& n : notes) {
+        bounded("zip_members", n);
+        if (n.rfind(memory.path(), 0) != 0) broken("zip_members", "a note that does not name the file");
+    }
+}
+
 inline constexpr std::size_t grid_header_size = 8 + 4 + 4 + 8 + 8;
 
 /// Grid cache files. When the first byte is odd, the rest gets a correct payload size and

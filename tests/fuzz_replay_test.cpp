@@ -39,6 +39,7 @@ const Target targets[] = {
     {"assessment", shoal::fuzz::assessment},
     {"poses", shoal::fuzz::poses},
     {"merge_parts", shoal::fuzz::merge_parts},
+    {"zip_members", shoal::fuzz::zip_members},
 };
 
 std::vector<fs::path> inputs(const std::string& target, const char* kind) {

@@ -25,6 +25,10 @@ cache, SHOAL_CACHE_DIR). A ``.shoalgrid`` given to ``--coast`` is read from its 
 task (a shared path). Workers must see the inputs, the coast sources and the parts folder
 at the same paths as this process (a shared file system), and run from the same folder.
 
+A file at a part's path in ``--parts-dir`` that this driver did not write (it lists its own
+parts there, in ``.shoal-dask-parts``) is never replaced: the run stops first, exit status 2.
+A scheduler that cannot be reached is one line on stderr and exit status 2.
+
 Needs only Debian's python3-distributed (2022.12) and the ``shoal`` executable, not the
 compiled module. No dashboard is started (bokeh is not in Debian 12).
 """
@@ -192,6 +196,42 @@ def main(argv=None):
     except UsageError as e:
         print("shoal.dask: usage error: %s" % e, file=sys.stderr)
         return 2
+    except ClusterError as e:
+        print("shoal.dask: error: %s" % e, file=sys.stderr)
+        return 2
+
+
+class ClusterError(Exception):
+    """The cluster cannot be used (its scheduler unreachable): one line, exit status 2."""
+
+
+# The parts this driver wrote into a --parts-dir, one name a line: only those it replaces.
+PARTS_MARKER = ".shoal-dask-parts"
+
+
+def part_paths(a, tracks, output, parts_dir):
+    ext = ".gpkg" if output.endswith(".gpkg") else ".geojson"  # parts of the report's format: merge reads those
+    if a.shards:
+        return [os.path.join(parts_dir, "part-%05d-of-%05d%s" % (i, a.shards, ext)) for i in range(a.shards)]
+    return [os.path.join(parts_dir, "part-%05d%s" % (i, ext)) for i in range(len(tracks))]
+
+
+def claim_parts(parts_dir, paths):
+    """Refuses to replace a file at a part's path that this driver did not write (a user's own
+    file in --parts-dir); lists `paths` as written by it, so that a later run may replace them."""
+    marker = os.path.join(parts_dir, PARTS_MARKER)
+    ours = set()
+    if os.path.exists(marker):
+        with open(marker, encoding="utf-8", errors="replace") as f:
+            ours = {line.rstrip("\n") for line in f}
+    for p in paths:
+        name = os.path.basename(p)
+        if os.path.lexists(p) and name not in ours:
+            raise UsageError("'%s' is there and was not written by shoal.dask: not replaced (give another --parts-dir, or move it)" % p)
+    fd, tmp = tempfile.mkstemp(dir=parts_dir, prefix=PARTS_MARKER + ".tmp-")
+    with os.fdopen(fd, "w", encoding="utf-8") as f:
+        f.write("".join(n + "\n" for n in sorted(ours | {os.path.basename(p) for p in paths})))
+    os.replace(tmp, marker)
 
 
 def run(a):
@@ -211,9 +251,12 @@ def run(a):
     out_dir = os.path.dirname(os.path.abspath(output))
     if not os.path.isdir(out_dir):
         raise UsageError("cannot write '%s': folder '%s' does not exist" % (output, out_dir))
+    if a.parts_dir:  # before any work: a user's file at a part's path is never replaced
+        parts_dir = os.path.abspath(a.parts_dir)
+        os.makedirs(parts_dir, exist_ok=True)
+        claim_parts(parts_dir, part_paths(a, tracks, output, parts_dir))
     workdir = tempfile.mkdtemp(prefix=".shoal-dask-", dir=out_dir)
     parts_dir = os.path.abspath(a.parts_dir) if a.parts_dir else workdir
-    os.makedirs(parts_dir, exist_ok=True)
     try:
         return drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir)
     finally:
@@ -229,15 +272,13 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
     if a.local is not None and option_values(options, "--jobs") is None and option_values(options, "-j") is None:
         options.append(["--jobs", str(max(1, (os.cpu_count() or 1) // a.local))])
     tasks = []  # (name, part path, command)
-    ext = ".gpkg" if output.endswith(".gpkg") else ".geojson"  # parts of the report's format: merge reads those
+    parts = part_paths(a, tracks, output, parts_dir)
     if a.shards:
-        for i in range(a.shards):
-            part = os.path.join(parts_dir, "part-%05d-of-%05d%s" % (i, a.shards, ext))
+        for i, part in enumerate(parts):
             tasks.append(("shard %d/%d" % (i, a.shards), part,
                           [shoal, "check"] + flat(options) + ["--shard", "%d/%d" % (i, a.shards), "-o", part, "--"] + tracks))
     else:
-        for i, t in enumerate(tracks):
-            part = os.path.join(parts_dir, "part-%05d%s" % (i, ext))
+        for t, part in zip(tracks, parts):
             tasks.append((t, part, [shoal, "check"] + flat(options) + ["--shard", "0/1", "-o", part, "--", t]))
 
     if a.local is not None:
@@ -246,7 +287,10 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
         client = Client(cluster)
     else:
         cluster = None
-        client = Client(a.scheduler)
+        try:
+            client = Client(a.scheduler)
+        except OSError as e:  # unreachable (distributed.comm.timeouts.connect, 30 s by default)
+            raise ClusterError("cannot reach the Dask scheduler at %s (%s); no report written" % (a.scheduler, e)) from None
     failed = []
     try:
         grid_future = client.scatter(grid, broadcast=True) if grid is not None else None

@@ -429,11 +429,16 @@ public:
             Score score{s.exercise, s.id, 0, m_track.size(), k};
             for (Pending& b : m_track) {
                 score.penalty += b.breach.penalty;
-                m_out.breaches.push_back(std::move(b.breach));
+                if (b.listed) m_out.breaches.push_back(std::move(b.breach));
+                else ++m_unlisted;
             }
             m_track.clear();
             m_out.scores.push_back(score);
         }
+        if (m_unlisted > 0)
+            m_out.warnings.push_back("assessment: " + std::to_string(m_unlisted) + " CPA breaches not listed, each trainee's listed against the " +
+                                     std::to_string(m_in.max_others_per_trainee) +
+                                     " ships it came closest to (AuditOptions::max_encounters_per_ship); the scores count every one");
         return std::move(m_out);
     }
 
@@ -496,7 +501,7 @@ private:
         }
         b.detail = cr.id + ": " + what + ", " + clock(b.start_s) + "-" + clock(b.end_s) + " (" + number(duration, 0) + " s); penalty " +
                    number(b.penalty, 2);
-        m_track.push_back({std::move(b), m_crit, other});
+        m_track.push_back({std::move(b), m_crit, other, true});
     }
 
     void land_clearance(std::size_t k, const Criterion& cr) {
@@ -612,9 +617,27 @@ private:
     }
 
     void cpa(std::size_t k, const Criterion& cr, const LocalTrack& a) {
+        // The breaches against each other ship (its closest approach among them, the ship, where
+        // they start in m_track): listed for the max_others_per_trainee ships it came closest to.
+        std::vector<std::tuple<double, std::size_t, std::size_t, std::size_t>> by_other;
+        cpa_each(k, cr, a, by_other);
+        const std::size_t cap = m_in.max_others_per_trainee;
+        if (cap == 0 || by_other.size() <= cap) return;
+        std::sort(by_other.begin(), by_other.end());
+        for (std::size_t i = cap; i < by_other.size(); ++i)
+            for (std::size_t j = std::get<2>(by_other[i]); j < std::get<3>(by_other[i]); ++j) m_track[j].listed = false;
+    }
+
+    void cpa_each(std::size_t k, const Criterion& cr, const LocalTrack& a, std::vector<std::tuple<double, std::size_t, std::size_t, std::size_t>>& by_other) {
         const AuditResult& r = m_in.result;
         const double L = cr.limit;
         for (std::size_t m = 0; m < r.tracks.size(); ++m) {
+            const std::size_t from = m_track.size();
+            const auto note = [&] {
+                double closest = INFINITY;
+                for (std::size_t j = from; j < m_track.size(); ++j) closest = std::min(closest, m_track[j].breach.value);
+                if (m_track.size() > from) by_other.emplace_back(closest, m, from, m_track.size());
+            };
             if (m == k || r.tracks[m].summary.exercise != summary(k).exercise) continue;
             const track::Track* tb = m < m_in.tracks.size() ? m_in.tracks[m] : nullptr;
             if (!tb || tb->fixes.empty()) continue;
@@ -680,6 +703,7 @@ private:
             }
             if (cuts.size() == 1 && a.present(t0) && b.present(t0)) consider(t0, t0);
             flush();
+            note();
         }
     }
 
@@ -730,8 +754,10 @@ private:
     struct Pending {
         Breach breach;
         std::size_t criterion = 0, other = 0;
+        bool listed = true;  ///< false: a cpa breach against a ship beyond the trainee's closest (AssessInput::max_others_per_trainee)
     };
     std::vector<Pending> m_track;
+    std::size_t m_unlisted = 0;  ///< breaches scored but not listed
     std::vector<std::optional<LocalTrack>> m_local;  ///< by index in AuditResult::tracks
 };
 

@@ -62,7 +62,8 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
 
 /// A vessels table's static data over the track's own: name, A,B,C,D, draught, ship type.
 void join_static_data(track::Track& t, const std::map<std::string, track::VesselInfo>& vessels) {
-    const auto it = vessels.find(t.id);
+    auto it = vessels.find(t.id);
+    if (it == vessels.end()) it = vessels.find(track::integral_id(t.id));  // a track's id written 230035780.0
     if (it == vessels.end()) return;
     const track::VesselInfo& v = it->second;
     if (!v.name.empty()) t.name = v.name;
@@ -156,6 +157,18 @@ AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastG
 AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
                          const AuditOptions& options) {
     std::vector<track::PackedTrack>& packed = read.tracks;
+    // Every entry of the exercise file names a track of the run (all shards': every track read).
+    if (options.encounters && options.roles) {
+        std::vector<std::pair<std::string, std::string>> ids;
+        for (const auto& t : packed) ids.emplace_back(t.id, exercise_key(options.exercise_by, t.file, t.exercise));
+        options.roles->check_entries_name_tracks(ids);
+    }
+    // A vessels table none of whose vessels is a track read (all shards': every track) is said.
+    if (options.vessels) {
+        std::vector<std::string> ids;
+        for (const auto& t : packed) ids.push_back(t.id);
+        for (std::string& w : track::unmatched_vessels_tables(*options.vessels, ids)) read.warnings.push_back(std::move(w));
+    }
     // --shard: the tracks of this shard, by their position among all the tracks read.
     std::vector<std::size_t> chosen;
     for (std::size_t k = 0; k < packed.size(); ++k)
@@ -194,6 +207,11 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
 
 AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                          const std::string& hull_label, const AuditOptions& options) {
+    if (options.encounters && options.roles) {
+        std::vector<std::pair<std::string, std::string>> ids;
+        for (const auto& t : tracks) ids.emplace_back(t.id, exercise_key(options.exercise_by, t));
+        options.roles->check_entries_name_tracks(ids);
+    }
     TrackSource source{tracks.size(), [&](std::size_t k) { return tracks[k].fixes.size(); },
                        [&](std::size_t k) { return std::move(tracks[k]); }, {}, 0, {}};
     return audit(source, grid, default_hull, hull_label, options);
@@ -535,7 +553,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
     // 4. Assessment: every trainee scored against the criteria.
     if (options.assessment) {
         AssessInput in{result, kept_of, grid, *frames[0], default_hull.draught(), options.sweep.step_m, options.sweep.max_gap_s,
-                       options.sweep.time_tolerance_s};
+                       options.sweep.time_tolerance_s, options.max_encounters_per_ship};
         result.assessment = assess(*options.assessment, in);
         result.has_assessment = true;
         result.warnings.insert(result.warnings.end(), result.assessment.warnings.begin(), result.assessment.warnings.end());

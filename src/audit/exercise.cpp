@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -79,6 +80,7 @@ Roles Roles::parse(const std::string& text, const std::string& source) {
     for (const auto& [key, _] : j.items())
         if (key != "default_role" && key != "tracks" && key != "$schema" && key != "description") fail("unknown member '" + key + "'");
     Roles r;
+    r.source = source;
     if (j.contains("default_role")) {
         if (!j["default_role"].is_string() || !parse_role(j["default_role"].get<std::string>(), r.default_role))
             fail("default_role must be \"trainee\" or \"target\"");
@@ -117,6 +119,29 @@ std::optional<Role> Roles::entry_role(const std::string& exercise, const std::st
     }
     if (any) return any->role;
     return std::nullopt;
+}
+
+void Roles::check_entries_name_tracks(const std::vector<std::pair<std::string, std::string>>& tracks) const {
+    std::set<std::string> ids;
+    std::set<std::pair<std::string, std::string>> keyed;
+    for (const auto& [id, exercise] : tracks) {
+        ids.insert(id);
+        keyed.insert({id, exercise});
+    }
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const Entry& e = entries[i];
+        if (e.exercise.empty() ? ids.contains(e.track) : keyed.contains({e.track, e.exercise})) continue;
+        std::string read;
+        std::size_t n = 0;
+        for (const std::string& id : ids)
+            if (n++ < 5) read += (read.empty() ? "'" : ", '") + shoal::detail::shortened(id, 80) + "'";
+        if (ids.size() > 5) read += " and " + std::to_string(ids.size() - 5) + " more";
+        const bool id_known = ids.contains(e.track);
+        throw InputError("exercise file '" + source + "': tracks[" + std::to_string(i) + "] names track '" + shoal::detail::shortened(e.track, 80) + "'" +
+                         (e.exercise.empty() ? std::string() : " in exercise '" + shoal::detail::shortened(e.exercise, 200) + "'") +
+                         (id_known ? ", which that exercise has no track of" : ", which no track read has") + " (it would make it a " + to_string(e.role) +
+                         "; tracks read: " + (read.empty() ? std::string("none") : read) + "): a typo? Every entry must name a track of the run");
+    }
 }
 
 Role Roles::role_of(const std::string& exercise, const std::string& track) const {

@@ -24,6 +24,13 @@ namespace {
 /// Columns: the ship's forward and starboard unit vectors in (east, north) metres. (The
 /// audit's audit::ship_to_en rounds the heading's radians otherwise; each keeps its own.)
 Eigen::Matrix2d ship_to_en(double heading_deg) {
+    // Any finite heading, normalised to [0, 360) as `shoal probe` reads it (io/pose_csv.cpp):
+    // the same pose whoever asks (C API, Python, probe). Unnormalised, a heading of 5.72e307 or
+    // more overflowed to infinity in the product below and every sine was NaN: "no contact".
+    if (!(heading_deg >= 0.0 && heading_deg < 360.0)) {
+        heading_deg = std::fmod(heading_deg, 360.0);
+        if (heading_deg < 0) heading_deg += 360.0;
+    }
     const double h = heading_deg * std::numbers::pi / 180.0;
     Eigen::Matrix2d m;
     m << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);

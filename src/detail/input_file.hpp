@@ -44,7 +44,13 @@ bool is_virtual_path(const std::string& path) noexcept;
 
 /// The members of a zip file (its files, not its folders, in any sub-folder), each as the
 /// `/vsizip/` path GDAL reads it by, sorted; empty when `path` is not a zip (by its magic bytes).
-std::vector<std::string> zip_members(const std::string& path);
+/// A member whose name holds a `..` component (GDAL does not list those) is said in `notes`,
+/// and is a member when GDAL reads it.
+std::vector<std::string> zip_members(const std::string& path, std::vector<std::string>* notes = nullptr);
+
+/// The names in a zip file's central directory (ZIP64 too), as written; empty when it has none
+/// that can be read. Reads at most 64 KiB of its end and 64 MiB of directory.
+std::vector<std::string> zip_entry_names(const std::string& path);
 
 class InputFile {
 public:

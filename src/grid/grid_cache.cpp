@@ -60,6 +60,18 @@ bool private_to_user(const fs::path& p, std::string& why) {
     return true;
 }
 
+/// What `p` is when it is there and is not a regular file (lstat: a link is itself); else null.
+const char* not_a_regular_file(const fs::path& p) {
+    struct stat st{};
+    if (::lstat(p.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return nullptr;
+    if (S_ISFIFO(st.st_mode)) return "a FIFO (a named pipe)";
+    if (S_ISDIR(st.st_mode)) return "a directory";
+    if (S_ISSOCK(st.st_mode)) return "a socket";
+    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
+    if (S_ISLNK(st.st_mode)) return "a symbolic link";
+    return "an entry of another kind";
+}
+
 }  // namespace
 
 CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildRequest& request, LoadReport* report) {
@@ -91,6 +103,16 @@ CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildReques
                                "(give BuildRequest::cache_dir a folder of your own)");
         CoastGrid g = build_grid(paths, request, &rep.warnings, &rep.build);
         rep.how = "built (cache not private, not used)";
+        return done(std::move(g));
+    }
+    // Only a regular file is a cached grid: a FIFO there would hold the run for ever (reading
+    // it, or writing the new grid into it), a device or a folder is not ours to replace. Told
+    // apart by lstat alone, never opened.
+    if (const char* kind = not_a_regular_file(cache)) {
+        rep.warnings.push_back("the cached grid's path '" + cache.string() + "' is " + kind +
+                               ", not a regular file: not read or written; the grid is built for this run only (remove it to cache the grid)");
+        CoastGrid g = build_grid(paths, request, &rep.warnings, &rep.build);
+        rep.how = "built (cache path not a regular file, not used)";
         return done(std::move(g));
     }
     if (fs::exists(cache, ec)) {

@@ -75,6 +75,7 @@ void read_shard(Part& p, std::initializer_list<const char*> keys) {
     const json& order = s["part"];
     for (const char* k : keys)
         if (!order.contains(k) || !order[k].is_array()) throw not_a_part(p.path, std::string("no part.") + k);
+    if (!s.contains("summary") || !s["summary"].is_object()) throw not_a_part(p.path, "no summary in its run header");
     for (const char* k : {"tracks", "problems"})
         if (!s.contains(k) || !s[k].is_array() || s[k].size() != order[k].size())
             throw InputError(p.path + ": its shoal." + k + " and the positions in shoal.part." + k + " do not match (was it edited?)");
@@ -278,26 +279,39 @@ Key approach_key(const json& o, const Part& p, const char* what) {
     return {as_key(p.set), as_key(position_of(o[0], p, what)), as_key(position_of(o[1], p, what))};
 }
 
+/// The group of part p's problem i (0: a file's, 1: a failed track's, 2: a track's), from shoal.part.problems.
+std::size_t problem_group(const Part& p, std::size_t i) {
+    const json& o = p.doc["shoal"]["part"]["problems"][i];  // as many as shoal.problems (read_shard)
+    if (!o.is_array() || o.size() != 2 || !o[0].is_number_unsigned() || o[0].get<std::size_t>() > 2) throw edited(p, "problems", "[group, position]");
+    return o[0].get<std::size_t>();
+}
+
+/// The problems of the files a part read (group 0), in its order.
+std::vector<json> file_problems(const Part& p) {
+    const json& all = p.doc["shoal"]["problems"];
+    std::vector<json> out;
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if (problem_group(p, i) == 0) out.push_back(all[i]);
+    return out;
+}
+
 /// The keys of part k's problems: a file's problems once per set of inputs (nullopt in the
 /// other parts of the set, which must list the same), then failed tracks', then tracks'.
 std::vector<std::optional<Key>> problem_keys(const std::vector<Part>& parts, std::size_t k, const std::vector<std::size_t>& first_of_set) {
     const Part& p = parts[k];
     const json& s = p.doc["shoal"];
     const Part& first = parts[first_of_set[p.set]];
+    // The problems of the files (group 0), in order: the same list in every part of a set, compared
+    // whole (not entry by entry at the positions of one part, which a part listing fewer would
+    // read past), whatever the order of the parts.
+    if (&first != &p && file_problems(first) != file_problems(p))
+        throw InputError(named(p.path) + " and " + named(first.path) +
+                         " read the same inputs but list different problems with them: were the files changed between them?");
     std::vector<std::optional<Key>> keys;
     for (std::size_t i = 0; i < s["problems"].size(); ++i) {
-        const json& o = s["part"]["problems"][i];
-        if (!o.is_array() || o.size() != 2 || !o[0].is_number_unsigned() || o[0].get<std::size_t>() > 2) throw edited(p, "problems", "[group, position]");
-        const auto group = o[0].get<std::size_t>();
-        if (group == 0) {
-            if (&first == &p) keys.push_back(Key{0, as_key(p.set), 0, as_key(i)});
-            else if (s["problems"][i] != first.doc["shoal"]["problems"][i])
-                throw InputError(named(p.path) + " and " + named(first.path) +
-                                 " read the same inputs but list different problems with them: were the files changed between them?");
-            else keys.push_back(std::nullopt);
-            continue;
-        }
-        keys.push_back(Key{as_key(group), as_key(p.set), as_key(position_of(o[1], p, "problems")), as_key(i)});
+        const auto group = problem_group(p, i);
+        if (group == 0) keys.push_back(&first == &p ? std::optional<Key>(Key{0, as_key(p.set), 0, as_key(i)}) : std::nullopt);
+        else keys.push_back(Key{as_key(group), as_key(p.set), as_key(position_of(s["part"]["problems"][i][1], p, "problems")), as_key(i)});
     }
     return keys;
 }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include <shoal/track/csv_reader.hpp>
@@ -299,6 +300,32 @@ PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& o
     return out;
 }
 
+bool is_vessels_table(const std::string& path) {
+    // The first line, of at most 64 KiB (a header longer than that is no vessels table's).
+    VSILFILE* f = VSIFOpenL(path.c_str(), "rb");
+    if (!f) return false;
+    std::string head(64 * 1024, '\0');
+    head.resize(VSIFReadL(head.data(), 1, head.size(), f));
+    VSIFCloseL(f);
+    if (head.starts_with("\xEF\xBB\xBF")) head.erase(0, 3);
+    const std::size_t nl = head.find('\n');
+    if (nl == std::string::npos && head.size() == 64 * 1024) return false;
+    head.resize(std::min(nl, head.size()));
+    if (!head.empty() && head.back() == '\r') head.pop_back();
+    CsvSplitter split(head);
+    std::vector<std::string_view> f_names;
+    if (split.separator() == '\0' || !split.next(f_names)) return false;
+    std::set<std::string> names;
+    for (const auto h : f_names) names.insert(normalise_column_name(h));
+    const auto any = [&](std::initializer_list<const char*> candidates) {
+        return std::any_of(candidates.begin(), candidates.end(), [&](const char* c) { return names.contains(c); });
+    };
+    // A position makes it a track file; an MMSI and what a vessels table gives, a vessels table.
+    if (any({"lat", "latitude", "lon", "lng", "long", "longitude"})) return false;
+    return any({"mmsi"}) && any({"name", "vesselname", "vessel_name", "shipname", "shiptype", "ship_type", "vesseltype", "ship type", "draught_m",
+                                 "draught", "draft", "to_bow_m", "to_bow", "to_stern_m", "to_stern", "to_port_m", "to_port", "to_stbd_m", "to_stbd", "a", "b", "c", "d"});
+}
+
 std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings,
                                        std::vector<std::string>* vessels_files) {
     std::vector<std::string> out;
@@ -326,27 +353,34 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
         seen.push_back(std::move(key));
         out.push_back(file);
     };
-    auto is_vessels_file = [](const std::string& name) {
-        return name.size() >= 12 && lower_extension(name) == ".csv" && name.compare(name.size() - 12, 12, "_vessels.csv") == 0;
-    };
+    // A table of AIS static data (read with read_vessels) or a track file: told by the header's
+    // columns, never by the name (a track file named *_vessels.csv is a track file).
+    auto is_vessels_file = [](const std::string& path) { return lower_extension(path) == ".csv" && is_vessels_table(path); };
     // A zip of several files is a folder of them (its track files, in any sub-folder).
     auto take_file = [&](const std::string& file) {
-        const std::vector<std::string> members = shoal::detail::zip_members(file);
+        std::vector<std::string> notes;
+        const std::vector<std::string> members = shoal::detail::zip_members(file, &notes);
+        for (const std::string& n : notes) warn(n);
         if (members.size() <= 1) {
             take(file);
             return;
         }
-        std::size_t found = 0;
+        std::size_t found = 0, forks = 0;
         for (const std::string& m : members) {
-            const std::string name = fs::path(m).filename().string();
             if (!is_track_extension(lower_extension(m))) continue;
-            if (is_vessels_file(name)) {  // AIS static data, joined as one in a folder is
+            // A zip made by macOS holds a resource fork (__MACOSX/.../._NAME) per file: not data.
+            if (m.find("/__MACOSX/") != std::string::npos || fs::path(m).filename().string().starts_with("._")) {
+                ++forks;
+                continue;
+            }
+            if (is_vessels_file(m)) {  // AIS static data, joined as one in a folder is
                 if (vessels_files) vessels_files->push_back(m);
                 continue;
             }
             take(m);
             ++found;
         }
+        if (forks) warn(file + ": " + std::to_string(forks) + " macOS resource forks (__MACOSX/, ._NAME) skipped");
         if (found == 0) throw InputError(file + ": zip holds no track files (" + track_extensions_text() + ")");
     };
     for (const std::string& p : paths) {
@@ -375,14 +409,13 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
             std::error_code entry_ec;
             // A bad entry (a symlink loop, a dangling link, no permission) costs that entry.
             const bool regular = entry.is_regular_file(entry_ec);
-            const std::string name = entry.path().filename().string();
             if (!is_track_extension(lower_extension(entry.path()))) continue;
             if (entry_ec) {
                 warn(entry.path().string() + ": cannot read (" + entry_ec.message() + "); skipped");
                 continue;
             }
             if (!regular) continue;
-            if (is_vessels_file(name)) {  // AIS static data, read with read_vessels
+            if (is_vessels_file(entry.path().string())) {  // AIS static data, read with read_vessels
                 if (vessels_files) vessels_files->push_back(entry.path().string());
                 continue;
             }
@@ -412,6 +445,74 @@ std::string quoted(std::string_view v) {
 }
 
 }  // namespace
+
+std::string integral_id(std::string_view id) {
+    const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+    std::size_t i = 0;
+    while (i < id.size() && digit(id[i])) ++i;
+    const std::string_view whole = id.substr(0, i);
+    if (whole.empty() || i == id.size()) return std::string(id);
+    std::string_view rest = id.substr(i);
+    std::string fraction;
+    if (rest.front() == '.') {
+        rest.remove_prefix(1);
+        std::size_t k = 0;
+        while (k < rest.size() && digit(rest[k])) ++k;
+        fraction = rest.substr(0, k);
+        rest.remove_prefix(k);
+    }
+    long exponent = 0;
+    if (!rest.empty()) {
+        if (rest.front() != 'e' && rest.front() != 'E') return std::string(id);
+        rest.remove_prefix(1);
+        bool negative = false;
+        if (!rest.empty() && (rest.front() == '+' || rest.front() == '-')) {
+            negative = rest.front() == '-';
+            rest.remove_prefix(1);
+        }
+        if (rest.empty() || rest.size() > 3 || !std::all_of(rest.begin(), rest.end(), digit)) return std::string(id);
+        exponent = std::stol(std::string(rest));
+        if (negative) exponent = -exponent;
+    }
+    // The digits, the point moved by the exponent: integral when every digit after it is 0, and
+    // exact only when no digit is missing (2.30036E+08 is a rounded MMSI: not one).
+    std::string digits = std::string(whole) + fraction;
+    const long point = static_cast<long>(whole.size()) + exponent;
+    if (point < 1 || point > static_cast<long>(digits.size()) || point > 18) return std::string(id);
+    for (std::size_t k = static_cast<std::size_t>(point); k < digits.size(); ++k)
+        if (digits[k] != '0') return std::string(id);
+    digits.resize(static_cast<std::size_t>(point));
+    return digits;
+}
+
+std::vector<std::string> unmatched_vessels_tables(const std::map<std::string, VesselInfo>& vessels, const std::vector<std::string>& track_ids) {
+    std::set<std::string> ids;
+    for (const std::string& id : track_ids) {
+        ids.insert(id);
+        ids.insert(integral_id(id));
+    }
+    std::map<std::string, std::pair<std::size_t, std::size_t>> by_table;  // table: (vessels, of them tracks)
+    std::map<std::string, std::string> example;
+    for (const auto& [id, v] : vessels)
+        for (const std::string& s : v.sources) {
+            auto& [n, matched] = by_table[s];
+            ++n;
+            if (ids.contains(id)) ++matched;
+            else example.try_emplace(s, id);
+        }
+    std::vector<std::string> out;
+    for (const auto& [table, count] : by_table) {
+        if (count.second > 0) continue;
+        std::string seen;
+        std::size_t k = 0;
+        for (const std::string& id : ids)
+            if (id == integral_id(id) && k++ < 3) seen += (seen.empty() ? "" : ", ") + quoted(std::string_view(id));
+        out.push_back(table + ": none of its " + std::to_string(count.first) + " vessels is a track read (its ids such as " + quoted(std::string_view(example[table])) +
+                      ", the tracks' such as " + (seen.empty() ? std::string("none") : seen) +
+                      "): its names, dimensions and draughts are not used (the default hull and draught serve)");
+    }
+    return out;
+}
 
 std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vector<std::string>* warnings) {
     std::string text;
@@ -476,7 +577,7 @@ std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vec
                  (decimal_comma ? std::string() : std::string(" (a decimal comma in a comma-separated file?)")));
             continue;
         }
-        const std::string id(detail::trim(f[mmsi]));
+        const std::string id = integral_id(detail::trim(f[mmsi]));  // 230035780.0, as a spreadsheet writes it: 230035780
         if (id.empty()) {
             skip("no mmsi");
             continue;
@@ -536,9 +637,11 @@ void merge_vessels(std::map<std::string, VesselInfo>& into, std::map<std::string
                    std::vector<std::string>* warnings) {
     for (auto& [id, v] : from) {
         v.source = source;
+        v.sources = {source};
         auto [it, fresh] = into.try_emplace(id, std::move(v));
         if (fresh) continue;
         VesselInfo& kept = it->second;
+        kept.sources.push_back(source);
         const VesselInfo& other = v;
         std::string differ;
         if (kept.dims && other.dims && !(*kept.dims == *other.dims))

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <cpl_string.h>
 
 #include "detail/gdal_support.hpp"
+#include "detail/json_message.hpp"
 
 namespace shoal::detail {
 
@@ -76,7 +78,71 @@ std::string size_text(std::size_t bytes) {
 
 bool is_virtual_path(const std::string& path) noexcept { return path == "-" || starts_with(path, "/vsi"); }
 
-std::vector<std::string> zip_members(const std::string& path) {
+std::vector<std::string> zip_entry_names(const std::string& path) {
+    std::vector<std::string> names;
+    VSILFILE* fp = VSIFOpenL(path.c_str(), "rb");
+    if (!fp) return names;
+    struct Closer {
+        VSILFILE* f;
+        ~Closer() { VSIFCloseL(f); }
+    } closer{fp};
+    const auto read_at = [&](vsi_l_offset at, std::size_t n) {
+        std::string b(n, '\0');
+        if (VSIFSeekL(fp, at, SEEK_SET) != 0) return std::string();
+        b.resize(VSIFReadL(b.data(), 1, n, fp));
+        return b;
+    };
+    const auto u16 = [](const std::string& b, std::size_t at) -> std::uint64_t {
+        return static_cast<unsigned char>(b[at]) | static_cast<std::uint64_t>(static_cast<unsigned char>(b[at + 1])) << 8;
+    };
+    const auto u32 = [&](const std::string& b, std::size_t at) { return u16(b, at) | u16(b, at + 2) << 16; };
+    const auto u64 = [&](const std::string& b, std::size_t at) { return u32(b, at) | u32(b, at + 4) << 32; };
+    if (VSIFSeekL(fp, 0, SEEK_END) != 0) return names;
+    const vsi_l_offset size = VSIFTellL(fp);
+    // The end of central directory record: in the last 22 bytes + a comment of at most 65,535.
+    const std::size_t tail_n = static_cast<std::size_t>(std::min<vsi_l_offset>(size, 22 + 65535));
+    const std::string tail = read_at(size - tail_n, tail_n);
+    if (tail.size() != tail_n || tail_n < 22) return names;
+    std::size_t eocd = std::string::npos;
+    for (std::size_t i = tail_n - 22 + 1; i-- > 0;)
+        if (tail.compare(i, 4, std::string_view("PK\x05\x06", 4)) == 0) {
+            eocd = i;
+            break;
+        }
+    if (eocd == std::string::npos) return names;
+    std::uint64_t count = u16(tail, eocd + 10), cd_size = u32(tail, eocd + 12), cd_at = u32(tail, eocd + 16);
+    if ((count == 0xFFFF || cd_size == 0xFFFFFFFF || cd_at == 0xFFFFFFFF) && eocd >= 20 &&
+        tail.compare(eocd - 20, 4, std::string_view("PK\x06\x07", 4)) == 0) {  // ZIP64
+        const std::string rec = read_at(u64(tail, eocd - 20 + 8), 56);
+        if (rec.size() != 56 || rec.compare(0, 4, std::string_view("PK\x06\x06", 4)) != 0) return names;
+        count = u64(rec, 32);
+        cd_size = u64(rec, 40);
+        cd_at = u64(rec, 48);
+    }
+    // Bounded: the central directory read once, at most 64 MiB (some 500,000 names).
+    if (cd_size > (std::uint64_t{64} << 20) || cd_at > size || cd_size > size - cd_at) return names;
+    const std::string cd = read_at(cd_at, static_cast<std::size_t>(cd_size));
+    if (cd.size() != cd_size) return names;
+    for (std::size_t at = 0, k = 0; k < count && at + 46 <= cd.size(); ++k) {
+        if (cd.compare(at, 4, std::string_view("PK\x01\x02", 4)) != 0) break;
+        const std::size_t n = u16(cd, at + 28), extra = u16(cd, at + 30), comment = u16(cd, at + 32);
+        if (at + 46 + n > cd.size()) break;
+        names.push_back(cd.substr(at + 46, n));
+        at += 46 + n + extra + comment;
+    }
+    return names;
+}
+
+bool has_parent_component(std::string_view name) noexcept {
+    for (std::size_t at = 0; at <= name.size();) {
+        const std::size_t end = std::min(name.find_first_of("/\\", at), name.size());
+        if (name.substr(at, end - at) == "..") return true;
+        at = end + 1;
+    }
+    return false;
+}
+
+std::vector<std::string> zip_members(const std::string& path, std::vector<std::string>* notes) {
     std::vector<std::string> out;
     if (is_stdin(path)) return out;
     if (!is_virtual_path(path)) {
@@ -102,6 +168,20 @@ std::vector<std::string> zip_members(const std::string& path) {
         if (VSIStatL(member.c_str(), &st) == 0 && VSI_ISREG(st.st_mode)) out.push_back(member);
     }
     CSLDestroy(names);
+    // GDAL leaves out of its listing every member whose name holds a '..' component (unzip would
+    // put it outside the folder): said, and read when GDAL reads it (only read, never extracted).
+    std::size_t climbing = 0;
+    for (const std::string& name : zip_entry_names(path)) {
+        if (name.empty() || name.back() == '/' || !has_parent_component(name)) continue;
+        const std::string member = root + "/" + name;
+        VSIStatBufL st;
+        const bool readable = VSIStatL(member.c_str(), &st) == 0 && VSI_ISREG(st.st_mode);
+        if (readable && std::find(out.begin(), out.end(), member) == out.end()) out.push_back(member);
+        if (notes && climbing++ < 10)  // the first ten, then a count (a hostile zip may hold 500,000)
+            notes->push_back(path + ": member '" + shortened(name, 240) + "' has '..' in its path (extracted, it would land outside the zip's folder): " +
+                             (readable ? "read in place, never extracted" : "GDAL cannot read it; skipped"));
+    }
+    if (notes && climbing > 10) notes->push_back(path + ": " + std::to_string(climbing - 10) + " more members with '..' in their paths");
     std::sort(out.begin(), out.end());
     return out;
 }

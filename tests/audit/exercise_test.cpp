@@ -339,4 +339,26 @@ TEST_F(ExerciseAudit, EncountersAreFoundWithinAnExerciseOnlyAndNeverBetweenTwoTa
 }
 
 }  // namespace
+TEST(Exercise, AnEntryNamingNoTrackOfTheRunIsAnErrorNamingTheFileTheEntryAndWhatItWouldHaveDone) {
+    const Roles r = Roles::parse(R"({"tracks": [{"track": "a", "role": "target"}, {"track": "b", "exercise": "ex1", "role": "trainee"}]})", "ex.json");
+    EXPECT_NO_THROW(r.check_entries_name_tracks({{"a", "ex2"}, {"b", "ex1"}}));
+    try {
+        r.check_entries_name_tracks({{"a", "ex1"}, {"b", "ex2"}});
+        ADD_FAILURE() << "b is in ex2 only";
+    } catch (const shoal::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("exercise file 'ex.json': tracks[1] names track 'b' in exercise 'ex1', which that exercise has no track of (it "
+                                             "would make it a trainee"),
+                  std::string::npos)
+            << e.what();
+    }
+    try {
+        r.check_entries_name_tracks({{"b", "ex1"}});
+        ADD_FAILURE() << "no track a";
+    } catch (const shoal::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("tracks[0] names track 'a', which no track read has (it would make it a target; tracks read: 'b')"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 }  // namespace shoal::audit

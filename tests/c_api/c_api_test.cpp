@@ -114,6 +114,58 @@ TEST(CApi, AgreesWithShoalProbeOnThousandsOfPoses) {
     shoal_detector_free(det);
 }
 
+TEST(CApi, HugeFiniteHeadingsAreNormalisedAsShoalProbeNormalisesThem) {
+    // A heading of 5.72e307 or more once overflowed to infinity inside the check: a pose on
+    // land was "no contact, covered, clear" while probe, which normalises it, said collision.
+    shoal_grid* grid = shoal_grid_load(solent_grid().c_str());
+    ASSERT_NE(grid, nullptr) << shoal_last_error();
+    shoal_detector* det = shoal_detector_new(grid, 100, 20, 8, 8);
+    ASSERT_NE(det, nullptr) << shoal_last_error();
+    shoal_grid_free(grid);
+    const std::vector<double> headings{5.72e307, 1e308, -1e308, 1.7976931348623157e308, -1.7976931348623157e308, 3.6e12 + 45, -90, 720.5, 359.9999999};
+    const std::vector<std::array<double, 2>> places{{50.67, -1.30}, {50.76, -1.30}, {50.7735, -1.303}};  // inland on Wight, open water, the shore
+    const fs::path poses = temp_dir() / "huge-headings.csv", probed = temp_dir() / "huge-headings-probed.csv";
+    {
+        std::ofstream out(poses);
+        out << "lat,lon,heading\n";
+        char row[128];
+        for (const auto& p : places)
+            for (const double h : headings) {
+                std::snprintf(row, sizeof row, "%.7f,%.7f,%.17g\n", p[0], p[1], h);
+                out << row;
+            }
+    }
+    ASSERT_EQ(run("'" SHOAL_BINARY "' probe --coast '" + solent_grid() + "' --dims 100,20,8,8 '" + poses.string() + "' -o '" + probed.string() +
+                  "' 2> /dev/null"),
+              0);
+    std::ifstream in(probed);
+    std::string line;
+    std::getline(in, line);
+    std::size_t inland_contacts = 0;
+    for (std::size_t i = 0; i < places.size(); ++i)
+        for (const double h : headings) {
+            ASSERT_TRUE(std::getline(in, line));
+            const std::string answer = line.substr(line.find(',', line.find(',', line.find(',') + 1) + 1) + 1);  // collision,clearance_m,covered
+            shoal_contact c{};
+            ASSERT_EQ(shoal_check(det, places[i][0], places[i][1], h, INFINITY, &c), 0) << shoal_last_error();
+            char mine[96];
+            if (c.covered || c.contact) std::snprintf(mine, sizeof mine, "%d,%.3f,%d", c.contact, c.clearance_m, c.covered);
+            else std::snprintf(mine, sizeof mine, ",,0");
+            EXPECT_EQ(answer, mine) << "heading " << h << " at " << places[i][0] << "," << places[i][1];
+            if (i == 0) inland_contacts += c.contact;
+            // The heading normalised as probe does it gives the same answer, bit for bit.
+            double n = std::fmod(h, 360.0);
+            if (n < 0) n += 360.0;
+            shoal_contact d{};
+            ASSERT_EQ(shoal_check(det, places[i][0], places[i][1], n, INFINITY, &d), 0);
+            EXPECT_EQ(c.contact, d.contact);
+            EXPECT_EQ(c.covered, d.covered);
+            EXPECT_EQ(c.clearance_m, d.clearance_m) << h;
+        }
+    EXPECT_EQ(inland_contacts, headings.size()) << "inland every heading is a contact";
+    shoal_detector_free(det);
+}
+
 // The header promises that one detector may serve several threads at once. PROJ objects may
 // not be shared between threads, so this is true only because each thread projects with its
 // own copy: four threads checking at once give, pose for pose, what one thread gives alone.

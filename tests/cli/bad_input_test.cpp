@@ -29,6 +29,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -165,7 +166,12 @@ public:
         : m_path(std::move(path)), m_watch([this, patience] {
               std::unique_lock<std::mutex> lock(m_mutex);
               if (!m_stop.wait_for(lock, patience, [this] { return m_done; }))
+              {
+                  // A reader first (releases a writer waiting for one), then a writer (releases a reader).
+                  const int rd = ::open(m_path.c_str(), O_RDONLY | O_NONBLOCK);
                   if (const int fd = ::open(m_path.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+                  if (rd >= 0) ::close(rd);
+              }
           }) {}
     FifoReleaser(const FifoReleaser&) = delete;
     FifoReleaser& operator=(const FifoReleaser&) = delete;
@@ -818,6 +824,31 @@ TEST_F(BadInput, AGridCacheInAFolderOthersMayWriteIsNotTrusted) {
     EXPECT_EQ(fs::status(own).permissions() & (fs::perms::group_all | fs::perms::others_all), fs::perms::none);
 }
 
+TEST_F(BadInput, AFifoAtTheCachedGridsPathIsNamedAndNeverWaitedOn) {
+    // The cached grid's path is a FIFO: before, `check --coast SOURCE` waited on it for ever.
+    const fs::path own = fs::path(m_dir.path()) / "fifo-cache";
+    const std::string coast = data_path("coast/uk_solent_land.geojson");
+    const std::vector<std::string> args{"check", "--world", "simulated", "--coast", coast, "--cache-dir", own.string(), "--dims", "50,10,5,5", "-o",
+                                        m_dir.file("fifo-cache.geojson"), good_tracks()};
+    ASSERT_EQ(shoal(args).status, 1);
+    std::vector<std::string> cached = entries(own);
+    ASSERT_EQ(cached.size(), 1u);
+    const fs::path grid = own / cached[0];
+    for (const char* kind : {"fifo", "directory"}) {
+        fs::remove_all(grid);
+        if (std::string(kind) == "fifo") ASSERT_EQ(::mkfifo(grid.c_str(), 0600), 0);
+        else fs::create_directory(grid);
+        const FifoReleaser guard(grid.string(), std::chrono::seconds(30));
+        const auto t0 = std::chrono::steady_clock::now();
+        const Outcome r = shoal(args);
+        EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(25)) << kind << ": the run waited on the cache path";
+        EXPECT_EQ(r.status, 1) << kind << ": the grounding is still found\n" << r.err;
+        EXPECT_NE(r.err.find("shoal: warning: the cached grid's path '" + grid.string() + "' is a"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("not a regular file: not read or written; the grid is built for this run only"), std::string::npos) << r.err;
+        EXPECT_EQ(std::string(kind) == "fifo", fs::is_fifo(fs::symlink_status(grid))) << "left as it was";
+    }
+}
+
 }  // namespace
 
 namespace {
@@ -1163,6 +1194,158 @@ TEST_F(BadInput, AVesselsTableInAZipIsJoinedAndItsBadRowsAndConflictsAreSaid) {
     const auto* b = track_entry(doc, "222222222");
     ASSERT_NE(b, nullptr);
     EXPECT_EQ((*b)["hull"], "AIS dimensions 9,4,2,2 (vessels file " + other + ")");
+}
+
+TEST_F(BadInput, AFilesHeaderNotItsNameTellsATrackFileFromAVesselsTableInAFolderOrAZip) {
+    // Vessel A's track (it grounds) in a file named like a vessels table; vessel B's in a plain
+    // one; the vessels table under a name that says nothing. Before: A's file was taken as a
+    // vessels table by its name (A never audited, exit 0) and the table as a bad track file.
+    std::string a_rows, b_rows;
+    std::istringstream rows(solent_rows());
+    for (std::string line; std::getline(rows, line);) (line.starts_with("111111111") ? a_rows : b_rows) += line + "\n";
+    const fs::path day = fs::path(m_dir.path()) / "named";
+    fs::create_directory(day);
+    write((day / "harbour_vessels.csv").string(), header + a_rows);
+    write((day / "clear.csv").string(), header + b_rows);
+    write((day / "fleet.csv").string(), "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n222222222,SMALL ONE,8,4,2,2,1.2\n");
+    const std::string zip = m_dir.file("named.zip");
+    const bool zipped = std::system(("cd " + day.string() + " && zip -q " + zip + " harbour_vessels.csv clear.csv fleet.csv 2>/dev/null").c_str()) == 0;
+    for (const std::string& input : {day.string(), zip}) {
+        if (input == zip && !zipped) continue;
+        const std::string r = m_dir.file("named.geojson");
+        const Outcome o = check({input}, r);
+        EXPECT_EQ(o.status, 1) << input << ": vessel A grounds\n" << o.err;
+        EXPECT_NE(o.err.find("static data of 1 vessels from 1 vessels files"), std::string::npos) << input << "\n" << o.err;
+        EXPECT_EQ(o.err.find("not a track format"), std::string::npos) << input << "\n" << o.err;
+        const auto doc = report(r);
+        EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1) << input;
+        const auto* b = track_entry(doc, "222222222");
+        ASSERT_NE(b, nullptr) << input;
+        EXPECT_EQ((*b)["hull"].get<std::string>().find("AIS dimensions 8,4,2,2 (vessels file "), 0u) << (*b)["hull"];
+        EXPECT_NE(track_entry(doc, "111111111"), nullptr) << input << ": A's track is audited";
+    }
+}
+
+TEST_F(BadInput, AnExerciseFileEntryNamingNoTrackIsAnErrorNamingTheEntryNotZeroTraineesScored) {
+    // A typo (8 digits for 9) made the trainee a target and "0 trainees scored", in silence.
+    const std::string tracks = good_tracks();
+    const std::string typo = file("typo_roles.json", R"({"tracks": [{"track": "11111111", "role": "trainee"}]})");
+    const std::string r = m_dir.file("typo.geojson");
+    const Outcome o = check({tracks}, r, {"--exercise-by", "run", "--roles", typo});
+    EXPECT_EQ(o.status, 2) << o.err;
+    EXPECT_NE(o.err.find("shoal: error: exercise file '" + typo + "': tracks[0] names track '11111111', which no track read has (it would make it a "
+                         "trainee; tracks read: '111111111', '222222222'): a typo?"),
+              std::string::npos)
+        << o.err;
+    EXPECT_FALSE(fs::exists(r)) << "no report of a run without its trainee";
+    // An entry of an exercise the track is not in: said the same way.
+    const std::string other = file("other_roles.json", R"({"tracks": [{"track": "111111111", "exercise": "nowhere", "role": "trainee"}]})");
+    const Outcome e = check({tracks}, r, {"--exercise-by", "file", "--roles", other});
+    EXPECT_EQ(e.status, 2) << e.err;
+    EXPECT_NE(e.err.find("tracks[0] names track '111111111' in exercise 'nowhere', which that exercise has no track of"), std::string::npos) << e.err;
+    // Entries that name tracks of the run are fine, in every shard (a shard checks against every track read).
+    const std::string good = file("good_roles.json", R"({"tracks": [{"track": "111111111", "role": "trainee"}, {"track": "222222222", "role": "target"}]})");
+    for (const char* shard : {"0/2", "1/2"}) {
+        const Outcome g = check({tracks}, m_dir.file("good-roles.geojson"), {"--exercise-by", "run", "--roles", good, "--shard", shard});
+        EXPECT_LE(g.status, 1) << shard << "\n" << g.err;
+        EXPECT_EQ(g.err.find("names track"), std::string::npos) << g.err;
+    }
+}
+
+TEST_F(BadInput, AVesselsTableOfSpreadsheetIdsIsJoinedAndOneMatchingNoTrackIsSaid) {
+    // Ids written 111111111.0, as a spreadsheet saves them: before, matched no track, silently.
+    const std::string sheet = file("sheet.csv", "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n"
+                                                "111111111.0,SHEET ONE,8,4,2,2,1.2\n2.22222222E+08,SHEET TWO,9,4,2,2,1.2\n");
+    const std::string r = m_dir.file("sheet.geojson");
+    const Outcome o = check({good_tracks()}, r, {"--vessels", sheet});
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_EQ(o.err.find("none of its"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    ASSERT_NE(track_entry(doc, "111111111"), nullptr);
+    EXPECT_EQ((*track_entry(doc, "111111111"))["hull"], "AIS dimensions 8,4,2,2 (vessels file " + sheet + ")");
+    EXPECT_EQ((*track_entry(doc, "222222222"))["hull"], "AIS dimensions 9,4,2,2 (vessels file " + sheet + ")");
+    // A table whose ids match no track (a rounded id, another fleet's): said, naming it and its count.
+    const std::string other = file("other.csv", "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n"
+                                                "1.11111E+08,ROUNDED,8,4,2,2,1.2\n333333333,ELSEWHERE,9,4,2,2,1.2\n");
+    const Outcome w = check({good_tracks()}, r, {"--vessels", sheet, "--vessels", other});
+    EXPECT_EQ(w.status, 1) << w.err;
+    EXPECT_NE(w.err.find("shoal: warning: vessels file " + other + ": none of its 2 vessels is a track read (its ids such as '1.11111E+08', the "
+                         "tracks' such as '111111111', '222222222'): its names, dimensions and draughts are not used"),
+              std::string::npos)
+        << w.err;
+    EXPECT_EQ(w.err.find("vessels file " + sheet + ": none"), std::string::npos) << w.err;
+}
+
+TEST_F(BadInput, AZipMemberWhoseNameClimbsOutOfTheZipIsSaidAndReadInPlace) {
+    // tracks/zips/dotdot_member.zip: clear.csv, ../grounds.csv (vessel A grounds), sub/../hidden.csv.
+    // Before: GDAL leaves '..' members out of its listing: A's grounding missed, exit 0, no word.
+    const std::string zip = data_path("tracks/zips/dotdot_member.zip");
+    const std::string r = m_dir.file("dotdot.geojson");
+    const Outcome o = check({zip}, r);
+    EXPECT_EQ(o.status, 1) << "vessel A grounds\n" << o.err;
+    EXPECT_NE(o.err.find("shoal: warning: " + zip + ": member '../grounds.csv' has '..' in its path (extracted, it would land outside the zip's "
+                         "folder): read in place, never extracted"),
+              std::string::npos)
+        << o.err;
+    EXPECT_NE(o.err.find(zip + ": member 'sub/../hidden.csv' has '..' in its path (extracted, it would land outside the zip's folder): GDAL "
+                         "cannot read it; skipped"),
+              std::string::npos)
+        << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_NE(track_entry(doc, "111111111"), nullptr);
+    EXPECT_NE(track_entry(doc, "222222222"), nullptr);
+    EXPECT_FALSE(fs::exists(fs::path(zip).parent_path().parent_path() / "grounds.csv")) << "nothing extracted";
+}
+
+TEST_F(BadInput, EmptyPathsForPlotOrDebriefAreUsageErrorsAndMacosResourceForksInAZipCostOneLine) {
+    // --plot "" and --debrief "" did nothing, in silence.
+    for (const char* option : {"--plot", "--debrief", "--roles", "--vessels"}) {
+        const std::string r = m_dir.file("empty-option.geojson");
+        const Outcome o = check({good_tracks()}, r, {option, ""});
+        EXPECT_EQ(o.status, 2) << option << "\n" << o.err;
+        EXPECT_EQ(o.err, "shoal: usage error: " + std::string(option) + " '' is empty: give it a value, or leave the option out (see shoal check --help)\n");
+        EXPECT_FALSE(fs::exists(r));
+    }
+    // tracks/zips/macos.zip: two tracks, each with its __MACOSX/._NAME resource fork. Before: an
+    // error line per fork ("not a track format").
+    const std::string zip = data_path("tracks/zips/macos.zip");
+    const Outcome m = check({zip}, m_dir.file("macos.geojson"));
+    EXPECT_EQ(m.status, 1) << m.err;
+    EXPECT_EQ(m.err.find("__MACOSX/._"), std::string::npos) << m.err;
+    EXPECT_EQ(m.err.find("not a track format"), std::string::npos) << m.err;
+    EXPECT_NE(m.err.find("shoal: warning: " + zip + ": 2 macOS resource forks (__MACOSX/, ._NAME) skipped\n"), std::string::npos) << m.err;
+}
+
+TEST_F(BadInput, CpaBreachesAreListedAgainstAtMostMaxEncountersPerShipOthersAndScoredInFull) {
+    // A crowd of 30 trainees in open water, every pair within the CPA limit. Before: 870 breaches
+    // listed (30 x 29: one stdout line each, in the report too), whatever --max-encounters-per-ship.
+    std::string rows = header;
+    for (int i = 0; i < 30; ++i)
+        for (int minute : {0, 10}) rows += row(std::to_string(100000000 + i), minute, 50.70 + 0.002 * i, -1.05 + 0.0003 * (i % 5) + 0.0001 * minute);
+    const std::string crowd = file("crowd.csv", rows);
+    const std::string assess = file("cpa.json", R"({"criteria": [{"id": "cpa", "kind": "cpa", "limit": 10000, "penalty": 1}]})");
+    const std::string r = m_dir.file("crowd.geojson");
+    const Outcome o = check({crowd}, r, {"--assess", assess, "--max-encounters-per-ship", "3"});
+    EXPECT_LE(o.status, 1) << o.err;
+    EXPECT_NE(o.out.find("assessment: 1 criteria, 30 trainees scored, 90 breaches\n"), std::string::npos) << o.out.substr(0, 2000);
+    EXPECT_NE(o.out.find("penalty 29.00, 29 breaches"), std::string::npos) << "the score counts every breach";
+    EXPECT_NE(o.err.find("shoal: warning: assessment: 780 CPA breaches not listed, each trainee's listed against the 3 ships it came closest "
+                         "to (--max-encounters-per-ship); the scores count every one"),
+              std::string::npos)
+        << o.err;
+    std::size_t breach_lines = 0;
+    for (std::size_t at = o.out.find("  breach ["); at != std::string::npos; at = o.out.find("  breach [", at + 1)) ++breach_lines;
+    EXPECT_EQ(breach_lines, 90u);
+    // Each trainee's listed breaches are against the 3 ships it came closest to: its neighbours.
+    const auto doc = report(r);
+    std::size_t in_report = 0;
+    for (const auto& f : doc["features"])
+        if (f["properties"].contains("criterion")) ++in_report;
+    EXPECT_EQ(in_report, 90u);
+    // 0: no limit, every breach listed.
+    const Outcome all = check({crowd}, m_dir.file("crowd-all.geojson"), {"--assess", assess, "--max-encounters-per-ship", "0"});
+    EXPECT_NE(all.out.find("assessment: 1 criteria, 30 trainees scored, 870 breaches\n"), std::string::npos) << all.out.substr(0, 300);
 }
 
 TEST_F(BadInput, AHullLargerThanAnyShipIsRefused) {

@@ -406,6 +406,51 @@ TEST(ShardMerge, PartsScoredAgainstOtherCriteriaAreRefusedInEitherFormat) {
     }
 }
 
+TEST(ShardMerge, ShardsOfAFileThatGainedABadRowBetweenThemAreRefusedInEitherOrderAndFormat) {
+    // The day file gained a bad row between the two shard runs: the second part lists one more
+    // problem of the files than the first. Before: SIGSEGV (exit 139, no report) when the part
+    // listing fewer came first (merge read the first part's problems past their end).
+    const fs::path grown = temp_dir() / "grown_day.csv";
+    const std::string rows = "mmsi,timestamp,lat,lon,sog,cog,heading\n"
+                             "230990019,2024-05-01T10:00:00Z,60.10,24.90,5,0,0\n"
+                             "230990019,2024-05-01T10:02:00Z,60.103,24.90,5,0,0\n";
+    const std::string dir = std::string(SHOAL_TEST_DATA) + "tracks/ais_cases/";
+    const std::string files = q(dir + "aground_at_speed.csv") + " " + q(dir + "passes_clear.csv") + " " + q(grown);
+    for (const char* ext : {".geojson", ".gpkg"}) {
+        std::ofstream(grown) << rows;  // no problem at all in the first shard's run
+        const std::string none = checked_part(std::string("grown0") + ext, "--shard 0/2 " + files);
+        std::ofstream(grown) << rows << "230990019,2024-05-01T10:03:00Z,60.104,east,5,0,0\n";
+        const std::string more = checked_part(std::string("grown1") + ext, "--shard 1/2 " + files);
+        // ...and parts that both list problems, the second one more.
+        std::ofstream(grown) << rows << "230990019,2024-05-01T10:03:00Z,60.104,east,5,0,0\n";
+        const std::string one = checked_part(std::string("grown2") + ext, "--shard 0/2 " + files);
+        std::ofstream(grown) << rows << "230990019,2024-05-01T10:03:00Z,60.104,east,5,0,0\n230990019,2024-05-01T10:04:00Z,north,24.9,5,0,0\n";
+        const std::string two = checked_part(std::string("grown3") + ext, "--shard 1/2 " + files);
+        for (const std::string& parts : {none + " " + more, more + " " + none, one + " " + two, two + " " + one}) {
+            const fs::path out = temp_dir() / (std::string("grown-merged") + ext);
+            const Outcome r = shoal("merge " + parts + " -o " + q(out));
+            EXPECT_EQ(r.status, 2) << ext << " " << parts << "\n" << r.err;
+            EXPECT_NE(r.err.find("were the files changed between them?"), std::string::npos) << ext << " " << parts << "\n" << r.err;
+            EXPECT_FALSE(fs::exists(out)) << "nothing written";
+        }
+    }
+}
+
+TEST(ShardMerge, AGeoJsonPartWithoutASummaryIsRefusedWhereverItComes) {
+    // A hand-edited part whose run header lost its summary: refused, not read through a missing key.
+    const std::string a = checked_part("nosum0.geojson", "--shard 0/2 " + case_files());
+    checked_part("nosum1.geojson", "--shard 1/2 " + case_files());
+    const fs::path edited = temp_dir() / "nosum1-edited.geojson";
+    nlohmann::ordered_json doc = nlohmann::ordered_json::parse(slurp(temp_dir() / "nosum1.geojson"));
+    doc["shoal"].erase("summary");
+    std::ofstream(edited) << doc.dump();
+    for (const std::string& parts : {a + " " + q(edited), q(edited) + " " + a}) {
+        const Outcome r = shoal("merge " + parts + " -o " + q(temp_dir() / "nosum-merged.geojson"));
+        EXPECT_EQ(r.status, 2) << parts << "\n" << r.err;
+        EXPECT_NE(r.err.find("nosum1-edited.geojson: not the report of a shard (no summary in its run header)"), std::string::npos) << r.err;
+    }
+}
+
 TEST(ShardMerge, BadShardTextIsAUsageErrorNamingTheOption) {
     for (const char* bad : {"2/2", "x/3", "1"}) {
         const Outcome r = shoal("check " + helsinki + " --shard " + bad + " " + case_files() + " -o " + q(temp_dir() / "bad.geojson"));

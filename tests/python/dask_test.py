@@ -104,6 +104,35 @@ try:
         expect(status == 2 and "vessel 230990007 has tracks in" in err, "a vessel spanning files is refused: %d %s" % (status, err))
         status, _, err = dask(["--shards", "2"], out)
         expect(status in (0, 1), "with --shards it is one run: %d %s" % (status, err))
+    elif case == "hostile":
+        # --parts-dir holding a file of the user's at a part's name: never replaced, exit 2, one line.
+        mine = os.path.join(tmp, "mine")
+        os.makedirs(mine)
+        with open(os.path.join(mine, "part-00000.geojson"), "w") as f:
+            f.write("my own notes\n")
+        out = os.path.join(tmp, "hostile.geojson")
+        status, _, err = dask(["--parts-dir", mine], out)
+        expect(status == 2, "exit 2 when a part would replace a user's file: %d\n%s" % (status, err))
+        expect("part-00000.geojson' is there and was not written by shoal.dask: not replaced" in err, "the file named: " + err)
+        expect(read(os.path.join(mine, "part-00000.geojson")) == b"my own notes\n", "the user's file as it was")
+        expect(not os.path.exists(out), "no report written")
+        # Its own parts of an earlier run it replaces without a word.
+        own = os.path.join(tmp, "own")
+        for attempt in (1, 2):
+            status, _, err = dask(["--parts-dir", own], out)
+            expect(status == 1, "run %d into its own --parts-dir: %d\n%s" % (attempt, status, err))
+            expect(os.path.exists(out) and read(out) == read(single), "run %d: the report == shoal check's" % attempt)
+        # The scheduler unreachable: one line and exit 2 (before: a 57-line traceback, exit 1).
+        env["DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT"] = "2s"
+        os.remove(out)
+        status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--scheduler", "tcp://127.0.0.1:1", "--shoal", shoal, "check"] + coast +
+                             files + ["-o", out])
+        expect(status == 2, "exit 2 when the scheduler cannot be reached: %d\n%s" % (status, err))
+        expect("Traceback" not in err, "no traceback: " + err)
+        expect(err.count("\n") == 1 and err.startswith("shoal.dask: error: cannot reach the Dask scheduler at tcp://127.0.0.1:1 ("),
+               "one line naming the scheduler: " + err)
+        expect(not os.path.exists(out), "no report written")
+        expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
     else:
         expect(False, "unknown case " + case)
 finally:

@@ -96,6 +96,21 @@ class DetectorAgainstProbe(unittest.TestCase):
         self.assertEqual(one["clearance_m"].shape, ())
         self.assertEqual(float(one["clearance_m"]), float(r["clearance_m"][2, 0]))
 
+    def test_huge_finite_headings_as_probe_answers_them(self):
+        # A heading of 5.72e307 or more was "no contact" on land, where probe said collision.
+        headings = [5.72e307, 1e308, -1e308, 1.7976931348623157e308, -1.7976931348623157e308, 3.6e12 + 45, -90.0, 720.5]
+        places = [(50.67, -1.30), (50.76, -1.30)]  # inland on the Isle of Wight, open water
+        lat = np.array([p[0] for p in places for _ in headings])
+        lon = np.array([p[1] for p in places for _ in headings])
+        heading = np.array(headings * len(places))
+        path = support.tmp("huge-headings.csv")
+        with open(path, "w") as f:
+            f.write("lat,lon,heading\n" + "".join("%.7f,%.7f,%r\n" % p for p in zip(lat, lon, heading)))
+        rows = probe(self.grid_path, path, "--dims", "150,35,14,15")
+        r = shoal.Detector(self.grid, dims=(150, 35, 14, 15)).check(lat, lon, heading)
+        self.compare(rows, r, lat, lon, heading)
+        self.assertTrue(all(r["contact"][: len(headings)]), "inland, every heading is a contact")
+
     def test_invalid_poses_cost_their_pose(self):
         det = shoal.Detector(self.grid, dims=(150, 35, 14, 15))
         lat = np.array([50.75, np.nan, 91.0, 50.75, 50.75])

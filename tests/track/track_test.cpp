@@ -240,12 +240,19 @@ TEST(SniffFormat, LooksAtContentFirst) {
 
 TEST(ExpandInputs, FoldersBecomeTheirTrackFilesSorted) {
     TempDir dir;
-    for (const char* name : {"b.GPX", "a.csv", "c_vessels.csv", "notes.md", "z.log", "m.geojson"})
+    for (const char* name : {"b.GPX", "a.csv", "notes.md", "z.log", "m.geojson"})
         write(dir.file(name), "x");
+    // A vessels table by its header, whatever its name; a track file named like one is a track file.
+    write(dir.file("c_vessels.csv"), "mmsi,name,draught_m\n111,A,3\n");
+    write(dir.file("fleet.csv"), "MMSI;Ship type;to_bow\n111;70;10\n");
+    write(dir.file("d_vessels.csv"), "mmsi,name,lat,lon,time\n111,A,50,1,2024-05-01T10:00:00Z\n");
     std::filesystem::create_directory(dir.path() / "sub.csv");
-    const auto files = expand_inputs({dir.path().string(), data_path("tracks/plaka_head400.log")});
-    EXPECT_THAT(files, ElementsAre(dir.file("a.csv"), dir.file("b.GPX"), dir.file("m.geojson"), dir.file("z.log"),
+    std::vector<std::string> tables;
+    const auto files = expand_inputs({dir.path().string(), data_path("tracks/plaka_head400.log")}, nullptr, &tables);
+    EXPECT_THAT(files, ElementsAre(dir.file("a.csv"), dir.file("b.GPX"), dir.file("d_vessels.csv"), dir.file("m.geojson"), dir.file("z.log"),
                                    data_path("tracks/plaka_head400.log")));
+    std::sort(tables.begin(), tables.end());
+    EXPECT_THAT(tables, ElementsAre(dir.file("c_vessels.csv"), dir.file("fleet.csv")));
 }
 
 TEST(ExpandInputs, StandardInputByAnyOfItsNamesIsReadOnce) {
@@ -282,6 +289,45 @@ TEST(ReadVessels, ReadsStaticDataByMmsi) {
                 ThrowsMessage<InputError>(HasSubstr("without an 'mmsi' column")));
 }
 
+
+TEST(ReadVessels, AnMmsiWrittenAsASpreadsheetsIntegralNumberIsTheMmsi) {
+    EXPECT_EQ(integral_id("230035780.0"), "230035780");
+    EXPECT_EQ(integral_id("230035780."), "230035780");
+    EXPECT_EQ(integral_id("230035780.000"), "230035780");
+    EXPECT_EQ(integral_id("2.30035780E+08"), "230035780");
+    EXPECT_EQ(integral_id("2.30035781E+08"), "230035781");
+    EXPECT_EQ(integral_id("2.30035780e8"), "230035780");
+    EXPECT_EQ(integral_id("230035780"), "230035780");
+    // Not integral, a rounded MMSI (digits missing), or not a number: as it is.
+    EXPECT_EQ(integral_id("230035780.5"), "230035780.5");
+    EXPECT_EQ(integral_id("2.30036E+08"), "2.30036E+08");
+    EXPECT_EQ(integral_id("2.3003578E+08"), "2.3003578E+08") << "its ninth digit is not written: 230035780 or 230035781?";
+    EXPECT_EQ(integral_id("OWN SHIP"), "OWN SHIP");
+    EXPECT_EQ(integral_id("230035780.0x"), "230035780.0x");
+    EXPECT_EQ(integral_id(".5"), ".5");
+    EXPECT_EQ(integral_id("1e999999"), "1e999999");
+    TempDir dir;
+    const std::string path = dir.file("sheet_vessels.csv");
+    std::ofstream(path) << "mmsi,name,to_bow_m,to_stern_m,to_port_m,to_stbd_m,draught_m\n230035780.0,SHEET,10,5,2,2,3\n";
+    const auto v = read_vessels(path);
+    ASSERT_EQ(v.count("230035780"), 1u);
+    EXPECT_EQ(v.at("230035780").name, "SHEET");
+}
+
+TEST(ReadVessels, ATableNoneOfWhoseVesselsIsATrackIsSaidNamingItAndItsCount) {
+    std::map<std::string, VesselInfo> all;
+    merge_vessels(all, {{"111", VesselInfo{}}, {"222", VesselInfo{}}}, "vessels file A");
+    merge_vessels(all, {{"999", VesselInfo{}}, {"888", VesselInfo{}}}, "vessels file B");
+    merge_vessels(all, {{"111", VesselInfo{}}}, "vessels file C");  // a vessel of A too: C matches
+    const auto w = unmatched_vessels_tables(all, {"111", "333"});
+    ASSERT_EQ(w.size(), 1u) << testing::PrintToString(w);
+    EXPECT_THAT(w[0], HasSubstr("vessels file B: none of its 2 vessels is a track read (its ids such as '888', the tracks' such as '111', '333')"));
+    EXPECT_TRUE(unmatched_vessels_tables(all, {"111", "888"}).empty());
+    // A track whose id is written 230035780.0 matches the table's 230035780.
+    std::map<std::string, VesselInfo> one;
+    merge_vessels(one, {{"230035780", VesselInfo{}}}, "vessels file D");
+    EXPECT_TRUE(unmatched_vessels_tables(one, {"230035780.0"}).empty());
+}
 
 TEST(ReadVessels, EveryBadRowCostsThatRowWithAWarningNamingItsLine) {
     TempDir dir;

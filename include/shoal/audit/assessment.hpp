@@ -140,6 +140,9 @@ struct AssessInput {
     double step_m = 5.0;           ///< under-keel clearance samples this far apart
     double max_gap_s = 600.0;      ///< a longer gap between fixes: nothing is assessed across it
     double time_tolerance_s = 0.01;
+    /// A trainee's cpa breaches are listed against the ships it came closest to, at most this
+    /// many (AuditOptions::max_encounters_per_ship); its score counts every breach. 0: no limit.
+    std::size_t max_others_per_trainee = 0;
 };
 
 /// Scores every trainee of `in.result` (exercise mode) against `assessment`. Land clearance

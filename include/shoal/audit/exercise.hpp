@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <shoal/track/track.hpp>
@@ -70,6 +71,11 @@ struct Roles {
     };
     std::vector<Entry> entries;
     Role default_role = Role::target;  ///< for tracks no entry names
+    std::string source;                ///< the file read (parse's `source`), for messages
+
+    /// Throws InputError for the first entry that names no track of `tracks` (each a track's
+    /// id and its exercise key): a typo would otherwise leave a trainee unscored, in silence.
+    void check_entries_name_tracks(const std::vector<std::pair<std::string, std::string>>& tracks) const;
 
     /// The largest exercise file read (16 MiB: some 300,000 entries); a larger one, or an
     /// endless source such as /dev/zero, is refused at that limit.

@@ -81,13 +81,18 @@ TrackFile unpack(PackedTrackFile&& packed);
 /// `path` only breaks ties (its extension); the content decides.
 std::string sniff_format(std::string_view content, const std::string& path = {});
 
+/// Whether the CSV file at `path` (a file or a GDAL virtual path) is a table of AIS static data
+/// by its header: an MMSI column, a column a vessels table gives (name, ship type, draught,
+/// dimensions) and no position column. Its name does not matter; a file that cannot be read is not one.
+bool is_vessels_table(const std::string& path);
+
 /// Files named on a command line, with each folder replaced by the track files directly in it
-/// (extensions .csv .gpx .geojson .json .nmea .log .txt .zip .gz, any case, not `*_vessels.csv`,
-/// sorted by name; not recursive). Files are kept as given, whatever their extension. A file met again
+/// (extensions .csv .gpx .geojson .json .nmea .log .txt .zip .gz, any case, not vessels tables
+/// (is_vessels_table), sorted by name; not recursive). Files are kept as given, whatever their extension. A file met again
 /// (named twice, by a symlink to it, or inside a folder also given) is kept once; a folder entry
 /// that cannot be read (a symlink loop, a dangling link) is skipped; both are said in `warnings`.
 /// Throws InputError for a path that does not exist and for a folder without track files.
-/// The vessels files (`*_vessels.csv`) met in folders and in zips read as folders go to
+/// The vessels tables (CSV files by their header, is_vessels_table) met in folders and in zips read as folders go to
 /// `vessels_files` when given.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings = nullptr,
                                        std::vector<std::string>* vessels_files = nullptr);
@@ -102,7 +107,18 @@ struct VesselInfo {
     /// Where the dimensions, the draught and the ship type came from when not from `source` (merge_vessels
     /// took them from a later table that gave what the first lacked); empty: `source`.
     std::string dims_source, draught_source, ship_type_source;
+    std::vector<std::string> sources;      ///< every table that names it, in order (merge_vessels): which tables matched a track
 };
+
+/// An MMSI as a spreadsheet may write it, as digits: "230035780.0" and "2.30035780E+08" are
+/// "230035780" (an integral number whose every digit is written; "2.3003578E+08" is not one: its
+/// ninth digit is not written); anything else is returned as it is.
+std::string integral_id(std::string_view id);
+
+/// The warnings for the vessels tables of `vessels` (VesselInfo::sources) none of whose vessels
+/// is a track of `track_ids` (matched as join_static_data does: the id, or its integral_id):
+/// "vessels file F: none of its N vessels is a track read (...): its data are not used".
+std::vector<std::string> unmatched_vessels_tables(const std::map<std::string, VesselInfo>& vessels, const std::vector<std::string>& track_ids);
 
 /// The deepest draught a vessels table may give (metres): the deepest ships draw about 25 m
 /// (AIS gives at most 25.5); more is a wrong unit (decimetres) or a corrupt field.
