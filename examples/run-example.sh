@@ -8,9 +8,14 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 cd "$here/.."
 ./scripts/install-deps.sh
-cmake -S . -B build-release -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHOAL_BUILD_TESTS=OFF -DSHOAL_BUILD_BENCH=OFF > /dev/null
-cmake --build build-release --target shoal_cli
-shoal=build-release/cli/shoal
+# SHOAL_BUILD_DIR: an existing build to use instead (CI uses the test suite's, not a second
+# compile of the library); by default a Release build in build-release/.
+build="${SHOAL_BUILD_DIR:-build-release}"
+if [ -z "${SHOAL_BUILD_DIR:-}" ]; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHOAL_BUILD_TESTS=OFF -DSHOAL_BUILD_BENCH=OFF > /dev/null
+fi
+cmake --build "$build" --target shoal_cli
+shoal="$build/cli/shoal"
 out="$here/out"
 mkdir -p "$out"
 
