@@ -349,7 +349,22 @@ int CoastGrid::winding(XY p, bool* on_boundary) const noexcept {
     // chain through it crosses once or not at all.
     const XY r = reference_point(i, j);
     int w = m_ref_winding[s];
-    for (std::uint32_t k = m_seg_offset[s]; k < m_seg_offset[s + 1]; ++k) {
+    // A chunk of segments whose box the path from r to p does not touch holds no crossing
+    // (a harbour's coast cell holds thousands of segments; the path meets a few chunks).
+    const double px0 = std::min(r.x, p.x), px1 = std::max(r.x, p.x), py0 = std::min(r.y, p.y), py1 = std::max(r.y, p.y);
+    auto path_misses = [&](const geo::Box& b) {
+        if (b.minx > px1 || b.maxx < px0 || b.miny > py1 || b.maxy < py0) return true;
+        // The line through r and p leaves the whole box on one side.
+        const double o1 = geo::orient(r, p, {b.minx, b.miny}), o2 = geo::orient(r, p, {b.maxx, b.miny});
+        const double o3 = geo::orient(r, p, {b.maxx, b.maxy}), o4 = geo::orient(r, p, {b.minx, b.maxy});
+        return (o1 > 0 && o2 > 0 && o3 > 0 && o4 > 0) || (o1 < 0 && o2 < 0 && o3 < 0 && o4 < 0);
+    };
+    const std::uint32_t k_end = m_seg_offset[s + 1];
+    for (std::uint32_t k = m_seg_offset[s]; k < k_end; ++k) {
+        if (k % chunk_segments == 0 && k + chunk_segments <= k_end && path_misses(m_chunk_box[k / chunk_segments])) {
+            k += chunk_segments - 1;
+            continue;
+        }
         if (!(m_seg_info[k] & boundary_bit)) continue;
         const Segment& sg = m_segments[k];
         const bool sa = geo::orient(r, p, sg.a) >= 0, sb = geo::orient(r, p, sg.b) >= 0;
