@@ -190,11 +190,10 @@ int shoal_check(const shoal_detector* detector, double lat, double lon, double h
     return execute(
         [&] {
             if (!detector || !out) throw std::invalid_argument("shoal_check: the detector or the result is NULL");
-            if (!(std::fabs(lat) <= 90) || !(std::fabs(lon) <= 180) || !std::isfinite(heading_deg))
-                throw std::invalid_argument("shoal_check: lat must be in [-90, 90], lon in [-180, 180] and the heading finite");
+            check_pose("shoal_check", lat, lon, heading_deg);
             if (!(max_clearance_m > 0)) throw std::invalid_argument("shoal_check: max_clearance_m must be > 0");
             const shoal::check::Contact c =
-                detector->detector.check(shoal::check::place(detector->grid->frame(), detector->field, shoal::check::Pose{{lon, lat}, heading_deg}),
+                detector->detector.check(place(detector, lat, lon, heading_deg),
                                          {.max_clearance_m = max_clearance_m, .want_penetration = false, .want_polyline = false, .want_contact_point = false});
             out->covered = c.covered ? 1 : 0;
             out->contact = c.collision ? 1 : 0;  // a contact found is real, chart or not
@@ -270,12 +269,10 @@ int shoal_surroundings_at(const shoal_detector* detector, double lat, double lon
     return execute(
         [&] {
             if (!detector || !out) throw std::invalid_argument("shoal_surroundings_at: the detector or the result is NULL");
-            if (!(std::fabs(lat) <= 90) || !(std::fabs(lon) <= 180) || !std::isfinite(heading_deg))
-                throw std::invalid_argument("shoal_surroundings_at: lat must be in [-90, 90], lon in [-180, 180] and the heading finite");
+            check_pose("shoal_surroundings_at", lat, lon, heading_deg);
             if (!(max_m > 0)) throw std::invalid_argument("shoal_surroundings_at: max_m must be > 0 (metres; INFINITY: no limit)");
-            const shoal::check::Surroundings r = shoal::check::surroundings(
-                detector->detector, *detector->grid,
-                shoal::check::place(detector->grid->frame(), detector->field, shoal::check::Pose{{lon, lat}, heading_deg}), max_m);
+            const shoal::check::Surroundings r =
+                shoal::check::surroundings(detector->detector, *detector->grid, place(detector, lat, lon, heading_deg), max_m);
             out->covered = r.covered ? 1 : 0;
             out->port_m = r.port_m;
             out->starboard_m = r.starboard_m;

@@ -210,8 +210,8 @@ std::vector<XY> clip_box_to_convex(const Box& box, const std::vector<XY>& ccw) {
 /// The search over one set of boundary pieces.
 class Search {
 public:
-    Search(const std::vector<XY>& ring, bool convex, std::vector<Site> sites, const Obstacle& obstacle, double tol)
-        : m_ring(ring), m_convex(convex), m_sites(std::move(sites)), m_obstacle(obstacle), m_tol(tol) {}
+    Search(std::vector<Site> sites, const Obstacle& obstacle, double tol)
+        : m_sites(std::move(sites)), m_obstacle(obstacle), m_tol(tol) {}
 
     struct Near {
         double d = INFINITY;
@@ -352,14 +352,9 @@ public:
         return b;
     }
 
-    const std::vector<XY>& ring() const noexcept { return m_ring; }
-    bool convex() const noexcept { return m_convex; }
-    const Obstacle& obstacle() const noexcept { return m_obstacle; }
     double tol() const noexcept { return m_tol; }
 
 private:
-    const std::vector<XY>& m_ring;
-    bool m_convex;
     std::vector<Site> m_sites;
     const Obstacle& m_obstacle;
     double m_tol;
@@ -431,17 +426,23 @@ struct Region {
 
 namespace {
 
-/// The regions of hull `ring` (closed: last point = first) against `obstacle`; depths in local metres.
-std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Obstacle& obstacle, double scale,
-                                      double depth_hint) {
-    std::vector<XY> ring = open_ring;
+/// `outline` (open or closed) as a closed counter-clockwise ring; empty for fewer than 3 points.
+std::vector<XY> ccw_closed(const std::vector<XY>& outline) {
+    std::vector<XY> ring = outline;
     if (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
     if (ring.size() < 3) return {};
-    // Counter-clockwise.
     double area2 = 0;
     for (std::size_t i = 0; i < ring.size(); ++i) area2 += geo::cross(ring[i], ring[(i + 1) % ring.size()]);
     if (area2 < 0) std::reverse(ring.begin(), ring.end());
     ring.push_back(ring.front());
+    return ring;
+}
+
+/// The regions of hull outline `outline` (open or closed) against `obstacle`; depths in metres
+/// on the ground (local metres / `scale`).
+std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obstacle& obstacle, double scale) {
+    const std::vector<XY> ring = ccw_closed(outline);
+    if (ring.empty()) return {};
     const std::size_t n_edges = ring.size() - 1;
     bool convex = true;
     for (std::size_t i = 0; i < n_edges && convex; ++i) {  // (collinear points: rounding either way)
@@ -456,9 +457,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
     const double tol = 1e-6 + 1e-12 * magnitude;  // local metres
     const double eps = 1e-6 + 1e-11 * magnitude;  // offset for side tests
 
-    // The reach: start with the depth of the deepest hull vertex in the hazards (a cheap
-    // lower bound of the answer, usually the answer) plus margin; grow while a depth reaches it.
-    double reach = std::max({1.0, 1e-3 * extent, 1.25 * depth_hint});
+    // The reach: small at first (a contact is usually shallow), grown while a depth reaches it.
+    double reach = std::max(1.0, 1e-3 * extent);
     for (int attempt = 0; attempt < 64; ++attempt) {
         const Box box = hbox.grown(reach);
         std::vector<RawSegment> raw;
@@ -539,7 +539,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& open_ring, const Ob
             }
         }
         merge_collinear(sites, tol);
-        Search search(ring, convex, std::move(sites), obstacle, tol);
+        Search search(std::move(sites), obstacle, tol);
         search.set_reach(reach);
         const std::vector<Site>& S = search.sites();
 
@@ -926,8 +926,7 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
     if (!detector.check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = false}).collision)
         return {};
     const std::vector<XY> outline = hull_outline(detector.hull(), pose);
-    const double hint = 0;
-    std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose), hint);
+    std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose));
     if (out.empty()) {
         // A touch the search above cannot see as a region (a hull vertex exactly on the
         // boundary): the check's contact point, depth 0.
@@ -948,19 +947,14 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
 }
 
 std::vector<ContactRegion> hull_contact_regions(const std::vector<XY>& a, const std::vector<XY>& b, double scale) {
-    std::vector<XY> ring = b;
-    if (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
-    if (ring.size() < 3) return {};
-    double area2 = 0;
-    for (std::size_t i = 0; i < ring.size(); ++i) area2 += geo::cross(ring[i], ring[(i + 1) % ring.size()]);
-    if (area2 < 0) std::reverse(ring.begin(), ring.end());
-    ring.push_back(ring.front());
+    const std::vector<XY> ring = ccw_closed(b);
+    if (ring.empty()) return {};
     Obstacle o;
     o.collect = [&ring](const Box&, std::vector<RawSegment>& out) {
         for (std::size_t i = 0; i + 1 < ring.size(); ++i) out.push_back({ring[i], ring[i + 1], 0, true});
     };
     o.inside = [&ring](XY p) { return in_polygon(ring, p); };
-    std::vector<ContactRegion> out = regions_of(a, o, scale, 0);
+    std::vector<ContactRegion> out = regions_of(a, o, scale);
     for (ContactRegion& r : out) r.polyline = no_polyline;
     return out;
 }
