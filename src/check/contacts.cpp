@@ -464,10 +464,13 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         std::vector<RawSegment> raw;
         obstacle.collect(box, raw);
         std::vector<RawSegment> bounds, lines;
-        for (RawSegment r : raw) {
+        for (const RawSegment& whole : raw) {
+            RawSegment r = whole;
             if (!clip_to(r.a, r.b, box)) continue;
             if (r.a == r.b) continue;
-            (r.boundary ? bounds : lines).push_back(r);
+            // A line is kept whole: where it crosses the hull must not depend on the reach.
+            if (r.boundary) bounds.push_back(r);
+            else lines.push_back(whole);
         }
         // Cut where boundaries of different polylines cross; keep pieces with water on the right.
         std::vector<Site> sites;
@@ -882,7 +885,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 crossings(ring[e], ring[e + 1], l.a, l.b, tu);
                 if (!tu.empty()) at = ring[e] + tu.front().first * (ring[e + 1] - ring[e]), hit = true;
             }
-            if (!hit || obstacle.inside(at)) continue;
+            // A line met where it crosses the hazards' boundary (a coastline drawn on the land
+            // area's edge) touches the hull where the hazards do: that contact is theirs, and
+            // whether the crossing is in or out of them is a matter of rounding.
+            if (!hit || obstacle.inside(at) || search.nearest(at).d <= tol) continue;
             seen.push_back(l.polyline);
             const XY d = l.b - l.a;
             const double len = std::sqrt(geo::norm2(d));
