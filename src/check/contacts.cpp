@@ -113,6 +113,10 @@ bool clip_to(XY& a, XY& b, const Box& box) noexcept {
 /// Parameters of the crossing of segments ab and cd (touching counts): t on ab, u on cd.
 /// Collinear overlaps give the overlap's ends that lie on the other segment.
 void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
+    // Most pairs are far apart: their boxes say so for less than the orientation tests.
+    if (std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) || std::max(a.y, b.y) < std::min(c.y, d.y) ||
+        std::max(c.y, d.y) < std::min(a.y, b.y))
+        return;
     if (!geo::segments_intersect(a, b, c, d)) return;
     const XY r = b - a, s = d - c;
     const double den = geo::cross(r, s);
@@ -189,23 +193,44 @@ struct UnionFind {
     void join(int a, int b) { parent[find(a)] = find(b); }
 };
 
-/// Sutherland-Hodgman: the box cut to a convex ring (counter-clockwise, closed).
-std::vector<XY> clip_box_to_convex(const Box& box, const std::vector<XY>& ccw) {
-    std::vector<XY> poly{{box.minx, box.miny}, {box.maxx, box.miny}, {box.maxx, box.maxy}, {box.minx, box.maxy}};
-    std::vector<XY> next;
-    for (std::size_t i = 0; i + 1 < ccw.size() && !poly.empty(); ++i) {
-        const XY a = ccw[i], b = ccw[i + 1];
-        next.clear();
-        for (std::size_t k = 0; k < poly.size(); ++k) {
-            const XY p = poly[k], q = poly[(k + 1) % poly.size()];
-            const double op = geo::orient(a, b, p), oq = geo::orient(a, b, q);
-            if (op >= 0) next.push_back(p);
-            if ((op > 0 && oq < 0) || (op < 0 && oq > 0)) next.push_back(p + (op / (op - oq)) * (q - p));
+/// Boxes cut to a convex ring (counter-clockwise, closed) by Sutherland-Hodgman. An edge whose
+/// inner side holds the whole box by a margin is skipped: its pass would keep every vertex, and
+/// a cell of the search is near few of the hull's edges (a rounded bow has dozens).
+class ConvexCutter {
+public:
+    explicit ConvexCutter(const std::vector<XY>& ccw) : m_ring(ccw) {}
+
+    /// `poly` := `box` cut to the ring (fewer than 3 points: they do not overlap).
+    void cut(const Box& box, std::vector<XY>& poly) {
+        poly = {{box.minx, box.miny}, {box.maxx, box.miny}, {box.maxx, box.maxy}, {box.minx, box.maxy}};
+        for (std::size_t i = 0; i + 1 < m_ring.size() && !poly.empty(); ++i) {
+            const XY a = m_ring[i], b = m_ring[i + 1];
+            if (holds(a, b, box)) continue;
+            m_next.clear();
+            for (std::size_t k = 0; k < poly.size(); ++k) {
+                const XY p = poly[k], q = poly[(k + 1) % poly.size()];
+                const double op = geo::orient(a, b, p), oq = geo::orient(a, b, q);
+                if (op >= 0) m_next.push_back(p);
+                if ((op > 0 && oq < 0) || (op < 0 && oq > 0)) m_next.push_back(p + (op / (op - oq)) * (q - p));
+            }
+            poly.swap(m_next);
         }
-        poly.swap(next);
     }
-    return poly;
-}
+
+private:
+    /// Whether the box lies left of a->b by more than rounding (its corner least left of it, by
+    /// a margin far above the error of orient at the box's corners or at points cut from it).
+    static bool holds(XY a, XY b, const Box& box) noexcept {
+        const XY d = b - a;
+        const XY p{d.y > 0 ? box.maxx : box.minx, d.x > 0 ? box.miny : box.maxy};
+        const XY v = p - a;
+        const double margin = 1e-9 * (std::fabs(d.x) + std::fabs(d.y)) * (std::fabs(v.x) + std::fabs(v.y) + 1);
+        return geo::cross(d, v) > margin;
+    }
+
+    const std::vector<XY>& m_ring;
+    std::vector<XY> m_next;
+};
 
 /// The search over one set of boundary pieces.
 class Search {
@@ -781,20 +806,19 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     queue.push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false});
             int steps = 0;
             std::vector<XY> poly;
+            ConvexCutter cutter(ring);
             while (!queue.empty() && ++steps < 100000) {
                 const Cell cell = queue.top();
                 queue.pop();
                 if (live.size() == 1 && cell.bound <= regions[live.front()].best.d + tol) break;
                 if (cell.box.minx > hbox.maxx || cell.box.maxx < hbox.minx || cell.box.miny > hbox.maxy || cell.box.maxy < hbox.miny)
                     continue;
-                poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
-                        {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
-                if (convex) {  // cut to the hull (a box wholly in it needs no cutting)
-                    bool inside = true;
-                    for (XY q : poly)
-                        for (std::size_t e = 0; e < n_edges && inside; ++e) inside = geo::orient(ring[e], ring[e + 1], q) >= 0;
-                    if (!inside) poly = clip_box_to_convex(cell.box, ring);
+                if (convex) {  // cut to the hull
+                    cutter.cut(cell.box, poly);
                     if (poly.size() < 3) continue;
+                } else {
+                    poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
+                            {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
                 }
                 XY c{0, 0};
                 for (XY p : poly) c = c + p;
