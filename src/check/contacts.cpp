@@ -22,6 +22,7 @@
 #include <shoal/check/contacts.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <numeric>
@@ -195,17 +196,28 @@ struct UnionFind {
 
 /// Boxes cut to a convex ring (counter-clockwise, closed) by Sutherland-Hodgman. An edge whose
 /// inner side holds the whole box by a margin is skipped: its pass would keep every vertex, and
-/// a cell of the search is near few of the hull's edges (a rounded bow has dozens).
+/// a cell of the search is near few of the hull's edges (a rounded bow has dozens). An edge that
+/// holds a box holds every box inside it: the cells' search hands the edges that did not hold a
+/// cell to its quarters (a bit each for the first 64 edges; the others are always tried).
 class ConvexCutter {
 public:
+    using Edges = std::uint64_t;
+    static constexpr Edges all_edges = ~Edges{0};
+
     explicit ConvexCutter(const std::vector<XY>& ccw) : m_ring(ccw) {}
 
-    /// `poly` := `box` cut to the ring (fewer than 3 points: they do not overlap).
-    void cut(const Box& box, std::vector<XY>& poly) {
+    /// `poly` := `box` cut to the ring (fewer than 3 points: they do not overlap), trying the
+    /// edges of `edges` (those that did not hold a box around this one); returns those that do
+    /// not hold this box.
+    Edges cut(const Box& box, Edges edges, std::vector<XY>& poly) {
         poly = {{box.minx, box.miny}, {box.maxx, box.miny}, {box.maxx, box.maxy}, {box.minx, box.maxy}};
-        for (std::size_t i = 0; i + 1 < m_ring.size() && !poly.empty(); ++i) {
+        Edges unheld = 0;
+        const std::size_t n = m_ring.size() - 1;
+        for (std::size_t i = next_edge(edges, 0, n); i < n && !poly.empty(); i = next_edge(edges, i + 1, n)) {
+            const Edges bit = i < 64 ? Edges{1} << i : 0;
             const XY a = m_ring[i], b = m_ring[i + 1];
             if (holds(a, b, box)) continue;
+            unheld |= bit;
             m_next.clear();
             for (std::size_t k = 0; k < poly.size(); ++k) {
                 const XY p = poly[k], q = poly[(k + 1) % poly.size()];
@@ -215,9 +227,18 @@ public:
             }
             poly.swap(m_next);
         }
+        return unheld;
     }
 
 private:
+    /// The first edge from `i` on that is in `edges` (or past the 64 of the mask), n if none.
+    static std::size_t next_edge(Edges edges, std::size_t i, std::size_t n) noexcept {
+        if (i >= 64) return std::min(i, n);
+        const Edges rest = edges >> i;
+        const std::size_t next = rest ? i + static_cast<std::size_t>(std::countr_zero(rest)) : 64;
+        return std::min(next, n);
+    }
+
     /// Whether the box lies left of a->b by more than rounding (its corner least left of it, by
     /// a margin far above the error of orient at the box's corners or at points cut from it).
     static bool holds(XY a, XY b, const Box& box) noexcept {
@@ -798,15 +819,17 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 XY parent{};
                 double parent_clear = 0;  // the parent centre's distance to the boundary (a lower bound)
                 bool parent_inside = false;
+                ConvexCutter::Edges edges = ConvexCutter::all_edges;  // the hull's edges that may cut it
                 bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
             };
             std::priority_queue<Cell> queue;
             for (double x = rbox.minx; x < rbox.maxx || x == rbox.minx; x += side)
                 for (double y = rbox.miny; y < rbox.maxy || y == rbox.miny; y += side)
-                    queue.push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false});
+                    queue.push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false, ConvexCutter::all_edges});
             int steps = 0;
             std::vector<XY> poly;
             ConvexCutter cutter(ring);
+            ConvexCutter::Edges edges = ConvexCutter::all_edges;
             while (!queue.empty() && ++steps < 100000) {
                 const Cell cell = queue.top();
                 queue.pop();
@@ -814,7 +837,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 if (cell.box.minx > hbox.maxx || cell.box.maxx < hbox.minx || cell.box.miny > hbox.maxy || cell.box.maxy < hbox.miny)
                     continue;
                 if (convex) {  // cut to the hull
-                    cutter.cut(cell.box, poly);
+                    edges = cutter.cut(cell.box, cell.edges, poly);
                     if (poly.size() < 3) continue;
                 } else {
                     poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
@@ -855,10 +878,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 if (b <= least + tol) continue;
                 const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
                 const double clear_c = std::min(n.d, reach);
-                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard});
-                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard});
-                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard});
-                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard});
+                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard, edges});
+                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard, edges});
+                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
+                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
             }
         }
         // 3. A depth at the reach: a nearer boundary may lie beyond it.
