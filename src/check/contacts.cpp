@@ -22,11 +22,13 @@
 #include <shoal/check/contacts.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <functional>
 #include <numeric>
 #include <queue>
+#include <span>
 #include <utility>
 
 namespace shoal::check {
@@ -184,6 +186,28 @@ void merge_collinear(std::vector<Site>& sites, double tol) {
     }
 }
 
+/// Parameters along a segment, each with the crossing it comes from (-1: an end), sorted, in
+/// groups closer than the tolerance: one point of the segment each, a range of the parameters.
+struct ParamGroup {
+    double t;               // the group's first parameter
+    std::size_t from, to;   // its range of the parameters
+    bool has_crossing = false;
+    bool start = false, end = false;  // holds the segment's start (0) or end (1)
+};
+
+void group_params(const std::vector<std::pair<double, int>>& ts, double len, double tol, std::vector<ParamGroup>& groups) {
+    groups.clear();
+    for (std::size_t i = 0; i < ts.size(); ++i) {
+        const auto [t, x] = ts[i];
+        if (groups.empty() || (t - groups.back().t) * len > tol) groups.push_back({t, i, i});
+        ParamGroup& g = groups.back();
+        g.to = i + 1;
+        g.has_crossing = g.has_crossing || x >= 0;
+        g.start = g.start || t == 0.0;
+        g.end = g.end || t == 1.0;
+    }
+}
+
 struct UnionFind {
     std::vector<int> parent;
     explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
@@ -294,7 +318,7 @@ public:
     double dist_to_site(XY p, int k) const noexcept { return std::sqrt(dist2_to(p, m_sites[k].a, m_sites[k].b, nullptr)); }
 
     /// Exact max over polygon `v` (or segment, 2 points) of min(dist to site i, dist to site j).
-    double two_site_bound(const std::vector<XY>& v, int i, int j) const {
+    double two_site_bound(std::span<const XY> v, int i, int j) const {
         double best = 0;
         auto value = [&](XY p) { return std::min(dist_to_site(p, i), dist_to_site(p, j)); };
         for (XY p : v) best = std::max(best, value(p));
@@ -456,7 +480,7 @@ void along(const Search& s, XY pa, XY pb, Best& best) {
             double bnd = (fa + fb + (b - a) * len) / 2;  // Lipschitz tent
             for (const Search::Near* n : {&na, &nb})
                 if (n->site >= 0) bnd = std::min(bnd, std::max(s.dist_to_site(qa, n->site), s.dist_to_site(qb, n->site)));
-            if (na.site >= 0 && nb.site >= 0 && na.site != nb.site) bnd = std::min(bnd, s.two_site_bound({qa, qb}, na.site, nb.site));
+            if (na.site >= 0 && nb.site >= 0 && na.site != nb.site) bnd = std::min(bnd, s.two_site_bound(std::array<XY, 2>{qa, qb}, na.site, nb.site));
             if (bnd > best.d + s.tol()) stack.push_back({a, b, fa, fb, na, nb});
         }
     }
@@ -521,15 +545,18 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         // Cut where boundaries of different polylines cross; keep pieces with water on the right.
         std::vector<Site> sites;
         {
-            std::vector<std::vector<double>> cuts(bounds.size());
+            // (boundary segment, parameter) of every crossing, in one list (not a list per segment:
+            // most segments have none), sorted by segment.
+            std::vector<std::pair<std::size_t, double>> cut_at;
             std::vector<std::pair<double, double>> tu;
             for (std::size_t i = 0; i < bounds.size(); ++i)
                 for (std::size_t j = i + 1; j < bounds.size(); ++j) {
                     if (bounds[i].polyline == bounds[j].polyline) continue;
                     tu.clear();
                     crossings(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
-                    for (auto [t, u] : tu) cuts[i].push_back(t), cuts[j].push_back(u);
+                    for (auto [t, u] : tu) cut_at.emplace_back(i, t), cut_at.emplace_back(j, u);
                 }
+            std::sort(cut_at.begin(), cut_at.end());
             // Pieces between cuts. Whether a piece is buried (water side inside another hazard)
             // can change only where another boundary crosses: pieces joined end to end
             // without a crossing between them share the answer, found with one winding test.
@@ -539,8 +566,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 bool cut_start, cut_end;  // begins / ends at a crossing
             };
             std::vector<Piece0> raw_pieces;
-            for (std::size_t i = 0; i < bounds.size(); ++i) {
-                auto& c = cuts[i];
+            std::vector<double> c;
+            for (std::size_t i = 0, next = 0; i < bounds.size(); ++i) {
+                c.clear();
+                for (; next < cut_at.size() && cut_at[next].first == i; ++next) c.push_back(cut_at[next].second);
                 const XY a = bounds[i].a, d = bounds[i].b - bounds[i].a;
                 const double len = std::sqrt(geo::norm2(d));
                 const double slack = tol / len;
@@ -614,6 +643,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         std::vector<int> piece_at_cross_out(xs.size() * 2, -1);  // outline piece before / after crossing
         std::vector<int> first_piece(n_edges, -1), last_piece(n_edges, -1);
         std::vector<std::pair<double, int>> ts;
+        std::vector<ParamGroup> groups;
         int known = -1;  // whether the outline is in the hazards here: -1 not known
         for (std::size_t e = 0; e < n_edges; ++e) {
             const XY a = ring[e], d = ring[e + 1] - ring[e];
@@ -624,65 +654,56 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             for (std::size_t x = 0; x < xs.size(); ++x)
                 if (xs[x].edge == static_cast<int>(e)) ts.emplace_back(xs[x].t, static_cast<int>(x));
             std::sort(ts.begin(), ts.end());
-            // Groups of parameters closer than the tolerance: one point of the outline each.
-            struct Group {
-                double t;
-                std::vector<int> crossings;
-                bool start = false, end = false;
-            };
-            std::vector<Group> groups;
-            for (auto [t, x] : ts) {
-                if (groups.empty() || (t - groups.back().t) * len > tol) groups.push_back({t, {}});
-                Group& g = groups.back();
-                if (x >= 0) g.crossings.push_back(x);
-                if (t == 0.0) g.start = true;
-                if (t == 1.0) g.end = true;
-            }
+            group_params(ts, len, tol, groups);
             if (groups.size() == 1) {  // an edge shorter than the tolerance
-                if (!groups[0].crossings.empty()) known = -1;
+                if (groups[0].has_crossing) known = -1;
                 continue;
             }
             for (std::size_t k = 0; k + 1 < groups.size(); ++k) {
                 const XY p = a + groups[k].t * d, q = a + groups[k + 1].t * d;
                 // The outline is in or out of the hazards from one crossing to the next: one
                 // test per stretch between crossings.
-                if (known < 0 || !groups[k].crossings.empty()) known = search.inside(0.5 * (p + q)) ? 1 : 0;
+                if (known < 0 || groups[k].has_crossing) known = search.inside(0.5 * (p + q)) ? 1 : 0;
                 const bool in = known == 1;
-                if (!groups[k + 1].crossings.empty()) known = -1;
+                if (groups[k + 1].has_crossing) known = -1;
                 if (!in) continue;
                 const int id = static_cast<int>(pieces.size());
                 pieces.push_back({groups[k].start ? ring[e] : p, groups[k + 1].end ? ring[e + 1] : q, true});
                 if (groups[k].start) first_piece[e] = id;
                 if (groups[k + 1].end) last_piece[e] = id;
-                for (int x : groups[k].crossings) piece_at_cross_out[2 * x + 1] = id;
-                for (int x : groups[k + 1].crossings) piece_at_cross_out[2 * x] = id;
+                for (std::size_t i = groups[k].from; i < groups[k].to; ++i)
+                    if (ts[i].second >= 0) piece_at_cross_out[2 * ts[i].second + 1] = id;
+                for (std::size_t i = groups[k + 1].from; i < groups[k + 1].to; ++i)
+                    if (ts[i].second >= 0) piece_at_cross_out[2 * ts[i].second] = id;
             }
         }
         const std::size_t n_outline = pieces.size();
         // Boundary pieces inside the hull.
         std::vector<int> piece_at_cross_site(xs.size() * 2, -1);
-        std::vector<std::vector<std::pair<double, int>>> us(S.size());
-        for (std::size_t x = 0; x < xs.size(); ++x) us[xs[x].site].emplace_back(xs[x].u, static_cast<int>(x));
-        for (std::size_t k = 0; k < S.size(); ++k) {
-            auto& u = us[k];
-            u.emplace_back(0.0, -1);
-            u.emplace_back(1.0, -1);
-            std::sort(u.begin(), u.end());
+        std::vector<std::pair<int, int>> by_site;  // (site, crossing), sorted
+        for (std::size_t x = 0; x < xs.size(); ++x) by_site.emplace_back(xs[x].site, static_cast<int>(x));
+        std::sort(by_site.begin(), by_site.end());
+        std::vector<std::pair<double, int>> us;  // a site's parameters, as ts an edge's
+        for (std::size_t k = 0, next = 0; k < S.size(); ++k) {
+            us.clear();
+            for (; next < by_site.size() && by_site[next].first == static_cast<int>(k); ++next)
+                us.emplace_back(xs[by_site[next].second].u, by_site[next].second);
+            us.emplace_back(0.0, -1);
+            us.emplace_back(1.0, -1);
+            std::sort(us.begin(), us.end());
             const XY a = S[k].a, d = S[k].b - S[k].a;
             const double len = std::sqrt(geo::norm2(d));
-            std::vector<std::pair<double, std::vector<int>>> groups;
-            for (auto [v, x] : u) {
-                if (groups.empty() || (v - groups.back().first) * len > tol) groups.push_back({v, {}});
-                if (x >= 0) groups.back().second.push_back(x);
-            }
+            group_params(us, len, tol, groups);
             for (std::size_t c = 0; c + 1 < groups.size(); ++c) {
-                const XY p = c == 0 ? a : a + groups[c].first * d;
-                const XY q = c + 2 == groups.size() ? S[k].b : a + groups[c + 1].first * d;
+                const XY p = c == 0 ? a : a + groups[c].t * d;
+                const XY q = c + 2 == groups.size() ? S[k].b : a + groups[c + 1].t * d;
                 if (!in_polygon(ring, 0.5 * (p + q))) continue;
                 const int id = static_cast<int>(pieces.size());
                 pieces.push_back({p, q, false});
-                for (int x : groups[c].second) piece_at_cross_site[2 * x + 1] = id;
-                for (int x : groups[c + 1].second) piece_at_cross_site[2 * x] = id;
+                for (std::size_t i = groups[c].from; i < groups[c].to; ++i)
+                    if (us[i].second >= 0) piece_at_cross_site[2 * us[i].second + 1] = id;
+                for (std::size_t i = groups[c + 1].from; i < groups[c + 1].to; ++i)
+                    if (us[i].second >= 0) piece_at_cross_site[2 * us[i].second] = id;
             }
         }
         UnionFind uf(pieces.size());
