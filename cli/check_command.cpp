@@ -189,8 +189,18 @@ public:
         std::vector<OutputSpec> outputs = report::report_outputs(m_output, format, !m_no_project);
         if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
         check_outputs(outputs, all_inputs);
+        if (!m_shard.empty()) {
+            m_audit.shard = audit::parse_shard(m_shard);
+            // A shard holds its part of the run's tracks: the whole run's outputs (the debrief's
+            // pages, the picture) would be written by every shard over one another, each showing
+            // its own part as the run.
+            for (const auto& [option, value] : {std::pair<const char*, const std::string*>{"--debrief", &m_debrief}, {"--plot", &m_plot}})
+                if (!value->empty())
+                    throw UsageError(std::string(option) + " with --shard: " + option +
+                                     " writes the whole run's outputs and a shard holds only its part of the tracks (every shard would "
+                                     "write over the others'); give " + option + " to one shoal check of the whole run, without --shard");
+        }
         if (!m_debrief.empty()) report::check_debrief_folder(m_debrief);
-        if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
         m_audit.sweep.pose_interval_s = m_poses_interval_s;
         // The poses go to the QGIS project's poses layer, the picture and the debrief only.
         m_audit.sweep.keep_poses = !m_no_project || !m_plot.empty() || !m_debrief.empty();

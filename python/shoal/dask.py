@@ -47,6 +47,8 @@ FLAGS = {"--encounters", "--hull-from-length-width", "--progress", "--no-progres
 MULTI = {"--coast", "--layer"}
 # Options a task sets itself; given by the user they are refused or replaced.
 REFUSED = {"--shard": "the driver sets --shard itself", "--plot": "a picture cannot be merged: draw it with one shoal check",
+            "--debrief": "the debrief's pages are the whole run's and each task checks a part of it (every task would write over the "
+                         "others'): write the debrief with one shoal check of the whole run",
            "--format": "the report's format is -o's extension: -o REPORT.geojson or -o REPORT.gpkg"}
 
 

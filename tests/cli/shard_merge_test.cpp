@@ -451,6 +451,26 @@ TEST(ShardMerge, AGeoJsonPartWithoutASummaryIsRefusedWhereverItComes) {
     }
 }
 
+TEST(ShardMerge, ADebriefOrAPictureWithShardIsRefusedBeforeAnyWorkNotWrittenByEveryShard) {
+    // Before: each shard wrote the same debrief pages over the others' (the last one's: 21 of
+    // 54 tracks, 0 of 1 grounding) while the merged report was complete.
+    const fs::path debrief = temp_dir() / "shard-debrief", picture = temp_dir() / "shard-picture.svg", part = temp_dir() / "shard-out.geojson";
+    struct Case {
+        std::string option, says;
+    };
+    for (const Case& c : std::vector<Case>{{"--debrief " + q(debrief), "--debrief with --shard: --debrief writes the whole run's outputs"},
+                                           {"--plot " + q(picture), "--plot with --shard: --plot writes the whole run's outputs"}})
+        for (const char* shard : {"0/2", "1/2", "0/1"}) {
+            const Outcome r = shoal("check " + helsinki + " --encounters " + c.option + " --shard " + shard + " " + case_files() + " -o " + q(part));
+            EXPECT_EQ(r.status, 2) << c.option << " " << shard << "\n" << r.err;
+            EXPECT_NE(r.err.find("shoal: usage error: " + c.says), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("without --shard"), std::string::npos) << "says what to do: " << r.err;
+            EXPECT_FALSE(fs::exists(debrief)) << "no debrief folder";
+            EXPECT_FALSE(fs::exists(picture)) << "no picture";
+            EXPECT_FALSE(fs::exists(part)) << "no part either: refused before any work";
+        }
+}
+
 TEST(ShardMerge, BadShardTextIsAUsageErrorNamingTheOption) {
     for (const char* bad : {"2/2", "x/3", "1"}) {
         const Outcome r = shoal("check " + helsinki + " --shard " + bad + " " + case_files() + " -o " + q(temp_dir() / "bad.geojson"));

@@ -116,6 +116,16 @@ try:
         expect("part-00000.geojson' is there and was not written by shoal.dask: not replaced" in err, "the file named: " + err)
         expect(read(os.path.join(mine, "part-00000.geojson")) == b"my own notes\n", "the user's file as it was")
         expect(not os.path.exists(out), "no report written")
+        # --debrief: a whole run's output, which no task holds; refused before any work, one line
+        # (before: passed to every task, each writing the same pages over the others').
+        debrief = os.path.join(tmp, "debrief")
+        status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "1", "--shoal", shoal, "check"] + coast + files +
+                             ["--debrief", debrief, "-o", out])
+        expect(status == 2, "exit 2 for --debrief: %d\n%s" % (status, err))
+        expect(err.count("\n") == 1 and err.startswith("shoal.dask: usage error: check option --debrief: the debrief's pages are the whole run's"),
+               "one line saying why: " + err)
+        expect(not os.path.exists(debrief) and not os.path.exists(out), "no debrief, no report")
+        expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
         # Its own parts of an earlier run it replaces without a word.
         own = os.path.join(tmp, "own")
         for attempt in (1, 2):
