@@ -292,7 +292,14 @@ public:
         report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
                                                       m_audit, m_berths, hull.draught());
         info.roles = m_roles_file;
+        info.roles_fingerprint = report::files_fingerprint(m_roles_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{m_roles_file});
         info.assessment = m_assess_file;
+        // Everything else that changes the report, so that merge refuses parts that differ in it.
+        info.berth_tolerance_m = m_berth_tolerance_m;
+        if (!m_opts.ship_file.empty()) info.ship_fingerprint = report::files_fingerprint({m_opts.ship_file});  // --dims: `ship` says them
+        for (const auto& v : m_vessel_files) info.vessels += (info.vessels.empty() ? "" : ", ") + v;
+        info.vessels_fingerprint = report::files_fingerprint(m_vessel_files);
+        if (m_audit.read.date_s) info.date = report::iso_time(*m_audit.read.date_s).substr(0, 10);
         info.project = !m_no_project;
         info.jobs = m_audit.jobs;
         // The chart under the run (the coast layer), the grid's sources read again: for a
