@@ -305,7 +305,7 @@ public:
         // The chart under the run (the coast layer), the grid's sources read again: for a
         // GeoPackage, and for a GeoJSON report whose project files go beside it (not on stdout
         // or a device: report_outputs lists more than the report and its style; not a shard).
-        const bool geojson_project = format != "gpkg" && !r.shard.active() && report::report_outputs(m_output, format).size() > 2;
+        const bool geojson_project = format != "gpkg" && !r.shard.active() && report::report_outputs(m_output, format, info.project).size() > 2;
         std::optional<coast::Coastline> chart;
         if (info.project && (format == "gpkg" || geojson_project)) {
             std::string chart_warning;

@@ -611,6 +611,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
     const bool chart = first.GetLayerByName("coast") != nullptr;
     // The poses layer and the stored project go together (check --no-project: neither).
     const bool project = first.GetLayerByName("poses") != nullptr;
+    if (project) check_project_name(output);  // the stored QGIS project names the file
     ProjectView view;
     for (const Part& p : parts) {
         const json& v = p.doc["shoal"]["part"]["project"];

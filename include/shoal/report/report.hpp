@@ -92,6 +92,10 @@ std::pair<long long, std::string> file_size_and_fingerprint(const std::string& p
 /// The GeoJSON report as text (schemas/report.schema.json).
 std::string geojson(const audit::AuditResult& result, const RunInfo& info);
 
+/// Throws UsageError when a QGIS project cannot name the report at `path`: its file name holds
+/// '|', which QGIS's OGR provider reads as the start of a layer's options.
+void check_project_name(const std::string& path);
+
 /// The files a report at `path` consists of, for check_outputs: the report ("-o", "the
 /// report") and, for a GeoJSON report in a regular file, its QGIS style REPORT.qml beside it
 /// and, with `project`, its QGIS project REPORT.qgz and the layer files that opens,
