@@ -113,13 +113,18 @@ bool clip_to(XY& a, XY& b, const Box& box) noexcept {
     return true;
 }
 
+/// Whether the boxes of segments ab and cd are apart (then they do not cross).
+inline bool boxes_apart(XY a, XY b, XY c, XY d) noexcept {
+    return std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) || std::max(a.y, b.y) < std::min(c.y, d.y) ||
+           std::max(c.y, d.y) < std::min(a.y, b.y);
+}
+
 /// Parameters of the crossing of segments ab and cd (touching counts): t on ab, u on cd.
 /// Collinear overlaps give the overlap's ends that lie on the other segment.
 void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
-    // Most pairs are far apart: their boxes say so for less than the orientation tests.
-    if (std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) || std::max(a.y, b.y) < std::min(c.y, d.y) ||
-        std::max(c.y, d.y) < std::min(a.y, b.y))
-        return;
+    // Most pairs are far apart: their boxes say so for less than the orientation tests (the
+    // callers in loops ask boxes_apart first, inline).
+    if (boxes_apart(a, b, c, d)) return;
     if (!geo::segments_intersect(a, b, c, d)) return;
     const XY r = b - a, s = d - c;
     const double den = geo::cross(r, s);
@@ -281,7 +286,11 @@ private:
 class Search {
 public:
     Search(std::vector<Site> sites, const Obstacle& obstacle, double tol)
-        : m_sites(std::move(sites)), m_obstacle(obstacle), m_tol(tol) {}
+        : m_sites(std::move(sites)), m_obstacle(obstacle), m_tol(tol), m_slack2((100 * tol) * (100 * tol)) {
+        m_boxes.reserve(m_sites.size());
+        for (const Site& st : m_sites)
+            m_boxes.push_back({std::min(st.a.x, st.b.x), std::min(st.a.y, st.b.y), std::max(st.a.x, st.b.x), std::max(st.a.y, st.b.y)});
+    }
 
     struct Near {
         double d = INFINITY;
@@ -289,29 +298,49 @@ public:
         int site = -1;
     };
 
+    /// The nearest site: the least (squared distance, index), as a scan in index order finds
+    /// it. A site is tried first (the last answer: queries come in runs close together), and a
+    /// site whose box is farther than the best so far by more than rounding is not looked at.
     Near nearest(XY p) const noexcept {
         Near n;
         double best2 = INFINITY;
-        for (std::size_t k = 0; k < m_sites.size(); ++k) {
+        int best = -1;
+        double limit = INFINITY;  // beyond(best2)
+        auto consider = [&](int k) {
             XY f;
             const double d2 = dist2_to(p, m_sites[k].a, m_sites[k].b, &f);
-            if (d2 < best2) best2 = d2, n.foot = f, n.site = static_cast<int>(k);
-        }
+            if (d2 < best2 || (d2 == best2 && k < best)) best2 = d2, n.foot = f, best = k, limit = beyond(best2);
+        };
+        const int count = static_cast<int>(m_sites.size());
+        const int hint = m_hint < count ? m_hint : -1;
+        if (hint >= 0) consider(hint);
+        for (int k = 0; k < count; ++k)
+            if (box_dist2(p, k) <= limit && k != hint) consider(k);
+        n.site = best;
         n.d = std::sqrt(best2);
+        if (best >= 0) m_hint = best;
         return n;
     }
 
-    /// The nearest site whose nearest point is not `first`'s (a second site for the bound).
+    /// The nearest site whose nearest point is not `first`'s (a second site for the bound):
+    /// the least (squared distance, index) among them, as nearest().
     int second(XY p, const Near& first) const noexcept {
         int best = -1;
         double best2 = INFINITY;
         const double apart2 = (100 * m_tol) * (100 * m_tol);
-        for (std::size_t k = 0; k < m_sites.size(); ++k) {
-            if (static_cast<int>(k) == first.site) continue;
+        double limit = INFINITY;  // beyond(best2)
+        auto consider = [&](int k) {
             XY f;
             const double d2 = dist2_to(p, m_sites[k].a, m_sites[k].b, &f);
-            if (d2 < best2 && geo::norm2(f - first.foot) > apart2) best2 = d2, best = static_cast<int>(k);
-        }
+            if ((d2 < best2 || (d2 == best2 && k < best)) && geo::norm2(f - first.foot) > apart2)
+                best2 = d2, best = k, limit = beyond(best2);
+        };
+        const int count = static_cast<int>(m_sites.size());
+        const int hint = m_second_hint < count && m_second_hint != first.site ? m_second_hint : -1;
+        if (hint >= 0) consider(hint);
+        for (int k = 0; k < count; ++k)
+            if (box_dist2(p, k) <= limit && k != first.site && k != hint) consider(k);
+        if (best >= 0) m_second_hint = best;
         return best;
     }
 
@@ -425,10 +454,24 @@ public:
     double tol() const noexcept { return m_tol; }
 
 private:
+    /// The squared distance from p to site k's box: no more than its squared distance to the
+    /// site, but for rounding.
+    double box_dist2(XY p, int k) const noexcept {
+        const Box& b = m_boxes[k];
+        const double dx = std::max(std::max(b.minx - p.x, p.x - b.maxx), 0.0), dy = std::max(std::max(b.miny - p.y, p.y - b.maxy), 0.0);
+        return dx * dx + dy * dy;
+    }
+    /// A squared box distance above which a site's squared distance exceeds best2 even after
+    /// rounding (a margin of a millionth and (100 tol)^2, far above it): it is not looked at.
+    double beyond(double best2) const noexcept { return best2 * (1 + 1e-6) + m_slack2; }
+
     std::vector<Site> m_sites;
+    std::vector<Box> m_boxes;  // each site's
     const Obstacle& m_obstacle;
     double m_tol;
+    double m_slack2;
     double m_reach = 0;
+    mutable int m_hint = -1, m_second_hint = -1;  // the last answers of nearest() and second()
 };
 
 struct Best {
@@ -551,7 +594,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             std::vector<std::pair<double, double>> tu;
             for (std::size_t i = 0; i < bounds.size(); ++i)
                 for (std::size_t j = i + 1; j < bounds.size(); ++j) {
-                    if (bounds[i].polyline == bounds[j].polyline) continue;
+                    if (bounds[i].polyline == bounds[j].polyline || boxes_apart(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b)) continue;
                     tu.clear();
                     crossings(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
                     for (auto [t, u] : tu) cut_at.emplace_back(i, t), cut_at.emplace_back(j, u);
@@ -634,6 +677,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             std::vector<std::pair<double, double>> tu;
             for (std::size_t e = 0; e < n_edges; ++e)
                 for (std::size_t k = 0; k < S.size(); ++k) {
+                    if (boxes_apart(ring[e], ring[e + 1], S[k].a, S[k].b)) continue;
                     tu.clear();
                     crossings(ring[e], ring[e + 1], S[k].a, S[k].b, tu);
                     for (auto [t, u] : tu) xs.push_back({static_cast<int>(e), t, static_cast<int>(k), u});
