@@ -523,7 +523,9 @@ void along(const Search& s, XY pa, XY pb, Best& best) {
             double bnd = (fa + fb + (b - a) * len) / 2;  // Lipschitz tent
             for (const Search::Near* n : {&na, &nb})
                 if (n->site >= 0) bnd = std::min(bnd, std::max(s.dist_to_site(qa, n->site), s.dist_to_site(qb, n->site)));
-            if (na.site >= 0 && nb.site >= 0 && na.site != nb.site) bnd = std::min(bnd, s.two_site_bound(std::array<XY, 2>{qa, qb}, na.site, nb.site));
+            // (The two-site bound only when the others do not already cut the interval off.)
+            if (bnd > best.d + s.tol() && na.site >= 0 && nb.site >= 0 && na.site != nb.site)
+                bnd = std::min(bnd, s.two_site_bound(std::array<XY, 2>{qa, qb}, na.site, nb.site));
             if (bnd > best.d + s.tol()) stack.push_back({a, b, fa, fb, na, nb});
         }
     }
@@ -935,11 +937,14 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 // than the cell's diameter): d is a distance to one segment there, with no
                 // maximum inside; the region's deepest point is on the outline (searched
                 // above) or at a maximum of d in another cell.
+                // (The bounds without a second site first: a cell they cut off needs no second
+                // site nor the two-site bound.)
+                const double least = least_best_near(c, r, own);
+                double b = search.bound(poly, n, -1, sd, r);
+                if (b <= least + tol) continue;
                 const int j = n.site >= 0 ? search.second(c, n) : -1;
                 if (j < 0 || search.dist_to_site(c, j) - n.d > 2 * r) continue;
-                const double least = least_best_near(c, r, own);
-                const double b = search.bound(poly, n, j, sd, r);
-
+                b = std::min(b, search.two_site_bound(poly, n.site, j));
                 if (b <= least + tol) continue;
                 const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
                 const double clear_c = std::min(n.d, reach);
