@@ -5,7 +5,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "detail/input_file.hpp"
 #include "detail/parse_util.hpp"
+#include "stream_readers.hpp"
 #include <shoal/track/ais.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
@@ -83,9 +85,8 @@ void split_fields(std::string_view body, std::vector<std::string_view>& fields) 
 
 class NmeaReader {
 public:
-    NmeaReader(std::string_view text, const std::string& file, const ReadOptions& options)
-        : m_text(text), m_file(file), m_options(options),
-          m_ais([this](std::size_t line, const std::string& what) { skip_at(line, what); }) {
+    NmeaReader(const std::string& file, const ReadOptions& options)
+        : m_file(file), m_options(options), m_ais([this](std::size_t line, const std::string& what) { skip_at(line, what); }) {
         m_out.format = "nmea";
         m_out.report.max_messages = options.max_messages;
         Track& t = m_out.tracks.emplace_back();
@@ -93,15 +94,22 @@ public:
         t.file = file;
     }
 
-    TrackFile read() {
-        std::size_t pos = 0;
-        while (pos < m_text.size()) {
-            std::size_t end = m_text.find('\n', pos);
-            if (end == std::string_view::npos) end = m_text.size();
-            ++m_line;
-            line(detail::trim(m_text.substr(pos, end - pos)));
-            pos = end + 1;
-        }
+    /// The next line of the log (without its `\n`).
+    void feed(std::string_view text) {
+        ++m_line;
+        line(detail::trim(text));
+    }
+
+    /// The next line of the log is longer than shoal::detail::max_line_bytes: skipped, never held.
+    void too_long() {
+        ++m_line;
+        ++m_out.report.rows;
+        skip_at(m_line, "longer than " + shoal::detail::size_text(shoal::detail::max_line_bytes) + ", the longest line shoal reads; line",
+                false);
+    }
+
+    /// After the last line: the tracks and what reading found.
+    TrackFile finish() {
         m_ais.finish();
         date_pending();
         ais_summary();
@@ -113,8 +121,8 @@ private:
     std::vector<Fix>& fixes() { return m_out.tracks.front().fixes; }
 
     void skip(const std::string& what) { skip_at(m_line, what); }
-    void skip_at(std::size_t line, const std::string& what) {
-        m_out.report.skip(m_file + " line " + std::to_string(line) + ": " + what + "; sentence skipped");
+    void skip_at(std::size_t line, const std::string& what, bool sentence = true) {
+        m_out.report.skip(m_file + " line " + std::to_string(line) + ": " + what + (sentence ? "; sentence skipped" : " skipped"));
     }
 
     void line(std::string_view text) {
@@ -403,8 +411,7 @@ private:
         double tod;
     };
 
-    std::string_view m_text;
-    const std::string& m_file;
+    std::string m_file;
     const ReadOptions& m_options;
     TrackFile m_out;
     std::size_t m_line = 0;
@@ -433,8 +440,63 @@ bool holds_nmea_sentence(std::string_view line) noexcept {
 }
 
 TrackFile read_nmea_text(std::string_view text, const std::string& file, const ReadOptions& options) {
-    return NmeaReader(text, file, options).read();
+    NmeaReader reader(file, options);
+    for (std::size_t pos = 0; pos < text.size();) {
+        std::size_t end = text.find('\n', pos);
+        if (end == std::string_view::npos) end = text.size();
+        if (end - pos > shoal::detail::max_line_bytes) reader.too_long();
+        else reader.feed(text.substr(pos, end - pos));
+        pos = end + 1;
+    }
+    return reader.finish();
 }
+
+namespace detail {
+
+TrackFile read_nmea_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options, std::size_t block) {
+    constexpr std::size_t max_line = shoal::detail::max_line_bytes;
+    NmeaReader reader(in.path(), options);
+    std::string partial;    // the bytes of a line that runs past the end of a block
+    bool dropping = false;  // the current line is over max_line: its bytes are not kept
+    auto take = [&](std::string_view chunk) {
+        while (!chunk.empty()) {
+            const std::size_t nl = chunk.find('\n');
+            const std::string_view part = chunk.substr(0, nl == std::string_view::npos ? chunk.size() : nl);
+            if (!dropping && partial.size() + part.size() > max_line) {
+                dropping = true;
+                std::string().swap(partial);
+            }
+            if (nl == std::string_view::npos) {
+                if (!dropping) partial.append(part);
+                return;
+            }
+            if (dropping) {
+                reader.too_long();
+            } else if (partial.empty()) {
+                reader.feed(part);
+            } else {
+                partial.append(part);
+                reader.feed(partial);
+            }
+            partial.clear();
+            dropping = false;
+            chunk.remove_prefix(nl + 1);
+        }
+    };
+    take(head);
+    std::string().swap(head);
+    std::string buffer;
+    for (bool eof = whole; !eof;) {
+        buffer.clear();
+        eof = in.append(buffer, block) < block;
+        take(buffer);
+    }
+    if (dropping) reader.too_long();
+    else if (!partial.empty()) reader.feed(partial);
+    return reader.finish();
+}
+
+}  // namespace detail
 
 TrackFile read_nmea(const std::string& path, const ReadOptions& options) {
     const std::string text = read_file(path);

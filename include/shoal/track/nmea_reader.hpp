@@ -30,6 +30,8 @@
 namespace shoal::track {
 
 /// Reads NMEA text (a whole file's bytes); `file` names it in messages and gives the track id.
+/// A line over 1 MiB is skipped (counted, said), as read_tracks does; read_tracks reads a log
+/// line by line from blocks, never whole.
 TrackFile read_nmea_text(std::string_view text, const std::string& file, const ReadOptions& options = {});
 TrackFile read_nmea(const std::string& path, const ReadOptions& options = {});
 
