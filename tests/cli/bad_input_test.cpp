@@ -323,6 +323,32 @@ TEST_F(BadInput, AisLinesWithBadChecksumsCostNoMemoryPerLine) {
                                                       << " for 1,000";
 }
 
+TEST_F(BadInput, HalfAisMessagesWithIdsOfTheirOwnCostNoMemoryPerLine) {
+    // The same class: first fragments that are never completed, each with a sequence id of its
+    // own, were all held to the end of the log (2 M of them: 806 MB). Now a thousand wait at most.
+    auto log = [&](std::size_t lines) {
+        std::string text;
+        for (int m = 0; m < 5; ++m) text += rmc(m, 6.0 + 0.2 * m);
+        for (std::size_t i = 0; i < lines; ++i) {
+            const std::string body = "AIVDM,2,1," + std::to_string(i) + ",A,53brRt4000010SG;700iE@LE8@Tp4000000000153P615t0Ht0SCkjH4jC1C,0";
+            unsigned sum = 0;
+            for (const char c : body) sum ^= static_cast<unsigned char>(c);
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "*%02X\r\n", sum);
+            text += "!" + body + buf;
+        }
+        return text;
+    };
+    const std::string few = file("few.nmea", log(1000)), many = file("many.nmea", log(500'000));
+    const Outcome a = check({few}, m_dir.file("few.geojson")), b = check({many}, m_dir.file("many.geojson"));
+    EXPECT_EQ(a.status, 0) << a.err;
+    EXPECT_EQ(b.status, 0) << b.err;
+    EXPECT_NE(b.err.find("many.nmea line 6: AIS message of 2 fragments without fragment 2 (half message)"), std::string::npos) << b.err;
+    EXPECT_NE(b.err.find("many.nmea: 499990 more bad rows skipped"), std::string::npos) << b.err;
+    EXPECT_LT(b.peak_rss_kb, a.peak_rss_kb + 16'000) << "KiB: " << b.peak_rss_kb << " for 500,000 half messages against " << a.peak_rss_kb
+                                                      << " for 1,000";
+}
+
 TEST_F(BadInput, GpxAndGeoJsonCutShortAreUnreadableFilesAndTheBatchGoesOn) {
     const std::string gpx = file("cut.gpx", slurp(data_path("tracks/track_and_route.gpx")).substr(0, 200));
     const std::string geojson = file("cut.geojson", slurp(data_path("tracks/line_times.geojson")).substr(0, 200));

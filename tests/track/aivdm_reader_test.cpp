@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <string>
 
 #include "test_support.hpp"
+#include <shoal/track/ais.hpp>
 #include <shoal/track/nmea_reader.hpp>
 #include <shoal/track/reader.hpp>
 #include <shoal/util/error.hpp>
@@ -147,6 +149,44 @@ TEST(AivdmReader, BadSentencesAreSkippedWithTheirLinesAndNeverFatal) {
     EXPECT_THAT(f.report.messages, Contains(HasSubstr("line 6: AIVDM with 6 fields")));
     EXPECT_THAT(f.report.messages, Contains(HasSubstr("line 7: AIVDM fill bits '7' (0-5)")));
     EXPECT_THAT(f.report.messages, Contains(path + ": 1 AIS messages of types shoal does not read ignored (1 of type 4)"));
+}
+
+/// `!AIVDM,...` with its checksum.
+std::string aivdm(const std::string& body) {
+    unsigned sum = 0;
+    for (const char c : body) sum ^= static_cast<unsigned char>(c);
+    char buf[4];
+    std::snprintf(buf, sizeof buf, "%02X", sum);
+    return "!" + body + "*" + buf;
+}
+
+TEST(AivdmReader, MessagesWaitingForFragmentsAreBoundedWhateverTheLines) {
+    // Issue 42 (the class of "bad lines cost memory per line"): every first fragment with an id
+    // of its own was held until the end (2 M of them: 806 MB). Now at most max_pending wait;
+    // one more is the half message of the oldest, said at once. An id longer than a message
+    // id and a first fragment longer than any message are refused at their line.
+    std::vector<std::string> problems;
+    ais::LineDecoder decoder([&](std::size_t line, const std::string& what) { problems.push_back(std::to_string(line) + ": " + what); });
+    const std::string payload = "53brRt4000010SG;700iE@LE8@Tp4000000000153P615t0Ht0SCkjH4jC1C";
+    ais::Decoded d;
+    const std::size_t n = ais::LineDecoder::max_pending;
+    for (std::size_t i = 1; i <= n; ++i) EXPECT_FALSE(decoder.line(aivdm("AIVDM,2,1," + std::to_string(i) + ",A," + payload + ",0"), i, d));
+    EXPECT_THAT(problems, testing::IsEmpty());
+    EXPECT_FALSE(decoder.line(aivdm("AIVDM,2,1,x,A," + payload + ",0"), n + 1, d));
+    EXPECT_THAT(problems, testing::ElementsAre("1: AIS message of 2 fragments without fragment 2 (half message)"));
+    // The newest still complete (type 5 of MMSI 244670316 in two sentences: gpsdecode).
+    EXPECT_TRUE(decoder.line(aivdm("AIVDM,2,2,x,A,`0000000001,2"), n + 2, d));
+    EXPECT_EQ(d.message.type, 5);
+    EXPECT_EQ(d.line, n + 1);
+    problems.clear();
+    EXPECT_FALSE(decoder.line(aivdm("AIVDM,2,1," + std::string(40, '7') + ",A," + payload + ",0"), n + 3, d));
+    EXPECT_FALSE(decoder.line(aivdm("AIVDM,2,1,y,A," + std::string(3000, '0') + ",0"), n + 4, d));
+    EXPECT_THAT(problems, testing::ElementsAre(HasSubstr(std::to_string(n + 3) + ": AIVDM sequence id and channel '7777"),
+                                               std::to_string(n + 4) + ": AIS message of more than 2048 payload characters"));
+    problems.clear();
+    decoder.finish();
+    EXPECT_EQ(problems.size(), n - 1);  // the rest of the first ones, oldest first
+    EXPECT_EQ(problems.front(), "2: AIS message of 2 fragments without fragment 2 (half message)");
 }
 
 TEST(AivdmReader, ALogWithoutATimeSourceIsRefusedNamingTheFile) {
