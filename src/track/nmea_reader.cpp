@@ -1,6 +1,7 @@
 #include <shoal/track/nmea_reader.hpp>
 
 #include <charconv>
+#include <cstdio>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -213,9 +214,56 @@ private:
         m_last_tod = tod;
     }
 
+    // The log's clock, which dates the AIS sentences that carry no time of their own: the
+    // receiver's time in every RMC, GGA, GLL and ZDA, with or without a valid fix (an RMC of
+    // status V still gives the receiver's time and date), resolved with the latest date. A
+    // sentence of the clock without a usable time (RMC, GGA, ZDA) stops it until the next time:
+    // the AIS sentences in between are not dated by an older time (ais_line).
+
+    /// The receiver's clock read at this line: time of day `tod` on day number `day`.
+    void clock_at(std::int64_t day, double tod) {
+        m_clock_s = m_clock.has_date() ? m_clock.resolve(day, tod) : NAN;
+        if (std::isnan(m_clock_s)) m_clock_why = "no date in the log before them (RMC or ZDA with a date)";
+    }
+    /// The same with a full date: returns its day number.
+    std::int64_t clock_dated(double t) {
+        m_clock_s = t;
+        return m_clock.date_seen(t);
+    }
+    /// A sentence of the clock without a usable time.
+    void clock_lost(const char* type) {
+        if (std::isnan(m_clock_s) && !m_clock_why.empty()) return;  // keeps the first cause
+        m_clock_s = NAN;
+        m_clock_why = "the log's clock stopped at line " + std::to_string(m_line) + " (" + type + " without a time)";
+    }
+
+    /// RMC `ddmmyy` as epoch seconds at time of day `tod`; NAN when it is not a valid date.
+    double rmc_date(double tod) const noexcept {
+        const std::string_view date = field(9);
+        int dd = 0, mm = 0, yy = 0;
+        if (date.size() != 6 || !parse_int(date.substr(0, 2), dd) || !parse_int(date.substr(2, 2), mm) ||
+            !parse_int(date.substr(4, 2), yy))
+            return NAN;
+        const int year = yy < 80 ? 2000 + yy : 1900 + yy;
+        if (!valid_date(year, mm, dd)) return NAN;
+        return static_cast<double>(days_from_civil(year, mm, dd)) * seconds_per_day + tod;
+    }
+
     void rmc() {
         double tod = 0.0;
-        geo::LonLat p;
+        std::int64_t day = 0;
+        const bool timed = parse_hhmmss(field(1), tod);
+        if (timed) {  // the receiver's clock, whatever the status
+            const double t = rmc_date(tod);
+            if (std::isnan(t)) {
+                day = m_clock.day_of(tod);
+                clock_at(day, tod);
+            } else {
+                day = clock_dated(t);
+            }
+        } else {
+            clock_lost("RMC");
+        }
         const std::string_view status = field(2);
         if (status != "A") {
             skip("RMC status " + detail::quoted(status) + " (no valid fix)");
@@ -225,42 +273,46 @@ private:
             skip("RMC mode N (no valid fix)");
             return;
         }
+        geo::LonLat p;
         if (!time_of_day(1, "RMC", tod) || !position(3, "RMC", p)) return;
-        std::int64_t day = 0;
-        const std::string_view date = field(9);
-        int dd = 0, mm = 0, yy = 0;
-        if (date.size() == 6 && parse_int(date.substr(0, 2), dd) && parse_int(date.substr(2, 2), mm) &&
-            parse_int(date.substr(4, 2), yy) && valid_date(yy < 80 ? 2000 + yy : 1900 + yy, mm, dd)) {
-            const int year = yy < 80 ? 2000 + yy : 1900 + yy;
-            m_clock_s = static_cast<double>(days_from_civil(year, mm, dd)) * seconds_per_day + tod;
-            day = m_clock.date_seen(m_clock_s);
-        } else {
-            day = m_clock.day_of(tod);
-        }
         add_fix(day, tod, p, detail::valid_sog(number(7)), detail::valid_cog(number(8)));
     }
 
     void gga() {
+        double tod = 0.0;
+        std::int64_t day = 0;
+        const bool timed = parse_hhmmss(field(1), tod);
+        if (timed) {
+            day = m_clock.day_of(tod);
+            clock_at(day, tod);
+        } else {
+            clock_lost("GGA");
+        }
         const std::string_view quality = field(6);
         if (quality.empty() || quality == "0") {
             skip("GGA fix quality " + detail::quoted(quality) + " (no fix)");
             return;
         }
-        double tod = 0.0;
         geo::LonLat p;
         if (!time_of_day(1, "GGA", tod) || !position(2, "GGA", p)) return;
-        add_fix(m_clock.day_of(tod), tod, p, NAN, NAN);
+        add_fix(day, tod, p, NAN, NAN);
     }
 
     void gll() {
+        double tod = 0.0;
+        std::int64_t day = 0;
+        const bool timed = parse_hhmmss(field(5), tod);
+        if (timed) {  // (a GLL of NMEA 1.5 has no time: it leaves the clock as it is)
+            day = m_clock.day_of(tod);
+            clock_at(day, tod);
+        }
         if (field(6) == "V" || field(7) == "N") {
             skip("GLL status V (no valid fix)");
             return;
         }
-        double tod = 0.0;
         geo::LonLat p;
         if (!time_of_day(5, "GLL", tod) || !position(1, "GLL", p)) return;
-        add_fix(m_clock.day_of(tod), tod, p, NAN, NAN);
+        add_fix(day, tod, p, NAN, NAN);
     }
 
     void hdt() {
@@ -291,24 +343,51 @@ private:
 
     void zda() {
         double tod = 0.0;
-        if (!parse_hhmmss(field(1), tod)) return;  // ZDA gives no fix: nothing to skip
+        if (!parse_hhmmss(field(1), tod)) {  // ZDA gives no fix: nothing to skip, but the clock stops
+            clock_lost("ZDA");
+            return;
+        }
         int d = 0, m = 0, y = 0;
         const bool ok = parse_int(field(2), d) && parse_int(field(3), m) && parse_int(field(4), y);
         if (ok && field(4).size() == 2) y += y < 80 ? 2000 : 1900;  // some devices write a 2-digit year
         if (ok && valid_date(y, m, d)) {
-            m_clock_s = static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod;
-            m_clock.date_seen(m_clock_s);
+            clock_dated(static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod);
             return;
         }
-        m_clock.day_of(tod);
+        clock_at(m_clock.day_of(tod), tod);
     }
 
-    /// DMA's time header before each AIS sentence: `$PGHP,1,yyyy,mm,dd,hh,mm,ss,ms,...`.
+    /// DMA's time header before each AIS sentence: `$PGHP,1,yyyy,mm,dd,hh,mm,ss,ms,...`. One
+    /// that is not a time (a field not a number, month 13, hour 25, 30 February) is said, and
+    /// the sentences after it are not dated by the header before it.
     void pghp() {
+        if (field(1) != "1") return;  // not a time header (type 1 is the only one DMA writes)
+        m_ghp_s = NAN;
+        m_ghp_why = "the $PGHP header at line " + std::to_string(m_line) + " is not a valid time";
+        static constexpr const char* names[7] = {"year", "month", "day", "hour", "minute", "second", "millisecond"};
+        static constexpr int high[7] = {9999, 12, 31, 23, 59, 59, 999};
         int v[7] = {};
-        for (std::size_t i = 0; i < 7; ++i)
-            if (!parse_int(field(i + 2), v[i])) return;  // not a time header: nothing to date with
-        if (const auto t = utc_seconds(v[0], v[1], v[2], v[3], v[4], v[5] + v[6] / 1000.0)) m_ghp_s = *t;
+        for (std::size_t i = 0; i < 7; ++i) {
+            if (!parse_int(field(i + 2), v[i])) {
+                skip("$PGHP time header: " + std::string(names[i]) + " " + detail::quoted(field(i + 2)) +
+                     " is not a number (the AIS sentences after it are not dated by it)");
+                return;
+            }
+        }
+        std::string wrong;
+        for (std::size_t i = 1; i < 7 && wrong.empty(); ++i)
+            if (v[i] > high[i] || (i <= 2 && v[i] < 1)) wrong = std::string(names[i]) + " " + std::to_string(v[i]);
+        const auto t = utc_seconds(v[0], v[1], v[2], v[3], v[4], v[5] + v[6] / 1000.0);
+        if (!t && wrong.empty()) wrong = "day " + std::to_string(v[2]) + " of month " + std::to_string(v[1]);
+        if (!wrong.empty() || !t) {
+            char text[64];
+            std::snprintf(text, sizeof text, "%04d-%02d-%02d %02d:%02d:%02d.%03d", v[0], v[1], v[2], v[3], v[4], v[5], v[6]);
+            skip("$PGHP time header " + std::string(text) + " is not a valid time (" + wrong +
+                 "; the AIS sentences after it are not dated by it)");
+            return;
+        }
+        m_ghp_s = *t;
+        m_ghp_why.clear();
     }
 
     Track& vessel(std::uint32_t mmsi) {
@@ -352,9 +431,12 @@ private:
         double time_s = d.time_s;
         if (std::isnan(time_s)) time_s = m_ghp_s;
         if (std::isnan(time_s)) time_s = m_clock_s;
-        if (std::isnan(time_s)) {
-            ++m_ais_undated;
-            skip_at(d.line, what + " without a time (no tag block c:, receive time, $PGHP or dated RMC/ZDA before it)");
+        if (std::isnan(time_s)) {  // said once for the file (ais_summary)
+            if (m_ais_undated++ == 0) {
+                m_undated_first = d.line;
+                m_undated_why = !m_ghp_why.empty() ? m_ghp_why : m_clock_why.empty() ? "before the log's first time" : m_clock_why;
+            }
+            m_undated_last = d.line;
             return;
         }
         if (!plausible_fix_time(time_s)) {
@@ -372,13 +454,22 @@ private:
         t.fixes.push_back(f);
     }
 
-    /// Refuses a log of AIS positions none of which can be dated; notes the types not read.
+    /// Refuses a log of AIS positions none of which can be dated; says the reports that could
+    /// not be dated, once; notes the types not read.
     void ais_summary() {
         std::size_t fixes = 0;
         for (const Track& t : m_out.tracks) fixes += t.fixes.size();
         if (fixes == 0 && m_ais_undated > 0 && m_ais_undated == m_ais_reports)
             throw InputError(m_file + ": AIS position reports without any time source (no tag block c:, receive time before "
                                       "the sentences, $PGHP header or dated RMC/ZDA): the AIS second field alone cannot date a fix");
+        if (m_ais_undated > 0)
+            m_out.report.skip_all(m_ais_undated,
+                                  m_file + ": " + std::to_string(m_ais_undated) + " AIS position report" + (m_ais_undated == 1 ? "" : "s") +
+                                      " without a time dropped (line" +
+                                      (m_ais_undated == 1 ? " " + std::to_string(m_undated_first)
+                                                          : "s " + std::to_string(m_undated_first) + "-" + std::to_string(m_undated_last)) +
+                                      "; the first: " + m_undated_why +
+                                      "): no tag block c:, receive time, $PGHP header or time of the log's clock (RMC, GGA, ZDA) dates them");
         std::size_t skipped = 0;
         std::string types;
         for (const auto& [type, n] : m_ais.skipped_types()) {
@@ -420,11 +511,15 @@ private:
     std::vector<Pending> m_pending;
     std::int64_t m_last_day = 0;
     double m_last_tod = NAN;
-    double m_clock_s = NAN;  ///< the last dated RMC or ZDA
+    double m_clock_s = NAN;  ///< the log's clock: the latest time of RMC, GGA, GLL or ZDA; NAN when it has none
+    std::string m_clock_why;  ///< why m_clock_s is NAN, once it has been read
     double m_ghp_s = NAN;    ///< the last $PGHP
+    std::string m_ghp_why;   ///< why m_ghp_s is NAN after a $PGHP header that is not a valid time
     ais::LineDecoder m_ais;
     std::unordered_map<std::uint32_t, std::size_t> m_vessels;  ///< MMSI -> index in m_out.tracks
     std::size_t m_ais_reports = 0, m_ais_undated = 0;
+    std::size_t m_undated_first = 0, m_undated_last = 0;  ///< the lines of the first and the last undated report
+    std::string m_undated_why;                            ///< why the first had no time
 };
 
 }  // namespace

@@ -1024,6 +1024,75 @@ TEST_F(BadInput, OneVesselSplitAcrossTwoReceiversFilesIsOneTrack) {
     EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 0);
 }
 
+/// The number of times `what` is in `text`.
+std::size_t occurrences(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + what.size())) ++n;
+    return n;
+}
+
+TEST_F(BadInput, AisTargetsAreDatedByTheRmcTimeWhileTheGpsHasNoFix) {
+    // Issue 42: after two valid RMC the GPS drops out (status V, still dated each minute); a
+    // target's reports cross the Isle of Wight. They were all dated by the last valid RMC and
+    // all but one dropped as repeats: the crossing was missed (exit 0). The V RMC's time is the
+    // receiver's clock: it dates them; its position is no fix.
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({data_path("tracks/ais_identity/gps_dropout_status_v.nmea")}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_EQ(o.err.find("repeat an earlier time"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 2 + 21);  // the own ship's two valid RMC, the target's 21 reports
+}
+
+TEST_F(BadInput, AisLinesWhileTheLogsClockHasNoTimeAreDroppedAndSaidOnce) {
+    // Held out: the RMC after the dropout carry no time at all. Nothing dates the target's
+    // reports after them: dropped, counted, said once (never dated by the last time seen).
+    const std::string r = m_dir.file("r.geojson");
+    const std::string log = data_path("tracks/ais_identity/gps_dropout_no_time.nmea");
+    const Outcome o = check({log}, r);
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find(log + ": 19 AIS position reports without a time dropped (lines 7-43; the first: the log's clock stopped at line 6 "
+                                "(RMC without a time))"),
+              std::string::npos)
+        << o.err;
+    EXPECT_EQ(occurrences(o.err, "AIS position reports without a time"), 1u) << o.err;
+    EXPECT_EQ(o.err.find("repeat an earlier time"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find(log + ": 9 more bad rows skipped"), std::string::npos) << o.err;  // 19 void RMC, 10 of them said
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 4);
+    EXPECT_EQ(doc["shoal"]["summary"]["skipped_rows"], 19 + 19);
+}
+
+TEST_F(BadInput, AnImpossiblePghpHeaderIsSaidAndDatesNothing) {
+    // Issue 42: a $PGHP time header of month 13 was skipped silently and the sentence after it
+    // dated by the header before. Now it is said, and that sentence has no time (said once).
+    const std::string log = data_path("tracks/ais_identity/pghp_month_13.txt");
+    const Outcome o = check({log}, m_dir.file("r.geojson"));
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find(log + " line 4: $PGHP time header 2013-13-18 09:19:10.624 is not a valid time (month 13; the AIS sentences after "
+                                "it are not dated by it); sentence skipped"),
+              std::string::npos)
+        << o.err;
+    EXPECT_NE(o.err.find(log + ": 1 AIS position report without a time dropped (line 5; the first: the $PGHP header at line 4 is not a "
+                                "valid time)"),
+              std::string::npos)
+        << o.err;
+    // Held out: hour 25, 30 February, a field that is no number.
+    for (const auto& [pghp, why] : std::vector<std::pair<std::string, std::string>>{
+             {"PGHP,1,2013,3,18,25,19,10,624,219,,2190048,1,47", "2013-03-18 25:19:10.624 is not a valid time (hour 25"},
+             {"PGHP,1,2013,2,30,9,19,10,624,219,,2190048,1,47", "2013-02-30 09:19:10.624 is not a valid time (day 30 of month 2"},
+             {"PGHP,1,2013,3,x,9,19,10,624,219,,2190048,1,47", "$PGHP time header: day 'x' is not a number"}}) {
+        std::string text = slurp(log);
+        const std::size_t a = text.find("$PGHP,1,2013,13"), b = text.find('\n', a);
+        text.replace(a, b - a, nmea(pghp).substr(0, nmea(pghp).size() - 2));  // (without its CRLF)
+        const Outcome h = check({file("h.txt", text)}, m_dir.file("h.geojson"));
+        EXPECT_EQ(h.status, 0) << h.err;
+        EXPECT_NE(h.err.find("h.txt line 4: "), std::string::npos) << h.err;
+        EXPECT_NE(h.err.find(why), std::string::npos) << h.err;
+    }
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------

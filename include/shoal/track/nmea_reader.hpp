@@ -10,10 +10,14 @@
 ///
 /// AIS `!--VDM`/`!--VDO` (ais.hpp): position reports become fixes of their MMSI's track, static
 /// data (types 5, 19, 24) gives it its name, A/B/C/D and draught. A message's time is its line's
-/// tag block `c:` or receive time before the sentence, else the latest `$PGHP` header, else the
-/// log's own clock (the last dated RMC or ZDA before it); a report with none is skipped, and a
-/// log whose AIS reports have none and that has no other fix is refused (InputError). Types
-/// shoal does not read are counted in one note of ReadReport::messages.
+/// tag block `c:` or receive time before the sentence, else the latest `$PGHP` header (one that
+/// is not a valid time is a skipped line, and dates nothing), else the log's own clock: the
+/// receiver's time in the last RMC (of any status: a void RMC still tells the time), GGA, GLL or
+/// ZDA before it, with the latest date. An RMC, GGA or ZDA without a time stops the clock until
+/// the next time. Reports with no time are dropped, counted in ReadReport::skipped and said in
+/// one message for the file (never dated by an older time); a log whose AIS reports have none
+/// and that has no other fix is refused (InputError). Types shoal does not read are counted in
+/// one note of ReadReport::messages.
 ///
 /// Dates: RMC and ZDA give them. Times of day from GGA/GLL take the latest date, with midnight
 /// rollover (the time of day falling by more than 12 h). Times met before the first date take
