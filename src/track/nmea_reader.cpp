@@ -1,5 +1,6 @@
 #include <shoal/track/nmea_reader.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstdint>
@@ -115,6 +116,7 @@ public:
         date_pending();
         ais_summary();
         for (Track& t : m_out.tracks) normalise(t, m_out.report);
+        join_own_ship();
         return std::move(m_out);
     }
 
@@ -407,6 +409,7 @@ private:
         ais::Decoded d;
         if (!m_ais.line(text, m_line, d)) return;
         const ais::Message& m = d.message;
+        if (d.own) own_mmsi(m.mmsi);
         Track& t = vessel(m.mmsi);
         if (t.name.empty() && !m.name.empty()) t.name = m.name;
         if (!t.dims && m.dims) {
@@ -452,6 +455,63 @@ private:
         f.nav_status = m.nav_status;
         f.line = d.line;
         t.fixes.push_back(f);
+    }
+
+    /// An MMSI of the own ship's AIS messages (!AIVDO).
+    void own_mmsi(std::uint32_t mmsi) {
+        if (std::find(m_own.begin(), m_own.end(), mmsi) != m_own.end()) return;
+        if (m_own.size() < max_own_said) m_own.push_back(mmsi);
+        else m_own_more = true;
+    }
+
+    /// One vessel, one track: the own ship's GPS fixes (RMC, GGA, GLL: the first track) and its
+    /// own AIS reports (!AIVDO, by their MMSI) are one vessel, joined into the MMSI's track in
+    /// time order; a time both hold is kept once, as the GPS fix (its heading, COG and SOG filled
+    /// from the report when it lacks them). Own reports of more than one MMSI join nothing (the
+    /// GPS fixes could be any of them's), and that is said. Run on normalised tracks.
+    void join_own_ship() {
+        Track& gps = m_out.tracks.front();
+        if (m_own.empty() || gps.fixes.empty()) return;
+        const std::string mmsis = [&] {
+            std::string out;
+            for (const std::uint32_t m : m_own) out += (out.empty() ? "" : ", ") + std::to_string(m);
+            return out + (m_own_more ? ", ..." : "");
+        }();
+        if (m_own.size() > 1) {
+            m_out.report.messages.push_back(m_file + ": its own AIS reports (!AIVDO) give " + (m_own_more ? "more than " : "") +
+                                            std::to_string(m_own.size()) + " MMSIs (" + mmsis + "): its GPS fixes (RMC, GGA, GLL) stay the track '" +
+                                            gps.id + "', joined to none of them (they may be one vessel)");
+            return;
+        }
+        Track& ais = vessel(m_own.front());
+        Track& own = m_out.tracks.front();  // (vessel() may have grown the list)
+        const std::size_t from_gps = own.fixes.size(), from_ais = ais.fixes.size();
+        std::vector<Fix> joined;
+        joined.reserve(from_gps + from_ais);
+        std::size_t both = 0;
+        auto a = own.fixes.begin(), b = ais.fixes.begin();
+        while (a != own.fixes.end() || b != ais.fixes.end()) {
+            if (b == ais.fixes.end() || (a != own.fixes.end() && a->time_s < b->time_s)) {
+                joined.push_back(*a++);
+            } else if (a == own.fixes.end() || b->time_s < a->time_s) {
+                joined.push_back(*b++);
+            } else {  // the same time: the GPS fix, what it lacks from the report
+                Fix f = *a++;
+                if (std::isnan(f.heading_deg)) f.heading_deg = b->heading_deg;
+                if (std::isnan(f.cog_deg)) f.cog_deg = b->cog_deg;
+                if (std::isnan(f.sog_kn)) f.sog_kn = b->sog_kn;
+                if (f.nav_status == nav_status_unknown) f.nav_status = b->nav_status;
+                ++b;
+                joined.push_back(f);
+                ++both;
+            }
+        }
+        m_out.report.messages.push_back(m_file + ": the own ship's GPS fixes (RMC, GGA, GLL: " + std::to_string(from_gps) +
+                                        ") and its own AIS reports (!AIVDO of MMSI " + mmsis + ": " + std::to_string(from_ais) +
+                                        ") are one vessel: one track '" + ais.id + "' of " + std::to_string(joined.size()) + " fixes" +
+                                        (both ? ", " + std::to_string(both) + " times held by both kept once (the GPS fix)" : std::string()));
+        ais.fixes = std::move(joined);
+        own.fixes.clear();  // (a track without fixes: read_tracks drops it)
     }
 
     /// Refuses a log of AIS positions none of which can be dated; says the reports that could
@@ -518,6 +578,9 @@ private:
     ais::LineDecoder m_ais;
     std::unordered_map<std::uint32_t, std::size_t> m_vessels;  ///< MMSI -> index in m_out.tracks
     std::size_t m_ais_reports = 0, m_ais_undated = 0;
+    static constexpr std::size_t max_own_said = 4;
+    std::vector<std::uint32_t> m_own;  ///< the MMSIs of the own ship's AIS messages (!AIVDO), the first few
+    bool m_own_more = false;           ///< and more than those
     std::size_t m_undated_first = 0, m_undated_last = 0;  ///< the lines of the first and the last undated report
     std::string m_undated_why;                            ///< why the first had no time
 };

@@ -1031,6 +1031,34 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
     return n;
 }
 
+TEST_F(BadInput, OwnShipRmcAndItsOwnAivdoAreOneVesselNotTwo) {
+    // Issue 42: the own ship's RMC fixes and its own !AIVDO reports (ais_identity/make_logs.py:
+    // it crosses the Isle of Wight) were two tracks: 2 groundings and, with --encounters, a
+    // collision with itself. Now one track of its MMSI.
+    const std::string log = data_path("tracks/ais_identity/own_ship_rmc_and_aivdo.nmea");
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({log}, r, {"--encounters"});
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("are one vessel: one track '235000001' of 41 fixes, 21 times held by both kept once"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["tracks"], 2);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 0);
+
+    // Held out: the same voyage in two logs (split after 10:10), each with RMC and AIVDO.
+    const std::string text = slurp(log);
+    const std::size_t cut = text.find("$GPRMC,101100");
+    ASSERT_NE(cut, std::string::npos);
+    const std::string r2 = m_dir.file("r2.geojson");
+    const Outcome two = check({file("first.nmea", text.substr(0, cut)), file("second.nmea", text.substr(cut))}, r2, {"--encounters"});
+    EXPECT_EQ(two.status, 1) << two.err;
+    EXPECT_NE(two.err.find("vessel 235000001 is in 2 files"), std::string::npos) << two.err;
+    const auto doc2 = report(r2);
+    EXPECT_EQ(doc2["shoal"]["summary"]["tracks"], 2);
+    EXPECT_EQ(doc2["shoal"]["summary"]["groundings"], 1);
+    EXPECT_EQ(doc2["shoal"]["summary"]["collisions"], 0);
+}
+
 TEST_F(BadInput, AisTargetsAreDatedByTheRmcTimeWhileTheGpsHasNoFix) {
     // Issue 42: after two valid RMC the GPS drops out (status V, still dated each minute); a
     // target's reports cross the Isle of Wight. They were all dated by the last valid RMC and

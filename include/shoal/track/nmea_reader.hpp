@@ -1,6 +1,9 @@
 #pragma once
 /// NMEA 0183 logs: the own ship's track (id = the file's stem), then one track per MMSI of the
-/// AIS messages in the log (id = the MMSI).
+/// AIS messages in the log (id = the MMSI). One vessel, one track: when the own ship's `!AIVDO`
+/// reports give one MMSI, its GPS fixes are joined into that MMSI's track (time order, a time
+/// both hold kept once as the GPS fix, said in ReadReport::messages) and its own track is left
+/// without fixes (read_tracks drops it); `!AIVDO` of two MMSIs join neither, said.
 ///
 /// Sentences used, from any talker (GP, GN, II, IN, ...): RMC (date, time, position, SOG, COG;
 /// status V skipped), GGA (time, position; fix quality 0 skipped), GLL (position, time; status V
