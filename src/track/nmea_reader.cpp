@@ -217,26 +217,46 @@ private:
     }
 
     // The log's clock, which dates the AIS sentences that carry no time of their own: the
-    // receiver's time in every RMC, GGA, GLL and ZDA, with or without a valid fix (an RMC of
-    // status V still gives the receiver's time and date), resolved with the latest date. A
-    // sentence of the clock without a usable time (RMC, GGA, ZDA) stops it until the next time:
-    // the AIS sentences in between are not dated by an older time (ais_line).
+    // receiver's time in every RMC, GGA, GLL and ZDA, resolved with the latest date. A void
+    // sentence (RMC status V, GGA quality 0, GLL status V: the GPS has no fix) still gives the
+    // receiver's time, trusted once a valid time has set the clock and as long as it follows
+    // it (a receiver restarted on its default date, 1980-01-06, does not). A sentence of the
+    // clock without a usable time (RMC, GGA, ZDA) stops it until the next time: the AIS
+    // sentences in between are not dated by an older time (ais_line).
 
     /// The receiver's clock read at this line: time of day `tod` on day number `day`.
     void clock_at(std::int64_t day, double tod) {
         m_clock_s = m_clock.has_date() ? m_clock.resolve(day, tod) : NAN;
         if (std::isnan(m_clock_s)) m_clock_why = "no date in the log before them (RMC or ZDA with a date)";
+        else m_clock_last_s = m_clock_s;
     }
     /// The same with a full date: returns its day number.
     std::int64_t clock_dated(double t) {
-        m_clock_s = t;
+        m_clock_s = m_clock_last_s = t;
         return m_clock.date_seen(t);
     }
-    /// A sentence of the clock without a usable time.
-    void clock_lost(const char* type) {
+    /// A sentence of the clock without a usable time: `why` says what it gave.
+    void clock_lost(const std::string& why) {
         if (std::isnan(m_clock_s) && !m_clock_why.empty()) return;  // keeps the first cause
         m_clock_s = NAN;
-        m_clock_why = "the log's clock stopped at line " + std::to_string(m_line) + " (" + type + " without a time)";
+        m_clock_why = "the log's clock stopped at line " + std::to_string(m_line) + " (" + why + ")";
+    }
+    /// A void sentence's time: `dated` epoch seconds when it has a date, else NAN and the time
+    /// of day `tod`. Taken in when it follows the clock (not back, not a day ahead of its last
+    /// time), else the clock stops.
+    void void_time(double dated, double tod, const char* what) {
+        const double t = !std::isnan(dated) ? dated : m_clock.has_date() ? m_clock.resolve(m_clock.peek_day(tod), tod) : NAN;
+        if (std::isfinite(m_clock_last_s) && t >= m_clock_last_s - 1.0 && t <= m_clock_last_s + seconds_per_day) {
+            if (!std::isnan(dated)) clock_dated(dated);
+            else clock_at(m_clock.day_of(tod), tod);
+            return;
+        }
+        if (std::isnan(m_clock_last_s)) {
+            clock_lost(std::string(what) + " before any valid time: the receiver's clock may not be set");
+        } else {
+            clock_lost(std::string(what) + " at " + (std::isnan(t) ? "an undated time" : format_iso8601(t, 0)) +
+                       ", which does not follow the log's last time " + format_iso8601(m_clock_last_s, 0));
+        }
     }
 
     /// RMC `ddmmyy` as epoch seconds at time of day `tod`; NAN when it is not a valid date.
@@ -255,16 +275,16 @@ private:
         double tod = 0.0;
         std::int64_t day = 0;
         const bool timed = parse_hhmmss(field(1), tod);
-        if (timed) {  // the receiver's clock, whatever the status
-            const double t = rmc_date(tod);
-            if (std::isnan(t)) {
-                day = m_clock.day_of(tod);
-                clock_at(day, tod);
-            } else {
-                day = clock_dated(t);
-            }
+        const bool valid = field(2) == "A" && field(12) != "N";
+        if (!timed) {
+            clock_lost("RMC without a time");
+        } else if (!valid) {  // the receiver's clock still
+            void_time(rmc_date(tod), tod, "a void RMC's time");
+        } else if (const double t = rmc_date(tod); std::isnan(t)) {
+            day = m_clock.day_of(tod);
+            clock_at(day, tod);
         } else {
-            clock_lost("RMC");
+            day = clock_dated(t);
         }
         const std::string_view status = field(2);
         if (status != "A") {
@@ -284,14 +304,17 @@ private:
         double tod = 0.0;
         std::int64_t day = 0;
         const bool timed = parse_hhmmss(field(1), tod);
-        if (timed) {
+        const std::string_view quality = field(6);
+        const bool valid = !quality.empty() && quality != "0";
+        if (!timed) {
+            clock_lost("GGA without a time");
+        } else if (!valid) {
+            void_time(NAN, tod, "a void GGA's time");
+        } else {
             day = m_clock.day_of(tod);
             clock_at(day, tod);
-        } else {
-            clock_lost("GGA");
         }
-        const std::string_view quality = field(6);
-        if (quality.empty() || quality == "0") {
+        if (!valid) {
             skip("GGA fix quality " + detail::quoted(quality) + " (no fix)");
             return;
         }
@@ -304,11 +327,14 @@ private:
         double tod = 0.0;
         std::int64_t day = 0;
         const bool timed = parse_hhmmss(field(5), tod);
-        if (timed) {  // (a GLL of NMEA 1.5 has no time: it leaves the clock as it is)
+        const bool valid = field(6) != "V" && field(7) != "N";
+        if (timed && !valid) {  // (a GLL of NMEA 1.5 has no time: it leaves the clock as it is)
+            void_time(NAN, tod, "a void GLL's time");
+        } else if (timed) {
             day = m_clock.day_of(tod);
             clock_at(day, tod);
         }
-        if (field(6) == "V" || field(7) == "N") {
+        if (!valid) {
             skip("GLL status V (no valid fix)");
             return;
         }
@@ -346,7 +372,7 @@ private:
     void zda() {
         double tod = 0.0;
         if (!parse_hhmmss(field(1), tod)) {  // ZDA gives no fix: nothing to skip, but the clock stops
-            clock_lost("ZDA");
+            clock_lost("ZDA without a time");
             return;
         }
         int d = 0, m = 0, y = 0;
@@ -572,6 +598,7 @@ private:
     std::int64_t m_last_day = 0;
     double m_last_tod = NAN;
     double m_clock_s = NAN;  ///< the log's clock: the latest time of RMC, GGA, GLL or ZDA; NAN when it has none
+    double m_clock_last_s = NAN;  ///< the last time the clock gave (never NAN again once it gave one)
     std::string m_clock_why;  ///< why m_clock_s is NAN, once it has been read
     double m_ghp_s = NAN;    ///< the last $PGHP
     std::string m_ghp_why;   ///< why m_ghp_s is NAN after a $PGHP header that is not a valid time

@@ -1090,6 +1090,27 @@ TEST_F(BadInput, AisLinesWhileTheLogsClockHasNoTimeAreDroppedAndSaidOnce) {
     const auto doc = report(r);
     EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 4);
     EXPECT_EQ(doc["shoal"]["summary"]["skipped_rows"], 19 + 19);
+
+    // Held out (our own hostile round): the void RMC carry a receiver's default date,
+    // 1980-01-06, as after a restart. Not a time that follows the log's: the same drop, said
+    // (taken in, the target's reports were dated 1980 and the crossing missed).
+    std::istringstream lines(slurp(data_path("tracks/ais_identity/gps_dropout_status_v.nmea")));
+    std::string text;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("$GPRMC,", 0) == 0 && line.find(",V,") != std::string::npos) {
+            std::string body = line.substr(1, line.find('*') - 1);
+            body.replace(body.find("010524"), 6, "060180");
+            line = nmea(body).substr(0, nmea(body).size() - 2);
+        }
+        text += line + "\n";
+    }
+    const Outcome d = check({file("default_date.nmea", text)}, m_dir.file("d.geojson"));
+    EXPECT_EQ(d.status, 0) << d.err;
+    EXPECT_NE(d.err.find("default_date.nmea: 19 AIS position reports without a time dropped (lines 7-43; the first: the log's clock "
+                         "stopped at line 6 (a void RMC's time at 1980-01-06T10:02:00Z, which does not follow the log's last time "
+                         "2024-05-01T10:01:00Z))"),
+              std::string::npos)
+        << d.err;
 }
 
 TEST_F(BadInput, AnImpossiblePghpHeaderIsSaidAndDatesNothing) {

@@ -15,9 +15,10 @@
 /// data (types 5, 19, 24) gives it its name, A/B/C/D and draught. A message's time is its line's
 /// tag block `c:` or receive time before the sentence, else the latest `$PGHP` header (one that
 /// is not a valid time is a skipped line, and dates nothing), else the log's own clock: the
-/// receiver's time in the last RMC (of any status: a void RMC still tells the time), GGA, GLL or
-/// ZDA before it, with the latest date. An RMC, GGA or ZDA without a time stops the clock until
-/// the next time. Reports with no time are dropped, counted in ReadReport::skipped and said in
+/// receiver's time in the last RMC, GGA, GLL or ZDA before it, with the latest date. A void
+/// sentence (RMC status V, GGA quality 0, GLL status V) still tells the time once a valid time
+/// has set the clock and while it follows it (not back, not a day ahead); one that does not, and
+/// an RMC, GGA or ZDA without a time, stop the clock until the next time. Reports with no time are dropped, counted in ReadReport::skipped and said in
 /// one message for the file (never dated by an older time); a log whose AIS reports have none
 /// and that has no other fix is refused (InputError). Types shoal does not read are counted in
 /// one note of ReadReport::messages.
