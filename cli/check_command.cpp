@@ -272,8 +272,8 @@ public:
         const audit::AuditResult r = audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);
         for (const auto& f : r.files) {
             for (const auto& m : f.read.messages) std::fprintf(stderr, "shoal: warning: %s\n", printable(m).c_str());
-            if (f.read.skipped > f.read.messages.size())
-                std::fprintf(stderr, "shoal: warning: %s: %zu more bad rows skipped\n", printable(f.file).c_str(), f.read.skipped - f.read.messages.size());
+            if (f.read.skipped > f.read.skips_said)
+                std::fprintf(stderr, "shoal: warning: %s: %zu more bad rows skipped\n", printable(f.file).c_str(), f.read.skipped - f.read.skips_said);
             if (f.read.reordered)
                 std::fprintf(stderr, "shoal: warning: %s: %zu fixes out of time order (sorted by time)\n", printable(f.file).c_str(), f.read.reordered);
             if (f.read.duplicates)

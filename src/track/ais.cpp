@@ -10,6 +10,7 @@ namespace shoal::track::ais {
 namespace {
 
 constexpr std::size_t max_payload_chars = 2048;  // the longest AIS message is 1008 bits, 168 characters
+constexpr std::size_t max_key_chars = 32;        // a sequence id 0-9 and a channel; a tag-block group id
 
 int hex_value(char c) noexcept {
     if (c >= '0' && c <= '9') return c - '0';
@@ -340,31 +341,40 @@ bool LineDecoder::line(std::string_view text, std::size_t line, Decoded& out) {
         first.own = own;
         first.time_s = time_s;
     } else {
+        // What waits for its next fragment is bounded whatever the lines: a key of a few
+        // characters, a payload of at most max_payload_chars, at most max_pending messages.
+        const std::string_view id = tag.group.empty() ? f[3] : tag.group;
+        if (id.size() + f[4].size() > max_key_chars) {
+            m_problem(line, std::string(f[0]) + (tag.group.empty() ? " sequence id and channel " + detail::quoted(std::string(f[3]) + ',' + std::string(f[4]))
+                                                                  : " tag block group id " + detail::quoted(tag.group)) +
+                                " longer than " + std::to_string(max_key_chars) + " characters (not a message id)");
+            return false;
+        }
         std::string key = tag.group.empty() ? std::string(f[3]) + ',' + std::string(f[4]) : "g:" + std::string(tag.group);
         key += own ? ",o" : ",m";
         const auto it = m_pending.find(key);
         if (index == 1) {
-            if (it != m_pending.end())
-                m_problem(it->second.first.line, "AIS message of " + std::to_string(it->second.count) + " fragments without fragment " +
-                                                     std::to_string(it->second.next) + " (half message)");
+            if (it != m_pending.end()) drop_half(it);
+            if (f[5].size() > max_payload_chars) {
+                m_problem(line, "AIS message of more than " + std::to_string(max_payload_chars) + " payload characters");
+                return false;
+            }
+            if (m_pending.size() >= max_pending) drop_half(m_pending.find(m_order.begin()->second));  // the oldest
             Pending& p = m_pending[key];
-            p = Pending{};
             p.count = count;
             p.next = 2;
             p.payload = f[5];
             p.first.line = line;
             p.first.own = own;
             p.first.time_s = time_s;
+            p.serial = ++m_serial;
+            m_order.emplace(p.serial, key);
             return false;
         }
         if (it == m_pending.end() || it->second.next != index || it->second.count != count) {
             m_problem(line, "AIS fragment " + std::to_string(index) + " of " + std::to_string(count) +
                                 " without the fragments before it (half message)");
-            if (it != m_pending.end()) {
-                m_problem(it->second.first.line, "AIS message of " + std::to_string(it->second.count) +
-                                                     " fragments without fragment " + std::to_string(it->second.next) + " (half message)");
-                m_pending.erase(it);
-            }
+            if (it != m_pending.end()) drop_half(it);
             return false;
         }
         Pending& p = it->second;
@@ -372,7 +382,7 @@ bool LineDecoder::line(std::string_view text, std::size_t line, Decoded& out) {
         if (std::isnan(p.first.time_s)) p.first.time_s = time_s;
         if (p.payload.size() > max_payload_chars) {
             m_problem(p.first.line, "AIS message of more than " + std::to_string(max_payload_chars) + " payload characters");
-            m_pending.erase(it);
+            erase(it);
             return false;
         }
         if (index < count) {
@@ -381,7 +391,7 @@ bool LineDecoder::line(std::string_view text, std::size_t line, Decoded& out) {
         }
         payload = std::move(p.payload);
         first = std::move(p.first);
-        m_pending.erase(it);
+        erase(it);
     }
     switch (decode(payload, static_cast<unsigned>(fill), first.message, problem)) {
         case Decode::ok:
@@ -397,11 +407,20 @@ bool LineDecoder::line(std::string_view text, std::size_t line, Decoded& out) {
     return false;
 }
 
+void LineDecoder::erase(std::map<std::string, Pending>::iterator it) {
+    m_order.erase(it->second.serial);
+    m_pending.erase(it);
+}
+
+void LineDecoder::drop_half(std::map<std::string, Pending>::iterator it) {
+    const Pending& p = it->second;
+    m_problem(p.first.line, "AIS message of " + std::to_string(p.count) + " fragments without fragment " + std::to_string(p.next) +
+                                " (half message)");
+    erase(it);
+}
+
 void LineDecoder::finish() {
-    for (const auto& [key, p] : m_pending)
-        m_problem(p.first.line, "AIS message of " + std::to_string(p.count) + " fragments without fragment " + std::to_string(p.next) +
-                                    " (half message)");
-    m_pending.clear();
+    while (!m_order.empty()) drop_half(m_pending.find(m_order.begin()->second));  // in the order of their lines
 }
 
 std::vector<Decoded> decode_lines(std::string_view text, std::vector<std::string>* problems) {

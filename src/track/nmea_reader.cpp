@@ -1,11 +1,15 @@
 #include <shoal/track/nmea_reader.hpp>
 
+#include <algorithm>
 #include <charconv>
+#include <cstdio>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
 
+#include "detail/input_file.hpp"
 #include "detail/parse_util.hpp"
+#include "stream_readers.hpp"
 #include <shoal/track/ais.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
@@ -83,9 +87,8 @@ void split_fields(std::string_view body, std::vector<std::string_view>& fields) 
 
 class NmeaReader {
 public:
-    NmeaReader(std::string_view text, const std::string& file, const ReadOptions& options)
-        : m_text(text), m_file(file), m_options(options),
-          m_ais([this](std::size_t line, const std::string& what) { skip_at(line, what); }) {
+    NmeaReader(const std::string& file, const ReadOptions& options)
+        : m_file(file), m_options(options), m_ais([this](std::size_t line, const std::string& what) { skip_at(line, what); }) {
         m_out.format = "nmea";
         m_out.report.max_messages = options.max_messages;
         Track& t = m_out.tracks.emplace_back();
@@ -93,19 +96,27 @@ public:
         t.file = file;
     }
 
-    TrackFile read() {
-        std::size_t pos = 0;
-        while (pos < m_text.size()) {
-            std::size_t end = m_text.find('\n', pos);
-            if (end == std::string_view::npos) end = m_text.size();
-            ++m_line;
-            line(detail::trim(m_text.substr(pos, end - pos)));
-            pos = end + 1;
-        }
+    /// The next line of the log (without its `\n`).
+    void feed(std::string_view text) {
+        ++m_line;
+        line(detail::trim(text));
+    }
+
+    /// The next line of the log is longer than shoal::detail::max_line_bytes: skipped, never held.
+    void too_long() {
+        ++m_line;
+        ++m_out.report.rows;
+        skip_at(m_line, "longer than " + shoal::detail::size_text(shoal::detail::max_line_bytes) + ", the longest line shoal reads; line",
+                false);
+    }
+
+    /// After the last line: the tracks and what reading found.
+    TrackFile finish() {
         m_ais.finish();
         date_pending();
         ais_summary();
         for (Track& t : m_out.tracks) normalise(t, m_out.report);
+        join_own_ship();
         return std::move(m_out);
     }
 
@@ -113,8 +124,8 @@ private:
     std::vector<Fix>& fixes() { return m_out.tracks.front().fixes; }
 
     void skip(const std::string& what) { skip_at(m_line, what); }
-    void skip_at(std::size_t line, const std::string& what) {
-        m_out.report.skip(m_file + " line " + std::to_string(line) + ": " + what + "; sentence skipped");
+    void skip_at(std::size_t line, const std::string& what, bool sentence = true) {
+        m_out.report.skip(m_file + " line " + std::to_string(line) + ": " + what + (sentence ? "; sentence skipped" : " skipped"));
     }
 
     void line(std::string_view text) {
@@ -205,9 +216,76 @@ private:
         m_last_tod = tod;
     }
 
+    // The log's clock, which dates the AIS sentences that carry no time of their own: the
+    // receiver's time in every RMC, GGA, GLL and ZDA, resolved with the latest date. A void
+    // sentence (RMC status V, GGA quality 0, GLL status V: the GPS has no fix) still gives the
+    // receiver's time, trusted once a valid time has set the clock and as long as it follows
+    // it (a receiver restarted on its default date, 1980-01-06, does not). A sentence of the
+    // clock without a usable time (RMC, GGA, ZDA) stops it until the next time: the AIS
+    // sentences in between are not dated by an older time (ais_line).
+
+    /// The receiver's clock read at this line: time of day `tod` on day number `day`.
+    void clock_at(std::int64_t day, double tod) {
+        m_clock_s = m_clock.has_date() ? m_clock.resolve(day, tod) : NAN;
+        if (std::isnan(m_clock_s)) m_clock_why = "no date in the log before them (RMC or ZDA with a date)";
+        else m_clock_last_s = m_clock_s;
+    }
+    /// The same with a full date: returns its day number.
+    std::int64_t clock_dated(double t) {
+        m_clock_s = m_clock_last_s = t;
+        return m_clock.date_seen(t);
+    }
+    /// A sentence of the clock without a usable time: `why` says what it gave.
+    void clock_lost(const std::string& why) {
+        if (std::isnan(m_clock_s) && !m_clock_why.empty()) return;  // keeps the first cause
+        m_clock_s = NAN;
+        m_clock_why = "the log's clock stopped at line " + std::to_string(m_line) + " (" + why + ")";
+    }
+    /// A void sentence's time: `dated` epoch seconds when it has a date, else NAN and the time
+    /// of day `tod`. Taken in when it follows the clock (not back, not a day ahead of its last
+    /// time), else the clock stops.
+    void void_time(double dated, double tod, const char* what) {
+        const double t = !std::isnan(dated) ? dated : m_clock.has_date() ? m_clock.resolve(m_clock.peek_day(tod), tod) : NAN;
+        if (std::isfinite(m_clock_last_s) && t >= m_clock_last_s - 1.0 && t <= m_clock_last_s + seconds_per_day) {
+            if (!std::isnan(dated)) clock_dated(dated);
+            else clock_at(m_clock.day_of(tod), tod);
+            return;
+        }
+        if (std::isnan(m_clock_last_s)) {
+            clock_lost(std::string(what) + " before any valid time: the receiver's clock may not be set");
+        } else {
+            clock_lost(std::string(what) + " at " + (std::isnan(t) ? "an undated time" : format_iso8601(t, 0)) +
+                       ", which does not follow the log's last time " + format_iso8601(m_clock_last_s, 0));
+        }
+    }
+
+    /// RMC `ddmmyy` as epoch seconds at time of day `tod`; NAN when it is not a valid date.
+    double rmc_date(double tod) const noexcept {
+        const std::string_view date = field(9);
+        int dd = 0, mm = 0, yy = 0;
+        if (date.size() != 6 || !parse_int(date.substr(0, 2), dd) || !parse_int(date.substr(2, 2), mm) ||
+            !parse_int(date.substr(4, 2), yy))
+            return NAN;
+        const int year = yy < 80 ? 2000 + yy : 1900 + yy;
+        if (!valid_date(year, mm, dd)) return NAN;
+        return static_cast<double>(days_from_civil(year, mm, dd)) * seconds_per_day + tod;
+    }
+
     void rmc() {
         double tod = 0.0;
-        geo::LonLat p;
+        std::int64_t day = 0;
+        const bool timed = parse_hhmmss(field(1), tod);
+        const bool valid = field(2) == "A" && field(12) != "N";
+        if (!timed) {
+            clock_lost("RMC without a time");
+        } else if (!valid) {  // the receiver's clock still
+            void_time(rmc_date(tod), tod, "a void RMC's time");
+        } else if (const double t = rmc_date(tod); std::isnan(t)) {
+            day = m_clock.day_of(tod);
+            clock_at(day, tod);
+        } else {
+            day = clock_dated(t);
+        }
         const std::string_view status = field(2);
         if (status != "A") {
             skip("RMC status " + detail::quoted(status) + " (no valid fix)");
@@ -217,42 +295,52 @@ private:
             skip("RMC mode N (no valid fix)");
             return;
         }
+        geo::LonLat p;
         if (!time_of_day(1, "RMC", tod) || !position(3, "RMC", p)) return;
-        std::int64_t day = 0;
-        const std::string_view date = field(9);
-        int dd = 0, mm = 0, yy = 0;
-        if (date.size() == 6 && parse_int(date.substr(0, 2), dd) && parse_int(date.substr(2, 2), mm) &&
-            parse_int(date.substr(4, 2), yy) && valid_date(yy < 80 ? 2000 + yy : 1900 + yy, mm, dd)) {
-            const int year = yy < 80 ? 2000 + yy : 1900 + yy;
-            m_clock_s = static_cast<double>(days_from_civil(year, mm, dd)) * seconds_per_day + tod;
-            day = m_clock.date_seen(m_clock_s);
-        } else {
-            day = m_clock.day_of(tod);
-        }
         add_fix(day, tod, p, detail::valid_sog(number(7)), detail::valid_cog(number(8)));
     }
 
     void gga() {
+        double tod = 0.0;
+        std::int64_t day = 0;
+        const bool timed = parse_hhmmss(field(1), tod);
         const std::string_view quality = field(6);
-        if (quality.empty() || quality == "0") {
+        const bool valid = !quality.empty() && quality != "0";
+        if (!timed) {
+            clock_lost("GGA without a time");
+        } else if (!valid) {
+            void_time(NAN, tod, "a void GGA's time");
+        } else {
+            day = m_clock.day_of(tod);
+            clock_at(day, tod);
+        }
+        if (!valid) {
             skip("GGA fix quality " + detail::quoted(quality) + " (no fix)");
             return;
         }
-        double tod = 0.0;
         geo::LonLat p;
         if (!time_of_day(1, "GGA", tod) || !position(2, "GGA", p)) return;
-        add_fix(m_clock.day_of(tod), tod, p, NAN, NAN);
+        add_fix(day, tod, p, NAN, NAN);
     }
 
     void gll() {
-        if (field(6) == "V" || field(7) == "N") {
+        double tod = 0.0;
+        std::int64_t day = 0;
+        const bool timed = parse_hhmmss(field(5), tod);
+        const bool valid = field(6) != "V" && field(7) != "N";
+        if (timed && !valid) {  // (a GLL of NMEA 1.5 has no time: it leaves the clock as it is)
+            void_time(NAN, tod, "a void GLL's time");
+        } else if (timed) {
+            day = m_clock.day_of(tod);
+            clock_at(day, tod);
+        }
+        if (!valid) {
             skip("GLL status V (no valid fix)");
             return;
         }
-        double tod = 0.0;
         geo::LonLat p;
         if (!time_of_day(5, "GLL", tod) || !position(1, "GLL", p)) return;
-        add_fix(m_clock.day_of(tod), tod, p, NAN, NAN);
+        add_fix(day, tod, p, NAN, NAN);
     }
 
     void hdt() {
@@ -283,24 +371,51 @@ private:
 
     void zda() {
         double tod = 0.0;
-        if (!parse_hhmmss(field(1), tod)) return;  // ZDA gives no fix: nothing to skip
+        if (!parse_hhmmss(field(1), tod)) {  // ZDA gives no fix: nothing to skip, but the clock stops
+            clock_lost("ZDA without a time");
+            return;
+        }
         int d = 0, m = 0, y = 0;
         const bool ok = parse_int(field(2), d) && parse_int(field(3), m) && parse_int(field(4), y);
         if (ok && field(4).size() == 2) y += y < 80 ? 2000 : 1900;  // some devices write a 2-digit year
         if (ok && valid_date(y, m, d)) {
-            m_clock_s = static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod;
-            m_clock.date_seen(m_clock_s);
+            clock_dated(static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod);
             return;
         }
-        m_clock.day_of(tod);
+        clock_at(m_clock.day_of(tod), tod);
     }
 
-    /// DMA's time header before each AIS sentence: `$PGHP,1,yyyy,mm,dd,hh,mm,ss,ms,...`.
+    /// DMA's time header before each AIS sentence: `$PGHP,1,yyyy,mm,dd,hh,mm,ss,ms,...`. One
+    /// that is not a time (a field not a number, month 13, hour 25, 30 February) is said, and
+    /// the sentences after it are not dated by the header before it.
     void pghp() {
+        if (field(1) != "1") return;  // not a time header (type 1 is the only one DMA writes)
+        m_ghp_s = NAN;
+        m_ghp_why = "the $PGHP header at line " + std::to_string(m_line) + " is not a valid time";
+        static constexpr const char* names[7] = {"year", "month", "day", "hour", "minute", "second", "millisecond"};
+        static constexpr int high[7] = {9999, 12, 31, 23, 59, 59, 999};
         int v[7] = {};
-        for (std::size_t i = 0; i < 7; ++i)
-            if (!parse_int(field(i + 2), v[i])) return;  // not a time header: nothing to date with
-        if (const auto t = utc_seconds(v[0], v[1], v[2], v[3], v[4], v[5] + v[6] / 1000.0)) m_ghp_s = *t;
+        for (std::size_t i = 0; i < 7; ++i) {
+            if (!parse_int(field(i + 2), v[i])) {
+                skip("$PGHP time header: " + std::string(names[i]) + " " + detail::quoted(field(i + 2)) +
+                     " is not a number (the AIS sentences after it are not dated by it)");
+                return;
+            }
+        }
+        std::string wrong;
+        for (std::size_t i = 1; i < 7 && wrong.empty(); ++i)
+            if (v[i] > high[i] || (i <= 2 && v[i] < 1)) wrong = std::string(names[i]) + " " + std::to_string(v[i]);
+        const auto t = utc_seconds(v[0], v[1], v[2], v[3], v[4], v[5] + v[6] / 1000.0);
+        if (!t && wrong.empty()) wrong = "day " + std::to_string(v[2]) + " of month " + std::to_string(v[1]);
+        if (!wrong.empty() || !t) {
+            char text[64];
+            std::snprintf(text, sizeof text, "%04d-%02d-%02d %02d:%02d:%02d.%03d", v[0], v[1], v[2], v[3], v[4], v[5], v[6]);
+            skip("$PGHP time header " + std::string(text) + " is not a valid time (" + wrong +
+                 "; the AIS sentences after it are not dated by it)");
+            return;
+        }
+        m_ghp_s = *t;
+        m_ghp_why.clear();
     }
 
     Track& vessel(std::uint32_t mmsi) {
@@ -320,6 +435,7 @@ private:
         ais::Decoded d;
         if (!m_ais.line(text, m_line, d)) return;
         const ais::Message& m = d.message;
+        if (d.own) own_mmsi(m.mmsi);
         Track& t = vessel(m.mmsi);
         if (t.name.empty() && !m.name.empty()) t.name = m.name;
         if (!t.dims && m.dims) {
@@ -344,9 +460,12 @@ private:
         double time_s = d.time_s;
         if (std::isnan(time_s)) time_s = m_ghp_s;
         if (std::isnan(time_s)) time_s = m_clock_s;
-        if (std::isnan(time_s)) {
-            ++m_ais_undated;
-            skip_at(d.line, what + " without a time (no tag block c:, receive time, $PGHP or dated RMC/ZDA before it)");
+        if (std::isnan(time_s)) {  // said once for the file (ais_summary)
+            if (m_ais_undated++ == 0) {
+                m_undated_first = d.line;
+                m_undated_why = !m_ghp_why.empty() ? m_ghp_why : m_clock_why.empty() ? "before the log's first time" : m_clock_why;
+            }
+            m_undated_last = d.line;
             return;
         }
         if (!plausible_fix_time(time_s)) {
@@ -364,13 +483,79 @@ private:
         t.fixes.push_back(f);
     }
 
-    /// Refuses a log of AIS positions none of which can be dated; notes the types not read.
+    /// An MMSI of the own ship's AIS messages (!AIVDO).
+    void own_mmsi(std::uint32_t mmsi) {
+        if (std::find(m_own.begin(), m_own.end(), mmsi) != m_own.end()) return;
+        if (m_own.size() < max_own_said) m_own.push_back(mmsi);
+        else m_own_more = true;
+    }
+
+    /// One vessel, one track: the own ship's GPS fixes (RMC, GGA, GLL: the first track) and its
+    /// own AIS reports (!AIVDO, by their MMSI) are one vessel, joined into the MMSI's track in
+    /// time order; a time both hold is kept once, as the GPS fix (its heading, COG and SOG filled
+    /// from the report when it lacks them). Own reports of more than one MMSI join nothing (the
+    /// GPS fixes could be any of them's), and that is said. Run on normalised tracks.
+    void join_own_ship() {
+        Track& gps = m_out.tracks.front();
+        if (m_own.empty() || gps.fixes.empty()) return;
+        const std::string mmsis = [&] {
+            std::string out;
+            for (const std::uint32_t m : m_own) out += (out.empty() ? "" : ", ") + std::to_string(m);
+            return out + (m_own_more ? ", ..." : "");
+        }();
+        if (m_own.size() > 1) {
+            m_out.report.messages.push_back(m_file + ": its own AIS reports (!AIVDO) give " + (m_own_more ? "more than " : "") +
+                                            std::to_string(m_own.size()) + " MMSIs (" + mmsis + "): its GPS fixes (RMC, GGA, GLL) stay the track '" +
+                                            gps.id + "', joined to none of them (they may be one vessel)");
+            return;
+        }
+        Track& ais = vessel(m_own.front());
+        Track& own = m_out.tracks.front();  // (vessel() may have grown the list)
+        const std::size_t from_gps = own.fixes.size(), from_ais = ais.fixes.size();
+        std::vector<Fix> joined;
+        joined.reserve(from_gps + from_ais);
+        std::size_t both = 0;
+        auto a = own.fixes.begin(), b = ais.fixes.begin();
+        while (a != own.fixes.end() || b != ais.fixes.end()) {
+            if (b == ais.fixes.end() || (a != own.fixes.end() && a->time_s < b->time_s)) {
+                joined.push_back(*a++);
+            } else if (a == own.fixes.end() || b->time_s < a->time_s) {
+                joined.push_back(*b++);
+            } else {  // the same time: the GPS fix, what it lacks from the report
+                Fix f = *a++;
+                if (std::isnan(f.heading_deg)) f.heading_deg = b->heading_deg;
+                if (std::isnan(f.cog_deg)) f.cog_deg = b->cog_deg;
+                if (std::isnan(f.sog_kn)) f.sog_kn = b->sog_kn;
+                if (f.nav_status == nav_status_unknown) f.nav_status = b->nav_status;
+                ++b;
+                joined.push_back(f);
+                ++both;
+            }
+        }
+        m_out.report.messages.push_back(m_file + ": the own ship's GPS fixes (RMC, GGA, GLL: " + std::to_string(from_gps) +
+                                        ") and its own AIS reports (!AIVDO of MMSI " + mmsis + ": " + std::to_string(from_ais) +
+                                        ") are one vessel: one track '" + ais.id + "' of " + std::to_string(joined.size()) + " fixes" +
+                                        (both ? ", " + std::to_string(both) + " times held by both kept once (the GPS fix)" : std::string()));
+        ais.fixes = std::move(joined);
+        own.fixes.clear();  // (a track without fixes: read_tracks drops it)
+    }
+
+    /// Refuses a log of AIS positions none of which can be dated; says the reports that could
+    /// not be dated, once; notes the types not read.
     void ais_summary() {
         std::size_t fixes = 0;
         for (const Track& t : m_out.tracks) fixes += t.fixes.size();
         if (fixes == 0 && m_ais_undated > 0 && m_ais_undated == m_ais_reports)
             throw InputError(m_file + ": AIS position reports without any time source (no tag block c:, receive time before "
                                       "the sentences, $PGHP header or dated RMC/ZDA): the AIS second field alone cannot date a fix");
+        if (m_ais_undated > 0)
+            m_out.report.skip_all(m_ais_undated,
+                                  m_file + ": " + std::to_string(m_ais_undated) + " AIS position report" + (m_ais_undated == 1 ? "" : "s") +
+                                      " without a time dropped (line" +
+                                      (m_ais_undated == 1 ? " " + std::to_string(m_undated_first)
+                                                          : "s " + std::to_string(m_undated_first) + "-" + std::to_string(m_undated_last)) +
+                                      "; the first: " + m_undated_why +
+                                      "): no tag block c:, receive time, $PGHP header or time of the log's clock (RMC, GGA, ZDA) dates them");
         std::size_t skipped = 0;
         std::string types;
         for (const auto& [type, n] : m_ais.skipped_types()) {
@@ -403,8 +588,7 @@ private:
         double tod;
     };
 
-    std::string_view m_text;
-    const std::string& m_file;
+    std::string m_file;
     const ReadOptions& m_options;
     TrackFile m_out;
     std::size_t m_line = 0;
@@ -413,11 +597,19 @@ private:
     std::vector<Pending> m_pending;
     std::int64_t m_last_day = 0;
     double m_last_tod = NAN;
-    double m_clock_s = NAN;  ///< the last dated RMC or ZDA
+    double m_clock_s = NAN;  ///< the log's clock: the latest time of RMC, GGA, GLL or ZDA; NAN when it has none
+    double m_clock_last_s = NAN;  ///< the last time the clock gave (never NAN again once it gave one)
+    std::string m_clock_why;  ///< why m_clock_s is NAN, once it has been read
     double m_ghp_s = NAN;    ///< the last $PGHP
+    std::string m_ghp_why;   ///< why m_ghp_s is NAN after a $PGHP header that is not a valid time
     ais::LineDecoder m_ais;
     std::unordered_map<std::uint32_t, std::size_t> m_vessels;  ///< MMSI -> index in m_out.tracks
     std::size_t m_ais_reports = 0, m_ais_undated = 0;
+    static constexpr std::size_t max_own_said = 4;
+    std::vector<std::uint32_t> m_own;  ///< the MMSIs of the own ship's AIS messages (!AIVDO), the first few
+    bool m_own_more = false;           ///< and more than those
+    std::size_t m_undated_first = 0, m_undated_last = 0;  ///< the lines of the first and the last undated report
+    std::string m_undated_why;                            ///< why the first had no time
 };
 
 }  // namespace
@@ -433,8 +625,63 @@ bool holds_nmea_sentence(std::string_view line) noexcept {
 }
 
 TrackFile read_nmea_text(std::string_view text, const std::string& file, const ReadOptions& options) {
-    return NmeaReader(text, file, options).read();
+    NmeaReader reader(file, options);
+    for (std::size_t pos = 0; pos < text.size();) {
+        std::size_t end = text.find('\n', pos);
+        if (end == std::string_view::npos) end = text.size();
+        if (end - pos > shoal::detail::max_line_bytes) reader.too_long();
+        else reader.feed(text.substr(pos, end - pos));
+        pos = end + 1;
+    }
+    return reader.finish();
 }
+
+namespace detail {
+
+TrackFile read_nmea_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options, std::size_t block) {
+    constexpr std::size_t max_line = shoal::detail::max_line_bytes;
+    NmeaReader reader(in.path(), options);
+    std::string partial;    // the bytes of a line that runs past the end of a block
+    bool dropping = false;  // the current line is over max_line: its bytes are not kept
+    auto take = [&](std::string_view chunk) {
+        while (!chunk.empty()) {
+            const std::size_t nl = chunk.find('\n');
+            const std::string_view part = chunk.substr(0, nl == std::string_view::npos ? chunk.size() : nl);
+            if (!dropping && partial.size() + part.size() > max_line) {
+                dropping = true;
+                std::string().swap(partial);
+            }
+            if (nl == std::string_view::npos) {
+                if (!dropping) partial.append(part);
+                return;
+            }
+            if (dropping) {
+                reader.too_long();
+            } else if (partial.empty()) {
+                reader.feed(part);
+            } else {
+                partial.append(part);
+                reader.feed(partial);
+            }
+            partial.clear();
+            dropping = false;
+            chunk.remove_prefix(nl + 1);
+        }
+    };
+    take(head);
+    std::string().swap(head);
+    std::string buffer;
+    for (bool eof = whole; !eof;) {
+        buffer.clear();
+        eof = in.append(buffer, block) < block;
+        take(buffer);
+    }
+    if (dropping) reader.too_long();
+    else if (!partial.empty()) reader.feed(partial);
+    return reader.finish();
+}
+
+}  // namespace detail
 
 TrackFile read_nmea(const std::string& path, const ReadOptions& options) {
     const std::string text = read_file(path);

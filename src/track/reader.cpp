@@ -140,43 +140,6 @@ Sniffed sniff_file(shoal::detail::InputFile& in) {
     return out;
 }
 
-/// The rest of a line-based file after `head`, whole, with every line longer than
-/// shoal::detail::max_line_bytes left empty (never held whole); their line numbers go to `long_lines`.
-std::string read_lines(shoal::detail::InputFile& in, std::string&& head, bool whole, std::vector<std::size_t>& long_lines) {
-    constexpr std::size_t max_line = shoal::detail::max_line_bytes, block = std::size_t{1} << 20;
-    std::string out;
-    out.reserve(head.size());
-    std::size_t line = 1, length = 0;  // the current line, its bytes so far
-    bool dropping = false;
-    auto take = [&](std::string_view chunk) {
-        while (!chunk.empty()) {
-            const std::size_t nl = chunk.find('\n');
-            const std::size_t part = nl == std::string_view::npos ? chunk.size() : nl;
-            if (!dropping && length + part > max_line) {
-                out.resize(out.size() - length);
-                dropping = true;
-                long_lines.push_back(line);
-            }
-            if (!dropping) out.append(chunk.substr(0, part));
-            length += part;
-            if (nl == std::string_view::npos) return;
-            out += '\n';
-            ++line;
-            length = 0;
-            dropping = false;
-            chunk.remove_prefix(nl + 1);
-        }
-    };
-    take(head);
-    head.clear();
-    for (bool eof = whole; !eof;) {
-        head.clear();
-        eof = in.append(head, block) < block;
-        take(head);
-    }
-    return out;
-}
-
 /// Throws when a file gave no fix at all; drops tracks left without a fix (all their rows
 /// skipped: the report counted them).
 template <typename File>
@@ -229,22 +192,12 @@ void check_columns_readable(const std::string& path, const std::string& format, 
                          "', the role column (ReadOptions::role_column); columns are read from CSV files and GeoJSON properties");
 }
 
-/// Every format but CSV, read whole (GeoJSON and GPX at most this much).
+/// GeoJSON and GPX are read whole (at most this much); CSV and NMEA in blocks.
 constexpr std::size_t max_whole_bytes = std::size_t{1} << 30;
 
 TrackFile read_whole(shoal::detail::InputFile& in, Sniffed&& sniffed, const ReadOptions& options) {
     const std::string& path = in.path();
-    if (sniffed.format == "nmea") {
-        std::vector<std::size_t> long_lines;
-        const std::string content = read_lines(in, std::move(sniffed.head), sniffed.whole, long_lines);
-        TrackFile out = read_nmea_text(content, path, options);
-        for (const std::size_t line : long_lines) {
-            ++out.report.rows;
-            out.report.skip(path + " line " + std::to_string(line) + ": longer than " +
-                            shoal::detail::size_text(shoal::detail::max_line_bytes) + ", the longest line shoal reads; line skipped");
-        }
-        return out;
-    }
+    if (sniffed.format == "nmea") return detail::read_nmea_stream(in, std::move(sniffed.head), sniffed.whole, options);
     std::string content = std::move(sniffed.head);
     if (sniffed.format == "gpx" && !in.gdal_path().empty()) return detail::read_gpx_at(in.gdal_path(), path, options);
     if (!sniffed.whole) in.append_all(content, max_whole_bytes, sniffed.format == "gpx" ? "a GPX file" : "a GeoJSON file", content.size());

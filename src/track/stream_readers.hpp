@@ -17,6 +17,13 @@ namespace shoal::track::detail {
 PackedTrackFile read_csv_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options,
                                 std::size_t block = std::size_t{1} << 20);
 
+/// Reads an NMEA log from `in` line by line in blocks of `block` bytes (`head`, `whole` as for
+/// read_csv_stream): what it holds is the tracks, never the text, so a log of millions of bad
+/// lines costs what its good ones do. A line over shoal::detail::max_line_bytes is a skipped
+/// line, never held.
+TrackFile read_nmea_stream(shoal::detail::InputFile& in, std::string head, bool whole, const ReadOptions& options,
+                           std::size_t block = std::size_t{1} << 20);
+
 /// Reads the GPX file GDAL opens at `gdal_path`; `file` names it in messages and track ids.
 TrackFile read_gpx_at(const std::string& gdal_path, const std::string& file, const ReadOptions& options);
 

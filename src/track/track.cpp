@@ -150,7 +150,16 @@ std::uint8_t parse_nav_status(std::string_view text) noexcept {
 
 void ReadReport::skip(const std::string& message) {
     ++skipped;
-    if (messages.size() < max_messages) messages.push_back(message);
+    if (messages.size() < max_messages) {
+        messages.push_back(message);
+        ++skips_said;
+    }
+}
+
+void ReadReport::skip_all(std::size_t count, const std::string& message) {
+    skipped += count;
+    skips_said += count;
+    messages.push_back(message);
 }
 
 void normalise(Track& track, ReadReport& report) {

@@ -298,6 +298,57 @@ TEST_F(BadInput, NmeaLogCutShortSkipsTheCutSentence) {
     EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 5);
 }
 
+TEST_F(BadInput, AisLinesWithBadChecksumsCostNoMemoryPerLine) {
+    // Issue 42: 5 M AIS lines with bad checksums took 578 MB against 108 MB for 5 M bad CSV rows:
+    // the log was held whole (the bad lines' messages were already capped at ten). Now a log is
+    // read line by line; a million bad lines (48 MB) cost no more than a thousand.
+    const std::string bad = "!AIVDM,1,1,,B,13aENmgP1CPH`N`NJ2L0Mwwb2@Nj,0*01\r\n";  // computed *00
+    auto log = [&](std::size_t lines) {
+        std::string text;
+        for (int m = 0; m < 5; ++m) text += rmc(m, 6.0 + 0.2 * m);
+        text.reserve(text.size() + lines * bad.size());
+        for (std::size_t i = 0; i < lines; ++i) text += bad;
+        return text;
+    };
+    const std::string few = file("few.nmea", log(1000)), many = file("many.nmea", log(1'000'000));
+    const Outcome a = check({few}, m_dir.file("few.geojson")), b = check({many}, m_dir.file("many.geojson"));
+    EXPECT_EQ(a.status, 0) << a.err;
+    EXPECT_EQ(b.status, 0) << b.err;
+    EXPECT_NE(b.err.find("many.nmea line 6: bad checksum '*01' (computed *00); sentence skipped"), std::string::npos) << b.err;
+    EXPECT_NE(b.err.find("many.nmea: 999990 more bad rows skipped"), std::string::npos) << b.err;
+    EXPECT_LT(lines_of(b.err), 20u) << b.err;
+    const auto doc = report(m_dir.file("many.geojson"));
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 5);
+    EXPECT_LT(b.peak_rss_kb, a.peak_rss_kb + 16'000) << "KiB: " << b.peak_rss_kb << " for 1,000,000 bad lines against " << a.peak_rss_kb
+                                                      << " for 1,000";
+}
+
+TEST_F(BadInput, HalfAisMessagesWithIdsOfTheirOwnCostNoMemoryPerLine) {
+    // The same class: first fragments that are never completed, each with a sequence id of its
+    // own, were all held to the end of the log (2 M of them: 806 MB). Now a thousand wait at most.
+    auto log = [&](std::size_t lines) {
+        std::string text;
+        for (int m = 0; m < 5; ++m) text += rmc(m, 6.0 + 0.2 * m);
+        for (std::size_t i = 0; i < lines; ++i) {
+            const std::string body = "AIVDM,2,1," + std::to_string(i) + ",A,53brRt4000010SG;700iE@LE8@Tp4000000000153P615t0Ht0SCkjH4jC1C,0";
+            unsigned sum = 0;
+            for (const char c : body) sum ^= static_cast<unsigned char>(c);
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "*%02X\r\n", sum);
+            text += "!" + body + buf;
+        }
+        return text;
+    };
+    const std::string few = file("few.nmea", log(1000)), many = file("many.nmea", log(500'000));
+    const Outcome a = check({few}, m_dir.file("few.geojson")), b = check({many}, m_dir.file("many.geojson"));
+    EXPECT_EQ(a.status, 0) << a.err;
+    EXPECT_EQ(b.status, 0) << b.err;
+    EXPECT_NE(b.err.find("many.nmea line 6: AIS message of 2 fragments without fragment 2 (half message)"), std::string::npos) << b.err;
+    EXPECT_NE(b.err.find("many.nmea: 499990 more bad rows skipped"), std::string::npos) << b.err;
+    EXPECT_LT(b.peak_rss_kb, a.peak_rss_kb + 16'000) << "KiB: " << b.peak_rss_kb << " for 500,000 half messages against " << a.peak_rss_kb
+                                                      << " for 1,000";
+}
+
 TEST_F(BadInput, GpxAndGeoJsonCutShortAreUnreadableFilesAndTheBatchGoesOn) {
     const std::string gpx = file("cut.gpx", slurp(data_path("tracks/track_and_route.gpx")).substr(0, 200));
     const std::string geojson = file("cut.geojson", slurp(data_path("tracks/line_times.geojson")).substr(0, 200));
@@ -971,6 +1022,124 @@ TEST_F(BadInput, OneVesselSplitAcrossTwoReceiversFilesIsOneTrack) {
     EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);
     EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
     EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 0);
+}
+
+/// The number of times `what` is in `text`.
+std::size_t occurrences(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + what.size())) ++n;
+    return n;
+}
+
+TEST_F(BadInput, OwnShipRmcAndItsOwnAivdoAreOneVesselNotTwo) {
+    // Issue 42: the own ship's RMC fixes and its own !AIVDO reports (ais_identity/make_logs.py:
+    // it crosses the Isle of Wight) were two tracks: 2 groundings and, with --encounters, a
+    // collision with itself. Now one track of its MMSI.
+    const std::string log = data_path("tracks/ais_identity/own_ship_rmc_and_aivdo.nmea");
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({log}, r, {"--encounters"});
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_NE(o.err.find("are one vessel: one track '235000001' of 41 fixes, 21 times held by both kept once"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["tracks"], 2);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_EQ(doc["shoal"]["summary"]["collisions"], 0);
+
+    // Held out: the same voyage in two logs (split after 10:10), each with RMC and AIVDO.
+    const std::string text = slurp(log);
+    const std::size_t cut = text.find("$GPRMC,101100");
+    ASSERT_NE(cut, std::string::npos);
+    const std::string r2 = m_dir.file("r2.geojson");
+    const Outcome two = check({file("first.nmea", text.substr(0, cut)), file("second.nmea", text.substr(cut))}, r2, {"--encounters"});
+    EXPECT_EQ(two.status, 1) << two.err;
+    EXPECT_NE(two.err.find("vessel 235000001 is in 2 files"), std::string::npos) << two.err;
+    const auto doc2 = report(r2);
+    EXPECT_EQ(doc2["shoal"]["summary"]["tracks"], 2);
+    EXPECT_EQ(doc2["shoal"]["summary"]["groundings"], 1);
+    EXPECT_EQ(doc2["shoal"]["summary"]["collisions"], 0);
+}
+
+TEST_F(BadInput, AisTargetsAreDatedByTheRmcTimeWhileTheGpsHasNoFix) {
+    // Issue 42: after two valid RMC the GPS drops out (status V, still dated each minute); a
+    // target's reports cross the Isle of Wight. They were all dated by the last valid RMC and
+    // all but one dropped as repeats: the crossing was missed (exit 0). The V RMC's time is the
+    // receiver's clock: it dates them; its position is no fix.
+    const std::string r = m_dir.file("r.geojson");
+    const Outcome o = check({data_path("tracks/ais_identity/gps_dropout_status_v.nmea")}, r);
+    EXPECT_EQ(o.status, 1) << o.err;
+    EXPECT_EQ(o.err.find("repeat an earlier time"), std::string::npos) << o.err;
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["groundings"], 1);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 2 + 21);  // the own ship's two valid RMC, the target's 21 reports
+}
+
+TEST_F(BadInput, AisLinesWhileTheLogsClockHasNoTimeAreDroppedAndSaidOnce) {
+    // Held out: the RMC after the dropout carry no time at all. Nothing dates the target's
+    // reports after them: dropped, counted, said once (never dated by the last time seen).
+    const std::string r = m_dir.file("r.geojson");
+    const std::string log = data_path("tracks/ais_identity/gps_dropout_no_time.nmea");
+    const Outcome o = check({log}, r);
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find(log + ": 19 AIS position reports without a time dropped (lines 7-43; the first: the log's clock stopped at line 6 "
+                                "(RMC without a time))"),
+              std::string::npos)
+        << o.err;
+    EXPECT_EQ(occurrences(o.err, "AIS position reports without a time"), 1u) << o.err;
+    EXPECT_EQ(o.err.find("repeat an earlier time"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find(log + ": 9 more bad rows skipped"), std::string::npos) << o.err;  // 19 void RMC, 10 of them said
+    const auto doc = report(r);
+    EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 4);
+    EXPECT_EQ(doc["shoal"]["summary"]["skipped_rows"], 19 + 19);
+
+    // Held out (our own hostile round): the void RMC carry a receiver's default date,
+    // 1980-01-06, as after a restart. Not a time that follows the log's: the same drop, said
+    // (taken in, the target's reports were dated 1980 and the crossing missed).
+    std::istringstream lines(slurp(data_path("tracks/ais_identity/gps_dropout_status_v.nmea")));
+    std::string text;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("$GPRMC,", 0) == 0 && line.find(",V,") != std::string::npos) {
+            std::string body = line.substr(1, line.find('*') - 1);
+            body.replace(body.find("010524"), 6, "060180");
+            line = nmea(body).substr(0, nmea(body).size() - 2);
+        }
+        text += line + "\n";
+    }
+    const Outcome d = check({file("default_date.nmea", text)}, m_dir.file("d.geojson"));
+    EXPECT_EQ(d.status, 0) << d.err;
+    EXPECT_NE(d.err.find("default_date.nmea: 19 AIS position reports without a time dropped (lines 7-43; the first: the log's clock "
+                         "stopped at line 6 (a void RMC's time at 1980-01-06T10:02:00Z, which does not follow the log's last time "
+                         "2024-05-01T10:01:00Z))"),
+              std::string::npos)
+        << d.err;
+}
+
+TEST_F(BadInput, AnImpossiblePghpHeaderIsSaidAndDatesNothing) {
+    // Issue 42: a $PGHP time header of month 13 was skipped silently and the sentence after it
+    // dated by the header before. Now it is said, and that sentence has no time (said once).
+    const std::string log = data_path("tracks/ais_identity/pghp_month_13.txt");
+    const Outcome o = check({log}, m_dir.file("r.geojson"));
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find(log + " line 4: $PGHP time header 2013-13-18 09:19:10.624 is not a valid time (month 13; the AIS sentences after "
+                                "it are not dated by it); sentence skipped"),
+              std::string::npos)
+        << o.err;
+    EXPECT_NE(o.err.find(log + ": 1 AIS position report without a time dropped (line 5; the first: the $PGHP header at line 4 is not a "
+                                "valid time)"),
+              std::string::npos)
+        << o.err;
+    // Held out: hour 25, 30 February, a field that is no number.
+    for (const auto& [pghp, why] : std::vector<std::pair<std::string, std::string>>{
+             {"PGHP,1,2013,3,18,25,19,10,624,219,,2190048,1,47", "2013-03-18 25:19:10.624 is not a valid time (hour 25"},
+             {"PGHP,1,2013,2,30,9,19,10,624,219,,2190048,1,47", "2013-02-30 09:19:10.624 is not a valid time (day 30 of month 2"},
+             {"PGHP,1,2013,3,x,9,19,10,624,219,,2190048,1,47", "$PGHP time header: day 'x' is not a number"}}) {
+        std::string text = slurp(log);
+        const std::size_t a = text.find("$PGHP,1,2013,13"), b = text.find('\n', a);
+        text.replace(a, b - a, nmea(pghp).substr(0, nmea(pghp).size() - 2));  // (without its CRLF)
+        const Outcome h = check({file("h.txt", text)}, m_dir.file("h.geojson"));
+        EXPECT_EQ(h.status, 0) << h.err;
+        EXPECT_NE(h.err.find("h.txt line 4: "), std::string::npos) << h.err;
+        EXPECT_NE(h.err.find(why), std::string::npos) << h.err;
+    }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <shoal/track/reader.hpp>
 #include <shoal/track/csv_reader.hpp>
+#include <shoal/track/nmea_reader.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -356,13 +357,38 @@ TEST(Input, NmeaLineOverTheLimitIsABadLine) {
     const std::string log = slurp(data_path("tracks/mixed_talkers.nmea"));
     write(dir.file("long.nmea"), log + std::string(2 << 20, 'x') + "\n" + log);
     write(dir.file("short.nmea"), log + "\n" + log);
-    const TrackFile got = read_tracks(dir.file("long.nmea")), want = read_tracks(dir.file("short.nmea"));
+    shoal::track::ReadOptions options;
+    options.max_messages = 1000;
+    const TrackFile got = read_tracks(dir.file("long.nmea"), options), want = read_tracks(dir.file("short.nmea"), options);
     EXPECT_EQ(got.report.rows, want.report.rows + 1);
     EXPECT_EQ(got.report.skipped, want.report.skipped + 1);
     const std::size_t line = static_cast<std::size_t>(std::count(log.begin(), log.end(), '\n')) + 1;
-    EXPECT_THAT(got.report.messages.back(), HasSubstr("long.nmea line " + std::to_string(line) + ": longer than 1 MiB"));
+    EXPECT_THAT(got.report.messages,
+                testing::Contains(dir.file("long.nmea") + " line " + std::to_string(line) + ": longer than 1 MiB, the longest line shoal reads; line skipped"));
     ASSERT_EQ(got.tracks.size(), want.tracks.size());
     EXPECT_EQ(got.tracks[0].fixes.size(), want.tracks[0].fixes.size());
+}
+
+TEST(Input, AnNmeaLogReadInBlocksIsTheLogReadWhole) {
+    // Issue 42: a log is read line by line from blocks (never held whole), so 5 M bad lines cost
+    // what the good ones do. Whatever the block size (a line split across blocks, a block of
+    // one byte, a line over the limit in the middle, a last line without its end), the same
+    // tracks, counts and messages as the whole text read at once.
+    TempDir dir;
+    const std::string log = slurp(data_path("tracks/ais_raw/gpsd_ait250.log")) + slurp(data_path("tracks/mixed_talkers.nmea"));
+    const std::string text = log + std::string((1 << 20) + 5, 'x') + "\r\n" + log + "$GPRMC,235959,A,5241.9,N,00517.5";
+    write(dir.file("log.nmea"), text);
+    shoal::track::ReadOptions options;
+    options.max_messages = 1000;
+    const TrackFile want = shoal::track::read_nmea_text(text, dir.file("log.nmea"), options);
+    ASSERT_GT(want.report.skipped, 3u);
+    for (const std::size_t block : {std::size_t{1}, std::size_t{61}, std::size_t{4096}, std::size_t{1} << 20}) {
+        SCOPED_TRACE("block " + std::to_string(block));
+        shoal::detail::InputFile in(dir.file("log.nmea"));
+        const TrackFile got = shoal::track::detail::read_nmea_stream(in, {}, false, options, block);
+        expect_same(got, want);
+        EXPECT_EQ(got.report.messages, want.report.messages);
+    }
 }
 
 TEST(Input, HullsLargerThanAnyShipAreRefused) {

@@ -90,9 +90,14 @@ struct Decoded {
 /// Reads AIS sentences line by line: reassembles multi-sentence messages (by sequence id and
 /// channel, or by the NMEA 4.10 tag-block group `g:n-N-id`), verifies checksums, decodes.
 /// Every problem goes to the sink with its line ("bad checksum ...", "fragment 2 of 2 without
-/// fragment 1", ...): the line is then skipped, nothing else is lost.
+/// fragment 1", ...): the line is then skipped, nothing else is lost. What it holds between
+/// lines is bounded (max_pending messages of at most 2048 payload characters and a message id of
+/// at most 32), whatever the lines.
 class LineDecoder {
 public:
+    /// Messages waiting for their next fragment at once, at most: one more is a half message
+    /// of the oldest (real logs have a few: sequence ids 0-9 on two channels).
+    static constexpr std::size_t max_pending = 1000;
     using Problem = std::function<void(std::size_t line, const std::string& what)>;
     explicit LineDecoder(Problem problem) : m_problem(std::move(problem)) {}
 
@@ -112,9 +117,15 @@ private:
         int count = 0;
         int next = 0;  ///< the fragment expected next
         Decoded first;
+        std::uint64_t serial = 0;  ///< its place in m_order
     };
+    void erase(std::map<std::string, Pending>::iterator it);
+    /// Says a message that will not be completed (a half message) and forgets it.
+    void drop_half(std::map<std::string, Pending>::iterator it);
     Problem m_problem;
-    std::map<std::string, Pending> m_pending;  ///< by group key
+    std::map<std::string, Pending> m_pending;          ///< by group key
+    std::map<std::uint64_t, std::string> m_order;      ///< the keys of m_pending, oldest first
+    std::uint64_t m_serial = 0;
     std::map<int, std::size_t> m_skipped_types;
 };
 

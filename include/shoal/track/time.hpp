@@ -87,6 +87,13 @@ public:
         m_last_tod = tod;
         return m_day;
     }
+    /// The day number day_of(tod) would give, without taking the time in.
+    std::int64_t peek_day(double tod) const noexcept {
+        if (std::isnan(m_last_tod)) return m_day;
+        if (tod < m_last_tod - seconds_per_day / 2) return m_day + 1;
+        if (tod > m_last_tod + seconds_per_day / 2) return m_day - 1;
+        return m_day;
+    }
     /// A full time (epoch seconds) met at this point of the file: fixes the date of its day
     /// number. Returns that day number.
     std::int64_t date_seen(double t) noexcept {

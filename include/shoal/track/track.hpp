@@ -100,8 +100,11 @@ struct ReadReport {
     std::size_t reordered = 0;   ///< fixes found out of time order (the track was sorted)
     std::vector<std::string> messages;  ///< "FILE line N: what is wrong; row skipped", the first few
     std::size_t max_messages = 10;
+    std::size_t skips_said = 0;  ///< skipped rows a message of `messages` tells of (the rest are only counted)
     /// Counts a skipped row and keeps its message while under the limit.
     void skip(const std::string& message);
+    /// Counts `count` skipped rows that one message tells of (always kept).
+    void skip_all(std::size_t count, const std::string& message);
 };
 
 /// Sorts fixes by time (stable), drops exact duplicates in time (counted in `report`).
