@@ -141,6 +141,7 @@ std::pair<const char*, const char*> criterion_words(audit::CriterionKind k) {
     case audit::CriterionKind::speed_limit: return {"speed limit in an area", "kn"};
     case audit::CriterionKind::no_entry: return {"no entry into an area", ""};
     case audit::CriterionKind::close_quarters_time: return {"time in close quarters", "s"};
+    case audit::CriterionKind::colreg: return {"conduct under the collision rules (COLREG 8, 13-17)", "m"};
     }
     return {"criterion", ""};
 }
