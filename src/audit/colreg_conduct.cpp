@@ -125,7 +125,9 @@ std::vector<Conduct> judge_conduct(const track::Track& own, const std::vector<co
             const Classification& k = e.at_start;
             const bool give = k.give_way == Party::a || k.give_way == Party::both;
             const bool stand = k.stand_on == Party::a;
-            const bool risk = e.cpa_start.distance_m < o.cpa_m && e.cpa_start.time_s > 0;
+            // Risk of collision: the CPA projected at the start is under cpa_m and ahead, or the
+            // ships did come closer than that (the projection from logged speed and course can miss it).
+            const bool risk = (e.cpa_start.distance_m < o.cpa_m && e.cpa_start.time_s > 0) || e.closest_m < o.cpa_m;
             if (!risk || (!give && !stand)) {
                 out.push_back(std::move(c));
                 continue;

@@ -7,7 +7,7 @@
 /// The situation is classified when the pair first comes within `range_m` (head-on within
 /// `head_on_deg`; overtaking from 112.5 to 247.5 degrees relative bearing). The rules then ask
 /// something only when there is a risk of collision: the CPA projected at that moment is under
-/// `cpa_m` and still ahead. An *action* is the first change of heading by `action_course_deg`
+/// `cpa_m` and still ahead, or the ships did pass closer than `cpa_m`. An *action* is the first change of heading by `action_course_deg`
 /// or of speed by `action_speed_change` (a fraction) kept `sustain_s` seconds, before the
 /// closest approach; its *size* is the largest change of heading (signed, + to starboard) and
 /// of speed from the start up to the closest approach.
