@@ -2,7 +2,7 @@
 /// A ship's conduct under the steering and sailing rules (COLREG rules 8 and 13-17), read from
 /// its track in each situation (colreg.hpp) with another ship: which rules applied and whether
 /// what it did met them. The `colreg` criterion of an assessment file (assessment.hpp) scores
-/// it; docs/simulator.md gives every reading and its source.
+/// it; docs/user-guide.md ("Conduct under the rules") gives every reading and its source.
 ///
 /// The situation is classified when the pair first comes within `range_m` (head-on within
 /// `head_on_deg`; overtaking from 112.5 to 247.5 degrees relative bearing). The rules then ask
