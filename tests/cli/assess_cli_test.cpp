@@ -123,6 +123,7 @@ TEST_F(AssessCli, AColregCriterionAndAPassMarkInTheReportValidAgainstTheSchemas)
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_THAT(r.out, HasSubstr("rules: rule 14, head-on with B (give-way)"));
     EXPECT_THAT(r.out, HasSubstr("A kept her course (090) and speed (9.7 kn)"));
+    EXPECT_THAT(r.out, HasSubstr("] A  penalty 60.00, 2 breaches: fail (pass mark 55.00)\n"));
     const json doc = json::parse(slurp(m_dir.file("colreg.geojson")));
     EXPECT_EQ(doc["shoal"]["pass_mark"], 55);
     ASSERT_EQ(doc["shoal"]["assessment"]["scores"].size(), 1u);
