@@ -7,7 +7,11 @@
  *
  * The approaches: SHIPS starting points drawn in the grid's box with clearance 5-300 m, each
  * driven straight on a random heading until it has been in contact for 3 m of travel (or
- * 6,000 frames). Not a test: it asserts nothing about time (docs/performance.md). */
+ * 6,000 frames). Not a test: it asserts nothing about time (docs/performance.md).
+ *
+ * A checksum of the contact frames' regions (their depths and points) is printed so that a
+ * change meant to be faster only can be seen to give the same answers; SHOAL_BENCH_DUMP=FILE
+ * writes every contact frame's regions to FILE, one line each, to compare two builds. */
 #include <shoal/shoal.h>
 
 #include <math.h>
@@ -69,6 +73,23 @@ int main(int argc, char** argv) {
         n_contact += (size_t)c.contact;
     }
     shoal_contact_point pts[16];
+    /* The answers, once, before the timing: a checksum and, on request, every region. */
+    const char* dump_path = getenv("SHOAL_BENCH_DUMP");
+    FILE* dump = dump_path ? fopen(dump_path, "w") : NULL;
+    if (dump_path && !dump) { fprintf(stderr, "cannot write %s\n", dump_path); return 2; }
+    double checksum = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (!contact[i]) continue;
+        const int k = shoal_contacts(d, frames[i].lat, frames[i].lon, frames[i].hdg, pts, 16);
+        for (int r = 0; r < k && r < 16; ++r) {
+            checksum += pts[r].depth_m + 1e-3 * (fabs(pts[r].x_m) + fabs(pts[r].y_m));
+            if (dump)
+                fprintf(dump, "%zu %d %.17g %.17g %.17g %.17g %.17g %d\n", i, r, pts[r].depth_m, pts[r].x_m, pts[r].y_m, pts[r].nx,
+                        pts[r].ny, pts[r].hazard);
+        }
+        if (dump && k == 0) fprintf(dump, "%zu none\n", i);
+    }
+    if (dump) fclose(dump);
     double best[2][2] = {{1e9, 1e9}, {1e9, 1e9}};  /* [check|contacts][clear|contact] */
     size_t regions = 0;
     double deepest = 0;
@@ -101,6 +122,7 @@ int main(int argc, char** argv) {
         }
     printf("%d approaches, %zu frames: %zu clear, %zu in contact (%zu regions, deepest %.2f m)\n", started, n, n - n_contact,
            n_contact, regions, deepest);
+    printf("checksum of the contact frames' regions: %.9f\n", checksum);
     printf("clear frames:      shoal_check %.2f us, shoal_contacts %.2f us (%.2fx)\n", best[0][0], best[1][0], best[1][0] / best[0][0]);
     printf("contact frames:    shoal_check %.2f us, shoal_contacts %.2f us\n", best[0][1], best[1][1]);
     /* A fleet: 1,000 ships of the recorded frames (every n/1000-th), all asked in one frame. */

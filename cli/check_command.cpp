@@ -189,8 +189,18 @@ public:
         std::vector<OutputSpec> outputs = report::report_outputs(m_output, format, !m_no_project);
         if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
         check_outputs(outputs, all_inputs);
+        if (!m_shard.empty()) {
+            m_audit.shard = audit::parse_shard(m_shard);
+            // A shard holds its part of the run's tracks: the whole run's outputs (the debrief's
+            // pages, the picture) would be written by every shard over one another, each showing
+            // its own part as the run.
+            for (const auto& [option, value] : {std::pair<const char*, const std::string*>{"--debrief", &m_debrief}, {"--plot", &m_plot}})
+                if (!value->empty())
+                    throw UsageError(std::string(option) + " with --shard: " + option +
+                                     " writes the whole run's outputs and a shard holds only its part of the tracks (every shard would "
+                                     "write over the others'); give " + option + " to one shoal check of the whole run, without --shard");
+        }
         if (!m_debrief.empty()) report::check_debrief_folder(m_debrief);
-        if (!m_shard.empty()) m_audit.shard = audit::parse_shard(m_shard);
         m_audit.sweep.pose_interval_s = m_poses_interval_s;
         // The poses go to the QGIS project's poses layer, the picture and the debrief only.
         m_audit.sweep.keep_poses = !m_no_project || !m_plot.empty() || !m_debrief.empty();
@@ -282,13 +292,20 @@ public:
         report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
                                                       m_audit, m_berths, hull.draught());
         info.roles = m_roles_file;
+        info.roles_fingerprint = report::files_fingerprint(m_roles_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{m_roles_file});
         info.assessment = m_assess_file;
+        // Everything else that changes the report, so that merge refuses parts that differ in it.
+        info.berth_tolerance_m = m_berth_tolerance_m;
+        if (!m_opts.ship_file.empty()) info.ship_fingerprint = report::files_fingerprint({m_opts.ship_file});  // --dims: `ship` says them
+        for (const auto& v : m_vessel_files) info.vessels += (info.vessels.empty() ? "" : ", ") + v;
+        info.vessels_fingerprint = report::files_fingerprint(m_vessel_files);
+        if (m_audit.read.date_s) info.date = report::iso_time(*m_audit.read.date_s).substr(0, 10);
         info.project = !m_no_project;
         info.jobs = m_audit.jobs;
         // The chart under the run (the coast layer), the grid's sources read again: for a
         // GeoPackage, and for a GeoJSON report whose project files go beside it (not on stdout
         // or a device: report_outputs lists more than the report and its style; not a shard).
-        const bool geojson_project = format != "gpkg" && !r.shard.active() && report::report_outputs(m_output, format).size() > 2;
+        const bool geojson_project = format != "gpkg" && !r.shard.active() && report::report_outputs(m_output, format, info.project).size() > 2;
         std::optional<coast::Coastline> chart;
         if (info.project && (format == "gpkg" || geojson_project)) {
             std::string chart_warning;

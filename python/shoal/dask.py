@@ -34,8 +34,10 @@ compiled module. No dashboard is started (bokeh is not in Debian 12).
 """
 
 import argparse
+import ctypes
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -47,6 +49,8 @@ FLAGS = {"--encounters", "--hull-from-length-width", "--progress", "--no-progres
 MULTI = {"--coast", "--layer"}
 # Options a task sets itself; given by the user they are refused or replaced.
 REFUSED = {"--shard": "the driver sets --shard itself", "--plot": "a picture cannot be merged: draw it with one shoal check",
+            "--debrief": "the debrief's pages are the whole run's and each task checks a part of it (every task would write over the "
+                         "others'): write the debrief with one shoal check of the whole run",
            "--format": "the report's format is -o's extension: -o REPORT.geojson or -o REPORT.gpkg"}
 
 
@@ -165,13 +169,24 @@ def _grid_cache_on_worker(grid):
     return folder
 
 
+def _die_with_parent():
+    """In a child, before exec: SIGTERM when the process that started it dies (Linux
+    PR_SET_PDEATHSIG), so that a shoal check never outlives its worker or this driver (it then
+    removes its temporaries and exits 143)."""
+    try:
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM, 0, 0, 0)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+
 def run_task(name, cmd, cwd, grid):
     """One task: runs `cmd` (a shoal check writing its part); raises on failure (Dask retries)."""
     env = dict(os.environ)
     if grid is not None:
         env["SHOAL_CACHE_DIR"] = _grid_cache_on_worker(grid)
     t0 = time.monotonic()
-    p = subprocess.run(cmd, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    p = subprocess.run(cmd, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                       preexec_fn=_die_with_parent)
     if p.returncode not in (0, 1):
         why = "killed by signal %d" % -p.returncode if p.returncode < 0 else "exit status %d" % p.returncode
         tail = p.stderr.strip().splitlines()[-3:]
@@ -188,9 +203,16 @@ def main(argv=None):
     ap.add_argument("--retries", type=int, default=2, metavar="R", help="retries of a failed task (default 2)")
     ap.add_argument("--shoal", help="the shoal executable (default: the build tree's, else PATH)")
     ap.add_argument("--parts-dir", help="folder for the parts (default: a temporary folder beside the report); kept only if given")
+    ap.add_argument("--worker-timeout", type=float, default=60, metavar="S",
+                    help="give up, exit status 3, when the cluster has had no worker for S seconds with tasks left (default 60)")
     ap.add_argument("command", choices=["check"])
     ap.add_argument("args", nargs=argparse.REMAINDER, help="shoal check's arguments")
     a = ap.parse_args(argv)
+    # SIGTERM and SIGHUP end the run as Ctrl-C does: its tasks stopped, its work folder removed.
+    previous = {}
+    for s in (signal.SIGTERM, signal.SIGHUP):
+        if signal.getsignal(s) is not signal.SIG_IGN:  # nohup: stays ignored
+            previous[s] = signal.signal(s, _interrupted)
     try:
         return run(a)
     except UsageError as e:
@@ -199,6 +221,36 @@ def main(argv=None):
     except ClusterError as e:
         print("shoal.dask: error: %s" % e, file=sys.stderr)
         return 2
+    except ClusterFailed as e:
+        print("shoal.dask: error: %s" % e, file=sys.stderr)
+        return 3
+    except Interrupted as e:
+        print("shoal.dask: interrupted (%s): tasks stopped, no report written" % signal.Signals(e.signum).name, file=sys.stderr)
+        return 128 + e.signum
+    except KeyboardInterrupt:
+        print("shoal.dask: interrupted (SIGINT): tasks stopped, no report written", file=sys.stderr)
+        return 130
+    finally:
+        for s, h in previous.items():
+            signal.signal(s, h)
+
+
+class Interrupted(BaseException):
+    """SIGTERM or SIGHUP: unwinds like KeyboardInterrupt, so every cleanup on the way runs."""
+
+    def __init__(self, signum):
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _interrupted(signum, frame):
+    # Once: a second signal during the cleanup must not cut it short.
+    signal.signal(signum, signal.SIG_IGN)
+    raise Interrupted(signum)
+
+
+class ClusterFailed(Exception):
+    """The cluster failed under the run (no worker left, the scheduler lost): one line, exit status 3."""
 
 
 class ClusterError(Exception):
@@ -264,7 +316,7 @@ def run(a):
 
 
 def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
-    from distributed import Client, LocalCluster, as_completed
+    from distributed import Client, LocalCluster
 
     grid = build_grid(shoal, options, workdir)
     if a.local is None and a.scheduler is None:
@@ -292,15 +344,15 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
         except OSError as e:  # unreachable (distributed.comm.timeouts.connect, 30 s by default)
             raise ClusterError("cannot reach the Dask scheduler at %s (%s); no report written" % (a.scheduler, e)) from None
     failed = []
+    futures = {}
     try:
         grid_future = client.scatter(grid, broadcast=True) if grid is not None else None
-        futures = {}
         for k, (name, part, cmd) in enumerate(tasks):
             f = client.submit(run_task, name, cmd, cwd, grid_future, retries=a.retries, pure=False, key="shoal-check-%d-%s" % (k, os.getpid()))
             futures[f] = name
         done = 0
         print("shoal.dask: %d tasks on %d workers" % (len(tasks), len(client.scheduler_info()["workers"])), file=sys.stderr)
-        for f in as_completed(futures):
+        for f in _completed(client, futures, a.worker_timeout, len(tasks)):
             done += 1
             try:
                 name, status, seconds = f.result()
@@ -310,15 +362,62 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
                 failed.append(futures[f])
                 print("shoal.dask: [%d/%d] %s FAILED after %d retries: %s" % (done, len(tasks), futures[f], a.retries, e), file=sys.stderr)
     finally:
-        client.close()
+        # On an interrupt or a failure too: the tasks cancelled, the local workers (and, with
+        # them, their shoal checks: _die_with_parent) stopped before the work folder goes.
+        try:
+            if futures:
+                client.cancel(list(futures))
+            client.close(timeout=10)
+        except Exception:  # noqa: BLE001 - a lost scheduler: nothing more to tell it
+            pass
         if cluster is not None:
-            cluster.close()
+            cluster.close(timeout=20)
     if failed:
         print("shoal.dask: error: %d of %d tasks failed (%s); no report written" % (len(failed), len(tasks), ", ".join(failed)),
               file=sys.stderr)
         return 2
-    p = subprocess.run([shoal, "merge"] + [t[1] for t in tasks] + ["-o", output], cwd=cwd)
+    p = subprocess.run([shoal, "merge"] + [t[1] for t in tasks] + ["-o", output], cwd=cwd, preexec_fn=_die_with_parent)
     return p.returncode
+
+
+def _completed(client, futures, worker_timeout, total):
+    """The futures as they complete, as distributed.as_completed gives them, watching the
+    cluster meanwhile: ClusterFailed when it has had no worker for `worker_timeout` seconds
+    with tasks left (before: the run waited for ever), or when the scheduler is lost."""
+    from distributed import wait
+    pending = set(futures)
+    no_worker_since = None
+    while pending:
+        try:
+            finished, pending = wait(pending, timeout=1, return_when="FIRST_COMPLETED")
+        except (TimeoutError, OSError) as e:  # distributed raises the builtin TimeoutError (3.11: asyncio's is it too)
+            if not isinstance(e, TimeoutError):
+                raise ClusterFailed("lost the Dask scheduler (%s) with %d of %d tasks left; no report written" % (e, len(pending), total)) from None
+            finished = set()
+        except Exception as e:  # noqa: BLE001 - asyncio.TimeoutError on Python < 3.11, CommClosedError
+            if type(e).__name__ == "CancelledError":  # the scheduler gave the tasks up: the workers holding their data are gone
+                raise ClusterFailed("the Dask cluster gave up %d of %d tasks: its workers died or were lost, with the data the tasks need; "
+                                    "no report written" % (len(pending), total)) from None
+            if type(e).__name__ != "TimeoutError":
+                raise ClusterFailed("lost the Dask scheduler (%s: %s) with %d of %d tasks left; no report written" %
+                                    (type(e).__name__, e, len(pending), total)) from None
+            finished = set()
+        for f in finished:
+            yield f
+        if not pending:
+            break
+        try:
+            workers = len(client.nthreads())
+        except Exception as e:  # noqa: BLE001 - the scheduler went away
+            raise ClusterFailed("lost the Dask scheduler (%s: %s) with %d of %d tasks left; no report written" %
+                                (type(e).__name__, e, len(pending), total)) from None
+        if workers:
+            no_worker_since = None
+        elif no_worker_since is None:
+            no_worker_since = time.monotonic()
+        elif time.monotonic() - no_worker_since >= worker_timeout:
+            raise ClusterFailed("the Dask cluster has had no worker for %g s with %d of %d tasks left (its workers died or were lost); "
+                                "no report written (--worker-timeout)" % (worker_timeout, len(pending), total))
 
 
 if __name__ == "__main__":

@@ -22,10 +22,13 @@
 #include <shoal/check/contacts.hpp>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <numeric>
 #include <queue>
+#include <span>
 #include <utility>
 
 namespace shoal::check {
@@ -113,6 +116,10 @@ bool clip_to(XY& a, XY& b, const Box& box) noexcept {
 /// Parameters of the crossing of segments ab and cd (touching counts): t on ab, u on cd.
 /// Collinear overlaps give the overlap's ends that lie on the other segment.
 void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
+    // Most pairs are far apart: their boxes say so for less than the orientation tests.
+    if (std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) || std::max(a.y, b.y) < std::min(c.y, d.y) ||
+        std::max(c.y, d.y) < std::min(a.y, b.y))
+        return;
     if (!geo::segments_intersect(a, b, c, d)) return;
     const XY r = b - a, s = d - c;
     const double den = geo::cross(r, s);
@@ -179,6 +186,28 @@ void merge_collinear(std::vector<Site>& sites, double tol) {
     }
 }
 
+/// Parameters along a segment, each with the crossing it comes from (-1: an end), sorted, in
+/// groups closer than the tolerance: one point of the segment each, a range of the parameters.
+struct ParamGroup {
+    double t;               // the group's first parameter
+    std::size_t from, to;   // its range of the parameters
+    bool has_crossing = false;
+    bool start = false, end = false;  // holds the segment's start (0) or end (1)
+};
+
+void group_params(const std::vector<std::pair<double, int>>& ts, double len, double tol, std::vector<ParamGroup>& groups) {
+    groups.clear();
+    for (std::size_t i = 0; i < ts.size(); ++i) {
+        const auto [t, x] = ts[i];
+        if (groups.empty() || (t - groups.back().t) * len > tol) groups.push_back({t, i, i});
+        ParamGroup& g = groups.back();
+        g.to = i + 1;
+        g.has_crossing = g.has_crossing || x >= 0;
+        g.start = g.start || t == 0.0;
+        g.end = g.end || t == 1.0;
+    }
+}
+
 struct UnionFind {
     std::vector<int> parent;
     explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
@@ -189,23 +218,64 @@ struct UnionFind {
     void join(int a, int b) { parent[find(a)] = find(b); }
 };
 
-/// Sutherland-Hodgman: the box cut to a convex ring (counter-clockwise, closed).
-std::vector<XY> clip_box_to_convex(const Box& box, const std::vector<XY>& ccw) {
-    std::vector<XY> poly{{box.minx, box.miny}, {box.maxx, box.miny}, {box.maxx, box.maxy}, {box.minx, box.maxy}};
-    std::vector<XY> next;
-    for (std::size_t i = 0; i + 1 < ccw.size() && !poly.empty(); ++i) {
-        const XY a = ccw[i], b = ccw[i + 1];
-        next.clear();
-        for (std::size_t k = 0; k < poly.size(); ++k) {
-            const XY p = poly[k], q = poly[(k + 1) % poly.size()];
-            const double op = geo::orient(a, b, p), oq = geo::orient(a, b, q);
-            if (op >= 0) next.push_back(p);
-            if ((op > 0 && oq < 0) || (op < 0 && oq > 0)) next.push_back(p + (op / (op - oq)) * (q - p));
+/// Boxes cut to a convex ring (counter-clockwise, closed) by Sutherland-Hodgman. An edge whose
+/// inner side holds the whole box by a margin is skipped: its pass would keep every vertex, and
+/// a cell of the search is near few of the hull's edges (a rounded bow has dozens). An edge that
+/// holds a box holds every box inside it: the cells' search hands the edges that did not hold a
+/// cell to its quarters (a bit each for the first 64 edges; the others are always tried).
+class ConvexCutter {
+public:
+    using Edges = std::uint64_t;
+    static constexpr Edges all_edges = ~Edges{0};
+
+    explicit ConvexCutter(const std::vector<XY>& ccw) : m_ring(ccw) {}
+
+    /// `poly` := `box` cut to the ring (fewer than 3 points: they do not overlap), trying the
+    /// edges of `edges` (those that did not hold a box around this one); returns those that do
+    /// not hold this box.
+    Edges cut(const Box& box, Edges edges, std::vector<XY>& poly) {
+        poly = {{box.minx, box.miny}, {box.maxx, box.miny}, {box.maxx, box.maxy}, {box.minx, box.maxy}};
+        Edges unheld = 0;
+        const std::size_t n = m_ring.size() - 1;
+        for (std::size_t i = next_edge(edges, 0, n); i < n && !poly.empty(); i = next_edge(edges, i + 1, n)) {
+            const Edges bit = i < 64 ? Edges{1} << i : 0;
+            const XY a = m_ring[i], b = m_ring[i + 1];
+            if (holds(a, b, box)) continue;
+            unheld |= bit;
+            m_next.clear();
+            for (std::size_t k = 0; k < poly.size(); ++k) {
+                const XY p = poly[k], q = poly[(k + 1) % poly.size()];
+                const double op = geo::orient(a, b, p), oq = geo::orient(a, b, q);
+                if (op >= 0) m_next.push_back(p);
+                if ((op > 0 && oq < 0) || (op < 0 && oq > 0)) m_next.push_back(p + (op / (op - oq)) * (q - p));
+            }
+            poly.swap(m_next);
         }
-        poly.swap(next);
+        return unheld;
     }
-    return poly;
-}
+
+private:
+    /// The first edge from `i` on that is in `edges` (or past the 64 of the mask), n if none.
+    static std::size_t next_edge(Edges edges, std::size_t i, std::size_t n) noexcept {
+        if (i >= 64) return std::min(i, n);
+        const Edges rest = edges >> i;
+        const std::size_t next = rest ? i + static_cast<std::size_t>(std::countr_zero(rest)) : 64;
+        return std::min(next, n);
+    }
+
+    /// Whether the box lies left of a->b by more than rounding (its corner least left of it, by
+    /// a margin far above the error of orient at the box's corners or at points cut from it).
+    static bool holds(XY a, XY b, const Box& box) noexcept {
+        const XY d = b - a;
+        const XY p{d.y > 0 ? box.maxx : box.minx, d.x > 0 ? box.miny : box.maxy};
+        const XY v = p - a;
+        const double margin = 1e-9 * (std::fabs(d.x) + std::fabs(d.y)) * (std::fabs(v.x) + std::fabs(v.y) + 1);
+        return geo::cross(d, v) > margin;
+    }
+
+    const std::vector<XY>& m_ring;
+    std::vector<XY> m_next;
+};
 
 /// The search over one set of boundary pieces.
 class Search {
@@ -248,7 +318,7 @@ public:
     double dist_to_site(XY p, int k) const noexcept { return std::sqrt(dist2_to(p, m_sites[k].a, m_sites[k].b, nullptr)); }
 
     /// Exact max over polygon `v` (or segment, 2 points) of min(dist to site i, dist to site j).
-    double two_site_bound(const std::vector<XY>& v, int i, int j) const {
+    double two_site_bound(std::span<const XY> v, int i, int j) const {
         double best = 0;
         auto value = [&](XY p) { return std::min(dist_to_site(p, i), dist_to_site(p, j)); };
         for (XY p : v) best = std::max(best, value(p));
@@ -410,7 +480,7 @@ void along(const Search& s, XY pa, XY pb, Best& best) {
             double bnd = (fa + fb + (b - a) * len) / 2;  // Lipschitz tent
             for (const Search::Near* n : {&na, &nb})
                 if (n->site >= 0) bnd = std::min(bnd, std::max(s.dist_to_site(qa, n->site), s.dist_to_site(qb, n->site)));
-            if (na.site >= 0 && nb.site >= 0 && na.site != nb.site) bnd = std::min(bnd, s.two_site_bound({qa, qb}, na.site, nb.site));
+            if (na.site >= 0 && nb.site >= 0 && na.site != nb.site) bnd = std::min(bnd, s.two_site_bound(std::array<XY, 2>{qa, qb}, na.site, nb.site));
             if (bnd > best.d + s.tol()) stack.push_back({a, b, fa, fb, na, nb});
         }
     }
@@ -464,23 +534,29 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         std::vector<RawSegment> raw;
         obstacle.collect(box, raw);
         std::vector<RawSegment> bounds, lines;
-        for (RawSegment r : raw) {
+        for (const RawSegment& whole : raw) {
+            RawSegment r = whole;
             if (!clip_to(r.a, r.b, box)) continue;
             if (r.a == r.b) continue;
-            (r.boundary ? bounds : lines).push_back(r);
+            // A line is kept whole: where it crosses the hull must not depend on the reach.
+            if (r.boundary) bounds.push_back(r);
+            else lines.push_back(whole);
         }
         // Cut where boundaries of different polylines cross; keep pieces with water on the right.
         std::vector<Site> sites;
         {
-            std::vector<std::vector<double>> cuts(bounds.size());
+            // (boundary segment, parameter) of every crossing, in one list (not a list per segment:
+            // most segments have none), sorted by segment.
+            std::vector<std::pair<std::size_t, double>> cut_at;
             std::vector<std::pair<double, double>> tu;
             for (std::size_t i = 0; i < bounds.size(); ++i)
                 for (std::size_t j = i + 1; j < bounds.size(); ++j) {
                     if (bounds[i].polyline == bounds[j].polyline) continue;
                     tu.clear();
                     crossings(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
-                    for (auto [t, u] : tu) cuts[i].push_back(t), cuts[j].push_back(u);
+                    for (auto [t, u] : tu) cut_at.emplace_back(i, t), cut_at.emplace_back(j, u);
                 }
+            std::sort(cut_at.begin(), cut_at.end());
             // Pieces between cuts. Whether a piece is buried (water side inside another hazard)
             // can change only where another boundary crosses: pieces joined end to end
             // without a crossing between them share the answer, found with one winding test.
@@ -490,8 +566,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 bool cut_start, cut_end;  // begins / ends at a crossing
             };
             std::vector<Piece0> raw_pieces;
-            for (std::size_t i = 0; i < bounds.size(); ++i) {
-                auto& c = cuts[i];
+            std::vector<double> c;
+            for (std::size_t i = 0, next = 0; i < bounds.size(); ++i) {
+                c.clear();
+                for (; next < cut_at.size() && cut_at[next].first == i; ++next) c.push_back(cut_at[next].second);
                 const XY a = bounds[i].a, d = bounds[i].b - bounds[i].a;
                 const double len = std::sqrt(geo::norm2(d));
                 const double slack = tol / len;
@@ -565,6 +643,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         std::vector<int> piece_at_cross_out(xs.size() * 2, -1);  // outline piece before / after crossing
         std::vector<int> first_piece(n_edges, -1), last_piece(n_edges, -1);
         std::vector<std::pair<double, int>> ts;
+        std::vector<ParamGroup> groups;
         int known = -1;  // whether the outline is in the hazards here: -1 not known
         for (std::size_t e = 0; e < n_edges; ++e) {
             const XY a = ring[e], d = ring[e + 1] - ring[e];
@@ -575,65 +654,56 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             for (std::size_t x = 0; x < xs.size(); ++x)
                 if (xs[x].edge == static_cast<int>(e)) ts.emplace_back(xs[x].t, static_cast<int>(x));
             std::sort(ts.begin(), ts.end());
-            // Groups of parameters closer than the tolerance: one point of the outline each.
-            struct Group {
-                double t;
-                std::vector<int> crossings;
-                bool start = false, end = false;
-            };
-            std::vector<Group> groups;
-            for (auto [t, x] : ts) {
-                if (groups.empty() || (t - groups.back().t) * len > tol) groups.push_back({t, {}});
-                Group& g = groups.back();
-                if (x >= 0) g.crossings.push_back(x);
-                if (t == 0.0) g.start = true;
-                if (t == 1.0) g.end = true;
-            }
+            group_params(ts, len, tol, groups);
             if (groups.size() == 1) {  // an edge shorter than the tolerance
-                if (!groups[0].crossings.empty()) known = -1;
+                if (groups[0].has_crossing) known = -1;
                 continue;
             }
             for (std::size_t k = 0; k + 1 < groups.size(); ++k) {
                 const XY p = a + groups[k].t * d, q = a + groups[k + 1].t * d;
                 // The outline is in or out of the hazards from one crossing to the next: one
                 // test per stretch between crossings.
-                if (known < 0 || !groups[k].crossings.empty()) known = search.inside(0.5 * (p + q)) ? 1 : 0;
+                if (known < 0 || groups[k].has_crossing) known = search.inside(0.5 * (p + q)) ? 1 : 0;
                 const bool in = known == 1;
-                if (!groups[k + 1].crossings.empty()) known = -1;
+                if (groups[k + 1].has_crossing) known = -1;
                 if (!in) continue;
                 const int id = static_cast<int>(pieces.size());
                 pieces.push_back({groups[k].start ? ring[e] : p, groups[k + 1].end ? ring[e + 1] : q, true});
                 if (groups[k].start) first_piece[e] = id;
                 if (groups[k + 1].end) last_piece[e] = id;
-                for (int x : groups[k].crossings) piece_at_cross_out[2 * x + 1] = id;
-                for (int x : groups[k + 1].crossings) piece_at_cross_out[2 * x] = id;
+                for (std::size_t i = groups[k].from; i < groups[k].to; ++i)
+                    if (ts[i].second >= 0) piece_at_cross_out[2 * ts[i].second + 1] = id;
+                for (std::size_t i = groups[k + 1].from; i < groups[k + 1].to; ++i)
+                    if (ts[i].second >= 0) piece_at_cross_out[2 * ts[i].second] = id;
             }
         }
         const std::size_t n_outline = pieces.size();
         // Boundary pieces inside the hull.
         std::vector<int> piece_at_cross_site(xs.size() * 2, -1);
-        std::vector<std::vector<std::pair<double, int>>> us(S.size());
-        for (std::size_t x = 0; x < xs.size(); ++x) us[xs[x].site].emplace_back(xs[x].u, static_cast<int>(x));
-        for (std::size_t k = 0; k < S.size(); ++k) {
-            auto& u = us[k];
-            u.emplace_back(0.0, -1);
-            u.emplace_back(1.0, -1);
-            std::sort(u.begin(), u.end());
+        std::vector<std::pair<int, int>> by_site;  // (site, crossing), sorted
+        for (std::size_t x = 0; x < xs.size(); ++x) by_site.emplace_back(xs[x].site, static_cast<int>(x));
+        std::sort(by_site.begin(), by_site.end());
+        std::vector<std::pair<double, int>> us;  // a site's parameters, as ts an edge's
+        for (std::size_t k = 0, next = 0; k < S.size(); ++k) {
+            us.clear();
+            for (; next < by_site.size() && by_site[next].first == static_cast<int>(k); ++next)
+                us.emplace_back(xs[by_site[next].second].u, by_site[next].second);
+            us.emplace_back(0.0, -1);
+            us.emplace_back(1.0, -1);
+            std::sort(us.begin(), us.end());
             const XY a = S[k].a, d = S[k].b - S[k].a;
             const double len = std::sqrt(geo::norm2(d));
-            std::vector<std::pair<double, std::vector<int>>> groups;
-            for (auto [v, x] : u) {
-                if (groups.empty() || (v - groups.back().first) * len > tol) groups.push_back({v, {}});
-                if (x >= 0) groups.back().second.push_back(x);
-            }
+            group_params(us, len, tol, groups);
             for (std::size_t c = 0; c + 1 < groups.size(); ++c) {
-                const XY p = c == 0 ? a : a + groups[c].first * d;
-                const XY q = c + 2 == groups.size() ? S[k].b : a + groups[c + 1].first * d;
+                const XY p = c == 0 ? a : a + groups[c].t * d;
+                const XY q = c + 2 == groups.size() ? S[k].b : a + groups[c + 1].t * d;
                 if (!in_polygon(ring, 0.5 * (p + q))) continue;
                 const int id = static_cast<int>(pieces.size());
                 pieces.push_back({p, q, false});
-                for (int x : groups[c].second) piece_at_cross_site[2 * x + 1] = id;
-                for (int x : groups[c + 1].second) piece_at_cross_site[2 * x] = id;
+                for (std::size_t i = groups[c].from; i < groups[c].to; ++i)
+                    if (us[i].second >= 0) piece_at_cross_site[2 * us[i].second + 1] = id;
+                for (std::size_t i = groups[c + 1].from; i < groups[c + 1].to; ++i)
+                    if (us[i].second >= 0) piece_at_cross_site[2 * us[i].second] = id;
             }
         }
         UnionFind uf(pieces.size());
@@ -770,28 +840,29 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 XY parent{};
                 double parent_clear = 0;  // the parent centre's distance to the boundary (a lower bound)
                 bool parent_inside = false;
+                ConvexCutter::Edges edges = ConvexCutter::all_edges;  // the hull's edges that may cut it
                 bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
             };
             std::priority_queue<Cell> queue;
             for (double x = rbox.minx; x < rbox.maxx || x == rbox.minx; x += side)
                 for (double y = rbox.miny; y < rbox.maxy || y == rbox.miny; y += side)
-                    queue.push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false});
+                    queue.push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false, ConvexCutter::all_edges});
             int steps = 0;
             std::vector<XY> poly;
+            ConvexCutter cutter(ring);
+            ConvexCutter::Edges edges = ConvexCutter::all_edges;
             while (!queue.empty() && ++steps < 100000) {
                 const Cell cell = queue.top();
                 queue.pop();
                 if (live.size() == 1 && cell.bound <= regions[live.front()].best.d + tol) break;
                 if (cell.box.minx > hbox.maxx || cell.box.maxx < hbox.minx || cell.box.miny > hbox.maxy || cell.box.maxy < hbox.miny)
                     continue;
-                poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
-                        {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
-                if (convex) {  // cut to the hull (a box wholly in it needs no cutting)
-                    bool inside = true;
-                    for (XY q : poly)
-                        for (std::size_t e = 0; e < n_edges && inside; ++e) inside = geo::orient(ring[e], ring[e + 1], q) >= 0;
-                    if (!inside) poly = clip_box_to_convex(cell.box, ring);
+                if (convex) {  // cut to the hull
+                    edges = cutter.cut(cell.box, cell.edges, poly);
                     if (poly.size() < 3) continue;
+                } else {
+                    poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
+                            {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
                 }
                 XY c{0, 0};
                 for (XY p : poly) c = c + p;
@@ -828,10 +899,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 if (b <= least + tol) continue;
                 const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
                 const double clear_c = std::min(n.d, reach);
-                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard});
-                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard});
-                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard});
-                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard});
+                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard, edges});
+                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard, edges});
+                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
+                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
             }
         }
         // 3. A depth at the reach: a nearer boundary may lie beyond it.
@@ -882,7 +953,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 crossings(ring[e], ring[e + 1], l.a, l.b, tu);
                 if (!tu.empty()) at = ring[e] + tu.front().first * (ring[e + 1] - ring[e]), hit = true;
             }
-            if (!hit || obstacle.inside(at)) continue;
+            // A line met where it crosses the hazards' boundary (a coastline drawn on the land
+            // area's edge) touches the hull where the hazards do: that contact is theirs, and
+            // whether the crossing is in or out of them is a matter of rounding.
+            if (!hit || obstacle.inside(at) || search.nearest(at).d <= tol) continue;
             seen.push_back(l.polyline);
             const XY d = l.b - l.a;
             const double len = std::sqrt(geo::norm2(d));

@@ -201,10 +201,51 @@ double hull_length(const audit::TrackResult& t, const geo::LocalFrame& frame) {
     return 0;
 }
 
+/// Fills the pages' lists of encounters, approaches, situations, breaches and scores, one pass
+/// over each of the run's lists (DebriefPage::indexed).
+void index_pages(const audit::AuditResult& r, std::vector<DebriefPage>& pages) {
+    constexpr std::size_t none = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> page_of(r.tracks.size(), none);
+    std::map<std::string, std::size_t> by_exercise;
+    for (std::size_t k = 0; k < pages.size(); ++k) {
+        pages[k].indexed = true;
+        by_exercise.emplace(pages[k].exercise, k);
+        for (const std::size_t ti : pages[k].tracks)
+            if (ti < page_of.size()) page_of[ti] = k;
+    }
+    // The page both tracks are on, or none.
+    const auto pair_page = [&](std::size_t a, std::size_t b) {
+        return a < page_of.size() && b < page_of.size() && page_of[a] == page_of[b] ? page_of[a] : none;
+    };
+    // An exercise's page: "" is the whole run's ("run").
+    const auto exercise_page = [&](const std::string& e) {
+        const auto it = by_exercise.find(e.empty() ? "run" : e);
+        return it == by_exercise.end() ? none : it->second;
+    };
+    for (std::size_t i = 0; i < r.encounters.events.size(); ++i)
+        if (const auto k = pair_page(r.encounters.events[i].a.track, r.encounters.events[i].b.track); k != none) pages[k].encounters.push_back(i);
+    for (std::size_t i = 0; i < r.encounters.approaches.size(); ++i)
+        if (const auto k = pair_page(r.encounters.approaches[i].a, r.encounters.approaches[i].b); k != none) pages[k].approaches.push_back(i);
+    for (std::size_t i = 0; i < r.situations.size(); ++i)
+        if (const auto k = pair_page(r.situations[i].a, r.situations[i].b); k != none) pages[k].situations.push_back(i);
+    for (std::size_t i = 0; i < r.assessment.breaches.size(); ++i)
+        if (const auto k = exercise_page(r.assessment.breaches[i].exercise); k != none) pages[k].breaches.push_back(i);
+    for (std::size_t i = 0; i < r.assessment.scores.size(); ++i)
+        if (const auto k = exercise_page(r.assessment.scores[i].exercise); k != none) pages[k].scores.push_back(i);
+}
+
+/// `page` with its lists (DebriefPage::indexed): as it is when debrief_pages made it, else found
+/// by the same rules.
+DebriefPage indexed(const audit::AuditResult& r, const DebriefPage& page) {
+    if (page.indexed) return page;
+    std::vector<DebriefPage> one{page};
+    index_pages(r, one);
+    return one[0];
+}
+
 std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid& g, const DebriefPage& page) {
     std::vector<Item> items;
     std::map<std::string, std::size_t> by_id;  // track id -> index, within the page
-    std::set<std::size_t> mine(page.tracks.begin(), page.tracks.end());
     for (const std::size_t ti : page.tracks) by_id.emplace(r.tracks[ti].summary.id, ti);
     for (const std::size_t ti : page.tracks) {
         const auto& t = r.tracks[ti];
@@ -226,8 +267,8 @@ std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid&
         }
     }
     if (r.has_encounters)
-        for (const audit::Encounter& e : r.encounters.events) {
-            if (!mine.count(e.a.track) || !mine.count(e.b.track)) continue;
+        for (const std::size_t ei : page.encounters) {
+            const audit::Encounter& e = r.encounters.events[ei];
             const auto& a = r.tracks[e.a.track].summary;
             const auto& b = r.tracks[e.b.track].summary;
             Item it;
@@ -258,8 +299,8 @@ std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid&
             items.push_back(std::move(it));
         }
     if (r.has_assessment)
-        for (const audit::Breach& b : r.assessment.breaches) {
-            if (b.exercise != page.exercise && !(page.exercise == "run" && b.exercise.empty())) continue;
+        for (const std::size_t bi : page.breaches) {
+            const audit::Breach& b = r.assessment.breaches[bi];
             const auto t = by_id.find(b.track);
             Item it;
             it.time_s = std::isfinite(b.start_s) ? b.start_s : b.worst_s;
@@ -388,20 +429,25 @@ std::vector<DebriefPage> debrief_pages(const audit::AuditResult& result) {
         const std::string& e = result.tracks[ti].summary.exercise;
         const std::string name = e.empty() ? "run" : e;
         auto [it, fresh] = at.emplace(name, pages.size());
-        if (fresh) pages.push_back({name, "", {}});
+        if (fresh) {
+            DebriefPage& fresh_page = pages.emplace_back();
+            fresh_page.exercise = name;
+        }
         pages[it->second].tracks.push_back(ti);
     }
-    if (pages.empty()) pages.push_back({"run", "", {}});
+    if (pages.empty()) pages.emplace_back().exercise = "run";
     std::vector<std::string> names;
     for (const auto& p : pages) names.push_back(p.exercise);
     const std::vector<std::string> files = file_names(names);
     for (std::size_t k = 0; k < pages.size(); ++k) pages[k].file = files[k];
+    index_pages(result, pages);
     return pages;
 }
 
-std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid& grid, const RunInfo& info, const DebriefPage& page,
+std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid& grid, const RunInfo& info, const DebriefPage& page_given,
                          const DebriefOptions& options) {
     const audit::AuditResult& r = result;
+    const DebriefPage page = indexed(r, page_given);
     std::string out;
     out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n";
     out += generator_mark;
@@ -461,8 +507,7 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
         out += "<p class=\"none\">Not assessed (run check with --assess FILE).</p>\n";
     } else {
         std::vector<const audit::Score*> scores;
-        for (const audit::Score& s : r.assessment.scores)
-            if (s.exercise == page.exercise || (page.exercise == "run" && s.exercise.empty())) scores.push_back(&s);
+        for (const std::size_t si : page.scores) scores.push_back(&r.assessment.scores[si]);
         // The criteria, from the assessment file.
         const auto& criteria = r.assessment.criteria;
         const std::string file = !info.assessment.empty() ? info.assessment : r.assessment.source;
@@ -498,8 +543,8 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
             out += "</tbody>\n</table>\n";
             // Why: each breach, what was asked and what happened.
             std::string why;
-            for (const audit::Breach& b : r.assessment.breaches) {
-                if (b.exercise != page.exercise && !(page.exercise == "run" && b.exercise.empty())) continue;
+            for (const std::size_t bi : page.breaches) {
+                const audit::Breach& b = r.assessment.breaches[bi];
                 why += "<tr class=\"breach\" data-kind=\"" + esc(audit::to_string(b.kind)) + "\"><td class=\"track\">" + esc(b.track) +
                        "</td><td>" + esc(b.criterion) + "</td><td class=\"rule\">" + (b.rule.empty() ? std::string("&#8211;") : esc(b.rule)) +
                        "</td><td>" + esc(clock_text(std::isfinite(b.worst_s) ? b.worst_s : b.start_s, "?")) + "</td><td class=\"asked\">" +
@@ -554,9 +599,7 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
     // Encounters.
     out += "<section id=\"encounters\">\n<h2>Encounters</h2>\n";
     std::vector<const audit::ColregEncounter*> sits;
-    const std::set<std::size_t> mine(page.tracks.begin(), page.tracks.end());
-    for (const auto& c : r.situations)
-        if (mine.count(c.a) && mine.count(c.b)) sits.push_back(&c);
+    for (const std::size_t ci : page.situations) sits.push_back(&r.situations[ci]);
     if (!r.has_encounters) out += "<p class=\"none\">Not in exercise mode (<code>--encounters</code>): no encounters sought.</p>\n";
     else if (sits.empty())
         out += "<p class=\"none\">No pair came within " + fixed(info.encounter_range_m, 0) + " m.</p>\n";
@@ -568,8 +611,10 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
             const std::string& a = r.tracks[c->a].summary.id;
             const std::string& b = r.tracks[c->b].summary.id;
             double hull_clearance = NAN;
-            for (const auto& ap : r.encounters.approaches)
+            for (const std::size_t ai : page.approaches) {
+                const auto& ap = r.encounters.approaches[ai];
                 if (ap.a == c->a && ap.b == c->b) hull_clearance = ap.clearance_m;
+            }
             std::string actions = a + ": " + action_words(c->action_a) + "; " + b + ": " + action_words(c->action_b);
             if (c->a_stopped || c->b_stopped)
                 actions += "; not under way at the start: " + std::string(c->a_stopped ? a : "") + (c->a_stopped && c->b_stopped ? ", " : "") +

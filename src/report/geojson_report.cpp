@@ -331,8 +331,18 @@ ProjectFiles project_files(const std::string& report) {
 
 }  // namespace
 
+void check_project_name(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    if (name.find('|') != std::string::npos)
+        throw UsageError("-o '" + path + "': a report whose name holds '|' would get a QGIS project none of whose layers QGIS can open (its data "
+                         "sources name the file, and QGIS reads '|' as the start of a layer's options); choose a name without '|', or give "
+                         "--no-project");
+}
+
 std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project) {
     std::vector<OutputSpec> out{{path, "-o", "the report"}};
+    // A GeoPackage's stored project, and the project beside a GeoJSON report in a file.
+    if (project && !is_standard_output(path) && (format == "gpkg" || !style_path(path).empty())) check_project_name(path);
     if (format == "gpkg") return out;
     if (std::string style = style_path(path); !style.empty()) {
         out.push_back({std::move(style), "-o", "the QGIS style of the report"});

@@ -435,6 +435,26 @@ Plan plan_merge(const std::vector<std::string>& paths, bool gpkg) {
                                  named(p.path));
             seen[p.shard.index] = &p;
         }
+        // The same inputs, as they were: each file's size and fingerprint (before: the names only,
+        // and shards of a file that grew between their runs merged into a report of neither).
+        for (const Part& p : parts) {
+            if (p.set != s || &p == &first) continue;
+            const json& fa = first.doc["shoal"]["part"].value("fingerprints", json());
+            const json& fb = p.doc["shoal"]["part"].value("fingerprints", json());
+            const json& names = first.doc["shoal"]["part"]["inputs"];
+            if (!fa.is_array() || !fb.is_array() || fa.size() != names.size() || fb.size() != names.size())
+                throw not_a_part(fa.is_array() && fa.size() == names.size() ? p.path : first.path, "no part.fingerprints for its inputs");
+            for (std::size_t i = 0; i < names.size(); ++i)
+                if (fa[i] != fb[i]) {
+                    const auto what = [](const json& v) {
+                        if (!v.is_array() || v.size() != 2) return shoal::detail::shortened(v.dump());
+                        return (v[0].is_number() ? v[0].dump() : std::string("?")) + " bytes, fingerprint " + shoal::detail::shortened(v[1].dump());
+                    };
+                    throw InputError("the parts are not of one run: input " + named(names[i].is_string() ? names[i].get<std::string>() : names[i].dump()) +
+                                     " is " + what(fa[i]) + " in " + named(first.path) + " but " + what(fb[i]) + " in " + named(p.path) +
+                                     ": the file changed between the shards' runs; check every shard of it again");
+                }
+        }
         for (unsigned i = 0; i < n; ++i)
             if (!seen[i])
                 throw InputError("shard " + audit::Shard{i, n}.text() + " is missing: the parts of the inputs of " + named(first.path) +
@@ -591,6 +611,7 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
     const bool chart = first.GetLayerByName("coast") != nullptr;
     // The poses layer and the stored project go together (check --no-project: neither).
     const bool project = first.GetLayerByName("poses") != nullptr;
+    if (project) check_project_name(output);  // the stored QGIS project names the file
     ProjectView view;
     for (const Part& p : parts) {
         const json& v = p.doc["shoal"]["part"]["project"];

@@ -3,6 +3,7 @@
 
 #include "report/qgis_project.hpp"
 #include "report/report_fields.hpp"
+#include <shoal/report/report.hpp>
 
 namespace shoal::report {
 
@@ -15,7 +16,14 @@ json part_order(const audit::AuditResult& r, bool gpkg) {
     };
     json inputs = json::array(), tracks = json::array(), features = json::array(), problems = json::array(), approaches = json::array();
     json events = json::array(), encounters = json::array(), hulls = json::array(), poses = json::array();
-    for (const auto& f : r.files) inputs.push_back(f.file);
+    // Each input's size and fingerprint: shards of a file that changed between their runs are
+    // not of one run (merge compares them within a set of inputs).
+    json fingerprints = json::array();
+    for (const auto& f : r.files) {
+        inputs.push_back(f.file);
+        const auto [size, fingerprint] = file_size_and_fingerprint(f.file);
+        fingerprints.push_back(json::array({size, fingerprint}));
+    }
     for (std::size_t k = 0; k < r.tracks.size(); ++k) {
         tracks.push_back(position(k));
         for (std::size_t e = 0; e < r.tracks[k].events.size(); ++e) events.push_back(position(k));
@@ -35,7 +43,7 @@ json part_order(const audit::AuditResult& r, bool gpkg) {
     features.insert(features.end(), breaches.begin(), breaches.end());
     for (const auto& p : fields::problem_rows(r)) problems.push_back(json::array({p.group, p.position}));
     for (const auto& a : r.encounters.approaches) approaches.push_back(json::array({position(a.a), position(a.b)}));
-    json out = {{"inputs", inputs}, {"tracks", tracks}};
+    json out = {{"inputs", inputs}, {"fingerprints", std::move(fingerprints)}, {"tracks", tracks}};
     if (!gpkg) out["features"] = std::move(features);
     out["problems"] = std::move(problems);
     out["approaches"] = std::move(approaches);

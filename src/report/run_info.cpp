@@ -3,7 +3,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
+#include <cpl_vsi.h>
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
+#include <shoal/grid/coast_grid.hpp>
 #include <shoal/grid/limiting_depth.hpp>
 
 namespace shoal::report {
@@ -16,7 +22,57 @@ std::string joined(const std::vector<std::string>& parts) {
     return out;
 }
 
+/// Feeds the size and bytes of the file at `path` to `st`; the size (-1, and the name fed instead,
+/// when it is not a regular file or cannot be read).
+long long feed_file(XXH3_state_t* st, const std::string& path) {
+    const auto feed = [&](const void* p, std::size_t n) { XXH3_64bits_update(st, p, n); };
+    VSIStatBufL stat{};
+    VSILFILE* f = nullptr;
+    // Only a regular file is opened: a FIFO would wait for a writer, a device never end.
+    if (VSIStatExL(path.c_str(), &stat, VSI_STAT_EXISTS_FLAG | VSI_STAT_NATURE_FLAG | VSI_STAT_SIZE_FLAG) == 0 && VSI_ISREG(stat.st_mode))
+        f = VSIFOpenL(path.c_str(), "rb");
+    if (!f) {
+        const long long none = -1;
+        feed(&none, sizeof none);
+        feed(path.data(), path.size());
+        return -1;
+    }
+    std::vector<char> buf(1 << 20);
+    long long size = 0;
+    XXH3_state_t* content = XXH3_createState();
+    XXH3_64bits_reset(content);
+    for (std::size_t n; (n = VSIFReadL(buf.data(), 1, buf.size(), f)) > 0;) {
+        XXH3_64bits_update(content, buf.data(), n);
+        size += static_cast<long long>(n);
+    }
+    VSIFCloseL(f);
+    const std::uint64_t digest = XXH3_64bits_digest(content);
+    XXH3_freeState(content);
+    feed(&size, sizeof size);
+    feed(&digest, sizeof digest);
+    return size;
+}
+
 }  // namespace
+
+std::string files_fingerprint(const std::vector<std::string>& paths) {
+    if (paths.empty()) return "";
+    XXH3_state_t* st = XXH3_createState();
+    XXH3_64bits_reset(st);
+    for (const auto& p : paths) feed_file(st, p);
+    const std::uint64_t digest = XXH3_64bits_digest(st);
+    XXH3_freeState(st);
+    return grid::fingerprint_hex(digest);
+}
+
+std::pair<long long, std::string> file_size_and_fingerprint(const std::string& path) {
+    XXH3_state_t* st = XXH3_createState();
+    XXH3_64bits_reset(st);
+    const long long size = feed_file(st, path);
+    const std::uint64_t digest = XXH3_64bits_digest(st);
+    XXH3_freeState(st);
+    return {size, grid::fingerprint_hex(digest)};
+}
 
 RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const std::string& ship,
                  const audit::AuditOptions& options, const std::vector<std::string>& berths, double default_draught_m) {
@@ -35,6 +91,8 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.evidence = options.evidence;
     info.wild = options.wild;
     info.berths = joined(berths);
+    info.berths_fingerprint = files_fingerprint(berths);
+    info.hull_from_length_width = options.read.hull_from_length_width;
     info.ship_margin_m = options.encounter.ship_margin_m;
     info.exercise_by = audit::exercise_by_text(options.exercise_by, options.read.exercise_column);
     info.role_column = options.read.role_column;

@@ -240,7 +240,7 @@ TEST(Sweep, SwingingAtAnchorForADayAgreesWithBruteForce) {
 /// The Solent's land (tests/data) in a transverse Mercator frame at its centre, as a grid of
 /// 500 m cells.
 struct Solent {
-    coast::Coastline coast = coast::import_coastline({std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson"});
+    coast::Coastline coast = coast::import_coastline({SHOAL_TEST_DATA "coast/uk_solent_land.geojson"});
     geo::LocalFrame frame = geo::LocalFrame::transverse_mercator({(coast.min.lon + coast.max.lon) / 2, (coast.min.lat + coast.max.lat) / 2});
     std::vector<coast::LocalPolyline> lines = coast::project(coast, frame);
     grid::CoastGrid grid = grid::CoastGrid::build(lines, frame, 500);

@@ -312,6 +312,44 @@ TEST(ContactRegions, PierRootOverTheLandIsNotItsBoundary) {
     }
 }
 
+TEST(ContactRegions, CoastlineDrawnAlongTheLandsEdgeIsNoRegionOfItsOwn) {
+    // A chart draws the coastline as an open line (no land side) on the land area's edge. Where
+    // it crosses the hull it lies on the hazards' boundary: the hull's contact there is the
+    // land's region, not a second one of depth 0 (which, the crossing being on the boundary to
+    // a rounding, came and went from pose to pose and with the search's first reach).
+    const XY u{std::cos(0.37), std::sin(0.37)}, n{-u.y, u.x};  // the shore's direction; land on its right
+    std::vector<XY> land{-1000 * u, -1000 * u - 1000 * n, 1000 * u - 1000 * n, 1000 * u};  // counter-clockwise
+    coast::LocalPolyline coastline{{-1000 * u, -333.3 * u, 271.9 * u, 1000 * u}, false, {}};
+    // And a line across the water (a cable, a pipeline drawn as a line without land side).
+    coast::LocalPolyline across{{598 * u + 200 * n, 598 * u + 5 * n}, false, {}};
+    const std::vector<coast::LocalPolyline> lines{ring_of(land), coastline, across};
+    const grid::CoastGrid grid = grid::CoastGrid::build(lines, any_frame(), 37);
+    const Oracle oracle({ring_of(land)});
+    const hull::Hull hull = hull::Hull::from_dimensions({60, 12, 6, 6});
+    const Detector det(grid, hull);
+    const double heading = 180 - 0.37 * 180 / std::numbers::pi;  // towards the land, across the shore
+    for (int i = 0; i < 60; ++i) {
+        const double along = -400 + 13.7 * i, depth = 0.05 + 0.04 * i;
+        // The bow (60 m ahead of the reference point) `depth` into the land.
+        const LocalPose p = LocalPose::at(along * u + (60 - depth) * n, heading);
+        const auto regions = contact_regions(det, p);
+        ASSERT_EQ(regions.size(), 1u) << "pose " << i;
+        EXPECT_NEAR(regions[0].depth_m, depth, 1e-6) << "pose " << i;
+        EXPECT_EQ(oracle.verify(hull_outline(hull, p), regions, "shore line " + std::to_string(i)), 0);
+    }
+    // The line across the water under the hull, 2 m beside its centreline: a region of depth 0,
+    // beside the land's when the bow is in.
+    const LocalPose p = LocalPose::at(600 * u + 70 * n, heading);
+    const auto regions = contact_regions(det, p);
+    ASSERT_EQ(regions.size(), 1u);
+    EXPECT_EQ(regions[0].depth_m, 0);
+    const LocalPose q = LocalPose::at(600 * u + 59.5 * n, heading);  // the bow 0.5 m in
+    const auto both = contact_regions(det, q);
+    ASSERT_EQ(both.size(), 2u);
+    EXPECT_NEAR(both[0].depth_m, 0.5, 1e-6);
+    EXPECT_EQ(both[1].depth_m, 0);
+}
+
 TEST(ContactRegions, RandomJaggedCoastsAgreeWithGeos) {
     std::mt19937_64 rng(37);
     std::uniform_real_distribution<double> unit(0, 1);

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <random>
 #include <string>
@@ -430,10 +431,88 @@ TEST(ShardMerge, ShardsOfAFileThatGainedABadRowBetweenThemAreRefusedInEitherOrde
             const fs::path out = temp_dir() / (std::string("grown-merged") + ext);
             const Outcome r = shoal("merge " + parts + " -o " + q(out));
             EXPECT_EQ(r.status, 2) << ext << " " << parts << "\n" << r.err;
-            EXPECT_NE(r.err.find("were the files changed between them?"), std::string::npos) << ext << " " << parts << "\n" << r.err;
+            // The file's size and fingerprint differ (before the problems are compared).
+            EXPECT_NE(r.err.find("grown_day.csv' is "), std::string::npos) << ext << " " << parts << "\n" << r.err;
+            EXPECT_NE(r.err.find("the file changed between the shards' runs"), std::string::npos) << ext << " " << parts << "\n" << r.err;
             EXPECT_FALSE(fs::exists(out)) << "nothing written";
         }
     }
+}
+
+TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrderNamingWhatDiffers) {
+    // Before: the run header held the inputs' names only, and not --vessels, --date,
+    // --hull-from-length-width, --berth-tolerance: shards of a file that grew between their runs
+    // merged into a report of neither (47 tracks and 198 fixes instead of 54 and 299), and parts
+    // with and without --vessels merged.
+    const std::string dir = std::string(SHOAL_TEST_DATA) + "tracks/ais_cases/";
+    const fs::path day = temp_dir() / "growing_day.csv", vessels = temp_dir() / "identity_vessels.csv", ship = temp_dir() / "identity_ship.json";
+    const fs::path roles = temp_dir() / "identity_roles.json", berths = temp_dir() / "identity_berths.geojson";
+    const std::string head = "mmsi,timestamp,lat,lon,sog,cog,heading\n";
+    const std::string first = "230990029,2024-05-01T10:00:00Z,60.10,24.90,5,0,0\n230990029,2024-05-01T10:02:00Z,60.103,24.90,5,0,0\n";
+    const std::string later = "230990039,2024-05-01T11:00:00Z,60.10,24.95,5,0,0\n230990039,2024-05-01T11:02:00Z,60.103,24.95,5,0,0\n";
+    const std::string files = q(dir + "aground_at_speed.csv") + " " + q(dir + "passes_clear.csv") + " " + q(day);
+    std::ofstream(day) << head << first;
+    const std::string table = "mmsi,name,draught_m\n230990001,AGROUND AT SPEED,7\n";
+    const std::string berth = R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},
+        "geometry": {"type": "Polygon", "coordinates": [[[24.0, 60.0], [24.01, 60.0], [24.01, 60.01], [24.0, 60.0]]]}}]})";
+    const std::string ship_text = R"({"name": "identity", "length": 100, "beam": 16, "a": 80, "b": 20, "c": 8, "d": 8})";
+    std::ofstream(vessels) << table;
+    std::ofstream(ship) << ship_text;
+    std::ofstream(berths) << berth;
+    std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "trainee"}]})";
+    struct Case {
+        std::string name, a, b, says;
+        std::function<void()> between;  ///< what changes between the two shards' runs
+    };
+    const std::string v = " --vessels " + q(vessels), s = " --ship " + q(ship), e = " --encounters --roles " + q(roles);
+    const std::string bt = " --berths " + q(berths);
+    const std::vector<Case> cases = {
+        {"grown", "", "", "growing_day.csv' is ", [&] { std::ofstream(day) << head << first << later; }},
+        {"vessels", v, "", "'vessels' is ", [] {}},
+        {"vessels-edited", v, v, "'vessels_fingerprint' is ", [&] { std::ofstream(vessels) << table << "230990007,PASSES CLEAR,3\n"; }},
+        {"date", " --date 2024-05-01", "", "'date' is ", [] {}},
+        {"date-other", " --date 2024-05-01", " --date 2024-05-02", "'date' is ", [] {}},
+        {"length-width", " --hull-from-length-width", "", "'hull_from_length_width' is ", [] {}},
+        {"berth-tolerance", " --berth-tolerance 20", "", "'berth_tolerance_m' is ", [] {}},
+        {"ship-edited", s, s, "'ship_fingerprint' is ", [&] { std::ofstream(ship) << R"({"name": "identity", "length": 140, "beam": 16, "a": 120, "b": 20, "c": 8, "d": 8})"; }},
+        {"berths-edited", bt, bt, "'berths_fingerprint' is ", [&] { std::ofstream(berths) << berth << "\n"; }},
+        {"roles-edited", e, e, "'roles_fingerprint' is ", [&] { std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "target"}]})"; }},
+    };
+    for (const char* ext : {".geojson", ".gpkg"})
+        for (const Case& c : cases) {
+            // Every input as it was at the start, then shard 0, the change, shard 1.
+            std::ofstream(day) << head << first;
+            std::ofstream(vessels) << table;
+            std::ofstream(ship) << ship_text;
+            std::ofstream(berths) << berth;
+            std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "trainee"}]})";
+            // A part with --ship instead of helsinki's --dims when the case gives one.
+            const auto part = [&](const std::string& name, const std::string& args) {
+                const fs::path path = temp_dir() / name;
+                std::string base = helsinki;
+                if (args.find("--ship ") != std::string::npos) base.replace(base.find("--dims 100,20,8,8"), 17, "");
+                const Outcome r = shoal("check " + base + " " + args + " -o " + q(path));
+                EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
+                return q(path);
+            };
+            const std::string a = part("id-" + c.name + "-0" + ext, c.a + " --shard 0/2 " + files);
+            c.between();
+            const std::string b = part("id-" + c.name + "-1" + ext, c.b + " --shard 1/2 " + files);
+            for (const std::string& parts : {a + " " + b, b + " " + a}) {
+                const fs::path out = temp_dir() / (std::string("id-merged") + ext);
+                fs::remove(out);
+                const Outcome r = shoal("merge " + parts + " -o " + q(out));
+                EXPECT_EQ(r.status, 2) << c.name << ext << " " << parts << "\n" << r.err;
+                EXPECT_NE(r.err.find("the parts are not of one run: "), std::string::npos) << c.name << ext << "\n" << r.err;
+                EXPECT_NE(r.err.find(c.says), std::string::npos) << c.name << ext << ": wanted '" << c.says << "' in: " << r.err;
+                EXPECT_FALSE(fs::exists(out)) << c.name << ext << ": nothing written";
+            }
+        }
+    // The same inputs and options in every shard still merge to the single run (the header's new
+    // fields are the single run's too).
+    std::ofstream(day) << head << first << later;
+    const std::string opts = v + " --date 2024-05-01 --berth-tolerance 20" + bt;
+    EXPECT_EQ(sharded_run(2, "identity-same", opts, true, "geojson", files), single_run("identity-single", opts, "geojson", files));
 }
 
 TEST(ShardMerge, AGeoJsonPartWithoutASummaryIsRefusedWhereverItComes) {
@@ -449,6 +528,26 @@ TEST(ShardMerge, AGeoJsonPartWithoutASummaryIsRefusedWhereverItComes) {
         EXPECT_EQ(r.status, 2) << parts << "\n" << r.err;
         EXPECT_NE(r.err.find("nosum1-edited.geojson: not the report of a shard (no summary in its run header)"), std::string::npos) << r.err;
     }
+}
+
+TEST(ShardMerge, ADebriefOrAPictureWithShardIsRefusedBeforeAnyWorkNotWrittenByEveryShard) {
+    // Before: each shard wrote the same debrief pages over the others' (the last one's: 21 of
+    // 54 tracks, 0 of 1 grounding) while the merged report was complete.
+    const fs::path debrief = temp_dir() / "shard-debrief", picture = temp_dir() / "shard-picture.svg", part = temp_dir() / "shard-out.geojson";
+    struct Case {
+        std::string option, says;
+    };
+    for (const Case& c : std::vector<Case>{{"--debrief " + q(debrief), "--debrief with --shard: --debrief writes the whole run's outputs"},
+                                           {"--plot " + q(picture), "--plot with --shard: --plot writes the whole run's outputs"}})
+        for (const char* shard : {"0/2", "1/2", "0/1"}) {
+            const Outcome r = shoal("check " + helsinki + " --encounters " + c.option + " --shard " + shard + " " + case_files() + " -o " + q(part));
+            EXPECT_EQ(r.status, 2) << c.option << " " << shard << "\n" << r.err;
+            EXPECT_NE(r.err.find("shoal: usage error: " + c.says), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("without --shard"), std::string::npos) << "says what to do: " << r.err;
+            EXPECT_FALSE(fs::exists(debrief)) << "no debrief folder";
+            EXPECT_FALSE(fs::exists(picture)) << "no picture";
+            EXPECT_FALSE(fs::exists(part)) << "no part either: refused before any work";
+        }
 }
 
 TEST(ShardMerge, BadShardTextIsAUsageErrorNamingTheOption) {

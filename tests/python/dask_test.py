@@ -3,11 +3,14 @@ killed and retried, and failures named. Run by ctest with /usr/bin/python3:
 
     dask_test.py SHOAL_BINARY SOURCE_ROOT CASE    (CASE: per_file, shards, gpkg, killed, failing)
 """
+import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 
 shoal, root, case = sys.argv[1], sys.argv[2], sys.argv[3]
 cases = os.path.join(root, "tests", "data", "tracks", "ais_cases")
@@ -116,6 +119,16 @@ try:
         expect("part-00000.geojson' is there and was not written by shoal.dask: not replaced" in err, "the file named: " + err)
         expect(read(os.path.join(mine, "part-00000.geojson")) == b"my own notes\n", "the user's file as it was")
         expect(not os.path.exists(out), "no report written")
+        # --debrief: a whole run's output, which no task holds; refused before any work, one line
+        # (before: passed to every task, each writing the same pages over the others').
+        debrief = os.path.join(tmp, "debrief")
+        status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "1", "--shoal", shoal, "check"] + coast + files +
+                             ["--debrief", debrief, "-o", out])
+        expect(status == 2, "exit 2 for --debrief: %d\n%s" % (status, err))
+        expect(err.count("\n") == 1 and err.startswith("shoal.dask: usage error: check option --debrief: the debrief's pages are the whole run's"),
+               "one line saying why: " + err)
+        expect(not os.path.exists(debrief) and not os.path.exists(out), "no debrief, no report")
+        expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
         # Its own parts of an earlier run it replaces without a word.
         own = os.path.join(tmp, "own")
         for attempt in (1, 2):
@@ -133,6 +146,86 @@ try:
                "one line naming the scheduler: " + err)
         expect(not os.path.exists(out), "no report written")
         expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
+    elif case in ("signal", "lost_worker"):
+        # Tasks that run long (the wrapper records its pid, then becomes a sleep): the driver is
+        # sent SIGTERM (signal), or its only worker dies mid-task (lost_worker). Before: SIGTERM
+        # left the running checks as orphans and .shoal-dask-* folders beside the report; a lost
+        # worker made the driver wait for ever.
+        pids = os.path.join(tmp, "pids")
+        wrapper = os.path.join(tmp, "slow.sh")
+        with open(wrapper, "w") as f:
+            f.write('#!/bin/sh\ncase "$1" in check) echo $$ >> "%s"; exec sleep 120;; esac\nexec "%s" "$@"\n' % (pids, shoal))
+        os.chmod(wrapper, 0o755)
+        out = os.path.join(tmp, case + ".geojson")
+        procs = []
+
+        def started(timeout=90):
+            t0 = time.monotonic()
+            while time.monotonic() - t0 < timeout:
+                if os.path.exists(pids) and open(pids).read().strip():
+                    return [int(x) for x in open(pids).read().split()]
+                time.sleep(0.2)
+            return []
+
+        def alive(pid):
+            try:
+                os.kill(pid, 0)
+                return True
+            except ProcessLookupError:
+                return False
+
+        try:
+            if case == "signal":
+                driver = subprocess.Popen(["/usr/bin/python3", "-m", "shoal.dask", "--local", "1", "--shoal", wrapper, "check"] + coast + files +
+                                          ["-o", out], env=env, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                procs.append(driver)
+                running = started()
+                expect(running, "a task started")
+                driver.send_signal(signal.SIGTERM)
+            else:
+                sched_file = os.path.join(tmp, "scheduler.json")
+                procs.append(subprocess.Popen(["/usr/bin/python3", "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", "0",
+                                               "--scheduler-file", sched_file, "--no-dashboard"], env=env, cwd=tmp,
+                                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+                t0 = time.monotonic()
+                while not os.path.exists(sched_file) and time.monotonic() - t0 < 60:
+                    time.sleep(0.2)
+                time.sleep(0.5)
+                with open(sched_file) as f:
+                    address = json.load(f)["address"]
+                worker = subprocess.Popen(["/usr/bin/python3", "-m", "distributed.cli.dask_worker", "--scheduler-file", sched_file, "--nthreads", "1",
+                                           "--no-nanny", "--no-dashboard"], env=env, cwd=tmp, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                procs.append(worker)
+                driver = subprocess.Popen(["/usr/bin/python3", "-m", "shoal.dask", "--scheduler", address, "--worker-timeout", "5", "--shoal", wrapper,
+                                           "check"] + coast + files + ["-o", out], env=env, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                          text=True)
+                procs.append(driver)
+                running = started()
+                expect(running, "a task started")
+                worker.kill()  # the only worker, mid-task
+            try:
+                _, err = driver.communicate(timeout=60)
+            except subprocess.TimeoutExpired:
+                driver.kill()
+                _, err = driver.communicate()
+                expect(False, "the driver ended within 60 s: " + err)
+            lines = err.strip().splitlines()
+            if case == "signal":
+                expect(driver.returncode == 143, "exit 143 under SIGTERM: %s\n%s" % (driver.returncode, err))
+                expect(lines and lines[-1] == "shoal.dask: interrupted (SIGTERM): tasks stopped, no report written", "one line: " + err)
+            else:
+                expect(driver.returncode == 3, "exit 3 when the only worker is lost: %s\n%s" % (driver.returncode, err))
+                expect(lines and lines[-1].startswith("shoal.dask: error: the Dask cluster "), "one line: " + err)
+            expect("Traceback" not in err, "no traceback: " + err)
+            expect(not os.path.exists(out), "no report written")
+            time.sleep(2)
+            expect(not [p for p in running if alive(p)], "no task left running: %s" % [p for p in running if alive(p)])
+            expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind: %s" % os.listdir(tmp))
+        finally:
+            for p in procs:
+                if p.poll() is None:
+                    p.kill()
+                    p.wait()
     else:
         expect(False, "unknown case " + case)
 finally:

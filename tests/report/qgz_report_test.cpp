@@ -316,6 +316,33 @@ TEST(GeojsonProject, AnOutputThatIsAnInputIsRefusedBeforeAnyWork) {
     EXPECT_FALSE(fs::exists(report));
 }
 
+TEST(GeojsonProject, AReportNameHoldingAPipeIsRefusedBeforeAnyWorkUnlessItHasNoProject) {
+    // Before: `-o 'a|b.geojson'` (or .gpkg) wrote a QGIS project whose layers were all invalid:
+    // QGIS's OGR provider reads '|' in a data source as the start of the layer's options.
+    for (const char* name : {"day|1.geojson", "day|1.gpkg"}) {
+        const fs::path report = dir() / name;
+        const auto r = shoal(check_args(report));
+        EXPECT_EQ(r.status, 2) << name << "\n" << r.err;
+        EXPECT_NE(r.err.find("shoal: usage error: -o '" + report.string() + "': a report whose name holds '|' would get a QGIS project none of "
+                             "whose layers QGIS can open"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_NE(r.err.find("or give --no-project"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(report)) << name;
+        EXPECT_FALSE(fs::exists(dir() / "day|1.qgz")) << name;
+        // Without a project there is no data source to name the file: written.
+        const auto plain = shoal(check_args(report, "--no-project"));
+        EXPECT_EQ(plain.status, 1) << name << "\n" << plain.err;
+        EXPECT_TRUE(fs::exists(report)) << name;
+    }
+    // A '|' in a folder's name is no harm: the project names its files relative to itself.
+    fs::create_directories(dir() / "runs|may");
+    const fs::path inside = dir() / "runs|may" / "day.geojson";
+    const auto ok = shoal(check_args(inside));
+    EXPECT_EQ(ok.status, 1) << ok.err;
+    EXPECT_TRUE(fs::exists(dir() / "runs|may" / "day.qgz"));
+}
+
 TEST(NoProject, OnlyTheEventsTracksAndHulls) {
     const fs::path report = dir() / "plain.geojson";
     ASSERT_EQ(shoal(check_args(report, "--no-project")).status, 1);

@@ -34,7 +34,9 @@ struct ContactRegion {
 /// the hazards of its limiting depth, together), deepest first. Empty when the hull neither
 /// touches nor overlaps them; a pose Detector::check calls a collision has at least one (depth
 /// 0 when the hull only touches). A polyline without a land side (an open coastline line)
-/// crossing the hull gives a region of depth 0 at a point where it does.
+/// crossing the hull in the water gives a region of depth 0 at a point where it does; met on
+/// the hazards' boundary (a coastline drawn on the land's edge) it gives none: the hull's
+/// contact there is the hazards' region.
 std::vector<ContactRegion> contact_regions(const Detector& detector, const LocalPose& pose);
 
 /// The regions where hull outline `a` overlaps hull outline `b` (simple polygons, local metres,

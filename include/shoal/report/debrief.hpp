@@ -53,6 +53,13 @@ struct DebriefPage {
     std::string exercise;
     std::string file;
     std::vector<std::size_t> tracks;
+    /// What of the run's lists belongs to the page, found once for every page by debrief_pages
+    /// (so that writing n pages costs linear time, not n passes over the run's lists): the
+    /// indices of its encounters (AuditResult::encounters.events), closest approaches
+    /// (encounters.approaches), COLREG situations, breaches and scores. Without `indexed` (a
+    /// page made by hand), debrief_html finds them itself.
+    bool indexed = false;
+    std::vector<std::size_t> encounters, approaches, situations, breaches, scores;
 };
 
 /// The pages of `result`: one per exercise (TrackSummary::exercise; the whole run when not in

@@ -39,6 +39,14 @@ struct RunInfo {
     audit::EvidenceOptions evidence;          ///< the real world's rules
     track::WildFixOptions wild;
     std::string berths;        ///< the --berths sources (expected-contact areas), comma-separated
+    std::string berths_fingerprint;  ///< files_fingerprint of the --berths sources ("" when none)
+    double berth_tolerance_m = 10;   ///< lines and points of berths count within this (--berth-tolerance)
+    std::string ship_fingerprint;    ///< files_fingerprint of the ship file, or of the --dims text
+    std::string vessels;             ///< the vessels tables (--vessels, then those found in track folders), comma-separated
+    std::string vessels_fingerprint; ///< files_fingerprint of those tables ("" when none)
+    bool hull_from_length_width = false;  ///< --hull-from-length-width
+    std::string date;                ///< --date (YYYY-MM-DD) for logs whose times carry none, "" when none
+    std::string roles_fingerprint;   ///< exercise mode: files_fingerprint of the roles file ("" when none)
     double ship_margin_m = 0;  ///< exercise mode: close quarters under this
     std::string exercise_by = "run";  ///< exercise mode: how tracks are grouped (audit::ExerciseBy)
     std::string roles;                ///< exercise mode: the exercise (roles) file, "" when none
@@ -72,8 +80,21 @@ std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast
 RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const std::string& ship,
                  const audit::AuditOptions& options, const std::vector<std::string>& berths, double default_draught_m = 0);
 
+/// A fingerprint (XXH3, 16 hex digits) of the bytes and sizes of the files at `paths`, in
+/// order ("" for none): what the run header says of the inputs other than the coast (the grid
+/// has its own) so that merge tells parts of edited inputs apart. A path that is not a regular
+/// file (a pipe, a device, standard input) is never opened: its name is fingerprinted. GDAL
+/// paths (/vsizip/...) are read through GDAL.
+std::string files_fingerprint(const std::vector<std::string>& paths);
+/// The size in bytes and files_fingerprint of one file (size -1 when it is not a regular file).
+std::pair<long long, std::string> file_size_and_fingerprint(const std::string& path);
+
 /// The GeoJSON report as text (schemas/report.schema.json).
 std::string geojson(const audit::AuditResult& result, const RunInfo& info);
+
+/// Throws UsageError when a QGIS project cannot name the report at `path`: its file name holds
+/// '|', which QGIS's OGR provider reads as the start of a layer's options.
+void check_project_name(const std::string& path);
 
 /// The files a report at `path` consists of, for check_outputs: the report ("-o", "the
 /// report") and, for a GeoJSON report in a regular file, its QGIS style REPORT.qml beside it
