@@ -33,6 +33,7 @@ const char* to_string(CriterionKind k) noexcept {
         case CriterionKind::speed_limit: return "speed_limit";
         case CriterionKind::no_entry: return "no_entry";
         case CriterionKind::close_quarters_time: return "close_quarters_time";
+        case CriterionKind::colreg: return "colreg";
     }
     return "land_clearance";
 }
@@ -44,7 +45,8 @@ const char* unit_of(CriterionKind k) noexcept {
         case CriterionKind::close_quarters_time: return "s";
         case CriterionKind::land_clearance:
         case CriterionKind::under_keel_clearance:
-        case CriterionKind::cpa: break;
+        case CriterionKind::cpa:
+        case CriterionKind::colreg: break;
     }
     return "m";
 }
@@ -55,7 +57,8 @@ double Criterion::max_limit(CriterionKind k) noexcept {
         case CriterionKind::under_keel_clearance: return 2000;
         case CriterionKind::cpa: return 100000;
         case CriterionKind::speed_limit: return 100;
-        case CriterionKind::no_entry: return 0;
+        case CriterionKind::no_entry:
+        case CriterionKind::colreg: return 0;
         case CriterionKind::close_quarters_time: break;
     }
     return 7 * 86400.0;
@@ -78,7 +81,7 @@ using geo::XY;
 
 bool parse_kind(const std::string& s, CriterionKind& k) {
     for (const CriterionKind c : {CriterionKind::land_clearance, CriterionKind::under_keel_clearance, CriterionKind::cpa,
-                                  CriterionKind::speed_limit, CriterionKind::no_entry, CriterionKind::close_quarters_time})
+                                  CriterionKind::speed_limit, CriterionKind::no_entry, CriterionKind::close_quarters_time, CriterionKind::colreg})
         if (s == to_string(c)) {
             k = c;
             return true;
@@ -118,6 +121,52 @@ std::vector<LonLat> parse_area(const json& a, const std::function<void(const std
 
 }  // namespace
 
+namespace {
+
+/// A colreg criterion's parameters: name, member of ConductOptions, least and greatest value.
+struct ColregParameter {
+    const char* name;
+    double ConductOptions::*member;
+    double least, greatest;
+    bool least_open;  ///< the least value itself is refused
+};
+constexpr ColregParameter colreg_parameters[] = {
+    {"range_m", &ConductOptions::range_m, 0, 100000, true},
+    {"head_on_deg", &ConductOptions::head_on_deg, 0, 22.4, false},
+    {"cpa_m", &ConductOptions::cpa_m, 0, 100000, true},
+    {"early_range_m", &ConductOptions::early_range_m, 0, 100000, false},
+    {"min_course_deg", &ConductOptions::min_course_deg, 0, 180, true},
+    {"min_speed_change", &ConductOptions::min_speed_change, 0, 10, true},
+    {"action_course_deg", &ConductOptions::action_course_deg, 0, 180, true},
+    {"action_speed_change", &ConductOptions::action_speed_change, 0, 10, true},
+    {"sustain_s", &ConductOptions::sustain_s, 0, 3600, false},
+};
+
+bool is_colreg_parameter(const std::string& key) {
+    for (const ColregParameter& p : colreg_parameters)
+        if (key == p.name) return true;
+    return false;
+}
+
+ConductOptions parse_colreg(const json& c, const std::function<void(const std::string&)>& bad) {
+    ConductOptions o;
+    for (const ColregParameter& p : colreg_parameters) {
+        if (!c.contains(p.name)) continue;
+        if (!c[p.name].is_number()) bad(std::string("\"") + p.name + "\" must be a number");
+        const double v = c[p.name].get<double>();
+        if (!std::isfinite(v) || v < p.least || (p.least_open && v == p.least) || v > p.greatest)
+            bad(std::string("\"") + p.name + "\" must be " + (p.least_open ? "> " : ">= ") + track::detail::fmt(p.least) + " and <= " +
+                track::detail::fmt(p.greatest) + " (got " + track::detail::fmt(v) + ")");
+        o.*p.member = v;
+    }
+    if (o.early_range_m > o.range_m)
+        bad("\"early_range_m\" (" + track::detail::fmt(o.early_range_m) + ") is beyond \"range_m\" (" + track::detail::fmt(o.range_m) +
+            "): no action could be early");
+    return o;
+}
+
+}  // namespace
+
 Assessment Assessment::parse(const std::string& text, const std::string& source) {
     json j;
     try {
@@ -128,10 +177,16 @@ Assessment Assessment::parse(const std::string& text, const std::string& source)
     auto fail = [&](const std::string& what) { throw InputError("assessment file '" + source + "': " + what); };
     if (!j.is_object()) fail("not a JSON object");
     for (const auto& [key, _] : j.items())
-        if (key != "criteria" && key != "$schema" && key != "description") fail("unknown member '" + shoal::detail::shortened(key) + "'");
+        if (key != "criteria" && key != "$schema" && key != "description" && key != "pass_mark") fail("unknown member '" + shoal::detail::shortened(key) + "'");
     if (!j.contains("criteria") || !j["criteria"].is_array()) fail("no \"criteria\" array");
     if (j["criteria"].empty()) fail("\"criteria\" is empty: nothing to assess");
     Assessment a;
+    a.source = source;
+    if (j.contains("pass_mark")) {
+        if (!j["pass_mark"].is_number()) fail("\"pass_mark\" must be a number (the largest penalty that passes)");
+        a.pass_mark = j["pass_mark"].get<double>();
+        if (!std::isfinite(a.pass_mark) || a.pass_mark < 0) fail("\"pass_mark\" must be >= 0 (got " + track::detail::fmt(a.pass_mark) + ")");
+    }
     std::set<std::string> ids;
     std::size_t n = 0;
     for (const json& c : j["criteria"]) {
@@ -146,10 +201,10 @@ Assessment Assessment::parse(const std::string& text, const std::string& source)
         }
         for (const auto& [key, _] : c.items())
             if (key != "id" && key != "kind" && key != "limit" && key != "penalty" && key != "per" && key != "area" && key != "area_name" &&
-                key != "description")
+                key != "description" && !is_colreg_parameter(key))
                 bad("unknown member '" + shoal::detail::shortened(key) + "'");
         if (!c.contains("kind") || !c["kind"].is_string() || !parse_kind(c["kind"].get<std::string>(), cr.kind))
-            bad("\"kind\" must be one of land_clearance, under_keel_clearance, cpa, speed_limit, no_entry, close_quarters_time");
+            bad("\"kind\" must be one of land_clearance, under_keel_clearance, cpa, speed_limit, no_entry, close_quarters_time, colreg");
         const bool explicit_id = !cr.id.empty();
         if (!explicit_id) {
             cr.id = std::string(to_string(cr.kind)) + "-" + std::to_string(n);
@@ -158,9 +213,15 @@ Assessment Assessment::parse(const std::string& text, const std::string& source)
         if (!ids.insert(cr.id).second)
             bad(explicit_id ? "id '" + shoal::detail::shortened(cr.id) + "' is given twice (or is an earlier criterion's default id, kind-position)"
                             : "its default id '" + cr.id + "' (kind-position) is the id another criterion gives: give this one an \"id\"");
+        if (cr.kind != CriterionKind::colreg)
+            for (const auto& [key, _] : c.items())
+                if (is_colreg_parameter(key)) bad("\"" + key + "\" is a parameter of a colreg criterion only");
         if (cr.kind == CriterionKind::no_entry) {
             if (c.contains("limit") && !(c["limit"].is_number() && c["limit"].get<double>() == 0))
                 bad("a no_entry criterion has no \"limit\" (any time inside is a breach)");
+        } else if (cr.kind == CriterionKind::colreg) {
+            if (c.contains("limit")) bad("a colreg criterion has no \"limit\" (its parameters say how each rule is read)");
+            cr.colreg = parse_colreg(c, bad);
         } else {
             if (!c.contains("limit") || !c["limit"].is_number()) bad(std::string("\"limit\" must be a number (") + unit_of(cr.kind) + ")");
             cr.limit = c["limit"].get<double>();
@@ -182,6 +243,8 @@ Assessment Assessment::parse(const std::string& text, const std::string& source)
             else if (per == "second") cr.per = PenaltyPer::second;
             else if (per == "metre") cr.per = PenaltyPer::metre;
             else bad("\"per\" must be \"breach\", \"second\" or \"metre\"");
+            if (cr.kind == CriterionKind::colreg && cr.per != PenaltyPer::breach)
+                bad("a colreg criterion is charged per breach (\"per\": \"breach\")");
             if (cr.per == PenaltyPer::metre && (cr.kind == CriterionKind::no_entry || cr.kind == CriterionKind::close_quarters_time))
                 bad(std::string("\"per\": \"metre\" means nothing for ") + to_string(cr.kind) + " (use \"breach\" or \"second\")");
         }
@@ -396,6 +459,8 @@ public:
     AssessmentResult run() {
         const AuditResult& r = m_in.result;
         m_out.criteria = m_a.criteria;
+        m_out.pass_mark = m_a.pass_mark;
+        m_out.source = m_a.source;
         for (const Criterion& c : m_a.criteria)
             if (c.kind == CriterionKind::under_keel_clearance && m_in.grid.charted_depths().empty())
                 m_out.warnings.push_back("assessment: the grid holds no depth areas or dangers, so " + c.id +
@@ -421,18 +486,28 @@ public:
                         if (lt) in_area(k, cr, *lt);
                         break;
                     case CriterionKind::close_quarters_time: close_quarters(k, cr); break;
+                    case CriterionKind::colreg:
+                        if (t) colreg(k, cr, *t);
+                        break;
                 }
             }
             std::stable_sort(m_track.begin(), m_track.end(), [](const Pending& x, const Pending& y) {
                 return std::tie(x.breach.start_s, x.criterion, x.other) < std::tie(y.breach.start_s, y.criterion, y.other);
             });
-            Score score{s.exercise, s.id, 0, m_track.size(), k};
+            Score score;
+            score.exercise = s.exercise;
+            score.track = s.id;
+            score.breaches = m_track.size();
+            score.track_index = k;
+            score.by_criterion.assign(m_a.criteria.size(), 0.0);
             for (Pending& b : m_track) {
                 score.penalty += b.breach.penalty;
+                score.by_criterion[b.criterion] += b.breach.penalty;
                 if (b.listed) m_out.breaches.push_back(std::move(b.breach));
                 else ++m_unlisted;
             }
             m_track.clear();
+            score.passed = score.penalty <= m_a.pass_mark;  // false without a pass mark (NaN)
             m_out.scores.push_back(score);
         }
         if (m_unlisted > 0)
@@ -498,7 +573,19 @@ private:
             case CriterionKind::close_quarters_time:
                 what = "close quarters with " + b.other + " for " + number(value, 0) + " s, over " + number(cr.limit, 0) + " s";
                 break;
+            case CriterionKind::colreg: break;  // colreg() words its own
         }
+        const std::string area = cr.area_name.empty() ? std::string("the area") : cr.area_name;
+        switch (cr.kind) {
+            case CriterionKind::land_clearance: b.asked = "a clearance to land or hazards of at least " + number(cr.limit, dec) + " m"; break;
+            case CriterionKind::under_keel_clearance: b.asked = "an under-keel clearance of at least " + number(cr.limit, dec) + " m"; break;
+            case CriterionKind::cpa: b.asked = "a closest approach to every other ship of at least " + number(cr.limit, dec) + " m"; break;
+            case CriterionKind::speed_limit: b.asked = "at most " + number(cr.limit, dec) + " kn in " + area; break;
+            case CriterionKind::no_entry: b.asked = "no entry into " + area; break;
+            case CriterionKind::close_quarters_time: b.asked = "at most " + number(cr.limit, 0) + " s in close quarters with another ship"; break;
+            case CriterionKind::colreg: break;
+        }
+        b.did = what + ", " + clock(b.start_s) + "-" + clock(b.end_s) + " (" + number(duration, 0) + " s)";
         b.detail = cr.id + ": " + what + ", " + clock(b.start_s) + "-" + clock(b.end_s) + " (" + number(duration, 0) + " s); penalty " +
                    number(b.penalty, 2);
         m_track.push_back({std::move(b), m_crit, other, true});
@@ -732,6 +819,47 @@ private:
                 if (lt.t[i] > t0 && lt.t[i] < t1) pts.push_back({lt.t[i], lt.speed_kn[i], lt.p[i], true});
             if (t1 > t0) pts.push_back({t1, lt.speed(t1), lt.position(t1), true});
             for (const Run& run : runs_over(pts, cr.limit, true)) add(k, cr, run, run.worst_v);
+        }
+    }
+
+    /// The trainee's conduct under the rules in each situation with another ship of its exercise.
+    void colreg(std::size_t k, const Criterion& cr, const track::Track& own) {
+        const AuditResult& r = m_in.result;
+        std::vector<const track::Track*> others;
+        std::vector<std::size_t> index;
+        for (std::size_t m = 0; m < r.tracks.size(); ++m) {
+            if (m == k || r.tracks[m].summary.exercise != summary(k).exercise) continue;
+            const track::Track* t = m < m_in.tracks.size() ? m_in.tracks[m] : nullptr;
+            if (!t || t->fixes.size() < 2) continue;
+            others.push_back(t);
+            index.push_back(m);
+        }
+        if (others.empty()) return;
+        for (const Conduct& c : judge_conduct(own, others, m_in.frame, cr.colreg, m_in.max_gap_s)) {
+            for (const ConductBreach& cb : c.breaches) {
+                Breach b;
+                const TrackSummary& s = summary(k);
+                b.exercise = s.exercise;
+                b.track = s.id;
+                b.track_index = k;
+                b.criterion = cr.id;
+                b.kind = cr.kind;
+                b.start_s = c.situation.start_s;
+                b.end_s = std::max(c.situation.start_s, cb.time_s);
+                b.worst_s = cb.time_s;
+                b.lon = cb.at.lon;
+                b.lat = cb.at.lat;
+                b.value = c.situation.closest_m;
+                b.limit = cr.colreg.cpa_m;
+                b.penalty = cr.penalty;
+                b.other = summary(index[c.other]).id;
+                b.rule = cb.rule;
+                b.asked = cb.asked;
+                b.did = cb.did;
+                b.detail = cr.id + ": rule " + cb.rule + ", " + to_string(c.situation.at_start.situation) + " with " + b.other + " (" + c.role +
+                           "), " + clock(cb.time_s) + ": " + cb.asked + "; " + cb.did + "; penalty " + number(b.penalty, 2);
+                m_track.push_back({std::move(b), m_crit, index[c.other], true});
+            }
         }
     }
 

@@ -141,8 +141,45 @@ std::pair<const char*, const char*> criterion_words(audit::CriterionKind k) {
     case audit::CriterionKind::speed_limit: return {"speed limit in an area", "kn"};
     case audit::CriterionKind::no_entry: return {"no entry into an area", ""};
     case audit::CriterionKind::close_quarters_time: return {"time in close quarters", "s"};
+    case audit::CriterionKind::colreg: return {"conduct under the collision rules (COLREG 8, 13-17)", "m"};
     }
     return {"criterion", ""};
+}
+
+/// What a criterion asks, in words: its kind, limit and parameters.
+std::string criterion_asks(const audit::Criterion& c) {
+    const auto [words, unit] = criterion_words(c.kind);
+    std::string s = words;
+    auto deg = [](double v) { return fixed(v, v == std::round(v) ? 0 : 1) + " degrees"; };
+    auto nm = [](double m) { return fixed(m / 1852, 2) + " nm"; };
+    switch (c.kind) {
+        case audit::CriterionKind::land_clearance:
+        case audit::CriterionKind::under_keel_clearance:
+        case audit::CriterionKind::cpa: s += " at least " + fixed(c.limit, 1) + " " + unit; break;
+        case audit::CriterionKind::speed_limit: s += " at most " + fixed(c.limit, 1) + " kn"; break;
+        case audit::CriterionKind::no_entry: break;
+        case audit::CriterionKind::close_quarters_time: s += " at most " + fixed(c.limit, 0) + " s per encounter"; break;
+        case audit::CriterionKind::colreg: {
+            const audit::ConductOptions& o = c.colreg;
+            s += ": situations judged from " + nm(o.range_m) + ", head-on within " + deg(o.head_on_deg) + ", overtaking from 112.5 to 247.5 degrees; "
+                 "the rules ask something when the CPA is under " + nm(o.cpa_m) + "; the give-way ship acts from at least " + nm(o.early_range_m) +
+                 " off, by at least " + deg(o.min_course_deg) + " of course or " + fixed(100 * o.min_speed_change, 0) + "% of speed, and passes " +
+                 nm(o.cpa_m) + " clear; the stand-on ship keeps her course and speed until the give-way ship is plainly not acting";
+            break;
+        }
+    }
+    if (!c.area_name.empty()) s += " in " + c.area_name;
+    return s;
+}
+
+std::string penalty_words(const audit::Criterion& c) {
+    const char* per = "breach";
+    switch (c.per) {
+        case audit::PenaltyPer::second: per = "second"; break;
+        case audit::PenaltyPer::metre: per = c.kind == audit::CriterionKind::speed_limit ? "knot over" : "metre short"; break;
+        case audit::PenaltyPer::breach: break;
+    }
+    return fixed(c.penalty, c.penalty == std::round(c.penalty) ? 0 : 2) + " per " + per;
 }
 
 /// The size of a track's hull (the longest chord of the first pose outline that has one),
@@ -270,7 +307,7 @@ std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid&
             it.order = 3;
             it.kind = "breach";
             const auto [words, unit] = criterion_words(b.kind);
-            it.heading = "Breach of " + b.criterion + " (" + words + ")";
+            it.heading = "Breach of " + b.criterion + (b.rule.empty() ? std::string() : ", rule " + b.rule) + " (" + words + ")";
             it.who = t != by_id.end() ? track_words(r.tracks[t->second].summary) : b.track;
             if (!b.other.empty()) it.who += " with " + b.other;
             std::string text = it.heading + " by " + it.who;
@@ -278,11 +315,14 @@ std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid&
                 text += " from " + iso_time(b.start_s);
                 if (std::isfinite(b.end_s) && b.end_s > b.start_s) text += " to " + iso_time(b.end_s) + " (" + duration_words(b.end_s - b.start_s) + ")";
             }
-            if (std::isfinite(b.value))
+            if (b.kind == audit::CriterionKind::colreg && std::isfinite(b.value))
+                text += "; closest approach " + fixed(b.value, 0) + " m (the criterion asks at least " + fixed(b.limit, 0) + " m when acting)";
+            else if (std::isfinite(b.value))
                 text += "; worst " + fixed(b.value, 1) + (*unit ? std::string(" ") + unit : "") + " against a limit of " + fixed(b.limit, 1) +
                         (*unit ? std::string(" ") + unit : "") + (std::isfinite(b.worst_s) ? " at " + clock_text(b.worst_s, "?") : "");
             text += "; penalty " + fixed(b.penalty, 1);
-            if (!b.detail.empty()) text += "; " + b.detail;
+            if (!b.asked.empty() || !b.did.empty()) text += ". Asked: " + b.asked + ". What happened: " + b.did;
+            else if (!b.detail.empty()) text += "; " + b.detail;
             it.text = text;
             if (t != by_id.end()) {
                 it.zoom.tracks = {t->second};
@@ -294,7 +334,7 @@ std::vector<Item> page_items(const audit::AuditResult& r, const grid::CoastGrid&
                 it.zoom.time_label = std::isfinite(b.worst_s) ? "worst " + clock_text(b.worst_s, "?") : "";
                 it.zoom.tooltip = text;
                 const double hull_m = hull_length(r.tracks[t->second], g.frame());
-                it.zoom.size_m = std::max({hull_m > 0 ? 8 * hull_m : 800.0, b.kind == audit::CriterionKind::cpa ? 2.5 * b.value : 0.0,
+                it.zoom.size_m = std::max({hull_m > 0 ? 8 * hull_m : 800.0, b.kind == audit::CriterionKind::cpa || b.kind == audit::CriterionKind::colreg ? 2.5 * b.value : 0.0,
                                            b.kind == audit::CriterionKind::land_clearance ? 3 * b.limit : 0.0, 100.0});
                 if (!std::isfinite(it.zoom.size_m)) it.zoom.size_m = 0;
             }
@@ -329,6 +369,9 @@ svg { max-width: 100%; height: auto; display: block; }
 article.event { display: flex; gap: 12px; align-items: flex-start; border-top: 1px solid #dddddd; padding: 8px 0; break-inside: avoid; page-break-inside: avoid; }
 article.event .words { flex: 1 1 50%; }
 article.event figure { flex: 0 0 auto; margin: 0; width: 340px; max-width: 48%; }
+td.pass { color: #1a7f37; font-weight: bold; }
+td.fail { color: #b42318; font-weight: bold; }
+p.verdict { margin: 2px 0 6px 0; }
 .kind { display: inline-block; width: 10px; height: 10px; margin-right: 6px; border-radius: 2px; }
 footer { margin-top: 18px; font-size: 8.5pt; color: #555555; }
 tr { break-inside: avoid; page-break-inside: avoid; }
@@ -465,17 +508,52 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
     } else {
         std::vector<const audit::Score*> scores;
         for (const std::size_t si : page.scores) scores.push_back(&r.assessment.scores[si]);
+        // The criteria, from the assessment file.
+        const auto& criteria = r.assessment.criteria;
+        const std::string file = !info.assessment.empty() ? info.assessment : r.assessment.source;
+        const bool has_mark = std::isfinite(r.assessment.pass_mark);
+        out += "<p class=\"assessment\">Scored against <span class=\"assessment-file\">" + esc(file.empty() ? "an assessment file" : file) +
+               "</span>: " + std::to_string(criteria.size()) + " criteri" + (criteria.size() == 1 ? "on" : "a") + "; " +
+               (has_mark ? "a trainee passes with a penalty of at most <span class=\"pass-mark\">" + fixed(r.assessment.pass_mark, 1) + "</span>."
+                         : std::string("no pass mark.")) +
+               "</p>\n";
+        out += "<table class=\"criteria\">\n<thead><tr><th>Criterion</th><th>What it asks</th><th>Penalty</th></tr></thead>\n<tbody>\n";
+        for (const audit::Criterion& c : criteria)
+            out += "<tr class=\"criterion\" data-kind=\"" + esc(audit::to_string(c.kind)) + "\"><td class=\"id\">" + esc(c.id) + "</td><td>" +
+                   esc(criterion_asks(c)) + "</td><td>" + esc(penalty_words(c)) + "</td></tr>\n";
+        out += "</tbody>\n</table>\n";
         if (scores.empty()) out += "<p class=\"none\">No trainee in this exercise.</p>\n";
         else {
-            out += "<table class=\"scores\">\n<thead><tr><th>Trainee</th><th>Name</th><th>Penalty</th><th>Breaches</th></tr></thead>\n<tbody>\n";
+            out += "<table class=\"scores\">\n<thead><tr><th>Trainee</th><th>Name</th>";
+            for (const audit::Criterion& c : criteria) out += "<th class=\"criterion\">" + esc(c.id) + "</th>";
+            out += "<th>Penalty</th><th>Breaches</th><th>Result</th></tr></thead>\n<tbody>\n";
             for (const audit::Score* s : scores) {
                 std::string name;
                 for (const std::size_t ti : page.tracks)
                     if (r.tracks[ti].summary.id == s->track) name = r.tracks[ti].summary.name;
-                out += "<tr class=\"score\"><td class=\"track\">" + esc(s->track) + "</td><td>" + esc(name) + "</td><td class=\"num penalty\">" +
-                       fixed(s->penalty, 1) + "</td><td class=\"num\">" + std::to_string(s->breaches) + "</td></tr>\n";
+                out += "<tr class=\"score\"><td class=\"track\">" + esc(s->track) + "</td><td>" + esc(name) + "</td>";
+                for (std::size_t c = 0; c < criteria.size(); ++c)
+                    out += "<td class=\"num by-criterion\">" + (c < s->by_criterion.size() ? fixed(s->by_criterion[c], 1) : std::string("&#8211;")) + "</td>";
+                out += "<td class=\"num penalty\">" + fixed(s->penalty, 1) + "</td><td class=\"num\">" + std::to_string(s->breaches) + "</td>" +
+                       (!has_mark ? std::string("<td class=\"result\">&#8211;</td>")
+                        : s->passed ? std::string("<td class=\"result pass\">pass</td>")
+                                    : std::string("<td class=\"result fail\">fail</td>")) +
+                       "</tr>\n";
             }
             out += "</tbody>\n</table>\n";
+            // Why: each breach, what was asked and what happened.
+            std::string why;
+            for (const std::size_t bi : page.breaches) {
+                const audit::Breach& b = r.assessment.breaches[bi];
+                why += "<tr class=\"breach\" data-kind=\"" + esc(audit::to_string(b.kind)) + "\"><td class=\"track\">" + esc(b.track) +
+                       "</td><td>" + esc(b.criterion) + "</td><td class=\"rule\">" + (b.rule.empty() ? std::string("&#8211;") : esc(b.rule)) +
+                       "</td><td>" + esc(clock_text(std::isfinite(b.worst_s) ? b.worst_s : b.start_s, "?")) + "</td><td class=\"asked\">" +
+                       esc(b.asked) + "</td><td class=\"did\">" + esc(b.did) + "</td><td class=\"num\">" + fixed(b.penalty, 1) + "</td></tr>\n";
+            }
+            if (!why.empty())
+                out += "<h3>Why: each breach</h3>\n<table class=\"breaches\">\n<thead><tr><th>Trainee</th><th>Criterion</th><th>Rule</th><th>When</th>"
+                       "<th>What was asked</th><th>What happened</th><th>Penalty</th></tr></thead>\n<tbody>\n" +
+                       why + "</tbody>\n</table>\n";
         }
     }
     // The ships.

@@ -25,7 +25,7 @@ namespace {
 /// A fingerprint of the criteria as read (every field, numbers to the last bit): the run
 /// header carries it so that merge refuses parts scored against different criteria, whatever
 /// the format (a GeoPackage keeps only the file's path otherwise).
-std::string criteria_fingerprint(const std::vector<audit::Criterion>& criteria) {
+std::string criteria_fingerprint(const std::vector<audit::Criterion>& criteria, double pass_mark) {
     std::string key;
     char num[40];
     const auto add = [&](double v) {
@@ -40,7 +40,17 @@ std::string criteria_fingerprint(const std::vector<audit::Criterion>& criteria) 
             add(p.lon);
             add(p.lat);
         }
+        if (c.kind == audit::CriterionKind::colreg) {
+            const audit::ConductOptions& o = c.colreg;
+            for (const double v : {o.range_m, o.head_on_deg, o.cpa_m, o.early_range_m, o.min_course_deg, o.min_speed_change, o.action_course_deg,
+                                   o.action_speed_change, o.sustain_s})
+                add(v);
+        }
         key += '\n';
+    }
+    if (std::isfinite(pass_mark)) {  // absent from the key when there is none (fingerprints of older runs unchanged)
+        key += "pass_mark";
+        add(pass_mark);
     }
     return grid::fingerprint_hex(XXH3_64bits(key.data(), key.size()));
 }
@@ -388,7 +398,8 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"role_column", text_t, none, -1, [](const R& x) { return text(x.info.role_column); }, exercise},
         {"encounter_range_m", real, metres, -1, [](const R& x) { return Value(x.info.encounter_range_m); }, exercise},
         {"assessment_file", text_t, none, -1, [](const R& x) { return text(x.info.assessment); }, assessed},
-        {"assessment_fingerprint", text_t, none, -1, [](const R& x) { return text(criteria_fingerprint(x.result.assessment.criteria)); }, assessed},
+        {"assessment_fingerprint", text_t, none, -1, [](const R& x) { return text(criteria_fingerprint(x.result.assessment.criteria, x.result.assessment.pass_mark)); }, assessed},
+        {"pass_mark", real, none, -1, [](const R& x) { return std::isfinite(x.result.assessment.pass_mark) ? Value(x.result.assessment.pass_mark) : null; }, assessed},
         {"max_encounters_per_ship", integer, none, -1, [](const R& x) { return count(x.info.max_encounters_per_ship); }, exercise},
         {"shard", text_t, none, -1, [](const R& x) { return text(x.result.shard.text()); }, sharded},
     };
@@ -464,6 +475,9 @@ const std::vector<Field<BreachRow>>& breach_fields() {
         {"unit", text_t, none, -1, [](const B& x) { return text(audit::unit_of(x.breach.kind)); }},
         {"penalty", real, none, 3, [](const B& x) { return Value(x.breach.penalty); }},
         {"other_track", text_t, none, -1, [](const B& x) { return x.breach.other.empty() ? null : text(x.breach.other); }},
+        {"rule", text_t, none, -1, [](const B& x) { return x.breach.rule.empty() ? null : text(x.breach.rule); }},
+        {"asked", text_t, none, -1, [](const B& x) { return text(x.breach.asked); }},
+        {"did", text_t, none, -1, [](const B& x) { return text(x.breach.did); }},
         {"detail", text_t, none, -1, [](const B& x) { return text(x.breach.detail); }},
         {"label", text_t, none, -1, [](const B& x) { return text(x.breach.criterion + " " + iso_time(x.breach.start_s).substr(11)); }},
     };
@@ -500,6 +514,8 @@ const std::vector<Field<ScoreRow>>& score_fields() {
         {"name", text_t, none, -1, [](const S& x) { return text(x.result.tracks.at(x.score.track_index).summary.name); }},
         {"penalty", real, none, 3, [](const S& x) { return Value(x.score.penalty); }},
         {"breaches", integer, none, -1, [](const S& x) { return count(x.score.breaches); }},
+        {"passed", boolean, none, -1,
+         [](const S& x) { return std::isfinite(x.result.assessment.pass_mark) ? Value(x.score.passed) : null; }},
     };
     return f;
 }

@@ -135,14 +135,19 @@ std::string summary_table(const audit::AuditResult& r) {
                       r.assessment.scores.size(), r.assessment.breaches.size());
         out += line;
         for (const auto& s : r.assessment.scores) {
-            std::snprintf(line, sizeof line, "  score  [%s] %s  penalty %.2f, %zu breach%s\n", printable(s.exercise).c_str(), printable(s.track).c_str(),
+            std::snprintf(line, sizeof line, "  score  [%s] %s  penalty %.2f, %zu breach%s", printable(s.exercise).c_str(), printable(s.track).c_str(),
                           s.penalty, s.breaches, s.breaches == 1 ? "" : "es");
             out += line;
+            if (std::isfinite(r.assessment.pass_mark)) {
+                std::snprintf(line, sizeof line, ": %s (pass mark %.2f)", s.passed ? "pass" : "fail", r.assessment.pass_mark);
+                out += line;
+            }
+            out += "\n";
         }
         for (const auto& b : r.assessment.breaches) {
-            std::snprintf(line, sizeof line, "  breach [%s] %s  %s at %.6f, %.6f\n", printable(b.exercise).c_str(), printable(b.track).c_str(),
-                          printable(b.detail).c_str(), b.lat, b.lon);
-            out += line;
+            // Built whole: a colreg breach's sentence can be longer than the line buffer.
+            std::snprintf(line, sizeof line, " at %.6f, %.6f\n", b.lat, b.lon);
+            out += "  breach [" + printable(b.exercise) + "] " + printable(b.track) + "  " + printable(b.detail) + line;
         }
     }
     for (const auto& f : r.files)

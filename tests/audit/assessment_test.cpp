@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include <shoal/audit/assessment.hpp>
@@ -270,6 +271,71 @@ TEST_F(Scored, TimeInCloseQuartersOverTheTimeAllowed) {
     EXPECT_EQ(ok.assessment.scores[0].penalty, 0);
 }
 
+/// A ship from (x, y) on `heading` at `v_ms` for `duration` s, a fix every 10 s, turning `turn`
+/// degrees (to starboard when positive) at `turn_at` s; heading, COG and SOG as a simulator logs them.
+track::Track leg(const std::string& id, XY from, double heading, double v_ms, double duration, double turn_at = INFINITY, double turn = 0) {
+    track::Track t;
+    t.id = id;
+    t.file = "ex/" + id + ".csv";
+    XY p = from;
+    for (int i = 0; i * 10.0 <= duration + 1e-9; ++i) {
+        const double h = std::fmod((i * 10.0 >= turn_at ? heading + turn : heading) + 360, 360);
+        track::Fix f;
+        f.time_s = t0 + 10.0 * i;
+        f.position = frame().inverse(p);
+        f.heading_deg = f.cog_deg = h;
+        f.sog_kn = v_ms * 3600 / 1852;
+        f.line = static_cast<std::size_t>(i) + 2;
+        t.fixes.push_back(f);
+        const double a = h * std::numbers::pi / 180;
+        p = p + (10 * v_ms) * XY{std::sin(a), std::cos(a)};
+    }
+    return t;
+}
+
+TEST_F(Scored, ColregCrossingGiveWayHeldOnAndTheStandOnShipThatKeptOn) {
+    // A heads north from (1000, -3000), C west from (3000, -1000), both at 5 m/s: they would meet
+    // at (1000, -1000) at 400 s; C is on A's starboard bow (45 degrees), so A gives way (rule 15)
+    // and C stands on. With range 2000 m the situation starts at 400 - 2000 / 7.07 = 117 s; CPA 0.
+    const Assessment a = Assessment::parse(R"({"pass_mark": 40, "criteria": [
+        {"id": "cpa", "kind": "cpa", "limit": 100, "penalty": 10},
+        {"id": "rules", "kind": "colreg", "penalty": 50, "range_m": 2000, "early_range_m": 1000, "cpa_m": 400}]})", "rules.json");
+    EXPECT_EQ(a.source, "rules.json");
+    EXPECT_EQ(a.pass_mark, 40);
+    const AuditResult r = run({leg("A", {1000, -3000}, 0, 5, 800), leg("C", {3000, -1000}, 270, 5, 800)}, a);
+    // Both held on: A breaches rule 15 (and its CPA); C, the stand-on ship, kept her course and speed: nothing.
+    std::vector<const Breach*> rules;
+    for (const Breach& b : r.assessment.breaches)
+        if (b.kind == CriterionKind::colreg) rules.push_back(&b);
+    ASSERT_EQ(rules.size(), 1u);
+    EXPECT_EQ(rules[0]->track, "A");
+    EXPECT_EQ(rules[0]->rule, "15");
+    EXPECT_EQ(rules[0]->other, "C");
+    EXPECT_EQ(rules[0]->penalty, 50);
+    EXPECT_NEAR(rules[0]->start_s - t0, 400 - 2000 / std::sqrt(50.0), 1);
+    EXPECT_NEAR(rules[0]->worst_s - t0, 400, 1);  // held on: the moment is the closest approach
+    EXPECT_NEAR(rules[0]->value, 0, 1);
+    EXPECT_THAT(rules[0]->asked, HasSubstr("rule 15"));
+    EXPECT_THAT(rules[0]->did, HasSubstr("A kept her course (000) and speed (9.7 kn)"));
+    EXPECT_THAT(rules[0]->detail, HasSubstr("rules: rule 15, crossing with C (give-way)"));
+    ASSERT_EQ(r.assessment.scores.size(), 2u);
+    EXPECT_EQ(r.assessment.scores[0].track, "A");
+    EXPECT_NEAR(r.assessment.scores[0].penalty, 60, 1e-9);
+    ASSERT_EQ(r.assessment.scores[0].by_criterion.size(), 2u);
+    EXPECT_NEAR(r.assessment.scores[0].by_criterion[0], 10, 1e-9);
+    EXPECT_NEAR(r.assessment.scores[0].by_criterion[1], 50, 1e-9);
+    EXPECT_FALSE(r.assessment.scores[0].passed);
+    EXPECT_NEAR(r.assessment.scores[1].penalty, 10, 1e-9);  // C: only the CPA
+    EXPECT_TRUE(r.assessment.scores[1].passed);
+    EXPECT_EQ(r.assessment.pass_mark, 40);
+    EXPECT_EQ(r.assessment.source, "rules.json");
+    // A turns 40 degrees to starboard at 150 s (1768 m off): closest (1250, 1250) + 183 s x
+    // (-8.21, -3.83) = 604 m, over 400: no colreg breach for either, no CPA breach.
+    const AuditResult ok = run({leg("A", {1000, -3000}, 0, 5, 800, 150, 40), leg("C", {3000, -1000}, 270, 5, 800)}, a);
+    EXPECT_TRUE(ok.assessment.breaches.empty()) << ok.assessment.breaches[0].detail;
+    EXPECT_TRUE(ok.assessment.scores[0].passed);
+}
+
 TEST_F(Scored, NeedsExerciseModeAndAVesselWithoutDraughtIsNotAssessedForUnderKeelClearance) {
     const Assessment a = Assessment::parse(R"({"criteria": [{"kind": "under_keel_clearance", "limit": 1, "penalty": 1}]})", "a.json");
     AuditOptions o;
@@ -429,6 +495,44 @@ TEST(AssessmentFile, BadFilesNameTheFileTheCriterionAndWhatIsWrong) {
                 HasSubstr("\"area\" spans 230 degrees: at most 5"));
     EXPECT_THAT(message_of(R"({"criteria": [{"id": "cpa-2", "kind": "cpa", "limit": 1, "penalty": 1}, {"kind": "cpa", "limit": 2, "penalty": 1}]})"),
                 HasSubstr("criteria[1] (id 'cpa-2'): its default id 'cpa-2' (kind-position) is the id another criterion gives"));
+}
+
+TEST(AssessmentFile, ColregParametersTheirDefaultsAndThePassMark) {
+    const Assessment a = Assessment::parse(R"({"criteria": [{"kind": "colreg", "penalty": 20},
+        {"id": "strict", "kind": "colreg", "penalty": 5, "head_on_deg": 6, "cpa_m": 1852, "early_range_m": 3000, "range_m": 5556,
+         "min_course_deg": 25, "min_speed_change": 0.4, "action_course_deg": 8, "action_speed_change": 0.1, "sustain_s": 60}]})",
+                                           "a.json");
+    ASSERT_EQ(a.criteria.size(), 2u);
+    EXPECT_EQ(a.criteria[0].id, "colreg-1");
+    EXPECT_EQ(a.criteria[0].per, PenaltyPer::breach);
+    EXPECT_EQ(a.criteria[0].colreg.head_on_deg, 5);
+    EXPECT_EQ(a.criteria[0].colreg.cpa_m, 926);
+    EXPECT_EQ(a.criteria[0].colreg.early_range_m, 1852);
+    EXPECT_EQ(a.criteria[0].colreg.min_course_deg, 30);
+    EXPECT_EQ(a.criteria[0].colreg.min_speed_change, 0.5);
+    EXPECT_TRUE(std::isnan(a.pass_mark));
+    const ConductOptions& o = a.criteria[1].colreg;
+    EXPECT_EQ(o.head_on_deg, 6);
+    EXPECT_EQ(o.cpa_m, 1852);
+    EXPECT_EQ(o.early_range_m, 3000);
+    EXPECT_EQ(o.range_m, 5556);
+    EXPECT_EQ(o.min_course_deg, 25);
+    EXPECT_EQ(o.min_speed_change, 0.4);
+    EXPECT_EQ(o.action_course_deg, 8);
+    EXPECT_EQ(o.action_speed_change, 0.1);
+    EXPECT_EQ(o.sustain_s, 60);
+    EXPECT_EQ(Assessment::parse(R"({"pass_mark": 0, "criteria": [{"kind": "colreg", "penalty": 1}]})", "a.json").pass_mark, 0);
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "colreg", "limit": 1, "penalty": 1}]})"), HasSubstr("a colreg criterion has no \"limit\""));
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "colreg", "penalty": 1, "per": "second"}]})"), HasSubstr("charged per breach"));
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "cpa", "limit": 1, "penalty": 1, "cpa_m": 5}]})"),
+                HasSubstr("\"cpa_m\" is a parameter of a colreg criterion only"));
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "colreg", "penalty": 1, "head_on_deg": 30}]})"),
+                HasSubstr("\"head_on_deg\" must be >= 0 and <= 22.4 (got 30)"));
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "colreg", "penalty": 1, "cpa_m": "far"}]})"), HasSubstr("\"cpa_m\" must be a number"));
+    EXPECT_THAT(message_of(R"({"criteria": [{"kind": "colreg", "penalty": 1, "early_range_m": 5000}]})"),
+                HasSubstr("\"early_range_m\" (5000) is beyond \"range_m\" (3704)"));
+    EXPECT_THAT(message_of(R"({"pass_mark": -1, "criteria": [{"kind": "colreg", "penalty": 1}]})"), HasSubstr("\"pass_mark\" must be >= 0"));
+    EXPECT_THAT(message_of(R"({"pass_mark": "B", "criteria": [{"kind": "colreg", "penalty": 1}]})"), HasSubstr("\"pass_mark\" must be a number"));
 }
 
 TEST(AssessmentFile, LoadReadsWithTheBoundedReaderAndNamesTheFile) {

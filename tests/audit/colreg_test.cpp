@@ -9,8 +9,10 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <shoal/audit/colreg.hpp>
+#include <shoal/audit/colreg_conduct.hpp>
 #include <shoal/util/error.hpp>
 
 namespace shoal::audit {
@@ -263,6 +265,131 @@ TEST(Colreg, PairsNeverWithinRangeOrNotWantedOrApartInTimeAreNotReported) {
     ColregOptions bad;
     bad.range_m = 0;
     EXPECT_THROW(find_situations({&a, &b}, frame(), bad, 600), UsageError);
+}
+
+// ---------------------------------------------------------------- conduct (colreg_conduct.hpp)
+// DNV's standard encounters (head-on, crossing give-way and stand-on, overtaking, overtaken),
+// the own ship at 6 m/s (4 m/s overtaken, 8 m/s overtaking), a fix every 10 s, with and
+// without proper manoeuvres. Each case's truth derived by hand (default ConductOptions: risk
+// and well clear 926 m, early 1852 m, readily apparent 30 degrees or half the speed):
+
+/// The rules the own ship breached in its one situation with `other`, in order.
+std::vector<std::string> breached(const track::Track& own, const track::Track& other, std::string* role = nullptr) {
+    const auto found = judge_conduct(own, {&other}, frame(), ConductOptions{}, 600);
+    EXPECT_EQ(found.size(), 1u);
+    std::vector<std::string> rules;
+    if (found.empty()) return rules;
+    if (role) *role = found[0].role;
+    for (const ConductBreach& b : found[0].breaches) {
+        rules.push_back(b.rule);
+        EXPECT_FALSE(b.asked.empty());
+        EXPECT_NE(b.did.find(own.id), std::string::npos) << b.did;
+    }
+    return rules;
+}
+using Rules = std::vector<std::string>;
+
+TEST(Conduct, HeadOn) {
+    // 12 km apart on reciprocal courses, closing at 12 m/s: within 2 nm at t = (12000 - 3704) / 12
+    // = 691 s, CPA 0 at 1000 s. Both give way (rule 14).
+    const track::Track other = straight("C1", {0, 12000}, 180, 6, 0, 1600);
+    std::string role;
+    // Held on: rule 14, at the closest approach.
+    const track::Track held = straight("T1", {0, 0}, 0, 6, 0, 1600);
+    EXPECT_EQ(breached(held, other, &role), Rules{"14"});
+    EXPECT_EQ(role, "give-way");
+    const auto h = judge_conduct(held, {&other}, frame(), ConductOptions{}, 600);
+    ASSERT_EQ(h[0].breaches.size(), 1u);
+    EXPECT_NEAR(h[0].breaches[0].time_s - t0, 1000, 1);
+    EXPECT_EQ(h[0].rules, (Rules{"14", "8"}));
+    // 35 degrees to starboard at 700 s (3600 m off): relative velocity (-3.44, -10.91) m/s from
+    // (0, 3600): closest 1083 m. Early, large, clear: no breach.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 700, 35), other), Rules{});
+    // The same to port: the mirror image, 1083 m clear, but rule 14 asks starboard.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 700, -35), other), Rules{"14"});
+    // 15 degrees to starboard at 900 s (1200 m off): late, small, and closest (0, 1200) +
+    // 100 s x (-1.55, -11.80) = 156 m: one rule-8 breach.
+    const auto late = judge_conduct(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 900, 15), {&other}, frame(), ConductOptions{}, 600);
+    ASSERT_EQ(late.size(), 1u);
+    ASSERT_EQ(late[0].breaches.size(), 1u);
+    EXPECT_EQ(late[0].breaches[0].rule, "8");
+    EXPECT_NEAR(late[0].breaches[0].time_s - t0, 900, 1e-6);
+    EXPECT_NEAR(late[0].action_range_m, 1200, 1);
+    EXPECT_NEAR(late[0].course_change_deg, 15, 1e-6);
+    EXPECT_NE(late[0].breaches[0].did.find("late"), std::string::npos);
+    EXPECT_NE(late[0].breaches[0].did.find("too small"), std::string::npos);
+    EXPECT_NE(late[0].breaches[0].did.find("passed 0.08 nm"), std::string::npos) << late[0].breaches[0].did;
+}
+
+TEST(Conduct, CrossingGiveWay) {
+    // C1 from the own ship's starboard bow (45 degrees), both at 6 m/s, meeting at (0, 6000) at
+    // 1000 s: within 2 nm at 1000 - 3704 / 8.485 = 563 s. The own ship gives way (rule 15).
+    const track::Track other = straight("C1", {6000, 6000}, 270, 6, 0, 1600);
+    std::string role;
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600), other, &role), Rules{"15"});
+    EXPECT_EQ(role, "give-way");
+    // 40 degrees to starboard at 600 s (3394 m off): closest 1161 m, passing astern of C1.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 600, 40), other), Rules{});
+    // 40 degrees to port at 600 s: closest 1161 m too, but it crosses C1's line 1282 m ahead of her.
+    const auto port = judge_conduct(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 600, -40), {&other}, frame(), ConductOptions{}, 600);
+    ASSERT_EQ(port[0].breaches.size(), 1u);
+    EXPECT_EQ(port[0].breaches[0].rule, "15");
+    EXPECT_NE(port[0].breaches[0].did.find("crossed 128"), std::string::npos) << port[0].breaches[0].did;
+    // 15 degrees to starboard at 850 s (1273 m off): late, small, closest 166 m: rule 16.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 850, 15), other), Rules{"16"});
+    // Slowing from 6 to 2 m/s at 600 s (two thirds: readily apparent): C1 then crosses
+    // (2400, 2400) + s (-6, -4) ahead, closest 2400 |(1, 1) - (6, 4) 30/52| = 1331 m: no breach.
+    track::Track slow = straight("T1", {0, 0}, 0, 6, 0, 600);
+    const track::Track rest = straight("T1", {0, 3600}, 0, 2, 610, 1600);
+    slow.fixes.insert(slow.fixes.end(), rest.fixes.begin(), rest.fixes.end());
+    EXPECT_EQ(breached(slow, other), Rules{});
+}
+
+TEST(Conduct, CrossingStandOn) {
+    // C1 from the port bow: the own ship stands on (rule 17); C1 never acts.
+    const track::Track other = straight("C1", {-6000, 6000}, 90, 6, 0, 1600);
+    std::string role;
+    // Course and speed kept: no breach, though C1 held on too.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600), other, &role), Rules{});
+    EXPECT_EQ(role, "stand-on");
+    // Turning 40 degrees to starboard early (600 s, 3394 m off, C1 could still act): rule 17.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 600, 40), other), Rules{"17"});
+    // The same at 900 s (849 m off, C1 has not acted): allowed (17(a)(ii), (b)).
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 900, 40), other), Rules{});
+    // Then but to port, towards C1 on her port side: rule 17(c).
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 900, -40), other), Rules{"17"});
+}
+
+TEST(Conduct, OvertakingAndOvertaken) {
+    // The own ship at 8 m/s comes up from 5000 m astern of C1 (4 m/s, 50 m to starboard):
+    // within 2 nm at 324 s, CPA 50 m. The own ship overtakes: rule 13, give-way.
+    const track::Track slow = straight("C1", {50, 5000}, 0, 4, 0, 2000);
+    std::string role;
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 8, 0, 2000), slow, &role), Rules{"13"});
+    EXPECT_EQ(role, "give-way");
+    // 30 degrees to starboard at 400 s (3400 m off): closest 2714 m, no breach.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 8, 0, 2000, 10, 400, 30), slow), Rules{});
+    // Overtaken: the own ship at 4 m/s, C1 at 8 m/s from 5000 m astern: stand-on.
+    const track::Track fast = straight("C1", {-50, -5000}, 0, 8, 0, 2000);
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 4, 0, 2000), fast, &role), Rules{});
+    EXPECT_EQ(role, "stand-on");
+    // Turning away early (400 s, 3400 m off): rule 17.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 4, 0, 2000, 10, 400, 30), fast), Rules{"17"});
+}
+
+TEST(Conduct, NoRiskNoDutyAndStoppedShips) {
+    // Reciprocal courses 2 km apart: head-on geometry is not met (C1 33 degrees off the bow at
+    // 2 nm), the CPA 2000 m is over 926 m: no duty.
+    std::string role = "x";
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600), straight("C1", {2000, 12000}, 180, 6, 0, 1600), &role), Rules{});
+    EXPECT_EQ(role, "");
+    // A ship at anchor ahead: no duty for either.
+    EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600), straight("C1", {0, 6000}, 0, 0, 0, 1600), &role), Rules{});
+    EXPECT_EQ(role, "");
+    ConductOptions bad;
+    bad.cpa_m = 0;
+    const track::Track a = straight("T1", {0, 0}, 0, 6, 0, 100);
+    EXPECT_THROW(judge_conduct(a, {&a}, frame(), bad, 600), UsageError);
 }
 
 }  // namespace

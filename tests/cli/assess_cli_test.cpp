@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -109,6 +111,46 @@ std::string slurp(const std::string& path) {
 }
 
 double seconds(const json& iso) { return *track::parse_iso8601(iso.get<std::string>()) - t0; }
+
+TEST_F(AssessCli, AColregCriterionAndAPassMarkInTheReportValidAgainstTheSchemas) {
+    // A (trainee) east along y = -305, B (target) west along y = -605, both 5 m/s: within 2 nm
+    // at about 30 s, B 4.6 degrees off A's bow, reciprocal courses: head-on (within 10 degrees),
+    // CPA 300 m, under 926 m. Neither turns: A breaches rule 14 at the closest approach (400 s).
+    std::ofstream(m_dir.file("colreg.json")) << R"({"pass_mark": 55, "criteria": [
+        {"id": "cpa-926", "kind": "cpa", "limit": 926, "penalty": 10},
+        {"id": "rules", "kind": "colreg", "penalty": 50, "head_on_deg": 10}]})";
+    const test::Outcome r = check("colreg.geojson", "colreg.json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_THAT(r.out, HasSubstr("rules: rule 14, head-on with B (give-way)"));
+    EXPECT_THAT(r.out, HasSubstr("A kept her course (090) and speed (9.7 kn)"));
+    EXPECT_THAT(r.out, HasSubstr("] A  penalty 60.00, 2 breaches: fail (pass mark 55.00)\n"));
+    const json doc = json::parse(slurp(m_dir.file("colreg.geojson")));
+    EXPECT_EQ(doc["shoal"]["pass_mark"], 55);
+    ASSERT_EQ(doc["shoal"]["assessment"]["scores"].size(), 1u);
+    EXPECT_EQ(doc["shoal"]["assessment"]["scores"][0]["penalty"], 60);
+    EXPECT_EQ(doc["shoal"]["assessment"]["scores"][0]["passed"], false);
+    std::vector<json> colreg;
+    for (const json& f : doc["features"])
+        if (f["properties"]["kind"] == "breach" && f["properties"]["criterion_kind"] == "colreg") colreg.push_back(f["properties"]);
+    ASSERT_EQ(colreg.size(), 1u);
+    EXPECT_EQ(colreg[0]["rule"], "14");
+    EXPECT_EQ(colreg[0]["other_track"], "B");
+    EXPECT_NEAR(seconds(colreg[0]["worst"]), 400, 1);
+    EXPECT_THAT(colreg[0]["asked"].get<std::string>(), HasSubstr("both ships alter course to starboard"));
+    // Both files match their schemas.
+    const std::string schemas = std::string(SHOAL_TEST_DATA) + "../../schemas/";
+    for (const auto& [file, schema] : {std::pair{m_dir.file("colreg.geojson"), schemas + "report.schema.json"},
+                                       std::pair{m_dir.file("colreg.json"), schemas + "assessment.schema.json"}}) {
+        const std::string cmd = "/usr/bin/python3 -c \"import json,sys,jsonschema; jsonschema.validate(json.load(open(sys.argv[1])), "
+                                "json.load(open(sys.argv[2])))\" '" + file + "' '" + schema + "' 2>&1";
+        FILE* pipe = ::popen(cmd.c_str(), "r");
+        ASSERT_TRUE(pipe);
+        std::string out;
+        char buf[512];
+        while (std::fgets(buf, sizeof buf, pipe)) out += buf;
+        EXPECT_EQ(::pclose(pipe), 0) << file << ": " << out;
+    }
+}
 
 TEST_F(AssessCli, ScoresAndBreachesOnStdoutAndInTheGeoJson) {
     const std::string before = slurp(m_dir.file("assessment.json"));

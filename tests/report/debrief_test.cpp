@@ -319,6 +319,107 @@ TEST(Debrief, PagePerExerciseListsEveryTraineeEveryEncounterAndEveryEventInTimeO
     EXPECT_EQ(with_class(html_of(doc2.get()), "event", "article").size(), r.tracks[index_of(r, "D")].events.size() + 1);
 }
 
+TEST(Debrief, TheScoreExplainedCriteriaPerCriterionPassMarkAndWhatEachBreachAskedAndDid) {
+    Fixture f;
+    audit::AuditResult& r = f.result;
+    // The assessment file: named (hostile), three criteria, a pass mark of 30.
+    f.info.assessment = "exam <i>&amp;.json";
+    r.assessment.source = f.info.assessment;
+    r.assessment.pass_mark = 30;
+    audit::Criterion land, cpa, rules;
+    land.id = "land-0.5nm";
+    land.kind = audit::CriterionKind::land_clearance;
+    land.limit = 926;
+    land.penalty = 25;
+    cpa.id = "cpa-1nm";
+    cpa.kind = audit::CriterionKind::cpa;
+    cpa.limit = 1852;
+    cpa.penalty = 10;
+    rules.id = "rules <b>of</b> the road";
+    rules.kind = audit::CriterionKind::colreg;
+    rules.penalty = 50;
+    r.assessment.criteria = {land, cpa, rules};
+    // A: 25 + 10 + 50 = 85 (fails); the hostile trainee 0 (passes).
+    r.assessment.scores[0].penalty = 85;
+    r.assessment.scores[0].breaches = 3;
+    r.assessment.scores[0].by_criterion = {25, 10, 50};
+    r.assessment.scores[0].passed = false;
+    r.assessment.scores[1].by_criterion = {0, 0, 0};
+    r.assessment.scores[1].passed = true;
+    audit::Breach b4 = r.assessment.breaches[1];
+    b4.criterion = rules.id;
+    b4.kind = audit::CriterionKind::colreg;
+    b4.rule = "15";
+    b4.penalty = 50;
+    b4.asked = "rule 15 (crossing, B on the starboard side): keep out of the way <u>now</u>";
+    b4.did = "A kept her course (180) & speed (11.9 kn)";
+    r.assessment.breaches[0].asked = "a clearance to land or hazards of at least 926.0 m";
+    r.assessment.breaches[0].did = "clearance to land 120.0 m";
+    r.assessment.breaches.insert(r.assessment.breaches.begin() + 2, b4);
+
+    const std::vector<DebriefPage> pages = debrief_pages(r);
+    const std::string html = debrief_html(r, f.grid, f.info, pages[0]);
+    EXPECT_EQ(html.find("<i>"), std::string::npos);
+    EXPECT_EQ(html.find("<b>"), std::string::npos);
+    EXPECT_EQ(html.find("<u>"), std::string::npos);
+    std::string error;
+    const test::XmlPtr doc = test::parse_xml(html, &error);
+    ASSERT_TRUE(doc) << "not well-formed: " << error;
+    const CPLXMLNode* scores = by_id(html_of(doc.get()), "scores");
+    ASSERT_NE(scores, nullptr);
+    // The file named, the pass mark given.
+    const auto file = with_class(scores, "assessment-file");
+    ASSERT_EQ(file.size(), 1u);
+    EXPECT_EQ(all_text(file[0]), "exam <i>&amp;.json");
+    ASSERT_EQ(with_class(scores, "pass-mark").size(), 1u);
+    EXPECT_EQ(all_text(with_class(scores, "pass-mark")[0]), "30.0");
+    // The criteria, each named with what it asks and its penalty.
+    const auto criteria = with_class(scores, "criterion", "tr");
+    ASSERT_EQ(criteria.size(), 3u);
+    EXPECT_EQ(all_text(with_class(criteria[0], "id")[0]), "land-0.5nm");
+    EXPECT_NE(all_text(criteria[0]).find("clearance to land or hazards at least 926.0 m"), std::string::npos) << all_text(criteria[0]);
+    EXPECT_NE(all_text(criteria[0]).find("25 per breach"), std::string::npos);
+    EXPECT_EQ(all_text(with_class(criteria[2], "id")[0]), "rules <b>of</b> the road");
+    EXPECT_EQ(attr(criteria[2], "data-kind"), "colreg");
+    EXPECT_NE(all_text(criteria[2]).find("head-on within 5 degrees"), std::string::npos) << all_text(criteria[2]);
+    EXPECT_NE(all_text(criteria[2]).find("by at least 30 degrees of course or 50% of speed"), std::string::npos);
+    // Each trainee's penalty per criterion, the total and pass or fail.
+    const auto rows = with_class(scores, "score", "tr");
+    ASSERT_EQ(rows.size(), 2u);
+    const auto* a = all_text(with_class(rows[0], "track")[0]) == "A" ? rows[0] : rows[1];
+    const auto* h = a == rows[0] ? rows[1] : rows[0];
+    const auto by = with_class(a, "by-criterion");
+    ASSERT_EQ(by.size(), 3u);
+    EXPECT_EQ(all_text(by[0]), "25.0");
+    EXPECT_EQ(all_text(by[1]), "10.0");
+    EXPECT_EQ(all_text(by[2]), "50.0");
+    EXPECT_EQ(all_text(with_class(a, "penalty")[0]), "85.0");
+    ASSERT_EQ(with_class(a, "result").size(), 1u);
+    EXPECT_EQ(all_text(with_class(a, "result")[0]), "fail");
+    EXPECT_EQ(with_class(a, "fail").size(), 1u);
+    EXPECT_EQ(all_text(with_class(h, "track")[0]), hostile_id);
+    EXPECT_EQ(all_text(with_class(h, "result")[0]), "pass");
+    // Why: every breach of this exercise, with what was asked and what happened.
+    const auto why = with_class(scores, "breach", "tr");
+    ASSERT_EQ(why.size(), 3u);
+    EXPECT_EQ(all_text(with_class(why[0], "asked")[0]), "a clearance to land or hazards of at least 926.0 m");
+    EXPECT_EQ(all_text(with_class(why[0], "did")[0]), "clearance to land 120.0 m");
+    const auto* colreg = why[2];
+    EXPECT_EQ(attr(colreg, "data-kind"), "colreg");
+    EXPECT_EQ(all_text(with_class(colreg, "rule")[0]), "15");
+    EXPECT_EQ(all_text(with_class(colreg, "asked")[0]), b4.asked);
+    EXPECT_EQ(all_text(with_class(colreg, "did")[0]), b4.did);
+    // Without a pass mark: no verdict.
+    r.assessment.pass_mark = NAN;
+    const test::XmlPtr none = test::parse_xml(debrief_html(r, f.grid, f.info, pages[0]), nullptr);
+    ASSERT_TRUE(none);
+    const CPLXMLNode* s2 = by_id(html_of(none.get()), "scores");
+    EXPECT_TRUE(with_class(s2, "pass-mark").empty());
+    EXPECT_NE(all_text(s2).find("no pass mark"), std::string::npos);
+    EXPECT_TRUE(with_class(s2, "pass").empty());
+    EXPECT_TRUE(with_class(s2, "fail").empty());
+}
+
 TEST(Debrief, UnassessedRunSaysSoAndListsNoScores) {
     Fixture f;
     f.result.has_assessment = false;

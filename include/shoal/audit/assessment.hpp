@@ -22,6 +22,10 @@
 ///   speed over ground (SOG, else from positions) linear between fixes.
 /// - close_quarters_time: each close-quarters encounter (hull-to-hull clearance under the ship
 ///   margin, encounters.hpp) of the trainee lasting longer than `limit` seconds.
+/// - colreg: the trainee's conduct under COLREG rules 8 and 13-17 in every situation with
+///   another ship of its exercise (colreg_conduct.hpp, with the criterion's ConductOptions):
+///   each rule not met is a breach (Breach::rule), charged `penalty` once. No limit; a breach's
+///   value is the closest approach in that situation (m) against ConductOptions::cpa_m.
 ///
 /// A breach is one contiguous interval over the limit. Its penalty: `penalty` once (per
 /// breach), times the seconds it lasted (per second; close_quarters_time: the seconds over
@@ -33,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include <shoal/audit/colreg_conduct.hpp>
 #include <shoal/geo/point.hpp>
 
 namespace shoal::geo { class LocalFrame; }
@@ -50,6 +55,7 @@ enum class CriterionKind {
     speed_limit,          ///< speed over ground inside `area` at most `limit` knots
     no_entry,             ///< never inside `area`
     close_quarters_time,  ///< at most `limit` seconds in close quarters (per encounter)
+    colreg,               ///< conduct under COLREG rules 8 and 13-17 (no limit; per breach)
 };
 const char* to_string(CriterionKind k) noexcept;
 /// The unit of a criterion's limit and of its breaches' values: "m", "kn" or "s".
@@ -78,10 +84,14 @@ struct Criterion {
     static double max_limit(CriterionKind k) noexcept;
     std::vector<geo::LonLat> area;  ///< speed_limit and no_entry: the polygon's outer ring, lon/lat, closed
     std::string area_name;
+    ConductOptions colreg;  ///< colreg: how each rule is read (the file's parameters, else the defaults)
 };
 
 struct Assessment {
     std::vector<Criterion> criteria;
+    /// `pass_mark`: a trainee passes when her penalty is at most this (NaN: no pass mark).
+    double pass_mark = NAN;
+    std::string source;  ///< the file read (load), or the name parse() was given
 
     /// The largest assessment file read (16 MiB); a larger one, or an endless source such as
     /// /dev/zero, is refused at that limit.
@@ -108,7 +118,10 @@ struct Breach {
     double lon = NAN, lat = NAN;
     double value = NAN, limit = NAN;  ///< unit_of(kind); no_entry: seconds inside against 0
     double penalty = 0;
-    std::string other;   ///< cpa, close_quarters_time: the other ship's track id
+    std::string other;   ///< cpa, close_quarters_time, colreg: the other ship's track id
+    std::string rule;    ///< colreg: the rule not met, "8", "13" ... "17" (else empty)
+    std::string asked;   ///< what the criterion (for colreg: the rule) asked, in words
+    std::string did;     ///< what the ship did, in words
     std::string detail;  ///< one line a person reads
 };
 
@@ -118,10 +131,15 @@ struct Score {
     double penalty = 0;
     std::size_t breaches = 0;
     std::size_t track_index = 0;  ///< index in AuditResult::tracks
+    std::vector<double> by_criterion = {};  ///< the penalty per criterion, in AssessmentResult::criteria's order
+    /// Against the pass mark: penalty <= pass_mark (false when there is none).
+    bool passed = false;
 };
 
 struct AssessmentResult {
     std::vector<Criterion> criteria;  ///< the assessment's, as read
+    double pass_mark = NAN;           ///< Assessment::pass_mark
+    std::string source;               ///< Assessment::source
     std::vector<Score> scores;      ///< every trainee, in the order of AuditResult::tracks
     /// In the order of AuditResult::tracks (the trainee's), then by start, then criterion
     /// (file order), then the other ship's track order.
