@@ -18,6 +18,7 @@
 #include <shoal/audit/shard.hpp>
 #include <shoal/coast/chart_scale.hpp>
 #include <shoal/coast/expected_areas.hpp>
+#include <shoal/grid/grid_builder.hpp>
 #include <shoal/report/debrief.hpp>
 #include <shoal/report/plot.hpp>
 #include <shoal/report/report.hpp>
@@ -296,6 +297,10 @@ public:
         info.assessment = m_assess_file;
         // Everything else that changes the report, so that merge refuses parts that differ in it.
         info.berth_tolerance_m = m_berth_tolerance_m;
+        // A grid file's chart sources are read again (berths, shore constructions, the scale, the
+        // coast layer): their bytes now, which the grid's fingerprint (of its build) does not say.
+        if (const auto sources = grid::coast_sources(m_opts.coast, g); sources != m_opts.coast && !sources.empty())
+            info.chart_fingerprint = grid::fingerprint_hex(grid::fingerprint_sources(sources, {}, "", 0));
         if (!m_opts.ship_file.empty()) info.ship_fingerprint = report::files_fingerprint({m_opts.ship_file});  // --dims: `ship` says them
         for (const auto& v : m_vessel_files) info.vessels += (info.vessels.empty() ? "" : ", ") + v;
         info.vessels_fingerprint = report::files_fingerprint(m_vessel_files);

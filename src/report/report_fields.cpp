@@ -369,6 +369,7 @@ const std::vector<Field<RunRow>>& run_fields() {
         {"limiting_depth_source", text_t, none, -1, [](const R& x) { return text(x.info.limiting_depth_source); }},
         {"ukc_m", real, metres, -1, [](const R& x) { return Value(x.info.ukc_m); }},
         {"grid_fingerprint", text_t, none, -1, [](const R& x) { return text(x.info.grid_fingerprint); }},
+        {"chart_fingerprint", text_t, none, -1, [](const R& x) { return text(x.info.chart_fingerprint); }},
         {"ship", text_t, none, -1, [](const R& x) { return text(x.info.ship); }},
         {"step_m", real, metres, -1, [](const R& x) { return Value(x.info.sweep.step_m); }},
         {"margin_m", real, metres, -1, [](const R& x) { return Value(x.info.sweep.margin_m); }},

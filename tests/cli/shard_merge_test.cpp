@@ -460,12 +460,24 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
     std::ofstream(ship) << ship_text;
     std::ofstream(berths) << berth;
     std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "trainee"}]})";
+    // --coast a grid file: its chart sources are read again at check time (berths, shore
+    // constructions, the scale, the coast layer); before, an edited source beside an unchanged
+    // grid merged (the GeoPackage took the first part's coast layer).
+    const fs::path land = temp_dir() / "identity_land.geojson", grid = temp_dir() / "identity_land.shoalgrid";
+    const auto reset_land = [&] { fs::copy_file(source_root() + "/examples/data/gof_helsinki_land.geojson", land, fs::copy_options::overwrite_existing); };
+    reset_land();
+    ASSERT_EQ(shoal("import " + q(land) + " -o " + q(grid)).status, 0);
+    // --assess with a colreg criterion: its parameters (new) are the run's too.
+    const fs::path assess = temp_dir() / "identity_assessment.json";
+    const std::string colreg = R"({"criteria": [{"id": "rules", "kind": "colreg", "penalty": 10}]})";
+    std::ofstream(assess) << colreg;
     struct Case {
         std::string name, a, b, says;
         std::function<void()> between;  ///< what changes between the two shards' runs
     };
     const std::string v = " --vessels " + q(vessels), s = " --ship " + q(ship), e = " --encounters --roles " + q(roles);
     const std::string bt = " --berths " + q(berths);
+    const std::string g = " --coast " + q(grid), as = " --encounters --assess " + q(assess);
     const std::vector<Case> cases = {
         {"grown", "", "", "growing_day.csv' is ", [&] { std::ofstream(day) << head << first << later; }},
         {"vessels", v, "", "'vessels' is ", [] {}},
@@ -477,6 +489,9 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
         {"ship-edited", s, s, "'ship_fingerprint' is ", [&] { std::ofstream(ship) << R"({"name": "identity", "length": 140, "beam": 16, "a": 120, "b": 20, "c": 8, "d": 8})"; }},
         {"berths-edited", bt, bt, "'berths_fingerprint' is ", [&] { std::ofstream(berths) << berth << "\n"; }},
         {"roles-edited", e, e, "'roles_fingerprint' is ", [&] { std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "target"}]})"; }},
+        {"chart-edited", g, g, "'chart_fingerprint' is ", [&] { std::ofstream(land, std::ios::app) << "\n"; }},
+        {"colreg-edited", as, as, "'assessment_fingerprint' is ",
+         [&] { std::ofstream(assess) << R"({"criteria": [{"id": "rules", "kind": "colreg", "penalty": 10, "cpa_m": 500}]})"; }},
     };
     for (const char* ext : {".geojson", ".gpkg"})
         for (const Case& c : cases) {
@@ -486,10 +501,13 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
             std::ofstream(ship) << ship_text;
             std::ofstream(berths) << berth;
             std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "trainee"}]})";
+            reset_land();
+            std::ofstream(assess) << colreg;
             // A part with --ship instead of helsinki's --dims when the case gives one.
             const auto part = [&](const std::string& name, const std::string& args) {
                 const fs::path path = temp_dir() / name;
                 std::string base = helsinki;
+                if (args.find("--coast ") != std::string::npos) base = base.substr(base.find(" --dims"));  // the case's own coast
                 if (args.find("--ship ") != std::string::npos) base.replace(base.find("--dims 100,20,8,8"), 17, "");
                 const Outcome r = shoal("check " + base + " " + args + " -o " + q(path));
                 EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
@@ -508,6 +526,18 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
                 EXPECT_FALSE(fs::exists(out)) << c.name << ext << ": nothing written";
             }
         }
+    {  // Parts checked against a grid file whose sources did not change still merge.
+        reset_land();
+        std::string parts;
+        for (const char* k : {"0/2", "1/2"}) {
+            const fs::path path = temp_dir() / ("id-grid-" + std::string(k, 1) + ".gpkg");
+            const Outcome r = shoal("check" + helsinki.substr(helsinki.find(" --dims")) + g + " --shard " + k + " " + files + " -o " + q(path));
+            EXPECT_LE(r.status, 1) << r.err;
+            parts += " " + q(path);
+        }
+        const Outcome m = shoal("merge" + parts + " -o " + q(temp_dir() / "id-grid-merged.gpkg"));
+        EXPECT_LE(m.status, 1) << m.err;
+    }
     // The same inputs and options in every shard still merge to the single run (the header's new
     // fields are the single run's too).
     std::ofstream(day) << head << first << later;

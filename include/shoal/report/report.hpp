@@ -33,6 +33,10 @@ struct RunInfo {
     std::string limiting_depth_source = "land_only";  ///< where that came from (grid::to_string(DepthPlan::Source))
     double ukc_m = 0;                   ///< under-keel clearance added to every draught
     std::string grid_fingerprint;
+    /// --coast a grid file: a fingerprint (fingerprint_sources) of the chart sources it names, read
+    /// again at check time (S-57 berths and shore constructions, the compilation scale, the coast
+    /// layer); "" when --coast gives the sources (grid_fingerprint covers their bytes then)
+    std::string chart_fingerprint;
     std::string ship;         ///< the default hull: ship name or "--dims a,b,c,d"
     audit::SweepOptions sweep;
     audit::World world = audit::World::real;  ///< the world the contacts' kinds were decided in
