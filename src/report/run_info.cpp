@@ -3,14 +3,18 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <vector>
 
 #include <cpl_vsi.h>
+#include <gdal_priv.h>
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/grid/limiting_depth.hpp>
+
+#include "detail/gdal_support.hpp"
 
 namespace shoal::report {
 
@@ -53,6 +57,29 @@ long long feed_file(XXH3_state_t* st, const std::string& path) {
     return size;
 }
 
+/// The files of each vector source, as GDAL lists them (a Shapefile's .shp, .shx, .dbf, .prj),
+/// sorted; the path itself when GDAL lists none (or cannot open it).
+std::vector<std::string> source_files(const std::vector<std::string>& paths) {
+    shoal::detail::register_drivers();
+    std::vector<std::string> out;
+    for (const std::string& path : paths) {
+        std::vector<std::string> files;
+        VSIStatBufL stat{};
+        if (VSIStatExL(path.c_str(), &stat, VSI_STAT_EXISTS_FLAG | VSI_STAT_NATURE_FLAG) == 0 && VSI_ISREG(stat.st_mode)) {
+            shoal::detail::QuietErrors quiet;
+            if (GDALDatasetUniquePtr ds{GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY)})
+                if (char** list = ds->GetFileList()) {
+                    for (char** f = list; *f; ++f) files.emplace_back(*f);
+                    CSLDestroy(list);
+                }
+        }
+        std::sort(files.begin(), files.end());
+        if (files.empty()) files.push_back(path);
+        out.insert(out.end(), files.begin(), files.end());
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string files_fingerprint(const std::vector<std::string>& paths) {
@@ -91,7 +118,7 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.evidence = options.evidence;
     info.wild = options.wild;
     info.berths = joined(berths);
-    info.berths_fingerprint = files_fingerprint(berths);
+    info.berths_fingerprint = files_fingerprint(source_files(berths));  // a Shapefile's .prj and .dbf too
     info.hull_from_length_width = options.read.hull_from_length_width;
     info.ship_margin_m = options.encounter.ship_margin_m;
     info.exercise_by = audit::exercise_by_text(options.exercise_by, options.read.exercise_column);

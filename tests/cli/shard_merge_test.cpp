@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <gdal_priv.h>
+#include <gdal_utils.h>
 #include <nlohmann/json.hpp>
 
 #include "run_shoal.hpp"
@@ -467,6 +468,22 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
     const auto reset_land = [&] { fs::copy_file(source_root() + "/examples/data/gof_helsinki_land.geojson", land, fs::copy_options::overwrite_existing); };
     reset_land();
     ASSERT_EQ(shoal("import " + q(land) + " -o " + q(grid)).status, 0);
+    // --berths a Shapefile: its .prj (and .dbf, .shx) are the source too, not only the .shp given.
+    const fs::path berths_shp = temp_dir() / "identity_berths.shp", berths_prj = temp_dir() / "identity_berths.prj";
+    {
+        GDALAllRegister();
+        const GDALDatasetUniquePtr src(GDALDataset::Open(berths.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+        ASSERT_TRUE(src);
+        const char* argv[] = {"-f", "ESRI Shapefile", nullptr};
+        GDALVectorTranslateOptions* o = GDALVectorTranslateOptionsNew(const_cast<char**>(argv), nullptr);
+        GDALDatasetH in = GDALDataset::ToHandle(src.get());
+        GDALDatasetH out = GDALVectorTranslate(berths_shp.c_str(), nullptr, 1, &in, o, nullptr);
+        GDALVectorTranslateOptionsFree(o);
+        ASSERT_TRUE(out);
+        GDALClose(out);
+    }
+    const std::string prj_text = slurp(berths_prj);
+    ASSERT_FALSE(prj_text.empty());
     // --assess with a colreg criterion: its parameters (new) are the run's too.
     const fs::path assess = temp_dir() / "identity_assessment.json";
     const std::string colreg = R"({"criteria": [{"id": "rules", "kind": "colreg", "penalty": 10}]})";
@@ -477,6 +494,7 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
     };
     const std::string v = " --vessels " + q(vessels), s = " --ship " + q(ship), e = " --encounters --roles " + q(roles);
     const std::string bt = " --berths " + q(berths);
+    const std::string bs = " --berths " + q(berths_shp);
     const std::string g = " --coast " + q(grid), as = " --encounters --assess " + q(assess);
     const std::vector<Case> cases = {
         {"grown", "", "", "growing_day.csv' is ", [&] { std::ofstream(day) << head << first << later; }},
@@ -489,6 +507,7 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
         {"ship-edited", s, s, "'ship_fingerprint' is ", [&] { std::ofstream(ship) << R"({"name": "identity", "length": 140, "beam": 16, "a": 120, "b": 20, "c": 8, "d": 8})"; }},
         {"berths-edited", bt, bt, "'berths_fingerprint' is ", [&] { std::ofstream(berths) << berth << "\n"; }},
         {"roles-edited", e, e, "'roles_fingerprint' is ", [&] { std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "target"}]})"; }},
+        {"berths-prj-edited", bs, bs, "'berths_fingerprint' is ", [&] { std::ofstream(berths_prj, std::ios::app) << " "; }},
         {"chart-edited", g, g, "'chart_fingerprint' is ", [&] { std::ofstream(land, std::ios::app) << "\n"; }},
         {"colreg-edited", as, as, "'assessment_fingerprint' is ",
          [&] { std::ofstream(assess) << R"({"criteria": [{"id": "rules", "kind": "colreg", "penalty": 10, "cpa_m": 500}]})"; }},
@@ -503,6 +522,7 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
             std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "trainee"}]})";
             reset_land();
             std::ofstream(assess) << colreg;
+            std::ofstream(berths_prj) << prj_text;
             // A part with --ship instead of helsinki's --dims when the case gives one.
             const auto part = [&](const std::string& name, const std::string& args) {
                 const fs::path path = temp_dir() / name;
