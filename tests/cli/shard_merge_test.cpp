@@ -508,6 +508,13 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
         {"berths-edited", bt, bt, "'berths_fingerprint' is ", [&] { std::ofstream(berths) << berth << "\n"; }},
         {"roles-edited", e, e, "'roles_fingerprint' is ", [&] { std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "target"}]})"; }},
         {"berths-prj-edited", bs, bs, "'berths_fingerprint' is ", [&] { std::ofstream(berths_prj, std::ios::app) << " "; }},
+        // The exercise file from standard input: its entries as read (its name "-" says nothing).
+        {"roles-stdin", " --encounters --roles - <" + q(roles), " --encounters --roles - <" + q(roles), "'roles_fingerprint' is ",
+         [&] { std::ofstream(roles) << R"({"tracks": [{"track": "230990001", "role": "target"}]})"; }},
+        {"vessels-stdin", " --vessels - <" + q(vessels), " --vessels - <" + q(vessels), "'vessels_fingerprint' is ",
+         [&] { std::ofstream(vessels) << "mmsi,name,draught_m\n230990001,AGROUND AT SPEED,2\n"; }},
+        {"ship-stdin", " --ship - <" + q(ship), " --ship - <" + q(ship), "'ship_fingerprint' is ",
+         [&] { std::ofstream(ship) << R"({"name": "identity", "length": 140, "beam": 16, "a": 120, "b": 20, "c": 8, "d": 8})"; }},
         {"chart-edited", g, g, "'chart_fingerprint' is ", [&] { std::ofstream(land, std::ios::app) << "\n"; }},
         {"colreg-edited", as, as, "'assessment_fingerprint' is ",
          [&] { std::ofstream(assess) << R"({"criteria": [{"id": "rules", "kind": "colreg", "penalty": 10, "cpa_m": 500}]})"; }},
