@@ -347,10 +347,6 @@ public:
         info.assessment = m_assess_file;
         // Everything else that changes the report, so that merge refuses parts that differ in it.
         info.berth_tolerance_m = m_berth_tolerance_m;
-        // A grid file's chart sources are read again (berths, shore constructions, the scale, the
-        // coast layer): their bytes now, which the grid's fingerprint (of its build) does not say.
-        if (const auto sources = grid::coast_sources(m_opts.coast, g); sources != m_opts.coast && !sources.empty())
-            info.chart_fingerprint = grid::fingerprint_hex(grid::fingerprint_sources(sources, {}, "", 0));
         if (!m_opts.ship_file.empty()) info.ship_fingerprint = report::files_fingerprint({m_opts.ship_file});  // --dims: `ship` says them
         if (!m_opts.ship_file.empty() && is_stream(m_opts.ship_file)) info.ship_fingerprint = hull_fingerprint(hull);  // `-`, a pipe: as read
         for (const auto& v : m_vessel_files) info.vessels += (info.vessels.empty() ? "" : ", ") + v;

@@ -12,6 +12,7 @@
 #include <xxhash.h>
 
 #include <shoal/grid/coast_grid.hpp>
+#include <shoal/grid/grid_builder.hpp>
 #include <shoal/grid/limiting_depth.hpp>
 
 #include "detail/gdal_support.hpp"
@@ -112,6 +113,10 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
     info.limiting_depth_source = grid::to_string(depth.source);
     info.ukc_m = options.ukc_m.value_or(0.0);
     info.grid_fingerprint = grid::fingerprint_hex(grid.source().fingerprint);
+    // A grid file's chart sources are read again (berths, shore constructions, the scale, the
+    // coast layer): their bytes now, which the grid's fingerprint (of its build) does not say.
+    if (const auto sources = grid::coast_sources(coast, grid); sources != coast && !sources.empty())
+        info.chart_fingerprint = grid::fingerprint_hex(grid::fingerprint_sources(sources, {}, "", 0));
     info.ship = ship;
     info.sweep = options.sweep;
     info.world = options.world;

@@ -298,6 +298,15 @@ TEST_F(BadInput, NmeaLogCutShortSkipsTheCutSentence) {
     EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 5);
 }
 
+// Resident memory per line is measured in the plain build only: under AddressSanitizer freed
+// blocks wait in its quarantine (256 MB) and every allocation has shadow memory, so a log read
+// line by line still grows the process with the lines it has freed.
+#ifdef __SANITIZE_ADDRESS__
+constexpr bool k_memory_per_line_measurable = false;
+#else
+constexpr bool k_memory_per_line_measurable = true;
+#endif
+
 TEST_F(BadInput, AisLinesWithBadChecksumsCostNoMemoryPerLine) {
     // Issue 42: 5 M AIS lines with bad checksums took 578 MB against 108 MB for 5 M bad CSV rows:
     // the log was held whole (the bad lines' messages were already capped at ten). Now a log is
@@ -319,8 +328,10 @@ TEST_F(BadInput, AisLinesWithBadChecksumsCostNoMemoryPerLine) {
     EXPECT_LT(lines_of(b.err), 20u) << b.err;
     const auto doc = report(m_dir.file("many.geojson"));
     EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 5);
-    EXPECT_LT(b.peak_rss_kb, a.peak_rss_kb + 16'000) << "KiB: " << b.peak_rss_kb << " for 1,000,000 bad lines against " << a.peak_rss_kb
+    if (k_memory_per_line_measurable) {
+        EXPECT_LT(b.peak_rss_kb, a.peak_rss_kb + 16'000) << "KiB: " << b.peak_rss_kb << " for 1,000,000 bad lines against " << a.peak_rss_kb
                                                       << " for 1,000";
+    }
 }
 
 TEST_F(BadInput, HalfAisMessagesWithIdsOfTheirOwnCostNoMemoryPerLine) {
@@ -345,8 +356,10 @@ TEST_F(BadInput, HalfAisMessagesWithIdsOfTheirOwnCostNoMemoryPerLine) {
     EXPECT_EQ(b.status, 0) << b.err;
     EXPECT_NE(b.err.find("many.nmea line 6: AIS message of 2 fragments without fragment 2 (half message)"), std::string::npos) << b.err;
     EXPECT_NE(b.err.find("many.nmea: 499990 more bad rows skipped"), std::string::npos) << b.err;
-    EXPECT_LT(b.peak_rss_kb, a.peak_rss_kb + 16'000) << "KiB: " << b.peak_rss_kb << " for 500,000 half messages against " << a.peak_rss_kb
+    if (k_memory_per_line_measurable) {
+        EXPECT_LT(b.peak_rss_kb, a.peak_rss_kb + 16'000) << "KiB: " << b.peak_rss_kb << " for 500,000 half messages against " << a.peak_rss_kb
                                                       << " for 1,000";
+    }
 }
 
 TEST_F(BadInput, GpxAndGeoJsonCutShortAreUnreadableFilesAndTheBatchGoesOn) {
