@@ -527,7 +527,8 @@ private:
         return *m_local[k];
     }
 
-    void add(std::size_t k, const Criterion& cr, const Run& run, double value, std::size_t other = SIZE_MAX) {
+    /// A breach of criterion cr by track k: whose it is and of what; the caller says when, where and how much.
+    Breach breach_of(std::size_t k, const Criterion& cr) {
         Breach b;
         const TrackSummary& s = summary(k);
         b.exercise = s.exercise;
@@ -535,6 +536,11 @@ private:
         b.track_index = k;
         b.criterion = cr.id;
         b.kind = cr.kind;
+        return b;
+    }
+
+    void add(std::size_t k, const Criterion& cr, const Run& run, double value, std::size_t other = SIZE_MAX) {
+        Breach b = breach_of(k, cr);
         b.start_s = run.start;
         b.end_s = run.end;
         b.worst_s = run.worst_t;
@@ -837,13 +843,7 @@ private:
         if (others.empty()) return;
         for (const Conduct& c : judge_conduct(own, others, m_in.frame, cr.colreg, m_in.max_gap_s)) {
             for (const ConductBreach& cb : c.breaches) {
-                Breach b;
-                const TrackSummary& s = summary(k);
-                b.exercise = s.exercise;
-                b.track = s.id;
-                b.track_index = k;
-                b.criterion = cr.id;
-                b.kind = cr.kind;
+                Breach b = breach_of(k, cr);
                 b.start_s = c.situation.start_s;
                 b.end_s = std::max(c.situation.start_s, cb.time_s);
                 b.worst_s = cb.time_s;
