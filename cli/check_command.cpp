@@ -10,13 +10,10 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
 
-#define XXH_INLINE_ALL
-#include <xxhash.h>
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/audit/shard.hpp>
@@ -28,6 +25,7 @@
 #include <shoal/report/report.hpp>
 #include <shoal/track/reader.hpp>
 #include <shoal/track/time.hpp>
+#include <shoal/report/read_fingerprints.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 #include <shoal/util/printable.hpp>
@@ -35,45 +33,6 @@
 namespace shoal::cli {
 
 namespace {
-
-/// A fingerprint of roles as read (each entry, the default role): for an exercise file that is
-/// no regular file (standard input, a pipe), whose bytes cannot be read again for the header.
-std::string roles_fingerprint(const audit::Roles& roles) {
-    std::string key = std::string(audit::to_string(roles.default_role)) + '\n';
-    for (const auto& e : roles.entries) key += e.track + '\0' + e.exercise + '\0' + audit::to_string(e.role) + '\n';
-    return grid::fingerprint_hex(XXH3_64bits(key.data(), key.size()));
-}
-
-/// Text of numbers to the last bit, for the fingerprints of inputs read from a stream.
-std::string bits(std::initializer_list<double> values) {
-    std::string out;
-    char num[40];
-    for (const double v : values) {
-        std::snprintf(num, sizeof num, "%a;", v);
-        out += num;
-    }
-    return out;
-}
-std::string text_fingerprint(const std::string& key) { return grid::fingerprint_hex(XXH3_64bits(key.data(), key.size())); }
-
-/// The ship as read (name, contour, A,B,C,D, draught): for a ship file read from a stream.
-std::string hull_fingerprint(const hull::Hull& h) {
-    const hull::Dimensions d = h.dimensions();
-    std::string key = h.name() + '\0' + bits({d.a, d.b, d.c, d.d, h.draught()});
-    for (const geo::XY& p : h.contour()) key += bits({p.x, p.y});
-    return text_fingerprint(key);
-}
-
-/// The vessels as read (every field of every vessel): for vessels tables read from a stream.
-std::string vessels_fingerprint(const std::map<std::string, track::VesselInfo>& vessels) {
-    std::string key;
-    for (const auto& [id, v] : vessels) {
-        key += id + '\0' + v.name + '\0' + v.source + '\0' + v.dims_source + '\0' + v.draught_source + '\0' + v.ship_type_source + '\0';
-        if (v.dims) key += bits({v.dims->a, v.dims->b, v.dims->c, v.dims->d});
-        key += bits({v.draught_m, static_cast<double>(v.ship_type)}) + '\n';
-    }
-    return text_fingerprint(key);
-}
 
 bool is_stream(const std::string& path) {
     std::error_code ec;
@@ -343,15 +302,15 @@ public:
         info.roles = m_roles_file;
         info.roles_fingerprint = report::files_fingerprint(m_roles_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{m_roles_file});
         // Read from standard input or a pipe: what was read (the name alone would be the same for any roles).
-        if (!m_roles_file.empty() && is_stream(m_roles_file)) info.roles_fingerprint = roles_fingerprint(m_roles);
+        if (!m_roles_file.empty() && is_stream(m_roles_file)) info.roles_fingerprint = report::roles_fingerprint(m_roles);
         info.assessment = m_assess_file;
         // Everything else that changes the report, so that merge refuses parts that differ in it.
         info.berth_tolerance_m = m_berth_tolerance_m;
         if (!m_opts.ship_file.empty()) info.ship_fingerprint = report::files_fingerprint({m_opts.ship_file});  // --dims: `ship` says them
-        if (!m_opts.ship_file.empty() && is_stream(m_opts.ship_file)) info.ship_fingerprint = hull_fingerprint(hull);  // `-`, a pipe: as read
+        if (!m_opts.ship_file.empty() && is_stream(m_opts.ship_file)) info.ship_fingerprint = report::hull_fingerprint(hull);  // `-`, a pipe: as read
         for (const auto& v : m_vessel_files) info.vessels += (info.vessels.empty() ? "" : ", ") + v;
         info.vessels_fingerprint = report::files_fingerprint(m_vessel_files);
-        if (std::any_of(m_vessel_files.begin(), m_vessel_files.end(), is_stream)) info.vessels_fingerprint = vessels_fingerprint(m_vessels);
+        if (std::any_of(m_vessel_files.begin(), m_vessel_files.end(), is_stream)) info.vessels_fingerprint = report::vessels_fingerprint(m_vessels);
         if (m_audit.read.date_s) info.date = report::iso_time(*m_audit.read.date_s).substr(0, 10);
         info.project = !m_no_project;
         info.jobs = m_audit.jobs;
