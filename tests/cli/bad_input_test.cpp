@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "test_support.hpp"
+#include "build_kind.hpp"
 #include <shoal/util/atomic_file.hpp>
 
 extern char** environ;
@@ -43,6 +44,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using shoal::test::data_path;
+using shoal::test::under_sanitizer;
 using shoal::test::TempDir;
 
 struct Outcome {
@@ -1749,7 +1751,11 @@ TEST_F(BadInput, EveryNumericOptionRefusesNanInfinityAndOutOfRangeValuesAtParseT
             if (cmd == "probe") return shoal({"probe", "--coast", s_grid, "--dims", "50,10,5,5", poses, opt});
             return shoal({"import", coast, "-o", m_dir.file("opt.shoalgrid"), opt});
         };
-        for (const char* v : o.refused) {
+        for (std::size_t i = 0; i < o.refused.size(); ++i) {
+            // Under a sanitizer: the first and the last refused value of each option (the same
+            // parse path; the plain build tries every value).
+            if (under_sanitizer && i != 0 && i + 1 != o.refused.size()) continue;
+            const char* v = o.refused[i];
             const Outcome r = run(v);
             EXPECT_EQ(r.status, 2) << o.command << " " << o.option << "=" << v << "\n" << r.err;
             EXPECT_NE(r.err.find("usage error: "), std::string::npos) << o.option << "=" << v << "\n" << r.err;

@@ -20,6 +20,7 @@
 #include <gdal_utils.h>
 #include <nlohmann/json.hpp>
 
+#include "build_kind.hpp"
 #include "run_shoal.hpp"
 
 namespace {
@@ -46,6 +47,7 @@ std::string slurp(const fs::path& p) {
 }
 
 using shoal::test::Outcome;
+using shoal::test::under_sanitizer;
 
 Outcome shoal(const std::string& args) { return shoal::test::run_shoal(args, temp_dir() / "cache", temp_dir() / "stderr.txt"); }
 
@@ -521,6 +523,10 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
     };
     for (const char* ext : {".geojson", ".gpkg"})
         for (const Case& c : cases) {
+            // Under a sanitizer the GeoPackage parts of the first three cases only: merge reads
+            // both formats' run headers into one record and compares that (the plain build
+            // tries every case in both).
+            if (under_sanitizer && std::string(ext) == ".gpkg" && &c - cases.data() >= 3) continue;
             // Every input as it was at the start, then shard 0, the change, shard 1.
             std::ofstream(day) << head << first;
             std::ofstream(vessels) << table;
