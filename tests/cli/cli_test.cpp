@@ -11,6 +11,7 @@
 #include <random>
 #include <set>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <ogrsf_frmts.h>
 #include <sys/wait.h>
@@ -53,14 +54,32 @@ std::string data(const std::string& rel) { return "'" + std::string(SHOAL_TEST_D
 std::size_t lines_of(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 
 TEST(Cli, EveryCommandHasHelpWithUsage) {
-    for (const char* cmd : {"import", "info", "probe", "check"}) {
-        const Outcome r = shoal(std::string(cmd) + " --help");
-        EXPECT_EQ(r.status, 0) << cmd;
-        EXPECT_NE(r.out.find("Usage: shoal " + std::string(cmd)), std::string::npos) << cmd << ":\n" << r.out;
-    }
+    // The commands are those the top-level help lists (not a list kept here), and each command
+    // the README's usage shows is among them.
     const Outcome top = shoal("--help");
     EXPECT_EQ(top.status, 0);
     EXPECT_NE(top.out.find("Exit status"), std::string::npos);
+    const std::size_t from = top.out.find("Subcommands:\n");
+    ASSERT_NE(from, std::string::npos) << top.out;
+    std::set<std::string> commands;
+    std::istringstream listed(top.out.substr(from + 13));
+    for (std::string line; std::getline(listed, line) && !line.empty();) {
+        std::istringstream words(line);
+        std::string name;
+        words >> name;
+        commands.insert(name);
+    }
+    std::ifstream readme(source_root() + "/README.md");
+    std::set<std::string> documented;
+    for (std::string line; std::getline(readme, line);)
+        if (line.rfind("shoal ", 0) == 0) documented.insert(line.substr(6, line.find(' ', 6) - 6));
+    EXPECT_GE(documented.size(), 5u) << "the README's usage lines";
+    for (const std::string& d : documented) EXPECT_TRUE(commands.count(d)) << "the README shows 'shoal " << d << "', the help does not list it";
+    for (const std::string& cmd : commands) {
+        const Outcome r = shoal(cmd + " --help");
+        EXPECT_EQ(r.status, 0) << cmd;
+        EXPECT_NE(r.out.find("Usage: shoal " + cmd), std::string::npos) << cmd << ":\n" << r.out;
+    }
 }
 
 TEST(Cli, ImportThenInfoTellsWhatTheGridHolds) {
