@@ -55,7 +55,8 @@ class AuditResult:
     """What shoal.audit found: the report's layers.
 
     events, tracks (GeoDataFrames in EPSG:4326 when geopandas imports, else DataFrames with
-    lon/lat columns), problems (DataFrame), run and summary (dicts); in exercise mode
+    lon/lat columns), problems (DataFrame), run and summary (dicts); times are datetime64[ns, UTC]
+    (Timestamps in the dicts); in exercise mode
     (encounters=True) also encounters and closest_approaches. Field names, types, units and
     rounding are the report's (docs/user-guide.md, "Report").
     """
@@ -346,6 +347,7 @@ def audit(fixes, grid, *, ship=None, dims=None, columns=None, file="DataFrame", 
     contact's kind; "simulated": the chart is the world; default real, simulated with encounters).
     geo: GeoDataFrames (True), DataFrames (False), or GeoDataFrames when geopandas imports (None).
 
+    An unknown keyword or a value of the wrong type raises a one-line TypeError naming it.
     A bad row (no position, an impossible time, ...) costs that row: it is listed in `problems`
     and counted in the tracks' skipped_rows, and a warning says how many. Returns an AuditResult.
     """
