@@ -12,7 +12,7 @@ of that day.
 
 --check-build BUILD_DIR: every header the build compiled (`ninja -t deps`) and every library its
 `cli/shoal` loads (`ldd`) must belong to a package of the `--build` set or of the bare system
-(`dpkg -S`): the build needs nothing more than `install-deps.sh --build`.
+(dpkg's file lists, as `dpkg -S`): the build needs nothing more than `install-deps.sh --build`.
 """
 import os
 import re
@@ -86,16 +86,25 @@ def main():
         files = {l.strip() for l in deps.splitlines() if l.startswith("    ") and l.strip().startswith("/usr/")}
         ldd = subprocess.run(["ldd", os.path.join(build, "cli", "shoal")], capture_output=True, text=True, check=True).stdout
         files |= {m.group(1) for m in re.finditer(r"=> (/\S+)", ldd)}
+        # dpkg's own lists of the files each installed package owns (what `dpkg -S` reads), read once.
+        owner_of = {}
+        info = "/var/lib/dpkg/info"
+        for name in os.listdir(info):
+            if name.endswith(".list"):
+                pkg = name[:-5].split(":")[0]
+                with open(os.path.join(info, name), encoding="utf-8", errors="replace") as f:
+                    for line in f:
+                        owner_of.setdefault(line.rstrip("\n"), set()).add(pkg)
         owners = {}
         for f in sorted(files):
-            real = os.path.realpath(f)
-            p = subprocess.run(["dpkg", "-S", f], capture_output=True, text=True)
-            if p.returncode != 0:
-                p = subprocess.run(["dpkg", "-S", real], capture_output=True, text=True)
-            if p.returncode != 0:
+            # As given, resolved, or through /usr-merged /lib: the path a package lists.
+            candidates = [f, os.path.realpath(f), os.path.normpath(f)]
+            candidates += [c[4:] for c in candidates if c.startswith("/usr/lib/") or c.startswith("/usr/bin/")]
+            pkgs = set().union(*(owner_of.get(c, set()) for c in candidates))
+            if not pkgs:
                 sys.exit("no package owns %s" % f)
-            for pkg in p.stdout.split(":", 1)[0].split(", "):
-                owners.setdefault(pkg.split(":")[0], f)
+            for pkg in pkgs:
+                owners.setdefault(pkg, f)
         allowed = sets["--build"] | {n for n, _ in base}
         outside = {p: f for p, f in owners.items() if p not in allowed}
         print("build %s: %d files from %d packages; outside the --build set and the bare system: %s"
