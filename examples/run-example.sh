@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The example audit, end to end on a fresh Debian 12 machine: installs the packages, builds
+# The example audit, end to end on a fresh Debian 12 machine: installs the build's packages, builds
 # shoal (Release), imports the Helsinki coastline into a grid, audits ten minutes of real AIS
 # traffic off Helsinki and an hour of a sailing yacht's NMEA log, and checks a few single
 # poses. Outputs go to examples/out/: open helsinki-traffic.gpkg, or plaka.geojson (styled by
@@ -7,12 +7,15 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 cd "$here/.."
-./scripts/install-deps.sh
+# Only what the library and the CLI need (scripts/install-deps.sh --build: no test framework,
+# no Python module, no QGIS/Dask/Chromium); ./scripts/test.sh installs everything.
+./scripts/install-deps.sh --build
 # SHOAL_BUILD_DIR: an existing build to use instead (CI uses the test suite's, not a second
 # compile of the library); by default a Release build in build-release/.
 build="${SHOAL_BUILD_DIR:-build-release}"
 if [ -z "${SHOAL_BUILD_DIR:-}" ]; then
-  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHOAL_BUILD_TESTS=OFF -DSHOAL_BUILD_BENCH=OFF > /dev/null
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHOAL_BUILD_TESTS=OFF -DSHOAL_BUILD_BENCH=OFF \
+    -DSHOAL_BUILD_PYTHON=OFF > /dev/null
 fi
 cmake --build "$build" --target shoal_cli
 shoal="$build/cli/shoal"

@@ -55,7 +55,8 @@ class AuditResult:
     """What shoal.audit found: the report's layers.
 
     events, tracks (GeoDataFrames in EPSG:4326 when geopandas imports, else DataFrames with
-    lon/lat columns), problems (DataFrame), run and summary (dicts); in exercise mode
+    lon/lat columns), problems (DataFrame), run and summary (dicts); times are datetime64[ns, UTC]
+    (Timestamps in the dicts); in exercise mode
     (encounters=True) also encounters and closest_approaches. Field names, types, units and
     rounding are the report's (docs/user-guide.md, "Report").
     """
@@ -159,20 +160,32 @@ def _columns_of(df, found):
     return cols
 
 
+def _datetimes(values):
+    """The report's times (ISO 8601 UTC text, "2014-08-15T19:01:30Z" or with milliseconds "...30.813Z",
+    track::format_iso8601; "" or None for none) as a datetime64[ns, UTC] Series (NaT for none)."""
+    import pandas as pd
+    texts = pd.Series([v if v else None for v in values], dtype=object)
+    return pd.to_datetime(texts, utc=True)  # pandas' own ISO 8601 parser, exact to the nanosecond
+
+
 def _frame(layer):
     import pandas as pd
-    dtypes = {"integer": "Int64", "real": "float64", "boolean": "boolean", "text": "object",
-              "datetime": "object"}  # ISO 8601 text, as in the GeoJSON report
+    dtypes = {"integer": "Int64", "real": "float64", "boolean": "boolean", "text": "object"}
     data = {}
     for name, kind in zip(layer["names"], layer["types"]):
-        data[name] = pd.Series(layer["columns"][name], dtype=dtypes[kind])
+        values = layer["columns"][name]
+        data[name] = _datetimes(values) if kind == "datetime" else pd.Series(values, dtype=dtypes[kind])
     df = pd.DataFrame(data, columns=layer["names"])
     df.attrs["units"] = dict(zip(layer["names"], layer["units"]))
     return df
 
 
 def _one_row(layer):
-    return {name: layer["columns"][name][0] for name in layer["names"]}
+    row = {}
+    for name, kind in zip(layer["names"], layer["types"]):
+        v = layer["columns"][name][0]
+        row[name] = _datetimes([v]).iloc[0] if kind == "datetime" else v  # a Timestamp (UTC), NaT for none
+    return row
 
 
 def _with_points(df, points, use_geopandas):
@@ -208,6 +221,109 @@ def _geopandas_available():
         return False
 
 
+def _audit_keywords():
+    """{keyword: type} of shoal._audit's options, read from the extension's own signature (pybind11
+    writes it as the docstring's first line: "_audit(grid: ..., *, ship: object = None, margin_m:
+    float = 50.0, ...) -> dict"), so that the keywords checked here are the extension's."""
+    import re
+    first = (_audit.__doc__ or "").splitlines()[0] if _audit.__doc__ else ""
+    m = re.search(r"\*, (.*)\) ->", first)
+    if not m:
+        return None
+    out = {}
+    for part in m.group(1).split(", "):
+        name, _, rest = part.partition(": ")
+        out[name] = rest.partition(" = ")[0]
+    return out
+
+
+# The options whose type pybind11 sees as `object`, and what each takes (checked here, so that an
+# error names the keyword: the extension's own message for a bad argument holds every argument).
+_PATHS = "a path (str or os.PathLike) or a list of paths"
+_OBJECT_KINDS = {"ship": "path", "berths": "paths", "vessels": "paths", "dims": "dims", "ukc": "number",
+                 "hazard_depth_m": "number", "progress": "callable", "world": "text"}
+
+
+def _is_path(v):
+    import os
+    return isinstance(v, (str, os.PathLike))
+
+
+def _type_problem(kind, v):
+    """What is wrong with v as a `kind` (pybind11's type name or one of _OBJECT_KINDS), or None."""
+    import numbers
+    import numpy as np
+    is_bool = isinstance(v, (bool, np.bool_))
+    if kind == "float":
+        return None if isinstance(v, numbers.Real) and not is_bool else "a number"
+    if kind == "int":
+        if not isinstance(v, numbers.Integral) or is_bool:
+            return "a whole number"
+        return None if v >= 0 else "a whole number >= 0"
+    if kind == "bool":
+        return None if is_bool else "True or False"
+    if v is None:  # not given (ship or dims: the extension says which to give)
+        return None
+    if kind == "path":
+        return None if _is_path(v) else "a path (str or os.PathLike)"
+    if kind == "paths":
+        if _is_path(v):
+            return None
+        try:
+            ok = not isinstance(v, (bytes, dict)) and all(_is_path(p) for p in v)
+        except TypeError:
+            ok = False
+        return None if ok else _PATHS
+    if kind == "dims":
+        try:
+            ok = not isinstance(v, (str, bytes)) and all(isinstance(x, numbers.Real) and not isinstance(x, (bool, np.bool_)) for x in v)
+        except TypeError:
+            ok = False
+        return None if ok else "four numbers (a, b, c, d)"
+    if kind == "number":
+        return None if isinstance(v, numbers.Real) and not is_bool else "a number or None"
+    if kind == "callable":
+        return None if callable(v) else "a callable(done, total) or None"
+    if kind == "text":
+        return None if isinstance(v, str) else "a str or None"
+    return None
+
+
+def _type_name(v):
+    t = type(v)
+    return t.__name__ if t.__module__ == "builtins" else "%s.%s" % (t.__module__, t.__name__)
+
+
+def _short(v):
+    text = repr(v)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _check_options(grid, ship, dims, options):
+    """One-line TypeErrors naming the keyword for an unknown option or a value of the wrong type,
+    before the extension sees them (its own message would repeat every argument: the fixes too)."""
+    if not isinstance(grid, Grid):
+        raise TypeError("shoal.audit(): grid must be a shoal.Grid (shoal.Grid.load(path) or shoal.Grid.build(paths)), not %s"
+                        % _type_name(grid))
+    known = _audit_keywords()
+    if known is None:  # a signature this file cannot read: the extension checks alone
+        return
+    for name in options:
+        if name not in known or name in ("ship", "dims"):
+            import difflib
+            near = difflib.get_close_matches(name, [k for k in known if k not in ("ship", "dims")] +
+                                             ["ship", "dims", "columns", "file", "geo"], n=1)
+            raise TypeError("shoal.audit() got an unexpected keyword argument %r%s" %
+                            (name, " (did you mean %r?)" % near[0] if near else ""))
+    given = dict(options, ship=ship, dims=dims)
+    for name, v in given.items():
+        kind = known.get(name)
+        kind = _OBJECT_KINDS.get(name, kind) if kind == "object" else kind
+        want = _type_problem(kind, v)
+        if want:
+            raise TypeError("shoal.audit(): %s must be %s, not %s %s" % (name, want, _type_name(v), _short(v)))
+
+
 def audit(fixes, grid, *, ship=None, dims=None, columns=None, file="DataFrame", geo=None, **options):
     """Audits the tracks in a DataFrame of fixes as `shoal check` audits a track file.
 
@@ -231,15 +347,25 @@ def audit(fixes, grid, *, ship=None, dims=None, columns=None, file="DataFrame", 
     contact's kind; "simulated": the chart is the world; default real, simulated with encounters).
     geo: GeoDataFrames (True), DataFrames (False), or GeoDataFrames when geopandas imports (None).
 
+    An unknown keyword or a value of the wrong type raises a one-line TypeError naming it.
     A bad row (no position, an impossible time, ...) costs that row: it is listed in `problems`
     and counted in the tracks' skipped_rows, and a warning says how many. Returns an AuditResult.
     """
     import pandas as pd
     if not isinstance(fixes, pd.DataFrame):
         raise TypeError("fixes must be a pandas DataFrame (got %s)" % type(fixes).__name__)
+    _check_options(grid, ship, dims, options)
     found = _find_columns(fixes, columns)
     cols = _columns_of(fixes, found)
-    raw = _audit(grid, cols, str(file), ship=ship, dims=dims, **options)
+    try:
+        raw = _audit(grid, cols, str(file), ship=ship, dims=dims, **options)
+    except TypeError as e:
+        if "incompatible function arguments" not in str(e):
+            raise
+        # A value the checks above let through and the extension's types do not take: said in one
+        # line with the options (pybind11's message lists every argument, the fixes' columns too).
+        given = ", ".join("%s=%s" % (k, _short(v)) for k, v in dict(options, ship=ship, dims=dims).items())
+        raise TypeError("shoal.audit(): an option's value has a type the audit does not take (%s)" % given) from None
     use_geopandas = _geopandas_available() if geo is None else bool(geo)
     layers = {
         "events": _with_points(_frame(raw["events"]), raw["event_points"], use_geopandas),

@@ -19,8 +19,15 @@ COLUMNS = {"id": "MMSI", "time": "BaseDateTime", "lat": "LAT", "lon": "LON", "so
 
 def plain(v):
     """A DataFrame cell as the report's JSON has it: null for missing, Python numbers."""
-    if v is None or v is pd.NA or (isinstance(v, float) and math.isnan(v)):
+    if v is None or v is pd.NA or v is pd.NaT or (isinstance(v, float) and math.isnan(v)):
         return None
+    if isinstance(v, pd.Timestamp):
+        # The report's ISO 8601 text (milliseconds when not 0, Z), written here from the Timestamp's fields:
+        # anything else (not UTC, a finer part) cannot equal the CLI's text.
+        if str(v.tz) != "UTC" or v.microsecond % 1000 or v.nanosecond:
+            return repr(v)
+        ms = v.microsecond // 1000
+        return v.strftime("%Y-%m-%dT%H:%M:%S") + (".%03d" % ms if ms else "") + "Z"
     if isinstance(v, (np.bool_, bool)):
         return bool(v)
     if isinstance(v, np.integer):
@@ -205,10 +212,66 @@ class AuditAgainstCheck(unittest.TestCase):
             shoal.audit(df.drop(columns=["LAT"]), self.grid, dims=DIMS)
         with self.assertRaisesRegex(ValueError, "columns: id column 'mmsi_typo' is not in the DataFrame"):
             shoal.audit(df, self.grid, dims=DIMS, columns={"id": "mmsi_typo"})
-        with self.assertRaises(TypeError):
+        with self.assertRaisesRegex(TypeError, r"^shoal.audit\(\) got an unexpected keyword argument 'no_such_option'$"):
             shoal.audit(df, self.grid, dims=DIMS, no_such_option=1)
         with self.assertRaisesRegex(shoal.InputError, "not_a_dataset.txt"):
             shoal.audit(df, self.grid, dims=DIMS, berths=support.data("coast/not_a_dataset.txt"))
+
+    def test_a_wrong_keyword_or_type_is_one_line_naming_it(self):
+        # The message names the keyword (and the nearest known one), in one line whose length does
+        # not grow with the data: pybind11's own listed every argument, the fixes' columns too
+        # (177 KB for 4,061 rows).
+        small = read_fixes(os.path.join(support.AIS_CASES, "passes_clear.csv"))
+        big = pd.concat([small] * 200, ignore_index=True)
+        cases = [
+            ({"margn_m": 50}, "shoal.audit() got an unexpected keyword argument 'margn_m' (did you mean 'margin_m'?)"),
+            ({"margin_m": "50"}, "shoal.audit(): margin_m must be a number, not str '50'"),
+            ({"margin_m": None}, "shoal.audit(): margin_m must be a number, not NoneType None"),
+            ({"jobs": -1}, "shoal.audit(): jobs must be a whole number >= 0, not int -1"),
+            ({"jobs": 1.5}, "shoal.audit(): jobs must be a whole number, not float 1.5"),
+            ({"encounters": "yes"}, "shoal.audit(): encounters must be True or False, not str 'yes'"),
+            ({"berths": 3}, "shoal.audit(): berths must be a path (str or os.PathLike) or a list of paths, not int 3"),
+            ({"progress": 3}, "shoal.audit(): progress must be a callable(done, total) or None, not int 3"),
+            ({"world": 1}, "shoal.audit(): world must be a str or None, not int 1"),
+            ({"dims": "abc"}, "shoal.audit(): dims must be four numbers (a, b, c, d), not str 'abc'"),
+            ({"ship": 3, "dims": None}, "shoal.audit(): ship must be a path (str or os.PathLike), not int 3"),
+            # Past what the checks know (an unsigned beyond 64 bits): still one line, the options only.
+            ({"jobs": 2 ** 70}, "shoal.audit(): an option's value has a type the audit does not take "
+                                "(jobs=1180591620717411303424, ship=None, dims=(100, 20, 8, 8))"),
+        ]
+        for kw, message in cases:
+            kw = dict({"dims": DIMS}, **kw)
+            for df in (small, big):
+                with self.assertRaises(TypeError, msg=kw) as caught:
+                    shoal.audit(df, self.grid, **kw)
+                self.assertEqual(str(caught.exception), message)
+                self.assertIsNone(caught.exception.__cause__)
+                self.assertTrue(caught.exception.__suppress_context__ or caught.exception.__context__ is None)
+        with self.assertRaisesRegex(TypeError, r"^shoal.audit\(\): grid must be a shoal.Grid .*not str$"):
+            shoal.audit(small, "coast.shoalgrid", dims=DIMS)
+        # What the checks let through is the audit's: numpy numbers work.
+        ok = shoal.audit(small, self.grid, dims=np.array(DIMS, dtype=float), margin_m=np.float32(50), jobs=np.int64(1))
+        self.assertEqual(ok.summary["fixes"], len(small))
+
+    def test_times_are_utc_datetimes(self):
+        track = os.path.join(support.AIS_CASES, "aground_at_speed.csv")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            result = shoal.audit(read_fixes(track), self.grid, dims=DIMS, columns=COLUMNS, file=track)
+        for layer, names in ((result.events, ("start", "end", "start_not_before")), (result.tracks, ("start", "end"))):
+            for name in names:
+                self.assertEqual(str(layer[name].dtype), "datetime64[ns, UTC]", name)
+        # The fixes' own times bound the track's (BaseDateTime in the CSV, read here by pandas).
+        fixes = pd.to_datetime(read_fixes(track)["BaseDateTime"], utc=True)
+        self.assertEqual(result.tracks["start"].iloc[0], fixes.min())
+        self.assertEqual(result.tracks["end"].iloc[0], fixes.max())
+        grounding = result.events[result.events["kind"] == "grounding"].iloc[0]
+        self.assertTrue(fixes.min() <= grounding["start"] <= grounding["end"] <= fixes.max())
+        self.assertAlmostEqual((grounding["end"] - grounding["start"]).total_seconds(), grounding["duration_s"], places=2)
+        self.assertEqual(result.summary["first_fix"], fixes.min())
+        self.assertEqual(result.summary["last_fix"], fixes.max())
+        # Time arithmetic as pandas users do it: events per hour.
+        self.assertEqual(int(result.events.set_index("start").resample("1H").size().sum()), len(result.events))
 
     def test_progress_is_called(self):
         df = read_fixes(os.path.join(support.AIS_CASES, "moored_then_leaves.csv"))
