@@ -171,6 +171,12 @@ void merge_collinear(std::vector<Site>& sites, double tol) {
                 Site& a = sites[i];
                 const Site& b = sites[j];
                 if (a.polyline != b.polyline) continue;
+                // b within tol of a's line and overlapping a's span within tol has a point within
+                // 2 tol of a: boxes farther apart than that (with room for rounding) never merge.
+                const double gap = 4 * tol;
+                if (std::max(b.a.x, b.b.x) < std::min(a.a.x, a.b.x) - gap || std::min(b.a.x, b.b.x) > std::max(a.a.x, a.b.x) + gap ||
+                    std::max(b.a.y, b.b.y) < std::min(a.a.y, a.b.y) - gap || std::min(b.a.y, b.b.y) > std::max(a.a.y, a.b.y) + gap)
+                    continue;
                 const XY d = a.b - a.a;
                 const double len = std::sqrt(geo::norm2(d));
                 if (!(len > 0)) continue;
@@ -594,13 +600,23 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             // most segments have none), sorted by segment.
             std::vector<std::pair<std::size_t, double>> cut_at;
             std::vector<std::pair<double, double>> tu;
-            for (std::size_t i = 0; i < bounds.size(); ++i)
-                for (std::size_t j = i + 1; j < bounds.size(); ++j) {
+            // A sweep along x: only pairs whose x-ranges meet are tried (a pier's harbour holds
+            // hundreds of segments; the list is sorted below, so the order found does not matter).
+            std::vector<std::uint32_t> by_x(bounds.size());
+            std::iota(by_x.begin(), by_x.end(), 0u);
+            auto lo_x = [&](std::uint32_t k) { return std::min(bounds[k].a.x, bounds[k].b.x); };
+            std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t x, std::uint32_t y) { return lo_x(x) < lo_x(y) || (lo_x(x) == lo_x(y) && x < y); });
+            for (std::size_t ii = 0; ii < by_x.size(); ++ii) {
+                const std::uint32_t p = by_x[ii];
+                const double hi = std::max(bounds[p].a.x, bounds[p].b.x);
+                for (std::size_t jj = ii + 1; jj < by_x.size() && lo_x(by_x[jj]) <= hi; ++jj) {
+                    const std::size_t i = std::min(p, by_x[jj]), j = std::max(p, by_x[jj]);
                     if (bounds[i].polyline == bounds[j].polyline || boxes_apart(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b)) continue;
                     tu.clear();
                     crossings(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
                     for (auto [t, u] : tu) cut_at.emplace_back(i, t), cut_at.emplace_back(j, u);
                 }
+            }
             std::sort(cut_at.begin(), cut_at.end());
             // Pieces between cuts. Whether a piece is buried (water side inside another hazard)
             // can change only where another boundary crosses: pieces joined end to end
@@ -1033,7 +1049,20 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i) {
                 const auto segs = g.segments(i, j);
+                if (segs.empty()) continue;
+                // Whole chunks of segments whose box misses the box are skipped (a harbour
+                // cell holds ~760 segments; a chunk's box holds its segments' boxes).
+                const std::size_t first = g.index_of(segs);
+                const std::span<const Box> chunks = g.chunk_boxes();
+                constexpr std::size_t chunk = grid::CoastGrid::chunk_segments;
                 for (std::size_t k = 0; k < segs.size(); ++k) {
+                    if ((first + k) % chunk == 0 && k + chunk <= segs.size()) {
+                        const Box& c = chunks[(first + k) / chunk];
+                        if (c.maxx < box.minx || c.minx > box.maxx || c.maxy < box.miny || c.miny > box.maxy) {
+                            k += chunk - 1;
+                            continue;
+                        }
+                    }
                     const grid::Segment& s = segs[k];
                     if (std::max(s.a.x, s.b.x) < box.minx || std::min(s.a.x, s.b.x) > box.maxx ||
                         std::max(s.a.y, s.b.y) < box.miny || std::min(s.a.y, s.b.y) > box.maxy)
