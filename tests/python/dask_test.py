@@ -28,7 +28,7 @@ def expect(ok, what):
 
 
 def run(cmd):
-    p = subprocess.run(cmd, env=env, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+    p = subprocess.run(cmd, env=env, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=240)
     return p.returncode, p.stdout, p.stderr
 
 
