@@ -115,6 +115,27 @@ try:
                     problems = json.load(f)["shoal"]["problems"]
                 bad = [p for p in problems if "BAD TIME" in json.dumps(p) or "25:61" in json.dumps(p)]
                 expect(len(bad) == 1 and days[1] in json.dumps(bad[0]), "the bad row kept with its day file and line: %s" % problems)
+        # The partition steps by hand: a folder of another input, or of another count, is refused
+        # naming it; an existing folder is never replaced; two inputs to one read are refused.
+        pdir = os.path.join(tmp, "parts")
+        os.makedirs(pdir)
+        folders = []
+        for j, d in enumerate(days):
+            folders.append(os.path.join(pdir, "in-%d" % j))
+            status, _, err = run([shoal, "check"] + coast + ["--partitions", "2", "-o", folders[-1], "--", d])
+            expect(status == 0 and "bytes read" in err, "check --partitions exit 0: %d %s" % (status, err))
+        status, _, err = run([shoal, "check"] + coast + ["--partitions", "2", "-o", folders[0], "--", days[0]])
+        expect(status == 2 and "exists: partitions are written to a new folder, nothing replaced" in err, "an existing folder kept: " + err)
+        status, _, err = run([shoal, "check"] + coast + ["--partitions", "2", "-o", os.path.join(pdir, "two"), "--"] + days[:2])
+        expect(status == 2 and "one TRACK input" in err, "two inputs to one read refused: " + err)
+        swapped = [x for f in (folders[1], folders[0], folders[2]) for x in ("--from-partitions", f)]
+        status, _, err = run([shoal, "check"] + coast + swapped + ["--shard", "0/2", "--traffic-only", "-o", os.path.join(pdir, "t0"), "--"] + days)
+        expect(status == 2 and "the partitions of '%s', not of '%s'" % (days[1], days[0]) in err, "inputs out of order refused: " + err)
+        given = [x for f in folders for x in ("--from-partitions", f)]
+        status, _, err = run([shoal, "check"] + coast + given + ["--shard", "0/3", "--traffic-only", "-o", os.path.join(pdir, "t0"), "--"] + days)
+        expect(status == 2 and "written in 2 partitions, not 3" in err, "another count refused: " + err)
+        status, _, err = run([shoal, "check"] + coast + given + ["--shard", "0/2", "-o", os.path.join(pdir, "p0.geojson"), "--"] + days)
+        expect(status == 2 and "needs --traffic" in err, "the real world without the traffic refused: " + err)
         # The per-file mode refuses the same days at the merge (one run merges the vessels).
         status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "2", "--shoal", shoal, "--per-file", "check"] + coast + days +
                              ["-o", os.path.join(tmp, "per-file.geojson")])
