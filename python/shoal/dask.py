@@ -1,22 +1,31 @@
 """Run a ``shoal check`` as tasks on a Dask cluster, then ``shoal merge`` the parts.
 
-    python3 -m shoal.dask [--scheduler tcp://HOST:PORT | --local N] [--shards K] [--retries R]
-                          [--shoal PATH] [--parts-dir DIR] check ARGS...
+    python3 -m shoal.dask [--scheduler tcp://HOST:PORT | --local N] [--partitions K | --shards K | --per-file]
+                          [--retries R] [--shoal PATH] [--parts-dir DIR] check ARGS...
 
-ARGS are those of ``shoal check`` (see ``shoal check --help``). One task per track input
-(file or folder) as given, each ``shoal check ... INPUT --shard 0/1``; or, with ``--shards K``,
-one task per shard ``--shard i/K`` over all the inputs. Each task runs the ``shoal``
-executable, which writes its part atomically; a task that fails (a non-zero exit other than 1,
-"a grounding was found", or a process killed by a signal) is retried R times and, if it still
-fails, named on stderr, and the exit status is 2: a part is never silently missing. The parts
-are then merged (``shoal merge``) into the report one ``shoal check`` of the same arguments
-writes, byte for byte, and the exit status is check's (0 no grounding, 1 a grounding). The
-report is GeoJSON, or a GeoPackage for ``-o REPORT.gpkg`` (the parts are then GeoPackages).
+ARGS are those of ``shoal check`` (see ``shoal check --help``; the driver parses them as
+check does, from the option list ``shoal check --list-options`` prints).
 
-One run per input equals one run over all inputs only when no vessel has fixes in two inputs
-(one run merges them into one track): ``shoal merge`` detects that case and refuses, naming
-the vessel; use ``--shards K`` then (every task reads every file). Exercise mode
-(``--encounters``) is one exercise: it needs ``--shards``.
+By default (``--partitions K``) the run goes in three stages, each started when every task of
+the one before has succeeded: one task per track input as given (a file, folder or zip)
+reads it once and writes its fixes hashed by vessel into K partition files (``shoal check
+--partitions K -o DIR INPUT``); one task per partition writes its vessels' traffic, the
+real world's evidence (``--from-partitions ... --shard i/K --traffic-only``); one task per
+partition audits its vessels whole (``--from-partitions ... --shard i/K --traffic ...``),
+writing the part ``--shard i/K`` over all the inputs writes. Vessels with fixes in several
+inputs (daily files) are one track each, as in one run. With ``--shards K`` instead: one
+task per shard ``--shard i/K``, each reading every input; with ``--per-file``: one task per
+input, ``--shard 0/1``, which ``shoal merge`` refuses, naming the vessel, when a vessel has
+fixes in two inputs. Exercise mode (``--encounters`` and the options that imply it) is one
+exercise: it needs ``--shards``.
+
+Each task runs the ``shoal`` executable, which writes its output atomically; a task that
+fails (a non-zero exit other than 1, "a grounding was found", or a process killed by a
+signal) is retried R times and, if it still fails, named on stderr, and the exit status is
+2: a part is never silently missing. The parts are then merged (``shoal merge``) into the
+report one ``shoal check`` of the same arguments writes, byte for byte, and the exit status
+is check's (0 no grounding, 1 a grounding). The report is GeoJSON, or a GeoPackage for ``-o
+REPORT.gpkg`` (the parts are then GeoPackages).
 
 The grid: coastline sources given to ``--coast`` are built into a grid once, here (``shoal
 probe`` into a private cache folder), its bytes scattered to the workers and written once per
@@ -43,10 +52,27 @@ import sys
 import tempfile
 import time
 
-# check's options that take no value; every other option takes one, and those listed in
-# MULTI take every value up to the next option (as the shoal CLI parses them).
-FLAGS = {"--encounters", "--hull-from-length-width", "--progress", "--no-progress", "-v", "--verbose", "--no-project", "--traffic-only"}
-MULTI = {"--coast", "--layer"}
+# check's options that take no value (FLAGS) and those that take every value up to the next
+# option (MULTI), as the shoal CLI parses them: asked from the executable itself (`shoal
+# check --list-options`, check_options), so the driver parses what check parses.
+FLAGS = set()
+MULTI = set()
+
+
+def check_options(shoal):
+    """Fills FLAGS and MULTI from `shoal check --list-options` (NAMES TAB 0|1|many a line)."""
+    p = subprocess.run([shoal, "check", "--list-options"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    lines = [line.split("\t") for line in p.stdout.splitlines() if "\t" in line]
+    if p.returncode != 0 or not lines:
+        raise UsageError("'%s check --list-options' gave no option list (exit status %d): a shoal older than this driver?" % (shoal, p.returncode))
+    FLAGS.clear()
+    MULTI.clear()
+    for names, takes in lines:
+        for n in names.split(","):
+            if takes == "0":
+                FLAGS.add(n)
+            elif takes == "many":
+                MULTI.add(n)
 # check's options that make a run one exercise (exercise mode): checked whole, by --shards only.
 EXERCISE = ("--encounters", "--exercise-by", "--roles", "--assess", "--role-column")
 # Options a task sets itself; given by the user they are refused or replaced.
@@ -314,6 +340,8 @@ def run(a):
         raise UsageError("--partitions K needs K >= 1")
     if sum(x is not None and x is not False for x in (a.shards, a.partitions, a.per_file or None)) > 1:
         raise UsageError("--shards, --partitions and --per-file are three ways to split the run: give one")
+    shoal = find_shoal(a.shoal)
+    check_options(shoal)
     options, tracks, output = split_check_args(a.args)
     exercise = [name for name in EXERCISE if option_values(options, name) is not None]
     if exercise and a.shards is None:
@@ -322,7 +350,6 @@ def run(a):
         # Twice the workers of --local (a worker takes the next partition while a slow one ends);
         # on a cluster, one partition per input (a year of days: 366 tasks of a day's fixes each).
         a.partitions = 2 * (a.local or 2) if a.scheduler is None else max(2, len(tracks))
-    shoal = find_shoal(a.shoal)
     options = [o for o in options if o[0] not in ("--cache-dir", "--progress", "--no-progress")]
     options.append(["--no-progress"])
     cwd = os.getcwd()
