@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
                     std::string names;
                     for (const std::string& n : o->get_snames()) names += (names.empty() ? "-" : ",-") + n;
                     for (const std::string& n : o->get_lnames()) names += (names.empty() ? "--" : ",--") + n;
-                    const bool flag = o->get_type_size_max() == 0;
+                    const bool flag = o->get_type_size_max() == 0 || o->get_expected_max() == 0 || o->get_expected_min() == 0;
                     const bool many = !flag && o->get_expected_max() > 1 && o->get_allow_extra_args();
                     std::printf("%s\t%s\n", names.c_str(), flag ? "0" : many ? "many" : "1");
                 }

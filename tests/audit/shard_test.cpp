@@ -101,6 +101,9 @@ TEST(Partition, PartitionsTogetherAreWhatOneRunReads) {
     EXPECT_THROW(write_partitions(folders[0], days[0], {}, count, 1, fingerprint), InputError) << "an existing folder is never replaced";
     const ReadResult one = read_inputs(days, {}, 1);  // one run's read: the answer
     ASSERT_EQ(one.tracks.size(), 8u) << "6 vessels merged across the days, BUOY twice";
+    ASSERT_EQ(one.files.size(), 2u);
+    ASSERT_EQ(one.files[1].read.skipped, 1u) << "the bad row of day 2";
+    ASSERT_EQ(one.files[1].read.messages.size(), 1u);
     std::vector<int> seen(one.tracks.size(), 0);
     for (unsigned p = 0; p < count; ++p) {
         std::vector<std::size_t> positions;
