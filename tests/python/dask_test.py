@@ -159,7 +159,7 @@ try:
                     'if [ "$1" = check ]; then\n'
                     '  prev=; for a; do [ "$prev" = -o ] && out=$a; prev=$a; done\n'
                     '  marker="%s/killed-$(basename "$out")"\n'
-                    '  if [ ! -e "$marker" ]; then : > "$marker"; kill -9 $$; fi\n'
+                    '  if [ -n "$out" ] && [ ! -e "$marker" ]; then : > "$marker"; kill -9 $$; fi\n'
                     'fi\n'
                     'exec "%s" "$@"\n' % (tmp, shoal))
         os.chmod(wrapper, 0o755)
@@ -239,7 +239,7 @@ try:
         pids = os.path.join(tmp, "pids")
         wrapper = os.path.join(tmp, "slow.sh")
         with open(wrapper, "w") as f:
-            f.write('#!/bin/sh\ncase "$1" in check) echo $$ >> "%s"; exec sleep 120;; esac\nexec "%s" "$@"\n' % (pids, shoal))
+            f.write('#!/bin/sh\ncase "$1 $2" in "check --list-options") ;; check*) echo $$ >> "%s"; exec sleep 120;; esac\nexec "%s" "$@"\n' % (pids, shoal))
         os.chmod(wrapper, 0o755)
         out = os.path.join(tmp, case + ".geojson")
         procs = []
