@@ -16,6 +16,7 @@
 
 
 #include <shoal/audit/audit.hpp>
+#include <shoal/audit/partition.hpp>
 #include <shoal/audit/shard.hpp>
 #include <shoal/coast/chart_scale.hpp>
 #include <shoal/coast/expected_areas.hpp>
@@ -93,6 +94,21 @@ public:
                           "Audit only shard I of N (0 <= I < N): the tracks whose id hashes there (XXH3); every file is still "
                           "read, so files and lines stay true. `shoal merge` puts the N reports together as one run's. With "
                           "--encounters a shard is a whole exercise");
+        // Partitions of a run on a cluster (python3 -m shoal.dask; docs/scale-out.md).
+        m_sub->add_option("--partitions", m_partitions,
+                          "Instead of auditing: read the one TRACK input (a file, folder or zip) and write its fixes, hashed by vessel "
+                          "id into K partitions, to the new folder -o DIR (with what reading found: bad rows, fingerprints), for "
+                          "--from-partitions")
+            ->check(CLI::Range(1u, 1000000u));
+        m_sub->add_option("--from-partitions", m_from_partitions,
+                          "With --shard I/N: audit partition I of the folders written by --partitions N, one per TRACK input in "
+                          "order, instead of reading the TRACK files (the report is the shard's, byte for byte); real world: with "
+                          "--traffic");
+        m_sub->add_flag("--traffic-only", m_traffic_only,
+                        "With --from-partitions: write only the partition's traffic (stays, fixes over land) to -o FILE, for --traffic");
+        m_sub->add_option("--traffic", m_traffic,
+                          "With --from-partitions: the traffic files of partitions 0..N-1 (--traffic-only), every vessel's evidence")
+            ->allow_extra_args(false);
         m_sub->add_flag("--encounters", m_audit.encounters,
                         "Exercise mode: the tracks are one exercise; also report ship-to-ship collisions and close quarters");
         m_sub->add_option("--ship-margin", m_audit.encounter.ship_margin_m,
@@ -181,6 +197,7 @@ public:
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
     }
     int run() override {
+        if (m_partitions) return write_partitions();
         // Vessels files found in track folders join after the ones given with --vessels.
         std::vector<std::string> folder_vessels;
         std::vector<std::string> all_inputs = m_opts.inputs(track::expand_inputs(m_tracks, nullptr, &folder_vessels));
@@ -277,7 +294,35 @@ public:
         }
         Progress bar(m_progress.value_or(::isatty(2) != 0));
         m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };
-        const audit::AuditResult r = audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);
+        if (!m_from_partitions.empty() || m_traffic_only || !m_traffic.empty()) {
+            if (m_from_partitions.empty()) throw UsageError("--traffic-only and --traffic go with --from-partitions");
+            if (!m_audit.shard.active()) throw UsageError("--from-partitions needs --shard I/N: the partition I of N to audit");
+            if (m_audit.encounters)
+                throw UsageError("--from-partitions: exercise mode checks an exercise whole, not by partitions of vessels; use --shard alone");
+        }
+        std::vector<std::string> partition_ids;
+        std::vector<std::size_t> partition_positions;
+        std::optional<audit::ReadResult> partition;
+        if (!m_from_partitions.empty()) {
+            partition = audit::read_partition(m_from_partitions, m_tracks, m_audit.shard, partition_positions, &partition_ids);
+            if (m_audit.vessels)
+                for (std::string& w : track::unmatched_vessels_tables(*m_audit.vessels, partition_ids)) partition->warnings.push_back(std::move(w));
+        }
+        if (m_traffic_only) {
+            const std::vector<audit::TrackResult> traffic = audit::traffic_of_partition(*partition, g, hull, m_audit);
+            audit::write_traffic(m_output, traffic, m_audit.shard);
+            std::fprintf(stderr, "shoal: the traffic of %zu tracks of partition %s written to %s\n", traffic.size(), m_audit.shard.text().c_str(),
+                         printable(m_output).c_str());
+            return exit_ok;
+        }
+        if (partition && m_audit.world == audit::World::real && m_traffic.empty())
+            throw UsageError("--from-partitions in the real world needs --traffic T0 ... T(N-1): every partition's traffic (--traffic-only)");
+        const audit::AuditResult r =
+            partition ? audit::audit_partition(std::move(*partition), std::move(partition_positions),
+                                               m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard)
+                                                                                   : std::vector<audit::TrackResult>{},
+                                               g, hull, m_opts.hull_label(), m_audit)
+                      : audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);
         for (const auto& f : r.files) {
             for (const auto& m : f.read.messages) std::fprintf(stderr, "shoal: warning: %s\n", printable(m).c_str());
             if (f.read.skipped > f.read.skips_said)
@@ -394,6 +439,35 @@ public:
     }
 
 private:
+    /// --partitions K: the one TRACK input read and written, hashed by vessel, into K partition
+    /// files in the new folder -o (audit::write_partitions). Only what changes the reading
+    /// matters here (--date, --hull-from-length-width); no grid is built.
+    int write_partitions() {
+        if (m_tracks.size() != 1)
+            throw UsageError("--partitions writes the partitions of one TRACK input (a file, folder or zip), not " + std::to_string(m_tracks.size()) +
+                             ": one task per input");
+        if (!m_from_partitions.empty() || !m_shard.empty() || m_traffic_only || !m_traffic.empty())
+            throw UsageError("--partitions writes partitions: it goes without --from-partitions, --shard, --traffic and --traffic-only");
+        if (m_audit.encounters || !m_exercise_by.empty() || !m_audit.read.role_column.empty() || !m_roles_file.empty() || !m_assess_file.empty())
+            throw UsageError("--partitions: exercise mode checks an exercise whole, not by partitions of vessels; use --shard");
+        if (!m_date.empty()) {
+            const auto day = track::parse_date(m_date);
+            if (!day) throw UsageError("--date '" + m_date + "' is not a date YYYY-MM-DD");
+            m_audit.read.date_s = *day;
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        const audit::PartitionSummary s = audit::write_partitions(m_output, m_tracks.front(), m_audit.read, m_partitions, m_audit.jobs,
+                                                                  [](const std::string& f) { return report::file_size_and_fingerprint(f); });
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        // One line for the driver's task log: what was read, once.
+        std::fprintf(stderr, "shoal: partitions: %s: %zu files, %zu bytes read, %zu tracks, %zu fixes into %u partitions in %s (%.2f s)\n",
+                     printable(m_tracks.front()).c_str(), s.files, s.bytes_read, s.tracks, s.fixes, m_partitions, printable(m_output).c_str(), seconds);
+        return exit_ok;
+    }
+
+    unsigned m_partitions = 0;
+    std::vector<std::string> m_from_partitions, m_traffic;
+    bool m_traffic_only = false;
     CoastAndShip m_opts;
     std::vector<std::string> m_tracks;
     std::string m_output;

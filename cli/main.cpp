@@ -83,6 +83,23 @@ int main(int argc, char** argv) {
                "Run 'shoal COMMAND --help' for a command's options; docs/user-guide.md has the details.");
     std::vector<std::unique_ptr<shoal::cli::Command>> commands = shoal::cli::make_commands();
     for (auto& c : commands) c->setup(app);
+    // `shoal COMMAND --list-options`: the command's options, one a line, for drivers that pass
+    // a command line on (python3 -m shoal.dask): NAMES (comma-separated) TAB how many values
+    // each use takes: 0 (a flag), 1, or many (every value up to the next option).
+    if (argc == 3 && std::string(argv[2]) == "--list-options")
+        for (const CLI::App* sub : app.get_subcommands({}))
+            if (sub->get_name() == argv[1]) {
+                for (const CLI::Option* o : sub->get_options()) {
+                    if (o->get_positional()) continue;
+                    std::string names;
+                    for (const std::string& n : o->get_snames()) names += (names.empty() ? "-" : ",-") + n;
+                    for (const std::string& n : o->get_lnames()) names += (names.empty() ? "--" : ",--") + n;
+                    const bool flag = o->get_type_size_max() == 0 || o->get_expected_max() == 0 || o->get_expected_min() == 0;
+                    const bool many = !flag && o->get_expected_max() > 1 && o->get_allow_extra_args();
+                    std::printf("%s\t%s\n", names.c_str(), flag ? "0" : many ? "many" : "1");
+                }
+                return 0;
+            }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,22 +1,31 @@
 """Run a ``shoal check`` as tasks on a Dask cluster, then ``shoal merge`` the parts.
 
-    python3 -m shoal.dask [--scheduler tcp://HOST:PORT | --local N] [--shards K] [--retries R]
-                          [--shoal PATH] [--parts-dir DIR] check ARGS...
+    python3 -m shoal.dask [--scheduler tcp://HOST:PORT | --local N] [--partitions K | --shards K | --per-file]
+                          [--retries R] [--shoal PATH] [--parts-dir DIR] check ARGS...
 
-ARGS are those of ``shoal check`` (see ``shoal check --help``). One task per track input
-(file or folder) as given, each ``shoal check ... INPUT --shard 0/1``; or, with ``--shards K``,
-one task per shard ``--shard i/K`` over all the inputs. Each task runs the ``shoal``
-executable, which writes its part atomically; a task that fails (a non-zero exit other than 1,
-"a grounding was found", or a process killed by a signal) is retried R times and, if it still
-fails, named on stderr, and the exit status is 2: a part is never silently missing. The parts
-are then merged (``shoal merge``) into the report one ``shoal check`` of the same arguments
-writes, byte for byte, and the exit status is check's (0 no grounding, 1 a grounding). The
-report is GeoJSON, or a GeoPackage for ``-o REPORT.gpkg`` (the parts are then GeoPackages).
+ARGS are those of ``shoal check`` (see ``shoal check --help``; the driver parses them as
+check does, from the option list ``shoal check --list-options`` prints).
 
-One run per input equals one run over all inputs only when no vessel has fixes in two inputs
-(one run merges them into one track): ``shoal merge`` detects that case and refuses, naming
-the vessel; use ``--shards K`` then (every task reads every file). Exercise mode
-(``--encounters``) is one exercise: it needs ``--shards``.
+By default (``--partitions K``) the run goes in three stages, each started when every task of
+the one before has succeeded: one task per track input as given (a file, folder or zip)
+reads it once and writes its fixes hashed by vessel into K partition files (``shoal check
+--partitions K -o DIR INPUT``); one task per partition writes its vessels' traffic, the
+real world's evidence (``--from-partitions ... --shard i/K --traffic-only``); one task per
+partition audits its vessels whole (``--from-partitions ... --shard i/K --traffic ...``),
+writing the part ``--shard i/K`` over all the inputs writes. Vessels with fixes in several
+inputs (daily files) are one track each, as in one run. With ``--shards K`` instead: one
+task per shard ``--shard i/K``, each reading every input; with ``--per-file``: one task per
+input, ``--shard 0/1``, which ``shoal merge`` refuses, naming the vessel, when a vessel has
+fixes in two inputs. Exercise mode (``--encounters`` and the options that imply it) is one
+exercise: it needs ``--shards``.
+
+Each task runs the ``shoal`` executable, which writes its output atomically; a task that
+fails (a non-zero exit other than 1, "a grounding was found", or a process killed by a
+signal) is retried R times and, if it still fails, named on stderr, and the exit status is
+2: a part is never silently missing. The parts are then merged (``shoal merge``) into the
+report one ``shoal check`` of the same arguments writes, byte for byte, and the exit status
+is check's (0 no grounding, 1 a grounding). The report is GeoJSON, or a GeoPackage for ``-o
+REPORT.gpkg`` (the parts are then GeoPackages).
 
 The grid: coastline sources given to ``--coast`` are built into a grid once, here (``shoal
 probe`` into a private cache folder), its bytes scattered to the workers and written once per
@@ -43,12 +52,33 @@ import sys
 import tempfile
 import time
 
-# check's options that take no value; every other option takes one, and those listed in
-# MULTI take every value up to the next option (as the shoal CLI parses them).
-FLAGS = {"--encounters", "--hull-from-length-width", "--progress", "--no-progress", "-v", "--verbose"}
-MULTI = {"--coast", "--layer"}
+# check's options that take no value (FLAGS) and those that take every value up to the next
+# option (MULTI), as the shoal CLI parses them: asked from the executable itself (`shoal
+# check --list-options`, check_options), so the driver parses what check parses.
+FLAGS = set()
+MULTI = set()
+
+
+def check_options(shoal):
+    """Fills FLAGS and MULTI from `shoal check --list-options` (NAMES TAB 0|1|many a line)."""
+    p = subprocess.run([shoal, "check", "--list-options"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    lines = [line.split("\t") for line in p.stdout.splitlines() if "\t" in line]
+    if p.returncode != 0 or not lines:
+        raise UsageError("'%s check --list-options' gave no option list (exit status %d): a shoal older than this driver?" % (shoal, p.returncode))
+    FLAGS.clear()
+    MULTI.clear()
+    for names, takes in lines:
+        for n in names.split(","):
+            if takes == "0":
+                FLAGS.add(n)
+            elif takes == "many":
+                MULTI.add(n)
+# check's options that make a run one exercise (exercise mode): checked whole, by --shards only.
+EXERCISE = ("--encounters", "--exercise-by", "--roles", "--assess", "--role-column")
 # Options a task sets itself; given by the user they are refused or replaced.
-REFUSED = {"--shard": "the driver sets --shard itself", "--plot": "a picture cannot be merged: draw it with one shoal check",
+REFUSED = {"--shard": "the driver sets --shard itself",
+           "--partitions": "the driver partitions the inputs itself", "--from-partitions": "the driver sets it itself",
+           "--traffic": "the driver sets it itself", "--traffic-only": "the driver sets it itself", "--plot": "a picture cannot be merged: draw it with one shoal check",
             "--debrief": "the debrief's pages are the whole run's and each task checks a part of it (every task would write over the "
                          "others'): write the debrief with one shoal check of the whole run",
            "--format": "the report's format is -o's extension: -o REPORT.geojson or -o REPORT.gpkg"}
@@ -179,11 +209,16 @@ def _die_with_parent():
         pass
 
 
-def run_task(name, cmd, cwd, grid):
-    """One task: runs `cmd` (a shoal check writing its part); raises on failure (Dask retries)."""
+def run_task(name, cmd, cwd, grid, fresh=None):
+    """One task: runs `cmd` (a shoal check writing its part); raises on failure (Dask retries).
+    `fresh`: a partition folder of the driver's work folder that `cmd` creates, removed first
+    (an earlier try may have left it). Returns (name, exit status, seconds, check's line about
+    the partitions it wrote, or "")."""
     env = dict(os.environ)
     if grid is not None:
         env["SHOAL_CACHE_DIR"] = _grid_cache_on_worker(grid)
+    if fresh is not None and os.path.lexists(fresh):
+        shutil.rmtree(fresh)
     t0 = time.monotonic()
     p = subprocess.run(cmd, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
                        preexec_fn=_die_with_parent)
@@ -191,7 +226,8 @@ def run_task(name, cmd, cwd, grid):
         why = "killed by signal %d" % -p.returncode if p.returncode < 0 else "exit status %d" % p.returncode
         tail = p.stderr.strip().splitlines()[-3:]
         raise RuntimeError("%s: shoal check %s%s" % (name, why, (": " + " | ".join(tail)) if tail else ""))
-    return name, p.returncode, time.monotonic() - t0
+    said = [line[len("shoal: partitions: "):] for line in p.stderr.splitlines() if line.startswith("shoal: partitions: ")]
+    return name, p.returncode, time.monotonic() - t0, said[-1] if said else ""
 
 
 def main(argv=None):
@@ -199,7 +235,12 @@ def main(argv=None):
     where = ap.add_mutually_exclusive_group()
     where.add_argument("--scheduler", help="address of a running Dask scheduler, tcp://HOST:PORT")
     where.add_argument("--local", type=int, metavar="N", help="a LocalCluster of N worker processes (default 2)")
-    ap.add_argument("--shards", type=int, metavar="K", help="K tasks, --shard i/K over all inputs (default: one task per input)")
+    ap.add_argument("--partitions", type=int, metavar="K",
+                    help="the default way: each input read once (one task per input), its fixes shuffled by vessel into K partitions, "
+                         "each audited whole by one task (default K: twice the --local workers, else one per input, at least 2)")
+    ap.add_argument("--shards", type=int, metavar="K", help="instead: K tasks, --shard i/K, each reading every input")
+    ap.add_argument("--per-file", action="store_true",
+                    help="instead: one task per input, --shard 0/1 (refused at the merge when a vessel has fixes in two inputs)")
     ap.add_argument("--retries", type=int, default=2, metavar="R", help="retries of a failed task (default 2)")
     ap.add_argument("--shoal", help="the shoal executable (default: the build tree's, else PATH)")
     ap.add_argument("--parts-dir", help="folder for the parts (default: a temporary folder beside the report); kept only if given")
@@ -265,7 +306,9 @@ def part_paths(a, tracks, output, parts_dir):
     ext = ".gpkg" if output.endswith(".gpkg") else ".geojson"  # parts of the report's format: merge reads those
     if a.shards:
         return [os.path.join(parts_dir, "part-%05d-of-%05d%s" % (i, a.shards, ext)) for i in range(a.shards)]
-    return [os.path.join(parts_dir, "part-%05d%s" % (i, ext)) for i in range(len(tracks))]
+    if a.per_file:
+        return [os.path.join(parts_dir, "part-%05d%s" % (i, ext)) for i in range(len(tracks))]
+    return [os.path.join(parts_dir, "partition-%05d-of-%05d%s" % (i, a.partitions, ext)) for i in range(a.partitions)]
 
 
 def claim_parts(parts_dir, paths):
@@ -293,10 +336,20 @@ def run(a):
         raise UsageError("--shards K needs K >= 1")
     if a.retries < 0:
         raise UsageError("--retries R needs R >= 0")
-    options, tracks, output = split_check_args(a.args)
-    if option_values(options, "--encounters") is not None and a.shards is None:
-        raise UsageError("--encounters: an exercise is checked whole; give --shards K (the exercise is one shard)")
+    if a.partitions is not None and a.partitions < 1:
+        raise UsageError("--partitions K needs K >= 1")
+    if sum(x is not None and x is not False for x in (a.shards, a.partitions, a.per_file or None)) > 1:
+        raise UsageError("--shards, --partitions and --per-file are three ways to split the run: give one")
     shoal = find_shoal(a.shoal)
+    check_options(shoal)
+    options, tracks, output = split_check_args(a.args)
+    exercise = [name for name in EXERCISE if option_values(options, name) is not None]
+    if exercise and a.shards is None:
+        raise UsageError("%s: an exercise is checked whole; give --shards K (the exercise is one shard)" % exercise[0])
+    if a.shards is None and not a.per_file and a.partitions is None:
+        # Twice the workers of --local (a worker takes the next partition while a slow one ends);
+        # on a cluster, one partition per input (a year of days: 366 tasks of a day's fixes each).
+        a.partitions = 2 * (a.local or 2) if a.scheduler is None else max(2, len(tracks))
     options = [o for o in options if o[0] not in ("--cache-dir", "--progress", "--no-progress")]
     options.append(["--no-progress"])
     cwd = os.getcwd()
@@ -323,15 +376,32 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
         a.local = 2
     if a.local is not None and option_values(options, "--jobs") is None and option_values(options, "-j") is None:
         options.append(["--jobs", str(max(1, (os.cpu_count() or 1) // a.local))])
-    tasks = []  # (name, part path, command)
     parts = part_paths(a, tracks, output, parts_dir)
+    stages = []  # each a list of (name, output path, command), run one after the other
     if a.shards:
-        for i, part in enumerate(parts):
-            tasks.append(("shard %d/%d" % (i, a.shards), part,
-                          [shoal, "check"] + flat(options) + ["--shard", "%d/%d" % (i, a.shards), "-o", part, "--"] + tracks))
+        stages.append([("shard %d/%d" % (i, a.shards), part,
+                         [shoal, "check"] + flat(options) + ["--shard", "%d/%d" % (i, a.shards), "-o", part, "--"] + tracks)
+                       for i, part in enumerate(parts)])
+    elif a.per_file:
+        stages.append([(t, part, [shoal, "check"] + flat(options) + ["--shard", "0/1", "-o", part, "--", t])
+                       for t, part in zip(tracks, parts)])
     else:
-        for t, part in zip(tracks, parts):
-            tasks.append((t, part, [shoal, "check"] + flat(options) + ["--shard", "0/1", "-o", part, "--", t]))
+        # 1. Each input read once, its fixes hashed by vessel into K partition files; 2. each
+        # partition's traffic (the real world's evidence is every vessel's); 3. each partition
+        # audited whole, from the partition files of every input and every partition's traffic.
+        k = a.partitions
+        folders = [os.path.join(workdir, "input-%05d" % j) for j in range(len(tracks))]
+        traffic = [os.path.join(workdir, "traffic-%05d-of-%05d.bin" % (i, k)) for i in range(k)]
+        inputs = [x for d in folders for x in ("--from-partitions", d)]
+        stages.append([("read %s" % t, d, [shoal, "check"] + flat(options) + ["--partitions", str(k), "-o", d, "--", t])
+                       for t, d in zip(tracks, folders)])
+        stages.append([("traffic %d/%d" % (i, k), traffic[i],
+                        [shoal, "check"] + flat(options) + inputs + ["--shard", "%d/%d" % (i, k), "--traffic-only", "-o", traffic[i], "--"] + tracks)
+                       for i in range(k)])
+        stages.append([("partition %d/%d" % (i, k), parts[i],
+                        [shoal, "check"] + flat(options) + inputs + ["--shard", "%d/%d" % (i, k)] +
+                        [x for t in traffic for x in ("--traffic", t)] + ["-o", parts[i], "--"] + tracks)
+                       for i in range(k)])
 
     if a.local is not None:
         cluster = LocalCluster(n_workers=a.local, threads_per_worker=1, processes=True, dashboard_address=None,
@@ -345,22 +415,28 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
             raise ClusterError("cannot reach the Dask scheduler at %s (%s); no report written" % (a.scheduler, e)) from None
     failed = []
     futures = {}
+    total = sum(len(tasks) for tasks in stages)
+    done = 0
     try:
         grid_future = client.scatter(grid, broadcast=True) if grid is not None else None
-        for k, (name, part, cmd) in enumerate(tasks):
-            f = client.submit(run_task, name, cmd, cwd, grid_future, retries=a.retries, pure=False, key="shoal-check-%d-%s" % (k, os.getpid()))
-            futures[f] = name
-        done = 0
-        print("shoal.dask: %d tasks on %d workers" % (len(tasks), len(client.scheduler_info()["workers"])), file=sys.stderr)
-        for f in _completed(client, futures, a.worker_timeout, len(tasks)):
-            done += 1
-            try:
-                name, status, seconds = f.result()
-                print("shoal.dask: [%d/%d] %s done in %.1f s%s" % (done, len(tasks), name, seconds, " (groundings)" if status == 1 else ""),
-                      file=sys.stderr)
-            except Exception as e:  # noqa: BLE001 - reported by name, then the run fails
-                failed.append(futures[f])
-                print("shoal.dask: [%d/%d] %s FAILED after %d retries: %s" % (done, len(tasks), futures[f], a.retries, e), file=sys.stderr)
+        print("shoal.dask: %d tasks on %d workers" % (total, len(client.scheduler_info()["workers"])), file=sys.stderr)
+        for stage, tasks in enumerate(stages):
+            futures = {}
+            for n, (name, out, cmd) in enumerate(tasks):
+                f = client.submit(run_task, name, cmd, cwd, grid_future, out if len(stages) > 1 and stage == 0 else None,
+                                  retries=a.retries, pure=False, key="shoal-check-%d-%d-%s" % (stage, n, os.getpid()))
+                futures[f] = name
+            for f in _completed(client, futures, a.worker_timeout, len(tasks)):
+                done += 1
+                try:
+                    name, status, seconds, said = f.result()
+                    print("shoal.dask: [%d/%d] %s done in %.1f s%s%s" % (done, total, name, seconds, " (groundings)" if status == 1 else "",
+                                                                         (": " + said) if said else ""), file=sys.stderr)
+                except Exception as e:  # noqa: BLE001 - reported by name, then the run fails
+                    failed.append(futures[f])
+                    print("shoal.dask: [%d/%d] %s FAILED after %d retries: %s" % (done, total, futures[f], a.retries, e), file=sys.stderr)
+            if failed:  # the next stage needs every task of this one
+                break
     finally:
         # On an interrupt or a failure too: the tasks cancelled, the local workers (and, with
         # them, their shoal checks: _die_with_parent) stopped before the work folder goes.
@@ -373,10 +449,10 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
         if cluster is not None:
             cluster.close(timeout=20)
     if failed:
-        print("shoal.dask: error: %d of %d tasks failed (%s); no report written" % (len(failed), len(tasks), ", ".join(failed)),
+        print("shoal.dask: error: %d of %d tasks failed (%s); no report written" % (len(failed), total, ", ".join(failed)),
               file=sys.stderr)
         return 2
-    p = subprocess.run([shoal, "merge"] + [t[1] for t in tasks] + ["-o", output], cwd=cwd, preexec_fn=_die_with_parent)
+    p = subprocess.run([shoal, "merge"] + parts + ["-o", output], cwd=cwd, preexec_fn=_die_with_parent)
     return p.returncode
 
 

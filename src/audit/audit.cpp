@@ -12,6 +12,7 @@
 #include <set>
 #include <tuple>
 
+#include <shoal/audit/partition.hpp>
 #include <shoal/audit/worst_pairs.hpp>
 #include <shoal/grid/limiting_depth.hpp>
 #include <shoal/track/merge.hpp>
@@ -55,6 +56,9 @@ struct TrackSource {
     /// in the real world. take_other(k) gives track k of them, once.
     std::size_t others = 0;
     std::function<track::Track(std::size_t)> take_other;
+    /// The traffic of the run's other tracks computed elsewhere (audit_partition: by the tasks of
+    /// the other partitions), learned from after `others`; null: none.
+    const std::vector<TrackResult>* traffic = nullptr;
 };
 
 AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
@@ -79,6 +83,21 @@ void join_static_data(track::Track& t, const std::map<std::string, track::Vessel
         t.ship_type = v.ship_type;
         t.ship_type_source = v.ship_type_source.empty() ? v.source : v.ship_type_source;
     }
+}
+
+std::vector<track::WildFix> prepare_track(track::Track& t, const AuditOptions& options) {
+    if (options.vessels) join_static_data(t, *options.vessels);
+    track::WildFixOptions wo = options.wild;
+    wo.max_gap_s = options.sweep.max_gap_s;
+    std::vector<track::WildFix> wild = track::drop_wild_fixes(t, wo);
+    track::resolve_motion(t, options.sweep.motion());
+    track::resolve_headings(t, 0.5, options.sweep.max_gap_s, options.world != World::real);
+    return wild;
+}
+
+/// A track's hull length for its traffic: its AIS dimensions', else the default hull's.
+double traffic_length(const track::Track& t, const hull::Hull& default_hull) {
+    return t.dims && hull::Hull::plausible(*t.dims) ? t.dims->a + t.dims->b : default_hull.length();
 }
 
 std::string dims_label(const hull::Dimensions& d) {
@@ -247,15 +266,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
     result.chart_tolerance_m = options.evidence.chart_tolerance_m;
     // Outliers dropped, static data joined, motion and headings resolved (the real world holds
     // no heading for a vessel at rest with neither heading nor COG: it may have swung).
-    auto prepare = [&](track::Track& t) {
-        if (options.vessels) join_static_data(t, *options.vessels);
-        track::WildFixOptions wo = options.wild;
-        wo.max_gap_s = options.sweep.max_gap_s;
-        std::vector<track::WildFix> wild = track::drop_wild_fixes(t, wo);
-        track::resolve_motion(t, options.sweep.motion());
-        track::resolve_headings(t, 0.5, options.sweep.max_gap_s, !real);
-        return wild;
-    };
+    auto prepare = [&](track::Track& t) { return prepare_track(t, options); };
     std::function<void()> tick;
     if (options.progress) tick = [&] { options.progress(done.load(), total_fixes); };
     parallel_for(
@@ -324,8 +335,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 try {
                     track::Track t = source.take_other(k);
                     prepare(t);
-                    const double length = t.dims && hull::Hull::plausible(*t.dims) ? t.dims->a + t.dims->b : default_hull.length();
-                    other[k] = traffic_of(t, length, *frames[w], grid, sweep_options, options.evidence);
+                    other[k] = traffic_of(t, traffic_length(t, default_hull), *frames[w], grid, sweep_options, options.evidence);
                 } catch (const InputError&) {  // that shard reports it
                 } catch (...) {
                     failure.keep(std::current_exception());
@@ -344,6 +354,11 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
             all.push_back(&o);
             ids.push_back(o.summary.id);
         }
+        if (source.traffic)
+            for (const TrackResult& o : *source.traffic) {
+                all.push_back(&o);
+                ids.push_back(o.summary.id);
+            }
         const Traffic traffic = learn_traffic(all, ids, *frames[0], options.evidence);
         for (std::size_t k = 0, m = 0; k < source.count; ++k)
             if (errors[k].empty()) {
@@ -571,5 +586,57 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
 }
 
 }  // namespace
+
+std::vector<TrackResult> traffic_of_partition(ReadResult& read, const grid::CoastGrid& grid, const hull::Hull& default_hull,
+                                              const AuditOptions& options) {
+    std::vector<TrackResult> out(read.tracks.size());
+    std::vector<char> ok(read.tracks.size(), 0);
+    if (options.world != World::real) return {};
+    const unsigned jobs = thread_count(options.jobs);
+    std::vector<std::unique_ptr<geo::LocalFrame>> frames;
+    for (unsigned w = 0; w < jobs; ++w) frames.push_back(std::make_unique<geo::LocalFrame>(grid.frame()));
+    FirstFailure failure;
+    parallel_for(
+        read.tracks.size(), jobs,
+        [&](std::size_t k, unsigned w) {
+            try {
+                track::Track t = read.tracks[k].unpack();
+                read.tracks[k].release_fixes();
+                prepare_track(t, options);
+                out[k] = traffic_of(t, traffic_length(t, default_hull), *frames[w], grid, options.sweep, options.evidence);
+                ok[k] = 1;
+            } catch (const InputError&) {  // the audit of this partition reports it
+            } catch (...) {
+                failure.keep(std::current_exception());
+            }
+        },
+        {});
+    failure.rethrow();
+    std::vector<TrackResult> kept;
+    for (std::size_t k = 0; k < out.size(); ++k)
+        if (ok[k]) kept.push_back(std::move(out[k]));
+    return kept;
+}
+
+AuditResult audit_partition(ReadResult read, std::vector<std::size_t> positions, std::vector<TrackResult> traffic,
+                            const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
+                            const AuditOptions& options) {
+    if (options.encounters) throw UsageError("AuditOptions::encounters: an exercise is checked whole (its shard), not by partitions of vessels");
+    std::vector<track::PackedTrack>& packed = read.tracks;
+    TrackSource source{packed.size(), [&](std::size_t k) { return packed[k].size(); },
+                       [&](std::size_t k) {
+                           track::Track t = packed[k].unpack();
+                           packed[k].release_fixes();
+                           return t;
+                       },
+                       [&](std::size_t k) { return positions[k]; }, 0, {}};
+    if (options.world == World::real) source.traffic = &traffic;
+    AuditResult result = audit(source, grid, default_hull, hull_label, options);
+    result.files = std::move(read.files);
+    result.read_s = read.read_s;
+    for (const auto& f : result.files) result.skipped_rows += f.read.skipped;
+    result.warnings.insert(result.warnings.begin(), read.warnings.begin(), read.warnings.end());
+    return result;
+}
 
 }  // namespace shoal::audit

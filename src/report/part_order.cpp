@@ -21,6 +21,10 @@ json part_order(const audit::AuditResult& r, bool gpkg) {
     json fingerprints = json::array();
     for (const auto& f : r.files) {
         inputs.push_back(f.file);
+        if (!f.fingerprint.empty()) {  // known where the file was read (partitions): not read again here
+            fingerprints.push_back(json::array({f.size, f.fingerprint}));
+            continue;
+        }
         const auto [size, fingerprint] = file_size_and_fingerprint(f.file);
         fingerprints.push_back(json::array({size, fingerprint}));
     }

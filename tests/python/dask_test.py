@@ -1,7 +1,7 @@
 """python3 -m shoal.dask against shoal check: the same report, byte for byte, with tasks
 killed and retried, and failures named. Run by ctest with /usr/bin/python3:
 
-    dask_test.py SHOAL_BINARY SOURCE_ROOT CASE    (CASE: per_file, shards, gpkg, killed, failing)
+    dask_test.py SHOAL_BINARY SOURCE_ROOT CASE    (CASE: partitions, daily, per_file, shards, gpkg, killed, failing, ...)
 """
 import json
 import os
@@ -28,7 +28,7 @@ def expect(ok, what):
 
 
 def run(cmd):
-    p = subprocess.run(cmd, env=env, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+    p = subprocess.run(cmd, env=env, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=240)
     return p.returncode, p.stdout, p.stderr
 
 
@@ -49,15 +49,97 @@ def dask(args, out, shoal_exe=shoal):
                ["check"] + coast + files + ["-o", out])
 
 
+# Each input read by exactly one task: the task log's "read INPUT done ...: INPUT: N files, B bytes read".
+def reads_in_log(err):
+    return [line.split(" read ", 1)[1].split(" done in ")[0] for line in err.splitlines() if "] read " in line and " done in " in line]
+
+
+def split_days(names, folder, bad_row_day=1):
+    """Three 'daily' files from the cases: each vessel's rows cut in thirds by time, a third to a
+    day (as a day's end cuts a voyage); day `bad_row_day` holds a bad row (its line in the problems)."""
+    header, rows = None, []
+    for n in names:
+        with open(os.path.join(cases, n)) as f:
+            lines = f.read().splitlines()
+        header = lines[0]
+        body = lines[1:]
+        for i, line in enumerate(body):
+            rows.append((3 * i // len(body), line))
+    os.makedirs(folder)
+    days = []
+    for d in range(3):
+        path = os.path.join(folder, "aisdk-2024-05-%02d.csv" % (7 + d))
+        with open(path, "w") as f:
+            f.write(header + "\n")
+            day = [line for k, line in rows if k == d]
+            for i, line in enumerate(day):
+                f.write(line + "\n")
+                if d == bad_row_day and i == 10:
+                    f.write("230990007,2024-05-07T25:61:00,60.1,25.2,12.0,75.0,75,BAD TIME,,,70,0,120,16,7.0,70,A\n")
+        days.append(path)
+    return days
+
+
 try:
-    if case in ("per_file", "shards"):
+    if case in ("partitions", "per_file", "shards"):
         out = os.path.join(tmp, "dask.geojson")
-        status, _, err = dask(["--shards", "3"] if case == "shards" else [], out)
+        status, _, err = dask({"shards": ["--shards", "3"], "per_file": ["--per-file"], "partitions": []}[case], out)
         expect(status == 1, "dask exit 1 as check's: %d\n%s" % (status, err))
         expect(os.path.exists(out) and read(out) == read(single), "dask report == shoal check report, byte for byte")
         expect(os.path.exists(os.path.join(tmp, "dask.qml")), "the QGIS style beside it")
-        expect("[5/5]" in err or "[3/3]" in err, "progress on stderr: " + err)
+        expect({"per_file": "[5/5]", "shards": "[3/3]", "partitions": "[13/13]"}[case] in err, "progress on stderr: " + err)
+        if case == "partitions":  # the default: 5 reads, 4 partitions' traffic, 4 partitions audited
+            expect(sorted(reads_in_log(err)) == sorted(files), "each input read by one task: %s" % reads_in_log(err))
         expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
+    elif case == "daily":
+        # Vessels spanning daily files, the normal case: three days, every vessel in all three,
+        # a bad row in the second day. The default mode (read once, shuffled by vessel) gives
+        # one run's report byte for byte, GeoJSON and GeoPackage, its problems those of one run.
+        days = split_days(["aground_at_speed.csv", "jump_and_null_island.csv", "berthing_sideways.csv", "passes_clear.csv",
+                           "moored_then_leaves.csv", "pilot_berthing.csv", "ferry_hourly.csv"], os.path.join(tmp, "days"))
+        for ext in ("geojson", "gpkg"):
+            for d in ("single-" + ext, "dask-" + ext):
+                os.makedirs(os.path.join(tmp, d))
+            one, out = os.path.join(tmp, "single-" + ext, "week." + ext), os.path.join(tmp, "dask-" + ext, "week." + ext)
+            status, _, err1 = run([shoal, "check"] + coast + days + ["-o", one, "--no-progress"])
+            expect(status == 1, "single run over the days exit 1: %d %s" % (status, err1))
+            expect("is in 3 files" in err1, "vessels span the three days: " + err1)
+            status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "2", "--shoal", shoal, "--partitions", "3", "check"] + coast +
+                                 days + ["-o", out])
+            expect(status == 1, "dask over the days exit 1 as check's (%s): %d\n%s" % (ext, status, err))
+            expect(os.path.exists(out) and read(out) == read(one), "dask %s over daily files == shoal check's, byte for byte" % ext)
+            expect(sorted(reads_in_log(err)) == sorted(days), "each day read by exactly one task (%s): %s" % (ext, reads_in_log(err)))
+            expect("[9/9]" in err, "3 reads, 3 traffic, 3 partitions: " + err)
+            if ext == "geojson":
+                with open(out) as f:
+                    problems = json.load(f)["shoal"]["problems"]
+                bad = [p for p in problems if "BAD TIME" in json.dumps(p) or "25:61" in json.dumps(p)]
+                expect(len(bad) == 1 and days[1] in json.dumps(bad[0]), "the bad row kept with its day file and line: %s" % problems)
+        # The partition steps by hand: a folder of another input, or of another count, is refused
+        # naming it; an existing folder is never replaced; two inputs to one read are refused.
+        pdir = os.path.join(tmp, "parts")
+        os.makedirs(pdir)
+        folders = []
+        for j, d in enumerate(days):
+            folders.append(os.path.join(pdir, "in-%d" % j))
+            status, _, err = run([shoal, "check"] + coast + ["--partitions", "2", "-o", folders[-1], "--", d])
+            expect(status == 0 and "bytes read" in err, "check --partitions exit 0: %d %s" % (status, err))
+        status, _, err = run([shoal, "check"] + coast + ["--partitions", "2", "-o", folders[0], "--", days[0]])
+        expect(status == 2 and "exists: partitions are written to a new folder, nothing replaced" in err, "an existing folder kept: " + err)
+        status, _, err = run([shoal, "check"] + coast + ["--partitions", "2", "-o", os.path.join(pdir, "two"), "--"] + days[:2])
+        expect(status == 2 and "one TRACK input" in err, "two inputs to one read refused: " + err)
+        swapped = [x for f in (folders[1], folders[0], folders[2]) for x in ("--from-partitions", f)]
+        status, _, err = run([shoal, "check"] + coast + swapped + ["--shard", "0/2", "--traffic-only", "-o", os.path.join(pdir, "t0"), "--"] + days)
+        expect(status == 2 and "the partitions of '%s', not of '%s'" % (days[1], days[0]) in err, "inputs out of order refused: " + err)
+        given = [x for f in folders for x in ("--from-partitions", f)]
+        status, _, err = run([shoal, "check"] + coast + given + ["--shard", "0/3", "--traffic-only", "-o", os.path.join(pdir, "t0"), "--"] + days)
+        expect(status == 2 and "written in 2 partitions, not 3" in err, "another count refused: " + err)
+        status, _, err = run([shoal, "check"] + coast + given + ["--shard", "0/2", "-o", os.path.join(pdir, "p0.geojson"), "--"] + days)
+        expect(status == 2 and "needs --traffic" in err, "the real world without the traffic refused: " + err)
+        # The per-file mode refuses the same days at the merge (one run merges the vessels).
+        status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "2", "--shoal", shoal, "--per-file", "check"] + coast + days +
+                             ["-o", os.path.join(tmp, "per-file.geojson")])
+        expect(status == 2 and "has tracks in" in err, "--per-file over days refused at the merge: %d %s" % (status, err))
     elif case == "gpkg":
         # -o REPORT.gpkg: GeoPackage parts, merged into the GeoPackage one check writes (the
         # same file name: its QGIS project names the file).
@@ -75,16 +157,16 @@ try:
         with open(wrapper, "w") as f:
             f.write('#!/bin/sh\n'
                     'if [ "$1" = check ]; then\n'
-                    '  for a; do case $a in *.geojson) out=$a;; esac; done\n'
+                    '  prev=; for a; do [ "$prev" = -o ] && out=$a; prev=$a; done\n'
                     '  marker="%s/killed-$(basename "$out")"\n'
-                    '  if [ ! -e "$marker" ]; then : > "$marker"; kill -9 $$; fi\n'
+                    '  if [ -n "$out" ] && [ ! -e "$marker" ]; then : > "$marker"; kill -9 $$; fi\n'
                     'fi\n'
                     'exec "%s" "$@"\n' % (tmp, shoal))
         os.chmod(wrapper, 0o755)
         out = os.path.join(tmp, "killed.geojson")
         status, _, err = dask(["--retries", "2"], out, wrapper)
         killed = [n for n in os.listdir(tmp) if n.startswith("killed-")]
-        expect(len(killed) == len(files), "every task was killed once: %s" % killed)
+        expect(len(killed) == len(files) + 4 + 4, "every task (5 reads, 4 traffic, 4 partitions) was killed once: %s" % killed)
         expect(status == 1, "exit 1 after retries: %d\n%s" % (status, err))
         expect(os.path.exists(out) and read(out) == read(single), "the report of killed-and-retried tasks == shoal check's")
     elif case == "failing":
@@ -96,28 +178,31 @@ try:
         out = os.path.join(tmp, "failing.geojson")
         status, _, err = dask(["--retries", "1"], out, wrapper)
         expect(status == 2, "exit 2 when a task fails after its retries: %d" % status)
-        expect("jump_and_null_island.csv FAILED after 1 retries" in err, "the failed task named: " + err)
+        expect("read %s FAILED after 1 retries" % os.path.join(cases, "jump_and_null_island.csv") in err, "the failed task named: " + err)
+        expect("traffic 0/" not in err, "no later stage started without every input read: " + err)
         expect("killed by signal 9" in err, "how it failed: " + err)
         expect(not os.path.exists(out), "no report written")
         # One run per file, a vessel in two files: merge refuses (one run would merge the tracks).
         half = os.path.join(tmp, "again.csv")
         shutil.copy(os.path.join(cases, "passes_clear.csv"), half)
         files.append(half)
+        status, _, err = dask(["--per-file"], out)
+        expect(status == 2 and "vessel 230990007 has tracks in" in err, "--per-file: a vessel spanning files is refused: %d %s" % (status, err))
         status, _, err = dask([], out)
-        expect(status == 2 and "vessel 230990007 has tracks in" in err, "a vessel spanning files is refused: %d %s" % (status, err))
+        expect(status in (0, 1), "the default (partitions by vessel) takes a vessel spanning files: %d %s" % (status, err))
         status, _, err = dask(["--shards", "2"], out)
         expect(status in (0, 1), "with --shards it is one run: %d %s" % (status, err))
     elif case == "hostile":
         # --parts-dir holding a file of the user's at a part's name: never replaced, exit 2, one line.
         mine = os.path.join(tmp, "mine")
         os.makedirs(mine)
-        with open(os.path.join(mine, "part-00000.geojson"), "w") as f:
+        with open(os.path.join(mine, "partition-00000-of-00004.geojson"), "w") as f:
             f.write("my own notes\n")
         out = os.path.join(tmp, "hostile.geojson")
         status, _, err = dask(["--parts-dir", mine], out)
         expect(status == 2, "exit 2 when a part would replace a user's file: %d\n%s" % (status, err))
-        expect("part-00000.geojson' is there and was not written by shoal.dask: not replaced" in err, "the file named: " + err)
-        expect(read(os.path.join(mine, "part-00000.geojson")) == b"my own notes\n", "the user's file as it was")
+        expect("partition-00000-of-00004.geojson' is there and was not written by shoal.dask: not replaced" in err, "the file named: " + err)
+        expect(read(os.path.join(mine, "partition-00000-of-00004.geojson")) == b"my own notes\n", "the user's file as it was")
         expect(not os.path.exists(out), "no report written")
         # --debrief: a whole run's output, which no task holds; refused before any work, one line
         # (before: passed to every task, each writing the same pages over the others').
@@ -154,7 +239,7 @@ try:
         pids = os.path.join(tmp, "pids")
         wrapper = os.path.join(tmp, "slow.sh")
         with open(wrapper, "w") as f:
-            f.write('#!/bin/sh\ncase "$1" in check) echo $$ >> "%s"; exec sleep 120;; esac\nexec "%s" "$@"\n' % (pids, shoal))
+            f.write('#!/bin/sh\ncase "$1 $2" in "check --list-options") ;; check*) echo $$ >> "%s"; exec sleep 120;; esac\nexec "%s" "$@"\n' % (pids, shoal))
         os.chmod(wrapper, 0o755)
         out = os.path.join(tmp, case + ".geojson")
         procs = []

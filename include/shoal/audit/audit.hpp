@@ -79,6 +79,10 @@ struct FileResult {
     track::ReadReport read;
     std::string error;  ///< non-empty when the file could not be read at all (the batch went on)
     std::size_t tracks = 0;
+    /// The file's size and fingerprint when already known (read_partition: taken where the file
+    /// was read); size -1 and "": the report computes them from the file when it needs them.
+    long long size = -1;
+    std::string fingerprint;
 };
 
 /// A track that could not be audited (the batch went on).

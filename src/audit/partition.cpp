@@ -1,0 +1,441 @@
+// A run's fixes shuffled by vessel into partitions on disk (audit/partition.hpp).
+#include <shoal/audit/partition.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <shoal/audit/shard.hpp>
+#include <shoal/track/merge.hpp>
+#include <shoal/track/reader.hpp>
+#include <shoal/util/error.hpp>
+
+#include "detail/parallel.hpp"
+
+namespace shoal::audit {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The layout of this build: raw packed fixes and their side values are written as they lie in
+// memory, so a file of another build (another layout) is refused, never misread.
+constexpr char magic_index[8] = {'S', 'H', 'O', 'A', 'L', 'P', 'I', '1'};
+constexpr char magic_part[8] = {'S', 'H', 'O', 'A', 'L', 'P', 'T', '1'};
+constexpr char magic_traffic[8] = {'S', 'H', 'O', 'A', 'L', 'T', 'F', '1'};
+constexpr std::uint32_t layout = sizeof(track::PackedFix) * 1000 + sizeof(track::FixExtra);
+
+class Writer {
+public:
+    void raw(const void* p, std::size_t n) { m_out.append(static_cast<const char*>(p), n); }
+    void u64(std::uint64_t v) { raw(&v, sizeof v); }
+    void f64(double v) { raw(&v, sizeof v); }
+    void str(const std::string& s) {
+        u64(s.size());
+        raw(s.data(), s.size());
+    }
+    void strs(const std::vector<std::string>& v) {
+        u64(v.size());
+        for (const auto& s : v) str(s);
+    }
+    const std::string& bytes() const noexcept { return m_out; }
+
+private:
+    std::string m_out;
+};
+
+class Reader {
+public:
+    Reader(std::string bytes, std::string path) : m_in(std::move(bytes)), m_path(std::move(path)) {}
+    void raw(void* p, std::size_t n) {
+        if (n > m_in.size() - m_at) throw InputError(m_path + ": a partition file cut short (was it written by another run, or is the disk full?)");
+        std::memcpy(p, m_in.data() + m_at, n);
+        m_at += n;
+    }
+    std::uint64_t u64() {
+        std::uint64_t v = 0;
+        raw(&v, sizeof v);
+        return v;
+    }
+    double f64() {
+        double v = 0;
+        raw(&v, sizeof v);
+        return v;
+    }
+    std::size_t count(std::size_t each) {  // a count of items of at least `each` bytes, checked against what is left
+        const std::uint64_t n = u64();
+        if (each > 0 && n > (m_in.size() - m_at) / each) throw InputError(m_path + ": a partition file cut short or corrupt");
+        return static_cast<std::size_t>(n);
+    }
+    std::string str() {
+        const std::size_t n = count(1);
+        std::string s(m_in.data() + m_at, n);
+        m_at += n;
+        return s;
+    }
+    std::vector<std::string> strs() {
+        std::vector<std::string> v(count(8));
+        for (auto& s : v) s = str();
+        return v;
+    }
+    void header(const char (&magic)[8]) {
+        char m[8];
+        raw(m, sizeof m);
+        if (std::memcmp(m, magic, sizeof m) != 0 || u64() != layout)
+            throw InputError(m_path + ": not a partition file of this shoal (written by another version, or another file)");
+    }
+    bool done() const noexcept { return m_at == m_in.size(); }
+    const std::string& path() const noexcept { return m_path; }
+
+private:
+    std::string m_in;
+    std::size_t m_at = 0;
+    std::string m_path;
+};
+
+void write_file(const std::string& path, const std::string& bytes) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) throw InputError("cannot write '" + path + "' (disk full?)");
+}
+
+Reader open_file(const std::string& path) { return Reader(track::read_file(path), path); }
+
+std::string part_name(unsigned k) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "part-%05u.bin", k);
+    return buf;
+}
+
+void put_report(Writer& w, const track::ReadReport& r) {
+    for (std::size_t v : {r.rows, r.skipped, r.duplicates, r.reordered, r.max_messages, r.skips_said}) w.u64(v);
+    w.strs(r.messages);
+}
+track::ReadReport get_report(Reader& in) {
+    track::ReadReport r;
+    for (std::size_t* v : {&r.rows, &r.skipped, &r.duplicates, &r.reordered, &r.max_messages, &r.skips_said}) *v = in.u64();
+    r.messages = in.strs();
+    return r;
+}
+
+void put_track(Writer& w, const track::PackedTrack& t) {
+    for (const std::string* s : {&t.id, &t.name, &t.file, &t.dims_source, &t.draught_source, &t.ship_type_source, &t.exercise, &t.role}) w.str(*s);
+    w.u64(t.dims ? 1 : 0);
+    if (t.dims)
+        for (double v : {t.dims->a, t.dims->b, t.dims->c, t.dims->d}) w.f64(v);
+    w.f64(t.draught_m);
+    w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(t.ship_type)));
+    w.u64(t.fixes.size());
+    for (std::size_t i = 0; i < t.fixes.size(); ++i) w.raw(&t.fixes[i], sizeof(track::PackedFix));
+    w.u64(t.extras.size());
+    if (!t.extras.empty()) w.raw(t.extras.data(), t.extras.size() * sizeof(track::FixExtra));
+}
+track::PackedTrack get_track(Reader& in) {
+    track::PackedTrack t;
+    for (std::string* s : {&t.id, &t.name, &t.file, &t.dims_source, &t.draught_source, &t.ship_type_source, &t.exercise, &t.role}) *s = in.str();
+    if (in.u64()) {
+        hull::Dimensions d;
+        for (double* v : {&d.a, &d.b, &d.c, &d.d}) *v = in.f64();
+        t.dims = d;
+    }
+    t.draught_m = in.f64();
+    t.ship_type = static_cast<int>(static_cast<std::int64_t>(in.u64()));
+    const std::size_t n = in.count(sizeof(track::PackedFix));
+    for (std::size_t i = 0; i < n; ++i) {
+        track::PackedFix f;
+        in.raw(&f, sizeof f);
+        t.fixes.push_back(f);
+    }
+    t.extras.resize(in.count(sizeof(track::FixExtra)));
+    if (!t.extras.empty()) in.raw(t.extras.data(), t.extras.size() * sizeof(track::FixExtra));
+    return t;
+}
+
+/// What a partition folder's index holds.
+struct Index {
+    std::string input;
+    unsigned count = 0;
+    std::string read_key;  ///< the read options that change what is read
+    std::vector<FileResult> files;
+    std::vector<std::vector<std::string>> ids;  ///< each file's track ids, in file order
+};
+
+std::string read_key(const track::ReadOptions& o) {
+    Writer w;
+    w.f64(o.date_s.value_or(-1e300));
+    w.u64(o.hull_from_length_width ? 1 : 0);
+    w.u64(o.max_messages);
+    w.str(o.exercise_column);
+    w.str(o.role_column);
+    return w.bytes();
+}
+
+Index read_index(const std::string& dir) {
+    Reader in = open_file((fs::path(dir) / "index.bin").string());
+    in.header(magic_index);
+    Index x;
+    x.input = in.str();
+    x.count = static_cast<unsigned>(in.u64());
+    x.read_key = in.str();
+    x.files.resize(in.count(8));
+    x.ids.resize(x.files.size());
+    for (std::size_t k = 0; k < x.files.size(); ++k) {
+        FileResult& f = x.files[k];
+        f.file = in.str();
+        f.format = in.str();
+        f.error = in.str();
+        f.tracks = in.u64();
+        f.read = get_report(in);
+        f.size = static_cast<long long>(static_cast<std::int64_t>(in.u64()));
+        f.fingerprint = in.str();
+        x.ids[k] = in.strs();
+    }
+    if (!in.done()) throw InputError(in.path() + ": a partition index with more than it should hold");
+    return x;
+}
+
+}  // namespace
+
+PartitionSummary write_partitions(const std::string& dir, const std::string& input, const track::ReadOptions& options, unsigned count,
+                                  unsigned jobs, const std::function<std::pair<long long, std::string>(const std::string&)>& fingerprint) {
+    if (count == 0) throw UsageError("write_partitions: the count of partitions must be at least 1");
+    std::error_code ec;
+    if (fs::symlink_status(dir, ec).type() != fs::file_type::not_found)
+        throw InputError("'" + dir + "' exists: partitions are written to a new folder, nothing replaced");
+    const std::vector<std::string> files = track::expand_inputs({input});
+    std::vector<track::PackedTrackFile> read(files.size());
+    std::vector<FileResult> results(files.size());
+    const unsigned threads = detail::thread_count(jobs);
+    const std::size_t spare = threads > files.size() ? threads - files.size() : 0;
+    detail::parallel_for(
+        files.size(), threads,
+        [&](std::size_t k, unsigned) {
+            FileResult& fr = results[k];
+            fr.file = files[k];
+            try {
+                track::ReadOptions per_file = options;
+                if (k < spare) per_file.threads = std::max(per_file.threads, 2u);
+                read[k] = track::read_tracks_packed(files[k], per_file);
+                fr.format = read[k].format;
+                fr.read = read[k].report;
+                fr.tracks = read[k].tracks.size();
+            } catch (const InputError& e) {  // as one run: the file is listed with its error
+                fr.error = e.what();
+            } catch (const std::bad_alloc&) {
+                fr.error = files[k] + ": out of memory reading it";
+            }
+            std::tie(fr.size, fr.fingerprint) = fingerprint(files[k]);
+        },
+        {});
+    PartitionSummary summary;
+    Writer index;
+    index.raw(magic_index, sizeof magic_index);
+    index.u64(layout);
+    index.str(input);
+    index.u64(count);
+    index.str(read_key(options));
+    index.u64(files.size());
+    std::vector<Writer> parts(count);
+    std::vector<std::uint64_t> in_part(count, 0);
+    std::vector<std::vector<std::pair<std::size_t, std::size_t>>> where(count);  // (file, track) in each partition
+    for (std::size_t k = 0; k < files.size(); ++k) {
+        const FileResult& f = results[k];
+        index.str(f.file);
+        index.str(f.format);
+        index.str(f.error);
+        index.u64(f.tracks);
+        put_report(index, f.read);
+        index.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(f.size)));
+        index.str(f.fingerprint);
+        index.u64(read[k].tracks.size());
+        for (std::size_t i = 0; i < read[k].tracks.size(); ++i) {
+            const track::PackedTrack& t = read[k].tracks[i];
+            index.str(t.id);
+            where[shard_of(shard_key(t.id, std::nullopt), count)].push_back({k, i});
+            summary.fixes += t.size();
+        }
+        summary.tracks += read[k].tracks.size();
+        if (f.size > 0) summary.bytes_read += static_cast<std::size_t>(f.size);
+    }
+    summary.files = files.size();
+    const fs::path target(dir);
+    const fs::path temp = target.parent_path() / (".tmp-" + target.filename().string() + "-" + std::to_string(::getpid()));
+    fs::remove_all(temp, ec);
+    if (!fs::create_directory(temp, ec)) throw InputError("cannot create the folder '" + temp.string() + "' (" + ec.message() + ")");
+    try {
+        write_file((temp / "index.bin").string(), index.bytes());
+        for (unsigned p = 0; p < count; ++p) {
+            Writer w;
+            w.raw(magic_part, sizeof magic_part);
+            w.u64(layout);
+            w.u64(where[p].size());
+            for (const auto& [k, i] : where[p]) {
+                w.u64(k);
+                w.u64(i);
+                put_track(w, read[k].tracks[i]);
+                read[k].tracks[i].release_fixes();
+            }
+            write_file((temp / part_name(p)).string(), w.bytes());
+        }
+        fs::rename(temp, target, ec);  // onto a folder that appeared meanwhile: refused (not empty) or replaced only if empty
+        if (ec) throw InputError("cannot put the partitions in place at '" + dir + "' (" + ec.message() + ")");
+    } catch (...) {
+        fs::remove_all(temp, ec);
+        throw;
+    }
+    return summary;
+}
+
+ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, Shard shard,
+                          std::vector<std::size_t>& positions, std::vector<std::string>* all_ids) {
+    if (!shard.active()) throw UsageError("read_partition needs a shard I/N");
+    if (dirs.size() != inputs.size())
+        throw UsageError("partitions of " + std::to_string(dirs.size()) + " inputs given for a run of " + std::to_string(inputs.size()) +
+                         " (one partition folder per TRACK input, in order)");
+    ReadResult result;
+    // 1. Every input's index: the run's files, and every track's position among the run's
+    // (one vessel met in several files takes the position of its first track, as one run merges them).
+    std::vector<Index> index;
+    std::set<std::string> files_seen;
+    std::map<std::string, std::size_t> vessel_position;
+    std::vector<std::vector<std::vector<std::size_t>>> position_of;  // [input][file][track]; SIZE_MAX: merged into an earlier one
+    std::size_t next = 0;
+    for (std::size_t d = 0; d < dirs.size(); ++d) {
+        index.push_back(read_index(dirs[d]));
+        const Index& x = index.back();
+        if (x.input != inputs[d])
+            throw InputError(dirs[d] + ": the partitions of '" + x.input + "', not of '" + inputs[d] + "' (input " + std::to_string(d + 1) + " of the run)");
+        if (x.count != shard.count)
+            throw InputError(dirs[d] + ": written in " + std::to_string(x.count) + " partitions, not " + std::to_string(shard.count));
+        if (x.read_key != index.front().read_key)
+            throw InputError(dirs[d] + ": written with other read options (--date, --hull-from-length-width) than " + dirs.front());
+        position_of.emplace_back();
+        for (std::size_t k = 0; k < x.files.size(); ++k) {
+            if (!files_seen.insert(x.files[k].file).second)
+                throw InputError("'" + x.files[k].file + "' is in two inputs of the run: give each file once");
+            result.files.push_back(x.files[k]);
+            std::vector<std::size_t>& pos = position_of.back().emplace_back();
+            for (const std::string& id : x.ids[k]) {
+                if (all_ids) all_ids->push_back(id);
+                if (!track::is_vessel_id(id)) {
+                    pos.push_back(next++);
+                    continue;
+                }
+                const auto [it, fresh] = vessel_position.try_emplace(id, next);
+                pos.push_back(fresh ? next++ : SIZE_MAX);
+            }
+        }
+    }
+    // 2. This partition's tracks of every input, in the run's order (input, file, track).
+    struct Loaded {
+        std::size_t input, file, track;
+        track::PackedTrack t;
+    };
+    std::vector<Loaded> loaded;
+    for (std::size_t d = 0; d < dirs.size(); ++d) {
+        Reader in = open_file((fs::path(dirs[d]) / part_name(shard.index)).string());
+        in.header(magic_part);
+        const std::size_t n = in.count(16);
+        for (std::size_t j = 0; j < n; ++j) {
+            Loaded l{d, 0, 0, {}};
+            l.file = static_cast<std::size_t>(in.u64());
+            l.track = static_cast<std::size_t>(in.u64());
+            if (l.file >= position_of[d].size() || l.track >= position_of[d][l.file].size())
+                throw InputError(in.path() + ": a track the index does not list (a partition of another run?)");
+            l.t = get_track(in);
+            loaded.push_back(std::move(l));
+        }
+        if (!in.done()) throw InputError(in.path() + ": a partition file with more than it should hold");
+    }
+    std::sort(loaded.begin(), loaded.end(),
+              [](const Loaded& a, const Loaded& b) { return std::tie(a.input, a.file, a.track) < std::tie(b.input, b.file, b.track); });
+    for (auto& l : loaded) {
+        const std::size_t p = position_of[l.input][l.file][l.track];
+        if (p != SIZE_MAX) positions.push_back(p);  // merge_same_vessels keeps the first track of a vessel, in place
+        result.tracks.push_back(std::move(l.t));
+    }
+    for (std::string& m : track::merge_same_vessels(result.tracks, {})) result.warnings.push_back(std::move(m));
+    if (positions.size() != result.tracks.size())
+        throw InputError(dirs.front() + ": partition " + std::to_string(shard.index) + " holds a vessel's tracks apart from another partition (partitions of different runs?)");
+    return result;
+}
+
+void write_traffic(const std::string& path, const std::vector<TrackResult>& traffic, Shard shard) {
+    Writer w;
+    w.raw(magic_traffic, sizeof magic_traffic);
+    w.u64(layout);
+    w.u64(shard.index);
+    w.u64(shard.count);
+    w.u64(traffic.size());
+    for (const TrackResult& r : traffic) {
+        w.str(r.summary.id);
+        w.u64(r.stays.size());
+        for (const Stay& s : r.stays) {
+            w.u64(s.first);
+            w.u64(s.last);
+            for (double v : {s.start_s, s.end_s, s.local.x, s.local.y}) w.f64(v);
+            w.u64((s.moored ? 1u : 0u) | (s.aground ? 2u : 0u));
+            w.u64(s.visit);
+        }
+        w.u64(r.over_land.size());
+        for (const geo::XY& p : r.over_land) {
+            w.f64(p.x);
+            w.f64(p.y);
+        }
+    }
+    const std::string temp = path + ".tmp-" + std::to_string(::getpid());
+    write_file(temp, w.bytes());
+    std::error_code ec;
+    fs::rename(temp, path, ec);
+    if (ec) {
+        fs::remove(temp, ec);
+        throw InputError("cannot write '" + path + "'");
+    }
+}
+
+std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Shard shard) {
+    if (paths.size() != shard.count)
+        throw InputError("the traffic of " + std::to_string(paths.size()) + " partitions given, for a run of " + std::to_string(shard.count) +
+                         ": every partition's is needed");
+    std::vector<TrackResult> out;
+    for (std::size_t p = 0; p < paths.size(); ++p) {
+        Reader in = open_file(paths[p]);
+        in.header(magic_traffic);
+        const std::uint64_t index = in.u64(), count = in.u64();
+        if (index != p || count != shard.count)
+            throw InputError(paths[p] + ": the traffic of partition " + std::to_string(index) + "/" + std::to_string(count) + ", not " +
+                             std::to_string(p) + "/" + std::to_string(shard.count));
+        const std::size_t n = in.count(24);
+        for (std::size_t k = 0; k < n; ++k) {
+            TrackResult r;
+            r.summary.id = in.str();
+            r.stays.resize(in.count(64));
+            for (Stay& s : r.stays) {
+                s.first = in.u64();
+                s.last = in.u64();
+                for (double* v : {&s.start_s, &s.end_s, &s.local.x, &s.local.y}) *v = in.f64();
+                const std::uint64_t flags = in.u64();
+                s.moored = flags & 1u;
+                s.aground = flags & 2u;
+                s.visit = in.u64();
+            }
+            r.over_land.resize(in.count(16));
+            for (geo::XY& q : r.over_land) {
+                q.x = in.f64();
+                q.y = in.f64();
+            }
+            if (p != shard.index) out.push_back(std::move(r));  // this partition's own: from its sweep
+        }
+        if (!in.done()) throw InputError(paths[p] + ": a traffic file with more than it should hold");
+    }
+    return out;
+}
+
+}  // namespace shoal::audit
