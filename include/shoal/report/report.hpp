@@ -138,8 +138,14 @@ StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& resul
 /// stage_gpkg, then commit.
 void write_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info);
 
-/// The human summary: one line per track with events, totals, and problems met.
-std::string summary_table(const audit::AuditResult& result);
+/// How much of a run the summary shows: `normal` the counts of each kind of event first, then
+/// one line per track with events; `verbose` one line per track (every track read).
+enum class SummaryDetail { normal, verbose };
+
+/// The human summary: the world, the totals and the counts of each kind of event first; then
+/// the table of tracks (those with events, or every track: `detail`), every grounding, the
+/// encounters and scores (exercise mode), and the problems met.
+std::string summary_table(const audit::AuditResult& result, SummaryDetail detail = SummaryDetail::normal);
 
 /// "FILE line N: fix at LAT, LON (TIME) of track 'ID' dropped as an outlier: WHY".
 std::string wild_fix_message(const audit::TrackSummary& track, const track::WildFix& fix);
