@@ -164,8 +164,8 @@ breaches.setLabelsEnabled(True)
 save(breaches, "breaches")
 
 # tracks: coloured by least clearance (NULL: never within the search limit, or no fix on the
-# chart); a track with fixes outside the chart and nothing closer than 200 m, or none covered at
-# all, is "no chart" (light grey, dashed), never "200 m or more" (issue 39)
+# chart); a track with fixes outside the chart and nothing closer than 200 m (every track wholly
+# outside it among them) is "no chart" (light grey, dashed), never "200 m or more" (issue 39)
 NO_CHART = "#969696"
 tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double&field=groundings:integer"
                         "&field=uncovered_fixes:integer"
@@ -176,7 +176,7 @@ for expr, colour, label in (('"groundings" > 0', RED, "aground"),
                             ('"min_clearance_m" = 0', VIOLET_TRACK, "in contact, not a grounding (alongside, at the start, expected)"),
                             ('"min_clearance_m" > 0 AND "min_clearance_m" < 50', AMBER, "closer than 50 m"),
                             ('"min_clearance_m" >= 50 AND "min_clearance_m" < 200', GREEN, "50 to 200 m"),
-                            ('coalesce("min_clearance_m", 1e99) >= 200 AND ("uncovered_fixes" > 0 OR "min_clearance_m" IS NULL)', NO_CHART,
+                            ('coalesce("min_clearance_m", 1e99) >= 200 AND "uncovered_fixes" > 0', NO_CHART,
                              "no chart (all or part of the track outside the chart: not known clear)"),
                             ("ELSE", GREY, "200 m or more")):
     sym = QgsLineSymbol.createSimple({"line_color": colour, "line_width": "0.7"})

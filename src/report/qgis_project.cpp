@@ -143,6 +143,10 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
             }
         const double pad = std::max({(e1 - e0) * 0.05, (n1 - n0) * 0.05, geographic ? 0.005 : 500.0});
         const int digits = geographic ? 6 : 1;
+        if (geographic) {  // degrees: padded no further than the world
+            e0 = std::max(e0 - pad, -180.0) + pad, e1 = std::min(e1 + pad, 180.0) - pad;
+            n0 = std::max(n0 - pad, -90.0) + pad, n1 = std::min(n1 + pad, 90.0) - pad;
+        }
         char box[256];
         std::snprintf(box, sizeof box, "xmin=\"%.*f\" ymin=\"%.*f\" xmax=\"%.*f\" ymax=\"%.*f\"", digits, e0 - pad, digits, n0 - pad, digits, e1 + pad,
                       digits, n1 + pad);

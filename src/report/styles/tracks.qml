@@ -18,7 +18,7 @@
       <rule key="{c473c841-3d1c-4341-9994-31b804efbe25}" symbol="1" label="in contact, not a grounding (alongside, at the start, expected)" filter="&quot;min_clearance_m&quot; = 0"/>
       <rule key="{d77cd7b6-5925-469d-9981-9edfa85eabaa}" symbol="2" label="closer than 50 m" filter="&quot;min_clearance_m&quot; > 0 AND &quot;min_clearance_m&quot; &lt; 50"/>
       <rule key="{ec4cb93f-13a1-4c52-b27f-efeed49ad941}" symbol="3" label="50 to 200 m" filter="&quot;min_clearance_m&quot; >= 50 AND &quot;min_clearance_m&quot; &lt; 200"/>
-      <rule key="{87626cfb-4fe5-4b49-aabd-bcd55a320af6}" symbol="4" label="no chart (all or part of the track outside the chart: not known clear)" filter="coalesce(&quot;min_clearance_m&quot;, 1e99) >= 200 AND (&quot;uncovered_fixes&quot; > 0 OR &quot;min_clearance_m&quot; IS NULL)"/>
+      <rule key="{87626cfb-4fe5-4b49-aabd-bcd55a320af6}" symbol="4" label="no chart (all or part of the track outside the chart: not known clear)" filter="coalesce(&quot;min_clearance_m&quot;, 1e99) >= 200 AND &quot;uncovered_fixes&quot; > 0"/>
       <rule key="{2f1b7eb3-f705-48a3-9e3f-ab81201bd019}" symbol="5" label="200 m or more" filter="ELSE"/>
     </rules>
     <symbols>
