@@ -410,7 +410,7 @@ TEST(CsvReader, AnySpellingOfATimeColumnIsTheTimeColumn) {
         SCOPED_TRACE(other);
         EXPECT_FALSE(is_time_column_name(other));
         EXPECT_THAT([&] { read_csv_text(std::string("mmsi,") + other + ",lat,lon\n1,2014-08-15T19:00:00Z,60,24\n", "t.csv"); },
-                    ThrowsMessage<InputError>(HasSubstr("t.csv: not a track format shoal reads: the header has no time (")));
+                    ThrowsMessage<InputError>(AllOf(HasSubstr("t.csv: not a track format shoal reads"), HasSubstr("the header has no time ("))));
     }
     // The usual name wins over a spelling further left (the order the names were matched in before).
     const auto f = read_csv_text("mmsi,time_utc_received,TIMESTAMP_UTC,time,lat,lon\n1,x,x,2014-08-15T19:00:00Z,60,24\n", "t.csv");

@@ -151,14 +151,14 @@ TEST(Input, CorruptZipIsSaidCorruptAndAnEmptyOneEmpty) {
     const std::string cut = dir.file("cut.zip");
     write(cut, whole.substr(0, whole.size() / 2));  // a download stopped half-way
     EXPECT_THAT([&] { read_tracks(cut); },
-                ThrowsMessage<InputError>(HasSubstr(cut + ": not a readable zip file: it starts like a zip but its directory")));
+                ThrowsMessage<InputError>(HasSubstr(cut + ": cannot read (not a readable zip file: it starts like a zip but its directory")));
     // Never called empty (the message before).
     EXPECT_THAT([&] { read_tracks(cut); }, ThrowsMessage<InputError>(testing::Not(HasSubstr("empty"))));
     // The empty zip the zip tool writes when its only file is deleted: 22 bytes, an end record.
     const std::string empty = dir.file("empty.zip");
     run("cp " + zip + " " + empty + " && zip -q -d " + empty + " " + fs::path(dma).filename().string());
     ASSERT_EQ(fs::file_size(empty), 22u) << "zip -d of the only file leaves the end record alone";
-    EXPECT_THAT([&] { read_tracks(empty); }, ThrowsMessage<InputError>(HasSubstr(empty + ": an empty zip file (no file in it)")));
+    EXPECT_THAT([&] { read_tracks(empty); }, ThrowsMessage<InputError>(HasSubstr(empty + ": cannot read (an empty zip file (no file in it))")));
 }
 
 TEST(Input, GzipReadsAsThePlainFileWhateverItsName) {
