@@ -269,7 +269,11 @@ def rules_of(layer, track):
     labels = set()
     for feat in layer.getFeatures(QgsFeatureRequest().setFilterExpression(f"\"track\" = '{track}'")):
         ctx.expressionContext().setFeature(feat)
-        labels |= {rule.label() for rule in r.rootRule().rulesForFeature(feat, ctx)}
+        # rulesForFeature lists the ELSE rule with the others (its filter is empty): as QGIS draws,
+        # it applies only when no other rule does.
+        rules = r.rootRule().rulesForFeature(feat, ctx)
+        others = {rule.label() for rule in rules if not rule.isElse()}
+        labels |= others or {rule.label() for rule in rules if rule.isElse()}
     r.stopRender(ctx)
     return labels
 
