@@ -195,8 +195,13 @@ public:
                           "per exercise, <exercise>.html (the picture, scores, events in time order with zoomed panels, encounters)");
         m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
+        CLI::Option* q = m_sub->add_flag("-q,--quiet", m_quiet,
+                                         "Nothing on stdout and no warnings or notes on stderr: errors only (the exit status says whether "
+                                         "there was a grounding; the report holds everything, warnings in its problems)");
+        q->excludes(m_sub->get_option("--verbose"));  // --verbose (CoastAndShip): also every track in the summary's table
     }
     int run() override {
+        set_quiet(m_quiet);
         if (m_partitions) return write_partitions();
         // Vessels files found in track folders join after the ones given with --vessels.
         std::vector<std::string> folder_vessels;
@@ -273,7 +278,7 @@ public:
         const coast::ExpectedAreas areas =
             coast::ExpectedAreas::load(m_berths, grid::coast_sources(m_opts.coast, g), g.frame(), m_berth_tolerance_m, &area_warnings);
         print_warnings(area_warnings);
-        if (!areas.empty())
+        if (!areas.empty() && !quiet())
             std::fprintf(stderr, "shoal: %zu expected-contact areas (berths, harbours, anchorages) and %zu shore constructions\n",
                          areas.count(coast::AreaRole::expected), areas.count(coast::AreaRole::structure));
         m_audit.areas = &areas;
@@ -289,7 +294,7 @@ public:
         print_warnings(vessel_warnings);
         if (!m_vessel_files.empty()) {
             m_audit.vessels = &m_vessels;
-            std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, and vessels tables in track folders and zips)\n",
+            if (!quiet()) std::fprintf(stderr, "shoal: static data of %zu vessels from %zu vessels files (--vessels, and vessels tables in track folders and zips)\n",
                          m_vessels.size(), m_vessel_files.size());
         }
         Progress bar(m_progress.value_or(::isatty(2) != 0));
@@ -324,6 +329,8 @@ public:
                                                g, hull, m_opts.hull_label(), m_audit)
                       : audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);
         for (const auto& f : r.files) {
+            if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", printable(in_cli_terms(f.error)).c_str());
+            if (quiet()) continue;
             for (const auto& m : f.read.messages) std::fprintf(stderr, "shoal: warning: %s\n", printable(m).c_str());
             if (f.read.skipped > f.read.skips_said)
                 std::fprintf(stderr, "shoal: warning: %s: %zu more bad rows skipped\n", printable(f.file).c_str(), f.read.skipped - f.read.skips_said);
@@ -332,14 +339,13 @@ public:
             if (f.read.duplicates)
                 std::fprintf(stderr, "shoal: warning: %s: %zu fixes repeat an earlier time of their vessel (dropped)\n", printable(f.file).c_str(),
                              f.read.duplicates);
-            if (!f.error.empty()) std::fprintf(stderr, "shoal: error: %s (file skipped)\n", printable(in_cli_terms(f.error)).c_str());
         }
         std::size_t wild_said = 0;
         for (const auto& t : r.tracks)
             for (const auto& w : t.summary.wild_fixes)
                 if (wild_said++ < 20) print_warnings({report::wild_fix_message(t.summary, w)});
         print_warnings(r.warnings);
-        if (wild_said > 20) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
+        if (wild_said > 20 && !quiet()) std::fprintf(stderr, "shoal: warning: %zu more wild fixes dropped (listed in the report's problems)\n", wild_said - 20);
         for (const auto& e : r.errors)
             std::fprintf(stderr, "shoal: error: track '%s' in '%s': %s (track skipped)\n", printable(e.track).c_str(), printable(e.file).c_str(), printable(in_cli_terms(e.message)).c_str());
         report::RunInfo info = report::run_info(m_opts.coast, g, m_opts.ship_file.empty() ? "--dims " + m_opts.dims : hull.name(),
@@ -423,11 +429,13 @@ public:
         const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         // With -o - the report is stdout: the table goes to stderr, so the JSON stays clean.
         std::FILE* table = is_standard_output(m_output) || (!m_plot.empty() && is_standard_output(m_plot)) ? stderr : stdout;
-        std::fputs(report::summary_table(r).c_str(), table);
-        const double fps = r.sweep_s > 0 ? static_cast<double>(r.fixes) / r.sweep_s : 0;
-        std::fprintf(table, "time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
-                     printable(m_output).c_str());
-        if (!m_debrief.empty()) std::fprintf(table, "debrief: %zu page%s in %s\n", debrief_pages, debrief_pages == 1 ? "" : "s", printable(m_debrief).c_str());
+        if (!m_quiet) {
+            std::fputs(report::summary_table(r, m_opts.verbose ? report::SummaryDetail::verbose : report::SummaryDetail::normal).c_str(), table);
+            const double fps = r.sweep_s > 0 ? static_cast<double>(r.fixes) / r.sweep_s : 0;
+            std::fprintf(table, "time: read %.3f s, sweep %.3f s (%.0f fixes/s), write %.3f s\nreport: %s\n", r.read_s, r.sweep_s, fps, write_s,
+                         printable(m_output).c_str());
+        }
+        if (!m_debrief.empty() && !m_quiet) std::fprintf(table, "debrief: %zu page%s in %s\n", debrief_pages, debrief_pages == 1 ? "" : "s", printable(m_debrief).c_str());
         bool unreadable = r.tracks.empty() && (!r.errors.empty() || std::any_of(r.files.begin(), r.files.end(), [](const auto& f) { return !f.error.empty(); }));
         // A shard's report is a part of a run: files and tracks it could not read are listed
         // in it (problems) for the merge, and are no failure of the shard (a driver would
@@ -487,6 +495,7 @@ private:
     static constexpr double max_listed_per_ship = 1e6;  // --max-encounters-per-ship
     double m_poses_interval_s = audit::SweepOptions{}.pose_interval_s;
     bool m_no_project = false;
+    bool m_quiet = false;
     audit::AuditOptions m_audit;
     std::string m_exercise_by;  // exercises and roles (issue 18)
     std::string m_roles_file;

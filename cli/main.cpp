@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -64,6 +65,38 @@ void fewer_malloc_arenas() {
 #endif
 }
 
+/// The edit distance (insertions, deletions, substitutions, and swaps of two neighbours) between
+/// `a` and `b`: "chek" is one from "check", "chekc" one from "check".
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+    for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i)
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+/// A first argument that is no command and no option ("shoal chek ..."): the usage error that says
+/// so and names the nearest command (CLI11 alone says "A subcommand is required", which hides the typo).
+std::string unknown_command(const CLI::App& app, const std::string& given) {
+    std::string names, nearest;
+    std::size_t best = static_cast<std::size_t>(-1);
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+        const std::string& n = sub->get_name();
+        names += (names.empty() ? "" : ", ") + n;
+        std::string lower = given;
+        std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        const std::size_t d = edit_distance(lower, n);
+        if (d < best) best = d, nearest = n;
+    }
+    // Near enough to be a typo: at most 2 edits, and fewer than half the command's letters.
+    const bool suggest = best <= 2 && 2 * best < nearest.size();
+    return "unknown command '" + shoal::printable(given) + "'" + (suggest ? " (did you mean '" + nearest + "'?)" : "") + "; the commands are " + names;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -100,6 +133,14 @@ int main(int argc, char** argv) {
                 }
                 return 0;
             }
+    if (argc >= 2 && argv[1][0] != '-' && argv[1][0] != '\0') {
+        const std::string first = argv[1];
+        const auto all = app.get_subcommands([](const CLI::App*) { return true; });
+        if (std::none_of(all.begin(), all.end(), [&](const CLI::App* sub) { return sub->check_name(first); })) {
+            std::fprintf(stderr, "shoal: usage error: %s (see shoal --help)\n", unknown_command(app, first).c_str());
+            return shoal::cli::exit_usage;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -49,7 +49,18 @@ void check_readable(const std::vector<std::string>& paths) {
 
 std::string in_cli_terms(std::string message) { return in_terms_of(std::move(message), FrontEnd::cli); }
 
+namespace {
+bool g_quiet = false;
+}
+
+void set_quiet(bool q) { g_quiet = q; }
+bool quiet() { return g_quiet; }
+void note(const std::string& text) {
+    if (!g_quiet) std::fprintf(stderr, "shoal: %s\n", text.c_str());
+}
+
 void print_warnings(const std::vector<std::string>& warnings) {
+    if (g_quiet) return;
     for (const auto& w : warnings) std::fprintf(stderr, "shoal: warning: %s\n", printable(in_cli_terms(w)).c_str());
 }
 
@@ -127,7 +138,9 @@ void CoastAndShip::add(CLI::App& sub) {
     sub.add_option("--ukc", ukc, "Under-keel clearance required, metres: limiting depth = the ship's draught + this (default 0)")
         ->check(finite)->check(non_negative);
     add_hazard_options(sub, request.import);
-    sub.add_flag("-v,--verbose", verbose, "Say how the grid was obtained and how long it took");
+    sub.add_flag("-v,--verbose", verbose,
+                 "Say how the grid was obtained and how long it took; check: also list every track in the summary's table (by "
+                 "default the counts of each kind of event come first, then only the tracks with events)");
 }
 
 std::vector<std::string> CoastAndShip::inputs(std::vector<std::string> more) const {
@@ -156,7 +169,7 @@ grid::CoastGrid CoastAndShip::load_grid(const hull::Hull& hull) const {
         char why[160] = "--hazard-depth, for every vessel";
         if (plan.source == grid::DepthPlan::Source::draught)
             std::snprintf(why, sizeof why, "ship file draught %.2f m + under-keel clearance %.2f m", plan.draught_m, plan.ukc_m);
-        std::fprintf(stderr, "shoal: limiting depth %.2f m (%s): shallower depth areas and dangers are hazards\n", *plan.depth_m, why);
+        if (!quiet()) std::fprintf(stderr, "shoal: limiting depth %.2f m (%s): shallower depth areas and dangers are hazards\n", *plan.depth_m, why);
     }
     check_readable(coast);
     grid::LoadReport report;

@@ -35,6 +35,11 @@ std::string in_cli_terms(std::string message);
 
 /// "shoal: warning: ..." on stderr, one line each, in the CLI's terms, terminal escapes shown as hex.
 void print_warnings(const std::vector<std::string>& warnings);
+/// --quiet: warnings and notes on stderr are left out (errors never are); `quiet()` says so.
+void set_quiet(bool quiet);
+bool quiet();
+/// A note or warning line on stderr ("shoal: " + text), unless --quiet.
+void note(const std::string& text);
 
 /// What a grid holds (import and info).
 void print_grid(const grid::CoastGrid& g);

@@ -163,8 +163,12 @@ breaches.setLabeling(labels("label", QgsPalLayerSettings.OverPoint))
 breaches.setLabelsEnabled(True)
 save(breaches, "breaches")
 
-# tracks: coloured by least clearance (NULL: never within the search limit)
+# tracks: coloured by least clearance (NULL: never within the search limit, or no fix on the
+# chart); a track with fixes outside the chart and nothing closer than 200 m (every track wholly
+# outside it among them) is "no chart" (light grey, dashed), never "200 m or more" (issue 39)
+NO_CHART = "#969696"
 tracks = QgsVectorLayer("MultiLineString?crs=EPSG:4326&field=track:string&field=min_clearance_m:double&field=groundings:integer"
+                        "&field=uncovered_fixes:integer"
                         "&field=start:datetime&field=end:datetime", "tracks", "memory")
 temporal(tracks, "start", "end")  # a track is drawn while its vessel is on record
 root = QgsRuleBasedRenderer.Rule(None)
@@ -172,8 +176,13 @@ for expr, colour, label in (('"groundings" > 0', RED, "aground"),
                             ('"min_clearance_m" = 0', VIOLET_TRACK, "in contact, not a grounding (alongside, at the start, expected)"),
                             ('"min_clearance_m" > 0 AND "min_clearance_m" < 50', AMBER, "closer than 50 m"),
                             ('"min_clearance_m" >= 50 AND "min_clearance_m" < 200', GREEN, "50 to 200 m"),
+                            ('coalesce("min_clearance_m", 1e99) >= 200 AND "uncovered_fixes" > 0', NO_CHART,
+                             "no chart (all or part of the track outside the chart: not known clear)"),
                             ("ELSE", GREY, "200 m or more")):
     sym = QgsLineSymbol.createSimple({"line_color": colour, "line_width": "0.7"})
+    if colour == NO_CHART:
+        sym.symbolLayer(0).setUseCustomDashPattern(True)
+        sym.symbolLayer(0).setCustomDashVector([1.5, 1.5])
     rule = QgsRuleBasedRenderer.Rule(sym, 0, 0, "" if expr == "ELSE" else expr, label)
     if expr == "ELSE":
         rule.setIsElse(True)
@@ -185,13 +194,15 @@ save(tracks, "tracks")
 
 # poses: the hull at each kept fix, from its time until the next kept pose (the temporal
 # controller moves the hulls); red in contact, amber within 50 m, else dark slate
-poses = QgsVectorLayer("Polygon?crs=EPSG:4326&field=track:string&field=clearance_m:double&field=contact:boolean"
+poses = QgsVectorLayer("Polygon?crs=EPSG:4326&field=track:string&field=clearance_m:double&field=contact:boolean&field=covered:boolean"
                        "&field=time:datetime&field=until:datetime", "poses", "memory")
 root = QgsRuleBasedRenderer.Rule(None)
 for expr, fill, colour, label in (('"contact"', "227,26,28,150", RED, "hull in contact"),
+                                  ('NOT "covered"', "160,160,160,60", NO_CHART, "no chart (pose outside the chart: not known clear)"),
                                   ('"clearance_m" < 50', "255,159,0,130", AMBER, "hull within 50 m of a hazard"),
                                   ("ELSE", "51,71,91,110", "#33475b", "hull")):
-    sym = QgsFillSymbol.createSimple({"color": fill, "outline_color": colour, "outline_width": "0.4", "style": "solid"})
+    sym = QgsFillSymbol.createSimple({"color": fill, "outline_color": colour, "outline_width": "0.4", "style": "solid",
+                                      "outline_style": "dot" if colour == NO_CHART else "solid"})
     rule = QgsRuleBasedRenderer.Rule(sym, 0, 0, "" if expr == "ELSE" else expr, label)
     if expr == "ELSE":
         rule.setIsElse(True)

@@ -293,6 +293,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 context.areas = options.areas;
                 swept[k] = sweep_track(t, *frames[w], detector, sweep_options, context);
                 if (real) gather_evidence(t, hull.length(), *frames[w], grid, sweep_options, options.evidence, swept[k]);
+                else merge_stays(swept[k], t, sweep_options, options.evidence.under_way_kn);  // the real world's decide_kinds makes one event per stay
                 swept[k].summary.fixes += wild.size();  // fixes read, the wild ones among them
                 swept[k].summary.wild_fixes = std::move(wild);
                 swept[k].summary.hull = label;

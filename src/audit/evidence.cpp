@@ -539,4 +539,48 @@ void grade_simulated(TrackResult& r) {
     }
 }
 
+void merge_stays(TrackResult& r, const track::Track& t, const SweepOptions& opt, double under_way_kn) {
+    const auto mergeable = [](EventKind k) { return k == EventKind::alongside || k == EventKind::contact_at_start; };
+    const std::vector<track::Fix>& fixes = t.fixes;
+    // Whether the vessel lay at one place, not under way, from `from_s` to `to_s`, within the
+    // stop diameter of `at` (the first fix at or before from_s to the first at or after to_s).
+    const auto lay_still = [&](double from_s, double to_s, geo::LonLat at) {
+        auto first = std::upper_bound(fixes.begin(), fixes.end(), from_s, [](double v, const track::Fix& f) { return v < f.time_s; });
+        if (first != fixes.begin()) --first;
+        const Eigen::Vector2d m = geo::metres_per_degree(at.lat);
+        bool any = false;
+        for (auto f = first; f != fixes.end(); ++f) {
+            if (f != first && f->jump_before) return false;
+            const double dx = (f->position.lon - at.lon) * m.x(), dy = (f->position.lat - at.lat) * m.y();  // (per degree lon, lat)
+            const bool under_way = !f->stopped && !(f->speed_used_kn < under_way_kn);
+            if (under_way || std::hypot(dx, dy) > opt.stop_diameter_m) return false;
+            any = true;
+            if (f->time_s >= to_s) break;
+        }
+        return any;
+    };
+    std::vector<Event> merged;
+    merged.reserve(r.events.size());
+    std::size_t last_contact = static_cast<std::size_t>(-1);
+    for (Event& e : r.events) {
+        if (!is_contact(e.kind)) {
+            merged.push_back(std::move(e));
+            continue;
+        }
+        if (last_contact != static_cast<std::size_t>(-1) && mergeable(e.kind) && mergeable(merged[last_contact].kind) &&
+            lay_still(merged[last_contact].end_s, e.start_s, merged[last_contact].ship)) {
+            Event& m = merged[last_contact];
+            m.end_s = std::max(m.end_s, e.end_s);
+            m.penetration_m = std::max(m.penetration_m, e.penetration_m);
+            m.evidence.pieces += e.evidence.pieces;
+            m.reported_aground = m.reported_aground || e.reported_aground;
+            continue;
+        }
+        merged.push_back(std::move(e));
+        last_contact = merged.size() - 1;
+    }
+    r.events = std::move(merged);
+    recount(r);
+}
+
 }  // namespace shoal::audit

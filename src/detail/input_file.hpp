@@ -49,8 +49,10 @@ bool is_virtual_path(const std::string& path) noexcept;
 std::vector<std::string> zip_members(const std::string& path, std::vector<std::string>* notes = nullptr);
 
 /// The names in a zip file's central directory (ZIP64 too), as written; empty when it has none
-/// that can be read. Reads at most 64 KiB of its end and 64 MiB of directory.
-std::vector<std::string> zip_entry_names(const std::string& path);
+/// that can be read. Reads at most 64 KiB of its end and 64 MiB of directory. `directory_read`,
+/// when given, says whether the end record and the central directory were found and read (false:
+/// not a zip, or a corrupt or truncated one).
+std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read = nullptr);
 
 class InputFile {
 public:

@@ -259,7 +259,7 @@ void write_report(const audit::AuditResult& r, const RunInfo& info, const Staged
     array_of(out, 2, fields::problem_fields(), fields::problem_rows(r), r, true);
     if (r.shard.active()) {
         out.key(1, "part");
-        out.value(part_order(r, false), 2);  // where its rows go, for merge
+        out.value(part_order(r, false, info.chart_lonlat), 2);  // where its rows go, for merge
     }
     out.close('}', 1);
     out.key(0, "features");
@@ -712,7 +712,7 @@ void stage_project_beside(const std::string& path, const audit::AuditResult& r, 
                           "./" + std::filesystem::path(l.geojson).filename().string() + "|geometrytype=" + type});
     }
     StagedOutput qgz(f.qgz);
-    qgz.write(qgz_of(f.qgs_member, qgis_project_xml(layers, name, project_view(r))));
+    qgz.write(qgz_of(f.qgs_member, qgis_project_xml(layers, name, project_view(r, info.chart_lonlat))));
     out.push_back(std::move(qgz));
 }
 

@@ -171,7 +171,7 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
     put(summary, fields::summary_fields(), fields::RunRow{r, info}, r, nullptr);
     if (layers.part) {
         OGRFeature f(layers.part->GetLayerDefn());
-        f.SetField(0, part_order(r, true).dump().c_str());
+        f.SetField(0, part_order(r, true, info.chart_lonlat).dump().c_str());
         if (layers.part->CreateFeature(&f) != OGRERR_NONE) throw LibraryError(std::string("writing the part table: ") + CPLGetLastErrorMsg());
     }
     if (ds.CommitTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage commit failed: " + std::string(CPLGetLastErrorMsg()));
@@ -239,7 +239,7 @@ StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(G
 }
 
 StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info) {
-    const ProjectView view = project_view(result);
+    const ProjectView view = project_view(result, info.chart_lonlat);
     return stage_gpkg_with(path, [&](GDALDataset& ds) { write_layers(ds, result, info); }, info.project ? &view : nullptr);
 }
 

@@ -9,7 +9,7 @@ namespace shoal::report {
 
 using json = nlohmann::ordered_json;
 
-json part_order(const audit::AuditResult& r, bool gpkg) {
+json part_order(const audit::AuditResult& r, bool gpkg, const geo::Box& chart) {
     const auto position = [&](std::size_t k) { return fields::position_in_run(r.track_positions, k); };
     const auto encounter_key = [&](const audit::Encounter& e) {
         return json::array({e.start_s, position(e.a.track), position(e.b.track), static_cast<unsigned>(e.kind)});
@@ -54,12 +54,15 @@ json part_order(const audit::AuditResult& r, bool gpkg) {
     if (r.has_assessment) out["scores"] = std::move(scores);
     if (gpkg) {
         if (r.has_assessment) out["breaches"] = std::move(breaches);
-        const ProjectView v = project_view(r);
+        const ProjectView v = project_view(r, chart);
         out["events"] = std::move(events);
         out["encounters"] = std::move(encounters);
         out["hulls"] = std::move(hulls);
         out["poses"] = std::move(poses);
-        out["project"] = {{"extent", json::array({v.x0, v.y0, v.x1, v.y1})}, {"first_fix_s", v.first_fix_s}, {"last_fix_s", v.last_fix_s}};
+        out["project"] = {{"extent", json::array({v.x0, v.y0, v.x1, v.y1})},
+                          {"chart", json::array({v.chart.minx, v.chart.miny, v.chart.maxx, v.chart.maxy})},
+                          {"first_fix_s", v.first_fix_s},
+                          {"last_fix_s", v.last_fix_s}};
     }
     return out;
 }

@@ -14,7 +14,7 @@
 /// - GeoPackage only: `events`, `poses` (track positions), `encounters` (encounter keys),
 ///   `breaches` (--assess: [trainee position]),
 ///   `hulls` (a track position, or an encounter key), and `project`, the QGIS project's view
-///   of the part (qgis_project.hpp: ProjectView). The coast layer needs no positions: merge
+///   of the part (qgis_project.hpp: ProjectView: `extent` the tracks' box, `chart` the chart's). The coast layer needs no positions: merge
 ///   orders its features by each one's `tile` field (a tile's features are the same in every
 ///   part, chart_layer.hpp).
 #include <nlohmann/json.hpp>
@@ -23,7 +23,8 @@
 
 namespace shoal::report {
 
-/// The positions of `r`'s rows; `gpkg`: with the keys of the GeoPackage's own layers.
-nlohmann::ordered_json part_order(const audit::AuditResult& r, bool gpkg);
+/// The positions of `r`'s rows; `gpkg`: with the keys of the GeoPackage's own layers (the
+/// project's view with the chart's lon/lat box `chart`, RunInfo::chart_lonlat).
+nlohmann::ordered_json part_order(const audit::AuditResult& r, bool gpkg, const geo::Box& chart);
 
 }  // namespace shoal::report

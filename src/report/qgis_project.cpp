@@ -77,12 +77,14 @@ const char* geometry_of(OGRLayer& l) {
 
 void ProjectView::add(const ProjectView& o) {
     x0 = std::min(x0, o.x0), y0 = std::min(y0, o.y0), x1 = std::max(x1, o.x1), y1 = std::max(y1, o.y1);
+    if (!o.chart.empty()) chart.extend(o.chart);
     if (!std::isnan(o.first_fix_s)) first_fix_s = std::isnan(first_fix_s) ? o.first_fix_s : std::min(first_fix_s, o.first_fix_s);
     if (!std::isnan(o.last_fix_s)) last_fix_s = std::isnan(last_fix_s) ? o.last_fix_s : std::max(last_fix_s, o.last_fix_s);
 }
 
-ProjectView project_view(const audit::AuditResult& r) {
+ProjectView project_view(const audit::AuditResult& r, const geo::Box& chart) {
     ProjectView v;
+    v.chart = chart;
     for (const auto& t : r.tracks)
         for (const auto& line : t.summary.lines)
             for (const auto& p : line) {
@@ -95,12 +97,17 @@ ProjectView project_view(const audit::AuditResult& r) {
 }
 
 std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std::string& report_name, const ProjectView& view) {
-    // The run's extent (its tracks), and the UTM zone of its centre.
-    const double x0 = view.x0, y0 = view.y0, x1 = view.x1, y1 = view.y1;
+    // The chart's extent (the tracks' when no chart box is known: a track far outside the
+    // chart, a fix at 0,0 or a vessel across the sea, would put the map elsewhere), and the UTM
+    // zone of its centre; a chart wider than four zones in EPSG:4326.
+    const bool chart = !view.chart.empty();
+    const double x0 = chart ? view.chart.minx : view.x0, y0 = chart ? view.chart.miny : view.y0;
+    const double x1 = chart ? view.chart.maxx : view.x1, y1 = chart ? view.chart.maxy : view.y1;
     const bool have_extent = x0 <= x1 && y0 <= y1;
     const double lon_c = have_extent ? (x0 + x1) / 2 : 0, lat_c = have_extent ? (y0 + y1) / 2 : 0;
     const int zone = std::clamp(static_cast<int>(std::floor((lon_c + 180) / 6)) + 1, 1, 60);
-    const int epsg = (lat_c >= 0 ? 32600 : 32700) + zone;
+    const bool geographic = have_extent && (x1 - x0 > 24 || std::max(std::fabs(y0), std::fabs(y1)) > 84);
+    const int epsg = geographic ? 4326 : (lat_c >= 0 ? 32600 : 32700) + zone;
 
     std::string x = "<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>\n" + std::string(sidecar_mark) +
                     "\n<qgis projectname=\"shoal report\" version=\"3.22.16-Białowieża\">\n";
@@ -118,7 +125,7 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
     x += "  <properties><Paths><Absolute type=\"bool\">false</Absolute></Paths>"
          "<SpatialRefSys><ProjectionsEnabled type=\"int\">1</ProjectionsEnabled></SpatialRefSys></properties>\n";
     if (have_extent) {
-        // The tracks' box in the project CRS (its edges sampled: a box in lon/lat is curved in UTM), plus 5 %.
+        // The box in the project CRS (its edges sampled: a box in lon/lat is curved in UTM), plus 5 %.
         OGRSpatialReference wgs, utm;
         wgs.importFromEPSG(4326);
         wgs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
@@ -134,13 +141,19 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
                 if (!ct->Transform(1, &e, &n)) continue;
                 e0 = std::min(e0, e), n0 = std::min(n0, n), e1 = std::max(e1, e), n1 = std::max(n1, n);
             }
-        const double pad = std::max({(e1 - e0) * 0.05, (n1 - n0) * 0.05, 500.0});
+        const double pad = std::max({(e1 - e0) * 0.05, (n1 - n0) * 0.05, geographic ? 0.005 : 500.0});
+        const int digits = geographic ? 6 : 1;
+        if (geographic) {  // degrees: padded no further than the world
+            e0 = std::max(e0 - pad, -180.0) + pad, e1 = std::min(e1 + pad, 180.0) - pad;
+            n0 = std::max(n0 - pad, -90.0) + pad, n1 = std::min(n1 + pad, 90.0) - pad;
+        }
         char box[256];
-        std::snprintf(box, sizeof box, "xmin=\"%.1f\" ymin=\"%.1f\" xmax=\"%.1f\" ymax=\"%.1f\"", e0 - pad, n0 - pad, e1 + pad, n1 + pad);
+        std::snprintf(box, sizeof box, "xmin=\"%.*f\" ymin=\"%.*f\" xmax=\"%.*f\" ymax=\"%.*f\"", digits, e0 - pad, digits, n0 - pad, digits, e1 + pad,
+                      digits, n1 + pad);
         char ext[256];
-        std::snprintf(ext, sizeof ext, "<extent><xmin>%.1f</xmin><ymin>%.1f</ymin><xmax>%.1f</xmax><ymax>%.1f</ymax></extent>", e0 - pad, n0 - pad,
-                      e1 + pad, n1 + pad);
-        x += "  <mapcanvas name=\"theMapCanvas\" annotationsVisible=\"1\"><units>meters</units>" + std::string(ext) +
+        std::snprintf(ext, sizeof ext, "<extent><xmin>%.*f</xmin><ymin>%.*f</ymin><xmax>%.*f</xmax><ymax>%.*f</ymax></extent>", digits, e0 - pad,
+                      digits, n0 - pad, digits, e1 + pad, digits, n1 + pad);
+        x += "  <mapcanvas name=\"theMapCanvas\" annotationsVisible=\"1\"><units>" + std::string(geographic ? "degrees" : "meters") + "</units>" + std::string(ext) +
              "<rotation>0</rotation><destinationsrs>" + srs_xml(epsg) + "</destinationsrs><rendermaptile>0</rendermaptile></mapcanvas>\n";
         x += "  <ProjectViewSettings UseProjectScales=\"0\" rotation=\"0\"><Scales/><DefaultViewExtent " + std::string(box) + ">" +
              srs_xml(epsg) + "</DefaultViewExtent></ProjectViewSettings>\n";

@@ -2,8 +2,10 @@
 /// The QGIS project of a report, one writer for both formats: the report's layers in order
 /// (coast at the bottom, then tracks, poses, hulls, encounters, events on top), each with its
 /// source (relative to the project's folder), style and temporal settings (the style's), the
-/// project CRS the UTM zone of the run's centre, the map extent the run's tracks, and the
-/// temporal controller's range the run (first to last fix).
+/// project CRS the UTM zone of the chart's centre and the map extent the chart (the grid's
+/// extent: where the audit can say anything), and the temporal controller's range the run (first
+/// to last fix). Without a chart box (none known), the run's tracks give both. A chart wider
+/// than 24 degrees of longitude (a world coast) is shown in EPSG:4326, not in one UTM zone.
 ///
 /// - A GeoPackage report stores it in QGIS's `qgis_projects` table (opened with
 ///   `qgis --project 'geopackage:REPORT.gpkg?projectName=shoal'`), as QGIS 3.22 stores it: a
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include <shoal/audit/audit.hpp>
+#include <shoal/geo/point.hpp>
 
 class GDALDataset;
 
@@ -25,15 +28,18 @@ namespace shoal::report {
 
 inline constexpr const char* qgis_project_name = "shoal";
 
-/// What the project shows of a run: the box of its tracks (lon x, lat y; empty when x0 > x1)
-/// and its first and last fix (NaN: none). `merge` adds up the parts' views.
+/// What the project shows of a run: the box of its tracks (lon x, lat y; empty when x0 > x1),
+/// the box of its chart (the same; empty: not known) and its first and last fix (NaN: none).
+/// `merge` adds up the parts' views.
 struct ProjectView {
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    geo::Box chart;
     double first_fix_s = NAN, last_fix_s = NAN;
     /// This view and `other` together.
     void add(const ProjectView& other);
 };
-ProjectView project_view(const audit::AuditResult& result);
+/// The view of `result` checked against the chart whose lon/lat box is `chart` (RunInfo::chart_lonlat).
+ProjectView project_view(const audit::AuditResult& result, const geo::Box& chart);
 
 /// One layer of the project: `name` (also the name of its style, layer_style), its geometry
 /// ("Point", "Line" or "Polygon") and its OGR source relative to the project's folder

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <algorithm>
 #include <vector>
 
@@ -102,12 +103,30 @@ std::pair<long long, std::string> file_size_and_fingerprint(const std::string& p
     return {size, grid::fingerprint_hex(digest)};
 }
 
+geo::Box chart_box_lonlat(const grid::CoastGrid& grid) {
+    geo::Box out;
+    const geo::Box e = grid.extent();
+    if (!(e.minx <= e.maxx && e.miny <= e.maxy)) return out;
+    // The border sampled (a box in the frame's metres is curved in lon/lat), 16 points a side.
+    for (int i = 0; i <= 16; ++i)
+        for (int j = 0; j <= 16; ++j) {
+            if (i != 0 && i != 16 && j != 0 && j != 16) continue;
+            try {
+                const geo::LonLat p = grid.frame().inverse({e.minx + (e.maxx - e.minx) * i / 16, e.miny + (e.maxy - e.miny) * j / 16});
+                if (std::isfinite(p.lon) && std::isfinite(p.lat)) out.extend(geo::XY{p.lon, p.lat});
+            } catch (const std::exception&) {  // a corner the frame cannot take back: the others say enough
+            }
+        }
+    return out;
+}
+
 RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const std::string& ship,
                  const audit::AuditOptions& options, const std::vector<std::string>& berths, double default_draught_m) {
     RunInfo info;
     info.coast = joined(coast);
     info.frame = grid.frame().description();
     info.cell_m = grid.cell_size();
+    info.chart_lonlat = chart_box_lonlat(grid);
     const grid::DepthPlan depth = grid::plan_vessel_depth(options.hazard_depth_m, NAN, default_draught_m, options.ukc_m, grid);
     info.limiting_depth_m = depth.depth_m.value_or(NAN);
     info.limiting_depth_source = grid::to_string(depth.source);

@@ -13,7 +13,7 @@ namespace {
 constexpr std::size_t table_lines = 50;
 }  // namespace
 
-std::string summary_table(const audit::AuditResult& r) {
+std::string summary_table(const audit::AuditResult& r, SummaryDetail detail) {
     std::string out;
     char line[1024];
     if (r.world == audit::World::real)
@@ -23,14 +23,36 @@ std::string summary_table(const audit::AuditResult& r) {
     else
         std::snprintf(line, sizeof line, "world: simulated (the chart is the world: a contact under way is a grounding)\n");
     out += line;
+    // The counts of each kind first (what a day of traffic comes to), then the tracks.
+    std::snprintf(line, sizeof line,
+                  "events: %zu grounding%s, %zu alongside, %zu in_contact_at_start, %zu expected_contact, %zu chart_disagrees, %zu close_pass%s\n",
+                  r.groundings, r.groundings == 1 ? "" : "s", r.alongside, r.contacts_at_start, r.expected_contacts, r.chart_disagreements,
+                  r.close_passes, r.close_passes == 1 ? "" : "es");
+    out += line;
+    if (r.has_encounters) {
+        std::snprintf(line, sizeof line, "encounter events: %zu collision%s, %zu close_quarters\n", r.collisions, r.collisions == 1 ? "" : "s",
+                      r.close_quarters);
+        out += line;
+    }
+    std::snprintf(line, sizeof line,
+                  "total: %zu files, %zu tracks, %zu fixes (%zu poses checked), %zu groundings, %zu close passes, %zu uncovered fixes, %zu bad rows skipped\n",
+                  r.files.size(), r.tracks.size(), r.fixes, r.poses, r.groundings, r.close_passes, r.uncovered_fixes, r.skipped_rows);
+    out += line;
+    std::snprintf(line, sizeof line, "fixes: %zu wild fixes dropped, %zu jumps, %zu fixes with no heading known (judged by the hull's circle)\n",
+                  r.wild_fixes, r.jumps, r.unknown_heading_fixes);
+    out += line;
     std::snprintf(line, sizeof line, "%-24s %9s %9s %7s %9s %5s %8s %5s %5s %10s  %s\n", "track", "fixes", "uncovered", "aground",
                   "alongside", "start", "expected", "close", "wild", "least m", "file");
     out += line;
-    std::size_t quiet = 0;
+    // Without --verbose, the tracks with events only (on a day of AIS, thousands have none,
+    // many of them outside the chart): those left out are counted below the table.
+    std::size_t quiet = 0, quiet_uncovered = 0, quiet_wild = 0;
     for (const auto& t : r.tracks) {
         const auto& s = t.summary;
-        if (t.events.empty() && s.uncovered_fixes == 0 && s.wild_fixes.empty()) {
+        if (detail != SummaryDetail::verbose && t.events.empty()) {
             ++quiet;
+            if (s.uncovered_fixes > 0) ++quiet_uncovered;
+            if (!s.wild_fixes.empty()) ++quiet_wild;
             continue;
         }
         char least[32];
@@ -42,20 +64,10 @@ std::string summary_table(const audit::AuditResult& r) {
         out += line;
     }
     if (quiet) {
-        std::snprintf(line, sizeof line, "(%zu more track%s: no event, all covered)\n", quiet, quiet == 1 ? "" : "s");
+        std::snprintf(line, sizeof line, "(%zu more track%s without events, %zu of them with fixes outside the chart, %zu with wild fixes: --verbose lists every track)\n",
+                      quiet, quiet == 1 ? "" : "s", quiet_uncovered, quiet_wild);
         out += line;
     }
-    std::snprintf(line, sizeof line,
-                  "total: %zu files, %zu tracks, %zu fixes (%zu poses checked), %zu groundings, %zu close passes, %zu uncovered fixes, %zu bad rows skipped\n",
-                  r.files.size(), r.tracks.size(), r.fixes, r.poses, r.groundings, r.close_passes, r.uncovered_fixes, r.skipped_rows);
-    out += line;
-    std::snprintf(line, sizeof line,
-                  "contacts by kind: %zu grounding%s (under way, seen clear before), %zu alongside (stopped or under the berthing "
-                  "speed), %zu in contact at the start (not seen begin), %zu in expected-contact areas, %zu where the chart "
-                  "disagrees with the traffic; %zu wild fixes dropped, %zu jumps, %zu fixes with no heading known (judged by the hull's circle)\n",
-                  r.groundings, r.groundings == 1 ? "" : "s", r.alongside, r.contacts_at_start, r.expected_contacts, r.chart_disagreements,
-                  r.wild_fixes, r.jumps, r.unknown_heading_fixes);
-    out += line;
     if (!r.places.empty()) {
         std::size_t berths = 0, water = 0;
         for (const auto& p : r.places) ++(p.kind == audit::LearnedPlace::Kind::berth ? berths : water);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -242,6 +243,37 @@ std::string normalise_column_name(std::string_view name) {
     return out;
 }
 
+bool is_time_column_name(std::string_view name) {
+    const std::string n = normalise_column_name(name);
+    static constexpr std::string_view qualifiers[] = {"utc", "gmt", "z", "iso", "iso8601", "epoch", "unix"};
+    static constexpr std::string_view bases[] = {"time", "timestamp", "datetime", "basedatetime"};
+    const auto is_qualifier = [](std::string_view w) { return std::find(std::begin(qualifiers), std::end(qualifiers), w) != std::end(qualifiers); };
+    // The words (letters and digits between any other characters), the qualifiers left out.
+    std::string joined;
+    bool qualified = false;
+    for (std::size_t at = 0; at < n.size();) {
+        std::size_t end = at;
+        while (end < n.size() && std::isalnum(static_cast<unsigned char>(n[end]))) ++end;
+        const std::string_view word = std::string_view(n).substr(at, end - at);
+        if (!word.empty()) {
+            if (is_qualifier(word)) qualified = true;
+            else joined += word;
+        }
+        at = end == at ? at + 1 : end;
+    }
+    if (joined.empty()) return qualified && n.find("utc") != std::string::npos;  // "UTC" alone
+    const auto is_base = [](std::string_view w) { return std::find(std::begin(bases), std::end(bases), w) != std::end(bases); };
+    if (is_base(joined)) return true;
+    // A qualifier joined on either end: "timeutc", "datetimeutc", "utctime", "epochtime".
+    for (const std::string_view q : qualifiers) {
+        if (q.size() < 3) continue;  // "z" joined on would take "timez"-like names too lightly
+        if (joined.size() > q.size() && joined.compare(joined.size() - q.size(), q.size(), q) == 0 && is_base(std::string_view(joined).substr(0, joined.size() - q.size())))
+            return true;
+        if (joined.size() > q.size() && joined.compare(0, q.size(), q) == 0 && is_base(std::string_view(joined).substr(q.size()))) return true;
+    }
+    return false;
+}
+
 std::string to_utf8(std::string_view text) {
     // Validate UTF-8 (no overlongs or surrogates needed for this purpose: structure only).
     bool valid = true;
@@ -314,7 +346,11 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     c.id = find_column(names, {"track_id", "mmsi", "id", "vessel", "vessel_id"});  // mmsi before a possible row id
     c.name = find_column(names, {"vesselname", "vessel_name", "name", "shipname", "ship_name"});
     if (c.id == absent) c.id = c.name;
+    // The usual names first, in this order (a file with both "time" and "timestamp" keeps its
+    // "time"), then the first column any spelling of a time names (is_time_column_name).
     c.time = find_column(names, {"time", "timestamp", "basedatetime", "time_utc", "datetime", "date_time", "utc"});
+    for (std::size_t i = 0; i < names.size() && c.time == absent; ++i)
+        if (is_time_column_name(names[i])) c.time = i;
     c.lat = find_column(names, {"lat", "latitude"});
     c.lon = find_column(names, {"lon", "lng", "long", "longitude"});
     c.heading = find_column(names, {"heading", "hdg", "heading_deg", "true_heading", "trueheading"});
@@ -331,7 +367,7 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     c.nav_status = find_column(names, {"navigational status", "navigational_status", "nav_status", "navstatus", "status"});
 
     std::string missing;
-    if (c.time == absent) missing = "time (time, timestamp, basedatetime, time_utc, datetime)";
+    if (c.time == absent) missing = "time (time, timestamp, datetime or basedatetime, in any case, with or without utc, gmt, epoch: TIMESTAMP_UTC, Time (UTC))";
     else if (c.lat == absent) missing = "latitude (lat, latitude)";
     else if (c.lon == absent) missing = "longitude (lon, lng, long, longitude)";
     if (!missing.empty())

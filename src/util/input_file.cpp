@@ -78,8 +78,9 @@ std::string size_text(std::size_t bytes) {
 
 bool is_virtual_path(const std::string& path) noexcept { return path == "-" || starts_with(path, "/vsi"); }
 
-std::vector<std::string> zip_entry_names(const std::string& path) {
+std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read) {
     std::vector<std::string> names;
+    if (directory_read) *directory_read = false;
     VSILFILE* fp = VSIFOpenL(path.c_str(), "rb");
     if (!fp) return names;
     struct Closer {
@@ -123,6 +124,7 @@ std::vector<std::string> zip_entry_names(const std::string& path) {
     if (cd_size > (std::uint64_t{64} << 20) || cd_at > size || cd_size > size - cd_at) return names;
     const std::string cd = read_at(cd_at, static_cast<std::size_t>(cd_size));
     if (cd.size() != cd_size) return names;
+    if (directory_read) *directory_read = true;
     for (std::size_t at = 0, k = 0; k < count && at + 46 <= cd.size(); ++k) {
         if (cd.compare(at, 4, std::string_view("PK\x01\x02", 4)) != 0) break;
         const std::size_t n = u16(cd, at + 28), extra = u16(cd, at + 30), comment = u16(cd, at + 32);
@@ -237,7 +239,18 @@ void InputFile::open_content(const std::string& path) {
             continue;
         }
         const std::vector<std::string> members = zip_members(base);
-        if (members.empty()) throw InputOpenError(path, "a zip file without any file in it");
+        if (members.empty()) {
+            // An empty zip, or one whose directory (at its end) is missing or broken: a truncated
+            // download, a zip still being written, a file that only starts like a zip.
+            bool directory_read = false;
+            const std::size_t entries = zip_entry_names(base, &directory_read).size();
+            if (!directory_read)
+                throw InputOpenError(path, "not a readable zip file: it starts like a zip but its directory (at the end of the file) is "
+                                           "missing or corrupt (truncated? still being written?)");
+            throw InputOpenError(path, entries == 0 ? std::string("an empty zip file (no file in it)")
+                                                    : "a zip file with no file GDAL can read in it (" + std::to_string(entries) +
+                                                          " entries: folders, or files it cannot unpack)");
+        }
         if (members.size() > 1 && starts_with(base, "/vsimem/"))
             throw InputOpenError(path, "a zip of " + std::to_string(members.size()) +
                                            " files on a pipe or standard input: shoal reads one file from a stream; save the zip "

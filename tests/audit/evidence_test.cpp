@@ -3,6 +3,7 @@
 // evidence on many random stays.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include <shoal/audit/evidence.hpp>
@@ -118,6 +119,100 @@ TEST(Traffic, BerthEvidenceEqualsABruteForceCountOnRandomStays) {
                 EXPECT_EQ(got.own_visits[k][i], own) << "round " << round << " track " << k << " stay " << i;
             }
     }
+}
+
+// The simulated world's one event per stay (merge_stays, issue 39: one moored ship gave dozens of
+// `alongside` events, each touch of its jittering hull a new one). Hand-made tracks at 36 N,
+// 5 W: a fix a minute; 1e-5 degrees of latitude is 1.109 m there, of longitude 0.900 m.
+track::Fix still_fix(double t, double dlat_m = 0, double dlon_m = 0, double speed_kn = 0.2, bool stopped = true) {
+    track::Fix f;
+    f.time_s = t;
+    f.position = {-5.0 + dlon_m / 90163.0, 36.0 + dlat_m / 110938.0};
+    f.speed_used_kn = speed_kn;
+    f.stopped = stopped;
+    return f;
+}
+
+Event contact(EventKind kind, double start_s, double end_s, double penetration_m = 1.0) {
+    Event e;
+    e.kind = kind;
+    e.start_s = start_s;
+    e.end_s = end_s;
+    e.penetration_m = penetration_m;
+    e.ship = {-5.0, 36.0};
+    return e;
+}
+
+std::vector<EventKind> kinds(const TrackResult& r) {
+    std::vector<EventKind> k;
+    for (const Event& e : r.events) k.push_back(e.kind);
+    return k;
+}
+
+TEST(OneEventPerStay, ContactsOfOneStayAtOnePlaceAreOneEventAndAClosePassStays) {
+    // Moored an hour, jittering within 6 m, at 0.2 kn (one fix's SOG noise at 1.8 kn, not
+    // stopped: still under the 3 kn of a vessel under way): three touches, a gap-restart in
+    // contact, a close pass between. One alongside from the first touch's start to the last
+    // one's end, the deepest penetration (3 m), pieces 1 + 1 + 1 + 1; the close pass is kept.
+    track::Track t;
+    for (int i = 0; i <= 60; ++i) t.fixes.push_back(still_fix(60.0 * i, (i % 3) * 2.0, (i % 2) * 3.0, i == 20 ? 1.8 : 0.2, i != 20));
+    TrackResult r;
+    r.events = {contact(EventKind::alongside, 100, 400), contact(EventKind::alongside, 700, 900, 3.0),
+                contact(EventKind::contact_at_start, 1500, 1800), contact(EventKind::close_pass, 2000, 2100, 0),
+                contact(EventKind::alongside, 2500, 3000, 2.0)};
+    merge_stays(r, t, SweepOptions{});
+    ASSERT_EQ(kinds(r), (std::vector<EventKind>{EventKind::alongside, EventKind::close_pass}));
+    EXPECT_DOUBLE_EQ(r.events[0].start_s, 100);
+    EXPECT_DOUBLE_EQ(r.events[0].end_s, 3000);
+    EXPECT_DOUBLE_EQ(r.events[0].penetration_m, 3.0);
+    EXPECT_EQ(r.events[0].evidence.pieces, 4u);
+    EXPECT_EQ(r.summary.alongside, 1u);
+    EXPECT_EQ(r.summary.contacts_at_start, 0u);
+}
+
+TEST(OneEventPerStay, AShipThatLeavesAndComesBackHasTwoStays) {
+    // At the berth 0-1200 s, away 1260-2400 s at 4 kn (600 m out and back), at the berth again
+    // 2460-3600 s: two stays, two alongside events.
+    track::Track t;
+    for (int i = 0; i <= 20; ++i) t.fixes.push_back(still_fix(60.0 * i));
+    for (int i = 21; i <= 40; ++i) t.fixes.push_back(still_fix(60.0 * i, 600.0 - std::abs(30 - i) * 60.0, 0, 4.0, false));
+    for (int i = 41; i <= 60; ++i) t.fixes.push_back(still_fix(60.0 * i));
+    TrackResult r;
+    r.events = {contact(EventKind::alongside, 100, 500), contact(EventKind::alongside, 2600, 3000)};
+    merge_stays(r, t, SweepOptions{});
+    EXPECT_EQ(kinds(r), (std::vector<EventKind>{EventKind::alongside, EventKind::alongside}));
+    EXPECT_EQ(r.summary.alongside, 2u);
+    // Stopped all along but shifted 80 m along the quay between the touches (under the berthing
+    // speed): another place, beyond the 50 m stop diameter: two events too.
+    track::Track shifted;
+    for (int i = 0; i <= 60; ++i) shifted.fixes.push_back(still_fix(60.0 * i, 0, i < 30 ? 0.0 : 80.0, 0.5, i < 25 || i > 35));
+    TrackResult s;
+    s.events = {contact(EventKind::alongside, 100, 500), contact(EventKind::alongside, 2600, 3000)};
+    merge_stays(s, shifted, SweepOptions{});
+    EXPECT_EQ(s.summary.alongside, 2u);
+    // The same still track with a jump between the touches: the positions say nothing, two events.
+    track::Track jumped;
+    for (int i = 0; i <= 60; ++i) jumped.fixes.push_back(still_fix(60.0 * i));
+    jumped.fixes[20].jump_before = true;
+    TrackResult j;
+    j.events = {contact(EventKind::alongside, 100, 500), contact(EventKind::alongside, 2600, 3000)};
+    merge_stays(j, jumped, SweepOptions{});
+    EXPECT_EQ(j.summary.alongside, 2u);
+}
+
+TEST(OneEventPerStay, GroundingsAndExpectedContactsAreNeverMergedNorMergedInto) {
+    track::Track t;
+    for (int i = 0; i <= 60; ++i) t.fixes.push_back(still_fix(60.0 * i));
+    TrackResult r;
+    r.events = {contact(EventKind::alongside, 100, 400), contact(EventKind::grounding, 500, 600), contact(EventKind::alongside, 700, 900),
+                contact(EventKind::expected_contact, 1000, 1100), contact(EventKind::expected_contact, 1200, 1300),
+                contact(EventKind::grounding, 1400, 1500), contact(EventKind::grounding, 1600, 1700)};
+    merge_stays(r, t, SweepOptions{});
+    EXPECT_EQ(kinds(r), (std::vector<EventKind>{EventKind::alongside, EventKind::grounding, EventKind::alongside, EventKind::expected_contact,
+                                                EventKind::expected_contact, EventKind::grounding, EventKind::grounding}));
+    EXPECT_EQ(r.summary.groundings, 3u);
+    EXPECT_EQ(r.summary.alongside, 2u);
+    EXPECT_EQ(r.summary.expected_contacts, 2u);
 }
 
 }  // namespace

@@ -4,12 +4,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <random>
 #include <set>
+#include <sstream>
+#include <string>
+#include <vector>
 #include <fstream>
 #include <sstream>
 #include <nlohmann/json.hpp>
@@ -113,6 +118,30 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneClearLine) {
         EXPECT_EQ(lines_of(r.err), 1u) << c.args << "\n" << r.err;
         EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.args << "\n" << r.err;
     }
+}
+
+// Issue 39: `shoal chek` said "A subcommand is required", hiding the typo. The unknown command is
+// named, with the nearest one when it is near enough; nothing is run.
+TEST(Cli, AMisspeltCommandIsNamedWithTheNearestOne) {
+    const std::string list = "; the commands are import, info, probe, check, merge (see shoal --help)\n";
+    const struct {
+        std::string args, expect;
+    } cases[] = {
+        {"chek --coast x", "unknown command 'chek' (did you mean 'check'?)"},
+        {"chekc", "unknown command 'chekc' (did you mean 'check'?)"},  // two letters swapped: one edit
+        {"imprt x", "unknown command 'imprt' (did you mean 'import'?)"},
+        {"Merge a b", "unknown command 'Merge' (did you mean 'merge'?)"},
+        {"audit tracks.csv", "unknown command 'audit'"},  // nothing near: no guess
+    };
+    for (const auto& c : cases) {
+        const Outcome r = shoal(c.args);
+        EXPECT_EQ(r.status, 2) << c.args;
+        EXPECT_EQ(r.err, "shoal: usage error: " + c.expect + list) << c.args;
+        EXPECT_TRUE(r.out.empty()) << c.args;
+    }
+    // A command rightly spelt, and no command at all, are as before.
+    EXPECT_EQ(shoal("info --help").status, 0);
+    EXPECT_NE(shoal("").err.find("subcommand"), std::string::npos);
 }
 
 TEST(Cli, ProbeWritesOneRowPerPoseAndSkipsBadRows) {
@@ -245,6 +274,59 @@ TEST(CliCheck, GroundingGivesExitOneAndAReportThatValidatesAndReadsBack) {
     EXPECT_EQ(doc["shoal"]["summary"]["tracks"], 2);
     EXPECT_EQ(doc["shoal"]["summary"]["skipped_rows"], 1);
     EXPECT_EQ(doc["shoal"]["summary"]["fixes"], 32);
+}
+
+// Issue 39: on a day of AIS the table listed every track (1,261 lines for a 30 s stream). The
+// counts of each kind of event come first, then only the tracks with events; --verbose lists
+// every track; --quiet prints nothing but errors. Three ships: A runs aground on the Isle of
+// Wight, B passes clear, C lies off Copenhagen, outside the chart (uncovered, no event).
+TEST(CliCheck, TheSummaryCountsKindsFirstAndListsTracksWithEventsUnlessVerboseOrQuiet) {
+    const fs::path tracks = temp_dir() / "three.csv";
+    {
+        std::ofstream f(tracks);
+        f << "mmsi,timestamp,lat,lon,sog,cog,heading\n";
+        for (int i = 0; i <= 20; ++i) f << "111111111,2024-05-01T10:" << (i < 10 ? "0" : "") << i << ":00Z," << 50.78 - 0.01 * i << ",-1.3,11.9,180,180\n";
+        for (int i = 0; i <= 10; ++i) f << "222222222,2024-05-01T10:" << (i < 10 ? "0" : "") << i << ":00Z,50.74," << -1.05 + 0.002 * i << ",8,90,90\n";
+        for (int i = 0; i <= 10; ++i) f << "333333333,2024-05-01T10:" << (i < 10 ? "0" : "") << i << ":00Z,55.7," << 12.7 + 0.002 * i << ",8,90,90\n";
+    }
+    const std::string args = "check --world simulated --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 '" + tracks.string() + "' -o '" +
+                             (temp_dir() / "three.gpkg").string() + "' --no-project";
+    const auto rows_of = [](const std::string& out) {  // the ids at the start of the table's rows
+        std::vector<std::string> ids;
+        std::istringstream in(out);
+        for (std::string l; std::getline(in, l);)
+            if (l.size() > 9 && std::all_of(l.begin(), l.begin() + 9, ::isdigit)) ids.push_back(l.substr(0, 9));
+        return ids;
+    };
+    const Outcome normal = shoal(args);
+    ASSERT_EQ(normal.status, 1) << normal.err;
+    // Line 2 (after the world): the counts of each kind; the table only A; B and C counted below it.
+    std::istringstream in(normal.out);
+    std::string world, kinds;
+    std::getline(in, world);
+    std::getline(in, kinds);
+    EXPECT_EQ(world.rfind("world: simulated", 0), 0u) << normal.out;
+    EXPECT_EQ(kinds.rfind("events: 1 grounding, 0 alongside, 0 in_contact_at_start, 0 expected_contact, 0 chart_disagrees, ", 0), 0u) << normal.out;
+    EXPECT_EQ(rows_of(normal.out), std::vector<std::string>{"111111111"}) << normal.out;
+    EXPECT_NE(normal.out.find("(2 more tracks without events, 1 of them with fixes outside the chart, 0 with wild fixes: --verbose lists every track)"),
+              std::string::npos)
+        << normal.out;
+    const Outcome verbose = shoal(args + " --verbose");
+    EXPECT_EQ(verbose.status, 1);
+    EXPECT_EQ(rows_of(verbose.out), (std::vector<std::string>{"111111111", "222222222", "333333333"})) << verbose.out;
+    EXPECT_EQ(verbose.out.find("more track"), std::string::npos) << verbose.out;
+    const Outcome quiet = shoal(args + " --quiet");
+    EXPECT_EQ(quiet.status, 1) << "the exit status still says there was a grounding";
+    EXPECT_EQ(quiet.out, "");
+    EXPECT_EQ(quiet.err, "");
+    EXPECT_TRUE(fs::exists(temp_dir() / "three.gpkg"));
+    // Errors are still said with --quiet (a track file that is no track file); -q with -v is a usage error.
+    const Outcome bad = shoal("check --quiet --coast " + data("coast/uk_solent_land.geojson") + " --dims 50,10,5,5 " + data("coast/not_a_dataset.txt") +
+                              " -o '" + (temp_dir() / "bad.gpkg").string() + "'");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.err.find("shoal: error: "), std::string::npos) << bad.err;
+    EXPECT_EQ(bad.out, "");
+    EXPECT_EQ(shoal(args + " -q -v").status, 2);
 }
 
 TEST(CliCheck, PlotIsAnSvgWithTheEvents) {

@@ -112,7 +112,7 @@ def check_project(uri, tag):
     rng = project.timeSettings().temporalRange()
     check(rng.begin() == iso("2024-05-01T10:00:00Z") and rng.end() == iso("2024-05-01T10:20:00Z"),
           f"project temporal range = the run: {rng.begin().toString(Qt.ISODate)} .. {rng.end().toString(Qt.ISODate)}")
-    check(project.crs().authid() == "EPSG:32630", f"project CRS: the UTM zone of the run ({project.crs().authid()})")
+    check(project.crs().authid() == "EPSG:32630", f"project CRS: the UTM zone of the chart ({project.crs().authid()})")
     view = project.viewSettings().defaultViewExtent()
     to_utm = QgsCoordinateTransform(QgsCoordinateReferenceSystem("EPSG:4326"), project.crs(), project)
     for lon, lat in ((-1.3, 50.78), (-1.3, 50.58), (-1.03, 50.74)):
@@ -230,6 +230,63 @@ msg, ok = gl.loadDefaultStyle()
 check(gl.isValid() and ok and gl.renderer().type() == "RuleRenderer" and gl.featureCount() >= 1,
       f"the GeoPackage's learned layer loads its style from layer_styles: {ok} {msg} {gl.renderer().type() if gl.renderer() else None}")
 del gl
+# Issue 39: the project's CRS and extent came from every track, so one vessel off Copenhagen in
+# a Solent run put the map in another UTM zone at 1:65 million. They come from the chart now (the
+# grid's extent): the Solent coast's box, -1.80..-0.90 E, 50.573..50.95 N (its GeoJSON's extent),
+# in UTM 30N, whatever the tracks; and a track wholly outside the chart is drawn "no chart", a
+# pose outside it too, never "200 m or more".
+far_tracks = os.path.join(work, "far-tracks.csv")
+with open(far_tracks, "w") as f:
+    f.write("mmsi,timestamp,lat,lon,sog,cog,heading\n")
+    for i in range(11):
+        f.write(f"222222222,2024-05-01T10:{i:02d}:00Z,50.7400,{-1.05 + 0.002 * i:.4f},8,90,90\n")
+    for i in range(11):  # off Copenhagen, 1,000 km from the chart
+        f.write(f"333333333,2024-05-01T10:{i:02d}:00Z,55.7000,{12.70 + 0.002 * i:.4f},8,90,90\n")
+far = os.path.join(work, "far.gpkg")
+if os.path.exists(far):
+    os.remove(far)
+run = subprocess.run([shoal, "check", "--world", "simulated", "--coast", os.path.join(data, "coast", "uk_solent_land.geojson"), "--dims", "50,10,5,5",
+                      far_tracks, "-o", far], capture_output=True, text=True)
+check(run.returncode == 0, f"shoal check -o far.gpkg exits 0: {run.returncode} {run.stderr.strip()[-300:]}")
+check(project.read(f"geopackage:{far}?projectName=shoal"), "QGIS reads far.gpkg's project")
+check(project.crs().authid() == "EPSG:32630", f"far: project CRS the UTM zone of the chart, not of the tracks ({project.crs().authid()})")
+view = project.viewSettings().defaultViewExtent()
+to_utm = QgsCoordinateTransform(QgsCoordinateReferenceSystem("EPSG:4326"), project.crs(), project)
+for lon, lat in ((-1.80, 50.58), (-0.90, 50.95), (-1.80, 50.95), (-0.90, 50.58)):
+    check(view.contains(to_utm.transform(QgsPointXY(lon, lat))), f"far: map extent holds the chart's corner {lat}, {lon}")
+check(not view.contains(to_utm.transform(QgsPointXY(12.7, 55.7))), "far: map extent leaves out the track off Copenhagen")
+check(view.width() < 100000 and view.height() < 100000, f"far: map extent about the chart's 64 x 45 km: {view.width():.0f} x {view.height():.0f} m")
+layers = {l.name(): l for l in project.mapLayers().values()}
+
+
+def rules_of(layer, track):
+    """The labels of the rules that draw `track`'s features (the ELSE rule when no other does)."""
+    from qgis.core import QgsRenderContext, QgsExpressionContextUtils
+    ctx = QgsRenderContext()
+    ctx.expressionContext().appendScopes(QgsExpressionContextUtils.globalProjectLayerScopes(layer))
+    r = layer.renderer().clone()
+    r.startRender(ctx, layer.fields())
+    labels = set()
+    for feat in layer.getFeatures(QgsFeatureRequest().setFilterExpression(f"\"track\" = '{track}'")):
+        ctx.expressionContext().setFeature(feat)
+        # rulesForFeature lists the ELSE rule with the others (its filter is empty): as QGIS draws,
+        # it applies only when no other rule does.
+        rules = r.rootRule().rulesForFeature(feat, ctx)
+        others = {rule.label() for rule in rules if not rule.isElse()}
+        labels |= others or {rule.label() for rule in rules if rule.isElse()}
+    r.stopRender(ctx)
+    return labels
+
+
+far_track = rules_of(layers["tracks"], "333333333")
+check(len(far_track) == 1 and next(iter(far_track)).startswith("no chart"), f"far: the track outside the chart is drawn 'no chart': {far_track}")
+near_track = rules_of(layers["tracks"], "222222222")
+check(near_track == {"200 m or more"}, f"far: the covered track clear of land is '200 m or more': {near_track}")
+far_poses = rules_of(layers["poses"], "333333333")
+check(len(far_poses) == 1 and next(iter(far_poses)).startswith("no chart"), f"far: its poses are drawn 'no chart': {far_poses}")
+check(rules_of(layers["poses"], "222222222") == {"hull"}, "far: the covered track's poses are drawn 'hull'")
+del layers
+project.clear()
 app.exitQgis()
 if failures:
     print(f"{len(failures)} checks failed")

@@ -391,6 +391,33 @@ TEST(CsvReader, HeaderWithoutPositionColumnsIsNotATrackFormat) {
                 ThrowsMessage<InputError>(HasSubstr("no time")));
 }
 
+// Issue 39: TIMESTAMP_UTC was no time column though time_utc was. Every spelling of a time
+// column (a base name with words that say only how it is written) is taken; a local time, an ETA
+// or a date alone is not. Each header is read with the same two rows, and the fixes' times are
+// the independent answer (19:00:00 and 19:00:30 UTC of 2014-08-15 = 1408129200 s, + 30 s).
+TEST(CsvReader, AnySpellingOfATimeColumnIsTheTimeColumn) {
+    for (const char* time : {"TIMESTAMP_UTC", "Time (UTC)", "utc-time", "DateTimeUTC", "TimeUTC", "epoch_time", "Date Time", "timestamp.utc",
+                             "BaseDateTime", "# Timestamp", "UTC", "time_gmt", "Time [UTC]", "datetime_iso8601"}) {
+        SCOPED_TRACE(time);
+        EXPECT_TRUE(is_time_column_name(time));
+        const auto f = read_csv_text(std::string("mmsi,") + time + ",lat,lon\n1,2014-08-15T19:00:00Z,60,24\n1,2014-08-15T19:00:30Z,60,24.001\n", "t.csv");
+        ASSERT_EQ(f.tracks.size(), 1u);
+        ASSERT_EQ(f.tracks[0].fixes.size(), 2u);
+        EXPECT_EQ(f.tracks[0].fixes[0].time_s, 1408129200.0);
+        EXPECT_EQ(f.tracks[0].fixes[1].time_s, 1408129230.0);
+    }
+    for (const char* other : {"local_time", "time_local", "eta", "date", "timezone", "z", "epoch", "times", "runtime", "time_s"}) {
+        SCOPED_TRACE(other);
+        EXPECT_FALSE(is_time_column_name(other));
+        EXPECT_THAT([&] { read_csv_text(std::string("mmsi,") + other + ",lat,lon\n1,2014-08-15T19:00:00Z,60,24\n", "t.csv"); },
+                    ThrowsMessage<InputError>(AllOf(HasSubstr("t.csv: not a track format shoal reads"), HasSubstr("the header has no time ("))));
+    }
+    // The usual name wins over a spelling further left (the order the names were matched in before).
+    const auto f = read_csv_text("mmsi,time_utc_received,TIMESTAMP_UTC,time,lat,lon\n1,x,x,2014-08-15T19:00:00Z,60,24\n", "t.csv");
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].fixes[0].time_s, 1408129200.0);
+}
+
 TEST(CsvReader, WithoutAnIdColumnTheFileIsOneTrackNamedAfterItsStem) {
     const auto f = read_csv_text("time,lat,lon\n2014-08-15T19:00:00Z,60,24\n2014-08-15T19:00:01Z,60,24.001\n",
                                  "/some/where/exercise-3.csv");

@@ -139,6 +139,28 @@ TEST(Input, ZipOfSeveralFilesIsAFolderOfThem) {
                                                     "one file of it (unzip -p ZIP dma_export_dk_head200.csv)")));
 }
 
+// Issue 39: a corrupt zip said "a zip file without any file in it", as if it were empty. A zip
+// cut short (its directory, at the end, lost) is said to be unreadable; a zip made empty by the
+// zip tool itself is said to be empty; both name the file.
+TEST(Input, CorruptZipIsSaidCorruptAndAnEmptyOneEmpty) {
+    if (!have_tool("zip")) GTEST_SKIP() << "no zip tool";
+    TempDir dir;
+    const std::string zip = dir.file("day.zip");
+    run("zip -q -j " + zip + " " + data_path(dma));
+    const std::string whole = slurp(zip);
+    const std::string cut = dir.file("cut.zip");
+    write(cut, whole.substr(0, whole.size() / 2));  // a download stopped half-way
+    EXPECT_THAT([&] { read_tracks(cut); },
+                ThrowsMessage<InputError>(HasSubstr(cut + ": cannot read (not a readable zip file: it starts like a zip but its directory")));
+    // Never called empty (the message before).
+    EXPECT_THAT([&] { read_tracks(cut); }, ThrowsMessage<InputError>(testing::Not(HasSubstr("empty"))));
+    // The empty zip the zip tool writes when its only file is deleted: 22 bytes, an end record.
+    const std::string empty = dir.file("empty.zip");
+    run("cp " + zip + " " + empty + " && zip -q -d " + empty + " " + fs::path(dma).filename().string());
+    ASSERT_EQ(fs::file_size(empty), 22u) << "zip -d of the only file leaves the end record alone";
+    EXPECT_THAT([&] { read_tracks(empty); }, ThrowsMessage<InputError>(HasSubstr(empty + ": cannot read (an empty zip file (no file in it))")));
+}
+
 TEST(Input, GzipReadsAsThePlainFileWhateverItsName) {
     TempDir dir;
     for (const std::string& name : {std::string("day.csv.gz"), std::string("day.csv"), std::string("day.dat")}) {

@@ -118,4 +118,18 @@ void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, c
 /// reason; recounts nothing.
 void grade_simulated(TrackResult& r);
 
+/// The simulated world's one event per stay (docs/method.md, "One event per stay"): a contact
+/// that is `alongside` or `in_contact_at_start` and follows such a contact of the same track is
+/// part of it when the vessel lay at one place, not under way, from the end of the first to the
+/// start of the second: every fix from the last one at or before the first's end to the first
+/// one at or after the second's start is stopped or under `under_way_kn` (EvidenceOptions::
+/// under_way_kn: a moored vessel's SOG noise reaches 1-2 kn), lies within
+/// `options.stop_diameter_m` of where the first contact began, and comes after no jump.
+/// Gaps between them count as the stay when the fixes on both sides say so. The merged event
+/// keeps the first's kind, start and evidence, ends at the last's end, has the deepest
+/// penetration and adds up the pieces. Groundings, expected contacts, chart disagreements and
+/// close passes are never merged, nor merged into. `track` is the swept track (motion resolved).
+/// Recounts the summary's contacts.
+void merge_stays(TrackResult& r, const track::Track& track, const SweepOptions& options, double under_way_kn = EvidenceOptions{}.under_way_kn);
+
 }  // namespace shoal::audit

@@ -17,6 +17,7 @@
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/coast/coastline.hpp>
+#include <shoal/geo/point.hpp>
 #include <shoal/util/output_file.hpp>
 
 namespace shoal::report {
@@ -58,6 +59,10 @@ struct RunInfo {
     std::string role_column;          ///< exercise mode: the role column (--role-column), "" when none
     double encounter_range_m = audit::ColregOptions{}.range_m;  ///< exercise mode: COLREG situations within this
     std::size_t max_encounters_per_ship = audit::AuditOptions{}.max_encounters_per_ship;  ///< exercise mode: 0, no limit
+    /// The chart's box in lon/lat (x lon, y lat): the grid's extent, its border taken back from
+    /// the grid's frame; empty (minx > maxx) when not known. The QGIS project opens on it, in the
+    /// UTM zone of its centre (qgis_project.hpp), whatever the tracks' extent.
+    geo::Box chart_lonlat;
     /// The chart for the report's `coast` layer (read_chart); null: no coast layer.
     const coast::Coastline* chart = nullptr;
     /// The report's map for QGIS: its `poses` and `coast` layers and its QGIS project (a
@@ -76,6 +81,9 @@ struct RunInfo {
 /// radius, depth field). Nothing, with the reason in `warning`, when they cannot be read (a
 /// grid whose sources have moved or are bad now): the report then has no coast layer.
 std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& grid, std::string& warning);
+
+/// The chart's box in lon/lat (RunInfo::chart_lonlat): the grid's extent taken back from its frame.
+geo::Box chart_box_lonlat(const grid::CoastGrid& grid);
 
 /// The run header of a check: the coast sources `coast` as given, the grid's frame, cell and
 /// fingerprint, the default hull `ship` (its name, or "--dims a,b,c,d") and its draught
@@ -130,8 +138,14 @@ StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& resul
 /// stage_gpkg, then commit.
 void write_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info);
 
-/// The human summary: one line per track with events, totals, and problems met.
-std::string summary_table(const audit::AuditResult& result);
+/// How much of a run the summary shows: `normal` the counts of each kind of event first, then
+/// one line per track with events; `verbose` one line per track (every track read).
+enum class SummaryDetail { normal, verbose };
+
+/// The human summary: the world, the totals and the counts of each kind of event first; then
+/// the table of tracks (those with events, or every track: `detail`), every grounding, the
+/// encounters and scores (exercise mode), and the problems met.
+std::string summary_table(const audit::AuditResult& result, SummaryDetail detail = SummaryDetail::normal);
 
 /// "FILE line N: fix at LAT, LON (TIME) of track 'ID' dropped as an outlier: WHY".
 std::string wild_fix_message(const audit::TrackSummary& track, const track::WildFix& fix);
