@@ -1342,7 +1342,7 @@ void draw_overview(std::string& out, const Scene& scene, const grid::CoastGrid& 
         const char* colour = m.track->trainee ? trainee_dark : slate_dark;
         if (auto r = labels.place(p, text_width(s, 9.5) + 4, 13, 6, 40)) {
             leader(texts, p, *r, 10, colour);
-            label(texts, *r, s, 9.5, colour, "label manoeuvre");
+            label(texts, *r, s, 9.5, colour, "label manoeuvre-label");
         }
     }
     name_areas(texts, scene, v, labels);

@@ -37,8 +37,8 @@
 /// between the ships, the label "CPA 420 m 10:12:30Z") and, in plot_svg, as a zoomed panel of
 /// its own (section "Closest approaches", ids `cpa-1`, `cpa-2`, ... in time order, at most
 /// max_zoom_panels; see cpa_svg); the manoeuvres the COLREG reading found
-/// (ColregEncounter::action_a/b) are rings on the track (class `manoeuvre`) labelled "alters
-/// course 10:05:00Z".
+/// (ColregEncounter::action_a/b) are rings on the track (class `manoeuvre`, attribute
+/// `data-track`) labelled "alters course 10:05:00Z" (class `label manoeuvre-label`).
 ///
 /// Classes a reader (or a test) can rely on: `panel overview`, `panel zoom` (ids `overview`,
 /// `zoom-1`, `zoom-2`, ..., in the order above; the panel's title is inside its group, the
