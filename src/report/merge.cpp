@@ -618,8 +618,11 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
         const auto number = [&](const json& x, double none) { return x.is_number() ? x.get<double>() : none; };
         const json& e = v.value("extent", json::array());
         if (!e.is_array() || e.size() != 4) throw edited(p, "project", "{extent: [x0, y0, x1, y1], ...}");
-        view.add({number(e[0], INFINITY), number(e[1], INFINITY), number(e[2], -INFINITY), number(e[3], -INFINITY),
-                  number(v.value("first_fix_s", json()), NAN), number(v.value("last_fix_s", json()), NAN)});
+        ProjectView part{number(e[0], INFINITY), number(e[1], INFINITY), number(e[2], -INFINITY), number(e[3], -INFINITY),
+                         number(v.value("first_fix_s", json()), NAN), number(v.value("last_fix_s", json()), NAN), {}};
+        for (const json& x : v.value("exercises", json::array()))
+            if (x.is_string()) part.exercises.push_back(x.get<std::string>());
+        view.add(part);
     }
     const json merged = merged_summary(parts, plan.first_of_set);
 

@@ -56,6 +56,7 @@ json part_order(const audit::AuditResult& r, bool gpkg) {
         out["hulls"] = std::move(hulls);
         out["poses"] = std::move(poses);
         out["project"] = {{"extent", json::array({v.x0, v.y0, v.x1, v.y1})}, {"first_fix_s", v.first_fix_s}, {"last_fix_s", v.last_fix_s}};
+        if (!v.exercises.empty()) out["project"]["exercises"] = v.exercises;
     }
     return out;
 }
