@@ -1409,7 +1409,8 @@ struct Focus {
 };
 
 /// Colours of the second, third, ... track of a moment (the first has the kind's).
-constexpr const char* other_track_colours[] = {"#1f5fa8", "#7b3fa0", "#0f7d6b", "#8c564b"};
+/// No blue: blue is the trainee's (exercise mode).
+constexpr const char* other_track_colours[] = {"#0f7d6b", "#7b3fa0", "#8c564b", "#4d4d4d"};
 
 const char* own_colour(const Focus& f, std::size_t k) {
     if (k < f.colours.size()) return f.colours[k];
@@ -1558,7 +1559,7 @@ Focus cpa_focus(const CpaDraw& c, const std::string& id, std::size_t number) {
     const bool swap = c.b->trainee && !c.a->trainee;
     f.own = swap ? std::vector<const TrackDraw*>{c.b, c.a} : std::vector<const TrackDraw*>{c.a, c.b};
     f.hulls = swap ? std::vector<std::vector<XY>>{c.hull_b, c.hull_a} : std::vector<std::vector<XY>>{c.hull_a, c.hull_b};
-    f.colours = {f.own[0]->trainee ? trainee_blue : other_track_colours[0], f.own[1]->trainee ? other_track_colours[2] : other_track_colours[1]};
+    f.colours = {f.own[0]->trainee ? trainee_blue : other_track_colours[0], other_track_colours[1]};
     f.cls = "cpa";
     f.style = {clear_grey, cpa_ink};
     const audit::ColregEncounter& s = *c.situation;
@@ -1979,7 +1980,7 @@ const char* kind_colour(const std::string& kind) noexcept { return named_style(k
 std::string exercise_time_text(double t, double start_s) {
     if (!std::isfinite(t) || !std::isfinite(start_s)) return "T+?";
     const double d = t - start_s;
-    const long s = std::lround(std::fabs(d));
+    const auto s = static_cast<long>(std::floor(std::fabs(d) + 1e-6));  // cut, not rounded, as clock_text
     char b[48];
     if (s < 3600) std::snprintf(b, sizeof b, "T%c%ld:%02ld", d < 0 ? '-' : '+', s / 60, s % 60);
     else std::snprintf(b, sizeof b, "T%c%ld:%02ld:%02ld", d < 0 ? '-' : '+', s / 3600, s / 60 % 60, s % 60);

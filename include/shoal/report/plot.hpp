@@ -94,7 +94,7 @@ struct ZoomSpec {
     double size_m = 0;
     /// The tracks drawn in colour with their fixes (indices in AuditResult::tracks); the other
     /// tracks of PlotOptions::tracks are grey. The first has the kind's colour, the next ones
-    /// blue, purple, teal, brown.
+    /// teal, purple, brown, grey (blue is a trainee's in exercise mode).
     std::vector<std::size_t> tracks;
     /// A track event of `tracks[0]` (an element of its TrackResult::events): drawn as plot_svg
     /// draws it (its hull, the contact ring, "first contact HH:MM:SSZ"); `kind` is then its own.
@@ -129,8 +129,8 @@ std::string zoom_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
 std::string cpa_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, std::size_t situation, double width_px = 360,
                     const PlotOptions& options = {});
 
-/// Exercise time: "T+12:30" (minutes and seconds after `start_s`), "T+1:02:03" past the hour,
-/// "T-0:05" before it; "T+?" when either is not finite.
+/// Exercise time: "T+12:30" (minutes and seconds after `start_s`, cut like clock_text, not
+/// rounded), "T+1:02:03" past the hour, "T-0:05" before it; "T+?" when either is not finite.
 std::string exercise_time_text(double t, double start_s);
 
 /// An event in words, as the picture's tooltips say it: track (and name), kind, what was hit,
