@@ -184,7 +184,7 @@ public:
         m_sub->add_option("--poses-interval", m_poses_interval_s,
                           "The poses layer (the hull along each track, for replaying the run in QGIS): a fix is kept when this "
                           "many seconds have passed and the ship moved 300 m since the last kept one, or max(900, this) seconds "
-                          "passed; state changes and piece ends always. 0: every fix (default 120)")
+                          "passed; state changes and piece ends always. 0: every fix (default 120; in exercise mode 0)")
             ->check(finite)->check(non_negative)->check(at_most(max_poses_interval_s, "a day"));
         m_sub->add_flag("--no-project", m_no_project,
                         "The events only, for QGIS: no poses layer, no coast (chart) layer and no QGIS project (a GeoPackage's "
@@ -258,6 +258,12 @@ public:
         }
         // The world: a simulator exercise's chart is the world; real traffic's is a model.
         m_audit.world = !m_world.empty() ? *audit::parse_world(m_world) : m_audit.encounters ? audit::World::simulated : audit::World::real;
+        // Exercise mode replays the exercise (issue 38): a pose at every fix unless --poses-interval
+        // says otherwise, so that at any instant each ship is drawn once, where it was.
+        if (m_audit.encounters && m_sub->count("--poses-interval") == 0) {
+            m_audit.sweep.pose_interval_s = 0;
+            m_audit.sweep.pose_max_interval_s = audit::SweepOptions{}.pose_max_interval_s;
+        }
         const hull::Hull hull = m_opts.load_hull();
         if (!m_date.empty()) {
             const auto day = track::parse_date(m_date);

@@ -316,6 +316,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                 // Held until the report is written: no room to spare (a vector grown by doubling
                 // holds up to twice what it needs; 40 MB of poses on a 10 M-row day).
                 for (auto& line : swept[k].summary.lines) line.shrink_to_fit();
+                for (auto& times : swept[k].summary.line_times) times.shrink_to_fit();
                 swept[k].poses.shrink_to_fit();
                 swept[k].events.shrink_to_fit();
             } catch (const InputError& e) {  // bad input costs this track; anything else is a bug

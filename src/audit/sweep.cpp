@@ -525,6 +525,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     // checked then, whether answers carry over or not, so the figure is the same either way).
     bool fix_in_contact = false;
     std::vector<geo::LonLat>* line = nullptr;
+    std::vector<double>* times = nullptr;
     // Poses for the report (SweepOptions::pose_interval_s): the last kept one of this piece,
     // and the fix before (kept when the piece ends or the state changes).
     std::size_t piece_poses = 0;  ///< index in out.poses of this piece's first pose
@@ -553,6 +554,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             events.start_piece(i, !have_prev ? "track start" : gap ? "gap" : "jump");
             ++sum.segments;
             line = &sum.lines.emplace_back();
+            times = &sum.line_times.emplace_back();
             have_prev = false;
         } else {
             // Sweep from fix i-1 to fix i: no hull point moves more than step between checks.
@@ -625,6 +627,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         have_prev = true;
         fix_in_contact = s.contact.collision;
         line->push_back(t.fixes[i].position);
+        times->push_back(t.fixes[i].time_s);
     }
     end_poses();
     events.end_piece();

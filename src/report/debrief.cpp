@@ -369,6 +369,10 @@ svg { max-width: 100%; height: auto; display: block; }
 article.event { display: flex; gap: 12px; align-items: flex-start; border-top: 1px solid #dddddd; padding: 8px 0; break-inside: avoid; page-break-inside: avoid; }
 article.event .words { flex: 1 1 50%; }
 article.event figure { flex: 0 0 auto; margin: 0; width: 340px; max-width: 48%; }
+div.cpa-panels { display: flex; flex-wrap: wrap; gap: 12px; }
+figure.cpa { margin: 0; width: 340px; max-width: 100%; break-inside: avoid; page-break-inside: avoid; }
+figure.cpa figcaption { font-size: 9pt; }
+.exercise-time { color: #555555; font-weight: normal; }
 td.pass { color: #1a7f37; font-weight: bold; }
 td.fail { color: #b42318; font-weight: bold; }
 p.verdict { margin: 2px 0 6px 0; }
@@ -466,7 +470,9 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
     out += "<header>\n<h1>Debrief: " + esc(page.exercise) + "</h1>\n<table class=\"facts\">\n";
     row(out, "Exercise", "<span class=\"exercise\">" + esc(page.exercise) + "</span>");
     row(out, "Time span",
-        std::isfinite(first) ? esc(date_clock_text(first) + " to " + date_clock_text(last) + " (" + duration_words(last - first) + ")") : "no fixes");
+        std::isfinite(first) ? esc(date_clock_text(first) + " to " + date_clock_text(last) + " (" + duration_words(last - first) +
+                                   "); exercise time T+ counts from the first fix, " + date_clock_text(first))
+                             : "no fixes");
     row(out, "Ships",
         esc(std::to_string(page.tracks.size()) + " tracks" +
             (r.has_encounters ? ": " + std::to_string(trainees) + " trainee" + (trainees == 1 ? "" : "s") + ", " + std::to_string(targets) +
@@ -583,7 +589,8 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
         Item& it = items[n];
         out += "<article class=\"event\" id=\"event-" + std::to_string(n + 1) + "\" data-kind=\"" + esc(it.kind) + "\" data-time=\"" +
                esc(std::isfinite(it.time_s) ? iso_time(it.time_s) : "") + "\">\n<div class=\"words\">\n<h3><span class=\"kind\" style=\"background:" +
-               kind_colour(it.kind) + "\"></span>" + std::to_string(n + 1) + ". " + esc(clock_text(it.time_s, "?")) + " " + esc(it.heading) +
+               kind_colour(it.kind) + "\"></span>" + std::to_string(n + 1) + ". " + esc(clock_text(it.time_s, "?")) + " <span class=\"exercise-time\">" +
+               esc(exercise_time_text(it.time_s, first)) + "</span> " + esc(it.heading) +
                "</h3>\n<p class=\"who\">" + esc(it.who) + "</p>\n<p class=\"what\">" + esc(it.text) + "</p>\n</div>\n";
         if (!it.zoom.tracks.empty() && panels < options.max_zoom_panels) {
             it.zoom.id = "zoom-" + std::to_string(n + 1);
@@ -629,6 +636,18 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
         }
         out += "</tbody>\n</table>\n<p class=\"none\">Bearings: of the second ship from the first / of the first from the second, "
                "relative to each one's heading. CPA and TCPA: if both had kept their course and speed from the start.</p>\n";
+        // Each closest approach: both hulls at that moment, the line between the ships, the distance.
+        out += "<h3>Closest approaches</h3>\n<div class=\"cpa-panels\">\n";
+        for (std::size_t n = 0; n < page.situations.size(); ++n) {
+            const std::size_t ci = page.situations[n];
+            const audit::ColregEncounter& c = r.situations[ci];
+            const std::string svg = n < options.max_zoom_panels ? cpa_svg(r, grid, ci, options.zoom_width_px, plot) : std::string();
+            out += "<figure class=\"cpa\" id=\"cpa-" + std::to_string(n + 1) + "\">" + (svg.empty() ? std::string() : inline_svg(svg)) +
+                   "<figcaption>" + std::to_string(n + 1) + ". " + esc(r.tracks[c.a].summary.id) + " &#215; " + esc(r.tracks[c.b].summary.id) + ", " +
+                   esc(audit::to_string(c.at_start.situation)) + ": closest approach <span class=\"cpa-distance\">" + fixed(c.closest_m, 0) +
+                   " m</span> at " + esc(clock_text(c.closest_s, "?")) + " (" + esc(exercise_time_text(c.closest_s, first)) + ")</figcaption></figure>\n";
+        }
+        out += "</div>\n";
     }
     out += "</section>\n";
     out += "<footer>Written by shoal " + esc(SHOAL_VERSION_STRING) + " (<code>shoal check --debrief</code>).</footer>\n</body>\n</html>\n";

@@ -694,7 +694,9 @@ void stage_project_beside(const std::string& path, const audit::AuditResult& r, 
     // Each source names its geometry type (an OGR layer of a GeoJSON file with no feature has
     // none, and QGIS would open it as a table, dropping it from the map).
     const std::string name = std::filesystem::path(path).filename().string();
-    std::vector<ProjectLayer> layers{{"events", "Point", "./" + name + "|geometrytype=Point"}};
+    bool any_event = !r.encounters.events.empty() || !r.assessment.breaches.empty();
+    for (const auto& t : r.tracks) any_event = any_event || !t.events.empty();
+    std::vector<ProjectLayer> layers{{"events", "Point", "./" + name + "|geometrytype=Point", any_event}};
     std::vector<const ProjectFiles::Layer*> written;
     for (const auto& l : f.layers)
         if ((l.which != MapLayer::coast || info.chart) && (l.which != MapLayer::learned || r.world == audit::World::real)) written.push_back(&l);
@@ -708,8 +710,15 @@ void stage_project_beside(const std::string& path, const audit::AuditResult& r, 
                            : l.which == MapLayer::coast   ? "MultiPolygon"
                            : l.which == MapLayer::learned ? "Point"
                                                           : "Polygon";
+        // A layer file with no feature has no field to filter on.
+        bool any = true;
+        if (l.which == MapLayer::hulls) any = !fields::hull_rows(r).empty();
+        if (l.which == MapLayer::tracks || l.which == MapLayer::poses) {
+            any = false;
+            for (const auto& t : r.tracks) any = any || (l.which == MapLayer::tracks ? !t.summary.lines.empty() : !t.poses.empty());
+        }
         layers.push_back({name_of(l.which), l.which == MapLayer::tracks ? "Line" : l.which == MapLayer::learned ? "Point" : "Polygon",
-                          "./" + std::filesystem::path(l.geojson).filename().string() + "|geometrytype=" + type});
+                          "./" + std::filesystem::path(l.geojson).filename().string() + "|geometrytype=" + type, any});
     }
     StagedOutput qgz(f.qgz);
     qgz.write(qgz_of(f.qgs_member, qgis_project_xml(layers, name, project_view(r, info.chart_lonlat))));

@@ -619,11 +619,13 @@ StagedOutput staged_merged_gpkg(Plan& plan, const std::string& output, MergeSumm
         const json& e = v.value("extent", json::array());
         if (!e.is_array() || e.size() != 4) throw edited(p, "project", "{extent: [x0, y0, x1, y1], ...}");
         ProjectView part{number(e[0], INFINITY), number(e[1], INFINITY), number(e[2], -INFINITY), number(e[3], -INFINITY), {},
-                         number(v.value("first_fix_s", json()), NAN), number(v.value("last_fix_s", json()), NAN)};
+                         number(v.value("first_fix_s", json()), NAN), number(v.value("last_fix_s", json()), NAN), {}};
         // The chart's box: the same in every part of a run (none in a part written before it was kept).
         const json& c = v.value("chart", json::array());
         if (c.is_array() && c.size() == 4)
             part.chart = {number(c[0], INFINITY), number(c[1], INFINITY), number(c[2], -INFINITY), number(c[3], -INFINITY)};
+        for (const json& x : v.value("exercises", json::array()))
+            if (x.is_string()) part.exercises.push_back(x.get<std::string>());
         view.add(part);
     }
     const json merged = merged_summary(parts, plan.first_of_set);

@@ -63,6 +63,7 @@ json part_order(const audit::AuditResult& r, bool gpkg, const geo::Box& chart) {
                           {"chart", json::array({v.chart.minx, v.chart.miny, v.chart.maxx, v.chart.maxy})},
                           {"first_fix_s", v.first_fix_s},
                           {"last_fix_s", v.last_fix_s}};
+        if (!v.exercises.empty()) out["project"]["exercises"] = v.exercises;
     }
     return out;
 }

@@ -67,6 +67,11 @@ constexpr const char* teal = "#17becf";       ///< the chart disagrees with the 
 constexpr const char* teal_dark = "#0b6f7a";
 constexpr const char* contact_violet = "#8a76b8";  ///< a track with contacts, none of them a grounding
 constexpr const char* clear_grey = "#7f8b96";
+constexpr const char* trainee_blue = "#0a58ca";  ///< exercise mode: a trainee's track
+constexpr const char* trainee_dark = "#063a87";
+constexpr const char* no_entry_stroke = "#b42318";
+constexpr const char* speed_area_stroke = "#8f5600";
+constexpr const char* cpa_ink = "#111111";
 constexpr const char* ink = "#222222";
 constexpr const char* font_family = "DejaVu Sans, Verdana, Arial, Helvetica, sans-serif";
 
@@ -366,8 +371,37 @@ struct TrackDraw {
     std::size_t index = 0;  ///< in AuditResult::tracks
     const audit::TrackSummary* summary = nullptr;
     std::vector<std::vector<XY>> lines;
+    std::vector<std::vector<double>> times;  ///< the fix times of `lines`, aligned (empty: not known)
     Box box;
     Status status = Status::clear;
+    bool trainee = false;                ///< exercise mode: a trainee's track (its own colour, arrows, time ticks)
+    double exercise_start_s = NAN;       ///< the first fix of its exercise (exercise time is counted from it)
+};
+
+/// An assessment area (no-entry, speed limit), drawn and named.
+struct AreaDraw {
+    std::vector<XY> ring;
+    std::string name;
+    bool no_entry = false;
+    double limit_kn = NAN;
+};
+
+/// A manoeuvre the COLREG reading found (ColregEncounter::action_a/b): where the ship was then.
+struct ManoeuvreDraw {
+    const TrackDraw* track = nullptr;
+    double time_s = NAN;
+    XY at;
+    bool course = false, speed = false;
+};
+
+/// An encounter's closest approach: both reference points, both hulls then, the distance.
+struct CpaDraw {
+    const audit::ColregEncounter* situation = nullptr;
+    const TrackDraw* a = nullptr;
+    const TrackDraw* b = nullptr;
+    XY pa, pb;
+    std::vector<XY> hull_a, hull_b;  ///< empty when the track kept no pose to shape it
+    double hull_length_m = 0;
 };
 
 struct EventDraw {
@@ -416,8 +450,64 @@ std::vector<XY> project_line(const geo::LocalFrame& frame, const std::vector<Lon
 struct Scene {
     std::vector<TrackDraw> tracks;
     std::vector<EventDraw> events;
+    std::vector<AreaDraw> areas;
+    std::vector<ManoeuvreDraw> manoeuvres;
+    std::vector<CpaDraw> cpas;
     Box data;  ///< tracks and events, local metres
 };
+
+/// Where the track was at `t` (linear between fixes, local metres) and its course over ground
+/// there (degrees clockwise from the frame's +y; NaN when not moving); nothing when `t` is
+/// outside its pieces.
+std::optional<std::pair<XY, double>> track_at(const TrackDraw& d, double t) {
+    if (!std::isfinite(t)) return std::nullopt;
+    for (std::size_t l = 0; l < d.lines.size() && l < d.times.size(); ++l) {
+        const auto& pts = d.lines[l];
+        const auto& ts = d.times[l];
+        if (ts.empty() || ts.size() != pts.size() || t < ts.front() || t > ts.back()) continue;
+        if (pts.size() == 1) return std::make_pair(pts[0], NAN);
+        std::size_t k = static_cast<std::size_t>(std::upper_bound(ts.begin(), ts.end(), t) - ts.begin());
+        k = std::clamp<std::size_t>(k, 1, ts.size() - 1);
+        const double span = ts[k] - ts[k - 1];
+        const double f = span > 0 ? std::clamp((t - ts[k - 1]) / span, 0.0, 1.0) : 0.0;
+        const XY a = pts[k - 1], b = pts[k];
+        const double dx = b.x - a.x, dy = b.y - a.y;
+        const double course = std::hypot(dx, dy) > 1e-6 ? std::atan2(dx, dy) * 180 / pi : NAN;
+        return std::make_pair(XY{a.x + f * dx, a.y + f * dy}, course);
+    }
+    return std::nullopt;
+}
+
+/// The track's hull at `t`: the outline of its kept pose nearest in time, moved from where the
+/// ship was at that pose to where it was at `t` and turned by the change of course over ground
+/// between the two (a rigid move: the hull's shape and its angle to the course are kept).
+/// Empty when no pose has an outline or `t` is outside the track.
+std::vector<XY> hull_at(const TrackDraw& d, const geo::LocalFrame& frame, double t) {
+    const auto now = track_at(d, t);
+    if (!now) return {};
+    const audit::Pose* best = nullptr;
+    for (const audit::Pose& p : d.result->poses)
+        if (p.hull.size() >= 4 && (!best || std::fabs(p.time_s - t) < std::fabs(best->time_s - t))) best = &p;
+    if (!best) return {};
+    const auto then = track_at(d, best->time_s);
+    if (!then) return {};
+    const double turn = std::isfinite(now->second) && std::isfinite(then->second) ? (now->second - then->second) * pi / 180 : 0.0;
+    const double c = std::cos(turn), s = std::sin(turn);
+    std::vector<XY> out;
+    for (const LonLat& q : best->hull)
+        if (auto p = project(frame, q)) {
+            const double x = p->x - then->first.x, y = p->y - then->first.y;
+            out.push_back({now->first.x + x * c + y * s, now->first.y - x * s + y * c});  // clockwise by `turn`
+        }
+    return out.size() >= 3 ? out : std::vector<XY>{};
+}
+
+double longest_chord(const std::vector<XY>& pts) {
+    double m = 0;
+    for (std::size_t a = 0; a < pts.size(); ++a)
+        for (std::size_t b = a + 1; b < pts.size(); ++b) m = std::max(m, geo::distance(pts[a], pts[b]));
+    return m;
+}
 
 /// The tracks `only` names (indices in result.tracks; empty: every track) and their events.
 Scene project_scene(const audit::AuditResult& result, const geo::LocalFrame& frame, const std::vector<std::size_t>& only = {}) {
@@ -442,12 +532,83 @@ Scene project_scene(const audit::AuditResult& result, const geo::LocalFrame& fra
                    : contacts > 0           ? Status::contact
                    : t.summary.close_passes > 0 ? Status::close
                                                 : Status::clear;
-        for (const auto& line : t.summary.lines) {
+        d.trainee = result.has_encounters && t.summary.role == audit::Role::trainee;
+        for (std::size_t l = 0; l < t.summary.lines.size(); ++l) {
+            const auto& line = t.summary.lines[l];
+            const bool timed = l < t.summary.line_times.size() && t.summary.line_times[l].size() == line.size();
             std::vector<XY> pts = project_line(frame, line);
+            std::vector<double> times;
+            if (timed && pts.size() == line.size()) times = t.summary.line_times[l];
+            else if (timed) {  // some point failed: keep the others with their times
+                pts.clear();
+                for (std::size_t k = 0; k < line.size(); ++k)
+                    if (auto q = project(frame, line[k])) {
+                        pts.push_back(*q);
+                        times.push_back(t.summary.line_times[l][k]);
+                    }
+            }
             for (const XY& p : pts) d.box.extend(p);
-            if (!pts.empty()) d.lines.push_back(std::move(pts));
+            if (!pts.empty()) {
+                d.lines.push_back(std::move(pts));
+                d.times.push_back(std::move(times));
+            }
         }
         s.data.extend(d.box);
+    }
+    // Exercise time: from the first fix of each exercise (of the whole result).
+    std::unordered_map<std::string, double> first_fix;
+    for (const auto& t : result.tracks)
+        if (std::isfinite(t.summary.start_s)) {
+            auto [it, fresh] = first_fix.emplace(t.summary.exercise, t.summary.start_s);
+            if (!fresh) it->second = std::min(it->second, t.summary.start_s);
+        }
+    for (TrackDraw& d : s.tracks)
+        if (auto it = first_fix.find(d.summary->exercise); it != first_fix.end()) d.exercise_start_s = it->second;
+    // The assessment's areas, each once.
+    if (result.has_assessment)
+        for (const audit::Criterion& c : result.assessment.criteria) {
+            if (c.kind != audit::CriterionKind::no_entry && c.kind != audit::CriterionKind::speed_limit) continue;
+            AreaDraw a;
+            a.ring = project_line(frame, c.area);
+            if (a.ring.size() < 3) continue;
+            a.name = c.area_name.empty() ? c.id : c.area_name;
+            a.no_entry = c.kind == audit::CriterionKind::no_entry;
+            a.limit_kn = a.no_entry ? NAN : c.limit;
+            const bool seen = std::any_of(s.areas.begin(), s.areas.end(), [&](const AreaDraw& o) {
+                return o.name == a.name && o.no_entry == a.no_entry && o.ring.size() == a.ring.size() &&
+                       (a.no_entry || o.limit_kn == a.limit_kn);
+            });
+            if (!seen) s.areas.push_back(std::move(a));
+        }
+    // The encounters of the tracks drawn: the closest approaches and the manoeuvres found.
+    auto drawn = [&](std::size_t ti) -> const TrackDraw* {
+        auto it = std::lower_bound(s.tracks.begin(), s.tracks.end(), ti, [](const TrackDraw& d, std::size_t i) { return d.index < i; });
+        return it != s.tracks.end() && it->index == ti ? &*it : nullptr;
+    };
+    for (const audit::ColregEncounter& c : result.situations) {
+        const TrackDraw* a = drawn(c.a);
+        const TrackDraw* b = drawn(c.b);
+        if (!a || !b) continue;
+        CpaDraw& cp = s.cpas.emplace_back();
+        cp.situation = &c;
+        cp.a = a;
+        cp.b = b;
+        const auto pa = project(frame, c.a_closest), pb = project(frame, c.b_closest);
+        const auto ta = track_at(*a, c.closest_s), tb = track_at(*b, c.closest_s);
+        cp.pa = pa ? *pa : ta ? ta->first : XY{NAN, NAN};
+        cp.pb = pb ? *pb : tb ? tb->first : XY{NAN, NAN};
+        cp.hull_a = hull_at(*a, frame, c.closest_s);
+        cp.hull_b = hull_at(*b, frame, c.closest_s);
+        cp.hull_length_m = std::max(longest_chord(cp.hull_a), longest_chord(cp.hull_b));
+        if (!std::isfinite(cp.pa.x) || !std::isfinite(cp.pb.x)) s.cpas.pop_back();
+        for (const auto& [track, m] : {std::pair{a, &c.action_a}, std::pair{b, &c.action_b}}) {
+            if (!std::isfinite(m->time_s)) continue;
+            const auto at = track_at(*track, m->time_s);
+            if (!at) continue;
+            const bool seen = std::any_of(s.manoeuvres.begin(), s.manoeuvres.end(),
+                                          [&](const ManoeuvreDraw& o) { return o.track == track && o.time_s == m->time_s; });
+            if (!seen) s.manoeuvres.push_back({track, m->time_s, at->first, m->course, m->speed});
+        }
     }
     for (const TrackDraw& td : s.tracks) {
         for (const auto& e : td.result->events) {
@@ -784,12 +945,13 @@ const char* status_colour(Status s) {
     return clear_grey;
 }
 
-void draw_track(std::string& out, const TrackDraw& t, const View& v, const char* colour, double width, double opacity) {
+void draw_track(std::string& out, const TrackDraw& t, const View& v, const char* colour, double width, double opacity,
+                const char* cls = "track") {
     if (t.box.empty() || v.world.distance_to(t.box) > 0) return;
     std::string d;
     for (const auto& line : t.lines) d += line_path(line, v, 0.6);
     if (d.empty()) return;
-    out += "<path class=\"track\" fill=\"none\" stroke=\"" + std::string(colour) + "\" stroke-width=\"" + num(width) +
+    out += "<path class=\"" + std::string(cls) + "\" fill=\"none\" stroke=\"" + std::string(colour) + "\" stroke-width=\"" + num(width) +
            "\" stroke-opacity=\"" + num(opacity) + "\" stroke-linejoin=\"round\" stroke-linecap=\"round\" d=\"" + d +
            "\"><title>" + markup_text("track " + t.summary->id + (t.summary->name.empty() ? "" : " (" + t.summary->name + ")")) +
            "</title></path>\n";
@@ -962,6 +1124,149 @@ void close_panel(std::string& out, const View& v) {
            num(v.px.h()) + "\" fill=\"none\" stroke=\"#555555\" stroke-width=\"1\"/>\n</g>\n";
 }
 
+// ---------------------------------------------------------------- exercise mode: areas, trainees, encounters
+
+/// "no entry" or "speed limit 8.0 kn".
+std::string area_rule(const AreaDraw& a) { return a.no_entry ? "no entry" : "speed limit " + fixed_text(a.limit_kn, 1) + " kn"; }
+
+/// The assessment's areas: a pale fill and a dashed outline (red: no entry; brown: speed limit).
+void draw_areas(std::string& out, const Scene& scene, const View& v) {
+    for (const AreaDraw& a : scene.areas) {
+        const char* stroke = a.no_entry ? no_entry_stroke : speed_area_stroke;
+        out += std::string("<polygon class=\"area ") + (a.no_entry ? "no-entry" : "speed-limit") + "\" points=\"" + points_attr(a.ring, v) +
+               "\" fill=\"" + (a.no_entry ? red : amber) + "\" fill-opacity=\"0.12\" stroke=\"" + stroke + "\" stroke-width=\"1.6\" stroke-dasharray=\"" +
+               (a.no_entry ? "7,3" : "2,3") + "\"><title>" + markup_text(a.name + ": " + area_rule(a)) + "</title></polygon>\n";
+    }
+}
+
+/// The areas' names ("Mother Bank (no entry)") inside them where they fit, else beside them.
+void name_areas(std::string& out, const Scene& scene, const View& v, Labels& labels) {
+    for (const AreaDraw& a : scene.areas) {
+        Box b;
+        for (const XY& p : a.ring) b.extend(p);
+        XY c = v.to_px({(b.minx + b.maxx) / 2, (b.miny + b.maxy) / 2});
+        c.x = std::clamp(c.x, v.px.x0 + 4, v.px.x1 - 4);
+        c.y = std::clamp(c.y, v.px.y0 + 4, v.px.y1 - 4);
+        const std::string s = a.name + " (" + area_rule(a) + ")";
+        if (auto r = labels.place(c, text_width(s, 10) + 4, 14, 0, 60))
+            label(out, *r, s, 10, a.no_entry ? no_entry_stroke : speed_area_stroke, "label area-name", true);
+    }
+}
+
+/// The minutes between time ticks: the smallest of 1, 2, 5, 10, 15, 20, 30 min, 1, 2, 4, 8 h
+/// that gives at most 12 over `span_s`.
+double tick_minutes(double span_s) {
+    for (const double m : {1.0, 2.0, 5.0, 10.0, 15.0, 20.0, 30.0, 60.0, 120.0, 240.0})
+        if (span_s / (60 * m) <= 12) return m;
+    return 480;
+}
+
+/// Exercise time with UTC beside it, for a time tick: "T+10 min 10:12:30Z".
+std::string tick_text(double minutes, double t) {
+    char b[32];
+    std::snprintf(b, sizeof b, "T+%.0f min ", minutes);
+    return b + clock_text(t);
+}
+
+/// A trainee's direction arrows (one every 110 px of track on the page, class `direction`) and
+/// time ticks (class `time-tick`, at whole multiples of tick_minutes from the exercise start;
+/// their labels placed later from `ticks`).
+struct Tick {
+    XY at;
+    std::string text;
+};
+void draw_direction_and_ticks(std::string& out, const TrackDraw& t, const View& v, std::vector<Tick>& ticks) {
+    if (t.box.empty() || v.world.distance_to(t.box) > 0) return;
+    std::string arrows;
+    for (const auto& line : t.lines) {
+        double walked = 55;  // the first arrow half a spacing in
+        for (std::size_t k = 1; k < line.size(); ++k) {
+            const XY a = v.to_px(line[k - 1]), b = v.to_px(line[k]);
+            const double len = geo::distance(a, b);
+            if (len <= 0) continue;
+            const XY u{(b.x - a.x) / len, (b.y - a.y) / len};
+            for (double at = 110 - walked; at <= len; at += 110) {
+                const XY p{a.x + u.x * at, a.y + u.y * at};
+                if (!Rect{p.x, p.y, p.x, p.y}.overlaps(v.px)) continue;
+                const XY tip{p.x + u.x * 5, p.y + u.y * 5}, back{p.x - u.x * 5, p.y - u.y * 5};
+                arrows += "<polygon class=\"direction\" points=\"" + page_points({tip, {back.x - u.y * 4.5, back.y + u.x * 4.5}, {back.x + u.y * 4.5, back.y - u.x * 4.5}}) +
+                          "\"/>";
+            }
+            walked = std::fmod(walked + len, 110.0);
+        }
+    }
+    if (!arrows.empty())
+        out += "<g class=\"directions\" fill=\"" + std::string(trainee_dark) + "\" stroke=\"#ffffff\" stroke-width=\"0.8\" stroke-linejoin=\"round\">" + arrows + "</g>\n";
+    if (!std::isfinite(t.exercise_start_s) || !std::isfinite(t.summary->end_s)) return;
+    const double minutes = tick_minutes(t.summary->end_s - t.exercise_start_s);
+    std::string marks;
+    std::optional<XY> last;
+    for (double n = std::ceil((t.summary->start_s - t.exercise_start_s) / (60 * minutes) - 1e-9); ; ++n) {
+        if (n < 1) continue;
+        const double time = t.exercise_start_s + n * minutes * 60;
+        if (time > t.summary->end_s + 1e-6) break;
+        const auto at = track_at(t, time);
+        if (!at) continue;
+        const XY p = v.to_px(at->first);
+        if (!Rect{p.x, p.y, p.x, p.y}.overlaps(v.px) || (last && geo::distance(*last, p) < 24)) continue;
+        last = p;
+        // Across the track: perpendicular to the course (page y is down).
+        const double c = std::isfinite(at->second) ? at->second * pi / 180 : 0;
+        const XY across{std::cos(c), std::sin(c)};
+        marks += "<line class=\"time-tick\" data-minutes=\"" + num(n * minutes) + "\" x1=\"" + num(p.x - across.x * 6) + "\" y1=\"" +
+                 num(p.y - across.y * 6) + "\" x2=\"" + num(p.x + across.x * 6) + "\" y2=\"" + num(p.y + across.y * 6) + "\"><title>" +
+                 markup_text(t.summary->id + ": " + tick_text(n * minutes, time) + " UTC") + "</title></line>";
+        ticks.push_back({p, tick_text(n * minutes, time)});
+    }
+    if (!marks.empty())
+        out += "<g class=\"time-ticks\" stroke=\"" + std::string(trainee_dark) + "\" stroke-width=\"2\" stroke-linecap=\"round\">" + marks + "</g>\n";
+}
+
+std::string exercise_clock(double t, double start_s) { return exercise_time_text(t, start_s); }
+
+/// "course", "speed", "course and speed".
+const char* manoeuvre_words(const ManoeuvreDraw& m) { return m.course && m.speed ? "course and speed" : m.course ? "course" : "speed"; }
+
+/// A manoeuvre on its track: a ring in the track's colour (class `manoeuvre`) with what was
+/// altered and when as its tooltip; returns its page box.
+Rect draw_manoeuvre(std::string& out, const ManoeuvreDraw& m, const View& v, const char* colour) {
+    const XY p = v.to_px(m.at);
+    out += "<g class=\"manoeuvre\" data-track=\"" + markup_text(m.track->summary->id) + "\"><title>" +
+           markup_text(m.track->summary->id + " altered " + manoeuvre_words(m) + " at " + clock_text(m.time_s) + " UTC (" +
+                       exercise_clock(m.time_s, m.track->exercise_start_s) + ")") +
+           "</title><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"6\" fill=\"#ffffff\" stroke=\"" + colour +
+           "\" stroke-width=\"2.2\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"2\" fill=\"" + colour + "\"/></g>\n";
+    return {p.x - 7, p.y - 7, p.x + 7, p.y + 7};
+}
+
+/// "alters course 10:05:00Z".
+std::string manoeuvre_label(const ManoeuvreDraw& m) { return std::string("alters ") + manoeuvre_words(m) + " " + clock_text(m.time_s); }
+
+/// "CPA 420 m 10:12:30Z".
+std::string cpa_label(const CpaDraw& c) {
+    return "CPA " + fixed_text(c.situation->closest_m, 0) + " m " + clock_text(c.situation->closest_s);
+}
+
+/// The closest approach: both hulls at that moment (in the colours given), the line between
+/// the reference points (dashed, class `cpa-line`); returns the page box of the line.
+Rect draw_cpa(std::string& out, const CpaDraw& c, const View& v, const char* colour_a, const char* colour_b, double width) {
+    const XY a = v.to_px(c.pa), b = v.to_px(c.pb);
+    out += "<g class=\"cpa\" data-ships=\"" + markup_text(c.a->summary->id + " x " + c.b->summary->id) + "\"><title>" +
+           markup_text(c.a->summary->id + " and " + c.b->summary->id + ": closest approach " + fixed_text(c.situation->closest_m, 0) + " m at " +
+                       date_clock_text(c.situation->closest_s) + " UTC (" + exercise_clock(c.situation->closest_s, c.a->exercise_start_s) + ")") +
+           "</title>";
+    for (const auto& [hull, colour] : {std::pair{&c.hull_a, colour_a}, std::pair{&c.hull_b, colour_b}})
+        if (hull->size() >= 3)
+            out += "<polygon class=\"hull cpa-hull\" points=\"" + points_attr(*hull, v) + "\" fill=\"" + colour + "\" fill-opacity=\"0.35\" stroke=\"" +
+                   colour + "\" stroke-width=\"1.4\" stroke-linejoin=\"round\"/>";
+    out += "<line class=\"cpa-line\" x1=\"" + num(a.x) + "\" y1=\"" + num(a.y) + "\" x2=\"" + num(b.x) + "\" y2=\"" + num(b.y) + "\" stroke=\"" +
+           cpa_ink + "\" stroke-width=\"" + num(width) + "\" stroke-dasharray=\"4,3\"/>";
+    for (const XY& p : {a, b})
+        out += "<circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"1.8\" fill=\"" + cpa_ink + "\"/>";
+    out += "</g>\n";
+    return {std::min(a.x, b.x) - 3, std::min(a.y, b.y) - 3, std::max(a.x, b.x) + 3, std::max(a.y, b.y) + 3};
+}
+
 // ---------------------------------------------------------------- the panels
 
 /// The time label of an event in the overview: "10:03:12Z", "(n)" added when it has a panel.
@@ -974,12 +1279,22 @@ void draw_overview(std::string& out, const Scene& scene, const grid::CoastGrid& 
                    const std::vector<EventDraw*>& order) {
     open_panel(out, v, "overview", "overview");
     draw_chart(out, g, v, 2, 0.8);
+    draw_areas(out, scene, v);
     for (Status s : {Status::clear, Status::close, Status::contact, Status::aground})
         for (const TrackDraw& t : scene.tracks)
-            if (t.status == s) {
+            if (t.status == s && !t.trainee) {
                 draw_track(out, t, v, status_colour(s), s == Status::clear ? 1.0 : 1.6, s == Status::clear ? 0.75 : 0.95);
                 draw_lonely_fixes(out, t, v, status_colour(s));
             }
+    // Trainees on top, in their own colour, with direction arrows and time ticks.
+    std::vector<Tick> ticks;
+    for (const TrackDraw& t : scene.tracks)
+        if (t.trainee) {
+            draw_track(out, t, v, trainee_blue, 2.4, 1.0, "track trainee");
+            draw_lonely_fixes(out, t, v, trainee_blue);
+        }
+    for (const TrackDraw& t : scene.tracks)
+        if (t.trainee) draw_direction_and_ticks(out, t, v, ticks);
     for (auto it = order.rbegin(); it != order.rend(); ++it) draw_hull(out, **it, v, false);
 
     // Markers (the most severe drawn last, on top), then labels where they fit: event times
@@ -989,6 +1304,12 @@ void draw_overview(std::string& out, const Scene& scene, const grid::CoastGrid& 
     for (const EventDraw& e : scene.events) labels.block(hull_rect(e, v));
     for (auto it = order.rbegin(); it != order.rend(); ++it)
         if ((*it)->point_ok) labels.block(draw_marker(marks, **it, v, "event", marker_size((*it)->event->kind)));
+    std::vector<Rect> cpa_boxes;
+    for (const CpaDraw& c : scene.cpas) cpa_boxes.push_back(draw_cpa(marks, c, v, c.a->trainee ? trainee_blue : clear_grey,
+                                                                        c.b->trainee ? trainee_blue : clear_grey, 1.3));
+    for (const Rect& r : cpa_boxes) labels.block(r);
+    for (const ManoeuvreDraw& m : scene.manoeuvres)
+        labels.block(draw_manoeuvre(marks, m, v, m.track->trainee ? trainee_dark : slate_dark));
     out += marks;
     out += "</g>\n";  // end of the clipped group: labels, scale bar and arrow are placed inside the panel
     const Bearing b = bearing_at(g.frame(), v.to_world({(v.px.x0 + v.px.x1) / 2, (v.px.y0 + v.px.y1) / 2}));
@@ -1005,6 +1326,28 @@ void draw_overview(std::string& out, const Scene& scene, const grid::CoastGrid& 
             label(texts, *r, s, 10.5, colour, "label event-time", e->event->kind == EventKind::grounding || e->zoom);
         }
     }
+    // The closest approaches ("CPA 420 m 10:12:30Z"), the manoeuvres, the areas' names, the time ticks.
+    for (const CpaDraw& c : scene.cpas) {
+        const XY pa = v.to_px(c.pa), pb = v.to_px(c.pb);
+        const XY mid{(pa.x + pb.x) / 2, (pa.y + pb.y) / 2};
+        const std::string s = cpa_label(c);
+        if (auto r = labels.place(mid, text_width(s, 10.5) + 4, 14, 6, 60)) {
+            leader(texts, mid, *r, 10, cpa_ink);
+            label(texts, *r, s, 10.5, cpa_ink, "label cpa-distance", true);
+        }
+    }
+    for (const ManoeuvreDraw& m : scene.manoeuvres) {
+        const XY p = v.to_px(m.at);
+        const std::string s = manoeuvre_label(m);
+        const char* colour = m.track->trainee ? trainee_dark : slate_dark;
+        if (auto r = labels.place(p, text_width(s, 9.5) + 4, 13, 6, 40)) {
+            leader(texts, p, *r, 10, colour);
+            label(texts, *r, s, 9.5, colour, "label manoeuvre-label");
+        }
+    }
+    name_areas(texts, scene, v, labels);
+    for (const Tick& t : ticks)
+        if (auto r = labels.place(t.at, text_width(t.text, 9) + 4, 12, 5, 14)) label(texts, *r, t.text, 9, trainee_dark, "label time-tick");
     for (Status s : {Status::aground, Status::contact, Status::close, Status::clear})
         for (const TrackDraw& t : scene.tracks) {
             if (t.status != s || t.lines.empty()) continue;
@@ -1061,12 +1404,16 @@ struct Focus {
     std::string time_text;               ///< the label at the marker
     std::string tooltip;                 ///< the marker's <title>
     std::vector<TitleLine> title;        ///< above the panel (none: the panel starts at its top)
+    const CpaDraw* cpa = nullptr;        ///< an encounter's closest approach: its line and distance drawn
+    std::vector<const char*> colours;    ///< the colours of `own` (empty: the kind's, then other_track_colours)
 };
 
 /// Colours of the second, third, ... track of a moment (the first has the kind's).
-constexpr const char* other_track_colours[] = {"#1f5fa8", "#7b3fa0", "#0f7d6b", "#8c564b"};
+/// No blue: blue is the trainee's (exercise mode).
+constexpr const char* other_track_colours[] = {"#0f7d6b", "#7b3fa0", "#8c564b", "#4d4d4d"};
 
 const char* own_colour(const Focus& f, std::size_t k) {
+    if (k < f.colours.size()) return f.colours[k];
     if (f.event) return status_colour(f.own[0]->status);
     return k == 0 ? f.style.dark : other_track_colours[(k - 1) % std::size(other_track_colours)];
 }
@@ -1074,6 +1421,7 @@ const char* own_colour(const Focus& f, std::size_t k) {
 void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, const Focus& focus, const View& v) {
     open_panel(out, v, "zoom", focus.id);
     draw_chart(out, g, v, 1, 1.3);
+    draw_areas(out, scene, v);
     for (const TrackDraw& t : scene.tracks)
         if (std::find(focus.own.begin(), focus.own.end(), &t) == focus.own.end()) draw_track(out, t, v, clear_grey, 1.0, 0.8);
     for (std::size_t k = 0; k < focus.own.size(); ++k) {
@@ -1111,8 +1459,20 @@ void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, c
     }
     for (const EventDraw& e : scene.events)
         if (&e != focus.event && e.point_ok && v.world.distance_to(e.box) == 0) labels.block(draw_contact(out, e, v, 3));
+    for (const ManoeuvreDraw& m : scene.manoeuvres)
+        for (std::size_t k = 0; k < focus.own.size(); ++k)
+            if (m.track == focus.own[k] && Rect{v.to_px(m.at).x, v.to_px(m.at).y, v.to_px(m.at).x, v.to_px(m.at).y}.overlaps(v.px))
+                labels.block(draw_manoeuvre(out, m, v, own_colour(focus, k)));
+    if (focus.cpa) {
+        const XY a = v.to_px(focus.cpa->pa), b = v.to_px(focus.cpa->pb);
+        out += "<g class=\"cpa\"><line class=\"cpa-line\" x1=\"" + num(a.x) + "\" y1=\"" + num(a.y) + "\" x2=\"" + num(b.x) + "\" y2=\"" +
+               num(b.y) + "\" stroke=\"" + cpa_ink + "\" stroke-width=\"1.6\" stroke-dasharray=\"5,3\"/>";
+        for (const XY& p : {a, b}) out += "<circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"2.4\" fill=\"" + cpa_ink + "\"/>";
+        out += "</g>\n";
+        labels.block({std::min(a.x, b.x) - 3, std::min(a.y, b.y) - 3, std::max(a.x, b.x) + 3, std::max(a.y, b.y) + 3});
+    }
     if (focus.event) labels.block(draw_contact(out, *focus.event, v, 4.5));
-    else if (focus.point_ok) {
+    else if (focus.point_ok && !focus.cpa) {
         const XY p = v.to_px(focus.point);
         out += "<g class=\"contact " + focus.cls + "\"><title>" + markup_text(focus.tooltip) + "</title><circle cx=\"" + num(p.x) +
                "\" cy=\"" + num(p.y) + "\" r=\"4.5\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"3.5\"/><circle cx=\"" + num(p.x) +
@@ -1133,6 +1493,13 @@ void draw_zoom(std::string& out, const Scene& scene, const grid::CoastGrid& g, c
         label(texts, r, s, 10.5, slate_dark, "label heading-unknown");
     }
     const XY at = v.to_px(focus.point);
+    if (focus.cpa) {  // the distance, by the line's middle
+        const std::string s = cpa_label(*focus.cpa);
+        if (auto r = labels.place(at, text_width(s, 11) + 4, 15, 6, v.px.w() / 3)) {
+            leader(texts, at, *r, 10, cpa_ink);
+            label(texts, *r, s, 11, cpa_ink, "label cpa-distance", true);
+        }
+    }
     if (focus.point_ok && !focus.time_text.empty())
         if (auto r = labels.place(at, text_width(focus.time_text, 11) + 4, 15, 7, v.px.w() / 3)) {
             leader(texts, at, *r, 14, focus.style.dark);
@@ -1180,6 +1547,44 @@ Focus event_focus(const EventDraw& e) {
     f.title = zoom_title(e);
     return f;
 }
+
+/// The focus of an encounter's closest approach: both ships (a trainee first, in the
+/// trainee's colour), their hulls at that moment, the CPA line and distance.
+Focus cpa_focus(const CpaDraw& c, const std::string& id, std::size_t number) {
+    Focus f;
+    f.id = id;
+    f.cpa = &c;
+    f.point = {(c.pa.x + c.pb.x) / 2, (c.pa.y + c.pb.y) / 2};
+    f.point_ok = true;
+    const bool swap = c.b->trainee && !c.a->trainee;
+    f.own = swap ? std::vector<const TrackDraw*>{c.b, c.a} : std::vector<const TrackDraw*>{c.a, c.b};
+    f.hulls = swap ? std::vector<std::vector<XY>>{c.hull_b, c.hull_a} : std::vector<std::vector<XY>>{c.hull_a, c.hull_b};
+    f.colours = {f.own[0]->trainee ? trainee_blue : other_track_colours[0], other_track_colours[1]};
+    f.cls = "cpa";
+    f.style = {clear_grey, cpa_ink};
+    const audit::ColregEncounter& s = *c.situation;
+    const std::string& a = c.a->summary->id;
+    const std::string& b = c.b->summary->id;
+    f.tooltip = a + " and " + b + " (" + audit::to_string(s.at_start.situation) + "): closest approach " + fixed_text(s.closest_m, 0) + " m at " +
+                date_clock_text(s.closest_s) + " UTC";
+    auto party = [&](audit::Party p) {
+        return p == audit::Party::a ? a : p == audit::Party::b ? b : p == audit::Party::both ? "both" : std::string("neither");
+    };
+    auto action = [&](const std::string& who, const audit::Manoeuvre& m) {
+        return who + ": " + (std::isnan(m.time_s) ? std::string("no alteration")
+                                                  : std::string(m.course && m.speed ? "course and speed" : m.course ? "course" : "speed") +
+                                                        " altered at " + clock_text(m.time_s));
+    };
+    f.title = {{"(" + std::to_string(number) + ") " + a + " \xC3\x97 " + b + ": " + audit::to_string(s.at_start.situation), ink, 12, true},
+               {"closest approach " + fixed_text(s.closest_m, 0) + " m", cpa_ink, 11, true},
+               {"at " + date_clock_text(s.closest_s) + " UTC (" + exercise_time_text(s.closest_s, c.a->exercise_start_s) + ")", ink, 11, false},
+               {"give-way " + party(s.at_start.give_way) + ", stand-on " + party(s.at_start.stand_on), ink, 11, false},
+               {action(a, s.action_a) + "; " + action(b, s.action_b), "#555555", 11, false}};
+    return f;
+}
+
+/// The ground a closest approach's panel shows across its shorter side (metres).
+double cpa_size_m(const CpaDraw& c) { return std::max({8 * c.hull_length_m, 1.8 * c.situation->closest_m, 100.0}); }
 
 // ---------------------------------------------------------------- legend
 
@@ -1237,10 +1642,33 @@ std::vector<LegendItem> legend_items(const grid::CoastGrid& g, const Scene& scen
     if (g.has_land_side()) items.push_back({swatch(land_fill), "land (as the grid sees it)"});
     else items.push_back({swatch(water_fill), "land side unknown: coastline only"});
     items.push_back({swatch(outside_fill), "no chart (outside the grid)"});
-    items.push_back({line(red, 2), "track with grounding"});
-    if (contact_track) items.push_back({line(contact_violet, 2), "track with contacts, no grounding"});
-    items.push_back({line(amber, 2), "track with close pass"});
-    items.push_back({line(clear_grey, 1.5), "other track"});
+    bool trainees = false;
+    for (const TrackDraw& t : scene.tracks) trainees = trainees || t.trainee;
+    if (trainees)
+        items.push_back({line(trainee_blue, 2.6) + "<polygon points=\"16,6 9,2 9,10\" fill=\"" + trainee_dark + "\"/>",
+                         "trainee (arrows: direction; ticks: T+minutes from the exercise start, UTC)"});
+    items.push_back({line(red, 2), trainees ? "target with grounding" : "track with grounding"});
+    if (contact_track) items.push_back({line(contact_violet, 2), trainees ? "target with contacts, no grounding" : "track with contacts, no grounding"});
+    items.push_back({line(amber, 2), trainees ? "target with close pass" : "track with close pass"});
+    items.push_back({line(clear_grey, 1.5), trainees ? "other target" : "other track"});
+    bool no_entry = false, speed_area = false;
+    for (const AreaDraw& a : scene.areas) (a.no_entry ? no_entry : speed_area) = true;
+    if (no_entry)
+        items.push_back({std::string("<rect x=\"1\" y=\"1\" width=\"20\" height=\"10\" fill=\"") + red + "\" fill-opacity=\"0.12\" stroke=\"" +
+                             no_entry_stroke + "\" stroke-width=\"1.4\" stroke-dasharray=\"5,2\"/>",
+                         "no-entry area"});
+    if (speed_area)
+        items.push_back({std::string("<rect x=\"1\" y=\"1\" width=\"20\" height=\"10\" fill=\"") + amber + "\" fill-opacity=\"0.12\" stroke=\"" +
+                             speed_area_stroke + "\" stroke-width=\"1.4\" stroke-dasharray=\"2,2\"/>",
+                         "speed-limit area"});
+    if (!scene.cpas.empty())
+        items.push_back({std::string("<line x1=\"2\" y1=\"6\" x2=\"20\" y2=\"6\" stroke=\"") + cpa_ink +
+                             "\" stroke-width=\"1.3\" stroke-dasharray=\"4,3\"/><circle cx=\"2\" cy=\"6\" r=\"1.8\"/><circle cx=\"20\" cy=\"6\" r=\"1.8\"/>",
+                         "closest approach: both hulls then, distance (UTC)"});
+    if (!scene.manoeuvres.empty())
+        items.push_back({std::string("<circle cx=\"11\" cy=\"6\" r=\"5\" fill=\"#ffffff\" stroke=\"") + trainee_dark +
+                             "\" stroke-width=\"2\"/><circle cx=\"11\" cy=\"6\" r=\"1.8\" fill=\"" + trainee_dark + "\"/>",
+                         "manoeuvre: course or speed altered"});
     items.push_back({std::string("<polygon points=\"1,3 15,3 21,6 15,9 1,9\" fill=\"") + red +
                          "\" fill-opacity=\"0.3\" stroke=\"" + red_dark + "\" stroke-width=\"1\"/>",
                      "hull at event"});
@@ -1408,6 +1836,29 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
             if ((n + 1) % static_cast<std::size_t>(cols) == 0 || n + 1 == drawn.size()) y += zoom_title_px + zh + 16;
         }
     }
+    // The encounters' closest approaches, in time order, numbered after the events' panels.
+    std::vector<const CpaDraw*> cpas;
+    for (const CpaDraw& c : scene.cpas) cpas.push_back(&c);
+    std::stable_sort(cpas.begin(), cpas.end(), [](const CpaDraw* a, const CpaDraw* b) { return a->situation->closest_s < b->situation->closest_s; });
+    const std::size_t cpa_drawn = std::min(cpas.size(), options.max_zoom_panels);
+    if (cpa_drawn > 0) {
+        y += 10;
+        text(body, margin, y + 14,
+             cpa_drawn == cpas.size() ? std::string("Closest approaches")
+                                      : "Closest approaches: first " + std::to_string(cpa_drawn) + " of " + std::to_string(cpas.size()),
+             14, ink, " class=\"section\" font-weight=\"bold\"");
+        y += 24;
+        for (std::size_t n = 0; n < cpa_drawn; ++n) {
+            const CpaDraw& c = *cpas[n];
+            const double x = margin + static_cast<double>(n % static_cast<std::size_t>(cols)) * (zw + gap);
+            const Rect px{x, y + zoom_title_px, x + zw, y + zoom_title_px + zh};
+            const Focus f = cpa_focus(c, "cpa-" + std::to_string(n + 1), zoom_count + n + 1);
+            const double size_m = cpa_size_m(c);
+            const View v = fit({f.point.x - size_m / 2, f.point.y - size_m / 2, f.point.x + size_m / 2, f.point.y + size_m / 2}, px);
+            draw_zoom(body, scene, grid, f, v);
+            if ((n + 1) % static_cast<std::size_t>(cols) == 0 || n + 1 == cpa_drawn) y += zoom_title_px + zh + 16;
+        }
+    }
     std::size_t more = 0;
     for (std::size_t n : left_out) more += n;
     if (more > 0) {
@@ -1525,6 +1976,41 @@ std::string event_description(const audit::TrackSummary& t, const audit::Event& 
 }
 
 const char* kind_colour(const std::string& kind) noexcept { return named_style(kind).dark; }
+
+std::string exercise_time_text(double t, double start_s) {
+    if (!std::isfinite(t) || !std::isfinite(start_s)) return "T+?";
+    const double d = t - start_s;
+    const auto s = static_cast<long>(std::floor(std::fabs(d) + 1e-6));  // cut, not rounded, as clock_text
+    char b[48];
+    if (s < 3600) std::snprintf(b, sizeof b, "T%c%ld:%02ld", d < 0 ? '-' : '+', s / 60, s % 60);
+    else std::snprintf(b, sizeof b, "T%c%ld:%02ld:%02ld", d < 0 ? '-' : '+', s / 3600, s / 60 % 60, s % 60);
+    return b;
+}
+
+std::string cpa_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, std::size_t situation, double width_px,
+                    const PlotOptions& options) {
+    if (!std::isfinite(width_px) || width_px < 150 || width_px > 20000)
+        throw UsageError("zoomed panel width must be between 150 and 20000 px (got " + num(width_px) + ")");
+    if (situation >= result.situations.size())
+        throw UsageError("cpa_svg: situation " + std::to_string(situation) + " of a result with " + std::to_string(result.situations.size()));
+    const audit::ColregEncounter& s = result.situations[situation];
+    std::vector<std::size_t> drawn = options.tracks;
+    if (!drawn.empty()) drawn.insert(drawn.end(), {s.a, s.b});
+    const Scene scene = project_scene(result, grid.frame(), drawn);
+    const CpaDraw* c = nullptr;
+    for (const CpaDraw& d : scene.cpas)
+        if (d.situation == &s) c = &d;
+    if (!c) return "";  // the closest approach cannot be placed
+    Focus f = cpa_focus(*c, "cpa-" + std::to_string(situation + 1), situation + 1);
+    f.title.clear();
+    const double size_m = cpa_size_m(*c);
+    const double h_px = std::round(width_px * 0.75);
+    const View v = fit({f.point.x - size_m / 2, f.point.y - size_m / 2, f.point.x + size_m / 2, f.point.y + size_m / 2},
+                       {0.5, 0.5, width_px - 0.5, h_px - 0.5});
+    std::string body;
+    draw_zoom(body, scene, grid, f, v);
+    return svg_element(body, width_px, h_px, f.tooltip);
+}
 
 std::string zoom_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const ZoomSpec& spec, double width_px,
                      const PlotOptions& options) {

@@ -49,7 +49,7 @@ std::string srs_xml(int epsg) {
 }
 
 /// The <maplayer> of one layer: the style's root attributes and elements, wrapped.
-std::string map_layer(const ProjectLayer& layer) {
+std::string map_layer(const ProjectLayer& layer, const std::string& id) {
     const std::string& name = layer.name;
     const std::string qml(layer_style(name));
     const std::size_t open = qml.find("<qgis ");
@@ -60,7 +60,7 @@ std::string map_layer(const ProjectLayer& layer) {
     std::string attrs = qml.substr(open + 6, open_end - open - 6);
     // The style's own version attribute is the style's, not the layer's.
     if (std::size_t v = attrs.find("version=\""); v != std::string::npos) attrs.erase(v, attrs.find('"', v + 9) + 1 - v);
-    return "    <maplayer type=\"vector\" geometry=\"" + layer.geometry + "\" " + attrs + ">\n      <id>shoal_" + name + "</id>\n      <datasource>" +
+    return "    <maplayer type=\"vector\" geometry=\"" + layer.geometry + "\" " + attrs + ">\n      <id>" + escape(id) + "</id>\n      <datasource>" +
            escape(layer.source) + "</datasource>\n      <layername>" + name + "</layername>\n      <srs>" + srs_xml(4326) +
            "</srs>\n      <provider encoding=\"UTF-8\">ogr</provider>\n" + qml.substr(open_end + 1, close - open_end - 1) + "    </maplayer>\n";
 }
@@ -76,6 +76,11 @@ const char* geometry_of(OGRLayer& l) {
 }  // namespace
 
 void ProjectView::add(const ProjectView& o) {
+    std::vector<std::string> all = exercises;
+    all.insert(all.end(), o.exercises.begin(), o.exercises.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    exercises = std::move(all);
     x0 = std::min(x0, o.x0), y0 = std::min(y0, o.y0), x1 = std::max(x1, o.x1), y1 = std::max(y1, o.y1);
     if (!o.chart.empty()) chart.extend(o.chart);
     if (!std::isnan(o.first_fix_s)) first_fix_s = std::isnan(first_fix_s) ? o.first_fix_s : std::min(first_fix_s, o.first_fix_s);
@@ -93,6 +98,11 @@ ProjectView project_view(const audit::AuditResult& r, const geo::Box& chart) {
             }
     v.first_fix_s = r.first_fix_s;
     v.last_fix_s = r.last_fix_s;
+    if (r.has_encounters) {
+        for (const auto& t : r.tracks) v.exercises.push_back(t.summary.exercise);
+        std::sort(v.exercises.begin(), v.exercises.end());
+        v.exercises.erase(std::unique(v.exercises.begin(), v.exercises.end()), v.exercises.end());
+    }
     return v;
 }
 
@@ -113,14 +123,42 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
                     "\n<qgis projectname=\"shoal report\" version=\"3.22.16-Białowieża\">\n";
     x += "  <title>shoal report " + escape(report_name) + "</title>\n";
     x += "  <projectCrs>" + srs_xml(epsg) + "</projectCrs>\n";
-    x += "  <layer-tree-group>\n";
+    // Exercise mode: the layers with an `exercise` field once per exercise, filtered to it.
+    std::vector<ProjectLayer> shown;  // every map layer, top first, its id in `name`'s place below
+    std::vector<std::string> ids;
+    std::string tree;
+    auto tree_layer = [&](const ProjectLayer& l, const std::string& id, const char* indent) {
+        tree += std::string(indent) + "<layer-tree-layer id=\"" + id + "\" name=\"" + l.name + "\" providerKey=\"ogr\" checked=\"Qt::Checked\" expanded=\"" +
+                (l.name == "coast" ? "0" : "1") + "\" source=\"" + escape(l.source) + "\"/>\n";
+        shown.push_back(l);
+        ids.push_back(id);
+    };
+    const auto per_exercise = [&](const ProjectLayer& l) {
+        return !view.exercises.empty() && l.filterable && std::find_if(std::begin(exercise_layers), std::end(exercise_layers),
+                                                        [&](const char* n) { return l.name == n; }) != std::end(exercise_layers);
+    };
+    if (!view.exercises.empty()) {
+        tree += "    <layer-tree-group name=\"exercises\" checked=\"Qt::Checked\" expanded=\"1\" mutually-exclusive=\"1\" mutually-exclusive-child=\"0\">\n";
+        for (std::size_t k = 0; k < view.exercises.size(); ++k) {
+            const std::string& e = view.exercises[k];
+            tree += "      <layer-tree-group name=\"" + escape("exercise " + (e.empty() ? std::string("run") : e)) + "\" checked=\"" +
+                    (k == 0 ? "Qt::Checked" : "Qt::Unchecked") + "\" expanded=\"" + (k == 0 ? "1" : "0") + "\">\n";
+            std::string quoted;  // an SQL string literal: ' doubled
+            for (const char c : e) quoted += c == '\'' ? std::string("''") : std::string(1, c);
+            for (const ProjectLayer& l : layers)
+                if (per_exercise(l))
+                    tree_layer({l.name, l.geometry, l.source + "|subset=\"exercise\" = '" + quoted + "'", true}, "shoal_" + l.name + "_" + std::to_string(k + 1),
+                               "        ");
+            tree += "      </layer-tree-group>\n";
+        }
+        tree += "    </layer-tree-group>\n";
+    }
     for (const ProjectLayer& l : layers)
-        x += "    <layer-tree-layer id=\"shoal_" + l.name + "\" name=\"" + l.name + "\" providerKey=\"ogr\" checked=\"Qt::Checked\" expanded=\"" +
-             (l.name == "coast" ? "0" : "1") + "\" source=\"" + escape(l.source) + "\"/>\n";
-    x += "  </layer-tree-group>\n  <projectlayers>\n";
-    for (const ProjectLayer& l : layers) x += map_layer(l);
+        if (!per_exercise(l)) tree_layer(l, "shoal_" + l.name, "    ");
+    x += "  <layer-tree-group>\n" + tree + "  </layer-tree-group>\n  <projectlayers>\n";
+    for (std::size_t k = 0; k < shown.size(); ++k) x += map_layer(shown[k], ids[k]);
     x += "  </projectlayers>\n  <layerorder>\n";
-    for (const ProjectLayer& l : layers) x += "    <layer id=\"shoal_" + l.name + "\"/>\n";
+    for (const std::string& id : ids) x += "    <layer id=\"" + id + "\"/>\n";
     x += "  </layerorder>\n";
     x += "  <properties><Paths><Absolute type=\"bool\">false</Absolute></Paths>"
          "<SpatialRefSys><ProjectionsEnabled type=\"int\">1</ProjectionsEnabled></SpatialRefSys></properties>\n";

@@ -35,6 +35,9 @@ struct ProjectView {
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
     geo::Box chart;
     double first_fix_s = NAN, last_fix_s = NAN;
+    /// Exercise mode: the run's exercises, sorted, each once (empty outside exercise mode). The
+    /// project then has a group per exercise (see qgis_project_xml).
+    std::vector<std::string> exercises{};
     /// This view and `other` together.
     void add(const ProjectView& other);
 };
@@ -46,9 +49,17 @@ ProjectView project_view(const audit::AuditResult& result, const geo::Box& chart
 /// ("./REPORT.gpkg|layername=poses", "./REPORT.poses.geojson").
 struct ProjectLayer {
     std::string name, geometry, source;
+    /// It has an `exercise` field to filter on (an empty GeoJSON file has no fields: filtering
+    /// it would leave the layer invalid in QGIS, and there is nothing to filter).
+    bool filterable = true;
 };
 
-/// The project's .qgs XML: `layers` top of the map first, titled after `report_name`.
+/// The project's .qgs XML: `layers` top of the map first, titled after `report_name`. With
+/// exercises (ProjectView::exercises), the layers with an `exercise` field (exercise_layers)
+/// are in a group per exercise ("exercise NAME"), each a copy filtered to that exercise (the
+/// OGR source's `subset`), the groups under a mutually exclusive group "exercises" (the first
+/// shown): a frame of the replay never holds ships of two exercises. The other layers (learned,
+/// coast) stay below, shared.
 std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std::string& report_name, const ProjectView& view);
 
 /// `qgs` as a .qgz: a zip holding it as `member` (deflated), written with GDAL's zip support;
@@ -63,6 +74,9 @@ bool is_shoal_qgz(const std::string& path, const std::string& member);
 /// Writes the project into the `qgis_projects` table of `gpkg` (named `file_name`): its
 /// layers, those of report_layers_top_first that it has.
 void add_qgis_project(GDALDataset& gpkg, const std::string& file_name, const ProjectView& view);
+
+/// The layers that have an `exercise` field in exercise mode.
+inline constexpr const char* exercise_layers[] = {"breaches", "events", "encounters", "hulls", "poses", "tracks"};
 
 /// The report's map layers, top of the map first (QGIS's layer tree order).
 inline constexpr const char* report_layers_top_first[] = {"breaches", "events", "encounters", "hulls", "poses", "tracks", "learned", "coast"};

@@ -278,6 +278,7 @@ const std::vector<Field<HullRow>>& hull_fields() {
         {"hit", text_t, none, -1, [](const H& x) { return x.hit ? text(x.hit) : null; }},
         {"start", datetime, utc, -1, [](const H& x) { return text(iso_time(x.start_s)); }},
         {"label", text_t, none, -1, [](const H& x) { return text(x.label); }},
+        {"exercise", text_t, none, -1, [](const H& x) { return text(x.exercise); }, exercise},
     };
     return f;
 }
@@ -296,6 +297,7 @@ const std::vector<Field<PoseRow>>& pose_fields() {
         {"covered", boolean, none, -1, [](const X& x) { return Value(x.pose.covered); }},
         {"fix_index", integer, none, -1, [](const X& x) { return count(x.pose.fix_index); }},
         {"fix_line", integer, none, -1, [](const X& x) { return count(x.pose.fix_line); }},
+        {"exercise", text_t, none, -1, [](const X& x) { return text(x.track.exercise); }, exercise},
     };
     return f;
 }
@@ -548,10 +550,11 @@ std::vector<HullRow> hull_rows(const audit::AuditResult& r) {
     std::vector<HullRow> rows;
     for (const auto& t : r.tracks)
         for (const auto& e : t.events)
-            rows.push_back({t.summary.id, audit::to_string(e.kind), coast::to_string(e.hit), e.start_s, event_label(e), e.hull});
+            rows.push_back({t.summary.id, audit::to_string(e.kind), coast::to_string(e.hit), e.start_s, event_label(e), e.hull, t.summary.exercise});
     for (const auto& e : r.encounters.events)
         for (const audit::ShipAt* ship : {&e.a, &e.b})
-            rows.push_back({r.tracks.at(ship->track).summary.id, audit::to_string(e.kind), nullptr, e.start_s, encounter_label(e), ship->hull});
+            rows.push_back({r.tracks.at(ship->track).summary.id, audit::to_string(e.kind), nullptr, e.start_s, encounter_label(e), ship->hull,
+                            r.tracks.at(ship->track).summary.exercise});
     return rows;
 }
 

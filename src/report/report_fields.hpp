@@ -100,6 +100,7 @@ struct HullRow {
     double start_s;
     std::string label;
     const std::vector<geo::LonLat>& ring;
+    std::string exercise;  ///< the track's exercise (exercise mode)
 };
 struct PoseRow {
     const audit::TrackSummary& track;

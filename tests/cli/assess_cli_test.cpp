@@ -268,7 +268,9 @@ TEST_F(AssessCli, TheGeoPackageHasABreachesLayerAScoresTableAndTheirStyleAndProj
     for (std::size_t k; (k = std::fread(buf, 1, sizeof buf, pipe)) > 0;) project.append(buf, k);
     EXPECT_EQ(::pclose(pipe), 0) << project;
     EXPECT_THAT(project, HasSubstr("layername=breaches"));
-    EXPECT_THAT(project, HasSubstr("layer-tree-layer id=\"shoal_breaches\""));
+    // In exercise mode the breaches are in the exercise's group (the first), filtered to it.
+    EXPECT_THAT(project, HasSubstr("layer-tree-layer id=\"shoal_breaches_1\""));
+    EXPECT_THAT(project, HasSubstr("layername=breaches|subset=&quot;exercise&quot; = '"));
 }
 
 TEST_F(AssessCli, ABadAssessmentFileIsRefusedBeforeAnyWork) {

@@ -26,6 +26,8 @@
 #include <functional>
 #include <memory>
 #include <set>
+#include <sstream>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,7 @@
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/report/debrief.hpp>
+#include <shoal/report/plot.hpp>
 #include <shoal/report/report.hpp>
 #include "run_shoal.hpp"
 #include "test_support.hpp"
@@ -556,6 +559,277 @@ TEST(Debrief, HeadlessChromiumShowsTheRun) {
     EXPECT_GT(land, 20000u) << "the Isle of Wight drawn";
     EXPECT_GT(water, 20000u);
     EXPECT_GT(track, 100u) << "the grounded track A in red";
+}
+
+// ---------------------------------------------------------------- pictures that tell the story
+
+/// An instructor's exercise east of the Isle of Wight, every fix made here by dead reckoning
+/// (10 s apart, 30 min, from 10:00:00Z): the trainee T1 sails east at 10 kn and turns to
+/// starboard (140) from 10:08:00 to 10:14:00, then back to 090; the target C1 sails north at
+/// 10 kn across her bow (T1 gives way); the target H1 sails west at 9 kn south of T1's track.
+struct Story {
+    struct Ship {
+        std::string id, role;
+        double lat, lon, sog;
+        std::function<double(double)> heading;  ///< of seconds from the start
+        std::vector<std::array<double, 3>> fixes{};  ///< time from the start, lat, lon
+    };
+    std::vector<Ship> ships{
+        {"T1", "trainee", 50.735, -1.08, 10, [](double t) { return t >= 480 && t < 840 ? 140.0 : 90.0; }},
+        {"C1", "target", 50.695, -1.025, 10, [](double) { return 0.0; }},
+        {"H1", "target", 50.715, -0.93, 9, [](double) { return 270.0; }},
+    };
+    Story() {
+        for (Ship& s : ships) {
+            double lat = s.lat, lon = s.lon;
+            for (int i = 0; i <= 180; ++i) {
+                const double t = 10.0 * i, h = s.heading(t) * M_PI / 180, v = s.sog * 1852 / 3600 * 10;
+                s.fixes.push_back({t, lat, lon});
+                lat += v * std::cos(h) / 111200;
+                lon += v * std::sin(h) / (111320 * std::cos(lat * M_PI / 180));
+            }
+        }
+    }
+    void write(const std::string& path) const {
+        std::ofstream out(path);
+        out << "id,role,time,lat,lon,sog,cog,heading\n";
+        char line[200];
+        for (const Ship& s : ships)
+            for (const auto& f : s.fixes) {
+                const int t = static_cast<int>(f[0]);
+                const double h = s.heading(f[0]);
+                std::snprintf(line, sizeof line, "%s,%s,2024-05-01T10:%02d:%02dZ,%.6f,%.6f,%.0f,%.1f,%.1f\n", s.id.c_str(), s.role.c_str(), t / 60,
+                              t % 60, f[1], f[2], s.sog, h, h);
+                out << line;
+            }
+    }
+    /// The least distance (m) between two ships' reference points, by brute force: positions
+    /// linear between the fixes, every 0.5 s, metres on a sphere of radius 6371 km (equirectangular
+    /// at the pair's mean latitude): an answer found apart from shoal's local frame.
+    std::pair<double, double> closest(const std::string& a, const std::string& b) const {
+        const Ship* x = nullptr;
+        const Ship* y = nullptr;
+        for (const Ship& s : ships) {
+            if (s.id == a) x = &s;
+            if (s.id == b) y = &s;
+        }
+        auto at = [](const Ship& s, double t) {
+            const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(t / 10), s.fixes.size() - 2);
+            const double f = (t - s.fixes[k][0]) / 10;
+            return std::pair{s.fixes[k][1] + f * (s.fixes[k + 1][1] - s.fixes[k][1]), s.fixes[k][2] + f * (s.fixes[k + 1][2] - s.fixes[k][2])};
+        };
+        double best = INFINITY, when = 0;
+        for (double t = 0; t <= 1800; t += 0.5) {
+            const auto [la, lo] = at(*x, t);
+            const auto [lb, ob] = at(*y, t);
+            const double r = 6371000, m = (la + lb) / 2 * M_PI / 180;
+            const double d = r * std::hypot((lb - la) * M_PI / 180, (ob - lo) * M_PI / 180 * std::cos(m));
+            if (d < best) best = d, when = t;
+        }
+        return {best, when};
+    }
+};
+
+const char* const story_assessment = R"({"criteria": [
+ {"id": "cpa-0.5nm", "kind": "cpa", "limit": 926, "penalty": 10},
+ {"id": "rules", "kind": "colreg", "penalty": 20},
+ {"id": "bembridge-6kn", "kind": "speed_limit", "limit": 6, "penalty": 5,
+  "area": [[-1.06,50.70],[-1.04,50.70],[-1.04,50.715],[-1.06,50.715]], "area_name": "Bembridge approach"},
+ {"id": "closed", "kind": "no_entry", "penalty": 1, "per": "second",
+  "area": [[-1.00,50.72],[-0.98,50.72],[-0.98,50.735],[-1.00,50.735]], "area_name": "Firing range"}
+], "pass_mark": 30})";
+
+/// The story audited by the CLI as an instructor runs it: roles from the file's column, the
+/// assessment, the picture and the debrief.
+struct StoryRun {
+    test::TempDir dir;
+    Story story;
+    test::Outcome outcome;
+    std::string plot, page;
+    StoryRun() {
+        story.write(dir.file("ex1.csv"));
+        std::ofstream(dir.file("assess.json")) << story_assessment;
+        outcome = test::run_shoal("check --coast " + test::data_path("coast/uk_solent_land.geojson") +
+                                      " --dims 60,12,6,6 --role-column role --assess '" + dir.file("assess.json") + "' --plot '" +
+                                      dir.file("plot.svg") + "' --debrief '" + dir.file("debrief") + "' -o '" + dir.file("r.geojson") + "' '" +
+                                      dir.file("ex1.csv") + "'",
+                                  dir.path() / "cache", dir.path() / "err.txt");
+        plot = read_text(dir.file("plot.svg"));
+        page = read_text((dir.path() / "debrief" / "run.html").string());
+    }
+};
+
+/// The numbers in "CPA 646 m 10:12:02Z" labels, in document order.
+std::vector<double> cpa_metres(const CPLXMLNode* n) {
+    std::vector<double> out;
+    for (const auto* l : with_class(n, "cpa-distance")) {
+        double m = NAN;
+        if (std::sscanf(all_text(l).c_str(), "CPA %lf m", &m) == 1) out.push_back(m);
+    }
+    return out;
+}
+
+/// The points of a <polygon>.
+std::vector<std::pair<double, double>> polygon_points(const CPLXMLNode* p) {
+    std::vector<std::pair<double, double>> out;
+    std::string pts = attr(p, "points");
+    for (char& c : pts)
+        if (c == ',') c = ' ';
+    std::istringstream in(pts);
+    double x, y;
+    while (in >> x >> y) out.emplace_back(x, y);
+    return out;
+}
+
+TEST(DebriefPictures, TheTraineeInHerColourWithArrowsAndTicksTheAreasTheClosestApproachesAndTheManoeuvres) {
+    StoryRun run;
+    ASSERT_EQ(run.outcome.status, 0) << run.outcome.err;
+    ASSERT_FALSE(run.plot.empty());
+    ASSERT_FALSE(run.page.empty());
+    // The situations shoal found (stdout), and the closest approaches found here by brute force.
+    EXPECT_NE(run.outcome.out.find("T1 x C1  give-way T1"), std::string::npos) << run.outcome.out;
+    const auto [cpa_c1, when_c1] = run.story.closest("T1", "C1");
+    const auto [cpa_h1, when_h1] = run.story.closest("T1", "H1");
+    ASSERT_LT(cpa_c1, 3704);
+    ASSERT_LT(cpa_h1, 3704);
+
+    for (const std::string* text : {&run.plot, &run.page}) {
+        SCOPED_TRACE(text == &run.plot ? "--plot" : "--debrief");
+        std::string error;
+        const test::XmlPtr doc = test::parse_xml(*text, &error);
+        ASSERT_TRUE(doc) << error;
+        const CPLXMLNode* top = nullptr;  // <svg> or <html>, after the declaration or doctype
+        for (const CPLXMLNode* n = doc.get(); n; n = n->psNext)
+            if (n->eType == CXT_Element && n->pszValue[0] != '?' && n->pszValue[0] != '!') top = n;
+        ASSERT_NE(top, nullptr);
+        const CPLXMLNode* overview = by_id(top, "overview");
+        ASSERT_NE(overview, nullptr);
+        // The trainee's track alone in her blue, the targets in grey.
+        const auto trainee = with_class(overview, "trainee", "path");
+        ASSERT_EQ(trainee.size(), 1u);
+        EXPECT_EQ(attr(trainee[0], "stroke"), "#0a58ca");
+        EXPECT_NE(all_text(trainee[0]).find("T1"), std::string::npos);
+        EXPECT_EQ(with_class(overview, "track", "path").size(), 3u);
+        // Direction arrows: the first (on the leg east) points east: its tip right of its base.
+        const auto arrows = with_class(overview, "direction", "polygon");
+        ASSERT_GE(arrows.size(), 3u);
+        const auto first = polygon_points(arrows[0]);
+        ASSERT_EQ(first.size(), 3u);
+        EXPECT_GT(first[0].first, first[1].first + 5);
+        EXPECT_GT(first[0].first, first[2].first + 5);
+        EXPECT_NEAR(first[1].second + first[2].second, 2 * first[0].second, 1.0) << "pointing along the track, not across";
+        // Time ticks: 30 min of exercise, a tick every 5 min from T+5 to T+30, each saying when.
+        std::set<std::string> minutes;
+        for (const auto* t : with_class(overview, "time-tick", "line")) {
+            minutes.insert(attr(t, "data-minutes"));
+            EXPECT_NE(all_text(t).find("T+" + attr(t, "data-minutes") + " min 10:"), std::string::npos) << all_text(t);
+        }
+        EXPECT_EQ(minutes, (std::set<std::string>{"5", "10", "15", "20", "25", "30"}));
+        bool five = false;
+        for (const auto* t : with_class(overview, "time-tick", "line")) five = five || all_text(t) == "T1: T+5 min 10:05:00Z UTC";
+        EXPECT_TRUE(five) << "the T+5 tick at 10:05:00Z";
+        // The areas drawn and named.
+        ASSERT_EQ(with_class(overview, "no-entry", "polygon").size(), 1u);
+        ASSERT_EQ(with_class(overview, "speed-limit", "polygon").size(), 1u);
+        std::set<std::string> names;
+        for (const auto* l : with_class(overview, "area-name")) names.insert(all_text(l));
+        EXPECT_EQ(names, (std::set<std::string>{"Firing range (no entry)", "Bembridge approach (speed limit 6.0 kn)"}));
+        // The closest approaches: both hulls and the line, the distance as the brute force finds it.
+        const auto cpas = with_class(overview, "cpa", "g");
+        ASSERT_EQ(cpas.size(), 2u);
+        for (const auto* c : cpas) {
+            EXPECT_EQ(with_class(c, "cpa-hull", "polygon").size(), 2u);
+            EXPECT_EQ(with_class(c, "cpa-line", "line").size(), 1u);
+        }
+        std::vector<double> metres = cpa_metres(overview);
+        std::sort(metres.begin(), metres.end());
+        ASSERT_EQ(metres.size(), 2u);
+        EXPECT_NEAR(metres[0], std::min(cpa_c1, cpa_h1), 5);
+        EXPECT_NEAR(metres[1], std::max(cpa_c1, cpa_h1), 5);
+        // The manoeuvres: T1's turns at 10:08:00 and 10:14:00.
+        std::set<std::string> turns;
+        for (const auto* m : with_class(overview, "manoeuvre", "g")) {
+            EXPECT_EQ(attr(m, "data-track"), "T1");
+            const std::string t = all_text(m);
+            turns.insert(t.substr(t.find(" at ") + 4, 9));
+        }
+        EXPECT_EQ(turns, (std::set<std::string>{"10:08:00Z", "10:14:00Z"}));
+        // A panel per closest approach (ids cpa-1, cpa-2): both hulls, each along her heading then
+        // (C1 north: taller than wide on the page; H1 west: wider), the line and the distance.
+        for (const char* id : {"cpa-1", "cpa-2"}) {
+            const CPLXMLNode* panel = by_id(top, id);
+            ASSERT_NE(panel, nullptr) << id;
+            const auto hulls = with_class(panel, "cpa", "polygon");
+            ASSERT_EQ(hulls.size(), 2u) << id;
+            ASSERT_EQ(with_class(panel, "cpa-line", "line").size(), 1u);
+            const auto ids = with_class(panel, "track-id", "g");
+            ASSERT_EQ(ids.size(), 2u);
+            const std::string other = all_text(ids[1]);
+            ASSERT_TRUE(other == "C1" || other == "H1") << other;
+            EXPECT_EQ(all_text(ids[0]), "T1") << "the trainee first";
+            double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+            for (const auto& [x, y] : polygon_points(hulls[1])) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+            if (other == "C1") EXPECT_GT(y1 - y0, 2 * (x1 - x0)) << id;
+            else EXPECT_GT(x1 - x0, 2 * (y1 - y0)) << id;
+            const std::vector<double> m = cpa_metres(panel);
+            ASSERT_EQ(m.size(), 1u);
+            EXPECT_NEAR(m[0], other == "C1" ? cpa_c1 : cpa_h1, 5);
+        }
+    }
+    // The debrief's event headings give exercise time beside UTC.
+    EXPECT_NE(run.page.find("<span class=\"exercise-time\">T+"), std::string::npos);
+    // (the brute force's moment to its 0.5 s step: a second either side)
+    bool found = false;
+    for (const double d : {-1.0, 0.0, 1.0}) {
+        const int s = static_cast<int>(std::floor(when_c1 + d));
+        char at[32];
+        std::snprintf(at, sizeof at, "(T+%d:%02d)", s / 60, s % 60);
+        found = found || run.page.find(at) != std::string::npos;
+    }
+    EXPECT_TRUE(found) << "the closest approach to C1 in exercise time, near T+" << when_c1 << " s";
+}
+
+/// Runs headless Chromium on `url` at `width` x `height`; the screenshot, or null.
+GDALDatasetUniquePtr screenshot(const test::TempDir& dir, const std::string& url, int width, int height, const std::string& name) {
+    const std::string shot = dir.file(name + ".png");
+    const std::string cmd = "timeout 90 /usr/bin/chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --user-data-dir='" +
+                            dir.file("profile-" + name) + "' --screenshot='" + shot + "' --window-size=" + std::to_string(width) + "," +
+                            std::to_string(height) + " '" + url + "' >'" + dir.file(name + ".log") + "' 2>&1";
+    if (std::system(cmd.c_str()) != 0) {
+        ADD_FAILURE() << read_text(dir.file(name + ".log"));
+        return nullptr;
+    }
+    GDALAllRegister();
+    return GDALDatasetUniquePtr(GDALDataset::Open(shot.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+}
+
+TEST(DebriefPictures, HeadlessChromiumAtTwoWidthsShowsTheTraineeTheAreasAndTheClosestApproaches) {
+    if (!fs::exists("/usr/bin/chromium")) GTEST_SKIP() << "no /usr/bin/chromium (Debian package chromium, scripts/install-deps.sh)";
+    StoryRun run;
+    ASSERT_EQ(run.outcome.status, 0) << run.outcome.err;
+    const std::string page = "file://" + (run.dir.path() / "debrief" / "run.html").string();
+    // The whole page (a window taller than it) at a desktop and a narrow width.
+    for (const int width : {1240, 700}) {
+        SCOPED_TRACE("width " + std::to_string(width));
+        const GDALDatasetUniquePtr png = screenshot(run.dir, page, width, 7000, "page-" + std::to_string(width));
+        ASSERT_TRUE(png);
+        ASSERT_EQ(png->GetRasterXSize(), width);
+        const int h = png->GetRasterYSize();
+        // The trainee's blue (track, arrows, ticks, her hull in the panels), the no-entry area's
+        // pale red over the water and the speed-limit area's pale amber, somewhere on the page.
+        EXPECT_GT(count_colour(*png, 0, 0, width, h, 0x0a58ca, 30), 300u) << "the trainee's track in her blue";
+        EXPECT_GT(count_colour(*png, 0, 0, width, h, 0xefdee2, 4), 500u) << "the no-entry area filled";
+        EXPECT_GT(count_colour(*png, 0, 0, width, h, 0xf2ecdd, 4), 500u) << "the speed-limit area filled";
+    }
+    // The picture alone (--plot), at two widths: the trainee's blue in the overview and in the
+    // closest approaches' panels below it.
+    for (const int width : {1240, 800}) {
+        SCOPED_TRACE("plot width " + std::to_string(width));
+        const GDALDatasetUniquePtr png = screenshot(run.dir, "file://" + run.dir.file("plot.svg"), width, 2600, "plot-" + std::to_string(width));
+        ASSERT_TRUE(png);
+        const int h = png->GetRasterYSize();
+        EXPECT_GT(count_colour(*png, 0, 0, width, h, 0x0a58ca, 30), 300u);
+    }
 }
 
 }  // namespace

@@ -190,6 +190,7 @@ struct TrackSummary {
     double start_s = NAN, end_s = NAN;
     double distance_m = 0;            ///< length sailed (local metres, gaps excluded)
     std::vector<std::vector<geo::LonLat>> lines;  ///< the swept pieces, for the report's tracks layer
+    std::vector<std::vector<double>> line_times;  ///< the times of the fixes of `lines` (epoch seconds), aligned with them
     std::string exercise;             ///< exercise mode: the track's exercise (exercise.hpp)
     Role role = Role::trainee;        ///< exercise mode: trainee or target
 };

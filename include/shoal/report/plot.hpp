@@ -25,6 +25,21 @@
 /// pixel, with the clipped coastline segments drawn on top; outside the grid's extent is
 /// shaded as "no chart".
 ///
+/// Exercise mode (the result has encounters): a trainee's track is drawn on top in its own
+/// blue (class `track trainee`), whatever happened on it (its events keep their markers), with
+/// direction arrows (class `direction`, one every 110 px) and time ticks across it (class
+/// `time-tick`, attribute `data-minutes`) every 1, 2, 5, 10, 15, 20, 30 min or 1, 2, 4, 8 h from
+/// the first fix of its exercise (at most 12 over the exercise), labelled "T+10 min 10:12:30Z"
+/// (class `label time-tick`) where they fit; targets keep the colours below. The assessment's
+/// no-entry and speed-limit areas are drawn (classes `area no-entry`, `area speed-limit`) and
+/// named ("Mother Bank (no entry)", class `label area-name`); each encounter's closest approach
+/// (AuditResult::situations) is drawn in the overview (class `cpa`: both hulls then, the line
+/// between the ships, the label "CPA 420 m 10:12:30Z") and, in plot_svg, as a zoomed panel of
+/// its own (section "Closest approaches", ids `cpa-1`, `cpa-2`, ... in time order, at most
+/// max_zoom_panels; see cpa_svg); the manoeuvres the COLREG reading found
+/// (ColregEncounter::action_a/b) are rings on the track (class `manoeuvre`, attribute
+/// `data-track`) labelled "alters course 10:05:00Z" (class `label manoeuvre-label`).
+///
 /// Classes a reader (or a test) can rely on: `panel overview`, `panel zoom` (ids `overview`,
 /// `zoom-1`, `zoom-2`, ..., in the order above; the panel's title is inside its group, the
 /// first line of class `zoom-title`), `section` (the headings), `note` (what was not drawn),
@@ -79,7 +94,7 @@ struct ZoomSpec {
     double size_m = 0;
     /// The tracks drawn in colour with their fixes (indices in AuditResult::tracks); the other
     /// tracks of PlotOptions::tracks are grey. The first has the kind's colour, the next ones
-    /// blue, purple, teal, brown.
+    /// teal, purple, brown, grey (blue is a trainee's in exercise mode).
     std::vector<std::size_t> tracks;
     /// A track event of `tracks[0]` (an element of its TrackResult::events): drawn as plot_svg
     /// draws it (its hull, the contact ring, "first contact HH:MM:SSZ"); `kind` is then its own.
@@ -102,6 +117,21 @@ struct ZoomSpec {
 /// width, a track index out of range, or an event that is not one of tracks[0]'s.
 std::string zoom_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const ZoomSpec& spec, double width_px = 360,
                      const PlotOptions& options = {});
+
+/// An encounter's closest approach (AuditResult::situations[situation]) as a panel like
+/// zoom_svg's: both ships' tracks (a trainee first, in the trainee's blue), both hulls at that
+/// moment (class `hull cpa`; each the outline of the track's nearest kept pose, moved rigidly to
+/// where the ship was then and turned by the change of course over ground), the line between
+/// the reference points (class `cpa-line`) and its label "CPA 420 m 10:12:30Z" (class
+/// `cpa-distance`), the manoeuvres found on either track (class `manoeuvre`) and the
+/// assessment's areas. "" when the closest approach cannot be placed. Throws UsageError for a
+/// bad width or situation index.
+std::string cpa_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, std::size_t situation, double width_px = 360,
+                    const PlotOptions& options = {});
+
+/// Exercise time: "T+12:30" (minutes and seconds after `start_s`, cut like clock_text, not
+/// rounded), "T+1:02:03" past the hour, "T-0:05" before it; "T+?" when either is not finite.
+std::string exercise_time_text(double t, double start_s);
 
 /// An event in words, as the picture's tooltips say it: track (and name), kind, what was hit,
 /// start and end (UTC), duration, speed and its source, penetration or clearance, heading,
