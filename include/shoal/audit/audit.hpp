@@ -82,7 +82,7 @@ struct FileResult {
     /// The file's size and fingerprint when already known (read_partition: taken where the file
     /// was read); size -1 and "": the report computes them from the file when it needs them.
     long long size = -1;
-    std::string fingerprint;
+    std::string fingerprint{};
 };
 
 /// A track that could not be audited (the batch went on).
