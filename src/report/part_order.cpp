@@ -3,6 +3,7 @@
 
 #include "report/qgis_project.hpp"
 #include "report/report_fields.hpp"
+#include <shoal/grid/coast_grid.hpp>
 #include <shoal/report/report.hpp>
 
 namespace shoal::report {
@@ -21,6 +22,12 @@ json part_order(const audit::AuditResult& r, bool gpkg) {
     json fingerprints = json::array();
     for (const auto& f : r.files) {
         inputs.push_back(f.file);
+        // Standard input or a pipe cannot be read again: the content as it was read (before: the
+        // name alone, and shards fed other contents merged).
+        if (const auto& d = f.read.stream_digest) {
+            fingerprints.push_back(json::array({static_cast<long long>(d->second), grid::fingerprint_hex(d->first)}));
+            continue;
+        }
         const auto [size, fingerprint] = file_size_and_fingerprint(f.file);
         fingerprints.push_back(json::array({size, fingerprint}));
     }
