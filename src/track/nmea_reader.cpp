@@ -276,6 +276,14 @@ private:
         std::int64_t day = 0;
         const bool timed = parse_hhmmss(field(1), tod);
         const bool valid = field(2) == "A" && field(12) != "N";
+        // A date written but impossible (32 May, 29 February 2023, month 13): neither the fix nor
+        // the AIS sentences after it are dated by the log's older date (before: silently).
+        if (timed && !field(9).empty() && std::isnan(rmc_date(tod))) {
+            clock_lost("RMC of an impossible date " + std::string(detail::quoted(field(9))));
+            skip("RMC date " + std::string(detail::quoted(field(9))) +
+                 " is not a valid date ddmmyy (the AIS sentences after it are not dated by an older date)");
+            return;
+        }
         if (!timed) {
             clock_lost("RMC without a time");
         } else if (!valid) {  // the receiver's clock still
@@ -380,6 +388,15 @@ private:
         if (ok && field(4).size() == 2) y += y < 80 ? 2000 : 1900;  // some devices write a 2-digit year
         if (ok && valid_date(y, m, d)) {
             clock_dated(static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod);
+            return;
+        }
+        // A date written but impossible (day 32, 31 February, year 0 or 99999, not a number): the
+        // AIS sentences after it are not dated by the log's older date (before: silently).
+        if (!field(2).empty() || !field(3).empty() || !field(4).empty()) {
+            const std::string date = std::string(detail::quoted(field(2))) + "," + std::string(detail::quoted(field(3))) + "," +
+                                     std::string(detail::quoted(field(4)));
+            clock_lost("ZDA of an impossible date " + date);
+            skip("ZDA date (day, month, year) " + date + " is not a valid date (the AIS sentences after it are not dated by an older date)");
             return;
         }
         clock_at(m_clock.day_of(tod), tod);

@@ -128,3 +128,21 @@ lines = [
     "!BSVDM,1,1,,A,13:Gqp0000Prm`2PJdq3`W4D059<,0*27",
 ]
 write("pghp_month_13.txt", lines, "DMA log: the second $PGHP header has month 13")
+
+# 5. ZDA and RMC dates that are written but impossible: ZDA day 32 at 10:05, RMC 29 February 2023
+# at 10:10; the target's reports after them have no date (the log's older date must not date them).
+def zda(minute, day, month, year):
+    return sentence("$", "GPZDA,10%02d00.00,%s,%s,%s,00,00" % (minute, day, month, year))
+
+
+lines = [
+    zda(0, "01", "05", "2024"),
+    vdx("VDM", TARGET, 50.74, -1.05, 0, sog=3.5, cog=90.0, heading=90),
+    zda(5, "32", "05", "2024"),
+    vdx("VDM", TARGET, 50.74, -1.04, 0, sog=3.5, cog=90.0, heading=90),
+    rmc(10, 0, 50.75, -1.10, date="290223"),
+    vdx("VDM", TARGET, 50.74, -1.03, 0, sog=3.5, cog=90.0, heading=90),
+    rmc(15, 0, 50.75, -1.10),
+    vdx("VDM", TARGET, 50.74, -1.02, 0, sog=3.5, cog=90.0, heading=90),
+]
+write("impossible_dates.nmea", lines, "ZDA 32 May 2024 at line 4, RMC 29 February 2023 at line 6: the AIS lines after each are undated")
