@@ -1045,6 +1045,25 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
     return n;
 }
 
+TEST_F(BadInput, OwnAisReportsFarFromTheGpsFixOfTheirTimeAreSaid) {
+    // Our hostile round on issue 42's own-ship join: the own !AIVDO reports of 10:03-10:05 lie
+    // 18 km from the RMC fix of the same time (a transponder fed another GPS, or another
+    // ship's); the GPS fix was kept without a word. Now it is still kept, and said.
+    const std::string log = data_path("tracks/ais_identity/own_ship_aivdo_elsewhere.nmea");
+    const Outcome o = check({log}, m_dir.file("e.geojson"));
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find(log + ": the own ship's GPS fixes (RMC, GGA, GLL: 8) and its own AIS reports (!AIVDO of MMSI 235000001: 8) are "
+                                "one vessel: one track '235000001' of 8 fixes, 8 times held by both kept once (the GPS fix); at 3 of them "
+                                "the two are more than 500 m apart (the most "),
+              std::string::npos)
+        << o.err;
+    EXPECT_NE(o.err.find(" m, the AIS report at line "), std::string::npos) << o.err;
+    EXPECT_EQ(report(m_dir.file("e.geojson"))["shoal"]["summary"]["groundings"], 0);  // the GPS fixes, in open water
+    // The own_ship_rmc_and_aivdo log, whose reports agree with its fixes, says nothing of it.
+    const Outcome agree = check({data_path("tracks/ais_identity/own_ship_rmc_and_aivdo.nmea")}, m_dir.file("a.geojson"));
+    EXPECT_EQ(agree.err.find("m apart"), std::string::npos) << agree.err;
+}
+
 TEST_F(BadInput, OwnShipRmcAndItsOwnAivdoAreOneVesselNotTwo) {
     // Issue 42: the own ship's RMC fixes and its own !AIVDO reports (ais_identity/make_logs.py:
     // it crosses the Isle of Wight) were two tracks: 2 groundings and, with --encounters, a
