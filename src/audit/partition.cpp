@@ -12,6 +12,7 @@
 #include <set>
 
 #include <shoal/audit/shard.hpp>
+#include <shoal/grid/coast_grid.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/track/reader.hpp>
 #include <shoal/util/error.hpp>
@@ -231,7 +232,11 @@ PartitionSummary write_partitions(const std::string& dir, const std::string& inp
             } catch (const std::bad_alloc&) {
                 fr.error = files[k] + ": out of memory reading it";
             }
-            std::tie(fr.size, fr.fingerprint) = fingerprint(files[k]);
+            // Standard input or a pipe cannot be read again: its content as it was read.
+            if (const auto& d = fr.read.stream_digest)
+                fr.size = static_cast<long long>(d->second), fr.fingerprint = grid::fingerprint_hex(d->first);
+            else
+                std::tie(fr.size, fr.fingerprint) = fingerprint(files[k]);
         },
         {});
     PartitionSummary summary;

@@ -11,7 +11,11 @@
 ///   read whole into memory first (its compressed bytes: gzip and zip need them).
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <cpl_vsi.h>
@@ -77,6 +81,10 @@ public:
     /// A path GDAL opens to read the same content again (for OGR drivers, which need a path),
     /// or "" for a stream, which cannot be read twice.
     const std::string& gdal_path() const noexcept { return m_gdal_path; }
+    /// Standard input, a pipe, a FIFO (read once): the XXH3-64 of the content handed out so far
+    /// (decompressed, as the readers saw it) and its size in bytes, which fingerprint what was
+    /// read where no file can be read again; nullopt for a file.
+    std::optional<std::pair<std::uint64_t, std::size_t>> stream_digest() const;
 
 private:
     void open_content(const std::string& path);
@@ -93,6 +101,8 @@ private:
     std::size_t m_kept_pos = 0;
     std::string m_memory;     ///< a compressed stream, read whole
     std::string m_mem_name;   ///< its /vsimem/ name
+    struct ContentHash;
+    std::unique_ptr<ContentHash> m_hash;  ///< a stream's content handed out so far (stream_digest)
 };
 
 /// The whole content of `path`, at most `limit` bytes (see InputFile::append_all).

@@ -450,9 +450,13 @@ Plan plan_merge(const std::vector<std::string>& paths, bool gpkg) {
                         if (!v.is_array() || v.size() != 2) return shoal::detail::shortened(v.dump());
                         return (v[0].is_number() ? v[0].dump() : std::string("?")) + " bytes, fingerprint " + shoal::detail::shortened(v[1].dump());
                     };
-                    throw InputError("the parts are not of one run: input " + named(names[i].is_string() ? names[i].get<std::string>() : names[i].dump()) +
-                                     " is " + what(fa[i]) + " in " + named(first.path) + " but " + what(fb[i]) + " in " + named(p.path) +
-                                     ": the file changed between the shards' runs; check every shard of it again");
+                    const std::string name = names[i].is_string() ? names[i].get<std::string>() : names[i].dump();
+                    // Standard input or a pipe: its content as read is what differs.
+                    const bool stream = name == "-" || name.starts_with("/dev/") || name.starts_with("/proc/") || name.starts_with("/vsistdin");
+                    throw InputError("the parts are not of one run: input " + named(name) + " is " + what(fa[i]) + " in " + named(first.path) +
+                                     " but " + what(fb[i]) + " in " + named(p.path) +
+                                     (stream ? ": the shards read other contents from it; feed every shard the same"
+                                             : ": the file changed between the shards' runs; check every shard of it again"));
                 }
         }
         for (unsigned i = 0; i < n; ++i)

@@ -3,6 +3,7 @@
 
 #include "report/qgis_project.hpp"
 #include "report/report_fields.hpp"
+#include <shoal/grid/coast_grid.hpp>
 #include <shoal/report/report.hpp>
 
 namespace shoal::report {
@@ -23,6 +24,12 @@ json part_order(const audit::AuditResult& r, bool gpkg, const geo::Box& chart) {
         inputs.push_back(f.file);
         if (!f.fingerprint.empty()) {  // known where the file was read (partitions): not read again here
             fingerprints.push_back(json::array({f.size, f.fingerprint}));
+            continue;
+        }
+        // Standard input or a pipe cannot be read again: the content as it was read (before: the
+        // name alone, and shards fed other contents merged).
+        if (const auto& d = f.read.stream_digest) {
+            fingerprints.push_back(json::array({static_cast<long long>(d->second), grid::fingerprint_hex(d->first)}));
             continue;
         }
         const auto [size, fingerprint] = file_size_and_fingerprint(f.file);

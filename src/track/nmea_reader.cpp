@@ -1,6 +1,7 @@
 #include <shoal/track/nmea_reader.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <charconv>
 #include <cstdio>
 #include <cstdint>
@@ -276,6 +277,14 @@ private:
         std::int64_t day = 0;
         const bool timed = parse_hhmmss(field(1), tod);
         const bool valid = field(2) == "A" && field(12) != "N";
+        // A date written but impossible (32 May, 29 February 2023, month 13): neither the fix nor
+        // the AIS sentences after it are dated by the log's older date (before: silently).
+        if (timed && !field(9).empty() && std::isnan(rmc_date(tod))) {
+            clock_lost("RMC of an impossible date " + std::string(detail::quoted(field(9))));
+            skip("RMC date " + std::string(detail::quoted(field(9))) +
+                 " is not a valid date ddmmyy (the AIS sentences after it are not dated by an older date)");
+            return;
+        }
         if (!timed) {
             clock_lost("RMC without a time");
         } else if (!valid) {  // the receiver's clock still
@@ -382,6 +391,15 @@ private:
             clock_dated(static_cast<double>(days_from_civil(y, m, d)) * seconds_per_day + tod);
             return;
         }
+        // A date written but impossible (day 32, 31 February, year 0 or 99999, not a number): the
+        // AIS sentences after it are not dated by the log's older date (before: silently).
+        if (!field(2).empty() || !field(3).empty() || !field(4).empty()) {
+            const std::string date = std::string(detail::quoted(field(2))) + "," + std::string(detail::quoted(field(3))) + "," +
+                                     std::string(detail::quoted(field(4)));
+            clock_lost("ZDA of an impossible date " + date);
+            skip("ZDA date (day, month, year) " + date + " is not a valid date (the AIS sentences after it are not dated by an older date)");
+            return;
+        }
         clock_at(m_clock.day_of(tod), tod);
     }
 
@@ -483,6 +501,10 @@ private:
         t.fixes.push_back(f);
     }
 
+    /// Farther apart than any ship is long (the GPS antenna and the transponder's are on one
+    /// hull): the GPS fix and the own AIS report of one time are not one position.
+    static constexpr double own_apart_m = 500;
+
     /// An MMSI of the own ship's AIS messages (!AIVDO).
     void own_mmsi(std::uint32_t mmsi) {
         if (std::find(m_own.begin(), m_own.end(), mmsi) != m_own.end()) return;
@@ -515,6 +537,10 @@ private:
         std::vector<Fix> joined;
         joined.reserve(from_gps + from_ais);
         std::size_t both = 0;
+        // Times held by both whose positions are farther apart than any ship is long: said (the
+        // GPS fix is kept; the transponder's position may be another's).
+        std::size_t apart = 0, worst_line = 0;
+        double worst_m = 0;
         auto a = own.fixes.begin(), b = ais.fixes.begin();
         while (a != own.fixes.end() || b != ais.fixes.end()) {
             if (b == ais.fixes.end() || (a != own.fixes.end() && a->time_s < b->time_s)) {
@@ -523,6 +549,10 @@ private:
                 joined.push_back(*b++);
             } else {  // the same time: the GPS fix, what it lacks from the report
                 Fix f = *a++;
+                if (const double d = distance_m(f.position, b->position); d > own_apart_m) {
+                    ++apart;
+                    if (d > worst_m) worst_m = d, worst_line = b->line;
+                }
                 if (std::isnan(f.heading_deg)) f.heading_deg = b->heading_deg;
                 if (std::isnan(f.cog_deg)) f.cog_deg = b->cog_deg;
                 if (std::isnan(f.sog_kn)) f.sog_kn = b->sog_kn;
@@ -535,7 +565,12 @@ private:
         m_out.report.messages.push_back(m_file + ": the own ship's GPS fixes (RMC, GGA, GLL: " + std::to_string(from_gps) +
                                         ") and its own AIS reports (!AIVDO of MMSI " + mmsis + ": " + std::to_string(from_ais) +
                                         ") are one vessel: one track '" + ais.id + "' of " + std::to_string(joined.size()) + " fixes" +
-                                        (both ? ", " + std::to_string(both) + " times held by both kept once (the GPS fix)" : std::string()));
+                                        (both ? ", " + std::to_string(both) + " times held by both kept once (the GPS fix)" : std::string()) +
+                                        (apart ? "; at " + std::to_string(apart) + " of them the two are more than " + std::to_string(static_cast<int>(own_apart_m)) +
+                                                     " m apart (the most " + std::to_string(static_cast<long long>(std::lround(worst_m))) +
+                                                     " m, the AIS report at line " + std::to_string(worst_line) +
+                                                     "): the GPS fix kept; is the transponder's position this ship's?"
+                                               : std::string()));
         ais.fixes = std::move(joined);
         own.fixes.clear();  // (a track without fixes: read_tracks drops it)
     }

@@ -229,6 +229,7 @@ TrackFile read_tracks(const std::string& path, const ReadOptions& options) {
     TrackFile out = sniffed.format == "csv" ? unpack(detail::read_csv_stream(*in, std::move(sniffed.head), sniffed.whole, options))
                                             : read_whole(*in, std::move(sniffed), options);
     if (!in->damage().empty()) out.report.messages.push_back(path + ": " + in->damage() + "; the rows before it are kept");
+    out.report.stream_digest = in->stream_digest();
     keep_tracks_with_fixes(out, path);
     drop_impossible_dims(out, path);
     return out;
@@ -248,6 +249,7 @@ PackedTrackFile read_tracks_packed(const std::string& path, const ReadOptions& o
         for (Track& t : whole.tracks) out.tracks.push_back(PackedTrack::pack(std::move(t)));
     }
     if (!in->damage().empty()) out.report.messages.push_back(path + ": " + in->damage() + "; the rows before it are kept");
+    out.report.stream_digest = in->stream_digest();
     keep_tracks_with_fixes(out, path);
     drop_impossible_dims(out, path);
     return out;

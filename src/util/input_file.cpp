@@ -12,6 +12,9 @@
 #include <cpl_error.h>
 #include <cpl_string.h>
 
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
 #include "detail/gdal_support.hpp"
 #include "detail/json_message.hpp"
 
@@ -188,6 +191,17 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
     return out;
 }
 
+struct InputFile::ContentHash {
+    XXH3_state_t state{};
+    std::size_t bytes = 0;
+    ContentHash() { XXH3_64bits_reset(&state); }
+};
+
+std::optional<std::pair<std::uint64_t, std::size_t>> InputFile::stream_digest() const {
+    if (!m_hash) return std::nullopt;
+    return std::pair{XXH3_64bits_digest(&m_hash->state), m_hash->bytes};
+}
+
 InputFile::InputFile(const std::string& path) : m_path(path) {
     try {
         open_content(path);
@@ -207,6 +221,7 @@ void InputFile::close() noexcept {
 void InputFile::open_content(const std::string& path) {
     register_drivers();
     const bool stream = kind_of(path) == Kind::stream;
+    if (stream) m_hash = std::make_unique<ContentHash>();
     open(is_stdin(path) ? std::string("/vsistdin/") : path);
     if (stream) m_gdal_path.clear();
     // Compressed content, recognised by its magic bytes: a zip in a zip or a gzip in a zip is
@@ -226,6 +241,7 @@ void InputFile::open_content(const std::string& path) {
             m_memory = m_kept;
             m_kept.clear();
             append_all(m_memory, max_compressed_stream_bytes, "a compressed stream (gzip or zip on a pipe)", m_memory.size());
+            m_hash = std::make_unique<ContentHash>();  // the content is what is decompressed from it, not these bytes
             m_mem_name = memory_name(is_zip(m_memory) ? ".zip" : ".gz");
             VSIFCloseL(VSIFileFromMemBuffer(m_mem_name.c_str(), reinterpret_cast<GByte*>(m_memory.data()),
                                             static_cast<vsi_l_offset>(m_memory.size()), FALSE));
@@ -310,10 +326,16 @@ std::size_t InputFile::append(std::string& out, std::size_t n) {
     const std::size_t from_kept = std::min(n, m_kept.size() - m_kept_pos);
     out.append(m_kept, m_kept_pos, from_kept);
     m_kept_pos += from_kept;
-    if (from_kept == n) return n;
-    out.resize(old + n);
-    const std::size_t got = read_raw(out.data() + old + from_kept, n - from_kept);
-    out.resize(old + from_kept + got);
+    std::size_t got = 0;
+    if (from_kept < n) {
+        out.resize(old + n);
+        got = read_raw(out.data() + old + from_kept, n - from_kept);
+        out.resize(old + from_kept + got);
+    }
+    if (m_hash) {  // what the readers are handed, once each byte
+        XXH3_64bits_update(&m_hash->state, out.data() + old, from_kept + got);
+        m_hash->bytes += from_kept + got;
+    }
     return from_kept + got;
 }
 

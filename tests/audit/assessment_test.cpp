@@ -336,6 +336,29 @@ TEST_F(Scored, ColregCrossingGiveWayHeldOnAndTheStandOnShipThatKeptOn) {
     EXPECT_TRUE(ok.assessment.scores[0].passed);
 }
 
+TEST_F(Scored, APenaltyThatSumsToThePassMarkPassesWhateverTheRoundingOfItsSum) {
+    // Our hostile round on issue 42's pass mark: A (held on, crossing) is charged 0.1 for her CPA
+    // and 0.2 for rule 15; 0.1 + 0.2 is 0.30000000000000004 in doubles, and against a pass mark
+    // of 0.3 ("the largest penalty that passes") she failed. A penalty over the mark by more
+    // than the sum's rounding still fails.
+    const auto crossing = [&](const char* mark) {
+        const Assessment a = Assessment::parse(std::string(R"({"pass_mark": )") + mark + R"(, "criteria": [
+            {"id": "cpa", "kind": "cpa", "limit": 100, "penalty": 0.1},
+            {"id": "rules", "kind": "colreg", "penalty": 0.2, "range_m": 2000, "early_range_m": 1000, "cpa_m": 400}]})", "rules.json");
+        return run({leg("A", {1000, -3000}, 0, 5, 800), leg("C", {3000, -1000}, 270, 5, 800)}, a);
+    };
+    const AuditResult r = crossing("0.3");
+    ASSERT_EQ(r.assessment.scores.size(), 2u);
+    EXPECT_EQ(r.assessment.scores[0].track, "A");
+    EXPECT_EQ(r.assessment.scores[0].breaches, 2u);
+    EXPECT_NE(r.assessment.scores[0].penalty, 0.3);  // the sum's rounding, which the pass mark must forgive
+    EXPECT_NEAR(r.assessment.scores[0].penalty, 0.3, 1e-15);
+    EXPECT_TRUE(r.assessment.scores[0].passed);
+    EXPECT_TRUE(crossing("0.30000000000000004").assessment.scores[0].passed);
+    EXPECT_FALSE(crossing("0.29999999").assessment.scores[0].passed);
+    EXPECT_FALSE(crossing("0.2").assessment.scores[0].passed);
+}
+
 TEST_F(Scored, NeedsExerciseModeAndAVesselWithoutDraughtIsNotAssessedForUnderKeelClearance) {
     const Assessment a = Assessment::parse(R"({"criteria": [{"kind": "under_keel_clearance", "limit": 1, "penalty": 1}]})", "a.json");
     AuditOptions o;

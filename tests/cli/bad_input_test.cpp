@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -1057,6 +1058,25 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
     return n;
 }
 
+TEST_F(BadInput, OwnAisReportsFarFromTheGpsFixOfTheirTimeAreSaid) {
+    // Our hostile round on issue 42's own-ship join: the own !AIVDO reports of 10:03-10:05 lie
+    // 18 km from the RMC fix of the same time (a transponder fed another GPS, or another
+    // ship's); the GPS fix was kept without a word. Now it is still kept, and said.
+    const std::string log = data_path("tracks/ais_identity/own_ship_aivdo_elsewhere.nmea");
+    const Outcome o = check({log}, m_dir.file("e.geojson"));
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find(log + ": the own ship's GPS fixes (RMC, GGA, GLL: 8) and its own AIS reports (!AIVDO of MMSI 235000001: 8) are "
+                                "one vessel: one track '235000001' of 8 fixes, 8 times held by both kept once (the GPS fix); at 3 of them "
+                                "the two are more than 500 m apart (the most "),
+              std::string::npos)
+        << o.err;
+    EXPECT_NE(o.err.find(" m, the AIS report at line "), std::string::npos) << o.err;
+    EXPECT_EQ(report(m_dir.file("e.geojson"))["shoal"]["summary"]["groundings"], 0);  // the GPS fixes, in open water
+    // The own_ship_rmc_and_aivdo log, whose reports agree with its fixes, says nothing of it.
+    const Outcome agree = check({data_path("tracks/ais_identity/own_ship_rmc_and_aivdo.nmea")}, m_dir.file("a.geojson"));
+    EXPECT_EQ(agree.err.find("m apart"), std::string::npos) << agree.err;
+}
+
 TEST_F(BadInput, OwnShipRmcAndItsOwnAivdoAreOneVesselNotTwo) {
     // Issue 42: the own ship's RMC fixes and its own !AIVDO reports (ais_identity/make_logs.py:
     // it crosses the Isle of Wight) were two tracks: 2 groundings and, with --encounters, a
@@ -1166,6 +1186,58 @@ TEST_F(BadInput, AnImpossiblePghpHeaderIsSaidAndDatesNothing) {
         EXPECT_NE(h.err.find("h.txt line 4: "), std::string::npos) << h.err;
         EXPECT_NE(h.err.find(why), std::string::npos) << h.err;
     }
+}
+
+TEST_F(BadInput, AZdaOrRmcOfAnImpossibleDateIsSaidAndDatesNothing) {
+    // Our hostile round on issue 42's clock: a ZDA of 32 May, an RMC of 29 February 2023 gave
+    // their time of day with the log's older date, without a word: the AIS lines after them
+    // were dated by a date the log never said. Now each is said with its line, and the AIS
+    // lines after it have no time (said once), as after an impossible $PGHP header.
+    const std::string log = data_path("tracks/ais_identity/impossible_dates.nmea");
+    const std::string out = m_dir.file("d.geojson");
+    const Outcome o = check({log}, out);
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find(log + " line 4: ZDA date (day, month, year) '32','05','2024' is not a valid date (the AIS sentences after it "
+                                "are not dated by an older date); sentence skipped"),
+              std::string::npos)
+        << o.err;
+    EXPECT_NE(o.err.find(log + " line 6: RMC date '290223' is not a valid date ddmmyy"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find(log + ": 2 AIS position reports without a time dropped (lines 5-7; the first: the log's clock stopped at "
+                                "line 4 (ZDA of an impossible date '32','05','2024'))"),
+              std::string::npos)
+        << o.err;
+    // The target keeps its reports of 10:00 and 10:15 (dated by valid sentences), the own ship
+    // its fix of 10:15 only.
+    const auto report = nlohmann::json::parse(slurp(out));
+    EXPECT_EQ(report["shoal"]["summary"]["fixes"], 3) << report["shoal"]["summary"].dump();
+    EXPECT_EQ(report["shoal"]["summary"]["first_fix"], "2024-05-01T10:00:00Z");
+    EXPECT_EQ(report["shoal"]["summary"]["last_fix"], "2024-05-01T10:15:00Z");
+    // Held out: a ZDA of year 99999, of month 13, of a date that is no number; an RMC of 31
+    // February 2024 and of month 13. A ZDA without any date (time only) still gives its time.
+    for (const auto& [from, to, why] : std::vector<std::array<std::string, 3>>{
+             {"GPZDA,100500.00,32,05,2024,00,00", "GPZDA,100500.00,01,05,99999,00,00", "'01','05','99999' is not a valid date"},
+             {"GPZDA,100500.00,32,05,2024,00,00", "GPZDA,100500.00,01,13,2024,00,00", "'01','13','2024' is not a valid date"},
+             {"GPZDA,100500.00,32,05,2024,00,00", "GPZDA,100500.00,x,05,2024,00,00", "'x','05','2024' is not a valid date"},
+             {"GPRMC,101000,A,5045.0000,N,00106.0000,W,36.0,180.0,290223,,,A", "GPRMC,101000,A,5045.0000,N,00106.0000,W,36.0,180.0,310224,,,A",
+              "RMC date '310224' is not a valid date"},
+             {"GPRMC,101000,A,5045.0000,N,00106.0000,W,36.0,180.0,290223,,,A", "GPRMC,101000,V,,,,,,,011324,,,N",
+              "RMC date '011324' is not a valid date"}}) {
+        std::string text = slurp(log);
+        const std::size_t a = text.find(from), b = text.find('\n', a);
+        ASSERT_NE(a, std::string::npos) << from;
+        text.replace(a - 1, b - a + 1, nmea(to).substr(0, nmea(to).size() - 2));  // '$' and checksum too (without its CRLF)
+        const Outcome h = check({file("h.nmea", text)}, m_dir.file("h.geojson"));
+        EXPECT_EQ(h.status, 0) << h.err;
+        EXPECT_NE(h.err.find(why), std::string::npos) << to << "\n" << h.err;
+    }
+    std::string text = slurp(log);
+    const std::string zda = "GPZDA,100500.00,32,05,2024,00,00";
+    const std::size_t a = text.find(zda);
+    text.replace(a - 1, zda.size() + 4, nmea("GPZDA,100500.00,,,,00,00").substr(0, nmea("GPZDA,100500.00,,,,00,00").size() - 2));
+    const Outcome t = check({file("t.nmea", text)}, m_dir.file("t.geojson"));
+    EXPECT_EQ(t.status, 0) << t.err;
+    EXPECT_EQ(t.err.find("ZDA date"), std::string::npos) << t.err;
+    EXPECT_NE(t.err.find("1 AIS position report without a time dropped (line 7"), std::string::npos) << t.err;
 }
 
 }  // namespace

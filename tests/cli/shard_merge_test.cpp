@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -455,6 +456,7 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
     const std::string later = "230990039,2024-05-01T11:00:00Z,60.10,24.95,5,0,0\n230990039,2024-05-01T11:02:00Z,60.103,24.95,5,0,0\n";
     const std::string files = q(dir + "aground_at_speed.csv") + " " + q(dir + "passes_clear.csv") + " " + q(day);
     std::ofstream(day) << head << first;
+    const fs::path piped = temp_dir() / "identity_piped.csv";
     const std::string table = "mmsi,name,draught_m\n230990001,AGROUND AT SPEED,7\n";
     const std::string berth = R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},
         "geometry": {"type": "Polygon", "coordinates": [[[24.0, 60.0], [24.01, 60.0], [24.01, 60.01], [24.0, 60.0]]]}}]})";
@@ -518,6 +520,9 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
         {"ship-stdin", " --ship - <" + q(ship), " --ship - <" + q(ship), "'ship_fingerprint' is ",
          [&] { std::ofstream(ship) << R"({"name": "identity", "length": 140, "beam": 16, "a": 120, "b": 20, "c": 8, "d": 8})"; }},
         {"chart-edited", g, g, "'chart_fingerprint' is ", [&] { std::ofstream(land, std::ios::app) << "\n"; }},
+        // A track file from standard input: its content as read (before: the name '-' alone, and
+        // shards fed other days merged into a report of neither).
+        {"tracks-stdin", " - <" + q(piped), " - <" + q(piped), "input '-' is ", [&] { std::ofstream(piped) << head << later; }},
         {"colreg-edited", as, as, "'assessment_fingerprint' is ",
          [&] { std::ofstream(assess) << R"({"criteria": [{"id": "rules", "kind": "colreg", "penalty": 10, "cpa_m": 500}]})"; }},
     };
@@ -529,6 +534,7 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
             if (under_sanitizer && std::string(ext) == ".gpkg" && &c - cases.data() >= 3) continue;
             // Every input as it was at the start, then shard 0, the change, shard 1.
             std::ofstream(day) << head << first;
+            std::ofstream(piped) << head << first;
             std::ofstream(vessels) << table;
             std::ofstream(ship) << ship_text;
             std::ofstream(berths) << berth;
@@ -570,6 +576,25 @@ TEST(ShardMerge, PartsThatDifferInAnInputsBytesOrAnyOptionAreRefusedInEitherOrde
         }
         const Outcome m = shoal("merge" + parts + " -o " + q(temp_dir() / "id-grid-merged.gpkg"));
         EXPECT_LE(m.status, 1) << m.err;
+    }
+    {  // Shards fed the same content on standard input still merge, to the report of one such run;
+       // the content is what the readers saw (shard 1 is fed it gzipped).
+        std::ofstream(piped) << head << first << later;
+        ASSERT_EQ(std::system(("gzip -c " + q(piped) + " >" + q(piped.string() + ".gz")).c_str()), 0);
+        std::string parts;
+        for (const char* k : {"0/2", "1/2"}) {
+            const fs::path path = temp_dir() / ("id-piped-" + std::string(k, 1) + ".geojson");
+            const std::string fed = k[0] == '0' ? q(piped) : q(piped.string() + ".gz");
+            const Outcome r = shoal("check " + helsinki + " --shard " + k + " " + files + " - <" + fed + " -o " + q(path));
+            EXPECT_LE(r.status, 1) << r.err;
+            parts += " " + q(path);
+        }
+        const fs::path merged = temp_dir() / "id-piped-merged.geojson", single = temp_dir() / "id-piped-single.geojson";
+        const Outcome m = shoal("merge" + parts + " -o " + q(merged));
+        EXPECT_LE(m.status, 1) << m.err;
+        const Outcome one = shoal("check " + helsinki + " " + files + " - <" + q(piped) + " -o " + q(single));
+        EXPECT_LE(one.status, 1) << one.err;
+        EXPECT_EQ(slurp(merged), slurp(single));
     }
     // The same inputs and options in every shard still merge to the single run (the header's new
     // fields are the single run's too).

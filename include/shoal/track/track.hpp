@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <shoal/geo/point.hpp>
@@ -101,6 +102,10 @@ struct ReadReport {
     std::vector<std::string> messages;  ///< "FILE line N: what is wrong; row skipped", the first few
     std::size_t max_messages = 10;
     std::size_t skips_said = 0;  ///< skipped rows a message of `messages` tells of (the rest are only counted)
+    /// Read from standard input, a pipe or a FIFO: the XXH3-64 of the content read (decompressed)
+    /// and its size in bytes, which the part's fingerprints hold for a file that cannot be read
+    /// again; none for a file.
+    std::optional<std::pair<std::uint64_t, std::size_t>> stream_digest;
     /// Counts a skipped row and keeps its message while under the limit.
     void skip(const std::string& message);
     /// Counts `count` skipped rows that one message tells of (always kept).

@@ -128,3 +128,30 @@ lines = [
     "!BSVDM,1,1,,A,13:Gqp0000Prm`2PJdq3`W4D059<,0*27",
 ]
 write("pghp_month_13.txt", lines, "DMA log: the second $PGHP header has month 13")
+
+# 5. ZDA and RMC dates that are written but impossible: ZDA day 32 at 10:05, RMC 29 February 2023
+# at 10:10; the target's reports after them have no date (the log's older date must not date them).
+def zda(minute, day, month, year):
+    return sentence("$", "GPZDA,10%02d00.00,%s,%s,%s,00,00" % (minute, day, month, year))
+
+
+lines = [
+    zda(0, "01", "05", "2024"),
+    vdx("VDM", TARGET, 50.74, -1.05, 0, sog=3.5, cog=90.0, heading=90),
+    zda(5, "32", "05", "2024"),
+    vdx("VDM", TARGET, 50.74, -1.04, 0, sog=3.5, cog=90.0, heading=90),
+    rmc(10, 0, 50.75, -1.10, date="290223"),
+    vdx("VDM", TARGET, 50.74, -1.03, 0, sog=3.5, cog=90.0, heading=90),
+    rmc(15, 0, 50.75, -1.10),
+    vdx("VDM", TARGET, 50.74, -1.02, 0, sog=3.5, cog=90.0, heading=90),
+]
+write("impossible_dates.nmea", lines, "ZDA 32 May 2024 at line 4, RMC 29 February 2023 at line 6: the AIS lines after each are undated")
+
+# 6. The own ship's RMC fixes in open water and its own !AIVDO reports, dated by them, 18 km away
+# on the Isle of Wight at 10:03-10:05 (a transponder fed another GPS, or another ship's).
+lines = []
+for m in range(8):
+    lines.append(rmc(m, 0, 50.74, -1.05 - 0.002 * m))
+    lines.append(vdx("VDO", OWN, 50.70 if 3 <= m <= 5 else 50.74, -1.30 if 3 <= m <= 5 else -1.05 - 0.002 * m, 0, sog=5.0, cog=270.0, heading=270))
+write("own_ship_aivdo_elsewhere.nmea", lines,
+      "own ship 235000001: 8 RMC in open water, an AIVDO after each; those of 10:03-10:05 on the Isle of Wight, 18 km away")
