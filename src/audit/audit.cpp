@@ -19,6 +19,7 @@
 #include <shoal/util/error.hpp>
 
 #include "detail/parallel.hpp"
+#include "read_files.hpp"
 
 namespace shoal::audit {
 
@@ -45,6 +46,45 @@ private:
     std::mutex m_mutex;
     std::exception_ptr m_first;
 };
+
+}  // namespace
+
+void read_track_files(const std::vector<std::string>& files, const track::ReadOptions& options, unsigned jobs,
+                      std::vector<track::PackedTrackFile>& read, std::vector<FileResult>& results,
+                      const std::function<void(std::size_t)>& after) {
+    read.resize(files.size());
+    results.resize(files.size());
+    FirstFailure failure;
+    const unsigned threads = thread_count(jobs);
+    const std::size_t spare = threads > files.size() ? threads - files.size() : 0;
+    parallel_for(
+        files.size(), threads,
+        [&](std::size_t k, unsigned) {
+            FileResult& fr = results[k];
+            fr.file = files[k];
+            try {
+                try {
+                    track::ReadOptions per_file = options;
+                    if (k < spare) per_file.threads = std::max(per_file.threads, 2u);
+                    read[k] = track::read_tracks_packed(files[k], per_file);
+                    fr.format = read[k].format;
+                    fr.read = read[k].report;
+                    fr.tracks = read[k].tracks.size();
+                } catch (const InputError& e) {  // bad input costs this file; anything else is a bug
+                    fr.error = e.what();
+                } catch (const std::bad_alloc&) {
+                    fr.error = files[k] + ": out of memory reading it";
+                }
+                if (after) after(k);
+            } catch (...) {
+                failure.keep(std::current_exception());
+            }
+        },
+        {});
+    failure.rethrow();
+}
+
+namespace {
 
 /// Tracks to audit, taken one by one (a packed track is unpacked when taken, then freed).
 struct TrackSource {
@@ -120,33 +160,7 @@ ReadResult read_exercises(const std::vector<std::string>& inputs, const track::R
     // stay packed (32 bytes each) until their track is swept, and are freed after it.
     const auto t0 = Clock::now();
     std::vector<track::PackedTrackFile> read(files.size());
-    result.files.resize(files.size());
-    FirstFailure failure;
-    // The jobs the files leave free each read a big CSV file with a second thread
-    // (ReadOptions::threads): the first `spare` files.
-    const std::size_t spare = thread_count(jobs) > files.size() ? thread_count(jobs) - files.size() : 0;
-    parallel_for(
-        files.size(), thread_count(jobs),
-        [&](std::size_t k, unsigned) {
-            FileResult& fr = result.files[k];
-            fr.file = files[k];
-            try {
-                track::ReadOptions per_file = options;
-                if (k < spare) per_file.threads = std::max(per_file.threads, 2u);
-                read[k] = track::read_tracks_packed(files[k], per_file);
-                fr.format = read[k].format;
-                fr.read = read[k].report;
-                fr.tracks = read[k].tracks.size();
-            } catch (const InputError& e) {  // bad input costs this file; anything else is a bug
-                fr.error = e.what();
-            } catch (const std::bad_alloc&) {
-                fr.error = files[k] + ": out of memory reading it";
-            } catch (...) {
-                failure.keep(std::current_exception());
-            }
-        },
-        {});
-    failure.rethrow();
+    read_track_files(files, options, jobs, read, result.files);
     for (auto& f : read)
         for (auto& t : f.tracks) result.tracks.push_back(std::move(t));
     // One vessel in several files is one track, within an exercise only.

@@ -17,7 +17,7 @@
 #include <shoal/track/reader.hpp>
 #include <shoal/util/error.hpp>
 
-#include "detail/parallel.hpp"
+#include "read_files.hpp"
 
 namespace shoal::audit {
 
@@ -211,34 +211,16 @@ PartitionSummary write_partitions(const std::string& dir, const std::string& inp
     if (fs::symlink_status(dir, ec).type() != fs::file_type::not_found)
         throw InputError("'" + dir + "' exists: partitions are written to a new folder, nothing replaced");
     const std::vector<std::string> files = track::expand_inputs({input});
-    std::vector<track::PackedTrackFile> read(files.size());
-    std::vector<FileResult> results(files.size());
-    const unsigned threads = detail::thread_count(jobs);
-    const std::size_t spare = threads > files.size() ? threads - files.size() : 0;
-    detail::parallel_for(
-        files.size(), threads,
-        [&](std::size_t k, unsigned) {
-            FileResult& fr = results[k];
-            fr.file = files[k];
-            try {
-                track::ReadOptions per_file = options;
-                if (k < spare) per_file.threads = std::max(per_file.threads, 2u);
-                read[k] = track::read_tracks_packed(files[k], per_file);
-                fr.format = read[k].format;
-                fr.read = read[k].report;
-                fr.tracks = read[k].tracks.size();
-            } catch (const InputError& e) {  // as one run: the file is listed with its error
-                fr.error = e.what();
-            } catch (const std::bad_alloc&) {
-                fr.error = files[k] + ": out of memory reading it";
-            }
-            // Standard input or a pipe cannot be read again: its content as it was read.
-            if (const auto& d = fr.read.stream_digest)
-                fr.size = static_cast<long long>(d->second), fr.fingerprint = grid::fingerprint_hex(d->first);
-            else
-                std::tie(fr.size, fr.fingerprint) = fingerprint(files[k]);
-        },
-        {});
+    std::vector<track::PackedTrackFile> read;
+    std::vector<FileResult> results;
+    read_track_files(files, options, jobs, read, results, [&](std::size_t k) {
+        FileResult& fr = results[k];
+        // Standard input or a pipe cannot be read again: its content as it was read.
+        if (const auto& d = fr.read.stream_digest)
+            fr.size = static_cast<long long>(d->second), fr.fingerprint = grid::fingerprint_hex(d->first);
+        else
+            std::tie(fr.size, fr.fingerprint) = fingerprint(files[k]);
+    });
     PartitionSummary summary;
     Writer index;
     index.raw(magic_index, sizeof magic_index);
