@@ -62,9 +62,10 @@ def labels(field, placement, zoomed_in_from=None):
     return QgsVectorLayerSimpleLabeling(s)
 
 
-def temporal(layer, start, end=None, accumulate=False):
+def temporal(layer, start, end=None, accumulate=False, end_included=True):
     """The layer's temporal properties, so QGIS's temporal controller plays the run: features
-    from `start` to `end` (both included), or, with no end, from `start` on (accumulate) or at `start`."""
+    from `start` to `end` (both included, or the end not with `end_included=False`), or, with no
+    end, from `start` on (accumulate) or at `start`."""
     t = layer.temporalProperties()
     t.setIsActive(True)
     t.setStartField(start)
@@ -74,7 +75,7 @@ def temporal(layer, start, end=None, accumulate=False):
     else:
         t.setMode(QgsVectorLayerTemporalProperties.ModeFeatureDateTimeInstantFromField)
         t.setAccumulateFeatures(accumulate)
-    t.setLimitMode(Qgis.VectorTemporalLimitMode.IncludeBeginIncludeEnd)
+    t.setLimitMode(Qgis.VectorTemporalLimitMode.IncludeBeginIncludeEnd if end_included else Qgis.VectorTemporalLimitMode.IncludeBeginExcludeEnd)
 
 
 def save(layer, name):
@@ -208,7 +209,9 @@ for expr, fill, colour, label in (('"contact"', "227,26,28,150", RED, "hull in c
         rule.setIsElse(True)
     root.appendChild(rule)
 poses.setRenderer(QgsRuleBasedRenderer(root))
-temporal(poses, "time", "until")
+# A pose holds from its time until the next pose's, which takes over at that instant: the end
+# not included, so at a fix's instant the ship is drawn once, not by the pose ending there too.
+temporal(poses, "time", "until", end_included=False)
 poses.setScaleBasedVisibility(True)
 poses.setMinimumScale(POSES_SCALE)  # the most zoomed-out scale at which the layer is drawn
 poses.setMaximumScale(0)

@@ -199,7 +199,13 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
     if (std::isfinite(view.first_fix_s) && std::isfinite(view.last_fix_s)) {
         // Frames of a minute for a run of up to two hours, five minutes up to a day, else an hour.
         const double span = view.last_fix_s - view.first_fix_s;
-        const char* step = span <= 7200 ? "timeStep=\"1\" timeStepUnit=\"min\"" : span <= 86400 ? "timeStep=\"5\" timeStepUnit=\"min\"" : "timeStep=\"1\" timeStepUnit=\"h\"";
+        // In exercise mode (a pose at every fix) frames of a second: a frame then holds one pose
+        // of each ship whose fixes are a second or more apart at whole seconds (a pose holds from
+        // its fix until the next, the end not included), not a trail of the minute's poses.
+        const char* step = !view.exercises.empty() ? "timeStep=\"1\" timeStepUnit=\"s\""
+                           : span <= 7200         ? "timeStep=\"1\" timeStepUnit=\"min\""
+                           : span <= 86400        ? "timeStep=\"5\" timeStepUnit=\"min\""
+                                                  : "timeStep=\"1\" timeStepUnit=\"h\"";
         x += "  <ProjectTimeSettings " + std::string(step) + " cumulativeTemporalRange=\"0\" frameRate=\"1\"><TemporalRange><start>" +
              iso_time(view.first_fix_s) + "</start><end>" + iso_time(view.last_fix_s) + "</end></TemporalRange></ProjectTimeSettings>\n";
     }

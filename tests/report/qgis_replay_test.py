@@ -27,7 +27,7 @@ os.makedirs(work, exist_ok=True)
 os.environ["QT_QPA_PLATFORM"] = "offscreen"
 os.environ.setdefault("XDG_RUNTIME_DIR", tempfile.mkdtemp(prefix="xdg-"))
 try:
-    from qgis.core import QgsApplication, QgsProject, QgsDateTimeRange, QgsFeatureRequest, QgsVectorLayerTemporalContext
+    from qgis.core import QgsApplication, QgsProject, QgsDateTimeRange, QgsFeatureRequest, QgsUnitTypes, QgsVectorLayerTemporalContext
     from qgis.PyQt.QtCore import QDateTime, Qt
 except ImportError as e:
     print(f"SKIPPED: QGIS's Python bindings cannot be imported ({e}): install python3-qgis (scripts/install-deps.sh)")
@@ -76,10 +76,14 @@ app.initQgis()
 project = QgsProject.instance()
 t0 = QDateTime.fromString("2024-05-01T10:00:00Z", Qt.ISODate)
 rng = random.Random(38)
-instants = sorted(rng.uniform(0, 1790) for _ in range(25))
+# Random instants, and fixes' own instants (where a pose ends and the next begins).
+instants = sorted([rng.uniform(0, 1790) for _ in range(25)] + [10.0 * rng.randrange(0, 179) for _ in range(10)])
 for uri in reports:
     tag = "gpkg" if uri.startswith("geopackage:") else "qgz"
     check(project.read(uri), f"{tag}: QGIS reads the project")
+    ts = project.timeSettings()
+    check(ts.timeStep() == 1 and ts.timeStepUnit() == QgsUnitTypes.TemporalSeconds,
+          f"{tag}: the replay's frames are of a second ({ts.timeStep()} {QgsUnitTypes.toString(ts.timeStepUnit())})")
     root = project.layerTreeRoot()
     top = root.findGroup("exercises")
     check(top is not None and top.isMutuallyExclusive(), f"{tag}: a mutually exclusive group 'exercises'")
@@ -107,17 +111,29 @@ for uri in reports:
         ctx = QgsVectorLayerTemporalContext()
         ctx.setLayer(poses)
         wrong = []
-        for s in instants:
+        # Beside a GeoPackage QGIS compiles the time filter into the GeoPackage's SQL, where a
+        # time of a whole second ('2024-05-01T10:00:20Z') compares as text with the filter's
+        # ('2024-05-01T10:00:20'): there, at a fix's own second, the pose ending then is drawn
+        # too. Known and left (docs/user-guide.md): the GeoPackage's frames are checked at the
+        # random instants only, which fall inside a second, and not by frames.
+        for s in (instants if tag == "qgz" else [x for x in instants if x != int(x)]):
             when = t0.addMSecs(int(s * 1000))
-            expr = poses.temporalProperties().createFilterString(ctx, QgsDateTimeRange(when, when))
-            drawn = {}
-            for f in poses.getFeatures(QgsFeatureRequest().setFilterExpression(expr)):
-                drawn.setdefault(f["track"], []).append((f["exercise"], f["time"].toSecsSinceEpoch()))
-            last_fix = t0.addSecs(10 * int(s // 10)).toSecsSinceEpoch()
-            ok = sorted(drawn) == ["C1", "T1"] and all(len(v) == 1 and v[0] == (exercise, last_fix) for v in drawn.values())
-            if not ok:
-                wrong.append((when.toString(Qt.ISODate), drawn))
-        check(not wrong, f"{tag} {exercise}: at each of {len(instants)} instants each ship drawn once, at her last fix: {wrong[:3]}")
+            # The instant, and the frame of the temporal controller that holds it ([begin, end): a
+            # second from a whole second since the first fix).
+            frame_begin = t0.addSecs(int(s))
+            ranges = [("instant", QgsDateTimeRange(when, when))]
+            if tag == "qgz":
+                ranges.append(("frame", QgsDateTimeRange(frame_begin, frame_begin.addSecs(1), True, False)))
+            for what, rng_ in ranges:
+                expr = poses.temporalProperties().createFilterString(ctx, rng_)
+                drawn = {}
+                for f in poses.getFeatures(QgsFeatureRequest().setFilterExpression(expr)):
+                    drawn.setdefault(f["track"], []).append((f["exercise"], f["time"].toSecsSinceEpoch()))
+                last_fix = t0.addSecs(10 * int(s // 10)).toSecsSinceEpoch()
+                ok = sorted(drawn) == ["C1", "T1"] and all(len(v) == 1 and v[0] == (exercise, last_fix) for v in drawn.values())
+                if not ok:
+                    wrong.append((what, when.toString(Qt.ISODate), drawn))
+        check(not wrong, f"{tag} {exercise}: at each of {len(instants)} instants, and in the frame holding it, each ship drawn once, at her last fix: {wrong[:3]}")
     project.clear()
 app.exitQgis()
 if failures:

@@ -6,7 +6,7 @@
     <Searchable>1</Searchable>
     <Private>0</Private>
   </flags>
-  <temporal durationField="" durationUnit="min" mode="2" startField="time" accumulate="0" endField="until" startExpression="" enabled="1" fixedDuration="0" limitMode="1" endExpression="">
+  <temporal durationField="" durationUnit="min" mode="2" startField="time" accumulate="0" endField="until" startExpression="" enabled="1" fixedDuration="0" limitMode="0" endExpression="">
     <fixedRange>
       <start></start>
       <end></end>
