@@ -104,6 +104,24 @@ struct TrackSource {
 AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
                   const AuditOptions& options);
 
+/// A packed track, unpacked for its sweep and its packed fixes freed (taken once).
+track::Track take(track::PackedTrack& packed) {
+    track::Track t = packed.unpack();
+    packed.release_fixes();
+    return t;
+}
+
+/// `result` with what reading found: the files, the read time, the rows skipped, the read's
+/// warnings first. (`read` by reference: its tracks are still being swept while the call's
+/// other argument, the audit, is evaluated.)
+AuditResult with_read(AuditResult result, ReadResult& read) {
+    result.files = std::move(read.files);
+    result.read_s = read.read_s;
+    for (const auto& f : result.files) result.skipped_rows += f.read.skipped;
+    result.warnings.insert(result.warnings.begin(), read.warnings.begin(), read.warnings.end());
+    return result;
+}
+
 /// A vessels table's static data over the track's own: name, A,B,C,D, draught, ship type.
 void join_static_data(track::Track& t, const std::map<std::string, track::VesselInfo>& vessels) {
     auto it = vessels.find(t.id);
@@ -219,23 +237,9 @@ AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hul
         else packed[k].release_fixes();
     }
     TrackSource source{chosen.size(), [&](std::size_t k) { return packed[chosen[k]].size(); },
-                       [&](std::size_t k) {
-                           track::Track t = packed[chosen[k]].unpack();
-                           packed[chosen[k]].release_fixes();
-                           return t;
-                       },
-                       [&](std::size_t k) { return chosen[k]; }, others.size(),
-                       [&](std::size_t k) {
-                           track::Track t = packed[others[k]].unpack();
-                           packed[others[k]].release_fixes();
-                           return t;
-                       }};
-    AuditResult result = audit(source, grid, default_hull, hull_label, options);
-    result.files = std::move(read.files);
-    result.read_s = read.read_s;
-    for (const auto& f : result.files) result.skipped_rows += f.read.skipped;
-    result.warnings.insert(result.warnings.begin(), read.warnings.begin(), read.warnings.end());
-    return result;
+                       [&](std::size_t k) { return take(packed[chosen[k]]); }, [&](std::size_t k) { return chosen[k]; },
+                       others.size(), [&](std::size_t k) { return take(packed[others[k]]); }};
+    return with_read(audit(source, grid, default_hull, hull_label, options), read);
 }
 
 AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid& grid, const hull::Hull& default_hull,
@@ -616,8 +620,7 @@ std::vector<TrackResult> traffic_of_partition(ReadResult& read, const grid::Coas
         read.tracks.size(), jobs,
         [&](std::size_t k, unsigned w) {
             try {
-                track::Track t = read.tracks[k].unpack();
-                read.tracks[k].release_fixes();
+                track::Track t = take(read.tracks[k]);
                 prepare_track(t, options);
                 out[k] = traffic_of(t, traffic_length(t, default_hull), *frames[w], grid, options.sweep, options.evidence);
                 ok[k] = 1;
@@ -639,20 +642,10 @@ AuditResult audit_partition(ReadResult read, std::vector<std::size_t> positions,
                             const AuditOptions& options) {
     if (options.encounters) throw UsageError("AuditOptions::encounters: an exercise is checked whole (its shard), not by partitions of vessels");
     std::vector<track::PackedTrack>& packed = read.tracks;
-    TrackSource source{packed.size(), [&](std::size_t k) { return packed[k].size(); },
-                       [&](std::size_t k) {
-                           track::Track t = packed[k].unpack();
-                           packed[k].release_fixes();
-                           return t;
-                       },
+    TrackSource source{packed.size(), [&](std::size_t k) { return packed[k].size(); }, [&](std::size_t k) { return take(packed[k]); },
                        [&](std::size_t k) { return positions[k]; }, 0, {}};
     if (options.world == World::real) source.traffic = &traffic;
-    AuditResult result = audit(source, grid, default_hull, hull_label, options);
-    result.files = std::move(read.files);
-    result.read_s = read.read_s;
-    for (const auto& f : result.files) result.skipped_rows += f.read.skipped;
-    result.warnings.insert(result.warnings.begin(), read.warnings.begin(), read.warnings.end());
-    return result;
+    return with_read(audit(source, grid, default_hull, hull_label, options), read);
 }
 
 }  // namespace shoal::audit
