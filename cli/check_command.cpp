@@ -265,11 +265,7 @@ public:
             m_audit.sweep.pose_max_interval_s = audit::SweepOptions{}.pose_max_interval_s;
         }
         const hull::Hull hull = m_opts.load_hull();
-        if (!m_date.empty()) {
-            const auto day = track::parse_date(m_date);
-            if (!day) throw UsageError("--date '" + m_date + "' is not a date YYYY-MM-DD");
-            m_audit.read.date_s = *day;
-        }
+        apply_date();
         const grid::CoastGrid g = m_opts.load_grid(hull);
         m_audit.hazard_depth_m = m_opts.request.import.limiting_depth_m;
         m_audit.ukc_m = m_opts.ukc;
@@ -453,6 +449,13 @@ public:
     }
 
 private:
+    /// --date, when given, into the read options.
+    void apply_date() {
+        if (m_date.empty()) return;
+        const auto day = track::parse_date(m_date);
+        if (!day) throw UsageError("--date '" + m_date + "' is not a date YYYY-MM-DD");
+        m_audit.read.date_s = *day;
+    }
     /// --partitions K: the one TRACK input read and written, hashed by vessel, into K partition
     /// files in the new folder -o (audit::write_partitions). Only what changes the reading
     /// matters here (--date, --hull-from-length-width); no grid is built.
@@ -464,11 +467,7 @@ private:
             throw UsageError("--partitions writes partitions: it goes without --from-partitions, --shard, --traffic and --traffic-only");
         if (m_audit.encounters || !m_exercise_by.empty() || !m_audit.read.role_column.empty() || !m_roles_file.empty() || !m_assess_file.empty())
             throw UsageError("--partitions: exercise mode checks an exercise whole, not by partitions of vessels; use --shard");
-        if (!m_date.empty()) {
-            const auto day = track::parse_date(m_date);
-            if (!day) throw UsageError("--date '" + m_date + "' is not a date YYYY-MM-DD");
-            m_audit.read.date_s = *day;
-        }
+        apply_date();
         const auto t0 = std::chrono::steady_clock::now();
         const audit::PartitionSummary s = audit::write_partitions(m_output, m_tracks.front(), m_audit.read, m_partitions, m_audit.jobs,
                                                                   [](const std::string& f) { return report::file_size_and_fingerprint(f); });

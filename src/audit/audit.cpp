@@ -609,9 +609,9 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
 
 std::vector<TrackResult> traffic_of_partition(ReadResult& read, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                                               const AuditOptions& options) {
+    if (options.world != World::real) return {};
     std::vector<TrackResult> out(read.tracks.size());
     std::vector<char> ok(read.tracks.size(), 0);
-    if (options.world != World::real) return {};
     const unsigned jobs = thread_count(options.jobs);
     std::vector<std::unique_ptr<geo::LocalFrame>> frames;
     for (unsigned w = 0; w < jobs; ++w) frames.push_back(std::make_unique<geo::LocalFrame>(grid.frame()));

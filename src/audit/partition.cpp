@@ -229,8 +229,6 @@ PartitionSummary write_partitions(const std::string& dir, const std::string& inp
     index.u64(count);
     index.str(read_key(options));
     index.u64(files.size());
-    std::vector<Writer> parts(count);
-    std::vector<std::uint64_t> in_part(count, 0);
     std::vector<std::vector<std::pair<std::size_t, std::size_t>>> where(count);  // (file, track) in each partition
     for (std::size_t k = 0; k < files.size(); ++k) {
         const FileResult& f = results[k];

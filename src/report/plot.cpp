@@ -1197,7 +1197,7 @@ void draw_direction_and_ticks(std::string& out, const TrackDraw& t, const View& 
     }
     if (!arrows.empty())
         out += "<g class=\"directions\" fill=\"" + std::string(trainee_dark) + "\" stroke=\"#ffffff\" stroke-width=\"0.8\" stroke-linejoin=\"round\">" + arrows + "</g>\n";
-    if (!std::isfinite(t.exercise_start_s) || !std::isfinite(t.summary->end_s)) return;
+    if (!std::isfinite(t.exercise_start_s) || !std::isfinite(t.summary->start_s) || !std::isfinite(t.summary->end_s)) return;  // NaN: no end to the ticks
     const double minutes = tick_minutes(t.summary->end_s - t.exercise_start_s);
     std::string marks;
     std::optional<XY> last;
@@ -1222,8 +1222,6 @@ void draw_direction_and_ticks(std::string& out, const TrackDraw& t, const View& 
         out += "<g class=\"time-ticks\" stroke=\"" + std::string(trainee_dark) + "\" stroke-width=\"2\" stroke-linecap=\"round\">" + marks + "</g>\n";
 }
 
-std::string exercise_clock(double t, double start_s) { return exercise_time_text(t, start_s); }
-
 /// "course", "speed", "course and speed".
 const char* manoeuvre_words(const ManoeuvreDraw& m) { return m.course && m.speed ? "course and speed" : m.course ? "course" : "speed"; }
 
@@ -1233,7 +1231,7 @@ Rect draw_manoeuvre(std::string& out, const ManoeuvreDraw& m, const View& v, con
     const XY p = v.to_px(m.at);
     out += "<g class=\"manoeuvre\" data-track=\"" + markup_text(m.track->summary->id) + "\"><title>" +
            markup_text(m.track->summary->id + " altered " + manoeuvre_words(m) + " at " + clock_text(m.time_s) + " UTC (" +
-                       exercise_clock(m.time_s, m.track->exercise_start_s) + ")") +
+                       exercise_time_text(m.time_s, m.track->exercise_start_s) + ")") +
            "</title><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"6\" fill=\"#ffffff\" stroke=\"" + colour +
            "\" stroke-width=\"2.2\"/><circle cx=\"" + num(p.x) + "\" cy=\"" + num(p.y) + "\" r=\"2\" fill=\"" + colour + "\"/></g>\n";
     return {p.x - 7, p.y - 7, p.x + 7, p.y + 7};
@@ -1253,7 +1251,7 @@ Rect draw_cpa(std::string& out, const CpaDraw& c, const View& v, const char* col
     const XY a = v.to_px(c.pa), b = v.to_px(c.pb);
     out += "<g class=\"cpa\" data-ships=\"" + markup_text(c.a->summary->id + " x " + c.b->summary->id) + "\"><title>" +
            markup_text(c.a->summary->id + " and " + c.b->summary->id + ": closest approach " + fixed_text(c.situation->closest_m, 0) + " m at " +
-                       date_clock_text(c.situation->closest_s) + " UTC (" + exercise_clock(c.situation->closest_s, c.a->exercise_start_s) + ")") +
+                       date_clock_text(c.situation->closest_s) + " UTC (" + exercise_time_text(c.situation->closest_s, c.a->exercise_start_s) + ")") +
            "</title>";
     for (const auto& [hull, colour] : {std::pair{&c.hull_a, colour_a}, std::pair{&c.hull_b, colour_b}})
         if (hull->size() >= 3)

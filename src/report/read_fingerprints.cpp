@@ -28,7 +28,7 @@ std::string text_fingerprint(const std::string& key) { return grid::fingerprint_
 std::string roles_fingerprint(const audit::Roles& roles) {
     std::string key = std::string(audit::to_string(roles.default_role)) + '\n';
     for (const auto& e : roles.entries) key += e.track + '\0' + e.exercise + '\0' + audit::to_string(e.role) + '\n';
-    return grid::fingerprint_hex(XXH3_64bits(key.data(), key.size()));
+    return text_fingerprint(key);
 }
 
 /// The ship as read (name, contour, A,B,C,D, draught): for a ship file read from a stream.
