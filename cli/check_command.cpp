@@ -470,7 +470,7 @@ private:
         apply_date();
         const auto t0 = std::chrono::steady_clock::now();
         const audit::PartitionSummary s = audit::write_partitions(m_output, m_tracks.front(), m_audit.read, m_partitions, m_audit.jobs,
-                                                                  [](const std::string& f) { return report::file_size_and_fingerprint(f); });
+                                                                  report::read_file_fingerprint);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         // One line for the driver's task log: what was read, once.
         std::fprintf(stderr, "shoal: partitions: %s: %zu files, %zu bytes read, %zu tracks, %zu fixes into %u partitions in %s (%.2f s)\n",

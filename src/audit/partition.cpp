@@ -12,7 +12,6 @@
 #include <set>
 
 #include <shoal/audit/shard.hpp>
-#include <shoal/grid/coast_grid.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/track/reader.hpp>
 #include <shoal/util/error.hpp>
@@ -205,7 +204,7 @@ Index read_index(const std::string& dir) {
 }  // namespace
 
 PartitionSummary write_partitions(const std::string& dir, const std::string& input, const track::ReadOptions& options, unsigned count,
-                                  unsigned jobs, const std::function<std::pair<long long, std::string>(const std::string&)>& fingerprint) {
+                                  unsigned jobs, const std::function<std::pair<long long, std::string>(const FileResult&)>& fingerprint) {
     if (count == 0) throw UsageError("write_partitions: the count of partitions must be at least 1");
     std::error_code ec;
     if (fs::symlink_status(dir, ec).type() != fs::file_type::not_found)
@@ -213,14 +212,8 @@ PartitionSummary write_partitions(const std::string& dir, const std::string& inp
     const std::vector<std::string> files = track::expand_inputs({input});
     std::vector<track::PackedTrackFile> read;
     std::vector<FileResult> results;
-    read_track_files(files, options, jobs, read, results, [&](std::size_t k) {
-        FileResult& fr = results[k];
-        // Standard input or a pipe cannot be read again: its content as it was read.
-        if (const auto& d = fr.read.stream_digest)
-            fr.size = static_cast<long long>(d->second), fr.fingerprint = grid::fingerprint_hex(d->first);
-        else
-            std::tie(fr.size, fr.fingerprint) = fingerprint(files[k]);
-    });
+    read_track_files(files, options, jobs, read, results,
+                     [&](std::size_t k) { std::tie(results[k].size, results[k].fingerprint) = fingerprint(results[k]); });
     PartitionSummary summary;
     Writer index;
     index.raw(magic_index, sizeof magic_index);

@@ -26,13 +26,9 @@ json part_order(const audit::AuditResult& r, bool gpkg, const geo::Box& chart) {
             fingerprints.push_back(json::array({f.size, f.fingerprint}));
             continue;
         }
-        // Standard input or a pipe cannot be read again: the content as it was read (before: the
-        // name alone, and shards fed other contents merged).
-        if (const auto& d = f.read.stream_digest) {
-            fingerprints.push_back(json::array({static_cast<long long>(d->second), grid::fingerprint_hex(d->first)}));
-            continue;
-        }
-        const auto [size, fingerprint] = file_size_and_fingerprint(f.file);
+        // Standard input or a pipe by the content as it was read (before: the name alone, and
+        // shards fed other contents merged).
+        const auto [size, fingerprint] = read_file_fingerprint(f);
         fingerprints.push_back(json::array({size, fingerprint}));
     }
     for (std::size_t k = 0; k < r.tracks.size(); ++k) {

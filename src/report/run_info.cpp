@@ -103,6 +103,11 @@ std::pair<long long, std::string> file_size_and_fingerprint(const std::string& p
     return {size, grid::fingerprint_hex(digest)};
 }
 
+std::pair<long long, std::string> read_file_fingerprint(const audit::FileResult& f) {
+    if (const auto& d = f.read.stream_digest) return {static_cast<long long>(d->second), grid::fingerprint_hex(d->first)};
+    return file_size_and_fingerprint(f.file);
+}
+
 geo::Box chart_box_lonlat(const grid::CoastGrid& grid) {
     geo::Box out;
     const geo::Box e = grid.extent();

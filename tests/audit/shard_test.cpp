@@ -91,7 +91,7 @@ TEST(Partition, PartitionsTogetherAreWhatOneRunReads) {
         a << "BUOY,2024-05-01T23:00:00Z,60.5,25.5,0,0\n";
         b << "BUOY,2024-05-02T00:00:00Z,60.5,25.5,0,0\n";
     }
-    const auto fingerprint = [](const std::string&) { return std::pair<long long, std::string>{42, "f"}; };
+    const auto fingerprint = [](const FileResult&) { return std::pair<long long, std::string>{42, "f"}; };
     const unsigned count = 3;
     std::vector<std::string> folders;
     for (std::size_t d = 0; d < days.size(); ++d) {

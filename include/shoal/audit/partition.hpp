@@ -33,14 +33,14 @@ namespace shoal::audit {
 /// holding index.bin and part-00000.bin .. part-(count-1).bin for the track files of `input`
 /// (track::expand_inputs of it; vessels tables in a folder or zip are not tracks and are left
 /// to `--vessels`, as the audit finds them itself). A file that cannot be read is kept in the
-/// index with its error, as one run lists it. `fingerprint(path)` gives a file's size and
-/// fingerprint for the run header (report::file_size_and_fingerprint). Throws InputError when
+/// index with its error, as one run lists it. `fingerprint(file)` gives a file's size and
+/// fingerprint as read, for the run header (report::read_file_fingerprint). Throws InputError when
 /// `dir` exists or cannot be written, UsageError for count 0.
 struct PartitionSummary {
     std::size_t files = 0, tracks = 0, fixes = 0, bytes_read = 0;  ///< bytes_read: the files' sizes
 };
 PartitionSummary write_partitions(const std::string& dir, const std::string& input, const track::ReadOptions& options, unsigned count,
-                                  unsigned jobs, const std::function<std::pair<long long, std::string>(const std::string&)>& fingerprint);
+                                  unsigned jobs, const std::function<std::pair<long long, std::string>(const FileResult&)>& fingerprint);
 
 /// Partition `shard.index` of the folders `dirs` (one per input of the run, in its order, each
 /// written by write_partitions with `shard.count` partitions for input `inputs[k]`): its tracks

@@ -100,6 +100,10 @@ RunInfo run_info(const std::vector<std::string>& coast, const grid::CoastGrid& g
 std::string files_fingerprint(const std::vector<std::string>& paths);
 /// The size in bytes and files_fingerprint of one file (size -1 when it is not a regular file).
 std::pair<long long, std::string> file_size_and_fingerprint(const std::string& path);
+/// The size and fingerprint of a file as a run read it: standard input or a pipe (which cannot
+/// be read again) by the bytes the readers were handed (ReadReport::stream_digest), any other
+/// file by file_size_and_fingerprint.
+std::pair<long long, std::string> read_file_fingerprint(const audit::FileResult& file);
 
 /// The GeoJSON report as text (schemas/report.schema.json).
 std::string geojson(const audit::AuditResult& result, const RunInfo& info);
