@@ -840,7 +840,9 @@ public:
     /// Tries the four corners around `anchor` (px) at `gap`, then above and below, then the
     /// same further out up to `reach` px; the box of the label, or nothing.
     std::optional<Rect> place(XY anchor, double w, double h, double gap, double reach = 0) {
-        for (double d = gap; d <= std::max(gap, reach); d += d < 2 * gap ? gap : d / 2) {
+        // A step of at least 2 px: with no gap (an area's name, placed on its centre first) the
+        // step d / 2 from d = 0 was 0, and a name whose first tries were all taken never left the loop.
+        for (double d = gap; d <= std::max(gap, reach); d += std::max(d < 2 * gap ? gap : d / 2, 2.0)) {
             const Rect tries[] = {
                 {anchor.x + d, anchor.y - d - h, anchor.x + d + w, anchor.y - d},
                 {anchor.x + d, anchor.y + d, anchor.x + d + w, anchor.y + d + h},
