@@ -22,6 +22,7 @@
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/grid/grid_builder.hpp>
 #include <shoal/report/debrief.hpp>
+#include <shoal/report/debrief_record.hpp>
 #include <shoal/report/plot.hpp>
 #include <shoal/report/report.hpp>
 #include <shoal/track/reader.hpp>
@@ -193,6 +194,9 @@ public:
         m_sub->add_option("--debrief", m_debrief,
                           "Also write the instructor's debrief: FOLDER (created if missing) receives one self-contained HTML page "
                           "per exercise, <exercise>.html (the picture, scores, events in time order with zoomed panels, encounters)");
+        m_sub->add_flag("--debrief-record", m_debrief_record,
+                        "With --shard I/N: also write the shard's debrief record beside its part, REPORT.debrief.cbor, from which "
+                        "shoal merge --debrief FOLDER --plot FILE makes the whole run's debrief and picture");
         m_sub->add_option("--date", m_date, "Date (YYYY-MM-DD, UTC) for logs whose times carry none (NMEA without RMC/ZDA)");
         m_sub->add_flag("--progress,!--no-progress", m_progress, "Progress bar on stderr (default: when stderr is a terminal)");
         CLI::Option* q = m_sub->add_flag("-q,--quiet", m_quiet,
@@ -223,17 +227,28 @@ public:
             m_audit.shard = audit::parse_shard(m_shard);
             // A shard holds its part of the run's tracks: the whole run's outputs (the debrief's
             // pages, the picture) would be written by every shard over one another, each showing
-            // its own part as the run.
+            // its own part as the run. Each writes its debrief record instead; merge makes them.
             for (const auto& [option, value] : {std::pair<const char*, const std::string*>{"--debrief", &m_debrief}, {"--plot", &m_plot}})
                 if (!value->empty())
                     throw UsageError(std::string(option) + " with --shard: " + option +
                                      " writes the whole run's outputs and a shard holds only its part of the tracks (every shard would "
-                                     "write over the others'); give " + option + " to one shoal check of the whole run, without --shard");
+                                     "write over the others'); give each shard --debrief-record and " + option +
+                                     " to shoal merge, which makes it from the records, or give " + option +
+                                     " to one shoal check of the whole run, without --shard");
+            if (m_debrief_record) {
+                if (is_standard_output(m_output) || is_system_path(m_output))
+                    throw UsageError("--debrief-record goes beside the part: give -o a file, not '" + m_output + "'");
+                outputs.push_back({report::debrief_record_path(m_output), "--debrief-record", "the debrief record"});
+                check_outputs(outputs, all_inputs);
+            }
+        } else if (m_debrief_record) {
+            throw UsageError("--debrief-record goes with --shard I/N (a shard's record, for shoal merge --debrief/--plot); a whole run "
+                             "writes its debrief itself: --debrief FOLDER, --plot FILE");
         }
         if (!m_debrief.empty()) report::check_debrief_folder(m_debrief);
         m_audit.sweep.pose_interval_s = m_poses_interval_s;
         // The poses go to the QGIS project's poses layer, the picture and the debrief only.
-        m_audit.sweep.keep_poses = !m_no_project || !m_plot.empty() || !m_debrief.empty();
+        m_audit.sweep.keep_poses = !m_no_project || !m_plot.empty() || !m_debrief.empty() || m_debrief_record;
         m_audit.sweep.pose_max_interval_s = std::max(audit::SweepOptions{}.pose_max_interval_s, m_poses_interval_s);
         audit::check_step(m_audit.sweep.step_m);
         // Exercises and roles (issue 18): either option turns exercise mode on.
@@ -389,6 +404,9 @@ public:
             staged = report::stage_geojson(m_output, r, info, &style_warnings);
             print_warnings(style_warnings);
         }
+        // A shard's debrief record, beside its part (fingerprinted from the part's bytes as staged).
+        if (m_debrief_record && r.shard.active())
+            staged.push_back(report::stage_debrief_record(staged.front(), r, info, report::GridSpec{m_opts.coast, m_opts.request}));
         // A picture that cannot be written is an error said as such, but it must not hide the
         // groundings the report holds (exit 1 stays 1).
         const auto not_written = [&](const char* what, const std::exception& e) {
@@ -489,6 +507,7 @@ private:
     std::string m_date;
     std::string m_plot;
     std::string m_debrief;
+    bool m_debrief_record = false;
     std::string m_shard;
     std::string m_world;
     std::optional<double> m_chart_scale;

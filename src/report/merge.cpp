@@ -21,6 +21,9 @@
 #include "report/gpkg_output.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/audit/shard.hpp>
+#include <shoal/report/debrief.hpp>
+#include <shoal/report/debrief_record.hpp>
+#include <shoal/report/plot.hpp>
 #include <shoal/report/report.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/track/time.hpp>
@@ -718,14 +721,58 @@ std::string merge_geojson(const std::vector<std::string>& paths, MergeSummary* s
     return merged_geojson(plan, summary);
 }
 
-MergeSummary merge_reports(const std::vector<std::string>& parts, const std::string& output, std::vector<std::string>* warnings) {
+MergeSummary merge_reports(const std::vector<std::string>& parts, const std::string& output, std::vector<std::string>* warnings,
+                           const MergeOptions& options) {
     const bool gpkg = is_gpkg(output);
-    check_outputs(report_outputs(output, gpkg ? "gpkg" : "geojson", false), parts);  // a merged GeoJSON report has no project (docs/user-guide.md)
+    const bool pages = !options.debrief.empty() || !options.plot.empty();
+    // The inputs: the parts and, for the pages, their records.
+    std::vector<std::string> inputs = parts;
+    if (pages)
+        for (const std::string& p : parts) inputs.push_back(debrief_record_path(p));
+    std::vector<OutputSpec> outputs = report_outputs(output, gpkg ? "gpkg" : "geojson", false);  // a merged GeoJSON report has no project (docs/user-guide.md)
+    if (!options.plot.empty()) outputs.push_back({options.plot, "--plot", "the picture"});
+    check_outputs(outputs, inputs);
+    if (!options.debrief.empty()) check_debrief_folder(options.debrief);
     MergeSummary summary;
     Plan plan = plan_merge(parts, gpkg);
+    // The records, read and checked before anything is written.
+    std::vector<DebriefRecord> records;
+    std::vector<std::size_t> sets;
+    std::vector<bool> first_of_set;
+    if (pages)
+        for (std::size_t k = 0; k < plan.parts.size(); ++k) {
+            const Part& p = plan.parts[k];
+            DebriefRecord& r = records.emplace_back(read_debrief_record(p.path));
+            if (r.shard.text() != p.shard.text())
+                throw InputError("'" + r.path + "' is the record of shard " + r.shard.text() + ", but '" + p.path + "' is shard " + p.shard.text());
+            const json& listed = p.doc["shoal"]["part"]["tracks"];
+            bool same = listed.size() == r.result.track_positions.size();
+            for (std::size_t i = 0; same && i < listed.size(); ++i)
+                same = listed[i].is_number_unsigned() && listed[i].get<std::size_t>() == r.result.track_positions[i];
+            if (!same) throw InputError("'" + r.path + "' does not hold the tracks of its part '" + p.path + "' (was one of them edited?)");
+            sets.push_back(p.set);
+            first_of_set.push_back(plan.first_of_set[p.set] == k);
+        }
     std::vector<StagedOutput> staged;
     if (gpkg) staged.push_back(staged_merged_gpkg(plan, output, &summary));
     else staged = stage_geojson_text(output, merged_geojson(plan, &summary), warnings);
+    if (pages) {
+        const grid::CoastGrid grid = load_recorded_grid(records.front(), options.coast);
+        const RunInfo info = records.front().info;
+        const audit::AuditResult run = join_debrief_records(std::move(records), sets, first_of_set);
+        if (!options.plot.empty()) {
+            StagedOutput& picture = staged.emplace_back(options.plot);
+            picture.write(plot_svg(run, grid));
+        }
+        if (!options.debrief.empty()) {
+            std::vector<std::string> page_warnings;
+            std::vector<StagedOutput> sheets = stage_debrief(options.debrief, run, grid, info, inputs, outputs, {}, &page_warnings);
+            summary.pages = sheets.size();
+            summary.pages_left_out = !page_warnings.empty();
+            if (warnings) warnings->insert(warnings->end(), page_warnings.begin(), page_warnings.end());
+            for (StagedOutput& s : sheets) staged.push_back(std::move(s));
+        }
+    }
     commit_all(staged);
     return summary;
 }

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <fstream>
 #include <random>
 #include <string>
@@ -620,7 +621,8 @@ TEST(ShardMerge, AGeoJsonPartWithoutASummaryIsRefusedWhereverItComes) {
 
 TEST(ShardMerge, ADebriefOrAPictureWithShardIsRefusedBeforeAnyWorkNotWrittenByEveryShard) {
     // Before: each shard wrote the same debrief pages over the others' (the last one's: 21 of
-    // 54 tracks, 0 of 1 grounding) while the merged report was complete.
+    // 54 tracks, 0 of 1 grounding) while the merged report was complete. A shard writes its
+    // debrief record beside its part instead (--debrief-record), and merge the pages.
     const fs::path debrief = temp_dir() / "shard-debrief", picture = temp_dir() / "shard-picture.svg", part = temp_dir() / "shard-out.geojson";
     struct Case {
         std::string option, says;
@@ -628,14 +630,202 @@ TEST(ShardMerge, ADebriefOrAPictureWithShardIsRefusedBeforeAnyWorkNotWrittenByEv
     for (const Case& c : std::vector<Case>{{"--debrief " + q(debrief), "--debrief with --shard: --debrief writes the whole run's outputs"},
                                            {"--plot " + q(picture), "--plot with --shard: --plot writes the whole run's outputs"}})
         for (const char* shard : {"0/2", "1/2", "0/1"}) {
-            const Outcome r = shoal("check " + helsinki + " --encounters " + c.option + " --shard " + shard + " " + case_files() + " -o " + q(part));
-            EXPECT_EQ(r.status, 2) << c.option << " " << shard << "\n" << r.err;
-            EXPECT_NE(r.err.find("shoal: usage error: " + c.says), std::string::npos) << r.err;
-            EXPECT_NE(r.err.find("without --shard"), std::string::npos) << "says what to do: " << r.err;
-            EXPECT_FALSE(fs::exists(debrief)) << "no debrief folder";
-            EXPECT_FALSE(fs::exists(picture)) << "no picture";
-            EXPECT_FALSE(fs::exists(part)) << "no part either: refused before any work";
+            for (const char* record : {"", " --debrief-record"}) {
+                const Outcome r = shoal("check " + helsinki + " --encounters " + c.option + record + " --shard " + shard + " " + case_files() + " -o " + q(part));
+                EXPECT_EQ(r.status, 2) << c.option << " " << shard << "\n" << r.err;
+                EXPECT_NE(r.err.find("shoal: usage error: " + c.says), std::string::npos) << r.err;
+                EXPECT_NE(r.err.find("give each shard --debrief-record"), std::string::npos) << "says what to do: " << r.err;
+                EXPECT_NE(r.err.find("without --shard"), std::string::npos) << "says what to do: " << r.err;
+                EXPECT_FALSE(fs::exists(debrief)) << "no debrief folder";
+                EXPECT_FALSE(fs::exists(picture)) << "no picture";
+                EXPECT_FALSE(fs::exists(part)) << "no part either: refused before any work";
+                EXPECT_FALSE(fs::exists(part.string() + ".debrief.cbor")) << "no record";
+            }
         }
+    // --debrief-record is a shard's; a whole run writes its pages itself.
+    const Outcome whole = shoal("check " + helsinki + " --debrief-record " + case_files() + " -o " + q(part));
+    EXPECT_EQ(whole.status, 2) << whole.err;
+    EXPECT_NE(whole.err.find("--debrief-record goes with --shard I/N"), std::string::npos) << whole.err;
+    const Outcome piped = shoal("check " + helsinki + " --shard 0/2 --debrief-record " + case_files() + " -o -");
+    EXPECT_EQ(piped.status, 2) << piped.err;
+    EXPECT_NE(piped.err.find("--debrief-record goes beside the part: give -o a file"), std::string::npos) << piped.err;
+    EXPECT_FALSE(fs::exists(part));
+}
+
+/// The debrief pages in `dir` (file name -> bytes) and the picture at `svg`.
+struct Pages {
+    std::map<std::string, std::string> pages;
+    std::string svg;
+};
+Pages pages_in(const fs::path& dir, const fs::path& svg) {
+    Pages p;
+    for (const auto& e : fs::directory_iterator(dir)) p.pages[e.path().filename().string()] = slurp(e.path());
+    p.svg = slurp(svg);
+    return p;
+}
+
+/// One check of the whole run over `files` with --debrief and --plot: its pages and picture.
+Pages single_pages(const std::string& name, const std::string& extra, const std::string& ext, const std::string& files) {
+    const fs::path dir = temp_dir() / (name + "-debrief"), svg = temp_dir() / (name + ".svg");
+    const Outcome r = shoal("check " + helsinki + extra + " " + files + " -o " + q(report_of(name, ext)) + " --debrief " + q(dir) + " --plot " + q(svg));
+    EXPECT_EQ(r.status, 1) << r.err;
+    return pages_in(dir, svg);
+}
+
+/// Every shard of N with --debrief-record, then merge --debrief --plot (parts shuffled): the
+/// pages and the picture merge writes. `tracks` gets each part's count of tracks.
+Pages sharded_pages(unsigned n, const std::string& name, const std::string& extra, const std::string& ext, const std::string& files,
+                    std::vector<std::size_t>* tracks = nullptr) {
+    std::vector<std::string> parts;
+    for (unsigned i = 0; i < n; ++i) {
+        const fs::path part = temp_dir() / (name + "-part" + std::to_string(i) + "." + ext);
+        const Outcome r = shoal("check " + helsinki + extra + " --jobs 1 --shard " + std::to_string(i) + "/" + std::to_string(n) +
+                                " --debrief-record " + files + " -o " + q(part));
+        EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
+        EXPECT_TRUE(fs::exists(part.string() + ".debrief.cbor")) << "the record beside its part";
+        if (tracks && ext == "geojson") tracks->push_back(nlohmann::json::parse(slurp(part))["shoal"]["tracks"].size());
+        parts.push_back(q(part));
+    }
+    std::shuffle(parts.begin(), parts.end(), std::mt19937(n));
+    std::string list;
+    for (const auto& p : parts) list += " " + p;
+    const fs::path dir = temp_dir() / (name + "-debrief"), svg = temp_dir() / (name + ".svg");
+    const Outcome m = shoal("merge" + list + " -o " + q(report_of(name + "-merged", ext)) + " --debrief " + q(dir) + " --plot " + q(svg));
+    EXPECT_EQ(m.status, 1) << m.err << m.out;
+    EXPECT_NE(m.out.find("debrief: "), std::string::npos) << m.out;
+    return pages_in(dir, svg);
+}
+
+/// An exercise run with roles (a trainee and a target in most exercises, two trainees in one)
+/// scored against an assessment (CPA, a speed limit, land clearance, the rules of the road).
+std::string assessed_exercise_options() {
+    static const std::string options = [] {
+        const fs::path assessment = temp_dir() / "pages_assessment.json", roles = temp_dir() / "pages_roles.json";
+        std::ofstream(assessment) << R"({"pass_mark": 40, "criteria": [
+            {"id": "cpa", "kind": "cpa", "limit": 300, "penalty": 10},
+            {"id": "slow", "kind": "speed_limit", "limit": 1, "penalty": 1, "per": "metre", "area_name": "Slow zone",
+             "area": [[24.89, 60.09], [24.93, 60.09], [24.93, 60.11], [24.89, 60.11]]},
+            {"id": "land", "kind": "land_clearance", "limit": 2000, "penalty": 1, "per": "second"},
+            {"id": "rules", "kind": "colreg", "penalty": 5}]})";
+        std::ofstream(roles) << R"({"tracks": [{"track": "230990000", "role": "trainee"}, {"track": "230990011", "role": "trainee"},
+            {"track": "230990020", "role": "trainee"}, {"track": "230990031", "role": "trainee"},
+            {"track": "230990040", "role": "trainee"}, {"track": "230990041", "role": "trainee"}]})";
+        return " --exercise-by file --roles " + q(roles) + " --assess " + q(assessment);
+    }();
+    return options;
+}
+
+TEST(ShardMerge, TheDebriefAndThePictureOfAnAssessedExerciseRunAreMadeAtTheMergeAsOneCheckWritesThem) {
+    const std::string opts = assessed_exercise_options();
+    const Pages one = single_pages("pages-ex", opts, "geojson", exercise_files());
+    ASSERT_EQ(one.pages.size(), 5u) << "a page per exercise (file)";
+    const std::string& page = one.pages.begin()->second;
+    EXPECT_NE(page.find("<tr class=\"score\">"), std::string::npos) << "scores";
+    EXPECT_NE(page.find("<tr class=\"breach\""), std::string::npos) << "breaches";
+    EXPECT_NE(page.find("<tr class=\"encounter\">"), std::string::npos) << "encounters";
+    EXPECT_NE(page.find("data-kind=\"collision\""), std::string::npos) << "a collision";
+    EXPECT_NE(one.svg.find("class=\"cpa\""), std::string::npos) << "closest approaches in the picture";
+    for (const std::string ext : {"geojson", "gpkg"})
+        for (unsigned n : {2u, 3u}) {
+            if (under_sanitizer && (n == 3 || ext == "gpkg")) continue;  // one of each path is enough there
+            const Pages merged = sharded_pages(n, "pages-ex" + std::to_string(n) + ext, opts, ext, exercise_files());
+            EXPECT_EQ(merged.pages.size(), one.pages.size()) << n << " " << ext;
+            for (const auto& [file, bytes] : one.pages) EXPECT_EQ(merged.pages.count(file) ? merged.pages.at(file) : "", bytes) << file << " " << n << " " << ext;
+            EXPECT_EQ(merged.svg, one.svg) << n << " " << ext;
+        }
+}
+
+TEST(ShardMerge, TheDebriefAndThePictureOfARealWorldRunWhoseOnePageSpansShardsAreMadeAtTheMerge) {
+    // The AIS cases and the exercises' vessels, in the real world: one page, run.html, whose
+    // tracks every shard holds some of.
+    const std::string files = case_files() + exercise_files();
+    const Pages one = single_pages("pages-rw", "", "geojson", files);
+    ASSERT_EQ(one.pages.size(), 1u);
+    ASSERT_TRUE(one.pages.count("run.html"));
+    const std::size_t total = nlohmann::json::parse(slurp(report_of("pages-rw", "geojson")))["shoal"]["tracks"].size();
+    ASSERT_GE(total, 15u);
+    EXPECT_NE(one.pages.at("run.html").find("data-kind=\"grounding\""), std::string::npos);
+    for (const std::string ext : {"geojson", "gpkg"})
+        for (unsigned n : {2u, 3u}) {
+            if (under_sanitizer && (n == 3 || ext == "gpkg")) continue;
+            std::vector<std::size_t> tracks;
+            const Pages merged = sharded_pages(n, "pages-rw" + std::to_string(n) + ext, "", ext, files, &tracks);
+            for (std::size_t t : tracks) EXPECT_TRUE(t > 0 && t < total) << "every shard holds a part of the one page's tracks: " << t << " of " << total;
+            EXPECT_EQ(merged.pages, one.pages) << n << " " << ext;
+            EXPECT_EQ(merged.svg, one.svg) << n << " " << ext;
+        }
+}
+
+TEST(ShardMerge, TheMergesPagesNeedEveryPartsOwnRecordOfOneRun) {
+    const std::string files = case_files();
+    const auto part = [&](const std::string& name, const std::string& args) { return checked_part(name, args + " " + files); };
+    const std::string a0 = part("rec-a0.geojson", "--shard 0/2 --debrief-record"), a1 = part("rec-a1.geojson", "--shard 1/2 --debrief-record");
+    const fs::path dir = temp_dir() / "rec-pages", svg = temp_dir() / "rec.svg", out = temp_dir() / "rec-merged.geojson";
+    const auto merge = [&](const std::string& parts, const std::string& more = "") {
+        return shoal("merge " + parts + " -o " + q(out) + " --debrief " + q(dir) + " --plot " + q(svg) + more);
+    };
+    const auto nothing_written = [&] { return !fs::exists(dir) && !fs::exists(svg) && !fs::exists(out); };
+    ASSERT_EQ(merge(a0 + " " + a1).status, 1);
+    ASSERT_TRUE(fs::exists(dir / "run.html"));
+    fs::remove_all(dir);
+    fs::remove(svg);
+    fs::remove(out);
+    const fs::path rec0 = temp_dir() / "rec-a0.geojson.debrief.cbor", rec1 = temp_dir() / "rec-a1.geojson.debrief.cbor";
+    const std::string saved0 = slurp(rec0);
+    {  // A part without a record: a usage error naming it and saying how to write one.
+        fs::remove(rec0);
+        const Outcome r = merge(a1 + " " + a0);
+        EXPECT_EQ(r.status, 2) << r.err;
+        EXPECT_NE(r.err.find("the part '" + (temp_dir() / "rec-a0.geojson").string() + "' has no debrief record"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("--debrief-record"), std::string::npos) << r.err;
+        EXPECT_TRUE(nothing_written());
+        const Outcome plain = shoal("merge " + a0 + " " + a1 + " -o " + q(out));
+        EXPECT_EQ(plain.status, 1) << "the report alone needs no record: " << plain.err;
+        fs::remove(out);
+    }
+    {  // Another shard's record beside a part: not its part's.
+        fs::copy_file(rec1, rec0, fs::copy_options::overwrite_existing);
+        const Outcome r = merge(a0 + " " + a1);
+        EXPECT_EQ(r.status, 2) << r.err;
+        EXPECT_NE(r.err.find("is not the record of the part '" + (temp_dir() / "rec-a0.geojson").string() + "'"), std::string::npos) << r.err;
+        EXPECT_TRUE(nothing_written());
+    }
+    {  // The record of another run's shard 0 (--margin 80), beside this run's shard 0.
+        part("rec-b0.geojson", "--shard 0/2 --margin 80 --debrief-record");
+        fs::copy_file(temp_dir() / "rec-b0.geojson.debrief.cbor", rec0, fs::copy_options::overwrite_existing);
+        const Outcome r = merge(a0 + " " + a1);
+        EXPECT_EQ(r.status, 2) << r.err;
+        EXPECT_NE(r.err.find("is not the record of the part"), std::string::npos) << r.err;
+        EXPECT_TRUE(nothing_written());
+    }
+    {  // A damaged record: said so.
+        const std::string good = slurp(rec0);
+        std::ofstream(rec0, std::ios::binary) << good.substr(0, good.size() / 2);
+        const Outcome r = merge(a0 + " " + a1);
+        EXPECT_EQ(r.status, 2) << r.err;
+        EXPECT_NE(r.err.find("a damaged debrief record"), std::string::npos) << r.err;
+        EXPECT_TRUE(nothing_written());
+        // A file of that name that shoal did not write is not replaced by the shard.
+        std::ofstream(rec0) << "my notes\n";
+        const Outcome kept = shoal("check " + helsinki + " --shard 0/2 --debrief-record " + files + " -o " + a0);
+        EXPECT_EQ(kept.status, 2) << kept.err;
+        EXPECT_NE(kept.err.find("is not a debrief record shoal wrote"), std::string::npos) << kept.err;
+        EXPECT_EQ(slurp(rec0), "my notes\n");
+        fs::remove(rec0);
+        part("rec-a0.geojson", "--shard 0/2 --debrief-record");
+    }
+    {  // The grid: merge --coast another chart is refused by its fingerprint; the run's own is taken.
+        const fs::path other = temp_dir() / "rec-other-coast.geojson";
+        std::ofstream(other) << R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},
+            "geometry": {"type": "Polygon", "coordinates": [[[24.0, 60.0], [24.5, 60.0], [24.5, 60.05], [24.0, 60.0]]]}}]})";
+        const Outcome r = merge(a0 + " " + a1, " --coast " + q(other));
+        EXPECT_EQ(r.status, 2) << r.err;
+        EXPECT_NE(r.err.find("gives the grid"), std::string::npos) << r.err;
+        EXPECT_TRUE(nothing_written());
+        const Outcome ok = merge(a0 + " " + a1, " --coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson'");
+        EXPECT_EQ(ok.status, 1) << ok.err;
+        EXPECT_TRUE(fs::exists(dir / "run.html"));
+    }
 }
 
 TEST(ShardMerge, BadShardTextIsAUsageErrorNamingTheOption) {

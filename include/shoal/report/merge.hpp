@@ -33,6 +33,19 @@ namespace shoal::report {
 /// What a merge gave, for the exit status and the table.
 struct MergeSummary {
     std::size_t parts = 0, tracks = 0, events = 0, groundings = 0, collisions = 0;
+    std::size_t pages = 0;           ///< debrief pages written
+    bool pages_left_out = false;     ///< a page not written (a file of that name that shoal did not write)
+};
+
+/// The whole run's other outputs, made at the merge from the parts' debrief records
+/// (debrief_record.hpp; `check --shard I/N --debrief-record` writes them): the pages and the
+/// picture one `check --debrief FOLDER --plot FILE` of the whole run writes.
+struct MergeOptions {
+    std::string debrief;             ///< --debrief FOLDER ("" none)
+    std::string plot;                ///< --plot FILE ("" none)
+    /// --coast: the grid (or its sources) to draw on, instead of the --coast the shards were
+    /// given; checked against the run's grid fingerprint.
+    std::vector<std::string> coast;
 };
 
 /// The largest part read (1 GiB, as a GeoJSON track file); a larger one, or an endless source
@@ -50,6 +63,13 @@ std::string merge_geojson(const std::vector<std::string>& parts, MergeSummary* s
 /// merge_geojson's (with its QGIS style beside it); parts of the other format are refused. The
 /// outputs are checked against the parts first (none may be a part), staged and put in place
 /// together. Warnings (a style not replaced) go into `warnings` when given.
-MergeSummary merge_reports(const std::vector<std::string>& parts, const std::string& output, std::vector<std::string>* warnings = nullptr);
+///
+/// With `options.debrief` or `options.plot`: every part's debrief record is read (a part
+/// without one: UsageError naming it and how to write it; a record of another part, or records
+/// of different runs: InputError), the records joined as one run's (join_debrief_records), the
+/// run's grid loaded again (load_recorded_grid), and the pages and the picture staged with the
+/// report, all put in place together.
+MergeSummary merge_reports(const std::vector<std::string>& parts, const std::string& output, std::vector<std::string>* warnings = nullptr,
+                           const MergeOptions& options = {});
 
 }  // namespace shoal::report
