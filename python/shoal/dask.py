@@ -25,7 +25,11 @@ signal) is retried R times and, if it still fails, named on stderr, and the exit
 2: a part is never silently missing. The parts are then merged (``shoal merge``) into the
 report one ``shoal check`` of the same arguments writes, byte for byte, and the exit status
 is check's (0 no grounding, 1 a grounding). The report is GeoJSON, or a GeoPackage for ``-o
-REPORT.gpkg`` (the parts are then GeoPackages).
+REPORT.gpkg`` (the parts are then GeoPackages). With ``--debrief FOLDER`` and ``--plot
+FILE``, whole-run outputs no task holds, each task also writes its debrief record beside its
+part (``check --debrief-record``) and the merge makes the pages and the picture from the
+records (``shoal merge ... --debrief FOLDER --plot FILE``), those one ``shoal check`` writes;
+the records go and are cleaned with the parts.
 
 The grid: coastline sources given to ``--coast`` are built into a grid once, here (``shoal
 probe`` into a private cache folder), its bytes scattered to the workers and written once per
@@ -78,9 +82,8 @@ EXERCISE = ("--encounters", "--exercise-by", "--roles", "--assess", "--role-colu
 # Options a task sets itself; given by the user they are refused or replaced.
 REFUSED = {"--shard": "the driver sets --shard itself",
            "--partitions": "the driver partitions the inputs itself", "--from-partitions": "the driver sets it itself",
-           "--traffic": "the driver sets it itself", "--traffic-only": "the driver sets it itself", "--plot": "a picture cannot be merged: draw it with one shoal check",
-            "--debrief": "the debrief's pages are the whole run's and each task checks a part of it (every task would write over the "
-                         "others'): write the debrief with one shoal check of the whole run",
+           "--traffic": "the driver sets it itself", "--traffic-only": "the driver sets it itself",
+           "--debrief-record": "the driver sets it itself (give --debrief FOLDER or --plot FILE: the merge makes them)",
            "--format": "the report's format is -o's extension: -o REPORT.geojson or -o REPORT.gpkg"}
 
 
@@ -300,6 +303,8 @@ class ClusterError(Exception):
 
 # The parts this driver wrote into a --parts-dir, one name a line: only those it replaces.
 PARTS_MARKER = ".shoal-dask-parts"
+# Beside each part with --debrief or --plot: its debrief record (check --debrief-record).
+RECORD = ".debrief.cbor"
 
 
 def part_paths(a, tracks, output, parts_dir):
@@ -350,7 +355,15 @@ def run(a):
         # Twice the workers of --local (a worker takes the next partition while a slow one ends);
         # on a cluster, one partition per input (a year of days: 366 tasks of a day's fixes each).
         a.partitions = 2 * (a.local or 2) if a.scheduler is None else max(2, len(tracks))
-    options = [o for o in options if o[0] not in ("--cache-dir", "--progress", "--no-progress")]
+    # --debrief and --plot are the whole run's: each task writes its debrief record beside its
+    # part (--debrief-record) and the merge makes the pages and the picture from the records.
+    pages = []
+    for name in ("--debrief", "--plot"):
+        values = option_values(options, name)
+        if values is not None:
+            pages += [name, values[0]]
+    a.pages = pages
+    options = [o for o in options if o[0] not in ("--cache-dir", "--progress", "--no-progress", "--debrief", "--plot")]
     options.append(["--no-progress"])
     cwd = os.getcwd()
     out_dir = os.path.dirname(os.path.abspath(output))
@@ -359,7 +372,7 @@ def run(a):
     if a.parts_dir:  # before any work: a user's file at a part's path is never replaced
         parts_dir = os.path.abspath(a.parts_dir)
         os.makedirs(parts_dir, exist_ok=True)
-        claim_parts(parts_dir, part_paths(a, tracks, output, parts_dir))
+        claim_parts(parts_dir, [x for p in part_paths(a, tracks, output, parts_dir) for x in ([p, p + RECORD] if pages else [p])])
     workdir = tempfile.mkdtemp(prefix=".shoal-dask-", dir=out_dir)
     parts_dir = os.path.abspath(a.parts_dir) if a.parts_dir else workdir
     try:
@@ -377,13 +390,14 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
     if a.local is not None and option_values(options, "--jobs") is None and option_values(options, "-j") is None:
         options.append(["--jobs", str(max(1, (os.cpu_count() or 1) // a.local))])
     parts = part_paths(a, tracks, output, parts_dir)
+    record = ["--debrief-record"] if a.pages else []
     stages = []  # each a list of (name, output path, command), run one after the other
     if a.shards:
         stages.append([("shard %d/%d" % (i, a.shards), part,
-                         [shoal, "check"] + flat(options) + ["--shard", "%d/%d" % (i, a.shards), "-o", part, "--"] + tracks)
+                         [shoal, "check"] + flat(options) + ["--shard", "%d/%d" % (i, a.shards)] + record + ["-o", part, "--"] + tracks)
                        for i, part in enumerate(parts)])
     elif a.per_file:
-        stages.append([(t, part, [shoal, "check"] + flat(options) + ["--shard", "0/1", "-o", part, "--", t])
+        stages.append([(t, part, [shoal, "check"] + flat(options) + ["--shard", "0/1"] + record + ["-o", part, "--", t])
                        for t, part in zip(tracks, parts)])
     else:
         # 1. Each input read once, its fixes hashed by vessel into K partition files; 2. each
@@ -399,7 +413,7 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
                         [shoal, "check"] + flat(options) + inputs + ["--shard", "%d/%d" % (i, k), "--traffic-only", "-o", traffic[i], "--"] + tracks)
                        for i in range(k)])
         stages.append([("partition %d/%d" % (i, k), parts[i],
-                        [shoal, "check"] + flat(options) + inputs + ["--shard", "%d/%d" % (i, k)] +
+                        [shoal, "check"] + flat(options) + inputs + ["--shard", "%d/%d" % (i, k)] + record +
                         [x for t in traffic for x in ("--traffic", t)] + ["-o", parts[i], "--"] + tracks)
                        for i in range(k)])
 
@@ -452,7 +466,11 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
         print("shoal.dask: error: %d of %d tasks failed (%s); no report written" % (len(failed), total, ", ".join(failed)),
               file=sys.stderr)
         return 2
-    p = subprocess.run([shoal, "merge"] + parts + ["-o", output], cwd=cwd, preexec_fn=_die_with_parent)
+    # The pages and the picture: drawn on the grid the tasks used (the driver's cache of it).
+    env = dict(os.environ)
+    if grid is not None:
+        env["SHOAL_CACHE_DIR"] = os.path.join(workdir, "grid-cache")
+    p = subprocess.run([shoal, "merge"] + parts + ["-o", output] + a.pages, cwd=cwd, env=env, preexec_fn=_die_with_parent)
     return p.returncode
 
 

@@ -204,15 +204,14 @@ try:
         expect("partition-00000-of-00004.geojson' is there and was not written by shoal.dask: not replaced" in err, "the file named: " + err)
         expect(read(os.path.join(mine, "partition-00000-of-00004.geojson")) == b"my own notes\n", "the user's file as it was")
         expect(not os.path.exists(out), "no report written")
-        # --debrief: a whole run's output, which no task holds; refused before any work, one line
-        # (before: passed to every task, each writing the same pages over the others').
-        debrief = os.path.join(tmp, "debrief")
+        # --debrief-record: the driver's to give (with --debrief or --plot, the merge makes the
+        # pages from the tasks' records); refused before any work, one line.
         status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "1", "--shoal", shoal, "check"] + coast + files +
-                             ["--debrief", debrief, "-o", out])
-        expect(status == 2, "exit 2 for --debrief: %d\n%s" % (status, err))
-        expect(err.count("\n") == 1 and err.startswith("shoal.dask: usage error: check option --debrief: the debrief's pages are the whole run's"),
+                             ["--debrief-record", "-o", out])
+        expect(status == 2, "exit 2 for --debrief-record: %d\n%s" % (status, err))
+        expect(err.count("\n") == 1 and err.startswith("shoal.dask: usage error: check option --debrief-record: the driver sets it itself"),
                "one line saying why: " + err)
-        expect(not os.path.exists(debrief) and not os.path.exists(out), "no debrief, no report")
+        expect(not os.path.exists(out), "no report")
         expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
         # Its own parts of an earlier run it replaces without a word.
         own = os.path.join(tmp, "own")
@@ -231,6 +230,44 @@ try:
                "one line naming the scheduler: " + err)
         expect(not os.path.exists(out), "no report written")
         expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder left behind")
+    elif case == "debrief":
+        # --debrief and --plot: each task writes its debrief record beside its part, the merge
+        # makes the pages and the picture, those of one shoal check (before: refused, and before
+        # that every task wrote the same pages over the others'). The default mode (partitions:
+        # the run's one page spans every partition), and an exercise in --shards.
+        for mode, extra in (([], []), (["--shards", "2"], ["--encounters"])):
+            name = "partitions" if not mode else "shards"
+            one_dir, dask_dir = os.path.join(tmp, "one-" + name), os.path.join(tmp, "dask-" + name)
+            os.makedirs(one_dir)
+            os.makedirs(dask_dir)
+            status, _, err = run([shoal, "check"] + coast + extra + files + ["-o", os.path.join(one_dir, "r.geojson"), "--no-progress",
+                                                                             "--debrief", os.path.join(one_dir, "pages"), "--plot",
+                                                                             os.path.join(one_dir, "r.svg")])
+            expect(status == 1, "single run with --debrief --plot (%s): %d %s" % (name, status, err))
+            out = os.path.join(dask_dir, "r.geojson")
+            status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "2", "--shoal", shoal] + mode + ["check"] + coast + extra +
+                                 files + ["--debrief", os.path.join(dask_dir, "pages"), "--plot", os.path.join(dask_dir, "r.svg"), "-o", out])
+            expect(status == 1, "dask with --debrief --plot (%s): exit 1 as check's: %d\n%s" % (name, status, err))
+            expect(os.path.exists(out) and read(out) == read(os.path.join(one_dir, "r.geojson")), "the report == check's (%s)" % name)
+            pages = sorted(os.listdir(os.path.join(one_dir, "pages")))
+            expect(pages == ["run.html"], "one page: %s" % pages)
+            for page in pages:
+                mine = os.path.join(dask_dir, "pages", page)
+                expect(os.path.exists(mine) and read(mine) == read(os.path.join(one_dir, "pages", page)), "page %s == check's (%s)" % (page, name))
+            expect(os.path.exists(os.path.join(dask_dir, "r.svg")) and read(os.path.join(dask_dir, "r.svg")) == read(os.path.join(one_dir, "r.svg")),
+                   "the picture == check's (%s)" % name)
+            expect(not [n for n in os.listdir(tmp) if n.startswith(".shoal-dask-")], "no work folder (parts, records) left behind")
+            expect(not [n for n in os.listdir(dask_dir) if n.endswith(".debrief.cbor")], "no record beside the report")
+        # --parts-dir: the records stay with the parts, and a second run replaces its own.
+        keep = os.path.join(tmp, "keep")
+        for attempt in (1, 2):
+            out = os.path.join(tmp, "kept.geojson")
+            status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "2", "--shoal", shoal, "--shards", "2", "--parts-dir", keep,
+                                  "check"] + coast + files + ["--plot", os.path.join(tmp, "kept.svg"), "-o", out])
+            expect(status == 1, "run %d into --parts-dir with --plot: %d\n%s" % (attempt, status, err))
+            expect(sorted(n for n in os.listdir(keep) if n.endswith(".debrief.cbor")) ==
+                   ["part-%05d-of-00002.geojson.debrief.cbor" % i for i in range(2)], "run %d: a record beside each part: %s" % (attempt, os.listdir(keep)))
+            expect(read(os.path.join(tmp, "kept.svg")) == read(os.path.join(tmp, "one-partitions", "r.svg")), "run %d: the picture == check's" % attempt)
     elif case in ("signal", "lost_worker"):
         # Tasks that run long (the wrapper records its pid, then becomes a sleep): the driver is
         # sent SIGTERM (signal), or its only worker dies mid-task (lost_worker). Before: SIGTERM
