@@ -318,6 +318,8 @@ public:
         m_audit.progress = [&](std::size_t done, std::size_t total) { bar(done, total); };
         if (!m_from_partitions.empty() || m_traffic_only || !m_traffic.empty()) {
             if (m_from_partitions.empty()) throw UsageError("--traffic-only and --traffic go with --from-partitions");
+            if (m_traffic_only && m_debrief_record)
+                throw UsageError("--debrief-record goes with a part (the partition's audit, --traffic), not with --traffic-only, which writes no part");
             if (!m_audit.shard.active()) throw UsageError("--from-partitions needs --shard I/N: the partition I of N to audit");
             if (m_audit.encounters)
                 throw UsageError("--from-partitions: exercise mode checks an exercise whole, not by partitions of vessels; use --shard alone");
@@ -481,8 +483,8 @@ private:
         if (m_tracks.size() != 1)
             throw UsageError("--partitions writes the partitions of one TRACK input (a file, folder or zip), not " + std::to_string(m_tracks.size()) +
                              ": one task per input");
-        if (!m_from_partitions.empty() || !m_shard.empty() || m_traffic_only || !m_traffic.empty())
-            throw UsageError("--partitions writes partitions: it goes without --from-partitions, --shard, --traffic and --traffic-only");
+        if (!m_from_partitions.empty() || !m_shard.empty() || m_traffic_only || !m_traffic.empty() || m_debrief_record)
+            throw UsageError("--partitions writes partitions: it goes without --from-partitions, --shard, --traffic, --traffic-only and --debrief-record");
         if (m_audit.encounters || !m_exercise_by.empty() || !m_audit.read.role_column.empty() || !m_roles_file.empty() || !m_assess_file.empty())
             throw UsageError("--partitions: exercise mode checks an exercise whole, not by partitions of vessels; use --shard");
         apply_date();

@@ -650,6 +650,14 @@ TEST(ShardMerge, ADebriefOrAPictureWithShardIsRefusedBeforeAnyWorkNotWrittenByEv
     EXPECT_EQ(piped.status, 2) << piped.err;
     EXPECT_NE(piped.err.find("--debrief-record goes beside the part: give -o a file"), std::string::npos) << piped.err;
     EXPECT_FALSE(fs::exists(part));
+    // Writing partitions audits nothing: no record to write.
+    const fs::path partitions = temp_dir() / "record-partitions";
+    const Outcome split = shoal("check " + helsinki + " --partitions 2 --debrief-record -o " + q(partitions) + " '" + std::string(SHOAL_TEST_DATA) +
+                                "tracks/ais_cases/passes_clear.csv'");
+    EXPECT_EQ(split.status, 2) << split.err;
+    EXPECT_NE(split.err.find("--partitions writes partitions: it goes without --from-partitions, --shard, --traffic, --traffic-only and --debrief-record"),
+              std::string::npos) << split.err;
+    EXPECT_FALSE(fs::exists(partitions));
 }
 
 /// The debrief pages in `dir` (file name -> bytes) and the picture at `svg`.
@@ -825,6 +833,10 @@ TEST(ShardMerge, TheMergesPagesNeedEveryPartsOwnRecordOfOneRun) {
         const Outcome ok = merge(a0 + " " + a1, " --coast '" + source_root() + "/examples/data/gof_helsinki_land.geojson'");
         EXPECT_EQ(ok.status, 1) << ok.err;
         EXPECT_TRUE(fs::exists(dir / "run.html"));
+        const Outcome alone = shoal("merge " + a0 + " " + a1 + " -o " + q(temp_dir() / "rec-alone.geojson") + " --coast " + q(other));
+        EXPECT_EQ(alone.status, 2) << alone.err;
+        EXPECT_NE(alone.err.find("merge --coast goes with --debrief or --plot"), std::string::npos) << alone.err;
+        EXPECT_FALSE(fs::exists(temp_dir() / "rec-alone.geojson"));
     }
 }
 
