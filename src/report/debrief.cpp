@@ -665,7 +665,7 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
             const std::size_t ci = page.situations[n];
             const audit::ColregEncounter& c = r.situations[ci];
             const std::string svg = n < options.max_zoom_panels ? cpa_svg(r, grid, ci, options.zoom_width_px, plot) : std::string();
-            out += "<figure class=\"cpa\" id=\"cpa-" + std::to_string(n + 1) + "\">" + (svg.empty() ? std::string() : inline_svg(svg)) +
+            out += "<figure class=\"cpa\" id=\"closest-approach-" + std::to_string(n + 1) + "\">" + (svg.empty() ? std::string() : inline_svg(svg)) +
                    "<figcaption>" + std::to_string(n + 1) + ". " + esc(r.tracks[c.a].summary.id) + " &#215; " + esc(r.tracks[c.b].summary.id) + ", " +
                    esc(audit::to_string(c.at_start.situation)) + ": closest approach <span class=\"cpa-distance\">" + fixed(c.closest_m, 0) +
                    " m</span> at " + esc(clock_text(c.closest_s, "?")) + " (" + esc(exercise_time_text(c.closest_s, first)) + ")</figcaption></figure>\n";

@@ -25,6 +25,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <map>
 #include <set>
 #include <sstream>
 #include <array>
@@ -744,6 +745,12 @@ TEST(DebriefPictures, TheTraineeInHerColourWithArrowsAndTicksTheAreasTheClosestA
         ASSERT_NE(top, nullptr);
         const CPLXMLNode* overview = by_id(top, "overview");
         ASSERT_NE(overview, nullptr);
+        // Every id once in the document (a link or a clip path to an id held twice takes the first).
+        std::map<std::string, int> id_count;
+        each_element(top, [&](const CPLXMLNode* e) {
+            if (const std::string id = attr(e, "id"); !id.empty()) ++id_count[id];
+        });
+        for (const auto& [id, count] : id_count) EXPECT_EQ(count, 1) << "id '" << id << "'";
         // The trainee's track alone in her blue, the targets in grey.
         const auto trainee = with_class(overview, "trainee", "path");
         ASSERT_EQ(trainee.size(), 1u);
