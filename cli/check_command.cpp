@@ -107,7 +107,8 @@ public:
         m_sub->add_flag("--traffic-only", m_traffic_only,
                         "With --from-partitions: write only the partition's traffic (stays, fixes over land) to -o FILE, for --traffic");
         m_sub->add_option("--traffic", m_traffic,
-                          "With --from-partitions: the traffic files of partitions 0..N-1 (--traffic-only), every vessel's evidence")
+                          "With --from-partitions: the traffic files of partitions 0..N-1 (--traffic-only), every vessel's evidence; "
+                          "one --traffic per file, in partition order: --traffic T0 --traffic T1 ...")
             ->allow_extra_args(false);
         m_sub->add_flag("--encounters", m_audit.encounters,
                         "Exercise mode: the tracks are one exercise; also report ship-to-ship collisions and close quarters");
@@ -213,10 +214,17 @@ public:
         all_inputs.insert(all_inputs.end(), m_vessel_files.begin(), m_vessel_files.end());
         if (!m_roles_file.empty()) all_inputs.push_back(m_roles_file);
         if (!m_assess_file.empty()) all_inputs.push_back(m_assess_file);
+        // A partitioned run reads the partitions' files and the traffic files instead.
+        for (const std::string& folder : m_from_partitions) {
+            std::error_code ec;
+            for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) all_inputs.push_back(entry.path().string());
+        }
+        all_inputs.insert(all_inputs.end(), m_traffic.begin(), m_traffic.end());
         const std::string format = !m_format.empty() ? m_format
                                    : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
         // Every output, checked before any work: none is an input or another output.
-        std::vector<OutputSpec> outputs = report::report_outputs(m_output, format, !m_no_project);
+        std::vector<OutputSpec> outputs = m_traffic_only ? std::vector<OutputSpec>{{m_output, "-o", "the partition's traffic"}}
+                                                         : report::report_outputs(m_output, format, !m_no_project);
         if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
         check_outputs(outputs, all_inputs);
         if (!m_shard.empty()) {
@@ -323,7 +331,7 @@ public:
             return exit_ok;
         }
         if (partition && m_audit.world == audit::World::real && m_traffic.empty())
-            throw UsageError("--from-partitions in the real world needs --traffic T0 ... T(N-1): every partition's traffic (--traffic-only)");
+            throw UsageError("--from-partitions in the real world needs --traffic T0 --traffic T1 ... (one per partition, in order): every partition's traffic (--traffic-only)");
         const audit::AuditResult r =
             partition ? audit::audit_partition(std::move(*partition), std::move(partition_positions),
                                                m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard)

@@ -15,6 +15,7 @@
 #include <shoal/track/merge.hpp>
 #include <shoal/track/reader.hpp>
 #include <shoal/util/error.hpp>
+#include <shoal/util/output_file.hpp>
 
 #include "read_files.hpp"
 
@@ -368,14 +369,20 @@ void write_traffic(const std::string& path, const std::vector<TrackResult>& traf
             w.f64(p.y);
         }
     }
-    const std::string temp = path + ".tmp-" + std::to_string(::getpid());
-    write_file(temp, w.bytes());
+    // Only a traffic file shoal wrote is replaced: any other file there (a report, a partition's
+    // index, the user's own) is left as it is.
     std::error_code ec;
-    fs::rename(temp, path, ec);
-    if (ec) {
-        fs::remove(temp, ec);
-        throw InputError("cannot write '" + path + "'");
+    if (fs::exists(path, ec)) {
+        char head[sizeof magic_traffic] = {};
+        std::ifstream old(path, std::ios::binary);
+        old.read(head, sizeof head);
+        if (!fs::is_regular_file(path, ec) || old.gcount() != static_cast<std::streamsize>(sizeof head) ||
+            std::memcmp(head, magic_traffic, sizeof head) != 0)
+            throw InputError("'" + path + "' exists and is not a partition's traffic file that shoal wrote: not replaced (move it away, or choose another path for the traffic)");
     }
+    StagedOutput out(path);
+    out.write(w.bytes());
+    out.commit();
 }
 
 std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Shard shard) {
