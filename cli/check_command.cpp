@@ -319,7 +319,7 @@ public:
         std::vector<std::size_t> partition_positions;
         std::optional<audit::ReadResult> partition;
         if (!m_from_partitions.empty()) {
-            partition = audit::read_partition(m_from_partitions, m_tracks, m_audit.shard, partition_positions, &partition_ids);
+            partition = audit::read_partition(m_from_partitions, m_tracks, m_audit.read, m_audit.shard, partition_positions, &partition_ids);
             if (m_audit.vessels)
                 for (std::string& w : track::unmatched_vessels_tables(*m_audit.vessels, partition_ids)) partition->warnings.push_back(std::move(w));
         }

@@ -14,6 +14,7 @@
 #include <shoal/audit/shard.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/track/reader.hpp>
+#include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 
@@ -168,14 +169,26 @@ struct Index {
     std::vector<std::vector<std::string>> ids;  ///< each file's track ids, in file order
 };
 
+/// The read options that change what is read, one "field value" line each (field as the
+/// library names it; in_terms_of gives the front end's name).
 std::string read_key(const track::ReadOptions& o) {
-    Writer w;
-    w.f64(o.date_s.value_or(-1e300));
-    w.u64(o.hull_from_length_width ? 1 : 0);
-    w.u64(o.max_messages);
-    w.str(o.exercise_column);
-    w.str(o.role_column);
-    return w.bytes();
+    const auto named = [](const std::string& v) { return v.empty() ? std::string("none") : "'" + v + "'"; };
+    return "ReadOptions::date_s " + (o.date_s ? track::format_iso8601(*o.date_s, 0).substr(0, 10) : std::string("none")) +
+           "\nReadOptions::hull_from_length_width " + (o.hull_from_length_width ? "on" : "off") + "\nReadOptions::max_messages " +
+           std::to_string(o.max_messages) + "\nReadOptions::exercise_column " + named(o.exercise_column) + "\nReadOptions::role_column " +
+           named(o.role_column) + "\n";
+}
+
+/// The first line in which two read_keys differ, as "FIELD A" and "FIELD B" (empty when equal).
+std::pair<std::string, std::string> first_difference(const std::string& a, const std::string& b) {
+    std::size_t i = 0, j = 0;
+    while (i < a.size() || j < b.size()) {
+        const std::size_t ei = std::min(a.find('\n', i), a.size()), ej = std::min(b.find('\n', j), b.size());
+        if (a.compare(i, ei - i, b, j, ej - j) != 0) return {a.substr(i, ei - i), b.substr(j, ej - j)};
+        i = ei + 1;
+        j = ej + 1;
+    }
+    return {};
 }
 
 Index read_index(const std::string& dir) {
@@ -272,8 +285,8 @@ PartitionSummary write_partitions(const std::string& dir, const std::string& inp
     return summary;
 }
 
-ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, Shard shard,
-                          std::vector<std::size_t>& positions, std::vector<std::string>* all_ids) {
+ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, const track::ReadOptions& options,
+                          Shard shard, std::vector<std::size_t>& positions, std::vector<std::string>* all_ids) {
     if (!shard.active()) throw UsageError("read_partition needs a shard I/N");
     if (dirs.size() != inputs.size())
         throw UsageError("partitions of " + std::to_string(dirs.size()) + " inputs given for a run of " + std::to_string(inputs.size()) +
@@ -293,8 +306,11 @@ ReadResult read_partition(const std::vector<std::string>& dirs, const std::vecto
             throw InputError(dirs[d] + ": the partitions of '" + x.input + "', not of '" + inputs[d] + "' (input " + std::to_string(d + 1) + " of the run)");
         if (x.count != shard.count)
             throw InputError(dirs[d] + ": written in " + std::to_string(x.count) + " partitions, not " + std::to_string(shard.count));
-        if (x.read_key != index.front().read_key)
-            throw InputError(dirs[d] + ": written with other read options (--date, --hull-from-length-width) than " + dirs.front());
+        // The files were read when the partitions were written: with this run's read options, or
+        // the report would name options its fixes were not read with.
+        if (const auto [theirs, ours] = first_difference(x.read_key, read_key(options)); !theirs.empty())
+            throw InputError(dirs[d] + ": the partitions were read with " + theirs + ", this run asks " + ours +
+                             ": give the read options the partitions were written with (or write them again)");
         position_of.emplace_back();
         for (std::size_t k = 0; k < x.files.size(); ++k) {
             if (!files_seen.insert(x.files[k].file).second)

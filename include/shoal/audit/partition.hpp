@@ -47,9 +47,10 @@ PartitionSummary write_partitions(const std::string& dir, const std::string& inp
 /// as one run reads them (one vessel of several files one track), every file's FileResult, and
 /// in `positions` each track's position among all the run's tracks; `all_ids` every track id of
 /// the run. Throws InputError when a folder is missing, of another input, another count or
-/// another shoal.
-ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, Shard shard,
-                          std::vector<std::size_t>& positions, std::vector<std::string>* all_ids = nullptr);
+/// another shoal, or was read with other `options` than the run's (its files were read when
+/// the partitions were written: the message names the first option that differs).
+ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, const track::ReadOptions& options,
+                          Shard shard, std::vector<std::size_t>& positions, std::vector<std::string>* all_ids = nullptr);
 
 /// Real world: the traffic of each track of `read` (its stays, its fixes under way over land),
 /// prepared as the audit prepares a track (outliers dropped, motion resolved); a track whose
