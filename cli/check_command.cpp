@@ -325,7 +325,7 @@ public:
         }
         if (m_traffic_only) {
             const std::vector<audit::TrackResult> traffic = audit::traffic_of_partition(*partition, g, hull, m_audit);
-            audit::write_traffic(m_output, traffic, m_audit.shard);
+            audit::write_traffic(m_output, traffic, m_audit.shard, audit::traffic_key(m_from_partitions, g.source().fingerprint, m_opts.hull_label()));
             std::fprintf(stderr, "shoal: the traffic of %zu tracks of partition %s written to %s\n", traffic.size(), m_audit.shard.text().c_str(),
                          printable(m_output).c_str());
             return exit_ok;
@@ -334,7 +334,8 @@ public:
             throw UsageError("--from-partitions in the real world needs --traffic T0 --traffic T1 ... (one per partition, in order): every partition's traffic (--traffic-only)");
         const audit::AuditResult r =
             partition ? audit::audit_partition(std::move(*partition), std::move(partition_positions),
-                                               m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard)
+                                               m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard,
+                                                                                                         audit::traffic_key(m_from_partitions, g.source().fingerprint, m_opts.hull_label()))
                                                                                    : std::vector<audit::TrackResult>{},
                                                g, hull, m_opts.hull_label(), m_audit)
                       : audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);

@@ -2,9 +2,12 @@
 #include <shoal/audit/partition.hpp>
 
 #include <unistd.h>
+#define XXH_INLINE_ALL
+#include <xxhash.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -362,12 +365,24 @@ ReadResult read_partition(const std::vector<std::string>& dirs, const std::vecto
     return result;
 }
 
-void write_traffic(const std::string& path, const std::vector<TrackResult>& traffic, Shard shard) {
+std::string traffic_key(const std::vector<std::string>& dirs, std::uint64_t grid_fingerprint, const std::string& hull_label) {
+    Writer w;
+    for (const std::string& dir : dirs) w.str(track::read_file((fs::path(dir) / "index.bin").string()));
+    w.u64(grid_fingerprint);
+    w.str(hull_label);
+    const std::string& bytes = w.bytes();
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH3_64bits(bytes.data(), bytes.size())));
+    return hex;
+}
+
+void write_traffic(const std::string& path, const std::vector<TrackResult>& traffic, Shard shard, const std::string& key) {
     Writer w;
     w.raw(magic_traffic, sizeof magic_traffic);
     w.u64(layout);
     w.u64(shard.index);
     w.u64(shard.count);
+    w.str(key);
     w.u64(traffic.size());
     for (const TrackResult& r : traffic) {
         w.str(r.summary.id);
@@ -401,7 +416,7 @@ void write_traffic(const std::string& path, const std::vector<TrackResult>& traf
     out.commit();
 }
 
-std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Shard shard) {
+std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Shard shard, const std::string& key) {
     if (paths.size() != shard.count)
         throw InputError("the traffic of " + std::to_string(paths.size()) + " partitions given, for a run of " + std::to_string(shard.count) +
                          ": every partition's is needed");
@@ -413,6 +428,9 @@ std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Sha
         if (index != p || count != shard.count)
             throw InputError(paths[p] + ": the traffic of partition " + std::to_string(index) + "/" + std::to_string(count) + ", not " +
                              std::to_string(p) + "/" + std::to_string(shard.count));
+        if (in.str() != key)
+            throw InputError(paths[p] + ": the traffic of other partitions, another grid or another ship than this run's (made under another "
+                             "run's partitions: make every partition's traffic again from this run's partitions, grid and ship)");
         const std::size_t n = in.count(24);
         for (std::size_t k = 0; k < n; ++k) {
             TrackResult r;

@@ -1981,4 +1981,40 @@ TEST_F(BadInput, APartitionsTrafficNeverReplacesAnInputAPartitionsFileOrAFileSho
     for (const auto& e : fs::directory_iterator(m_dir.path())) EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+TEST_F(BadInput, APartitionsAuditRefusesTrafficMadeFromOtherPartitionsAnotherGridOrAnotherShip) {
+    // Review of issue 39's partitions: a traffic file held no key of what it was made of, so the
+    // traffic of another day's partitions (or another chart or ship) was taken as this run's
+    // evidence without a word.
+    const std::string day = good_tracks();
+    const std::string other_day = file("other.csv", header + row("235000002", 1, 50.79, -1.30) + row("235000002", 2, 50.791, -1.299) +
+                                                        row("235000003", 1, 50.78, -1.28) + row("235000003", 2, 50.781, -1.279));
+    const auto run = [&](std::vector<std::string> args) {
+        std::vector<std::string> all{"check", "--world", "real", "--coast", s_grid};
+        all.insert(all.end(), args.begin(), args.end());
+        return shoal(all);
+    };
+    for (const auto& [name, input] : {std::pair{"a", day}, {"b", other_day}}) {
+        ASSERT_EQ(run({"--dims", "50,10,5,5", "--partitions", "2", "-o", m_dir.file(std::string(name) + "-parts"), input}).status, 0);
+        for (const char* p : {"0", "1"})
+            ASSERT_EQ(run({"--dims", "50,10,5,5", "--from-partitions", m_dir.file(std::string(name) + "-parts"), "--shard", std::string(p) + "/2", "--traffic-only", "-o",
+                           m_dir.file(std::string(name) + "-t" + p + ".bin"), input})
+                          .status,
+                      0);
+    }
+    const auto audit = [&](const std::string& t1, const std::string& dims) {
+        return run({"--from-partitions", m_dir.file("a-parts"), "--shard", "0/2", "--dims", dims, "--traffic", m_dir.file("a-t0.bin"), "--traffic", t1,
+                    "-o", m_dir.file("r.geojson"), day});
+    };
+    const Outcome ok = audit(m_dir.file("a-t1.bin"), "50,10,5,5");
+    EXPECT_LE(ok.status, 1) << ok.err;
+    const Outcome foreign = audit(m_dir.file("b-t1.bin"), "50,10,5,5");
+    EXPECT_EQ(foreign.status, 2) << foreign.err;
+    EXPECT_NE(foreign.err.find(m_dir.file("b-t1.bin") + ": the traffic of other partitions, another grid or another ship than this run's"),
+              std::string::npos)
+        << foreign.err;
+    const Outcome other_ship = audit(m_dir.file("a-t1.bin"), "80,20,5,5");
+    EXPECT_EQ(other_ship.status, 2) << other_ship.err;
+    EXPECT_NE(other_ship.err.find("the traffic of other partitions, another grid or another ship"), std::string::npos) << other_ship.err;
+}
+
 }  // namespace
