@@ -190,7 +190,7 @@ double hull_length(const audit::TrackResult& t, const geo::LocalFrame& frame) {
         for (const geo::LonLat& q : p.hull) {
             try {
                 pts.push_back(frame.forward(q));
-            } catch (const std::exception&) {
+            } catch (const InputError&) {  // a point the frame cannot take: left out
             }
         }
         double m = 0;

@@ -347,7 +347,7 @@ Bearing bearing_at(const geo::LocalFrame& frame, XY p) {
         b.north_deg = std::atan2(nx, ny) * 180 / pi;
         b.k = k;
         b.known = true;
-    } catch (const std::exception&) {
+    } catch (const InputError&) {  // a point the frame cannot take: left out
     }
     return b;
 }
@@ -421,7 +421,7 @@ std::optional<XY> project(const geo::LocalFrame& frame, LonLat p) {
     try {
         const XY q = frame.forward(p);
         if (std::isfinite(q.x) && std::isfinite(q.y)) return q;
-    } catch (const std::exception&) {
+    } catch (const InputError&) {  // a point the frame cannot take: left out
     }
     return std::nullopt;
 }
