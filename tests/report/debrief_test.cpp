@@ -769,11 +769,11 @@ TEST(DebriefPictures, TheTraineeInHerColourWithArrowsAndTicksTheAreasTheClosestA
         std::set<std::string> minutes;
         for (const auto* t : with_class(overview, "time-tick", "line")) {
             minutes.insert(attr(t, "data-minutes"));
-            EXPECT_NE(all_text(t).find("T+" + attr(t, "data-minutes") + " min 10:"), std::string::npos) << all_text(t);
+            EXPECT_NE(all_text(t).find("T+" + attr(t, "data-minutes") + ":00 10:"), std::string::npos) << all_text(t);
         }
         EXPECT_EQ(minutes, (std::set<std::string>{"5", "10", "15", "20", "25", "30"}));
         bool five = false;
-        for (const auto* t : with_class(overview, "time-tick", "line")) five = five || all_text(t) == "T1: T+5 min 10:05:00Z UTC";
+        for (const auto* t : with_class(overview, "time-tick", "line")) five = five || all_text(t) == "T1: T+5:00 10:05:00Z UTC";
         EXPECT_TRUE(five) << "the T+5 tick at 10:05:00Z";
         // The areas drawn and named.
         ASSERT_EQ(with_class(overview, "no-entry", "polygon").size(), 1u);
