@@ -108,7 +108,8 @@ public:
         m_sub->add_flag("--traffic-only", m_traffic_only,
                         "With --from-partitions: write only the partition's traffic (stays, fixes over land) to -o FILE, for --traffic");
         m_sub->add_option("--traffic", m_traffic,
-                          "With --from-partitions: the traffic files of partitions 0..N-1 (--traffic-only), every vessel's evidence")
+                          "With --from-partitions: the traffic files of partitions 0..N-1 (--traffic-only), every vessel's evidence; "
+                          "one --traffic per file, in partition order: --traffic T0 --traffic T1 ...")
             ->allow_extra_args(false);
         m_sub->add_flag("--encounters", m_audit.encounters,
                         "Exercise mode: the tracks are one exercise; also report ship-to-ship collisions and close quarters");
@@ -217,10 +218,17 @@ public:
         all_inputs.insert(all_inputs.end(), m_vessel_files.begin(), m_vessel_files.end());
         if (!m_roles_file.empty()) all_inputs.push_back(m_roles_file);
         if (!m_assess_file.empty()) all_inputs.push_back(m_assess_file);
+        // A partitioned run reads the partitions' files and the traffic files instead.
+        for (const std::string& folder : m_from_partitions) {
+            std::error_code ec;
+            for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) all_inputs.push_back(entry.path().string());
+        }
+        all_inputs.insert(all_inputs.end(), m_traffic.begin(), m_traffic.end());
         const std::string format = !m_format.empty() ? m_format
                                    : std::filesystem::path(m_output).extension() == ".gpkg" ? "gpkg" : "geojson";
         // Every output, checked before any work: none is an input or another output.
-        std::vector<OutputSpec> outputs = report::report_outputs(m_output, format, !m_no_project);
+        std::vector<OutputSpec> outputs = m_traffic_only ? std::vector<OutputSpec>{{m_output, "-o", "the partition's traffic"}}
+                                                         : report::report_outputs(m_output, format, !m_no_project);
         if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture"});
         check_outputs(outputs, all_inputs);
         if (!m_shard.empty()) {
@@ -328,22 +336,23 @@ public:
         std::vector<std::size_t> partition_positions;
         std::optional<audit::ReadResult> partition;
         if (!m_from_partitions.empty()) {
-            partition = audit::read_partition(m_from_partitions, m_tracks, m_audit.shard, partition_positions, &partition_ids);
+            partition = audit::read_partition(m_from_partitions, m_tracks, m_audit.read, m_audit.shard, partition_positions, &partition_ids);
             if (m_audit.vessels)
                 for (std::string& w : track::unmatched_vessels_tables(*m_audit.vessels, partition_ids)) partition->warnings.push_back(std::move(w));
         }
         if (m_traffic_only) {
             const std::vector<audit::TrackResult> traffic = audit::traffic_of_partition(*partition, g, hull, m_audit);
-            audit::write_traffic(m_output, traffic, m_audit.shard);
+            audit::write_traffic(m_output, traffic, m_audit.shard, audit::traffic_key(m_from_partitions, g.source().fingerprint, m_opts.hull_label()));
             std::fprintf(stderr, "shoal: the traffic of %zu tracks of partition %s written to %s\n", traffic.size(), m_audit.shard.text().c_str(),
                          printable(m_output).c_str());
             return exit_ok;
         }
         if (partition && m_audit.world == audit::World::real && m_traffic.empty())
-            throw UsageError("--from-partitions in the real world needs --traffic T0 ... T(N-1): every partition's traffic (--traffic-only)");
+            throw UsageError("--from-partitions in the real world needs --traffic T0 --traffic T1 ... (one per partition, in order): every partition's traffic (--traffic-only)");
         const audit::AuditResult r =
             partition ? audit::audit_partition(std::move(*partition), std::move(partition_positions),
-                                               m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard)
+                                               m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard,
+                                                                                                         audit::traffic_key(m_from_partitions, g.source().fingerprint, m_opts.hull_label()))
                                                                                    : std::vector<audit::TrackResult>{},
                                                g, hull, m_opts.hull_label(), m_audit)
                       : audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);

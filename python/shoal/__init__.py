@@ -165,7 +165,11 @@ def _datetimes(values):
     track::format_iso8601; "" or None for none) as a datetime64[ns, UTC] Series (NaT for none)."""
     import pandas as pd
     texts = pd.Series([v if v else None for v in values], dtype=object)
-    return pd.to_datetime(texts, utc=True)  # pandas' own ISO 8601 parser, exact to the nanosecond
+    # pandas' own ISO 8601 parser, exact to the nanosecond. From pandas 2 a format is inferred
+    # from the first time and every other must match it, so whole seconds beside milliseconds
+    # would fail: "ISO8601" takes each as it comes (pandas 1.5, Debian 12's, always did).
+    major = int(pd.__version__.split(".")[0])
+    return pd.to_datetime(texts, utc=True, **({"format": "ISO8601"} if major >= 2 else {}))
 
 
 def _frame(layer):

@@ -10,7 +10,8 @@ By default (``--partitions K``) the run goes in three stages, each started when 
 the one before has succeeded: one task per track input as given (a file, folder or zip)
 reads it once and writes its fixes hashed by vessel into K partition files (``shoal check
 --partitions K -o DIR INPUT``); one task per partition writes its vessels' traffic, the
-real world's evidence (``--from-partitions ... --shard i/K --traffic-only``); one task per
+real world's evidence (``--from-partitions ... --shard i/K --traffic-only``; not with
+``--world simulated``, whose chart is the world: no traffic is taken); one task per
 partition audits its vessels whole (``--from-partitions ... --shard i/K --traffic ...``),
 writing the part ``--shard i/K`` over all the inputs writes. Vessels with fixes in several
 inputs (daily files) are one track each, as in one run. With ``--shards K`` instead: one
@@ -403,15 +404,19 @@ def drive(a, shoal, options, tracks, output, cwd, workdir, parts_dir):
         # 1. Each input read once, its fixes hashed by vessel into K partition files; 2. each
         # partition's traffic (the real world's evidence is every vessel's); 3. each partition
         # audited whole, from the partition files of every input and every partition's traffic.
+        # The simulated world (the chart is the world) takes no traffic: no stage 2.
         k = a.partitions
+        world = option_values(options, "--world")
+        simulated = bool(world) and world[-1] == "simulated"
         folders = [os.path.join(workdir, "input-%05d" % j) for j in range(len(tracks))]
-        traffic = [os.path.join(workdir, "traffic-%05d-of-%05d.bin" % (i, k)) for i in range(k)]
+        traffic = [] if simulated else [os.path.join(workdir, "traffic-%05d-of-%05d.bin" % (i, k)) for i in range(k)]
         inputs = [x for d in folders for x in ("--from-partitions", d)]
         stages.append([("read %s" % t, d, [shoal, "check"] + flat(options) + ["--partitions", str(k), "-o", d, "--", t])
                        for t, d in zip(tracks, folders)])
-        stages.append([("traffic %d/%d" % (i, k), traffic[i],
-                        [shoal, "check"] + flat(options) + inputs + ["--shard", "%d/%d" % (i, k), "--traffic-only", "-o", traffic[i], "--"] + tracks)
-                       for i in range(k)])
+        if traffic:
+            stages.append([("traffic %d/%d" % (i, k), traffic[i],
+                            [shoal, "check"] + flat(options) + inputs + ["--shard", "%d/%d" % (i, k), "--traffic-only", "-o", traffic[i], "--"] + tracks)
+                           for i in range(k)])
         stages.append([("partition %d/%d" % (i, k), parts[i],
                         [shoal, "check"] + flat(options) + inputs + ["--shard", "%d/%d" % (i, k)] + record +
                         [x for t in traffic for x in ("--traffic", t)] + ["-o", parts[i], "--"] + tracks)

@@ -846,7 +846,22 @@ private:
             index.push_back(m);
         }
         if (others.empty()) return;
+        std::vector<ConductRecord> records;
         for (const Conduct& c : judge_conduct(own, others, m_in.frame, cr.colreg, m_in.max_gap_s)) {
+            ConductRecord& rec = records.emplace_back();
+            rec.exercise = summary(k).exercise;
+            rec.track = summary(k).id;
+            rec.criterion = cr.id;
+            rec.track_index = k;
+            rec.other = summary(index[c.other]).id;
+            rec.other_index = index[c.other];
+            rec.situation = to_string(c.situation.at_start.situation);
+            rec.role = c.role;
+            rec.start_s = c.situation.start_s;
+            rec.closest_m = c.situation.closest_m;
+            rec.rules = c.rules;
+            rec.did = c.did;
+            for (const ConductBreach& cb : c.breaches) rec.breached.push_back(cb.rule);
             for (const ConductBreach& cb : c.breaches) {
                 Breach b = breach_of(k, cr);
                 b.start_s = c.situation.start_s;
@@ -866,6 +881,10 @@ private:
                 m_track.push_back({std::move(b), m_crit, index[c.other], true});
             }
         }
+        std::stable_sort(records.begin(), records.end(), [](const ConductRecord& x, const ConductRecord& y) {
+            return std::tie(x.start_s, x.other_index) < std::tie(y.start_s, y.other_index);
+        });
+        for (ConductRecord& rec : records) m_out.conduct.push_back(std::move(rec));
     }
 
     void close_quarters(std::size_t k, const Criterion& cr) {

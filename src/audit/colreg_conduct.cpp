@@ -129,6 +129,13 @@ std::vector<Conduct> judge_conduct(const track::Track& own, const std::vector<co
             // ships did come closer than that (the projection from logged speed and course can miss it).
             const bool risk = (e.cpa_start.distance_m < o.cpa_m && e.cpa_start.time_s > 0) || e.closest_m < o.cpa_m;
             if (!risk || (!give && !stand)) {
+                if (!risk)
+                    c.did = "no risk of collision: " + (e.cpa_start.time_s > 0 ? "CPA projected at the start " + nm(e.cpa_start.distance_m) + ", "
+                                                                                : std::string("the ships already drawing apart at the start, ")) +
+                            "closest approach " + nm(e.closest_m) + " (the rules ask something under " + nm(o.cpa_m) + ")";
+                else if (e.a_stopped) c.did = "no duty: " + own.id + " was not under way when the situation began";
+                else if (e.b_stopped) c.did = "no duty: " + other->id + " was not under way when the situation began";
+                else c.did = "no duty in this situation";
                 out.push_back(std::move(c));
                 continue;
             }
@@ -172,6 +179,7 @@ std::vector<Conduct> judge_conduct(const track::Track& own, const std::vector<co
             const std::string held = who + " kept her course (" + course(h0) + ") and speed (" + kn(v0) + ") from " + clock(e.start_s) + ", " +
                                      nm(std::sqrt(geo::norm2(e.b_start.position - e.a_start.position))) + " from " + whom +
                                      ", to the closest approach, " + nm(e.closest_m) + " at " + clock(e.closest_s);
+            c.did = acted ? who + " " + action_words : held;
             const std::string early_words = "early (begun at least " + nm(o.early_range_m) + " off), readily apparent (course altered at least " +
                                             num(o.min_course_deg, 0) + " degrees or speed changed by " + num(100 * o.min_speed_change, 0) +
                                             "%) and passing at least " + nm(o.cpa_m) + " clear";

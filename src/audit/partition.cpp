@@ -2,9 +2,12 @@
 #include <shoal/audit/partition.hpp>
 
 #include <unistd.h>
+#define XXH_INLINE_ALL
+#include <xxhash.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,7 +17,9 @@
 #include <shoal/audit/shard.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/track/reader.hpp>
+#include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
+#include <shoal/util/output_file.hpp>
 
 #include "read_files.hpp"
 
@@ -167,14 +172,26 @@ struct Index {
     std::vector<std::vector<std::string>> ids;  ///< each file's track ids, in file order
 };
 
+/// The read options that change what is read, one "field value" line each (field as the
+/// library names it; in_terms_of gives the front end's name).
 std::string read_key(const track::ReadOptions& o) {
-    Writer w;
-    w.f64(o.date_s.value_or(-1e300));
-    w.u64(o.hull_from_length_width ? 1 : 0);
-    w.u64(o.max_messages);
-    w.str(o.exercise_column);
-    w.str(o.role_column);
-    return w.bytes();
+    const auto named = [](const std::string& v) { return v.empty() ? std::string("none") : "'" + v + "'"; };
+    return "ReadOptions::date_s " + (o.date_s ? track::format_iso8601(*o.date_s, 0).substr(0, 10) : std::string("none")) +
+           "\nReadOptions::hull_from_length_width " + (o.hull_from_length_width ? "on" : "off") + "\nReadOptions::max_messages " +
+           std::to_string(o.max_messages) + "\nReadOptions::exercise_column " + named(o.exercise_column) + "\nReadOptions::role_column " +
+           named(o.role_column) + "\n";
+}
+
+/// The first line in which two read_keys differ, as "FIELD A" and "FIELD B" (empty when equal).
+std::pair<std::string, std::string> first_difference(const std::string& a, const std::string& b) {
+    std::size_t i = 0, j = 0;
+    while (i < a.size() || j < b.size()) {
+        const std::size_t ei = std::min(a.find('\n', i), a.size()), ej = std::min(b.find('\n', j), b.size());
+        if (a.compare(i, ei - i, b, j, ej - j) != 0) return {a.substr(i, ei - i), b.substr(j, ej - j)};
+        i = ei + 1;
+        j = ej + 1;
+    }
+    return {};
 }
 
 Index read_index(const std::string& dir) {
@@ -271,8 +288,8 @@ PartitionSummary write_partitions(const std::string& dir, const std::string& inp
     return summary;
 }
 
-ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, Shard shard,
-                          std::vector<std::size_t>& positions, std::vector<std::string>* all_ids) {
+ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, const track::ReadOptions& options,
+                          Shard shard, std::vector<std::size_t>& positions, std::vector<std::string>* all_ids) {
     if (!shard.active()) throw UsageError("read_partition needs a shard I/N");
     if (dirs.size() != inputs.size())
         throw UsageError("partitions of " + std::to_string(dirs.size()) + " inputs given for a run of " + std::to_string(inputs.size()) +
@@ -292,8 +309,11 @@ ReadResult read_partition(const std::vector<std::string>& dirs, const std::vecto
             throw InputError(dirs[d] + ": the partitions of '" + x.input + "', not of '" + inputs[d] + "' (input " + std::to_string(d + 1) + " of the run)");
         if (x.count != shard.count)
             throw InputError(dirs[d] + ": written in " + std::to_string(x.count) + " partitions, not " + std::to_string(shard.count));
-        if (x.read_key != index.front().read_key)
-            throw InputError(dirs[d] + ": written with other read options (--date, --hull-from-length-width) than " + dirs.front());
+        // The files were read when the partitions were written: with this run's read options, or
+        // the report would name options its fixes were not read with.
+        if (const auto [theirs, ours] = first_difference(x.read_key, read_key(options)); !theirs.empty())
+            throw InputError(dirs[d] + ": the partitions were read with " + theirs + ", this run asks " + ours +
+                             ": give the read options the partitions were written with (or write them again)");
         position_of.emplace_back();
         for (std::size_t k = 0; k < x.files.size(); ++k) {
             if (!files_seen.insert(x.files[k].file).second)
@@ -345,12 +365,24 @@ ReadResult read_partition(const std::vector<std::string>& dirs, const std::vecto
     return result;
 }
 
-void write_traffic(const std::string& path, const std::vector<TrackResult>& traffic, Shard shard) {
+std::string traffic_key(const std::vector<std::string>& dirs, std::uint64_t grid_fingerprint, const std::string& hull_label) {
+    Writer w;
+    for (const std::string& dir : dirs) w.str(track::read_file((fs::path(dir) / "index.bin").string()));
+    w.u64(grid_fingerprint);
+    w.str(hull_label);
+    const std::string& bytes = w.bytes();
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH3_64bits(bytes.data(), bytes.size())));
+    return hex;
+}
+
+void write_traffic(const std::string& path, const std::vector<TrackResult>& traffic, Shard shard, const std::string& key) {
     Writer w;
     w.raw(magic_traffic, sizeof magic_traffic);
     w.u64(layout);
     w.u64(shard.index);
     w.u64(shard.count);
+    w.str(key);
     w.u64(traffic.size());
     for (const TrackResult& r : traffic) {
         w.str(r.summary.id);
@@ -368,17 +400,23 @@ void write_traffic(const std::string& path, const std::vector<TrackResult>& traf
             w.f64(p.y);
         }
     }
-    const std::string temp = path + ".tmp-" + std::to_string(::getpid());
-    write_file(temp, w.bytes());
+    // Only a traffic file shoal wrote is replaced: any other file there (a report, a partition's
+    // index, the user's own) is left as it is.
     std::error_code ec;
-    fs::rename(temp, path, ec);
-    if (ec) {
-        fs::remove(temp, ec);
-        throw InputError("cannot write '" + path + "'");
+    if (fs::exists(path, ec)) {
+        char head[sizeof magic_traffic] = {};
+        std::ifstream old(path, std::ios::binary);
+        old.read(head, sizeof head);
+        if (!fs::is_regular_file(path, ec) || old.gcount() != static_cast<std::streamsize>(sizeof head) ||
+            std::memcmp(head, magic_traffic, sizeof head) != 0)
+            throw InputError("'" + path + "' exists and is not a partition's traffic file that shoal wrote: not replaced (move it away, or choose another path for the traffic)");
     }
+    StagedOutput out(path);
+    out.write(w.bytes());
+    out.commit();
 }
 
-std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Shard shard) {
+std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Shard shard, const std::string& key) {
     if (paths.size() != shard.count)
         throw InputError("the traffic of " + std::to_string(paths.size()) + " partitions given, for a run of " + std::to_string(shard.count) +
                          ": every partition's is needed");
@@ -390,6 +428,9 @@ std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Sha
         if (index != p || count != shard.count)
             throw InputError(paths[p] + ": the traffic of partition " + std::to_string(index) + "/" + std::to_string(count) + ", not " +
                              std::to_string(p) + "/" + std::to_string(shard.count));
+        if (in.str() != key)
+            throw InputError(paths[p] + ": the traffic of other partitions, another grid or another ship than this run's (made under another "
+                             "run's partitions: make every partition's traffic again from this run's partitions, grid and ship)");
         const std::size_t n = in.count(24);
         for (std::size_t k = 0; k < n; ++k) {
             TrackResult r;

@@ -412,7 +412,7 @@ Hull Hull::from_contour(std::vector<XY> contour, std::string name) {
 
 Hull Hull::from_dims_string(const std::string& text) {
     static constexpr std::array<const char*, 4> letters{"A", "B", "C", "D"};
-    const std::string usage = "--dims expects A,B,C,D: metres from the position reference point to bow, stern, "
+    const std::string usage = "Hull::dims expects A,B,C,D: metres from the position reference point to bow, stern, "
                               "port and starboard, e.g. 120,30,8,10";
     std::vector<std::string_view> parts;
     std::string_view rest{text};
@@ -428,7 +428,7 @@ Hull Hull::from_dims_string(const std::string& text) {
     std::array<double, 4> v{};
     for (std::size_t i = 0; i < 4; ++i) {
         const std::string_view part = parts[i];
-        const std::string which = std::string{"--dims: "} + letters[i] + " ";
+        const std::string which = std::string{"Hull::dims: "} + letters[i] + " ";
         if (part.empty()) throw InputError{which + "is empty in '" + text + "'; " + usage};
         const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v[i]);
         if (ec != std::errc{} || end != part.data() + part.size())

@@ -190,7 +190,7 @@ double hull_length(const audit::TrackResult& t, const geo::LocalFrame& frame) {
         for (const geo::LonLat& q : p.hull) {
             try {
                 pts.push_back(frame.forward(q));
-            } catch (const std::exception&) {
+            } catch (const InputError&) {  // a point the frame cannot take: left out
             }
         }
         double m = 0;
@@ -556,6 +556,29 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
                        "</td><td>" + esc(clock_text(std::isfinite(b.worst_s) ? b.worst_s : b.start_s, "?")) + "</td><td class=\"asked\">" +
                        esc(b.asked) + "</td><td class=\"did\">" + esc(b.did) + "</td><td class=\"num\">" + fixed(b.penalty, 1) + "</td></tr>\n";
             }
+            // The rules that applied in every situation of a trainee, met or not.
+            std::string conduct;
+            std::set<std::size_t> on_page(page.tracks.begin(), page.tracks.end());
+            for (const audit::ConductRecord& c : r.assessment.conduct) {
+                if (!on_page.count(c.track_index)) continue;
+                std::string applied, not_met;
+                for (std::size_t j = 0; j < c.rules.size(); ++j) applied += (j ? ", " : "") + c.rules[j];
+                for (std::size_t j = 0; j < c.breached.size(); ++j) not_met += (j ? ", " : "") + c.breached[j];
+                const bool met = c.breached.empty();
+                conduct += "<tr class=\"conduct\"><td class=\"track\">" + esc(c.track) + "</td><td>" + esc(c.criterion) + "</td><td class=\"other\">" +
+                           esc(c.other) + "</td><td>" + esc(clock_text(c.start_s, "?")) + "</td><td class=\"situation\">" + esc(c.situation) +
+                           "</td><td class=\"role\">" + (c.role.empty() ? std::string("no duty") : esc(c.role)) + "</td><td class=\"rules\">" +
+                           (applied.empty() ? std::string("&#8211;") : esc(applied)) + "</td><td class=\"did\">" + esc(c.did) + "</td>" +
+                           (c.rules.empty() ? std::string("<td class=\"result no-duty\">&#8211;</td>")
+                            : met           ? std::string("<td class=\"result met\">met</td>")
+                                            : "<td class=\"result not-met\">not met: rule " + esc(not_met) + "</td>") +
+                           "</tr>\n";
+            }
+            if (!conduct.empty())
+                out += "<h3>Conduct under the rules: every situation</h3>\n<table class=\"conduct\">\n<thead><tr><th>Trainee</th><th>Criterion</th>"
+                       "<th>With</th><th>Start</th><th>Situation</th><th>Role</th><th>Rules that applied</th><th>What the ship did</th>"
+                       "<th>Result</th></tr></thead>\n<tbody>\n" +
+                       conduct + "</tbody>\n</table>\n";
             if (!why.empty())
                 out += "<h3>Why: each breach</h3>\n<table class=\"breaches\">\n<thead><tr><th>Trainee</th><th>Criterion</th><th>Rule</th><th>When</th>"
                        "<th>What was asked</th><th>What happened</th><th>Penalty</th></tr></thead>\n<tbody>\n" +
@@ -642,7 +665,7 @@ std::string debrief_html(const audit::AuditResult& result, const grid::CoastGrid
             const std::size_t ci = page.situations[n];
             const audit::ColregEncounter& c = r.situations[ci];
             const std::string svg = n < options.max_zoom_panels ? cpa_svg(r, grid, ci, options.zoom_width_px, plot) : std::string();
-            out += "<figure class=\"cpa\" id=\"cpa-" + std::to_string(n + 1) + "\">" + (svg.empty() ? std::string() : inline_svg(svg)) +
+            out += "<figure class=\"cpa\" id=\"closest-approach-" + std::to_string(n + 1) + "\">" + (svg.empty() ? std::string() : inline_svg(svg)) +
                    "<figcaption>" + std::to_string(n + 1) + ". " + esc(r.tracks[c.a].summary.id) + " &#215; " + esc(r.tracks[c.b].summary.id) + ", " +
                    esc(audit::to_string(c.at_start.situation)) + ": closest approach <span class=\"cpa-distance\">" + fixed(c.closest_m, 0) +
                    " m</span> at " + esc(clock_text(c.closest_s, "?")) + " (" + esc(exercise_time_text(c.closest_s, first)) + ")</figcaption></figure>\n";

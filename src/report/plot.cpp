@@ -347,7 +347,7 @@ Bearing bearing_at(const geo::LocalFrame& frame, XY p) {
         b.north_deg = std::atan2(nx, ny) * 180 / pi;
         b.k = k;
         b.known = true;
-    } catch (const std::exception&) {
+    } catch (const InputError&) {  // a point the frame cannot take: left out
     }
     return b;
 }
@@ -421,7 +421,7 @@ std::optional<XY> project(const geo::LocalFrame& frame, LonLat p) {
     try {
         const XY q = frame.forward(p);
         if (std::isfinite(q.x) && std::isfinite(q.y)) return q;
-    } catch (const std::exception&) {
+    } catch (const InputError&) {  // a point the frame cannot take: left out
     }
     return std::nullopt;
 }
@@ -1163,12 +1163,9 @@ double tick_minutes(double span_s) {
     return 480;
 }
 
-/// Exercise time with UTC beside it, for a time tick: "T+10 min 10:12:30Z".
-std::string tick_text(double minutes, double t) {
-    char b[32];
-    std::snprintf(b, sizeof b, "T+%.0f min ", minutes);
-    return b + clock_text(t);
-}
+/// Exercise time with UTC beside it, for a time tick `minutes` after the start, at `t`:
+/// "T+10:00 10:12:30Z", as the debrief's events give it (exercise_time_text).
+std::string tick_text(double minutes, double t) { return exercise_time_text(t, t - 60 * minutes) + " " + clock_text(t); }
 
 /// A trainee's direction arrows (one every 110 px of track on the page, class `direction`) and
 /// time ticks (class `time-tick`, at whole multiples of tick_minutes from the exercise start;
@@ -1646,7 +1643,7 @@ std::vector<LegendItem> legend_items(const grid::CoastGrid& g, const Scene& scen
     for (const TrackDraw& t : scene.tracks) trainees = trainees || t.trainee;
     if (trainees)
         items.push_back({line(trainee_blue, 2.6) + "<polygon points=\"16,6 9,2 9,10\" fill=\"" + trainee_dark + "\"/>",
-                         "trainee (arrows: direction; ticks: T+minutes from the exercise start, UTC)"});
+                         "trainee (arrows: direction; ticks: exercise time T+m:ss from its first fix, UTC)"});
     items.push_back({line(red, 2), trainees ? "target with grounding" : "track with grounding"});
     if (contact_track) items.push_back({line(contact_violet, 2), trainees ? "target with contacts, no grounding" : "track with contacts, no grounding"});
     items.push_back({line(amber, 2), trainees ? "target with close pass" : "track with close pass"});

@@ -33,6 +33,9 @@ constexpr OptionName names[] = {
     {"AuditOptions::shard", "--shard", nullptr},
     {"AuditOptions::exercise_by", "--exercise-by", nullptr},
     {"ReadOptions::exercise_column", "--exercise-by column:NAME", nullptr},
+    {"ReadOptions::date_s", "--date", nullptr},
+    {"Hull::dims", "--dims", "dims"},
+    {"ReadOptions::hull_from_length_width", "--hull-from-length-width", nullptr},
     {"ReadOptions::role_column", "--role-column", nullptr},
     {"AuditOptions::max_encounters_per_ship", "--max-encounters-per-ship", "max_encounters_per_ship"},
 };

@@ -334,6 +334,30 @@ TEST_F(Scored, ColregCrossingGiveWayHeldOnAndTheStandOnShipThatKeptOn) {
     const AuditResult ok = run({leg("A", {1000, -3000}, 0, 5, 800, 150, 40), leg("C", {3000, -1000}, 270, 5, 800)}, a);
     EXPECT_TRUE(ok.assessment.breaches.empty()) << ok.assessment.breaches[0].detail;
     EXPECT_TRUE(ok.assessment.scores[0].passed);
+    // Every situation is listed with the rules that applied, met or not: A's and C's crossing,
+    // in the trainees' order (A then C), each naming the other ship.
+    for (const AuditResult* res : {&r, &ok}) {
+        const auto& c = res->assessment.conduct;
+        ASSERT_EQ(c.size(), 2u);
+        EXPECT_EQ(c[0].track, "A");
+        EXPECT_EQ(c[0].other, "C");
+        EXPECT_EQ(c[0].other_index, 1u);
+        EXPECT_EQ(c[0].criterion, "rules");
+        EXPECT_EQ(c[0].situation, "crossing");
+        EXPECT_EQ(c[0].role, "give-way");
+        EXPECT_EQ(c[0].rules, (std::vector<std::string>{"15", "16", "8"}));
+        EXPECT_NEAR(c[0].start_s - t0, 400 - 2000 / std::sqrt(50.0), 1);
+        EXPECT_EQ(c[1].track, "C");
+        EXPECT_EQ(c[1].other, "A");
+        EXPECT_EQ(c[1].role, "stand-on");
+        EXPECT_EQ(c[1].rules, (std::vector<std::string>{"15", "17"}));
+        EXPECT_TRUE(c[1].breached.empty()) << "C kept her course and speed";
+        EXPECT_THAT(c[1].did, HasSubstr("C kept her course (270) and speed"));
+    }
+    EXPECT_EQ(r.assessment.conduct[0].breached, (std::vector<std::string>{"15"}));
+    EXPECT_THAT(r.assessment.conduct[0].did, HasSubstr("A kept her course (000)"));
+    EXPECT_TRUE(ok.assessment.conduct[0].breached.empty()) << "A's early, large turn met rules 15, 16 and 8";
+    EXPECT_THAT(ok.assessment.conduct[0].did, HasSubstr("A altered course 40 degrees to starboard from "));
 }
 
 TEST_F(Scored, APenaltyThatSumsToThePassMarkPassesWhateverTheRoundingOfItsSum) {

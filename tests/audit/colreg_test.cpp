@@ -352,6 +352,10 @@ TEST(Conduct, CrossingStandOn) {
     // Course and speed kept: no breach, though C1 held on too.
     EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600), other, &role), Rules{});
     EXPECT_EQ(role, "stand-on");
+    const auto kept = judge_conduct(straight("T1", {0, 0}, 0, 6, 0, 1600), {&other}, frame(), ConductOptions{}, 600);
+    ASSERT_EQ(kept.size(), 1u);
+    EXPECT_EQ(kept[0].rules, (Rules{"15", "17"}));
+    EXPECT_EQ(kept[0].did.rfind("T1 kept her course (000) and speed (11.7 kn) from ", 0), 0u) << kept[0].did;
     // Turning 40 degrees to starboard early (600 s, 3394 m off, C1 could still act): rule 17.
     EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600, 10, 600, 40), other), Rules{"17"});
     // The same at 900 s (849 m off, C1 has not acted): allowed (17(a)(ii), (b)).
@@ -383,9 +387,19 @@ TEST(Conduct, NoRiskNoDutyAndStoppedShips) {
     std::string role = "x";
     EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600), straight("C1", {2000, 12000}, 180, 6, 0, 1600), &role), Rules{});
     EXPECT_EQ(role, "");
+    // Why there was no duty, in words: the CPA projected at the start, 2000 m = 1.08 nm.
+    const track::Track far = straight("C1", {2000, 12000}, 180, 6, 0, 1600);
+    const auto none = judge_conduct(straight("T1", {0, 0}, 0, 6, 0, 1600), {&far}, frame(), ConductOptions{}, 600);
+    ASSERT_EQ(none.size(), 1u);
+    EXPECT_TRUE(none[0].rules.empty());
+    EXPECT_EQ(none[0].did.rfind("no risk of collision: CPA projected at the start 1.08 nm, closest approach 1.08 nm", 0), 0u) << none[0].did;
     // A ship at anchor ahead: no duty for either.
     EXPECT_EQ(breached(straight("T1", {0, 0}, 0, 6, 0, 1600), straight("C1", {0, 6000}, 0, 0, 0, 1600), &role), Rules{});
     EXPECT_EQ(role, "");
+    const track::Track anchored = straight("C1", {0, 6000}, 0, 0, 0, 1600);
+    const auto stopped = judge_conduct(straight("T1", {0, 0}, 0, 6, 0, 1600), {&anchored}, frame(), ConductOptions{}, 600);
+    ASSERT_EQ(stopped.size(), 1u);
+    EXPECT_EQ(stopped[0].did, "no duty: C1 was not under way when the situation began");
     ConductOptions bad;
     bad.cpa_m = 0;
     const track::Track a = straight("T1", {0, 0}, 0, 6, 0, 100);

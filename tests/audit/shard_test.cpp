@@ -108,7 +108,7 @@ TEST(Partition, PartitionsTogetherAreWhatOneRunReads) {
     for (unsigned p = 0; p < count; ++p) {
         std::vector<std::size_t> positions;
         std::vector<std::string> ids;
-        const ReadResult part = read_partition(folders, days, Shard{p, count}, positions, &ids);
+        const ReadResult part = read_partition(folders, days, {}, Shard{p, count}, positions, &ids);
         EXPECT_EQ(ids.size(), 14u) << "every track of every file (7 per day)";
         ASSERT_EQ(part.files.size(), one.files.size());
         for (std::size_t f = 0; f < one.files.size(); ++f) {
@@ -136,12 +136,27 @@ TEST(Partition, PartitionsTogetherAreWhatOneRunReads) {
     }
     for (std::size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], 1) << "track " << k << " in exactly one partition";
     std::vector<std::size_t> positions;
-    EXPECT_THROW(read_partition({folders[1], folders[0]}, days, Shard{0, count}, positions), InputError) << "inputs out of order";
-    EXPECT_THROW(read_partition(folders, days, Shard{0, 4}, positions), InputError) << "another count";
+    EXPECT_THROW(read_partition({folders[1], folders[0]}, days, {}, Shard{0, count}, positions), InputError) << "inputs out of order";
+    EXPECT_THROW(read_partition(folders, days, {}, Shard{0, 4}, positions), InputError) << "another count";
+    {  // read with other options than the run's: the first that differs named
+        track::ReadOptions dated;
+        dated.date_s = 1714521600;  // 2024-05-01
+        try {
+            read_partition(folders, days, dated, Shard{0, count}, positions);
+            ADD_FAILURE() << "partitions read without a date audited with one";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(": the partitions were read with ReadOptions::date_s none, this run asks ReadOptions::date_s 2024-05-01"),
+                      std::string::npos)
+                << e.what();
+        }
+        track::ReadOptions lw;
+        lw.hull_from_length_width = true;
+        EXPECT_THROW(read_partition(folders, days, lw, Shard{0, count}, positions), InputError);
+    }
     {  // a partition file cut short
         const fs::path part = fs::path(folders[0]) / "part-00001.bin";
         fs::resize_file(part, fs::file_size(part) - 5);
-        EXPECT_THROW(read_partition(folders, days, Shard{1, count}, positions), InputError);
+        EXPECT_THROW(read_partition(folders, days, {}, Shard{1, count}, positions), InputError);
     }
     fs::remove_all(dir);
 }

@@ -1931,4 +1931,90 @@ TEST_F(BadInput, ACrowdUnderEncountersListsEachShipsClosestPairsAndCountsEveryOn
     EXPECT_LT(std::filesystem::file_size(capped_path), std::filesystem::file_size(all_path));
 }
 
+TEST_F(BadInput, APartitionsTrafficNeverReplacesAnInputAPartitionsFileOrAFileShoalDidNotWrite) {
+    // Review of issue 39's partitions: `--traffic-only -o parts/index.bin` wrote the traffic over
+    // the partitions' index (the -o was not checked against --from-partitions or --traffic), and
+    // over any file at all. Now: the run's inputs (the partitions' files, the traffic files) are
+    // refused as outputs, and only a traffic file shoal wrote is replaced.
+    const std::string tracks = good_tracks();
+    const std::string parts = m_dir.file("parts");
+    const Outcome p = shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--partitions", "2", "-o", parts, tracks});
+    ASSERT_EQ(p.status, 0) << p.err;
+    const std::string index = (fs::path(parts) / "index.bin").string();
+    const std::string index_bytes = slurp(index);
+    ASSERT_FALSE(index_bytes.empty());
+    const auto traffic = [&](const std::string& out) {
+        return shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--from-partitions", parts, "--shard", "0/2", "--traffic-only", "-o", out, tracks});
+    };
+    const Outcome t0 = traffic(m_dir.file("t0.bin"));
+    ASSERT_EQ(t0.status, 0) << t0.err;
+    const Outcome again = traffic(m_dir.file("t0.bin"));  // its own traffic file: replaced
+    EXPECT_EQ(again.status, 0) << again.err;
+    // The partitions' index: an input of this run.
+    const Outcome over_index = traffic(index);
+    EXPECT_EQ(over_index.status, 2) << over_index.err;
+    EXPECT_NE(over_index.err.find("the output '" + index + "' is the input"), std::string::npos) << over_index.err;
+    EXPECT_EQ(slurp(index), index_bytes);
+    // The track file itself.
+    const std::string track_bytes = slurp(tracks);
+    const Outcome over_tracks = traffic(tracks);
+    EXPECT_EQ(over_tracks.status, 2) << over_tracks.err;
+    EXPECT_EQ(slurp(tracks), track_bytes);
+    // A file shoal did not write (not an input): left as it is.
+    const std::string mine = file("notes.bin", "my own notes\n");
+    const Outcome over_mine = traffic(mine);
+    EXPECT_NE(over_mine.status, 0);
+    EXPECT_NE(over_mine.err.find("'" + mine + "' exists and is not a partition's traffic file that shoal wrote: not replaced"), std::string::npos)
+        << over_mine.err;
+    EXPECT_EQ(slurp(mine), "my own notes\n");
+    // A traffic file given to the audit is an input too.
+    const Outcome t1 = shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--from-partitions", parts, "--shard", "1/2", "--traffic-only", "-o",
+                              m_dir.file("t1.bin"), tracks});
+    ASSERT_EQ(t1.status, 0) << t1.err;
+    const std::string t1_bytes = slurp(m_dir.file("t1.bin"));
+    const Outcome audit_over = shoal({"check", "--coast", s_grid, "--dims", "50,10,5,5", "--from-partitions", parts, "--shard", "0/2", "--traffic",
+                                      m_dir.file("t0.bin"), "--traffic", m_dir.file("t1.bin"), "--traffic-only", "-o", m_dir.file("t1.bin"), tracks});
+    EXPECT_EQ(audit_over.status, 2) << audit_over.err;
+    EXPECT_NE(audit_over.err.find("is the input '" + m_dir.file("t1.bin") + "'"), std::string::npos) << audit_over.err;
+    EXPECT_EQ(slurp(m_dir.file("t1.bin")), t1_bytes);
+    // No temporary left beside any of them.
+    for (const auto& e : fs::directory_iterator(m_dir.path())) EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST_F(BadInput, APartitionsAuditRefusesTrafficMadeFromOtherPartitionsAnotherGridOrAnotherShip) {
+    // Review of issue 39's partitions: a traffic file held no key of what it was made of, so the
+    // traffic of another day's partitions (or another chart or ship) was taken as this run's
+    // evidence without a word.
+    const std::string day = good_tracks();
+    const std::string other_day = file("other.csv", header + row("235000002", 1, 50.79, -1.30) + row("235000002", 2, 50.791, -1.299) +
+                                                        row("235000003", 1, 50.78, -1.28) + row("235000003", 2, 50.781, -1.279));
+    const auto run = [&](std::vector<std::string> args) {
+        std::vector<std::string> all{"check", "--world", "real", "--coast", s_grid};
+        all.insert(all.end(), args.begin(), args.end());
+        return shoal(all);
+    };
+    for (const auto& [name, input] : {std::pair{"a", day}, {"b", other_day}}) {
+        ASSERT_EQ(run({"--dims", "50,10,5,5", "--partitions", "2", "-o", m_dir.file(std::string(name) + "-parts"), input}).status, 0);
+        for (const char* p : {"0", "1"})
+            ASSERT_EQ(run({"--dims", "50,10,5,5", "--from-partitions", m_dir.file(std::string(name) + "-parts"), "--shard", std::string(p) + "/2", "--traffic-only", "-o",
+                           m_dir.file(std::string(name) + "-t" + p + ".bin"), input})
+                          .status,
+                      0);
+    }
+    const auto audit = [&](const std::string& t1, const std::string& dims) {
+        return run({"--from-partitions", m_dir.file("a-parts"), "--shard", "0/2", "--dims", dims, "--traffic", m_dir.file("a-t0.bin"), "--traffic", t1,
+                    "-o", m_dir.file("r.geojson"), day});
+    };
+    const Outcome ok = audit(m_dir.file("a-t1.bin"), "50,10,5,5");
+    EXPECT_LE(ok.status, 1) << ok.err;
+    const Outcome foreign = audit(m_dir.file("b-t1.bin"), "50,10,5,5");
+    EXPECT_EQ(foreign.status, 2) << foreign.err;
+    EXPECT_NE(foreign.err.find(m_dir.file("b-t1.bin") + ": the traffic of other partitions, another grid or another ship than this run's"),
+              std::string::npos)
+        << foreign.err;
+    const Outcome other_ship = audit(m_dir.file("a-t1.bin"), "80,20,5,5");
+    EXPECT_EQ(other_ship.status, 2) << other_ship.err;
+    EXPECT_NE(other_ship.err.find("the traffic of other partitions, another grid or another ship"), std::string::npos) << other_ship.err;
+}
+
 }  // namespace

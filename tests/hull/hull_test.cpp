@@ -2,6 +2,7 @@
 // simplicity, containment, area, orientation), not with the hull code's own helpers.
 
 #include <shoal/hull/hull.hpp>
+#include <shoal/util/option_names.hpp>
 
 #include "detail/geos_context.hpp"
 #include <gmock/gmock.h>
@@ -26,6 +27,8 @@
 
 namespace {
 
+using shoal::FrontEnd;
+using shoal::in_terms_of;
 using shoal::InputError;
 using shoal::UsageError;
 using shoal::geo::XY;
@@ -254,7 +257,15 @@ class DimsStringRejects : public testing::TestWithParam<BadDims> {};
 TEST_P(DimsStringRejects, NamingTheBadPart) {
     const auto& p = GetParam();
     EXPECT_THAT([&] { Hull::from_dims_string(p.text); },
-                ThrowsMessage<InputError>(AllOf(HasSubstr("--dims"), HasSubstr(p.expected))));
+                ThrowsMessage<InputError>(AllOf(HasSubstr("Hull::dims"), HasSubstr(p.expected))));
+    // The option as each front end names it: the CLI's --dims, Python's dims; never a flag in the library.
+    try {
+        Hull::from_dims_string(p.text);
+    } catch (const InputError& e) {
+        EXPECT_EQ(in_terms_of(e.what(), FrontEnd::cli).rfind("--dims", 0), 0u) << in_terms_of(e.what(), FrontEnd::cli);
+        EXPECT_EQ(in_terms_of(e.what(), FrontEnd::python).rfind("dims", 0), 0u) << in_terms_of(e.what(), FrontEnd::python);
+        EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Hull, DimsStringRejects,

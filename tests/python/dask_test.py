@@ -111,6 +111,15 @@ try:
             expect(sorted(reads_in_log(err)) == sorted(days), "each day read by exactly one task (%s): %s" % (ext, reads_in_log(err)))
             expect("[9/9]" in err, "3 reads, 3 traffic, 3 partitions: " + err)
             if ext == "geojson":
+                # The simulated world (the chart is the world) needs no traffic: no traffic stage.
+                sim_one, sim_out = os.path.join(tmp, "single-" + ext, "sim." + ext), os.path.join(tmp, "dask-" + ext, "sim." + ext)
+                status, _, err1 = run([shoal, "check", "--world", "simulated"] + coast + days + ["-o", sim_one, "--no-progress"])
+                expect(status == 1, "single simulated run exit 1: %d %s" % (status, err1))
+                status, _, err = run(["/usr/bin/python3", "-m", "shoal.dask", "--local", "2", "--shoal", shoal, "--partitions", "3", "check",
+                                      "--world", "simulated"] + coast + days + ["-o", sim_out])
+                expect(status == 1 and read(sim_out) == read(sim_one), "dask simulated == shoal check's, byte for byte: %d\n%s" % (status, err))
+                expect("[6/6]" in err and "traffic 0/" not in err, "3 reads and 3 partitions, no traffic stage: " + err)
+            if ext == "geojson":
                 with open(out) as f:
                     problems = json.load(f)["shoal"]["problems"]
                 bad = [p for p in problems if "BAD TIME" in json.dumps(p) or "25:61" in json.dumps(p)]

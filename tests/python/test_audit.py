@@ -272,6 +272,13 @@ class AuditAgainstCheck(unittest.TestCase):
         self.assertEqual(result.summary["last_fix"], fixes.max())
         # Time arithmetic as pandas users do it: events per hour.
         self.assertEqual(int(result.events.set_index("start").resample("1H").size().sum()), len(result.events))
+        # The report's times as they come, whole seconds beside milliseconds and none, in either
+        # order (pandas 2 infers one format from the first unless told ISO 8601).
+        for texts in (["2014-08-15T19:01:30Z", "2014-08-15T19:01:30.813Z", "", None], ["2014-08-15T19:01:30.813Z", "2014-08-15T19:01:30Z"]):
+            times = shoal._datetimes(texts)
+            self.assertEqual(str(times.dtype), "datetime64[ns, UTC]")
+            self.assertEqual(sorted(t.value for t in times if t is not pd.NaT), [1408129290000000000, 1408129290813000000])
+            self.assertEqual(int(times.isna().sum()), len(texts) - 2)
 
     def test_progress_is_called(self):
         df = read_fixes(os.path.join(support.AIS_CASES, "moored_then_leaves.csv"))

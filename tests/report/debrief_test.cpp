@@ -25,6 +25,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <map>
 #include <set>
 #include <sstream>
 #include <array>
@@ -359,6 +360,32 @@ TEST(Debrief, TheScoreExplainedCriteriaPerCriterionPassMarkAndWhatEachBreachAske
     r.assessment.breaches[0].asked = "a clearance to land or hazards of at least 926.0 m";
     r.assessment.breaches[0].did = "clearance to land 120.0 m";
     r.assessment.breaches.insert(r.assessment.breaches.begin() + 2, b4);
+    // The rules read in every situation, met or not: A gave way and held on (rule 15 not met);
+    // the hostile trainee stood on and kept on (met); A and C had no risk of collision.
+    audit::ConductRecord held, kept, no_duty;
+    held.track = "A";
+    held.track_index = 0;
+    held.criterion = rules.id;
+    held.other = hostile_id;
+    held.situation = "crossing";
+    held.role = "give-way";
+    held.rules = {"15", "16", "8"};
+    held.breached = {"15"};
+    held.did = b4.did;
+    kept = held;
+    kept.track = hostile_id;
+    kept.track_index = 1;
+    kept.other = "A";
+    kept.role = "stand-on";
+    kept.rules = {"15", "17"};
+    kept.breached = {};
+    kept.did = "<b>H</b> kept her course (000) and speed (10.0 kn)";
+    no_duty = held;
+    no_duty.role = "";
+    no_duty.rules = {};
+    no_duty.breached = {};
+    no_duty.did = "no risk of collision: CPA projected at the start 1.50 nm";
+    r.assessment.conduct = {held, no_duty, kept};
 
     const std::vector<DebriefPage> pages = debrief_pages(r);
     const std::string html = debrief_html(r, f.grid, f.info, pages[0]);
@@ -412,6 +439,20 @@ TEST(Debrief, TheScoreExplainedCriteriaPerCriterionPassMarkAndWhatEachBreachAske
     EXPECT_EQ(all_text(with_class(colreg, "rule")[0]), "15");
     EXPECT_EQ(all_text(with_class(colreg, "asked")[0]), b4.asked);
     EXPECT_EQ(all_text(with_class(colreg, "did")[0]), b4.did);
+    // Every situation, met or not, with the rules that applied.
+    const auto conduct = with_class(scores, "conduct", "tr");
+    ASSERT_EQ(conduct.size(), 3u);
+    EXPECT_EQ(all_text(with_class(conduct[0], "rules")[0]), "15, 16, 8");
+    EXPECT_EQ(all_text(with_class(conduct[0], "result")[0]), "not met: rule 15");
+    EXPECT_EQ(with_class(conduct[0], "not-met").size(), 1u);
+    EXPECT_EQ(all_text(with_class(conduct[1], "role")[0]), "no duty");
+    EXPECT_EQ(all_text(with_class(conduct[1], "did")[0]), no_duty.did);
+    EXPECT_EQ(with_class(conduct[1], "no-duty").size(), 1u);
+    EXPECT_EQ(all_text(with_class(conduct[2], "track")[0]), hostile_id);
+    EXPECT_EQ(all_text(with_class(conduct[2], "role")[0]), "stand-on");
+    EXPECT_EQ(all_text(with_class(conduct[2], "rules")[0]), "15, 17");
+    EXPECT_EQ(all_text(with_class(conduct[2], "did")[0]), kept.did);
+    EXPECT_EQ(all_text(with_class(conduct[2], "result")[0]), "met");
     // Without a pass mark: no verdict.
     r.assessment.pass_mark = NAN;
     const test::XmlPtr none = test::parse_xml(debrief_html(r, f.grid, f.info, pages[0]), nullptr);
@@ -704,6 +745,12 @@ TEST(DebriefPictures, TheTraineeInHerColourWithArrowsAndTicksTheAreasTheClosestA
         ASSERT_NE(top, nullptr);
         const CPLXMLNode* overview = by_id(top, "overview");
         ASSERT_NE(overview, nullptr);
+        // Every id once in the document (a link or a clip path to an id held twice takes the first).
+        std::map<std::string, int> id_count;
+        each_element(top, [&](const CPLXMLNode* e) {
+            if (const std::string id = attr(e, "id"); !id.empty()) ++id_count[id];
+        });
+        for (const auto& [id, count] : id_count) EXPECT_EQ(count, 1) << "id '" << id << "'";
         // The trainee's track alone in her blue, the targets in grey.
         const auto trainee = with_class(overview, "trainee", "path");
         ASSERT_EQ(trainee.size(), 1u);
@@ -722,11 +769,11 @@ TEST(DebriefPictures, TheTraineeInHerColourWithArrowsAndTicksTheAreasTheClosestA
         std::set<std::string> minutes;
         for (const auto* t : with_class(overview, "time-tick", "line")) {
             minutes.insert(attr(t, "data-minutes"));
-            EXPECT_NE(all_text(t).find("T+" + attr(t, "data-minutes") + " min 10:"), std::string::npos) << all_text(t);
+            EXPECT_NE(all_text(t).find("T+" + attr(t, "data-minutes") + ":00 10:"), std::string::npos) << all_text(t);
         }
         EXPECT_EQ(minutes, (std::set<std::string>{"5", "10", "15", "20", "25", "30"}));
         bool five = false;
-        for (const auto* t : with_class(overview, "time-tick", "line")) five = five || all_text(t) == "T1: T+5 min 10:05:00Z UTC";
+        for (const auto* t : with_class(overview, "time-tick", "line")) five = five || all_text(t) == "T1: T+5:00 10:05:00Z UTC";
         EXPECT_TRUE(five) << "the T+5 tick at 10:05:00Z";
         // The areas drawn and named.
         ASSERT_EQ(with_class(overview, "no-entry", "polygon").size(), 1u);
@@ -746,6 +793,24 @@ TEST(DebriefPictures, TheTraineeInHerColourWithArrowsAndTicksTheAreasTheClosestA
         ASSERT_EQ(metres.size(), 2u);
         EXPECT_NEAR(metres[0], std::min(cpa_c1, cpa_h1), 5);
         EXPECT_NEAR(metres[1], std::max(cpa_c1, cpa_h1), 5);
+        if (text == &run.page) {
+            // The rules read in both of T1's situations (both crossings): give-way to C1 from
+            // her port side, her 50-degree turn to starboard begun 1.31 nm off yet passing
+            // 0.35 nm from C1 (rule 16); stand-on for H1, her turn back to port begun 1.69 nm
+            // off while H1 could still act (rule 17).
+            const auto conduct = with_class(by_id(top, "scores"), "conduct", "tr");
+            ASSERT_EQ(conduct.size(), 2u);
+            EXPECT_EQ(all_text(with_class(conduct[0], "other")[0]), "C1");
+            EXPECT_EQ(all_text(with_class(conduct[0], "situation")[0]), "crossing");
+            EXPECT_EQ(all_text(with_class(conduct[0], "role")[0]), "give-way");
+            EXPECT_EQ(all_text(with_class(conduct[0], "rules")[0]), "15, 16, 8");
+            EXPECT_EQ(all_text(with_class(conduct[0], "did")[0]), "T1 altered course 50 degrees to starboard from 10:08:00Z, 1.31 nm from C1");
+            EXPECT_EQ(all_text(with_class(conduct[0], "result")[0]), "not met: rule 16");
+            EXPECT_EQ(all_text(with_class(conduct[1], "other")[0]), "H1");
+            EXPECT_EQ(all_text(with_class(conduct[1], "role")[0]), "stand-on");
+            EXPECT_EQ(all_text(with_class(conduct[1], "rules")[0]), "15, 17");
+            EXPECT_EQ(all_text(with_class(conduct[1], "result")[0]), "not met: rule 17");
+        }
         // The manoeuvres: T1's turns at 10:08:00 and 10:14:00.
         std::set<std::string> turns;
         for (const auto* m : with_class(overview, "manoeuvre", "g")) {

@@ -125,6 +125,23 @@ struct Breach {
     std::string detail;  ///< one line a person reads
 };
 
+/// A trainee's conduct in one situation with another ship, as a `colreg` criterion read it:
+/// which rules applied and whether each was met (met or not: the debrief lists every situation,
+/// not only the breaches).
+struct ConductRecord {
+    std::string exercise, track, criterion;
+    std::size_t track_index = 0;  ///< the trainee's index in AuditResult::tracks
+    std::string other;            ///< the other ship's track id
+    std::size_t other_index = 0;  ///< its index in AuditResult::tracks
+    std::string situation;        ///< to_string(Situation) at the start: "head-on", "crossing", "overtaking"
+    std::string role;             ///< "give-way", "stand-on" or "" (no duty)
+    double start_s = NAN;         ///< when the situation began (the pair came within range)
+    double closest_m = NAN;       ///< the closest approach between the reference points
+    std::vector<std::string> rules;     ///< the rules that applied ("13" ... "17", "8"); empty: none
+    std::vector<std::string> breached;  ///< those not met (each a Breach), in Conduct::breaches' order
+    std::string did;              ///< what the ship did (Conduct::did)
+};
+
 /// A trainee's score: the sum of the penalties of her breaches (0: none).
 struct Score {
     std::string exercise, track;
@@ -144,6 +161,10 @@ struct AssessmentResult {
     /// In the order of AuditResult::tracks (the trainee's), then by start, then criterion
     /// (file order), then the other ship's track order.
     std::vector<Breach> breaches;
+    /// Every `colreg` criterion's reading of every situation of every trainee, breached or not:
+    /// in the order of AuditResult::tracks (the trainee's), then criterion (file order), then
+    /// the situation's start, then the other ship's track order.
+    std::vector<ConductRecord> conduct;
     std::vector<std::string> warnings;  ///< what could not be assessed (a vessel without a draught)
 };
 

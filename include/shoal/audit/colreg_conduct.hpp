@@ -64,6 +64,9 @@ struct Conduct {
     double course_change_deg = 0;     ///< the largest heading change before the closest approach, + starboard
     double speed_change = 0;          ///< the largest speed change, a fraction of the speed at the start
     double action_range_m = NAN;      ///< the distance between the ships when it acted
+    /// What the ship did, in words: how it acted (or that it kept its course and speed) when it
+    /// had a duty; why it had none otherwise (no risk of collision, no duty in the situation).
+    std::string did;
     std::vector<ConductBreach> breaches;  ///< empty: every rule met
 };
 

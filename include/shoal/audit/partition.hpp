@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <functional>
 #include <utility>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -47,9 +48,10 @@ PartitionSummary write_partitions(const std::string& dir, const std::string& inp
 /// as one run reads them (one vessel of several files one track), every file's FileResult, and
 /// in `positions` each track's position among all the run's tracks; `all_ids` every track id of
 /// the run. Throws InputError when a folder is missing, of another input, another count or
-/// another shoal.
-ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, Shard shard,
-                          std::vector<std::size_t>& positions, std::vector<std::string>* all_ids = nullptr);
+/// another shoal, or was read with other `options` than the run's (its files were read when
+/// the partitions were written: the message names the first option that differs).
+ReadResult read_partition(const std::vector<std::string>& dirs, const std::vector<std::string>& inputs, const track::ReadOptions& options,
+                          Shard shard, std::vector<std::size_t>& positions, std::vector<std::string>* all_ids = nullptr);
 
 /// Real world: the traffic of each track of `read` (its stays, its fixes under way over land),
 /// prepared as the audit prepares a track (outliers dropped, motion resolved); a track whose
@@ -57,12 +59,20 @@ ReadResult read_partition(const std::vector<std::string>& dirs, const std::vecto
 std::vector<TrackResult> traffic_of_partition(ReadResult& read, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                                               const AuditOptions& options);
 
-/// Writes (atomically) and reads the traffic of partitions: ids, stays and fixes over land.
-void write_traffic(const std::string& path, const std::vector<TrackResult>& traffic, Shard shard);
+/// What a partition's traffic was made of, and so what the audit that reads it must be made
+/// of too: the partitions (every folder's index: its inputs' names, sizes, fingerprints, read
+/// options and track ids), the grid (its fingerprint) and the default hull (its label), as 16
+/// hex digits of XXH3. Throws InputError when an index cannot be read.
+std::string traffic_key(const std::vector<std::string>& dirs, std::uint64_t grid_fingerprint, const std::string& hull_label);
+
+/// Writes (atomically; only over a traffic file shoal wrote) and reads the traffic of
+/// partitions: ids, stays and fixes over land, under `key` (traffic_key).
+void write_traffic(const std::string& path, const std::vector<TrackResult>& traffic, Shard shard, const std::string& key);
 /// Every file of `paths` (the traffic of partitions 0..N-1 of `shard.count`, in order): the
 /// traffic of every partition's tracks but `shard.index`'s own (its sweep gathers those), in
-/// partition order. Throws InputError naming a missing, foreign or incomplete file.
-std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Shard shard);
+/// partition order. Throws InputError naming a missing, foreign or incomplete file, or one
+/// made under another `key` (other partitions, grid or hull).
+std::vector<TrackResult> read_traffic(const std::vector<std::string>& paths, Shard shard, const std::string& key);
 
 /// audit_tracks of partition `read` (positions from read_partition), the run's other vessels'
 /// traffic taken from `traffic` (read_traffic of every partition; this one's own are skipped by

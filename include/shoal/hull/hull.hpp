@@ -55,7 +55,8 @@ public:
     /// A clockwise outline is reversed, so contour() is always counter-clockwise (see below).
     static Hull from_contour(std::vector<geo::XY> contour, std::string name = {});
 
-    /// Parses "A,B,C,D" (the CLI's --dims); the error message names the bad part.
+    /// Parses "A,B,C,D" (the CLI's --dims); the error message names the bad part, and the
+    /// option as `Hull::dims` (in_terms_of gives the front end's name).
     static Hull from_dims_string(const std::string& text);
 
     /// Loads a ship file per schemas/ship.schema.json. Every error names the file and the field,
