@@ -56,6 +56,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Criterion, id, kind, limit, penalty, per, are
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Breach, exercise, track, criterion, track_index, kind, start_s, end_s, worst_s, lon, lat, value, limit,
                                    penalty, other, rule, asked, did, detail)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Score, exercise, track, penalty, breaches, track_index, by_criterion, passed)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ConductRecord, exercise, track, criterion, track_index, other, other_index, situation, role, start_s,
+                                   closest_m, rules, breached, did)
 }  // namespace shoal::audit
 
 namespace shoal::report {
@@ -154,7 +156,7 @@ json result_json(const audit::AuditResult& r) {
     json a = json::object();
     if (r.has_assessment)
         a = {{"criteria", r.assessment.criteria}, {"pass_mark", r.assessment.pass_mark}, {"source", r.assessment.source},
-             {"scores", r.assessment.scores}, {"breaches", r.assessment.breaches}};
+             {"scores", r.assessment.scores}, {"breaches", r.assessment.breaches}, {"conduct", r.assessment.conduct}};
     return {{"tracks", tracks_json(r.tracks)},
             {"track_positions", r.track_positions},
             {"errors", r.errors},
@@ -195,6 +197,7 @@ audit::AuditResult result_of(const json& j) {
         a.at("source").get_to(r.assessment.source);
         a.at("scores").get_to(r.assessment.scores);
         a.at("breaches").get_to(r.assessment.breaches);
+        a.at("conduct").get_to(r.assessment.conduct);
     }
     if (r.track_positions.size() != r.tracks.size()) throw std::out_of_range("track_positions and tracks differ in length");
     return r;
@@ -377,6 +380,11 @@ audit::AuditResult join_debrief_records(std::vector<DebriefRecord> records, cons
             b.track_index = at(k, b.track_index);
             run.assessment.breaches.push_back(std::move(b));
         }
+        for (audit::ConductRecord& c : r.assessment.conduct) {
+            c.track_index = at(k, c.track_index);
+            c.other_index = at(k, c.other_index);
+            run.assessment.conduct.push_back(std::move(c));
+        }
     }
     // As the audit sorts them (audit.cpp; assessment.hpp): a pair, a trainee, is in one shard.
     std::sort(run.encounters.approaches.begin(), run.encounters.approaches.end(),
@@ -390,6 +398,8 @@ audit::AuditResult join_debrief_records(std::vector<DebriefRecord> records, cons
                      [](const audit::Score& x, const audit::Score& y) { return x.track_index < y.track_index; });
     std::stable_sort(run.assessment.breaches.begin(), run.assessment.breaches.end(),
                      [](const audit::Breach& x, const audit::Breach& y) { return x.track_index < y.track_index; });
+    std::stable_sort(run.assessment.conduct.begin(), run.assessment.conduct.end(),
+                     [](const audit::ConductRecord& x, const audit::ConductRecord& y) { return x.track_index < y.track_index; });
     recount(run);
     return run;
 }
