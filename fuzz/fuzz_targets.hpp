@@ -29,7 +29,11 @@
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/io/pose_csv.hpp>
+#include <shoal/grid/grid_builder.hpp>
+#include <shoal/report/debrief.hpp>
+#include <shoal/report/debrief_record.hpp>
 #include <shoal/report/merge.hpp>
+#include <shoal/report/plot.hpp>
 #include <shoal/track/ais.hpp>
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/nmea_reader.hpp>
@@ -480,6 +484,41 @@ inline void merge_parts(const std::uint8_t* data, std::size_t size) {
         if (!nlohmann::json::accept(merged)) broken("merge_parts", "a merged report that is not JSON");
     } catch (const InputError& e) {
         bounded("merge_parts", e.what());
+    }
+}
+
+/// A small grid for drawing: an island of 2 km off (0 N, 0 E), built once.
+inline const grid::CoastGrid& drawing_grid() {
+    static const grid::CoastGrid g = [] {
+        const shoal::detail::MemoryFile island(
+            R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},"geometry":{"type":"Polygon",)"
+            R"("coordinates":[[[0,0],[0.02,0],[0.02,0.02],[0,0.02],[0,0]]]}}]})",
+            ".geojson");
+        grid::BuildRequest r;
+        r.cell_m = 1000;
+        return grid::build_grid({island.path()}, r, nullptr);
+    }();
+    return g;
+}
+
+/// A shard's debrief record (`merge --debrief/--plot`: report::parse_debrief_record, then
+/// join_debrief_records and the debrief's pages and the picture drawn from it, as merge
+/// does): a record, or a short InputError; the pages and the picture of whatever it holds are
+/// drawn without a crash, a hang or a sanitizer report.
+inline void debrief_record(const std::uint8_t* data, std::size_t size) {
+    const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+    try {
+        report::DebriefRecord rec = report::parse_debrief_record(bytes, "fuzz.debrief.cbor");
+        const report::RunInfo info = rec.info;
+        std::vector<report::DebriefRecord> records;
+        records.push_back(std::move(rec));
+        const audit::AuditResult run = report::join_debrief_records(std::move(records), {0}, {true});
+        const grid::CoastGrid& g = drawing_grid();
+        for (const report::DebriefPage& page : report::debrief_pages(run))
+            if (report::debrief_html(run, g, info, page).find("</html>") == std::string::npos) broken("debrief_record", "a page cut short");
+        if (report::plot_svg(run, g).find("</svg>") == std::string::npos) broken("debrief_record", "a picture cut short");
+    } catch (const InputError& e) {
+        bounded("debrief_record", e.what());
     }
 }
 

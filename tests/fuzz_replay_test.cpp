@@ -40,6 +40,7 @@ const Target targets[] = {
     {"poses", shoal::fuzz::poses},
     {"merge_parts", shoal::fuzz::merge_parts},
     {"zip_members", shoal::fuzz::zip_members},
+    {"debrief_record", shoal::fuzz::debrief_record},
 };
 
 std::vector<fs::path> inputs(const std::string& target, const char* kind) {

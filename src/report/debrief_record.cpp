@@ -267,6 +267,25 @@ StagedOutput stage_debrief_record(const StagedOutput& part, const audit::AuditRe
     return out;
 }
 
+DebriefRecord parse_debrief_record(std::string_view bytes, const std::string& path) {
+    DebriefRecord rec;
+    rec.path = path;
+    if (bytes.substr(0, debrief_record_mark.size()) != debrief_record_mark)
+        throw InputError("'" + rec.path + "': not a debrief record of this shoal (no mark \"shoal debrief record 1\"); write it again with check --debrief-record");
+    try {
+        const json doc = json::from_cbor(bytes.substr(debrief_record_mark.size()));
+        rec.shard = audit::parse_shard(doc.at("shard").get<std::string>());
+        rec.part = {doc.at("part").at("size").get<long long>(), doc.at("part").at("fingerprint").get<std::string>()};
+        rec.info = info_of(doc.at("info"));
+        rec.grid = grid_of(doc.at("grid"));
+        rec.result = result_of(doc.at("result"));
+        rec.result.shard = rec.shard;
+    } catch (const std::exception& e) {  // nlohmann's parse, type and range errors, a bad shard
+        throw InputError("'" + rec.path + "': a damaged debrief record (" + e.what() + "); write it again with check --debrief-record");
+    }
+    return rec;
+}
+
 DebriefRecord read_debrief_record(const std::string& part) {
     DebriefRecord rec;
     rec.path = debrief_record_path(part);
@@ -283,19 +302,7 @@ DebriefRecord read_debrief_record(const std::string& part) {
         bytes.append(buf, static_cast<std::size_t>(in.gcount()));
         if (bytes.size() > max_record_bytes) throw InputError("'" + rec.path + "': larger than any debrief record (4 GiB)");
     }
-    if (bytes.compare(0, debrief_record_mark.size(), debrief_record_mark) != 0)
-        throw InputError("'" + rec.path + "': not a debrief record of this shoal (no mark \"shoal debrief record 1\"); write it again with check --debrief-record");
-    try {
-        const json doc = json::from_cbor(std::string_view(bytes).substr(debrief_record_mark.size()));
-        rec.shard = audit::parse_shard(doc.at("shard").get<std::string>());
-        rec.part = {doc.at("part").at("size").get<long long>(), doc.at("part").at("fingerprint").get<std::string>()};
-        rec.info = info_of(doc.at("info"));
-        rec.grid = grid_of(doc.at("grid"));
-        rec.result = result_of(doc.at("result"));
-        rec.result.shard = rec.shard;
-    } catch (const std::exception& e) {
-        throw InputError("'" + rec.path + "': a damaged debrief record (" + e.what() + "); write it again with check --debrief-record");
-    }
+    rec = parse_debrief_record(bytes, rec.path);
     if (file_size_and_fingerprint(part) != rec.part)
         throw InputError("'" + rec.path + "' is not the record of the part '" + part +
                          "' as it is now (it was written with another part, or the part was written again since): write them again "

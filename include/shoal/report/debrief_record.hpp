@@ -29,6 +29,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -72,6 +73,11 @@ struct DebriefRecord {
     GridSpec grid;
     audit::AuditResult result;  ///< the shard's (see above); its counts not filled
 };
+
+/// A record's bytes (as debrief_record writes them), read: the mark, then the CBOR. `path`
+/// names it in messages. Throws InputError when it is not a record or is damaged (it is not
+/// checked against its part here: read_debrief_record does that).
+DebriefRecord parse_debrief_record(std::string_view bytes, const std::string& path);
 
 /// The record of the part at `part` (at debrief_record_path(part)), checked against the part:
 /// its bytes must be those the record was written with. Throws UsageError when there is none
