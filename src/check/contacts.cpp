@@ -1053,9 +1053,16 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
                 // Whole chunks of segments whose box misses the box are skipped (a harbour
                 // cell holds ~760 segments; a chunk's box holds its segments' boxes).
                 const std::size_t first = g.index_of(segs);
-                const std::span<const Box> chunks = g.chunk_boxes();
-                constexpr std::size_t chunk = grid::CoastGrid::chunk_segments;
+                const std::span<const Box> chunks = g.chunk_boxes(), blocks = g.block_boxes();
+                constexpr std::size_t chunk = grid::CoastGrid::chunk_segments, block = grid::CoastGrid::block_segments;
                 for (std::size_t k = 0; k < segs.size(); ++k) {
+                    if ((first + k) % block == 0 && k + block <= segs.size()) {  // a block of chunks first
+                        const Box& c = blocks[(first + k) / block];
+                        if (c.maxx < box.minx || c.minx > box.maxx || c.maxy < box.miny || c.miny > box.maxy) {
+                            k += block - 1;
+                            continue;
+                        }
+                    }
                     if ((first + k) % chunk == 0 && k + chunk <= segs.size()) {
                         const Box& c = chunks[(first + k) / chunk];
                         if (c.maxx < box.minx || c.minx > box.maxx || c.maxy < box.miny || c.miny > box.maxy) {
@@ -1071,7 +1078,24 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
                 }
             }
     };
-    o.inside = [&g](XY p) { return g.winding(p) > 0; };
+    // Winding numbers: the first point asked in a grid cell counts from the cell's reference
+    // point; later points of the same cell count from it, along a path as short as the hull
+    // (a harbour's coast cell holds ~760 segments, and the long path met many of them).
+    struct Known {
+        int i, j;
+        XY at;
+        int w;
+    };
+    std::vector<Known> known;
+    o.inside = [&g, &known](XY p) {
+        const int i = g.col_of(p.x), j = g.row_of(p.y);
+        for (const Known& k : known)
+            if (k.i == i && k.j == j) return g.winding_from(k.at, k.w, p) > 0;
+        bool on_boundary = false;
+        const int w = g.winding(p, &on_boundary);
+        if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w});
+        return w > 0;
+    };
     // No contact, no region: the pose check answers that in a microsecond.
     // No contact, no region: the pose check answers that in a microsecond. (Its penetration,
     // as a first reach, cost more on a harbour chart than the reach's growing saves.)
