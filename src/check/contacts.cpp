@@ -220,8 +220,11 @@ void group_params(const std::vector<std::pair<double, int>>& ts, double len, dou
 }
 
 struct UnionFind {
-    std::vector<int> parent;
-    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    std::vector<int>& parent;  // (storage kept between calls)
+    UnionFind(std::vector<int>& storage, std::size_t n) : parent(storage) {
+        parent.resize(n);
+        std::iota(parent.begin(), parent.end(), 0);
+    }
     int find(int x) {
         while (parent[x] != x) x = parent[x] = parent[parent[x]];
         return x;
@@ -291,9 +294,10 @@ private:
 /// The search over one set of boundary pieces.
 class Search {
 public:
-    Search(std::vector<Site> sites, const Obstacle& obstacle, double tol)
-        : m_sites(std::move(sites)), m_obstacle(obstacle), m_tol(tol), m_slack2((100 * tol) * (100 * tol)) {
-        m_boxes.reserve(m_sites.size());
+    /// `sites` and `boxes` are storage kept between calls: `boxes` is filled here.
+    Search(const std::vector<Site>& sites, std::vector<Box>& boxes, const Obstacle& obstacle, double tol)
+        : m_sites(sites), m_boxes(boxes), m_obstacle(obstacle), m_tol(tol), m_slack2((100 * tol) * (100 * tol)) {
+        m_boxes.clear();
         for (const Site& st : m_sites)
             m_boxes.push_back({std::min(st.a.x, st.b.x), std::min(st.a.y, st.b.y), std::max(st.a.x, st.b.x), std::max(st.a.y, st.b.y)});
     }
@@ -471,8 +475,8 @@ private:
     /// rounding (a margin of a millionth and (100 tol)^2, far above it): it is not looked at.
     double beyond(double best2) const noexcept { return best2 * (1 + 1e-6) + m_slack2; }
 
-    std::vector<Site> m_sites;
-    std::vector<Box> m_boxes;  // each site's
+    const std::vector<Site>& m_sites;
+    std::vector<Box>& m_boxes;  // each site's
     const Obstacle& m_obstacle;
     double m_tol;
     double m_slack2;
@@ -492,12 +496,14 @@ struct Piece {
     bool outline = false;
 };
 
-/// Branch and bound of d along segment pa-pb (an outline piece inside the hazards).
-void along(const Search& s, XY pa, XY pb, Best& best) {
-    struct Interval {
-        double t0, t1, f0, f1;
-        Search::Near n0, n1;
-    };
+struct Interval {
+    double t0, t1, f0, f1;
+    Search::Near n0, n1;
+};
+
+/// Branch and bound of d along segment pa-pb (an outline piece inside the hazards); `stack`
+/// is storage kept between calls.
+void along(const Search& s, XY pa, XY pb, Best& best, std::vector<Interval>& stack) {
     const XY d = pb - pa;
     const double len = std::sqrt(geo::norm2(d));
     auto eval = [&](double t, Search::Near& n) {
@@ -510,7 +516,7 @@ void along(const Search& s, XY pa, XY pb, Best& best) {
     Interval root{0, 1, 0, 0, {}, {}};
     root.f0 = eval(0, root.n0);
     root.f1 = eval(1, root.n1);
-    std::vector<Interval> stack{root};
+    stack.assign(1, root);
     int steps = 0;
     while (!stack.empty() && ++steps < 100000) {
         const Interval iv = stack.back();
@@ -542,6 +548,76 @@ struct Region {
     bool has_outline = false;
     Best best;
 };
+
+
+/// A stretch of a boundary segment between crossings (regions_of).
+struct Piece0 {
+    XY p, q;
+    std::size_t seg;
+    bool cut_start, cut_end;  // begins / ends at a crossing
+};
+
+/// An end of a stretch that is not a crossing (regions_of).
+struct End {
+    XY at;
+    std::uint32_t polyline;
+    int piece;
+};
+
+/// A crossing of the hull outline's edge and a site (regions_of).
+struct Cross {
+    int edge;
+    double t;
+    int site;
+    double u;
+};
+
+/// A cell of the interior search (regions_of): a cell carries its parent's centre, side and
+/// distance to the boundary: a centre nearer the parent's than that distance is on the same
+/// side (no winding number).
+struct Cell {
+    Box box;
+    double bound;
+    XY parent{};
+    double parent_clear = 0;  // the parent centre's distance to the boundary (a lower bound)
+    bool parent_inside = false;
+    ConvexCutter::Edges edges = ConvexCutter::all_edges;  // the hull's edges that may cut it
+    bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
+};
+
+/// The working lists of regions_of, kept between calls on each thread (cleared, not freed: an
+/// allocation each was ~8 % of a call).
+struct Scratch {
+    std::vector<RawSegment> raw, bounds, lines;
+    std::vector<Site> sites;
+    std::vector<Box> site_boxes;
+    std::vector<std::pair<std::size_t, double>> cut_at;
+    std::vector<std::pair<double, double>> tu;
+    std::vector<std::uint32_t> by_x;
+    std::vector<Piece0> raw_pieces;
+    std::vector<double> c;
+    std::vector<int> same, uf;
+    std::vector<End> ends;
+    std::vector<signed char> buried;
+    std::vector<Piece> pieces;
+    std::vector<Cross> xs;
+    std::vector<int> piece_at_cross_out, first_piece, last_piece, piece_at_cross_site;
+    std::vector<std::pair<double, int>> ts, us;
+    std::vector<ParamGroup> groups;
+    std::vector<std::pair<int, int>> by_site;
+    std::vector<int> order, region_of_root, merged_into, piece_region, live;
+    std::vector<Interval> intervals;
+    std::vector<Cell> queue;  // a heap (std::push_heap, std::pop_heap: as std::priority_queue)
+    std::vector<XY> poly;
+};
+
+/// (Not inlined: the callers then hold the lists by plain references. Inlined, GCC
+/// propagated the thread-local's address into the callees and asked __tls_get_addr for it at
+/// every use, 7 % of a call.)
+[[gnu::noinline]] Scratch& scratch() {
+    thread_local Scratch s;
+    return s;
+}
 
 }  // namespace
 
@@ -580,11 +656,14 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
 
     // The reach: small at first (a contact is usually shallow), grown while a depth reaches it.
     double reach = std::max(1.0, 1e-3 * extent);
+    Scratch& sc = scratch();
     for (int attempt = 0; attempt < 64; ++attempt) {
         const Box box = hbox.grown(reach);
-        std::vector<RawSegment> raw;
+        std::vector<RawSegment>& raw = sc.raw;
+        raw.clear();
         obstacle.collect(box, raw);
-        std::vector<RawSegment> bounds, lines;
+        std::vector<RawSegment>&bounds = sc.bounds, &lines = sc.lines;
+        bounds.clear(), lines.clear();
         for (const RawSegment& whole : raw) {
             RawSegment r = whole;
             if (!clip_to(r.a, r.b, box)) continue;
@@ -594,15 +673,18 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             else lines.push_back(whole);
         }
         // Cut where boundaries of different polylines cross; keep pieces with water on the right.
-        std::vector<Site> sites;
+        std::vector<Site>& sites = sc.sites;
+        sites.clear();
         {
             // (boundary segment, parameter) of every crossing, in one list (not a list per segment:
             // most segments have none), sorted by segment.
-            std::vector<std::pair<std::size_t, double>> cut_at;
-            std::vector<std::pair<double, double>> tu;
+            std::vector<std::pair<std::size_t, double>>& cut_at = sc.cut_at;
+            std::vector<std::pair<double, double>>& tu = sc.tu;
+            cut_at.clear();
             // A sweep along x: only pairs whose x-ranges meet are tried (a pier's harbour holds
             // hundreds of segments; the list is sorted below, so the order found does not matter).
-            std::vector<std::uint32_t> by_x(bounds.size());
+            std::vector<std::uint32_t>& by_x = sc.by_x;
+            by_x.resize(bounds.size());
             std::iota(by_x.begin(), by_x.end(), 0u);
             auto lo_x = [&](std::uint32_t k) { return std::min(bounds[k].a.x, bounds[k].b.x); };
             std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t x, std::uint32_t y) { return lo_x(x) < lo_x(y) || (lo_x(x) == lo_x(y) && x < y); });
@@ -621,13 +703,9 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             // Pieces between cuts. Whether a piece is buried (water side inside another hazard)
             // can change only where another boundary crosses: pieces joined end to end
             // without a crossing between them share the answer, found with one winding test.
-            struct Piece0 {
-                XY p, q;
-                std::size_t seg;
-                bool cut_start, cut_end;  // begins / ends at a crossing
-            };
-            std::vector<Piece0> raw_pieces;
-            std::vector<double> c;
+            std::vector<Piece0>& raw_pieces = sc.raw_pieces;
+            std::vector<double>& c = sc.c;
+            raw_pieces.clear();
             for (std::size_t i = 0, next = 0; i < bounds.size(); ++i) {
                 c.clear();
                 for (; next < cut_at.size() && cut_at[next].first == i; ++next) c.push_back(cut_at[next].second);
@@ -643,15 +721,11 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     raw_pieces.push_back({a + c[k] * d, a + c[k + 1] * d, i, c[k] > slack || cut_at_a, c[k + 1] < 1 - slack || cut_at_b});
                 }
             }
-            UnionFind same(raw_pieces.size());
+            UnionFind same(sc.same, raw_pieces.size());
             {
                 // Ends that are not crossings, joined when they meet (within the clip slack).
-                struct End {
-                    XY at;
-                    std::uint32_t polyline;
-                    int piece;
-                };
-                std::vector<End> ends;
+                std::vector<End>& ends = sc.ends;
+                ends.clear();
                 for (std::size_t k = 0; k < raw_pieces.size(); ++k) {
                     const std::uint32_t pl = bounds[raw_pieces[k].seg].polyline;
                     if (!raw_pieces[k].cut_start) ends.push_back({raw_pieces[k].p, pl, static_cast<int>(k)});
@@ -664,7 +738,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                         if (ends[x].polyline == ends[y].polyline && std::fabs(ends[y].at.y - ends[x].at.y) <= join)
                             same.join(ends[x].piece, ends[y].piece);
             }
-            std::vector<signed char> buried(raw_pieces.size(), -1);
+            std::vector<signed char>& buried = sc.buried;
+            buried.assign(raw_pieces.size(), -1);
             for (std::size_t k = 0; k < raw_pieces.size(); ++k) {
                 const int root = same.find(static_cast<int>(k));
                 if (buried[root] < 0) {
@@ -678,21 +753,16 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             }
         }
         merge_collinear(sites, tol);
-        Search search(std::move(sites), obstacle, tol);
+        Search search(sites, sc.site_boxes, obstacle, tol);
         search.set_reach(reach);
         const std::vector<Site>& S = search.sites();
 
         // 1. Pieces of the overlap's boundary, and where they meet.
-        std::vector<Piece> pieces;
-        struct Cross {
-            int edge;
-            double t;
-            int site;
-            double u;
-        };
-        std::vector<Cross> xs;
+        std::vector<Piece>& pieces = sc.pieces;
+        std::vector<Cross>& xs = sc.xs;
+        pieces.clear(), xs.clear();
         {
-            std::vector<std::pair<double, double>> tu;
+            std::vector<std::pair<double, double>>& tu = sc.tu;
             for (std::size_t e = 0; e < n_edges; ++e)
                 for (std::size_t k = 0; k < S.size(); ++k) {
                     if (boxes_apart(ring[e], ring[e + 1], S[k].a, S[k].b)) continue;
@@ -702,10 +772,12 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 }
         }
         // Outline pieces inside, per edge; remember which piece ends at each crossing.
-        std::vector<int> piece_at_cross_out(xs.size() * 2, -1);  // outline piece before / after crossing
-        std::vector<int> first_piece(n_edges, -1), last_piece(n_edges, -1);
-        std::vector<std::pair<double, int>> ts;
-        std::vector<ParamGroup> groups;
+        std::vector<int>& piece_at_cross_out = sc.piece_at_cross_out;  // outline piece before / after crossing
+        piece_at_cross_out.assign(xs.size() * 2, -1);
+        std::vector<int>&first_piece = sc.first_piece, &last_piece = sc.last_piece;
+        first_piece.assign(n_edges, -1), last_piece.assign(n_edges, -1);
+        std::vector<std::pair<double, int>>& ts = sc.ts;
+        std::vector<ParamGroup>& groups = sc.groups;
         int known = -1;  // whether the outline is in the hazards here: -1 not known
         for (std::size_t e = 0; e < n_edges; ++e) {
             const XY a = ring[e], d = ring[e + 1] - ring[e];
@@ -741,11 +813,13 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         }
         const std::size_t n_outline = pieces.size();
         // Boundary pieces inside the hull.
-        std::vector<int> piece_at_cross_site(xs.size() * 2, -1);
-        std::vector<std::pair<int, int>> by_site;  // (site, crossing), sorted
+        std::vector<int>& piece_at_cross_site = sc.piece_at_cross_site;
+        piece_at_cross_site.assign(xs.size() * 2, -1);
+        std::vector<std::pair<int, int>>& by_site = sc.by_site;  // (site, crossing), sorted
+        by_site.clear();
         for (std::size_t x = 0; x < xs.size(); ++x) by_site.emplace_back(xs[x].site, static_cast<int>(x));
         std::sort(by_site.begin(), by_site.end());
-        std::vector<std::pair<double, int>> us;  // a site's parameters, as ts an edge's
+        std::vector<std::pair<double, int>>& us = sc.us;  // a site's parameters, as ts an edge's
         for (std::size_t k = 0, next = 0; k < S.size(); ++k) {
             us.clear();
             for (; next < by_site.size() && by_site[next].first == static_cast<int>(k); ++next)
@@ -768,7 +842,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     if (us[i].second >= 0) piece_at_cross_site[2 * us[i].second] = id;
             }
         }
-        UnionFind uf(pieces.size());
+        UnionFind uf(sc.uf, pieces.size());
         // Outline pieces meeting at a vertex.
         for (std::size_t e = 0; e < n_edges; ++e) {
             const int a = last_piece[e], b = first_piece[(e + 1) % n_edges];
@@ -789,7 +863,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         // two hazards' boundaries cross).
         {
             const double join = 1e3 * tol;
-            std::vector<int> order;
+            std::vector<int>& order = sc.order;
+            order.clear();
             for (std::size_t i = n_outline; i < pieces.size(); ++i) order.push_back(static_cast<int>(i));
             for (std::size_t ii = 0; ii < order.size(); ++ii)
                 for (std::size_t jj = ii + 1; jj < order.size(); ++jj) {
@@ -806,7 +881,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         }
         // The hull wholly inside the hazards: the whole outline is one piece chain (joined above).
         std::vector<Region> regions;
-        std::vector<int> region_of_root(pieces.size(), -1);
+        std::vector<int>& region_of_root = sc.region_of_root;
+        region_of_root.assign(pieces.size(), -1);
         for (std::size_t i = 0; i < pieces.size(); ++i) {
             const int r = uf.find(static_cast<int>(i));
             if (region_of_root[r] < 0) {
@@ -819,7 +895,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         }
         // A closed ring inside the hull: an islet (counter-clockwise: land inside) is a region;
         // a pond (clockwise) belongs to the region around it.
-        std::vector<int> merged_into(regions.size(), -1);
+        std::vector<int>& merged_into = sc.merged_into;
+        merged_into.assign(regions.size(), -1);
         for (std::size_t g = 0; g < regions.size(); ++g) {
             if (regions[g].has_outline) continue;
             double a2 = 0;
@@ -848,15 +925,17 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 for (int i : regions[g].pieces) regions[to].pieces.push_back(i);
                 regions[g].pieces.clear();
             }
-        std::vector<int> piece_region(pieces.size(), -1);
+        std::vector<int>& piece_region = sc.piece_region;
+        piece_region.assign(pieces.size(), -1);
         for (std::size_t g = 0; g < regions.size(); ++g)
             for (int i : regions[g].pieces) piece_region[i] = static_cast<int>(g);
 
         // 2. Deepest points: along the outline pieces, then inside.
         for (Region& g : regions)
             for (int i : g.pieces)
-                if (pieces[i].outline) along(search, pieces[i].a, pieces[i].b, g.best);
-        std::vector<int> live;
+                if (pieces[i].outline) along(search, pieces[i].a, pieces[i].b, g.best, sc.intervals);
+        std::vector<int>& live = sc.live;
+        live.clear();
         for (std::size_t g = 0; g < regions.size(); ++g)
             if (!regions[g].pieces.empty()) live.push_back(static_cast<int>(g));
         if (!live.empty() && !S.empty()) {
@@ -896,26 +975,23 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             // until it is looked at), so the search ends when no cell can beat what was found.
             // A cell carries its parent's centre, side and distance to the boundary: a centre
             // nearer the parent's than that distance is on the same side (no winding number).
-            struct Cell {
-                Box box;
-                double bound;
-                XY parent{};
-                double parent_clear = 0;  // the parent centre's distance to the boundary (a lower bound)
-                bool parent_inside = false;
-                ConvexCutter::Edges edges = ConvexCutter::all_edges;  // the hull's edges that may cut it
-                bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
+            std::vector<Cell>& queue = sc.queue;  // a heap: as std::priority_queue<Cell>
+            queue.clear();
+            auto push = [&queue](const Cell& cl) {
+                queue.push_back(cl);
+                std::push_heap(queue.begin(), queue.end());
             };
-            std::priority_queue<Cell> queue;
             for (double x = rbox.minx; x < rbox.maxx || x == rbox.minx; x += side)
                 for (double y = rbox.miny; y < rbox.maxy || y == rbox.miny; y += side)
-                    queue.push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false, ConvexCutter::all_edges});
+                    push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false, ConvexCutter::all_edges});
             int steps = 0;
-            std::vector<XY> poly;
+            std::vector<XY>& poly = sc.poly;
             ConvexCutter cutter(ring);
             ConvexCutter::Edges edges = ConvexCutter::all_edges;
             while (!queue.empty() && ++steps < 100000) {
-                const Cell cell = queue.top();
-                queue.pop();
+                std::pop_heap(queue.begin(), queue.end());
+                const Cell cell = queue.back();
+                queue.pop_back();
                 if (live.size() == 1 && cell.bound <= regions[live.front()].best.d + tol) break;
                 if (cell.box.minx > hbox.maxx || cell.box.maxx < hbox.minx || cell.box.miny > hbox.maxy || cell.box.maxy < hbox.miny)
                     continue;
@@ -964,10 +1040,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 if (b <= least + tol) continue;
                 const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
                 const double clear_c = std::min(n.d, reach);
-                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard, edges});
-                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard, edges});
-                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
-                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
+                push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard, edges});
+                push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard, edges});
+                push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
+                push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
             }
         }
         // 3. A depth at the reach: a nearer boundary may lie beyond it.
@@ -1014,7 +1090,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             XY at;
             bool hit = in_polygon(ring, l.a) ? (at = l.a, true) : in_polygon(ring, l.b) ? (at = l.b, true) : false;
             for (std::size_t e = 0; e < n_edges && !hit; ++e) {
-                std::vector<std::pair<double, double>> tu;
+                std::vector<std::pair<double, double>>& tu = sc.tu;
+                tu.clear();
                 crossings(ring[e], ring[e + 1], l.a, l.b, tu);
                 if (!tu.empty()) at = ring[e] + tu.front().first * (ring[e + 1] - ring[e]), hit = true;
             }
