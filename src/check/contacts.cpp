@@ -1119,7 +1119,12 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
 std::vector<ContactRegion> contact_regions(const Detector& detector, const LocalPose& pose) {
     const grid::CoastGrid& g = detector.grid();
     Obstacle o;
-    o.collect = [&g](const Box& box, std::vector<RawSegment>& out) {
+    // The reach's box of the attempt under way: every point asked then lies in it, but for
+    // a few a micrometre out (winding numbers below).
+    Box focus;
+    int focus_version = 0;
+    o.collect = [&g, &focus, &focus_version](const Box& box, std::vector<RawSegment>& out) {
+        focus = box, ++focus_version;
         const geo::Box ext = g.extent();
         const int i0 = std::max(0, g.col_of(std::max(box.minx, ext.minx))), i1 = std::min(g.nx() - 1, g.col_of(std::min(box.maxx, ext.maxx)));
         const int j0 = std::max(0, g.row_of(std::max(box.miny, ext.miny))), j1 = std::min(g.ny() - 1, g.row_of(std::min(box.maxy, ext.maxy)));
@@ -1158,19 +1163,32 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
     // Winding numbers: the first point asked in a grid cell counts from the cell's reference
     // point; later points of the same cell count from it, along a path as short as the hull
     // (a harbour's coast cell holds ~760 segments, and the long path met many of them).
+    // And a path inside the reach's box meets only the cell's segments whose box meets it: they
+    // are listed once an attempt, and each point tries those only (~14, not ~760).
     struct Known {
         int i, j;
         XY at;
         int w;
+        int version = -1;                 // focus_version of `near`
+        std::vector<std::uint32_t> near;  // the cell's boundary segments meeting the focus
     };
     std::vector<Known> known;
-    o.inside = [&g, &known](XY p) {
+    auto holds = [](const Box& b, XY p) { return p.x >= b.minx && p.x <= b.maxx && p.y >= b.miny && p.y <= b.maxy; };
+    o.inside = [&g, &known, &focus, &focus_version, holds](XY p) {
         const int i = g.col_of(p.x), j = g.row_of(p.y);
-        for (const Known& k : known)
-            if (k.i == i && k.j == j) return g.winding_from(k.at, k.w, p) > 0;
+        for (Known& k : known)
+            if (k.i == i && k.j == j) {
+                if (!holds(focus, p) || !holds(focus, k.at)) return g.winding_from(k.at, k.w, p) > 0;
+                if (k.version != focus_version) {
+                    k.near.clear();
+                    g.boundary_segments_near(i, j, focus, k.near);
+                    k.version = focus_version;
+                }
+                return g.winding_along(k.at, k.w, p, k.near) > 0;
+            }
         bool on_boundary = false;
         const int w = g.winding(p, &on_boundary);
-        if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w});
+        if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w, -1, {}});
         return w > 0;
     };
     // No contact, no region: the pose check answers that in a microsecond.

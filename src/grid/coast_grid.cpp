@@ -361,6 +361,56 @@ int CoastGrid::winding_from(XY from, int w_from, XY p, bool* on_boundary) const 
     return winding_in_cell(s, from, w_from, p, on_boundary);
 }
 
+namespace {
+
+/// Segment ab's part of the winding at p counted from r (winding_in_cell's test): +1 or -1
+/// where it crosses the path r-p, 0 elsewhere; 2 when p lies on it.
+inline int crossing_of(XY r, XY p, XY a, XY b) noexcept {
+    const bool sa = geo::orient(r, p, a) >= 0, sb = geo::orient(r, p, b) >= 0;
+    if (sa == sb) return 0;
+    const double o_r = geo::orient(a, b, r), o_p = geo::orient(a, b, p);
+    if (o_p == 0) return 2;
+    if ((o_r < 0 && o_p > 0) || (o_r > 0 && o_p < 0)) return o_p > 0 ? 1 : -1;
+    return 0;
+}
+
+}  // namespace
+
+void CoastGrid::boundary_segments_near(int i, int j, const geo::Box& box, std::vector<std::uint32_t>& out) const {
+    if (!valid_cell(i, j)) return;
+    const std::uint32_t s = slot(i, j);
+    if (s == water_slot || s == land_slot) return;
+    auto misses = [&box](const geo::Box& b) { return b.maxx < box.minx || b.minx > box.maxx || b.maxy < box.miny || b.miny > box.maxy; };
+    const std::uint32_t k_end = m_seg_offset[s + 1];
+    for (std::uint32_t k = m_seg_offset[s]; k < k_end; ++k) {
+        if (k % block_segments == 0 && k + block_segments <= k_end && misses(m_block_box[k / block_segments])) {
+            k += block_segments - 1;
+            continue;
+        }
+        if (k % chunk_segments == 0 && k + chunk_segments <= k_end && misses(m_chunk_box[k / chunk_segments])) {
+            k += chunk_segments - 1;
+            continue;
+        }
+        if (!(m_seg_info[k] & boundary_bit)) continue;
+        const Segment& sg = m_segments[k];
+        if (!misses({std::min(sg.a.x, sg.b.x), std::min(sg.a.y, sg.b.y), std::max(sg.a.x, sg.b.x), std::max(sg.a.y, sg.b.y)})) out.push_back(k);
+    }
+}
+
+int CoastGrid::winding_along(XY from, int w_from, XY p, std::span<const std::uint32_t> segs, bool* on_boundary) const noexcept {
+    if (on_boundary) *on_boundary = false;
+    int w = w_from;
+    for (const std::uint32_t k : segs) {
+        const int c = crossing_of(from, p, m_segments[k].a, m_segments[k].b);
+        if (c == 2) {
+            if (on_boundary) *on_boundary = true;
+            return std::max(w, 1);
+        }
+        w += c;
+    }
+    return w;
+}
+
 int CoastGrid::winding_in_cell(std::uint32_t s, XY r, int w, XY p, bool* on_boundary) const noexcept {
     // Signed crossings of the path from R (the cell's reference point, or another point of the
     // cell with its winding) to p with the cell's land boundary. A vertex on the line Rp
@@ -388,15 +438,12 @@ int CoastGrid::winding_in_cell(std::uint32_t s, XY r, int w, XY p, bool* on_boun
             continue;
         }
         if (!(m_seg_info[k] & boundary_bit)) continue;
-        const Segment& sg = m_segments[k];
-        const bool sa = geo::orient(r, p, sg.a) >= 0, sb = geo::orient(r, p, sg.b) >= 0;
-        if (sa == sb) continue;
-        const double o_r = geo::orient(sg.a, sg.b, r), o_p = geo::orient(sg.a, sg.b, p);
-        if (o_p == 0) {
+        const int c = crossing_of(r, p, m_segments[k].a, m_segments[k].b);
+        if (c == 2) {
             if (on_boundary) *on_boundary = true;
             return std::max(w, 1);
         }
-        if ((o_r < 0 && o_p > 0) || (o_r > 0 && o_p < 0)) w += o_p > 0 ? 1 : -1;
+        w += c;
     }
     return w;
 }
