@@ -601,7 +601,7 @@ struct Scratch {
     std::vector<signed char> buried;
     std::vector<Piece> pieces;
     std::vector<Cross> xs;
-    std::vector<int> piece_at_cross_out, first_piece, last_piece, piece_at_cross_site;
+    std::vector<int> edge_crossings, piece_at_cross_out, first_piece, last_piece, piece_at_cross_site;
     std::vector<std::pair<double, int>> ts, us;
     std::vector<ParamGroup> groups;
     std::vector<std::pair<int, int>> by_site;
@@ -779,9 +779,24 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         std::vector<std::pair<double, int>>& ts = sc.ts;
         std::vector<ParamGroup>& groups = sc.groups;
         int known = -1;  // whether the outline is in the hazards here: -1 not known
+        std::vector<int>& edge_crossings = sc.edge_crossings;  // how many crossings each edge has
+        edge_crossings.assign(n_edges, 0);
+        for (const Cross& x : xs) ++edge_crossings[x.edge];
         for (std::size_t e = 0; e < n_edges; ++e) {
             const XY a = ring[e], d = ring[e + 1] - ring[e];
             const double len = std::sqrt(geo::norm2(d));
+            if (edge_crossings[e] == 0) {
+                // No crossing (most edges): the parameters 0 and 1 alone, as below without the
+                // lists: one stretch, or none when the edge is shorter than the tolerance.
+                if (!((1.0 - 0.0) * len > tol)) continue;
+                const XY p = a + 0.0 * d, q = a + 1.0 * d;
+                if (known < 0) known = search.inside(0.5 * (p + q)) ? 1 : 0;
+                if (known != 1) continue;
+                const int id = static_cast<int>(pieces.size());
+                pieces.push_back({ring[e], ring[e + 1], true});
+                first_piece[e] = last_piece[e] = id;
+                continue;
+            }
             ts.clear();
             ts.emplace_back(0.0, -1);
             ts.emplace_back(1.0, -1);
@@ -812,6 +827,14 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             }
         }
         const std::size_t n_outline = pieces.size();
+        // in_polygon, with a point beyond the hull's box answered at once: below its least y or
+        // from its greatest up, no edge has ends on both sides; right of its greatest x (by more
+        // than rounding), no edge's crossing is right of it. The same answers.
+        const double right_of = hbox.maxx + 1e-9 * (1 + std::fabs(hbox.maxx));
+        auto in_ring = [&ring, &hbox, right_of](XY m) {
+            if (m.y < hbox.miny || m.y >= hbox.maxy || m.x > right_of) return false;
+            return in_polygon(ring, m);
+        };
         // Boundary pieces inside the hull.
         std::vector<int>& piece_at_cross_site = sc.piece_at_cross_site;
         piece_at_cross_site.assign(xs.size() * 2, -1);
@@ -833,7 +856,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             for (std::size_t c = 0; c + 1 < groups.size(); ++c) {
                 const XY p = c == 0 ? a : a + groups[c].t * d;
                 const XY q = c + 2 == groups.size() ? S[k].b : a + groups[c + 1].t * d;
-                if (!in_polygon(ring, 0.5 * (p + q))) continue;
+                if (!in_ring(0.5 * (p + q))) continue;
                 const int id = static_cast<int>(pieces.size());
                 pieces.push_back({p, q, false});
                 for (std::size_t i = groups[c].from; i < groups[c].to; ++i)
