@@ -607,6 +607,7 @@ struct Scratch {
     std::vector<std::pair<int, int>> by_site;
     std::vector<int> order, region_of_root, merged_into, piece_region, live;
     std::vector<Interval> intervals;
+    std::vector<double> piece_d2;
     std::vector<Cell> queue;  // a heap (std::push_heap, std::pop_heap: as std::priority_queue)
     std::vector<XY> poly;
 };
@@ -968,15 +969,21 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     const Piece& p = pieces[regions[g].pieces.front()];
                     regions[g].best = {0, p.a, p.a, -1};
                 }
+            // Both scan the pieces' distances to a cell's centre: region_at keeps them for
+            // least_best_near at the same centre (`kept`).
+            std::vector<double>& piece_d2 = sc.piece_d2;
+            piece_d2.resize(pieces.size());
+            bool kept = false;
             auto region_at = [&](XY q) {
                 if (live.size() == 1) return live.front();
                 double best2 = INFINITY;
                 int r = -1;
                 for (std::size_t i = 0; i < pieces.size(); ++i) {
                     if (piece_region[i] < 0 || regions[piece_region[i]].pieces.empty()) continue;
-                    const double d2 = dist2_to(q, pieces[i].a, pieces[i].b, nullptr);
+                    const double d2 = piece_d2[i] = dist2_to(q, pieces[i].a, pieces[i].b, nullptr);
                     if (d2 < best2) best2 = d2, r = piece_region[i];
                 }
+                kept = true;
                 return r;
             };
             auto least_best_near = [&](XY q, double r, int own) {
@@ -986,7 +993,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 for (std::size_t i = 0; i < pieces.size(); ++i) {
                     const int g = piece_region[i];
                     if (g < 0 || regions[g].pieces.empty()) continue;
-                    if (dist2_to(q, pieces[i].a, pieces[i].b, nullptr) <= r2) least = std::min(least, regions[g].best.d);
+                    if ((kept ? piece_d2[i] : dist2_to(q, pieces[i].a, pieces[i].b, nullptr)) <= r2) least = std::min(least, regions[g].best.d);
                 }
                 return least;
             };
@@ -1025,6 +1032,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
                             {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
                 }
+                kept = false;  // (region_at's distances are for another centre)
                 XY c{0, 0};
                 for (XY p : poly) c = c + p;
                 c = (1.0 / static_cast<double>(poly.size())) * c;
