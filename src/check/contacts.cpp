@@ -1152,10 +1152,17 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
     Obstacle o;
     // The reach's box of the attempt under way: every point asked then lies in it, but for
     // a few a micrometre out (winding numbers below).
+    // And, per cell, the land boundary segments met in it (their indices in the grid's array):
+    // a path inside the focus meets only those (winding numbers below).
     Box focus;
-    int focus_version = 0;
-    o.collect = [&g, &focus, &focus_version](const Box& box, std::vector<RawSegment>& out) {
-        focus = box, ++focus_version;
+    struct CellNear {
+        int i, j;
+        std::vector<std::uint32_t> near;
+    };
+    std::vector<CellNear> cells_near;  // the first `n_cells_near` are the focus's
+    std::size_t n_cells_near = 0;
+    o.collect = [&g, &focus, &cells_near, &n_cells_near](const Box& box, std::vector<RawSegment>& out) {
+        focus = box, n_cells_near = 0;
         const geo::Box ext = g.extent();
         const int i0 = std::max(0, g.col_of(std::max(box.minx, ext.minx))), i1 = std::min(g.nx() - 1, g.col_of(std::min(box.maxx, ext.maxx)));
         const int j0 = std::max(0, g.row_of(std::max(box.miny, ext.miny))), j1 = std::min(g.ny() - 1, g.row_of(std::min(box.maxy, ext.maxy)));
@@ -1166,6 +1173,9 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
                 // Whole chunks of segments whose box misses the box are skipped (a harbour
                 // cell holds ~760 segments; a chunk's box holds its segments' boxes).
                 const std::size_t first = g.index_of(segs);
+                if (n_cells_near == cells_near.size()) cells_near.emplace_back();
+                CellNear& cn = cells_near[n_cells_near++];
+                cn.i = i, cn.j = j, cn.near.clear();
                 const std::span<const Box> chunks = g.chunk_boxes(), blocks = g.block_boxes();
                 constexpr std::size_t chunk = grid::CoastGrid::chunk_segments, block = grid::CoastGrid::block_segments;
                 for (std::size_t k = 0; k < segs.size(); ++k) {
@@ -1187,39 +1197,36 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
                     if (std::max(s.a.x, s.b.x) < box.minx || std::min(s.a.x, s.b.x) > box.maxx ||
                         std::max(s.a.y, s.b.y) < box.miny || std::min(s.a.y, s.b.y) > box.maxy)
                         continue;
-                    out.push_back({s.a, s.b, g.polyline_of(s), g.segment_is_boundary(i, j, k)});
+                    const bool boundary = g.segment_is_boundary(i, j, k);
+                    out.push_back({s.a, s.b, g.polyline_of(s), boundary});
+                    if (boundary) cn.near.push_back(static_cast<std::uint32_t>(first + k));
                 }
             }
     };
     // Winding numbers: the first point asked in a grid cell counts from the cell's reference
     // point; later points of the same cell count from it, along a path as short as the hull
     // (a harbour's coast cell holds ~760 segments, and the long path met many of them).
-    // And a path inside the reach's box meets only the cell's segments whose box meets it: they
-    // are listed once an attempt, and each point tries those only (~14, not ~760).
+    // And a path inside the reach's box meets only the cell's segments whose box meets it:
+    // listed by the gathering above, each point tries those only (~14, not ~760).
     struct Known {
         int i, j;
         XY at;
         int w;
-        int version = -1;                 // focus_version of `near`
-        std::vector<std::uint32_t> near;  // the cell's boundary segments meeting the focus
     };
     std::vector<Known> known;
     auto holds = [](const Box& b, XY p) { return p.x >= b.minx && p.x <= b.maxx && p.y >= b.miny && p.y <= b.maxy; };
-    o.inside = [&g, &known, &focus, &focus_version, holds](XY p) {
+    o.inside = [&g, &known, &focus, &cells_near, &n_cells_near, holds](XY p) {
         const int i = g.col_of(p.x), j = g.row_of(p.y);
-        for (Known& k : known)
+        for (const Known& k : known)
             if (k.i == i && k.j == j) {
                 if (!holds(focus, p) || !holds(focus, k.at)) return g.winding_from(k.at, k.w, p) > 0;
-                if (k.version != focus_version) {
-                    k.near.clear();
-                    g.boundary_segments_near(i, j, focus, k.near);
-                    k.version = focus_version;
-                }
-                return g.winding_along(k.at, k.w, p, k.near) > 0;
+                for (std::size_t c = 0; c < n_cells_near; ++c)
+                    if (cells_near[c].i == i && cells_near[c].j == j) return g.winding_along(k.at, k.w, p, cells_near[c].near) > 0;
+                return g.winding_along(k.at, k.w, p, {}) > 0;  // a cell without segments
             }
         bool on_boundary = false;
         const int w = g.winding(p, &on_boundary);
-        if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w, -1, {}});
+        if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w});
         return w > 0;
     };
     // No contact, no region: the pose check answers that in a microsecond.

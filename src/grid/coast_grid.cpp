@@ -376,27 +376,6 @@ inline int crossing_of(XY r, XY p, XY a, XY b) noexcept {
 
 }  // namespace
 
-void CoastGrid::boundary_segments_near(int i, int j, const geo::Box& box, std::vector<std::uint32_t>& out) const {
-    if (!valid_cell(i, j)) return;
-    const std::uint32_t s = slot(i, j);
-    if (s == water_slot || s == land_slot) return;
-    auto misses = [&box](const geo::Box& b) { return b.maxx < box.minx || b.minx > box.maxx || b.maxy < box.miny || b.miny > box.maxy; };
-    const std::uint32_t k_end = m_seg_offset[s + 1];
-    for (std::uint32_t k = m_seg_offset[s]; k < k_end; ++k) {
-        if (k % block_segments == 0 && k + block_segments <= k_end && misses(m_block_box[k / block_segments])) {
-            k += block_segments - 1;
-            continue;
-        }
-        if (k % chunk_segments == 0 && k + chunk_segments <= k_end && misses(m_chunk_box[k / chunk_segments])) {
-            k += chunk_segments - 1;
-            continue;
-        }
-        if (!(m_seg_info[k] & boundary_bit)) continue;
-        const Segment& sg = m_segments[k];
-        if (!misses({std::min(sg.a.x, sg.b.x), std::min(sg.a.y, sg.b.y), std::max(sg.a.x, sg.b.x), std::max(sg.a.y, sg.b.y)})) out.push_back(k);
-    }
-}
-
 int CoastGrid::winding_along(XY from, int w_from, XY p, std::span<const std::uint32_t> segs, bool* on_boundary) const noexcept {
     if (on_boundary) *on_boundary = false;
     int w = w_from;

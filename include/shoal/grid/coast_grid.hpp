@@ -155,12 +155,9 @@ public:
     /// the same; a short path meets fewer of them than the one from the cell's reference point.
     /// `from` must lie in p's cell (col_of, row_of): else this is winding(p).
     int winding_from(geo::XY from, int w_from, geo::XY p, bool* on_boundary = nullptr) const noexcept;
-    /// The land boundary segments of cell (i, j) whose box meets `box`: their indices in the
-    /// grid's array of segments, in order, appended to `out` (none for a cell of water or land).
-    void boundary_segments_near(int i, int j, const geo::Box& box, std::vector<std::uint32_t>& out) const;
-    /// winding_from(from, w_from, p), trying only `segs`: they must hold every land boundary
-    /// segment of the cell whose box meets a box that holds both from and p
-    /// (boundary_segments_near). Many points asked near one place then try a few segments each.
+    /// winding_from(from, w_from, p), trying only `segs` (indices in the grid's array of
+    /// segments): they must hold every land boundary segment of p's cell whose box meets a box
+    /// that holds both from and p. Many points asked near one place then try a few segments each.
     int winding_along(geo::XY from, int w_from, geo::XY p, std::span<const std::uint32_t> segs, bool* on_boundary = nullptr) const noexcept;
     bool is_land(geo::XY p) const noexcept;
 
