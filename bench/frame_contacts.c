@@ -11,7 +11,9 @@
  *
  * A checksum of the contact frames' regions (their depths and points) is printed so that a
  * change meant to be faster only can be seen to give the same answers; SHOAL_BENCH_DUMP=FILE
- * writes every contact frame's regions to FILE, one line each, to compare two builds. */
+ * writes every contact frame's regions to FILE, one line each, to compare two builds;
+ * SHOAL_BENCH_POSES=FILE writes the contact frames' poses (lat lon heading, exact: C99 %a) for
+ * bench_contacts_loop (bench/contacts_loop.c), which asks shoal_contacts for those only. */
 #include <shoal/shoal.h>
 
 #include <math.h>
@@ -71,6 +73,14 @@ int main(int argc, char** argv) {
         shoal_check(d, frames[i].lat, frames[i].lon, frames[i].hdg, 1, &c);
         contact[i] = (char)c.contact;
         n_contact += (size_t)c.contact;
+    }
+    const char* poses_path = getenv("SHOAL_BENCH_POSES");
+    if (poses_path) {
+        FILE* pf = fopen(poses_path, "w");
+        if (!pf) { fprintf(stderr, "cannot write %s\n", poses_path); return 2; }
+        for (size_t i = 0; i < n; ++i)
+            if (contact[i]) fprintf(pf, "%a %a %a\n", frames[i].lat, frames[i].lon, frames[i].hdg);
+        fclose(pf);
     }
     shoal_contact_point pts[16];
     /* The answers, once, before the timing: a checksum and, on request, every region. */

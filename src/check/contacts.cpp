@@ -220,8 +220,11 @@ void group_params(const std::vector<std::pair<double, int>>& ts, double len, dou
 }
 
 struct UnionFind {
-    std::vector<int> parent;
-    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    std::vector<int>& parent;  // (storage kept between calls)
+    UnionFind(std::vector<int>& storage, std::size_t n) : parent(storage) {
+        parent.resize(n);
+        std::iota(parent.begin(), parent.end(), 0);
+    }
     int find(int x) {
         while (parent[x] != x) x = parent[x] = parent[parent[x]];
         return x;
@@ -291,9 +294,10 @@ private:
 /// The search over one set of boundary pieces.
 class Search {
 public:
-    Search(std::vector<Site> sites, const Obstacle& obstacle, double tol)
-        : m_sites(std::move(sites)), m_obstacle(obstacle), m_tol(tol), m_slack2((100 * tol) * (100 * tol)) {
-        m_boxes.reserve(m_sites.size());
+    /// `sites` and `boxes` are storage kept between calls: `boxes` is filled here.
+    Search(const std::vector<Site>& sites, std::vector<Box>& boxes, const Obstacle& obstacle, double tol)
+        : m_sites(sites), m_boxes(boxes), m_obstacle(obstacle), m_tol(tol), m_slack2((100 * tol) * (100 * tol)) {
+        m_boxes.clear();
         for (const Site& st : m_sites)
             m_boxes.push_back({std::min(st.a.x, st.b.x), std::min(st.a.y, st.b.y), std::max(st.a.x, st.b.x), std::max(st.a.y, st.b.y)});
     }
@@ -471,8 +475,8 @@ private:
     /// rounding (a margin of a millionth and (100 tol)^2, far above it): it is not looked at.
     double beyond(double best2) const noexcept { return best2 * (1 + 1e-6) + m_slack2; }
 
-    std::vector<Site> m_sites;
-    std::vector<Box> m_boxes;  // each site's
+    const std::vector<Site>& m_sites;
+    std::vector<Box>& m_boxes;  // each site's
     const Obstacle& m_obstacle;
     double m_tol;
     double m_slack2;
@@ -492,12 +496,14 @@ struct Piece {
     bool outline = false;
 };
 
-/// Branch and bound of d along segment pa-pb (an outline piece inside the hazards).
-void along(const Search& s, XY pa, XY pb, Best& best) {
-    struct Interval {
-        double t0, t1, f0, f1;
-        Search::Near n0, n1;
-    };
+struct Interval {
+    double t0, t1, f0, f1;
+    Search::Near n0, n1;
+};
+
+/// Branch and bound of d along segment pa-pb (an outline piece inside the hazards); `stack`
+/// is storage kept between calls.
+void along(const Search& s, XY pa, XY pb, Best& best, std::vector<Interval>& stack) {
     const XY d = pb - pa;
     const double len = std::sqrt(geo::norm2(d));
     auto eval = [&](double t, Search::Near& n) {
@@ -510,7 +516,7 @@ void along(const Search& s, XY pa, XY pb, Best& best) {
     Interval root{0, 1, 0, 0, {}, {}};
     root.f0 = eval(0, root.n0);
     root.f1 = eval(1, root.n1);
-    std::vector<Interval> stack{root};
+    stack.assign(1, root);
     int steps = 0;
     while (!stack.empty() && ++steps < 100000) {
         const Interval iv = stack.back();
@@ -542,6 +548,77 @@ struct Region {
     bool has_outline = false;
     Best best;
 };
+
+
+/// A stretch of a boundary segment between crossings (regions_of).
+struct Piece0 {
+    XY p, q;
+    std::size_t seg;
+    bool cut_start, cut_end;  // begins / ends at a crossing
+};
+
+/// An end of a stretch that is not a crossing (regions_of).
+struct End {
+    XY at;
+    std::uint32_t polyline;
+    int piece;
+};
+
+/// A crossing of the hull outline's edge and a site (regions_of).
+struct Cross {
+    int edge;
+    double t;
+    int site;
+    double u;
+};
+
+/// A cell of the interior search (regions_of): a cell carries its parent's centre, side and
+/// distance to the boundary: a centre nearer the parent's than that distance is on the same
+/// side (no winding number).
+struct Cell {
+    Box box;
+    double bound;
+    XY parent{};
+    double parent_clear = 0;  // the parent centre's distance to the boundary (a lower bound)
+    bool parent_inside = false;
+    ConvexCutter::Edges edges = ConvexCutter::all_edges;  // the hull's edges that may cut it
+    bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
+};
+
+/// The working lists of regions_of, kept between calls on each thread (cleared, not freed: an
+/// allocation each was ~8 % of a call).
+struct Scratch {
+    std::vector<RawSegment> raw, bounds, lines;
+    std::vector<Site> sites;
+    std::vector<Box> site_boxes;
+    std::vector<std::pair<std::size_t, double>> cut_at;
+    std::vector<std::pair<double, double>> tu;
+    std::vector<std::uint32_t> by_x;
+    std::vector<Piece0> raw_pieces;
+    std::vector<double> c;
+    std::vector<int> same, uf;
+    std::vector<End> ends;
+    std::vector<signed char> buried;
+    std::vector<Piece> pieces;
+    std::vector<Cross> xs;
+    std::vector<int> edge_crossings, piece_at_cross_out, first_piece, last_piece, piece_at_cross_site;
+    std::vector<std::pair<double, int>> ts, us;
+    std::vector<ParamGroup> groups;
+    std::vector<std::pair<int, int>> by_site;
+    std::vector<int> order, region_of_root, merged_into, piece_region, live;
+    std::vector<Interval> intervals;
+    std::vector<double> piece_d2;
+    std::vector<Cell> queue;  // a heap (std::push_heap, std::pop_heap: as std::priority_queue)
+    std::vector<XY> poly;
+};
+
+/// (Not inlined: the callers then hold the lists by plain references. Inlined, GCC
+/// propagated the thread-local's address into the callees and asked __tls_get_addr for it at
+/// every use, 7 % of a call.)
+[[gnu::noinline]] Scratch& scratch() {
+    thread_local Scratch s;
+    return s;
+}
 
 }  // namespace
 
@@ -580,11 +657,14 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
 
     // The reach: small at first (a contact is usually shallow), grown while a depth reaches it.
     double reach = std::max(1.0, 1e-3 * extent);
+    Scratch& sc = scratch();
     for (int attempt = 0; attempt < 64; ++attempt) {
         const Box box = hbox.grown(reach);
-        std::vector<RawSegment> raw;
+        std::vector<RawSegment>& raw = sc.raw;
+        raw.clear();
         obstacle.collect(box, raw);
-        std::vector<RawSegment> bounds, lines;
+        std::vector<RawSegment>&bounds = sc.bounds, &lines = sc.lines;
+        bounds.clear(), lines.clear();
         for (const RawSegment& whole : raw) {
             RawSegment r = whole;
             if (!clip_to(r.a, r.b, box)) continue;
@@ -594,15 +674,18 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             else lines.push_back(whole);
         }
         // Cut where boundaries of different polylines cross; keep pieces with water on the right.
-        std::vector<Site> sites;
+        std::vector<Site>& sites = sc.sites;
+        sites.clear();
         {
             // (boundary segment, parameter) of every crossing, in one list (not a list per segment:
             // most segments have none), sorted by segment.
-            std::vector<std::pair<std::size_t, double>> cut_at;
-            std::vector<std::pair<double, double>> tu;
+            std::vector<std::pair<std::size_t, double>>& cut_at = sc.cut_at;
+            std::vector<std::pair<double, double>>& tu = sc.tu;
+            cut_at.clear();
             // A sweep along x: only pairs whose x-ranges meet are tried (a pier's harbour holds
             // hundreds of segments; the list is sorted below, so the order found does not matter).
-            std::vector<std::uint32_t> by_x(bounds.size());
+            std::vector<std::uint32_t>& by_x = sc.by_x;
+            by_x.resize(bounds.size());
             std::iota(by_x.begin(), by_x.end(), 0u);
             auto lo_x = [&](std::uint32_t k) { return std::min(bounds[k].a.x, bounds[k].b.x); };
             std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t x, std::uint32_t y) { return lo_x(x) < lo_x(y) || (lo_x(x) == lo_x(y) && x < y); });
@@ -621,13 +704,9 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             // Pieces between cuts. Whether a piece is buried (water side inside another hazard)
             // can change only where another boundary crosses: pieces joined end to end
             // without a crossing between them share the answer, found with one winding test.
-            struct Piece0 {
-                XY p, q;
-                std::size_t seg;
-                bool cut_start, cut_end;  // begins / ends at a crossing
-            };
-            std::vector<Piece0> raw_pieces;
-            std::vector<double> c;
+            std::vector<Piece0>& raw_pieces = sc.raw_pieces;
+            std::vector<double>& c = sc.c;
+            raw_pieces.clear();
             for (std::size_t i = 0, next = 0; i < bounds.size(); ++i) {
                 c.clear();
                 for (; next < cut_at.size() && cut_at[next].first == i; ++next) c.push_back(cut_at[next].second);
@@ -643,15 +722,11 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     raw_pieces.push_back({a + c[k] * d, a + c[k + 1] * d, i, c[k] > slack || cut_at_a, c[k + 1] < 1 - slack || cut_at_b});
                 }
             }
-            UnionFind same(raw_pieces.size());
+            UnionFind same(sc.same, raw_pieces.size());
             {
                 // Ends that are not crossings, joined when they meet (within the clip slack).
-                struct End {
-                    XY at;
-                    std::uint32_t polyline;
-                    int piece;
-                };
-                std::vector<End> ends;
+                std::vector<End>& ends = sc.ends;
+                ends.clear();
                 for (std::size_t k = 0; k < raw_pieces.size(); ++k) {
                     const std::uint32_t pl = bounds[raw_pieces[k].seg].polyline;
                     if (!raw_pieces[k].cut_start) ends.push_back({raw_pieces[k].p, pl, static_cast<int>(k)});
@@ -664,7 +739,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                         if (ends[x].polyline == ends[y].polyline && std::fabs(ends[y].at.y - ends[x].at.y) <= join)
                             same.join(ends[x].piece, ends[y].piece);
             }
-            std::vector<signed char> buried(raw_pieces.size(), -1);
+            std::vector<signed char>& buried = sc.buried;
+            buried.assign(raw_pieces.size(), -1);
             for (std::size_t k = 0; k < raw_pieces.size(); ++k) {
                 const int root = same.find(static_cast<int>(k));
                 if (buried[root] < 0) {
@@ -678,21 +754,16 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             }
         }
         merge_collinear(sites, tol);
-        Search search(std::move(sites), obstacle, tol);
+        Search search(sites, sc.site_boxes, obstacle, tol);
         search.set_reach(reach);
         const std::vector<Site>& S = search.sites();
 
         // 1. Pieces of the overlap's boundary, and where they meet.
-        std::vector<Piece> pieces;
-        struct Cross {
-            int edge;
-            double t;
-            int site;
-            double u;
-        };
-        std::vector<Cross> xs;
+        std::vector<Piece>& pieces = sc.pieces;
+        std::vector<Cross>& xs = sc.xs;
+        pieces.clear(), xs.clear();
         {
-            std::vector<std::pair<double, double>> tu;
+            std::vector<std::pair<double, double>>& tu = sc.tu;
             for (std::size_t e = 0; e < n_edges; ++e)
                 for (std::size_t k = 0; k < S.size(); ++k) {
                     if (boxes_apart(ring[e], ring[e + 1], S[k].a, S[k].b)) continue;
@@ -702,14 +773,31 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 }
         }
         // Outline pieces inside, per edge; remember which piece ends at each crossing.
-        std::vector<int> piece_at_cross_out(xs.size() * 2, -1);  // outline piece before / after crossing
-        std::vector<int> first_piece(n_edges, -1), last_piece(n_edges, -1);
-        std::vector<std::pair<double, int>> ts;
-        std::vector<ParamGroup> groups;
+        std::vector<int>& piece_at_cross_out = sc.piece_at_cross_out;  // outline piece before / after crossing
+        piece_at_cross_out.assign(xs.size() * 2, -1);
+        std::vector<int>&first_piece = sc.first_piece, &last_piece = sc.last_piece;
+        first_piece.assign(n_edges, -1), last_piece.assign(n_edges, -1);
+        std::vector<std::pair<double, int>>& ts = sc.ts;
+        std::vector<ParamGroup>& groups = sc.groups;
         int known = -1;  // whether the outline is in the hazards here: -1 not known
+        std::vector<int>& edge_crossings = sc.edge_crossings;  // how many crossings each edge has
+        edge_crossings.assign(n_edges, 0);
+        for (const Cross& x : xs) ++edge_crossings[x.edge];
         for (std::size_t e = 0; e < n_edges; ++e) {
             const XY a = ring[e], d = ring[e + 1] - ring[e];
             const double len = std::sqrt(geo::norm2(d));
+            if (edge_crossings[e] == 0) {
+                // No crossing (most edges): the parameters 0 and 1 alone, as below without the
+                // lists: one stretch, or none when the edge is shorter than the tolerance.
+                if (!((1.0 - 0.0) * len > tol)) continue;
+                const XY p = a + 0.0 * d, q = a + 1.0 * d;
+                if (known < 0) known = search.inside(0.5 * (p + q)) ? 1 : 0;
+                if (known != 1) continue;
+                const int id = static_cast<int>(pieces.size());
+                pieces.push_back({ring[e], ring[e + 1], true});
+                first_piece[e] = last_piece[e] = id;
+                continue;
+            }
             ts.clear();
             ts.emplace_back(0.0, -1);
             ts.emplace_back(1.0, -1);
@@ -740,12 +828,22 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             }
         }
         const std::size_t n_outline = pieces.size();
+        // in_polygon, with a point beyond the hull's box answered at once: below its least y or
+        // from its greatest up, no edge has ends on both sides; right of its greatest x (by more
+        // than rounding), no edge's crossing is right of it. The same answers.
+        const double right_of = hbox.maxx + 1e-9 * (1 + std::fabs(hbox.maxx));
+        auto in_ring = [&ring, &hbox, right_of](XY m) {
+            if (m.y < hbox.miny || m.y >= hbox.maxy || m.x > right_of) return false;
+            return in_polygon(ring, m);
+        };
         // Boundary pieces inside the hull.
-        std::vector<int> piece_at_cross_site(xs.size() * 2, -1);
-        std::vector<std::pair<int, int>> by_site;  // (site, crossing), sorted
+        std::vector<int>& piece_at_cross_site = sc.piece_at_cross_site;
+        piece_at_cross_site.assign(xs.size() * 2, -1);
+        std::vector<std::pair<int, int>>& by_site = sc.by_site;  // (site, crossing), sorted
+        by_site.clear();
         for (std::size_t x = 0; x < xs.size(); ++x) by_site.emplace_back(xs[x].site, static_cast<int>(x));
         std::sort(by_site.begin(), by_site.end());
-        std::vector<std::pair<double, int>> us;  // a site's parameters, as ts an edge's
+        std::vector<std::pair<double, int>>& us = sc.us;  // a site's parameters, as ts an edge's
         for (std::size_t k = 0, next = 0; k < S.size(); ++k) {
             us.clear();
             for (; next < by_site.size() && by_site[next].first == static_cast<int>(k); ++next)
@@ -759,7 +857,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             for (std::size_t c = 0; c + 1 < groups.size(); ++c) {
                 const XY p = c == 0 ? a : a + groups[c].t * d;
                 const XY q = c + 2 == groups.size() ? S[k].b : a + groups[c + 1].t * d;
-                if (!in_polygon(ring, 0.5 * (p + q))) continue;
+                if (!in_ring(0.5 * (p + q))) continue;
                 const int id = static_cast<int>(pieces.size());
                 pieces.push_back({p, q, false});
                 for (std::size_t i = groups[c].from; i < groups[c].to; ++i)
@@ -768,7 +866,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     if (us[i].second >= 0) piece_at_cross_site[2 * us[i].second] = id;
             }
         }
-        UnionFind uf(pieces.size());
+        UnionFind uf(sc.uf, pieces.size());
         // Outline pieces meeting at a vertex.
         for (std::size_t e = 0; e < n_edges; ++e) {
             const int a = last_piece[e], b = first_piece[(e + 1) % n_edges];
@@ -789,7 +887,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         // two hazards' boundaries cross).
         {
             const double join = 1e3 * tol;
-            std::vector<int> order;
+            std::vector<int>& order = sc.order;
+            order.clear();
             for (std::size_t i = n_outline; i < pieces.size(); ++i) order.push_back(static_cast<int>(i));
             for (std::size_t ii = 0; ii < order.size(); ++ii)
                 for (std::size_t jj = ii + 1; jj < order.size(); ++jj) {
@@ -806,7 +905,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         }
         // The hull wholly inside the hazards: the whole outline is one piece chain (joined above).
         std::vector<Region> regions;
-        std::vector<int> region_of_root(pieces.size(), -1);
+        std::vector<int>& region_of_root = sc.region_of_root;
+        region_of_root.assign(pieces.size(), -1);
         for (std::size_t i = 0; i < pieces.size(); ++i) {
             const int r = uf.find(static_cast<int>(i));
             if (region_of_root[r] < 0) {
@@ -819,7 +919,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         }
         // A closed ring inside the hull: an islet (counter-clockwise: land inside) is a region;
         // a pond (clockwise) belongs to the region around it.
-        std::vector<int> merged_into(regions.size(), -1);
+        std::vector<int>& merged_into = sc.merged_into;
+        merged_into.assign(regions.size(), -1);
         for (std::size_t g = 0; g < regions.size(); ++g) {
             if (regions[g].has_outline) continue;
             double a2 = 0;
@@ -848,15 +949,17 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 for (int i : regions[g].pieces) regions[to].pieces.push_back(i);
                 regions[g].pieces.clear();
             }
-        std::vector<int> piece_region(pieces.size(), -1);
+        std::vector<int>& piece_region = sc.piece_region;
+        piece_region.assign(pieces.size(), -1);
         for (std::size_t g = 0; g < regions.size(); ++g)
             for (int i : regions[g].pieces) piece_region[i] = static_cast<int>(g);
 
         // 2. Deepest points: along the outline pieces, then inside.
         for (Region& g : regions)
             for (int i : g.pieces)
-                if (pieces[i].outline) along(search, pieces[i].a, pieces[i].b, g.best);
-        std::vector<int> live;
+                if (pieces[i].outline) along(search, pieces[i].a, pieces[i].b, g.best, sc.intervals);
+        std::vector<int>& live = sc.live;
+        live.clear();
         for (std::size_t g = 0; g < regions.size(); ++g)
             if (!regions[g].pieces.empty()) live.push_back(static_cast<int>(g));
         if (!live.empty() && !S.empty()) {
@@ -866,15 +969,21 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     const Piece& p = pieces[regions[g].pieces.front()];
                     regions[g].best = {0, p.a, p.a, -1};
                 }
+            // Both scan the pieces' distances to a cell's centre: region_at keeps them for
+            // least_best_near at the same centre (`kept`).
+            std::vector<double>& piece_d2 = sc.piece_d2;
+            piece_d2.resize(pieces.size());
+            bool kept = false;
             auto region_at = [&](XY q) {
                 if (live.size() == 1) return live.front();
                 double best2 = INFINITY;
                 int r = -1;
                 for (std::size_t i = 0; i < pieces.size(); ++i) {
                     if (piece_region[i] < 0 || regions[piece_region[i]].pieces.empty()) continue;
-                    const double d2 = dist2_to(q, pieces[i].a, pieces[i].b, nullptr);
+                    const double d2 = piece_d2[i] = dist2_to(q, pieces[i].a, pieces[i].b, nullptr);
                     if (d2 < best2) best2 = d2, r = piece_region[i];
                 }
+                kept = true;
                 return r;
             };
             auto least_best_near = [&](XY q, double r, int own) {
@@ -884,7 +993,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 for (std::size_t i = 0; i < pieces.size(); ++i) {
                     const int g = piece_region[i];
                     if (g < 0 || regions[g].pieces.empty()) continue;
-                    if (dist2_to(q, pieces[i].a, pieces[i].b, nullptr) <= r2) least = std::min(least, regions[g].best.d);
+                    if ((kept ? piece_d2[i] : dist2_to(q, pieces[i].a, pieces[i].b, nullptr)) <= r2) least = std::min(least, regions[g].best.d);
                 }
                 return least;
             };
@@ -896,26 +1005,23 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             // until it is looked at), so the search ends when no cell can beat what was found.
             // A cell carries its parent's centre, side and distance to the boundary: a centre
             // nearer the parent's than that distance is on the same side (no winding number).
-            struct Cell {
-                Box box;
-                double bound;
-                XY parent{};
-                double parent_clear = 0;  // the parent centre's distance to the boundary (a lower bound)
-                bool parent_inside = false;
-                ConvexCutter::Edges edges = ConvexCutter::all_edges;  // the hull's edges that may cut it
-                bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
+            std::vector<Cell>& queue = sc.queue;  // a heap: as std::priority_queue<Cell>
+            queue.clear();
+            auto push = [&queue](const Cell& cl) {
+                queue.push_back(cl);
+                std::push_heap(queue.begin(), queue.end());
             };
-            std::priority_queue<Cell> queue;
             for (double x = rbox.minx; x < rbox.maxx || x == rbox.minx; x += side)
                 for (double y = rbox.miny; y < rbox.maxy || y == rbox.miny; y += side)
-                    queue.push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false, ConvexCutter::all_edges});
+                    push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false, ConvexCutter::all_edges});
             int steps = 0;
-            std::vector<XY> poly;
+            std::vector<XY>& poly = sc.poly;
             ConvexCutter cutter(ring);
             ConvexCutter::Edges edges = ConvexCutter::all_edges;
             while (!queue.empty() && ++steps < 100000) {
-                const Cell cell = queue.top();
-                queue.pop();
+                std::pop_heap(queue.begin(), queue.end());
+                const Cell cell = queue.back();
+                queue.pop_back();
                 if (live.size() == 1 && cell.bound <= regions[live.front()].best.d + tol) break;
                 if (cell.box.minx > hbox.maxx || cell.box.maxx < hbox.minx || cell.box.miny > hbox.maxy || cell.box.maxy < hbox.miny)
                     continue;
@@ -926,6 +1032,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
                             {cell.box.maxx, cell.box.maxy}, {cell.box.minx, cell.box.maxy}};
                 }
+                kept = false;  // (region_at's distances are for another centre)
                 XY c{0, 0};
                 for (XY p : poly) c = c + p;
                 c = (1.0 / static_cast<double>(poly.size())) * c;
@@ -964,10 +1071,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 if (b <= least + tol) continue;
                 const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
                 const double clear_c = std::min(n.d, reach);
-                queue.push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard, edges});
-                queue.push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard, edges});
-                queue.push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
-                queue.push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
+                push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard, edges});
+                push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard, edges});
+                push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
+                push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
             }
         }
         // 3. A depth at the reach: a nearer boundary may lie beyond it.
@@ -1014,7 +1121,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             XY at;
             bool hit = in_polygon(ring, l.a) ? (at = l.a, true) : in_polygon(ring, l.b) ? (at = l.b, true) : false;
             for (std::size_t e = 0; e < n_edges && !hit; ++e) {
-                std::vector<std::pair<double, double>> tu;
+                std::vector<std::pair<double, double>>& tu = sc.tu;
+                tu.clear();
                 crossings(ring[e], ring[e + 1], l.a, l.b, tu);
                 if (!tu.empty()) at = ring[e] + tu.front().first * (ring[e + 1] - ring[e]), hit = true;
             }
@@ -1042,7 +1150,19 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
 std::vector<ContactRegion> contact_regions(const Detector& detector, const LocalPose& pose) {
     const grid::CoastGrid& g = detector.grid();
     Obstacle o;
-    o.collect = [&g](const Box& box, std::vector<RawSegment>& out) {
+    // The reach's box of the attempt under way: every point asked then lies in it, but for
+    // a few a micrometre out (winding numbers below).
+    // And, per cell, the land boundary segments met in it (their indices in the grid's array):
+    // a path inside the focus meets only those (winding numbers below).
+    Box focus;
+    struct CellNear {
+        int i, j;
+        std::vector<std::uint32_t> near;
+    };
+    std::vector<CellNear> cells_near;  // the first `n_cells_near` are the focus's
+    std::size_t n_cells_near = 0;
+    o.collect = [&g, &focus, &cells_near, &n_cells_near](const Box& box, std::vector<RawSegment>& out) {
+        focus = box, n_cells_near = 0;
         const geo::Box ext = g.extent();
         const int i0 = std::max(0, g.col_of(std::max(box.minx, ext.minx))), i1 = std::min(g.nx() - 1, g.col_of(std::min(box.maxx, ext.maxx)));
         const int j0 = std::max(0, g.row_of(std::max(box.miny, ext.miny))), j1 = std::min(g.ny() - 1, g.row_of(std::min(box.maxy, ext.maxy)));
@@ -1053,9 +1173,19 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
                 // Whole chunks of segments whose box misses the box are skipped (a harbour
                 // cell holds ~760 segments; a chunk's box holds its segments' boxes).
                 const std::size_t first = g.index_of(segs);
-                const std::span<const Box> chunks = g.chunk_boxes();
-                constexpr std::size_t chunk = grid::CoastGrid::chunk_segments;
+                if (n_cells_near == cells_near.size()) cells_near.emplace_back();
+                CellNear& cn = cells_near[n_cells_near++];
+                cn.i = i, cn.j = j, cn.near.clear();
+                const std::span<const Box> chunks = g.chunk_boxes(), blocks = g.block_boxes();
+                constexpr std::size_t chunk = grid::CoastGrid::chunk_segments, block = grid::CoastGrid::block_segments;
                 for (std::size_t k = 0; k < segs.size(); ++k) {
+                    if ((first + k) % block == 0 && k + block <= segs.size()) {  // a block of chunks first
+                        const Box& c = blocks[(first + k) / block];
+                        if (c.maxx < box.minx || c.minx > box.maxx || c.maxy < box.miny || c.miny > box.maxy) {
+                            k += block - 1;
+                            continue;
+                        }
+                    }
                     if ((first + k) % chunk == 0 && k + chunk <= segs.size()) {
                         const Box& c = chunks[(first + k) / chunk];
                         if (c.maxx < box.minx || c.minx > box.maxx || c.maxy < box.miny || c.miny > box.maxy) {
@@ -1067,11 +1197,38 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
                     if (std::max(s.a.x, s.b.x) < box.minx || std::min(s.a.x, s.b.x) > box.maxx ||
                         std::max(s.a.y, s.b.y) < box.miny || std::min(s.a.y, s.b.y) > box.maxy)
                         continue;
-                    out.push_back({s.a, s.b, g.polyline_of(s), g.segment_is_boundary(i, j, k)});
+                    const bool boundary = g.segment_is_boundary(i, j, k);
+                    out.push_back({s.a, s.b, g.polyline_of(s), boundary});
+                    if (boundary) cn.near.push_back(static_cast<std::uint32_t>(first + k));
                 }
             }
     };
-    o.inside = [&g](XY p) { return g.winding(p) > 0; };
+    // Winding numbers: the first point asked in a grid cell counts from the cell's reference
+    // point; later points of the same cell count from it, along a path as short as the hull
+    // (a harbour's coast cell holds ~760 segments, and the long path met many of them).
+    // And a path inside the reach's box meets only the cell's segments whose box meets it:
+    // listed by the gathering above, each point tries those only (~14, not ~760).
+    struct Known {
+        int i, j;
+        XY at;
+        int w;
+    };
+    std::vector<Known> known;
+    auto holds = [](const Box& b, XY p) { return p.x >= b.minx && p.x <= b.maxx && p.y >= b.miny && p.y <= b.maxy; };
+    o.inside = [&g, &known, &focus, &cells_near, &n_cells_near, holds](XY p) {
+        const int i = g.col_of(p.x), j = g.row_of(p.y);
+        for (const Known& k : known)
+            if (k.i == i && k.j == j) {
+                if (!holds(focus, p) || !holds(focus, k.at)) return g.winding_from(k.at, k.w, p) > 0;
+                for (std::size_t c = 0; c < n_cells_near; ++c)
+                    if (cells_near[c].i == i && cells_near[c].j == j) return g.winding_along(k.at, k.w, p, cells_near[c].near) > 0;
+                return g.winding_along(k.at, k.w, p, {}) > 0;  // a cell without segments
+            }
+        bool on_boundary = false;
+        const int w = g.winding(p, &on_boundary);
+        if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w});
+        return w > 0;
+    };
     // No contact, no region: the pose check answers that in a microsecond.
     // No contact, no region: the pose check answers that in a microsecond. (Its penetration,
     // as a first reach, cost more on a harbour chart than the reach's growing saves.)

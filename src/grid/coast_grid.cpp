@@ -93,7 +93,7 @@ std::size_t CoastGrid::memory_bytes() const noexcept {
     return m_slot.size() * sizeof(std::uint32_t) + m_seg_offset.size() * sizeof(std::uint32_t) +
            m_ref_winding.size() * sizeof(std::int32_t) + m_segments.size() * sizeof(Segment) +
            m_seg_info.size() * sizeof(std::uint32_t) + m_hazards.size() * sizeof(coast::Hazard) +
-           m_chunk_box.size() * sizeof(geo::Box) + m_level_depth.size() * sizeof(double) +
+           (m_chunk_box.size() + m_block_box.size()) * sizeof(geo::Box) + m_level_depth.size() * sizeof(double) +
            m_lw_offset.size() * sizeof(std::uint32_t) + m_lw_level.size() * sizeof(std::uint16_t) +
            m_lw_winding.size() * sizeof(std::int32_t) + (m_land_level.size() + m_poly_level.size()) * sizeof(std::uint16_t);
 }
@@ -216,6 +216,10 @@ void CoastGrid::compute_chunk_boxes() {
         m_chunk_box[k / chunk_segments].extend(m_segments[k].a);
         m_chunk_box[k / chunk_segments].extend(m_segments[k].b);
     }
+    static_assert(block_segments % chunk_segments == 0);
+    m_block_box.assign((m_segments.size() + block_segments - 1) / block_segments, geo::Box{});
+    for (std::size_t c = 0; c < m_chunk_box.size(); ++c)
+        if (!m_chunk_box[c].empty()) m_block_box[c * chunk_segments / block_segments].extend(m_chunk_box[c]);
 }
 
 namespace {
@@ -344,11 +348,53 @@ int CoastGrid::winding(XY p, bool* on_boundary) const noexcept {
     const std::uint32_t s = slot(i, j);
     if (s == water_slot) return 0;
     if (s == land_slot) return 1;
-    // Signed crossings of the path from the reference point R to p with the cell's land
-    // boundary. A vertex on the line Rp counts on the left side (a half-open rule), so a
-    // chain through it crosses once or not at all.
-    const XY r = reference_point(i, j);
-    int w = m_ref_winding[s];
+    return winding_in_cell(s, reference_point(i, j), m_ref_winding[s], p, on_boundary);
+}
+
+int CoastGrid::winding_from(XY from, int w_from, XY p, bool* on_boundary) const noexcept {
+    const int i = col_of(p.x), j = row_of(p.y);
+    if (!valid_cell(i, j) || col_of(from.x) != i || row_of(from.y) != j) return winding(p, on_boundary);
+    if (on_boundary) *on_boundary = false;
+    const std::uint32_t s = slot(i, j);
+    if (s == water_slot) return 0;
+    if (s == land_slot) return 1;
+    return winding_in_cell(s, from, w_from, p, on_boundary);
+}
+
+namespace {
+
+/// Segment ab's part of the winding at p counted from r (winding_in_cell's test): +1 or -1
+/// where it crosses the path r-p, 0 elsewhere; 2 when p lies on it.
+inline int crossing_of(XY r, XY p, XY a, XY b) noexcept {
+    const bool sa = geo::orient(r, p, a) >= 0, sb = geo::orient(r, p, b) >= 0;
+    if (sa == sb) return 0;
+    const double o_r = geo::orient(a, b, r), o_p = geo::orient(a, b, p);
+    if (o_p == 0) return 2;
+    if ((o_r < 0 && o_p > 0) || (o_r > 0 && o_p < 0)) return o_p > 0 ? 1 : -1;
+    return 0;
+}
+
+}  // namespace
+
+int CoastGrid::winding_along(XY from, int w_from, XY p, std::span<const std::uint32_t> segs, bool* on_boundary) const noexcept {
+    if (on_boundary) *on_boundary = false;
+    int w = w_from;
+    for (const std::uint32_t k : segs) {
+        const int c = crossing_of(from, p, m_segments[k].a, m_segments[k].b);
+        if (c == 2) {
+            if (on_boundary) *on_boundary = true;
+            return std::max(w, 1);
+        }
+        w += c;
+    }
+    return w;
+}
+
+int CoastGrid::winding_in_cell(std::uint32_t s, XY r, int w, XY p, bool* on_boundary) const noexcept {
+    // Signed crossings of the path from R (the cell's reference point, or another point of the
+    // cell with its winding) to p with the cell's land boundary. A vertex on the line Rp
+    // counts on the left side (a half-open rule), so a chain through it crosses once or not at
+    // all. The cell's chains end outside it, so any path inside it counts the same.
     // A chunk of segments whose box the path from r to p does not touch holds no crossing
     // (a harbour's coast cell holds thousands of segments; the path meets a few chunks).
     const double px0 = std::min(r.x, p.x), px1 = std::max(r.x, p.x), py0 = std::min(r.y, p.y), py1 = std::max(r.y, p.y);
@@ -361,20 +407,22 @@ int CoastGrid::winding(XY p, bool* on_boundary) const noexcept {
     };
     const std::uint32_t k_end = m_seg_offset[s + 1];
     for (std::uint32_t k = m_seg_offset[s]; k < k_end; ++k) {
+        // A block of chunks first: its box holds theirs, so a path that misses it misses them.
+        if (k % block_segments == 0 && k + block_segments <= k_end && path_misses(m_block_box[k / block_segments])) {
+            k += block_segments - 1;
+            continue;
+        }
         if (k % chunk_segments == 0 && k + chunk_segments <= k_end && path_misses(m_chunk_box[k / chunk_segments])) {
             k += chunk_segments - 1;
             continue;
         }
         if (!(m_seg_info[k] & boundary_bit)) continue;
-        const Segment& sg = m_segments[k];
-        const bool sa = geo::orient(r, p, sg.a) >= 0, sb = geo::orient(r, p, sg.b) >= 0;
-        if (sa == sb) continue;
-        const double o_r = geo::orient(sg.a, sg.b, r), o_p = geo::orient(sg.a, sg.b, p);
-        if (o_p == 0) {
+        const int c = crossing_of(r, p, m_segments[k].a, m_segments[k].b);
+        if (c == 2) {
             if (on_boundary) *on_boundary = true;
             return std::max(w, 1);
         }
-        if ((o_r < 0 && o_p > 0) || (o_r > 0 && o_p < 0)) w += o_p > 0 ? 1 : -1;
+        w += c;
     }
     return w;
 }

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <thread>
 
 #include <shoal/check/contacts.hpp>
 #include <shoal/check/detector.hpp>
@@ -400,6 +401,53 @@ TEST(ContactRegions, RandomJaggedCoastsAgreeWithGeos) {
     }
     std::printf("%d poses, %d in contact, %d failures\n", poses, contacts, failures);
     EXPECT_GT(contacts, poses / 5);
+}
+
+TEST(ContactRegions, ThreadsAskingOneDetectorGetTheAnswersOfOne) {
+    // contact_regions keeps its working lists per thread and its winding numbers per call: one
+    // detector asked from several threads at once, each pose in a different order, must give
+    // every thread the same regions, to the bit, as one thread alone.
+    std::mt19937_64 rng(41);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<coast::LocalPolyline> rings{ring_of(test::star_ring(200, 400, 25, 7))};
+    for (int k = 0; k < 8; ++k) {
+        const double a = unit(rng) * 2 * std::numbers::pi, w = 1 + 6 * unit(rng), len = 30 + 60 * unit(rng);
+        const XY c{std::cos(a), std::sin(a)}, nrm{-std::sin(a), std::cos(a)};
+        const XY base = 360 * c;
+        rings.push_back(ring_of({base - w * nrm, base + len * c - w * nrm, base + len * c + w * nrm, base + w * nrm}));
+    }
+    Scene s(rings, 60);
+    const hull::Hull hull = hull::Hull::from_dimensions({60, 12, 6, 6});
+    const Detector det(s.grid, hull);
+    std::vector<LocalPose> poses;
+    std::vector<std::vector<ContactRegion>> alone;
+    for (int tries = 0; tries < 5000 && poses.size() < 200; ++tries) {
+        const double a = unit(rng) * 2 * std::numbers::pi, r = 330 + 190 * unit(rng);
+        const LocalPose p = LocalPose::at({r * std::cos(a), r * std::sin(a)}, 360 * unit(rng));
+        auto regions = contact_regions(det, p);
+        if (regions.empty()) continue;
+        poses.push_back(p);
+        alone.push_back(std::move(regions));
+    }
+    ASSERT_EQ(poses.size(), 200u);
+    auto same = [](const ContactRegion& x, const ContactRegion& y) {
+        return x.hull_point == y.hull_point && x.coast_point == y.coast_point && x.normal == y.normal && x.depth_m == y.depth_m &&
+               x.polyline == y.polyline;
+    };
+    constexpr int threads = 4;
+    std::vector<int> differ(threads, 0);
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {
+            for (int round = 0; round < 3; ++round)
+                for (std::size_t k = 0; k < poses.size(); ++k) {
+                    const std::size_t i = (k * (2 * t + 1) + 37 * t) % poses.size();  // each thread its own order
+                    const auto got = contact_regions(det, poses[i]);
+                    if (got.size() != alone[i].size() || !std::equal(got.begin(), got.end(), alone[i].begin(), same)) ++differ[t];
+                }
+        });
+    for (std::thread& th : pool) th.join();
+    for (int t = 0; t < threads; ++t) EXPECT_EQ(differ[t], 0) << "thread " << t;
 }
 
 TEST(HullContactRegions, RandomHullsAgreeWithGeos) {

@@ -149,6 +149,16 @@ public:
     /// Winding number of land around p: > 0 is land. 0 outside the grid. Exact from one cell.
     /// `on_boundary` is set when p lies on a land boundary segment.
     int winding(geo::XY p, bool* on_boundary = nullptr) const noexcept;
+    /// The same winding number as winding(p), counted from another point of p's cell whose
+    /// winding is known: `from`, with `w_from` = winding(from) and `from` on no boundary (as
+    /// winding() said). A path inside one cell meets the cell's segments only, so the count is
+    /// the same; a short path meets fewer of them than the one from the cell's reference point.
+    /// `from` must lie in p's cell (col_of, row_of): else this is winding(p).
+    int winding_from(geo::XY from, int w_from, geo::XY p, bool* on_boundary = nullptr) const noexcept;
+    /// winding_from(from, w_from, p), trying only `segs` (indices in the grid's array of
+    /// segments): they must hold every land boundary segment of p's cell whose box meets a box
+    /// that holds both from and p. Many points asked near one place then try a few segments each.
+    int winding_along(geo::XY from, int w_from, geo::XY p, std::span<const std::uint32_t> segs, bool* on_boundary = nullptr) const noexcept;
     bool is_land(geo::XY p) const noexcept;
 
     /// Consecutive segments (by their index in the grid's array of segments, so a chunk may
@@ -158,6 +168,12 @@ public:
     static constexpr std::size_t chunk_segments = 8;
     /// Box of chunk k: segments [k * chunk_segments, (k + 1) * chunk_segments).
     std::span<const geo::Box> chunk_boxes() const noexcept { return m_chunk_box; }
+    /// Chunks are grouped again in blocks of this many segments (8 chunks), each with its box:
+    /// a coast cell of a harbour holds ~760 segments, ~95 chunks, and a reader (the winding
+    /// number's path, a contact's reach) meets few of them.
+    static constexpr std::size_t block_segments = 64;
+    /// Box of block k: segments [k * block_segments, (k + 1) * block_segments).
+    std::span<const geo::Box> block_boxes() const noexcept { return m_block_box; }
     /// Index in the grid's array of segments of the first element of `segs`, a non-empty span
     /// returned by segments(i, j).
     std::size_t index_of(std::span<const Segment> segs) const noexcept {
@@ -203,9 +219,11 @@ private:
 
     explicit CoastGrid(geo::LocalFrame frame) : m_frame(std::move(frame)) {}
     void assign_windings(const std::vector<coast::LocalPolyline>& lines);
-    /// Fills m_chunk_box from m_segments (after a build or a load: it is not saved).
+    /// Fills m_chunk_box and m_block_box from m_segments (after a build or a load: they are not saved).
     void compute_chunk_boxes();
     bool reference_points_clear() const;
+    /// Winding at p of coast cell slot `s`, counted from `r` (winding `w`) in the same cell.
+    int winding_in_cell(std::uint32_t s, geo::XY r, int w, geo::XY p, bool* on_boundary) const noexcept;
     std::uint32_t slot(int i, int j) const noexcept {
         return m_slot[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_nx) + static_cast<std::size_t>(i)];
     }
@@ -243,6 +261,7 @@ private:
     std::vector<std::uint32_t> m_seg_info;    ///< per segment: polyline index | boundary_bit
     std::vector<coast::Hazard> m_hazards;     ///< per polyline: what it bounds
     std::vector<geo::Box> m_chunk_box;        ///< per chunk of chunk_segments segments: its box
+    std::vector<geo::Box> m_block_box;        ///< per block of block_segments segments: its box
     // Levels (empty for a grid of land only, or one made by for_depth):
     std::vector<double> m_level_depth;        ///< charted depth of level k + 1 (NaN: unknown), ascending
     std::vector<std::uint32_t> m_lw_offset;   ///< per coast cell + 1: CSR offsets into m_lw_level / m_lw_winding
