@@ -601,7 +601,9 @@ Scene project_scene(const audit::AuditResult& result, const geo::LocalFrame& fra
         cp.hull_b = hull_at(*b, frame, c.closest_s);
         cp.hull_length_m = std::max(longest_chord(cp.hull_a), longest_chord(cp.hull_b));
         if (!std::isfinite(cp.pa.x) || !std::isfinite(cp.pb.x)) s.cpas.pop_back();
-        for (const auto& [track, m] : {std::pair{a, &c.action_a}, std::pair{b, &c.action_b}}) {
+        for (const auto& who : {std::pair{a, &c.action_a}, std::pair{b, &c.action_b}}) {
+            const TrackDraw* track = who.first;  // named, not bound: a lambda below takes them (clang 14)
+            const audit::Manoeuvre* m = who.second;
             if (!std::isfinite(m->time_s)) continue;
             const auto at = track_at(*track, m->time_s);
             if (!at) continue;
