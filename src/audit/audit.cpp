@@ -20,6 +20,7 @@
 
 #include "detail/parallel.hpp"
 #include "read_files.hpp"
+#include "run_totals.hpp"
 
 namespace shoal::audit {
 
@@ -410,23 +411,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
             exercise_hulls.push_back(*kept_hulls[k]);
             exercise_index.push_back(result.tracks.size());
         }
-        const TrackSummary& s = swept[k].summary;
-        result.fixes += s.fixes;
-        result.poses += s.poses;
-        result.uncovered_fixes += s.uncovered_fixes;
-        result.groundings += s.groundings;
-        result.close_passes += s.close_passes;
-        result.alongside += s.alongside;
-        result.contacts_at_start += s.contacts_at_start;
-        result.expected_contacts += s.expected_contacts;
-        result.chart_disagreements += s.chart_disagreements;
-        result.wild_fixes += s.wild_fixes.size();
-        result.jumps += s.jumps;
-        result.unknown_heading_fixes += s.unknown_heading_fixes;
-        if (s.fixes) {
-            result.first_fix_s = std::isnan(result.first_fix_s) ? s.start_s : std::min(result.first_fix_s, s.start_s);
-            result.last_fix_s = std::isnan(result.last_fix_s) ? s.end_s : std::max(result.last_fix_s, s.end_s);
-        }
+        add_to_totals(result, swept[k].summary);
         result.tracks.push_back(std::move(swept[k]));
         result.track_positions.push_back(position(k));
         if (options.encounters) kept_of.push_back(kept[k].fixes.empty() ? nullptr : &kept[k]);

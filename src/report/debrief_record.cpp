@@ -15,6 +15,8 @@
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/util/error.hpp>
 
+#include "audit/run_totals.hpp"
+
 // to_json / from_json of what the record holds, in the namespaces of the types (found by ADL).
 namespace shoal::geo {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LonLat, lon, lat)
@@ -203,27 +205,9 @@ audit::AuditResult result_of(const json& j) {
     return r;
 }
 
-/// The run's counts from its tracks, as the audit counts them (audit.cpp).
+/// The run's counts from its tracks, as the audit counts them.
 void recount(audit::AuditResult& r) {
-    for (const audit::TrackResult& t : r.tracks) {
-        const audit::TrackSummary& s = t.summary;
-        r.fixes += s.fixes;
-        r.poses += s.poses;
-        r.uncovered_fixes += s.uncovered_fixes;
-        r.groundings += s.groundings;
-        r.close_passes += s.close_passes;
-        r.alongside += s.alongside;
-        r.contacts_at_start += s.contacts_at_start;
-        r.expected_contacts += s.expected_contacts;
-        r.chart_disagreements += s.chart_disagreements;
-        r.wild_fixes += s.wild_fixes.size();
-        r.jumps += s.jumps;
-        r.unknown_heading_fixes += s.unknown_heading_fixes;
-        if (s.fixes) {
-            r.first_fix_s = std::isnan(r.first_fix_s) ? s.start_s : std::min(r.first_fix_s, s.start_s);
-            r.last_fix_s = std::isnan(r.last_fix_s) ? s.end_s : std::max(r.last_fix_s, s.end_s);
-        }
-    }
+    for (const audit::TrackResult& t : r.tracks) audit::add_to_totals(r, t.summary);
 }
 
 }  // namespace
