@@ -5,6 +5,8 @@
 /// an InputError (or UsageError) is the expected answer to bad input; anything else (a crash,
 /// a sanitizer report, another exception, a broken invariant) is a bug.
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -12,6 +14,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -25,6 +29,7 @@
 
 #include <shoal/audit/assessment.hpp>
 #include <shoal/audit/exercise.hpp>
+#include <shoal/audit/partition.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
@@ -519,6 +524,61 @@ inline void debrief_record(const std::uint8_t* data, std::size_t size) {
         if (report::plot_svg(run, g).find("</svg>") == std::string::npos) broken("debrief_record", "a picture cut short");
     } catch (const InputError& e) {
         bounded("debrief_record", e.what());
+    }
+}
+
+/// The files of `check --partitions` and of `--traffic-only`, read back as a partition's audit
+/// reads them (audit::read_partition of a one-partition folder, read_traffic). The input is
+/// three bodies: [u16 n][n bytes of the index's body][u16 m][m bytes of partition 0's body][the
+/// traffic's body]; each file gets shoal's header (its magic and this build's layout; the index
+/// the input's name, the traffic the partitions' key) so the bodies are what is fuzzed. Seeds:
+/// the files of a real run, headers cut off. A partition read holds a position for each track;
+/// anything else is an InputError under 4 KB.
+inline void partitions(const std::uint8_t* data, std::size_t size) {
+    std::string_view in(reinterpret_cast<const char*>(data), size);
+    const auto take = [&in]() {
+        if (in.size() < 2) return std::string();
+        const std::size_t n = std::min<std::size_t>(static_cast<unsigned char>(in[0]) | static_cast<std::size_t>(static_cast<unsigned char>(in[1])) << 8, in.size() - 2);
+        std::string body(in.substr(2, n));
+        in.remove_prefix(2 + n);
+        return body;
+    };
+    const std::string index_body = take(), part_body = take(), traffic_body(in);
+    const std::uint64_t layout = sizeof(track::PackedFix) * 1000 + sizeof(track::FixExtra);
+    const auto u64 = [](std::uint64_t v) { return std::string(reinterpret_cast<const char*>(&v), sizeof v); };
+    const auto str = [&](const std::string& v) { return u64(v.size()) + v; };
+    // A folder of this process's own, removed at exit.
+    struct Folder {
+        std::filesystem::path path = std::filesystem::temp_directory_path() / ("shoal-fuzz-partitions-" + std::to_string(::getpid()));
+        Folder() { std::filesystem::create_directories(path / "in"); }
+        ~Folder() {
+            std::error_code ec;
+            std::filesystem::remove_all(path, ec);
+        }
+    };
+    static const Folder folder;
+    const std::filesystem::path dir = folder.path / "in";
+    const auto put = [](const std::filesystem::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; };
+    put(dir / "index.bin", std::string("SHOALPI1", 8) + u64(layout) + str("fuzz.csv") + index_body);
+    put(dir / "part-00000.bin", std::string("SHOALPT1", 8) + u64(layout) + part_body);
+    try {
+        std::vector<std::size_t> positions;
+        std::vector<std::string> ids;
+        const audit::ReadResult r = audit::read_partition({dir.string()}, {"fuzz.csv"}, {}, audit::Shard{0, 1}, positions, &ids);
+        if (positions.size() != r.tracks.size()) broken("partitions", "a track without its position");
+        for (const std::size_t p : positions)
+            if (p >= ids.size()) broken("partitions", "a position beyond the run's tracks");
+        for (const std::string& w : r.warnings) bounded("partitions", w);
+    } catch (const InputError& e) {
+        bounded("partitions", e.what());
+    }
+    try {
+        const std::string key = audit::traffic_key({dir.string()}, 0, "fuzz");
+        const std::filesystem::path traffic = dir.parent_path() / "traffic.bin";
+        put(traffic, std::string("SHOALTF1", 8) + u64(layout) + u64(0) + u64(1) + str(key) + traffic_body);
+        (void)audit::read_traffic({traffic.string()}, audit::Shard{0, 1}, key);
+    } catch (const InputError& e) {
+        bounded("partitions", e.what());
     }
 }
 

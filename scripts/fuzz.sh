@@ -4,7 +4,7 @@
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     default: 60 s for each of the eleven targets
 #
-# Targets: csv_tracks nmea aivdm geojson_tracks gpx_tracks vessels ship grid_cache roles assessment poses merge_parts zip_members debrief_record (fuzz/fuzz_<target>.cpp). Builds in build-fuzz/,
+# Targets: csv_tracks nmea aivdm geojson_tracks gpx_tracks vessels ship grid_cache roles assessment poses merge_parts zip_members debrief_record partitions (fuzz/fuzz_<target>.cpp). Builds in build-fuzz/,
 # then for each target replays fuzz/corpus/<target>/ and fuzz/regressions/<target>/ (any
 # failure there is a regression) and fuzzes for SECONDS. New inputs go to
 # build-fuzz/corpus/<target>/ (not committed); a crash is saved under
@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 secs=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(csv_tracks nmea aivdm geojson_tracks gpx_tracks vessels ship grid_cache roles assessment poses merge_parts zip_members debrief_record)
+[ ${#targets[@]} -eq 0 ] && targets=(csv_tracks nmea aivdm geojson_tracks gpx_tracks vessels ship grid_cache roles assessment poses merge_parts zip_members debrief_record partitions)
 
 ./scripts/install-deps.sh
 build=build-fuzz

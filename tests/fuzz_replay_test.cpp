@@ -41,6 +41,7 @@ const Target targets[] = {
     {"merge_parts", shoal::fuzz::merge_parts},
     {"zip_members", shoal::fuzz::zip_members},
     {"debrief_record", shoal::fuzz::debrief_record},
+    {"partitions", shoal::fuzz::partitions},
 };
 
 std::vector<fs::path> inputs(const std::string& target, const char* kind) {
