@@ -340,9 +340,11 @@ public:
             if (m_audit.vessels)
                 for (std::string& w : track::unmatched_vessels_tables(*m_audit.vessels, partition_ids)) partition->warnings.push_back(std::move(w));
         }
+        // What the partitions' traffic is made from (the partitions, the grid, the ship): written with it, checked where it is read.
+        const std::string traffic_key = partition ? audit::traffic_key(m_from_partitions, g.source().fingerprint, m_opts.hull_label()) : "";
         if (m_traffic_only) {
             const std::vector<audit::TrackResult> traffic = audit::traffic_of_partition(*partition, g, hull, m_audit);
-            audit::write_traffic(m_output, traffic, m_audit.shard, audit::traffic_key(m_from_partitions, g.source().fingerprint, m_opts.hull_label()));
+            audit::write_traffic(m_output, traffic, m_audit.shard, traffic_key);
             std::fprintf(stderr, "shoal: the traffic of %zu tracks of partition %s written to %s\n", traffic.size(), m_audit.shard.text().c_str(),
                          printable(m_output).c_str());
             return exit_ok;
@@ -351,8 +353,7 @@ public:
             throw UsageError("--from-partitions in the real world needs --traffic T0 --traffic T1 ... (one per partition, in order): every partition's traffic (--traffic-only)");
         const audit::AuditResult r =
             partition ? audit::audit_partition(std::move(*partition), std::move(partition_positions),
-                                               m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard,
-                                                                                                         audit::traffic_key(m_from_partitions, g.source().fingerprint, m_opts.hull_label()))
+                                               m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard, traffic_key)
                                                                                    : std::vector<audit::TrackResult>{},
                                                g, hull, m_opts.hull_label(), m_audit)
                       : audit::run_audit(m_tracks, g, hull, m_opts.hull_label(), m_audit);
