@@ -35,7 +35,7 @@ public:
         add_hazard_options(*m_sub, m_request.import);
     }
     int run() override {
-        check_outputs({{m_output, "-o", "the grid"}}, m_inputs);
+        check_outputs({{m_output, "-o", "the grid", is_shoal_grid_file}}, m_inputs);
         check_readable(m_inputs);
         std::vector<std::string> warnings;
         grid::BuildStats stats;

@@ -48,7 +48,7 @@ public:
         m_sub->add_option("--jobs,-j", m_jobs, "Threads checking poses (default: all cores); the output is the same whatever the number");
     }
     int run() override {
-        check_outputs({{m_output, "-o", "the poses CSV"}}, m_opts.inputs({m_poses}));
+        check_outputs({{m_output, "-o", "the poses CSV", is_shoal_pose_csv}}, m_opts.inputs({m_poses}));
         const hull::Hull hull = m_opts.load_hull();
         const io::PoseFile poses = io::read_pose_csv(m_poses);
         for (const auto& e : poses.errors) std::fprintf(stderr, "shoal: warning: %s\n", printable(e).c_str());

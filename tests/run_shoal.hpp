@@ -1,6 +1,7 @@
 #pragma once
 /// Running the `shoal` executable (SHOAL_BINARY) from a test through the shell: the caller
-/// quotes `args`; the grid cache goes to `cache_dir`, standard error through `err_file`.
+/// quotes `args`; the grid cache goes to `cache_dir`, standard error through `err_file`; the
+/// command runs in folder `cwd` when one is given.
 
 #include <sys/wait.h>
 
@@ -18,8 +19,9 @@ struct Outcome {
     std::string out, err;
 };
 
-inline Outcome run_shoal(const std::string& args, const std::filesystem::path& cache_dir, const std::filesystem::path& err_file) {
-    const std::string cmd = "SHOAL_CACHE_DIR='" + cache_dir.string() + "' '" + SHOAL_BINARY + "' " + args + " 2>'" + err_file.string() + "'";
+inline Outcome run_shoal(const std::string& args, const std::filesystem::path& cache_dir, const std::filesystem::path& err_file,
+                         const std::filesystem::path& cwd = {}) {
+    const std::string cmd = (cwd.empty() ? std::string() : "cd '" + cwd.string() + "' && ") + "SHOAL_CACHE_DIR='" + cache_dir.string() + "' '" + SHOAL_BINARY + "' " + args + " 2>'" + err_file.string() + "'";
     Outcome r;
     FILE* p = ::popen(cmd.c_str(), "r");
     std::array<char, 4096> buf;

@@ -340,7 +340,7 @@ void check_project_name(const std::string& path) {
 }
 
 std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project) {
-    std::vector<OutputSpec> out{{path, "-o", "the report"}};
+    std::vector<OutputSpec> out{{path, "-o", "the report", format == "gpkg" ? WrittenByShoal(is_shoal_gpkg_report) : WrittenByShoal(is_shoal_geojson_report)}};
     // A GeoPackage's stored project, and the project beside a GeoJSON report in a file.
     if (project && !is_standard_output(path) && (format == "gpkg" || !style_path(path).empty())) check_project_name(path);
     if (format == "gpkg") return out;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <variant>
 
+#include "detail/gdal_support.hpp"
 #include "detail/qgis_styles.hpp"
 #include "report/chart_layer.hpp"
 #include "report/gpkg_output.hpp"
@@ -244,5 +245,16 @@ StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& resul
 }
 
 void write_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info) { stage_gpkg(path, result, info).commit(); }
+
+bool is_shoal_gpkg_report(const std::string& path) {
+    if (file_head(path, 16) != std::string("SQLite format 3\0", 16)) return false;
+    detail::register_drivers();  // merge asks before anything else of GDAL has been used
+    const char* drivers[] = {"GPKG", nullptr};
+    const CPLErrorStateBackuper keep;  // the last error as it was: this is a question, not a failure
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    const GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers, nullptr, nullptr));
+    CPLPopErrorHandler();
+    return ds && ds->GetLayerByName("events") && ds->GetLayerByName("tracks");
+}
 
 }  // namespace shoal::report

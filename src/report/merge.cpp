@@ -730,7 +730,7 @@ MergeSummary merge_reports(const std::vector<std::string>& parts, const std::str
     if (pages)
         for (const std::string& p : parts) inputs.push_back(debrief_record_path(p));
     std::vector<OutputSpec> outputs = report_outputs(output, gpkg ? "gpkg" : "geojson", false);  // a merged GeoJSON report has no project (docs/user-guide.md)
-    if (!options.plot.empty()) outputs.push_back({options.plot, "--plot", "the picture"});
+    if (!options.plot.empty()) outputs.push_back({options.plot, "--plot", "the picture", is_shoal_picture});
     check_outputs(outputs, inputs);
     if (!options.debrief.empty()) check_debrief_folder(options.debrief);
     MergeSummary summary;

@@ -157,6 +157,29 @@ private:
 
 }  // namespace
 
+std::string file_head(const std::string& path, std::size_t n) {
+    std::string head(n, '\0');
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return "";
+    head.resize(std::fread(head.data(), 1, n, f));
+    std::fclose(f);
+    return head;
+}
+
+bool is_shoal_grid_file(const std::string& path) { return file_head(path, 8) == "SHOALGRD"; }
+
+bool is_shoal_geojson_report(const std::string& path) {
+    const std::string head = file_head(path, 4096);
+    return head.find('{') != std::string::npos && head.find("\"shoal\":") != std::string::npos;
+}
+
+bool is_shoal_picture(const std::string& path) { return file_head(path, 4096).find("<title>shoal audit") != std::string::npos; }
+
+bool is_shoal_pose_csv(const std::string& path) {
+    static constexpr std::string_view header = "lat,lon,heading,collision,clearance_m,covered\n";
+    return file_head(path, header.size()) == header;
+}
+
 void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std::string>& inputs) {
     std::optional<FileIndex> input_index;  // built when an output exists (only then can it be an input)
     FileIndex output_index;
@@ -173,6 +196,13 @@ void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std
             if (const auto j = input_index->find(key))
                 throw UsageError("the output '" + o.path + "' is the input '" + inputs[*j] + "': writing it would destroy the input; choose another " +
                                  o.option);
+        }
+        if (o.ours && !key.standard_output && key.exists) {
+            std::error_code ec;
+            const auto st = fs::status(o.path, ec);
+            if (fs::is_regular_file(st) && fs::file_size(o.path, ec) > 0 && !ec && !o.ours(o.path))
+                throw UsageError("'" + o.path + "' exists and is not a file shoal wrote (" + o.role +
+                                 "): shoal replaces only its own files; remove it first, or choose another " + o.option);
         }
         if (const auto j = output_index.find(key))
             throw UsageError(o.option + " '" + o.path + "' is " + outputs[*j].role + " " + outputs[*j].option + " '" + outputs[*j].path +

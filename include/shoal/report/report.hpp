@@ -117,7 +117,12 @@ void check_project_name(const std::string& path);
 /// and, with `project`, its QGIS project REPORT.qgz and the layer files that opens,
 /// REPORT.LAYER.geojson and REPORT.LAYER.qml for LAYER tracks, hulls, poses and coast.
 /// `format`: "geojson" or "gpkg".
+/// The report itself is replaced only when shoal wrote it (OutputSpec::ours).
 std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project = true);
+
+/// A GeoPackage shoal wrote as a report or a shard's part: GDAL opens it as a GeoPackage
+/// holding the layers events and tracks.
+bool is_shoal_gpkg_report(const std::string& path);
 
 /// The GeoJSON report, staged at `path` (not yet in place: commit_all puts it there), and the
 /// QGIS style REPORT.qml beside it, unless a file of that name exists that shoal did not write

@@ -19,12 +19,30 @@ namespace shoal {
 
 class TempFileInProgress;
 
+/// Whether the file at a path is one shoal wrote (of the kind an output holds): read from its
+/// first bytes (file_head), or by opening it.
+using WrittenByShoal = std::function<bool(const std::string& path)>;
+
 /// An output the user asked for, and how messages name it.
 struct OutputSpec {
     std::string path;                  ///< "" or "-": stdout
     std::string option = "-o";         ///< the option that named it ("-o", "--plot"); used in "choose another -o"
     std::string role = "the output";   ///< what it is ("the report", "the picture")
+    /// Set: an existing, non-empty regular file at `path` is replaced only when this says shoal
+    /// wrote it (check_outputs refuses any other: a track, a chart, someone's notes given as -o
+    /// by a slip). Unset: the caller protects the file itself (a sidecar left as it is).
+    WrittenByShoal ours = {};
 };
+
+/// The first `n` bytes of the file at `path` (fewer when it is shorter; "" when unreadable).
+std::string file_head(const std::string& path, std::size_t n);
+/// shoal's own files, told by their first bytes: a grid ("SHOALGRD"), a GeoJSON report or part
+/// (its top-level member "shoal" in the first 4 KiB), a picture (`<title>shoal audit` in the
+/// first 4 KiB), a probe's CSV (its header line).
+bool is_shoal_grid_file(const std::string& path);
+bool is_shoal_geojson_report(const std::string& path);
+bool is_shoal_picture(const std::string& path);
+bool is_shoal_pose_csv(const std::string& path);
 
 /// Standard output by any of its names: "" and "-" (stdout), /dev/stdout, /dev/fd/1, /proc/self/fd/1.
 bool is_standard_output(const std::string& path) noexcept;
@@ -42,7 +60,9 @@ void check_output_place(const std::string& path);
 /// writing it would destroy the input; choose another OPTION"); and no two outputs are the
 /// same file, or both stdout (UsageError "OPTION 'B' is ROLE OPTION 'A': choose another file
 /// for ROLE", e.g. "--plot 'r.geojson' is the report -o 'r.geojson': choose another file for
-/// the picture").
+/// the picture"); and an existing file that an output with OutputSpec::ours would replace is
+/// shoal's (UsageError "'P' exists and is not a file shoal wrote (ROLE): shoal replaces only its
+/// own files; remove it first, or choose another OPTION").
 void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std::string>& inputs);
 
 /// One output file being written. The constructor checks the place (check_output_place),
