@@ -257,11 +257,17 @@ public:
             if (holds(a, b, box)) continue;
             unheld |= bit;
             m_next.clear();
-            for (std::size_t k = 0; k < poly.size(); ++k) {
-                const XY p = poly[k], q = poly[(k + 1) % poly.size()];
-                const double op = geo::orient(a, b, p), oq = geo::orient(a, b, q);
+            // Each vertex's side once (it is p of one step and q of the one before), the last
+            // step back to the first vertex.
+            const std::size_t m = poly.size();
+            const double o_first = geo::orient(a, b, poly[0]);
+            double op = o_first;
+            for (std::size_t k = 0; k < m; ++k) {
+                const XY p = poly[k], q = k + 1 < m ? poly[k + 1] : poly[0];
+                const double oq = k + 1 < m ? geo::orient(a, b, q) : o_first;
                 if (op >= 0) m_next.push_back(p);
                 if ((op > 0 && oq < 0) || (op < 0 && oq > 0)) m_next.push_back(p + (op / (op - oq)) * (q - p));
+                op = oq;
             }
             poly.swap(m_next);
         }
@@ -291,15 +297,34 @@ private:
     std::vector<XY> m_next;
 };
 
+/// A site in the order of its box's least x, with the greatest x of the boxes up to it.
+struct ByX {
+    double minx, max_maxx;
+    int site;
+};
+
 /// The search over one set of boundary pieces.
 class Search {
 public:
-    /// `sites` and `boxes` are storage kept between calls: `boxes` is filled here.
-    Search(const std::vector<Site>& sites, std::vector<Box>& boxes, const Obstacle& obstacle, double tol)
-        : m_sites(sites), m_boxes(boxes), m_obstacle(obstacle), m_tol(tol), m_slack2((100 * tol) * (100 * tol)) {
+    static constexpr std::size_t sorted_from = 24;  // sites: fewer are scanned in index order
+
+    /// `sites`, `boxes` and `by_x` are storage kept between calls: `boxes` and `by_x` are
+    /// filled here.
+    Search(const std::vector<Site>& sites, std::vector<Box>& boxes, std::vector<ByX>& by_x, const Obstacle& obstacle, double tol)
+        : m_sites(sites), m_boxes(boxes), m_by_x(by_x), m_obstacle(obstacle), m_tol(tol), m_slack2((100 * tol) * (100 * tol)) {
         m_boxes.clear();
         for (const Site& st : m_sites)
             m_boxes.push_back({std::min(st.a.x, st.b.x), std::min(st.a.y, st.b.y), std::max(st.a.x, st.b.x), std::max(st.a.y, st.b.y)});
+        // Many sites (a pier's harbour: 150-300 within a few metres): the scans take them in
+        // the order of their boxes' least x, from the first whose boxes so far reach near the
+        // point to the first whose box begins too far right of it.
+        m_by_x.clear();
+        if (m_sites.size() >= sorted_from) {
+            for (std::size_t k = 0; k < m_boxes.size(); ++k) m_by_x.push_back({m_boxes[k].minx, 0.0, static_cast<int>(k)});
+            std::sort(m_by_x.begin(), m_by_x.end(), [](const ByX& x, const ByX& y) { return x.minx < y.minx || (x.minx == y.minx && x.site < y.site); });
+            double reach_x = -INFINITY;
+            for (ByX& b : m_by_x) b.max_maxx = reach_x = std::max(reach_x, m_boxes[b.site].maxx);
+        }
     }
 
     struct Near {
@@ -324,8 +349,9 @@ public:
         const int count = static_cast<int>(m_sites.size());
         const int hint = m_hint < count ? m_hint : -1;
         if (hint >= 0) consider(hint);
-        for (int k = 0; k < count; ++k)
-            if (box_dist2(p, k) <= limit && k != hint) consider(k);
+        scan(p, limit, [&](int k) {
+            if (k != hint) consider(k);
+        });
         n.site = best;
         n.d = std::sqrt(best2);
         if (best >= 0) m_hint = best;
@@ -348,8 +374,9 @@ public:
         const int count = static_cast<int>(m_sites.size());
         const int hint = m_second_hint < count && m_second_hint != first.site ? m_second_hint : -1;
         if (hint >= 0) consider(hint);
-        for (int k = 0; k < count; ++k)
-            if (box_dist2(p, k) <= limit && k != first.site && k != hint) consider(k);
+        scan(p, limit, [&](int k) {
+            if (k != first.site && k != hint) consider(k);
+        });
         if (best >= 0) m_second_hint = best;
         return best;
     }
@@ -464,6 +491,34 @@ public:
     double tol() const noexcept { return m_tol; }
 
 private:
+    /// Calls `f(k)` for every site k whose box's squared distance to p is at most `limit`
+    /// (which f may lower as it goes), in index order or, with many sites, in the order of
+    /// their boxes' least x. The scans' answer is the least (squared distance, index) of the
+    /// sites f considers, whatever the order; a site is skipped only when its box is beyond
+    /// the limit of that moment, which only falls, as in the scan in index order. The window:
+    /// before it, every box's greatest x (so far in this order) is left of p by more than the
+    /// limit allows, so each box's x gap alone exceeds it (p.x - maxx, rounded, is no less
+    /// than p.x - max_maxx, and the box distance adds a square to it); from its end on, every
+    /// box's least x is right of p by more than that.
+    template <class F>
+    void scan(XY p, const double& limit, F&& f) const {
+        const int count = static_cast<int>(m_sites.size());
+        if (m_by_x.empty()) {
+            for (int k = 0; k < count; ++k)
+                if (box_dist2(p, k) <= limit) f(k);
+            return;
+        }
+        const auto first = std::partition_point(m_by_x.begin(), m_by_x.end(), [&](const ByX& b) {
+            const double gap = p.x - b.max_maxx;
+            return gap > 0 && gap * gap > limit;
+        });
+        for (auto it = first; it != m_by_x.end(); ++it) {
+            const double gap = it->minx - p.x;
+            if (gap > 0 && gap * gap > limit) break;
+            if (box_dist2(p, it->site) <= limit) f(it->site);
+        }
+    }
+
     /// The squared distance from p to site k's box: no more than its squared distance to the
     /// site, but for rounding.
     double box_dist2(XY p, int k) const noexcept {
@@ -477,6 +532,7 @@ private:
 
     const std::vector<Site>& m_sites;
     std::vector<Box>& m_boxes;  // each site's
+    std::vector<ByX>& m_by_x;   // the sites by their boxes' least x (empty: fewer than sorted_from)
     const Obstacle& m_obstacle;
     double m_tol;
     double m_slack2;
@@ -502,8 +558,9 @@ struct Interval {
 };
 
 /// Branch and bound of d along segment pa-pb (an outline piece inside the hazards); `stack`
-/// is storage kept between calls.
-void along(const Search& s, XY pa, XY pb, Best& best, std::vector<Interval>& stack) {
+/// is storage kept between calls. Ends as soon as `best` reaches `stop` (the attempt is then
+/// done again with a longer reach, whatever else is found).
+void along(const Search& s, XY pa, XY pb, Best& best, std::vector<Interval>& stack, double stop) {
     const XY d = pb - pa;
     const double len = std::sqrt(geo::norm2(d));
     auto eval = [&](double t, Search::Near& n) {
@@ -518,7 +575,7 @@ void along(const Search& s, XY pa, XY pb, Best& best, std::vector<Interval>& sta
     root.f1 = eval(1, root.n1);
     stack.assign(1, root);
     int steps = 0;
-    while (!stack.empty() && ++steps < 100000) {
+    while (!stack.empty() && ++steps < 100000 && !(best.d >= stop)) {
         const Interval iv = stack.back();
         stack.pop_back();
         const double h = (iv.t1 - iv.t0) * len;
@@ -591,6 +648,7 @@ struct Scratch {
     std::vector<RawSegment> raw, bounds, lines;
     std::vector<Site> sites;
     std::vector<Box> site_boxes;
+    std::vector<ByX> site_by_x;
     std::vector<std::pair<std::size_t, double>> cut_at;
     std::vector<std::pair<double, double>> tu;
     std::vector<std::uint32_t> by_x;
@@ -601,7 +659,7 @@ struct Scratch {
     std::vector<signed char> buried;
     std::vector<Piece> pieces;
     std::vector<Cross> xs;
-    std::vector<int> edge_crossings, piece_at_cross_out, first_piece, last_piece, piece_at_cross_site;
+    std::vector<int> near_hull, edge_crossings, piece_at_cross_out, first_piece, last_piece, piece_at_cross_site;
     std::vector<std::pair<double, int>> ts, us;
     std::vector<ParamGroup> groups;
     std::vector<std::pair<int, int>> by_site;
@@ -754,7 +812,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             }
         }
         merge_collinear(sites, tol);
-        Search search(sites, sc.site_boxes, obstacle, tol);
+        Search search(sites, sc.site_boxes, sc.site_by_x, obstacle, tol);
         search.set_reach(reach);
         const std::vector<Site>& S = search.sites();
 
@@ -763,9 +821,15 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         std::vector<Cross>& xs = sc.xs;
         pieces.clear(), xs.clear();
         {
+            // Only the sites whose box meets the hull's can cross an edge (most of the reach's
+            // do not): listed once, in their order, so the crossings are found in the same order.
+            std::vector<int>& near_hull = sc.near_hull;
+            near_hull.clear();
+            for (std::size_t k = 0; k < S.size(); ++k)
+                if (!boxes_apart(XY{hbox.minx, hbox.miny}, XY{hbox.maxx, hbox.maxy}, S[k].a, S[k].b)) near_hull.push_back(static_cast<int>(k));
             std::vector<std::pair<double, double>>& tu = sc.tu;
             for (std::size_t e = 0; e < n_edges; ++e)
-                for (std::size_t k = 0; k < S.size(); ++k) {
+                for (const int k : near_hull) {
                     if (boxes_apart(ring[e], ring[e + 1], S[k].a, S[k].b)) continue;
                     tu.clear();
                     crossings(ring[e], ring[e + 1], S[k].a, S[k].b, tu);
@@ -955,14 +1019,22 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             for (int i : regions[g].pieces) piece_region[i] = static_cast<int>(g);
 
         // 2. Deepest points: along the outline pieces, then inside.
+        // A region whose depth reaches the reach (less the slack of step 3) makes this attempt
+        // one to do again with a longer reach (step 3: a depth only grows as the search goes
+        // on), and nothing else of it is kept: the search stops there (`deep`).
+        const double stop = reach < 1e8 ? reach - 2 * tol : INFINITY;
+        bool deep = false;
         for (Region& g : regions)
             for (int i : g.pieces)
-                if (pieces[i].outline) along(search, pieces[i].a, pieces[i].b, g.best, sc.intervals);
+                if (pieces[i].outline && !deep) {
+                    along(search, pieces[i].a, pieces[i].b, g.best, sc.intervals, stop);
+                    deep = g.best.d >= stop;
+                }
         std::vector<int>& live = sc.live;
         live.clear();
         for (std::size_t g = 0; g < regions.size(); ++g)
             if (!regions[g].pieces.empty()) live.push_back(static_cast<int>(g));
-        if (!live.empty() && !S.empty()) {
+        if (!live.empty() && !S.empty() && !deep) {
             // Islets: a start at their boundary (depth 0).
             for (int g : live)
                 if (regions[g].best.d < 0) {
@@ -1049,6 +1121,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 if (sd > 0 && in_hull) {
                     own = region_at(c);
                     if (own >= 0 && sd > regions[own].best.d) regions[own].best = {sd, c, n.foot, n.site};
+                    if (own >= 0 && regions[own].best.d >= stop) {
+                        deep = true;
+                        break;
+                    }
                 }
                 if (r <= tol || sd < -r) continue;  // small enough, or all water
                 if (!in_hull) {  // outside the hull: does the cell reach it?
@@ -1078,7 +1154,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             }
         }
         // 3. A depth at the reach: a nearer boundary may lie beyond it.
-        bool again = false;
+        bool again = deep;
         for (int g : live)
             if (regions[g].best.d >= reach - 2 * tol) again = true;
         if (S.empty() && !live.empty()) again = true;  // inside everything within reach
