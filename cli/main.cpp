@@ -1,6 +1,10 @@
 // shoal: the command-line front end. Parsing, messages and exit codes only; every
 // capability lives in the library (src/).
 //
+// This is the full front end, every command, in the module libshoal_cli_full.so (it links
+// GDAL): the `shoal` executable (launcher.cpp, GDAL-free) runs a probe of a grid file itself and
+// loads this module for everything else, calling shoal_cli_main with its arguments.
+//
 // Exit status: 0 success (check: no grounding), 1 check found at least one grounding,
 // 2 bad usage or unreadable input, 3 internal error (a bug, or a failure inside GDAL, GEOS or
 // PROJ that is not the input's fault), 128 + N on signal N (130 for Ctrl-C).
@@ -8,62 +12,20 @@
 #include <CLI/CLI.hpp>
 #include <cpl_error.h>
 
-#include <unistd.h>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include <algorithm>
-#include <csignal>
 #include <cstdio>
 #include <cctype>
-#include <cstdlib>
-#include <iostream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "commands.hpp"
+#include "launcher.hpp"
 #include "options.hpp"
-#include <shoal/util/atomic_file.hpp>
+#include "process.hpp"
 #include <shoal/util/printable.hpp>
 #include <shoal/version.hpp>
-#include <shoal/util/error.hpp>
 
 namespace {
-
-/// Ctrl-C (SIGINT), SIGTERM, SIGHUP (the terminal closed) or SIGQUIT: delete the temporary files being written (a report, a grid,
-/// a cache entry: the targets are only ever replaced whole by a rename, so none is left
-/// half-written), say so, and exit with 128 + the signal number (130 for Ctrl-C).
-void on_interrupt(int sig) {
-    shoal::remove_temp_files_in_progress();
-    static const char message[] = "\nshoal: interrupted\n";
-    [[maybe_unused]] const auto n = ::write(STDERR_FILENO, message, sizeof message - 1);
-    ::_exit(128 + sig);
-}
-
-void handle_interrupts() {
-    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
-        struct sigaction old{};
-        // A signal ignored when we started (nohup, `cmd &` in a script) stays ignored.
-        if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
-        struct sigaction sa{};
-        sa.sa_handler = on_interrupt;
-        sigemptyset(&sa.sa_mask);
-        ::sigaction(sig, &sa, nullptr);
-    }
-}
-
-/// glibc's malloc gives each thread an arena of its own, up to 8 a core: what the reading
-/// threads free (the fixes held packed until a track is swept) stays in their arenas while the
-/// sweeping threads grow theirs with the results. One arena a core lets the sweep reuse it: a
-/// 10 M-row day peaks at about 505 MB instead of 550-630 (docs/performance.md), in the same
-/// time. MALLOC_ARENA_MAX, when set, decides instead.
-void fewer_malloc_arenas() {
-#ifdef __GLIBC__
-    if (std::getenv("MALLOC_ARENA_MAX") == nullptr) mallopt(M_ARENA_MAX, static_cast<int>(std::max(2u, std::thread::hardware_concurrency())));
-#endif
-}
 
 /// The edit distance (insertions, deletions, substitutions, and swaps of two neighbours) between
 /// `a` and `b`: "chek" is one from "check", "chekc" one from "check".
@@ -99,7 +61,8 @@ std::string unknown_command(const CLI::App& app, const std::string& given) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+extern "C" SHOAL_CLI_ENTRY int shoal_cli_main(int argc, char** argv) {
+    using namespace shoal::cli;
     fewer_malloc_arenas();
     handle_interrupts();
     // GDAL reports through our exceptions, which name the file and feature; keep its own lines off stderr.
@@ -158,24 +121,9 @@ int main(int argc, char** argv) {
                                      o->get_name().c_str(), sub->get_name().c_str());
                         return shoal::cli::exit_usage;
                     }
-    try {
+    return run_reporting_errors([&] {
         for (auto& c : commands)
             if (c->parsed()) return c->run();
-    } catch (const shoal::InputError& e) {
-        std::fprintf(stderr, "shoal: error: %s\n", shoal::printable(shoal::cli::in_cli_terms(e.what())).c_str());
-        return shoal::cli::exit_usage;
-    } catch (const shoal::UsageError& e) {
-        std::fprintf(stderr, "shoal: usage error: %s\n", shoal::printable(shoal::cli::in_cli_terms(e.what())).c_str());
-        return shoal::cli::exit_usage;
-    } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "shoal: error: out of memory (try a larger --cell, or fewer inputs at once)\n");
-        return shoal::cli::exit_usage;
-    } catch (const shoal::LibraryError& e) {
-        std::fprintf(stderr, "shoal: internal error: %s (not the input's fault: please report it)\n", shoal::printable(e.what()).c_str());
-        return shoal::cli::exit_internal;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "shoal: internal error: %s (a bug in shoal: please report it)\n", shoal::printable(e.what()).c_str());
-        return shoal::cli::exit_internal;
-    }
-    return shoal::cli::exit_usage;
+        return static_cast<int>(shoal::cli::exit_usage);
+    });
 }

@@ -149,19 +149,13 @@ std::vector<std::string> CoastAndShip::inputs(std::vector<std::string> more) con
     return more;
 }
 
-hull::Hull CoastAndShip::load_hull() const {
-    if (!ship_file.empty()) return hull::Hull::load(ship_file);
-    if (!dims.empty()) return hull::Hull::from_dims_string(dims);
-    throw UsageError("give the ship with --ship SHIP.json or --dims A,B,C,D");
-}
-
 std::string CoastAndShip::hull_label() const { return ship_file.empty() ? "--dims " + dims : "ship file"; }
 
 void CoastAndShip::warn_depth(const grid::DepthPlan& plan, const grid::CoastGrid& g) const {
     print_warnings(grid::depth_warnings(plan, g, coast.size() == 1 ? coast[0] : ""));
 }
 
-grid::CoastGrid CoastAndShip::load_grid(const hull::Hull& hull) const {
+grid::CoastGrid CoastAndShip::load_grid_with(const hull::Hull& hull, GridLoader load) const {
     // One grid serves every limiting depth: it is built (or cached) the same whatever the
     // draught; the limit is chosen per vessel at check time.
     const grid::DepthPlan plan = grid::plan_limiting_depth(request.import.limiting_depth_m, hull.draught(), ukc);
@@ -173,7 +167,7 @@ grid::CoastGrid CoastAndShip::load_grid(const hull::Hull& hull) const {
     }
     check_readable(coast);
     grid::LoadReport report;
-    grid::CoastGrid g = grid::load_or_build(coast, request, &report);
+    grid::CoastGrid g = load(coast, request, &report);
     print_warnings(report.warnings);
     if (verbose)
         std::fprintf(stderr, "shoal: %s%s%s in %.3f s\n", printable(report.how).c_str(), report.cache_path.empty() ? "" : " ",

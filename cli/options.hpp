@@ -66,6 +66,11 @@ struct CoastAndShip {
     /// with every depth area and danger; says on stderr the limiting depth `hull` gives
     /// (--hazard-depth, else its draught + --ukc) when it has one.
     grid::CoastGrid load_grid(const hull::Hull& hull) const;
+    /// load_grid with `load` in the place of grid::load_or_build (the executable's own probe
+    /// reads a grid file only: it links no GDAL). load_hull and load_grid are in
+    /// options_full.cpp (the full command module), the rest here (both).
+    using GridLoader = grid::CoastGrid (*)(const std::vector<std::string>& paths, const grid::BuildRequest& request, grid::LoadReport* report);
+    grid::CoastGrid load_grid_with(const hull::Hull& hull, GridLoader load) const;
     /// Warns about the limiting depth `plan` on grid `g` (grid::depth_warnings), naming the coast.
     void warn_depth(const grid::DepthPlan& plan, const grid::CoastGrid& g) const;
 };

@@ -16,6 +16,7 @@ mkdir -p "$work"
 prefix="$work/prefix"
 cmake --install "$build" --prefix "$prefix" > "$work/install.log"
 for f in include/shoal/shoal.h include/shoal/version.hpp include/shoal/check/detector.hpp lib/libshoal.a lib/libshoal_c.so.1 \
+         bin/shoal lib/shoal/libshoal_cli_full.so \
          lib/cmake/Shoal/ShoalConfig.cmake lib/cmake/Shoal/ShoalConfigVersion.cmake lib/pkgconfig/shoal.pc lib/pkgconfig/shoal_c.pc; do
   [ -e "$prefix/$f" ] || { echo "test-install: $f was not installed"; exit 1; }
 done
@@ -45,6 +46,9 @@ for exe in "$work/frame_check_pc" "$work/sim/frame_check_c"; do
   fi
   echo "test-install: $(basename "$exe"): $(grep -c '=>' "$work/ldd.txt") shared libraries, no GDAL"
 done
+# The installed `shoal` links no GDAL (a probe of a grid runs in it); its other commands run in
+# the module it finds in ../lib/shoal (import, below, is one).
+if ldd "$prefix/bin/shoal" | grep -qi 'libgdal'; then echo "test-install: bin/shoal loads GDAL:"; ldd "$prefix/bin/shoal" | grep -i gdal; exit 1; fi
 "$prefix/bin/shoal" import "$src/examples/data/gof_helsinki_land.geojson" -o "$work/helsinki.shoalgrid" > /dev/null
 # Poses: the example's, and a few hundred around Helsinki (some outside the chart).
 {
@@ -52,6 +56,9 @@ done
   awk 'BEGIN { srand(7); for (i = 0; i < 400; i++) printf "%.6f,%.6f,%.1f\n", 59.35 + rand() * 1.0, 23.1 + rand() * 2.8, rand() * 360 }'
 } > "$work/poses.csv"
 "$prefix/bin/shoal" probe --coast "$work/helsinki.shoalgrid" --dims 150,35,14,15 "$work/poses.csv" -o "$work/probe.csv"
+if LD_DEBUG=libs "$prefix/bin/shoal" probe --coast "$work/helsinki.shoalgrid" --dims 150,35,14,15 "$work/poses.csv" 2>&1 >/dev/null | grep -qi 'libgdal'; then
+  echo "test-install: a probe of a grid loaded GDAL"; exit 1
+fi
 for exe in "$work/frame_check_pc" "$work/sim/frame_check_c"; do
   "$exe" "$work/helsinki.shoalgrid" "$work/poses.csv" > "$work/c.csv" 2> "$work/c.err"
   if ! cmp -s "$work/probe.csv" "$work/c.csv"; then

@@ -36,12 +36,6 @@ std::uint64_t Coastline::count(HazardKind kind) const noexcept {
         std::count_if(polylines.begin(), polylines.end(), [kind](const Polyline& p) { return p.hazard.kind == kind; }));
 }
 
-std::optional<double> limiting_depth(std::optional<double> hazard_depth_m, double draught_m, double ukc_m) noexcept {
-    if (hazard_depth_m) return hazard_depth_m;
-    if (draught_m > 0) return draught_m + ukc_m;
-    return std::nullopt;
-}
-
 const char* to_string(HazardKind k) noexcept {
     switch (k) {
     case HazardKind::land: return "land";

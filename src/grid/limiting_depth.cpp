@@ -5,6 +5,18 @@
 
 #include <shoal/coast/coastline.hpp>
 
+namespace shoal::coast {
+
+// Here rather than in coastline.cpp (which reads charts with GDAL): the GDAL-free core
+// (src/CMakeLists.txt: shoal_core) plans a vessel's limiting depth too.
+std::optional<double> limiting_depth(std::optional<double> hazard_depth_m, double draught_m, double ukc_m) noexcept {
+    if (hazard_depth_m) return hazard_depth_m;
+    if (draught_m > 0) return draught_m + ukc_m;
+    return std::nullopt;
+}
+
+}  // namespace shoal::coast
+
 namespace shoal::grid {
 
 const char* to_string(DepthPlan::Source s) noexcept {

@@ -782,6 +782,31 @@ TEST_F(BadInput, CtrlCInTheMiddleOfARunLeavesNoReportAndExits130) {
     }
 }
 
+TEST_F(BadInput, CtrlCInAProbeOfAGridExits130LeavingNoOutput) {
+    // A probe of a grid file runs in the `shoal` executable itself, not in the module it loads
+    // for the other commands (docs/performance.md, "Start-up"): its Ctrl-C is the same.
+    std::string poses = "lat,lon,heading\n";
+    poses.reserve(1'500'000 * 26);
+    char row[64];
+    for (int k = 0; k < 1'500'000; ++k) {
+        std::snprintf(row, sizeof row, "%.5f,%.5f,%d\n", 50.55 + 0.4 * (k % 997) / 997.0, -1.8 + 0.9 * (k % 1009) / 1009.0, k % 360);
+        poses += row;
+    }
+    const std::string in = file("poses.csv", poses);
+    const std::string out = m_dir.file("probe.csv");
+    const pid_t pid = spawn({SHOAL_BINARY, "probe", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", "1", in, "-o", out}, m_dir.path());
+    ASSERT_GT(pid, 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));
+    int st = 0;
+    ASSERT_EQ(::waitpid(pid, &st, WNOHANG), 0) << "shoal finished before the interrupt: make the input bigger";
+    ::kill(pid, SIGINT);
+    const Outcome o = wait_for(pid, m_dir.path());
+    EXPECT_EQ(o.status, 130) << o.err;
+    EXPECT_NE(o.err.find("shoal: interrupted"), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_TRUE(temporaries(m_dir.path()).empty());
+}
+
 TEST_F(BadInput, CtrlCKeepsTheReportOfAnEarlierRunAsItWas) {
     // Deterministic: the track file is a pipe that shoal is still reading when interrupted.
     const fs::path fifo = m_dir.path() / "pipe.csv";

@@ -202,6 +202,66 @@ TEST(Cli, ProbeOnSeveralThreadsWritesWhatOneThreadWrites) {
     }
 }
 
+/// Runs `command` (a shell command line) with stderr in `err_file`.
+Outcome run_command(const std::string& command, const fs::path& err_file) {
+    Outcome r;
+    FILE* p = ::popen((command + " 2>'" + err_file.string() + "'").c_str(), "r");
+    std::array<char, 4096> buf;
+    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
+    const int st = ::pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    r.err = slurp(err_file);
+    return r;
+}
+
+TEST(Cli, ProbeOfAGridRunsWithoutGdalAndWritesWhatTheFullFrontEndWrites) {
+    // The `shoal` executable probes a .shoalgrid itself, with no GDAL (docs/performance.md,
+    // "Start-up"); the same poses gzipped are read through GDAL by the full front end (the module
+    // it loads): the same rows, the same bad-row warning, the same exit status.
+    const std::string grid = (temp_dir() / "solent-alone.shoalgrid").string();
+    ASSERT_EQ(shoal("import " + data("coast/uk_solent_land.geojson") + " -o '" + grid + "'").status, 0);
+    const fs::path poses = temp_dir() / "alone-poses.csv";
+    std::ofstream(poses) << "lat,lon,heading\n50.70,-1.20,90\n50.76,-1.30,45\nnot,a,pose\n50.60,-1.29,200\n10,10,0\n";
+    const Outcome plain = shoal("probe --coast '" + grid + "' --dims 100,20,8,8 '" + poses.string() + "'");
+    ASSERT_EQ(plain.status, 0) << plain.err;
+    EXPECT_EQ(lines_of(plain.out), 5u) << plain.out;
+    ASSERT_EQ(std::system(("gzip -c '" + poses.string() + "' > '" + poses.string() + ".gz'").c_str()), 0);
+    const Outcome gzipped = shoal("probe --coast '" + grid + "' --dims 100,20,8,8 '" + poses.string() + ".gz'");
+    ASSERT_EQ(gzipped.status, 0) << gzipped.err;
+    EXPECT_EQ(gzipped.out, plain.out);
+    EXPECT_NE(plain.err.find("line 4: latitude 'not'"), std::string::npos) << plain.err;
+    EXPECT_NE(gzipped.err.find("line 4: latitude 'not'"), std::string::npos) << gzipped.err;
+
+    // The dynamic loader's own account: no GDAL for the grid's probe; GDAL for a coastline's
+    // (read by the module), so the check can fail.
+    const std::string env = "SHOAL_CACHE_DIR='" + (temp_dir() / "cache").string() + "' LD_DEBUG=libs '" + SHOAL_BINARY + "' ";
+    const fs::path err = temp_dir() / "ld-debug.txt";
+    const Outcome grid_run = run_command(env + "probe --coast '" + grid + "' --dims 100,20,8,8 '" + poses.string() + "'", err);
+    ASSERT_EQ(grid_run.status, 0) << grid_run.err;
+    EXPECT_EQ(grid_run.out, plain.out);
+    EXPECT_EQ(grid_run.err.find("libgdal"), std::string::npos) << "a probe of a grid loaded GDAL";
+    EXPECT_EQ(grid_run.err.find("libshoal_cli_full"), std::string::npos) << "a probe of a grid loaded the full module";
+    const Outcome coast_run = run_command(env + "probe --coast " + data("coast/uk_solent_land.geojson") + " --dims 100,20,8,8 '" + poses.string() + "'", err);
+    ASSERT_EQ(coast_run.status, 0) << coast_run.err;
+    EXPECT_EQ(coast_run.out, plain.out);
+    EXPECT_NE(coast_run.err.find("libgdal"), std::string::npos);
+
+    // The executable copied alone: it still probes the grid; every other command says which
+    // module it could not load, as an internal error (exit status 3).
+    const fs::path alone = temp_dir() / "alone" / "bin";
+    fs::create_directories(alone);
+    fs::copy_file(SHOAL_BINARY, alone / "shoal", fs::copy_options::overwrite_existing);
+    const Outcome copy = run_command("'" + (alone / "shoal").string() + "' probe --coast '" + grid + "' --dims 100,20,8,8 '" + poses.string() + "'", err);
+    ASSERT_EQ(copy.status, 0) << copy.err;
+    EXPECT_EQ(copy.out, plain.out);
+    const Outcome info = run_command("'" + (alone / "shoal").string() + "' info '" + grid + "'", err);
+    EXPECT_EQ(info.status, 3);
+    EXPECT_TRUE(info.out.empty());
+    EXPECT_EQ(info.err.rfind("shoal: internal error: cannot load shoal's command module '" + alone.string() + "/", 0), 0u) << info.err;
+    EXPECT_NE(info.err.find("/libshoal_cli_full.so' ("), std::string::npos) << info.err;
+    EXPECT_EQ(lines_of(info.err), 1u) << info.err;
+}
+
 }  // namespace
 
 namespace {

@@ -11,6 +11,7 @@
 /// half a file.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@ public:
     static CoastGrid load(const std::string& path);
     /// Parses a grid from bytes already in memory (`name` is used in messages).
     static CoastGrid parse(const std::vector<char>& bytes, const std::string& name);
+    static CoastGrid parse(std::span<const char> bytes, const std::string& name);
     static std::vector<char> serialize(const CoastGrid& grid);
 };
 

@@ -9,6 +9,9 @@
 
 namespace shoal::io {
 
+/// Most bytes a pose file may hold (some eight million poses).
+inline constexpr std::size_t max_pose_file_bytes = std::size_t{1} << 28;
+
 struct PoseRow {
     double lat = 0, lon = 0, heading_deg = 0;
     std::size_t line = 0;  ///< 1-based line number in the file
