@@ -17,7 +17,7 @@
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/audit/partition.hpp>
-#include <shoal/audit/shard.hpp>
+#include <shoal/shard/shard.hpp>
 #include <shoal/coast/chart_scale.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/grid/grid_builder.hpp>

@@ -27,8 +27,8 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include <shoal/audit/assessment.hpp>
-#include <shoal/audit/exercise.hpp>
+#include <shoal/exercise/assessment.hpp>
+#include <shoal/exercise/exercise.hpp>
 #include <shoal/audit/partition.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/grid_cache.hpp>

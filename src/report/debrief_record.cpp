@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <shoal/audit/shard.hpp>
+#include <shoal/shard/shard.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/util/error.hpp>
 

@@ -20,7 +20,7 @@
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"
 #include "report/report_fields.hpp"
-#include <shoal/audit/shard.hpp>
+#include <shoal/shard/shard.hpp>
 #include <shoal/report/debrief.hpp>
 #include <shoal/report/debrief_record.hpp>
 #include <shoal/report/plot.hpp>

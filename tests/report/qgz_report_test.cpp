@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "detail/geos_context.hpp"
-#include "audit/pose_outline.hpp"
+#include "sweep/pose_outline.hpp"
 #include "run_shoal.hpp"
 #include "xml_support.hpp"
 #include <shoal/hull/hull.hpp>
