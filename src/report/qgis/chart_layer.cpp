@@ -1,4 +1,4 @@
-#include "report/chart_layer.hpp"
+#include "report/qgis/chart_layer.hpp"
 
 #include <algorithm>
 #include <cmath>

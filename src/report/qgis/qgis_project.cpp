@@ -1,4 +1,4 @@
-#include "report/qgis_project.hpp"
+#include "report/qgis/qgis_project.hpp"
 
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "detail/qgis_styles.hpp"
+#include "report/qgis/qgis_styles.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/util/error.hpp>
 

@@ -56,7 +56,7 @@ shoal::test::Outcome shoal(const std::string& args) {
     return shoal::test::run_shoal(args, dir() / "cache", dir() / "stderr.txt");
 }
 
-/// Two ships in the Solent (as tests/report/qgis_report_test.py): A southwards across the
+/// Two ships in the Solent (as tests/report/qgis/qgis_report_test.py): A southwards across the
 /// Isle of Wight (aground), B eastwards clear of land.
 std::string tracks() {
     static const std::string path = [] {

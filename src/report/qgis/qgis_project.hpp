@@ -67,7 +67,7 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
 std::string qgz_of(const std::string& member, const std::string& qgs);
 
 /// Whether the .qgz at `path` (a regular file) holds `member` and that says shoal wrote it
-/// (sidecar_mark, detail/qgis_styles.hpp): false for anything else (not a zip, another
+/// (sidecar_mark, report/qgis/qgis_styles.hpp): false for anything else (not a zip, another
 /// project, or shoal's project saved over by QGIS, which drops the mark).
 bool is_shoal_qgz(const std::string& path, const std::string& member);
 

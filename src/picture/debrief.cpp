@@ -1,4 +1,4 @@
-#include <shoal/report/debrief.hpp>
+#include <shoal/picture/debrief.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -11,7 +11,7 @@
 #include <string_view>
 #include <tuple>
 
-#include <shoal/report/plot.hpp>
+#include <shoal/picture/plot.hpp>
 #include <shoal/track/ship_type.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/version.hpp>

@@ -35,8 +35,8 @@
 #include <shoal/audit/audit.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
-#include <shoal/report/debrief.hpp>
-#include <shoal/report/plot.hpp>
+#include <shoal/picture/debrief.hpp>
+#include <shoal/picture/plot.hpp>
 #include <shoal/report/report.hpp>
 #include "run_shoal.hpp"
 #include "test_support.hpp"

@@ -26,7 +26,7 @@
 #include <shoal/audit/audit.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
-#include <shoal/report/plot.hpp>
+#include <shoal/picture/plot.hpp>
 #include <shoal/report/report.hpp>
 #include <shoal/track/track.hpp>
 #include "test_support.hpp"

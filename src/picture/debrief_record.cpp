@@ -1,5 +1,5 @@
 // The debrief record of a shard (report/debrief_record.hpp).
-#include <shoal/report/debrief_record.hpp>
+#include <shoal/picture/debrief_record.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #include <cstdio>
-#include "detail/qgis_styles.hpp"
+#include "report/qgis/qgis_styles.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>

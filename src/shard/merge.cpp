@@ -1,5 +1,5 @@
 // Merging shard reports into one run's report (report/merge.hpp).
-#include <shoal/report/merge.hpp>
+#include <shoal/shard/merge.hpp>
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -16,14 +16,14 @@
 #include "detail/gdal_support.hpp"
 #include "detail/input_file.hpp"
 #include "detail/json_message.hpp"
-#include "report/chart_layer.hpp"
+#include "report/qgis/chart_layer.hpp"
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/shard/shard.hpp>
-#include <shoal/report/debrief.hpp>
-#include <shoal/report/debrief_record.hpp>
-#include <shoal/report/plot.hpp>
+#include <shoal/picture/debrief.hpp>
+#include <shoal/picture/debrief_record.hpp>
+#include <shoal/picture/plot.hpp>
 #include <shoal/report/report.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/track/time.hpp>
@@ -598,7 +598,7 @@ void put_rows(OGRLayer* out, const std::vector<std::pair<Key, OGRFeatureUniquePt
     }
 }
 
-/// The tile of a coast feature, from its key ("RrrrrCcccc", report/chart_layer.hpp: tile_key).
+/// The tile of a coast feature, from its key ("RrrrrCcccc", report/qgis/chart_layer.hpp: tile_key).
 Key tile_key_of(const Part& p, const OGRFeature& f) {
     const std::string key = f.GetFieldAsString("tile");
     const std::optional<ChartTile> t = parse_tile_key(key);

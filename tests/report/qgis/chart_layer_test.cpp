@@ -8,7 +8,7 @@
 #include <random>
 
 #include "detail/geos_context.hpp"
-#include "report/chart_layer.hpp"
+#include "report/qgis/chart_layer.hpp"
 
 namespace shoal::report {
 namespace {

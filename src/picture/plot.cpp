@@ -1,4 +1,4 @@
-#include <shoal/report/plot.hpp>
+#include <shoal/picture/plot.hpp>
 
 #include <Eigen/Core>
 #include <algorithm>
