@@ -61,6 +61,8 @@
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/grid/coast_grid.hpp>
+#include <shoal/picture/wording.hpp>  // the events and times in words the picture uses
+#include <shoal/report/markup.hpp>     // markup_text
 
 namespace shoal::report {
 
@@ -128,29 +130,6 @@ std::string zoom_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
 /// bad width or situation index.
 std::string cpa_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, std::size_t situation, double width_px = 360,
                     const PlotOptions& options = {});
-
-/// Exercise time: "T+12:30" (minutes and seconds after `start_s`, cut like clock_text, not
-/// rounded), "T+1:02:03" past the hour, "T-0:05" before it; "T+?" when either is not finite.
-std::string exercise_time_text(double t, double start_s);
-
-/// An event in words, as the picture's tooltips say it: track (and name), kind, what was hit,
-/// start and end (UTC), duration, speed and its source, penetration or clearance, heading,
-/// and the evidence for the kind.
-std::string event_description(const audit::TrackSummary& track, const audit::Event& event);
-
-/// Text for XML or HTML character data or an attribute value: `& < > " '` escaped, invalid
-/// UTF-8 replaced by U+FFFD, the control characters XML 1.0 forbids replaced by spaces.
-std::string markup_text(std::string_view s);
-
-/// `v` with `decimals` decimals ("9.8", "182", never "-0.0"); `not_finite` when it is not finite.
-std::string fixed_text(double v, int decimals, const char* not_finite = "?");
-/// "19:02:33Z" (UTC time of day, cut from the ISO time, not rounded); `unknown` for no time.
-std::string clock_text(double t, const char* unknown = "--:--:--");
-/// "2014-08-15 19:02:33Z"; "?" for no time.
-std::string date_clock_text(double t);
-
-/// A duration in words: "0 s", "4.2 s", "42 s", "3 min 07 s", "2 h 05 min"; "duration unknown".
-std::string duration_words(double seconds);
 
 /// The colour (#rrggbb) the picture gives a kind: an audit::EventKind name (audit::to_string),
 /// "collision", "close_quarters" or "breach"; grey for anything else.

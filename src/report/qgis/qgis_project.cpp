@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "report/qgis/qgis_styles.hpp"
+#include <shoal/report/markup.hpp>
 #include <shoal/report/report.hpp>
 #include <shoal/util/error.hpp>
 
@@ -21,19 +22,8 @@ namespace shoal::report {
 
 namespace {
 
-std::string escape(std::string_view s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
+/// The project's text: the one markup escaper, `'` kept (every attribute is in double quotes).
+std::string xml_text(std::string_view s) { return markup_text(s, Apostrophe::kept); }
 
 std::string srs_xml(int epsg) {
     OGRSpatialReference s;
@@ -43,8 +33,8 @@ std::string srs_xml(int epsg) {
     std::string p4 = proj4 ? proj4 : "";
     CPLFree(proj4);
     const char* name = s.GetName();
-    return "<spatialrefsys><proj4>" + escape(p4) + "</proj4><srid>" + std::to_string(epsg) + "</srid><authid>EPSG:" + std::to_string(epsg) +
-           "</authid><description>" + escape(name ? name : "") + "</description><geographicflag>" + (s.IsGeographic() ? "true" : "false") +
+    return "<spatialrefsys><proj4>" + xml_text(p4) + "</proj4><srid>" + std::to_string(epsg) + "</srid><authid>EPSG:" + std::to_string(epsg) +
+           "</authid><description>" + xml_text(name ? name : "") + "</description><geographicflag>" + (s.IsGeographic() ? "true" : "false") +
            "</geographicflag></spatialrefsys>";
 }
 
@@ -60,8 +50,8 @@ std::string map_layer(const ProjectLayer& layer, const std::string& id) {
     std::string attrs = qml.substr(open + 6, open_end - open - 6);
     // The style's own version attribute is the style's, not the layer's.
     if (std::size_t v = attrs.find("version=\""); v != std::string::npos) attrs.erase(v, attrs.find('"', v + 9) + 1 - v);
-    return "    <maplayer type=\"vector\" geometry=\"" + layer.geometry + "\" " + attrs + ">\n      <id>" + escape(id) + "</id>\n      <datasource>" +
-           escape(layer.source) + "</datasource>\n      <layername>" + name + "</layername>\n      <srs>" + srs_xml(4326) +
+    return "    <maplayer type=\"vector\" geometry=\"" + layer.geometry + "\" " + attrs + ">\n      <id>" + xml_text(id) + "</id>\n      <datasource>" +
+           xml_text(layer.source) + "</datasource>\n      <layername>" + name + "</layername>\n      <srs>" + srs_xml(4326) +
            "</srs>\n      <provider encoding=\"UTF-8\">ogr</provider>\n" + qml.substr(open_end + 1, close - open_end - 1) + "    </maplayer>\n";
 }
 
@@ -121,7 +111,7 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
 
     std::string x = "<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>\n" + std::string(sidecar_mark) +
                     "\n<qgis projectname=\"shoal report\" version=\"3.22.16-Białowieża\">\n";
-    x += "  <title>shoal report " + escape(report_name) + "</title>\n";
+    x += "  <title>shoal report " + xml_text(report_name) + "</title>\n";
     x += "  <projectCrs>" + srs_xml(epsg) + "</projectCrs>\n";
     // Exercise mode: the layers with an `exercise` field once per exercise, filtered to it.
     std::vector<ProjectLayer> shown;  // every map layer, top first, its id in `name`'s place below
@@ -129,7 +119,7 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
     std::string tree;
     auto tree_layer = [&](const ProjectLayer& l, const std::string& id, const char* indent) {
         tree += std::string(indent) + "<layer-tree-layer id=\"" + id + "\" name=\"" + l.name + "\" providerKey=\"ogr\" checked=\"Qt::Checked\" expanded=\"" +
-                (l.name == "coast" ? "0" : "1") + "\" source=\"" + escape(l.source) + "\"/>\n";
+                (l.name == "coast" ? "0" : "1") + "\" source=\"" + xml_text(l.source) + "\"/>\n";
         shown.push_back(l);
         ids.push_back(id);
     };
@@ -141,7 +131,7 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
         tree += "    <layer-tree-group name=\"exercises\" checked=\"Qt::Checked\" expanded=\"1\" mutually-exclusive=\"1\" mutually-exclusive-child=\"0\">\n";
         for (std::size_t k = 0; k < view.exercises.size(); ++k) {
             const std::string& e = view.exercises[k];
-            tree += "      <layer-tree-group name=\"" + escape("exercise " + (e.empty() ? std::string("run") : e)) + "\" checked=\"" +
+            tree += "      <layer-tree-group name=\"" + xml_text("exercise " + (e.empty() ? std::string("run") : e)) + "\" checked=\"" +
                     (k == 0 ? "Qt::Checked" : "Qt::Unchecked") + "\" expanded=\"" + (k == 0 ? "1" : "0") + "\">\n";
             std::string quoted;  // an SQL string literal: ' doubled
             for (const char c : e) quoted += c == '\'' ? std::string("''") : std::string(1, c);
