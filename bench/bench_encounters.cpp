@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include <shoal/audit/encounters.hpp>
+#include <shoal/exercise/encounters.hpp>
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/track/track.hpp>

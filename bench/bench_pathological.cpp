@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include <shoal/audit/sweep.hpp>
+#include <shoal/sweep/sweep.hpp>
 #include <shoal/check/brute_force.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/coast/coastline.hpp>

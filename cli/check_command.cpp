@@ -17,13 +17,13 @@
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/audit/partition.hpp>
-#include <shoal/audit/shard.hpp>
+#include <shoal/shard/shard.hpp>
 #include <shoal/coast/chart_scale.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/grid/grid_builder.hpp>
-#include <shoal/report/debrief.hpp>
-#include <shoal/report/debrief_record.hpp>
-#include <shoal/report/plot.hpp>
+#include <shoal/picture/debrief.hpp>
+#include <shoal/picture/debrief_record.hpp>
+#include <shoal/picture/plot.hpp>
 #include <shoal/report/report.hpp>
 #include <shoal/track/reader.hpp>
 #include <shoal/track/time.hpp>

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <shoal/report/merge.hpp>
+#include <shoal/shard/merge.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 #include <shoal/util/printable.hpp>

@@ -27,18 +27,18 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include <shoal/audit/assessment.hpp>
-#include <shoal/audit/exercise.hpp>
+#include <shoal/exercise/assessment.hpp>
+#include <shoal/exercise/exercise.hpp>
 #include <shoal/audit/partition.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/io/pose_csv.hpp>
 #include <shoal/grid/grid_builder.hpp>
-#include <shoal/report/debrief.hpp>
-#include <shoal/report/debrief_record.hpp>
-#include <shoal/report/merge.hpp>
-#include <shoal/report/plot.hpp>
+#include <shoal/picture/debrief.hpp>
+#include <shoal/picture/debrief_record.hpp>
+#include <shoal/shard/merge.hpp>
+#include <shoal/picture/plot.hpp>
 #include <shoal/track/ais.hpp>
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/nmea_reader.hpp>

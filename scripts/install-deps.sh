@@ -31,10 +31,10 @@ TESTS=(
   python3-rtree               # geopandas' spatial index: gpd.sjoin in docs/python.md (a Recommends, not a Depends, of python3-geopandas)
   python3-matplotlib          # GeoDataFrame.plot in docs/python.md (a Recommends too)
   python3-venv                # docs/python.md's virtual environment, made by tests/python/test_docs_python.py
-  python3-qgis                # tests/report/qgis_report_test.py: the report opened and rendered in a real QGIS 3.22 (headless, offscreen)
+  python3-qgis                # tests/report/qgis/qgis_report_test.py: the report opened and rendered in a real QGIS 3.22 (headless, offscreen)
   python3-distributed         # python3 -m shoal.dask: Dask/distributed 2022.12 (LocalCluster, scheduler) and its tests
   python3-dask                # the Dask core python3-distributed runs on
-  chromium                    # tests/report/debrief_test.cpp: the debrief sheet opened in a real headless browser (skipped without it)
+  chromium                    # tests/picture/debrief_test.cpp: the debrief sheet opened in a real headless browser (skipped without it)
 )
 set_name=tests
 list=0

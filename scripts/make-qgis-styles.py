@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Regenerates the QGIS layer styles shoal writes beside its reports (src/report/styles/*.qml).
+"""Regenerates the QGIS layer styles shoal writes beside its reports (src/report/qgis/styles/*.qml).
 
 They are made with QGIS's own API, so that QGIS reads them back as written. Run with Debian's
 python3-qgis (QGIS 3.22): QT_QPA_PLATFORM=offscreen /usr/bin/python3 scripts/make-qgis-styles.py
@@ -19,7 +19,7 @@ from qgis.core import (QgsApplication, QgsVectorLayer, QgsSymbol, QgsRendererCat
                        QgsVectorLayerTemporalProperties, Qgis)
 from qgis.PyQt.QtGui import QColor, QFont
 
-out_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src", "report", "styles")
+out_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src", "report", "qgis", "styles")
 app = QgsApplication([], False)
 app.initQgis()
 

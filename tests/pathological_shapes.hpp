@@ -1,6 +1,6 @@
 #pragma once
 /// Shapes that stress the grid, the pose check and the sweep, in local metres. Shared by
-/// tests/check/pathological_test.cpp and tests/audit/sweep_test.cpp (answers against GEOS
+/// tests/check/pathological_test.cpp and tests/sweep/sweep_test.cpp (answers against GEOS
 /// and brute force) and bench/bench_pathological.cpp (times and memory).
 
 #include <cmath>

@@ -13,7 +13,7 @@
 #include <tuple>
 
 #include <shoal/audit/partition.hpp>
-#include <shoal/audit/worst_pairs.hpp>
+#include <shoal/exercise/worst_pairs.hpp>
 #include <shoal/grid/limiting_depth.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/util/error.hpp>

@@ -14,7 +14,7 @@
 #include <map>
 #include <set>
 
-#include <shoal/audit/shard.hpp>
+#include <shoal/shard/shard.hpp>
 #include <shoal/track/merge.hpp>
 #include <shoal/track/reader.hpp>
 #include <shoal/track/time.hpp>

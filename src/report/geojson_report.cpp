@@ -16,12 +16,12 @@
 #include <vector>
 
 #include "detail/parallel.hpp"
-#include "detail/qgis_styles.hpp"
-#include "report/chart_layer.hpp"
+#include "report/qgis/qgis_styles.hpp"
+#include "report/qgis/chart_layer.hpp"
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"
-#include "report/qgis_project.hpp"
-#include "report/part_order.hpp"
+#include "report/qgis/qgis_project.hpp"
+#include "shard/part_order.hpp"
 #include "report/report_fields.hpp"
 #include <shoal/report/report.hpp>
 #include <shoal/version.hpp>

@@ -29,7 +29,7 @@
 #include <xxhash.h>
 
 #include <shoal/audit/audit.hpp>
-#include <shoal/audit/sweep.hpp>
+#include <shoal/sweep/sweep.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/coast/coastline.hpp>
 #include <shoal/grid/grid_cache.hpp>

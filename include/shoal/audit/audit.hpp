@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include <shoal/audit/assessment.hpp>
-#include <shoal/audit/colreg.hpp>
-#include <shoal/audit/encounters.hpp>
-#include <shoal/audit/evidence.hpp>
-#include <shoal/audit/exercise.hpp>
-#include <shoal/audit/shard.hpp>
-#include <shoal/audit/sweep.hpp>
+#include <shoal/exercise/assessment.hpp>
+#include <shoal/exercise/colreg.hpp>
+#include <shoal/exercise/encounters.hpp>
+#include <shoal/sweep/evidence.hpp>
+#include <shoal/exercise/exercise.hpp>
+#include <shoal/shard/shard.hpp>
+#include <shoal/sweep/sweep.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/track/reader.hpp>

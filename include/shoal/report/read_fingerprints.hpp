@@ -3,7 +3,7 @@
 /// file (standard input, a pipe) whose bytes cannot be read again: what was read stands for them.
 #include <map>
 #include <string>
-#include <shoal/audit/exercise.hpp>
+#include <shoal/exercise/exercise.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/track/reader.hpp>
 

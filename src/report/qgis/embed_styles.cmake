@@ -1,0 +1,10 @@
+# Writes OUT: a C++ file defining shoal::report::detail::style_qml(name) from the .qml FILES.
+string(REPLACE "|" ";" FILES "${FILES}")
+set(body "// Generated from src/report/qgis/styles/*.qml by embed_styles.cmake. Do not edit.\n#include <string_view>\nnamespace shoal::report::detail {\nstd::string_view style_qml(std::string_view name) {\n")
+foreach(f IN LISTS FILES)
+  get_filename_component(name ${f} NAME_WE)
+  file(READ ${f} content)
+  string(APPEND body "    if (name == \"${name}\") return R\"shoalqml(${content})shoalqml\";\n")
+endforeach()
+string(APPEND body "    return {};\n}\n}  // namespace shoal::report::detail\n")
+file(WRITE ${OUT} "${body}")

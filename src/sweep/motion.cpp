@@ -1,0 +1,139 @@
+#include <shoal/sweep/motion.hpp>
+
+#include <Eigen/LU>
+#include <utility>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include <shoal/util/error.hpp>
+
+namespace shoal::audit {
+
+namespace {
+constexpr double deg = std::numbers::pi / 180.0;
+}  // namespace
+
+Eigen::Matrix2d ship_to_en(double heading_deg) {
+    const double h = heading_deg * deg;
+    Eigen::Matrix2d m;
+    m << std::sin(h), std::cos(h), std::cos(h), -std::sin(h);
+    return m;
+}
+
+double turn(double a, double b) {
+    double d = std::fmod(b - a, 360.0);
+    if (d > 180) d -= 360;
+    if (d <= -180) d += 360;
+    return d;
+}
+
+namespace {
+
+/// The frame's Jacobian (central differences over 1 m) at several lon/lat points in one batch.
+std::vector<Eigen::Matrix2d> jacobians(const std::vector<geo::LonLat>& at, const geo::LocalFrame& frame) {
+    std::vector<double> xs, ys;
+    xs.reserve(4 * at.size());
+    ys.reserve(4 * at.size());
+    for (const geo::LonLat& p : at) {
+        const Eigen::Vector2d mpd = geo::metres_per_degree(p.lat);
+        const double dlon = 1.0 / mpd.x(), dlat = 1.0 / mpd.y();
+        for (const auto& [lx, ly] : {std::pair{p.lon + dlon, p.lat}, {p.lon - dlon, p.lat}, {p.lon, p.lat + dlat}, {p.lon, p.lat - dlat}}) {
+            xs.push_back(lx);
+            ys.push_back(ly);
+        }
+    }
+    std::size_t bad = 0;
+    if (!frame.forward(xs, ys, &bad)) throw InputError("a point near a fix cannot be projected into the coastline's frame (" + frame.description() + ")");
+    std::vector<Eigen::Matrix2d> out(at.size());
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        const double* x = &xs[4 * i];
+        const double* y = &ys[4 * i];
+        out[i] << (x[0] - x[1]) / 2, (x[2] - x[3]) / 2, (y[0] - y[1]) / 2, (y[2] - y[3]) / 2;
+    }
+    return out;
+}
+
+/// Fixes within this many metres of an anchor take their Jacobian from the anchor's linear
+/// model: the Jacobian's second derivatives are ~1/R^2, so the error is ~(2 km)^2/R^2 ~ 1e-7,
+/// far under the 2.5e-5 that would move a 400 m ship's bow by 1 cm.
+constexpr double anchor_spacing_m = 2000.0;
+constexpr double anchor_arm_m = 1000.0;
+
+}  // namespace
+
+std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame& frame) {
+    const std::size_t n = t.fixes.size();
+    // One projected point per fix; the Jacobian (scale and meridian convergence) from a linear
+    // model around anchors every ~2 km: at the anchor, 1 km east and 1 km north of it.
+    std::vector<double> xs(n), ys(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        xs[i] = t.fixes[i].position.lon;
+        ys[i] = t.fixes[i].position.lat;
+    }
+    std::size_t bad = 0;
+    if (!frame.forward(xs, ys, &bad)) {
+        const track::Fix& f = t.fixes[bad];
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "fix at line %zu (lat %.6f, lon %.6f) cannot be projected into the coastline's frame (%s)",
+                      f.line, f.position.lat, f.position.lon, frame.description().c_str());
+        throw InputError("track '" + t.id + "' in '" + t.file + "': " + buf);
+    }
+    std::vector<std::size_t> anchor_of(n);
+    std::vector<std::size_t> anchors;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (anchors.empty() || std::hypot(xs[i] - xs[anchors.back()], ys[i] - ys[anchors.back()]) > anchor_spacing_m) anchors.push_back(i);
+        anchor_of[i] = anchors.size() - 1;
+    }
+    std::vector<geo::LonLat> at;
+    for (std::size_t a : anchors) {
+        const geo::LonLat p = t.fixes[a].position;
+        const Eigen::Vector2d mpd = geo::metres_per_degree(p.lat);
+        at.push_back(p);
+        at.push_back({p.lon + anchor_arm_m / mpd.x(), p.lat});
+        at.push_back({p.lon, p.lat + anchor_arm_m / mpd.y()});
+    }
+    const std::vector<Eigen::Matrix2d> js = jacobians(at, frame);
+    // Local positions of the arms, for the model's coordinates.
+    std::vector<double> axs(at.size()), ays(at.size());
+    for (std::size_t k = 0; k < at.size(); ++k) {
+        axs[k] = at[k].lon;
+        ays[k] = at[k].lat;
+    }
+    if (!frame.forward(axs, ays, &bad)) throw InputError("track '" + t.id + "' in '" + t.file + "': a point near a fix cannot be projected");
+    std::vector<LocalFix> out(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t k = 3 * anchor_of[i];
+        const geo::XY pa{axs[k], ays[k]}, pe{axs[k + 1], ays[k + 1]}, pn{axs[k + 2], ays[k + 2]};
+        Eigen::Matrix2d basis;
+        basis << pe.x - pa.x, pn.x - pa.x, pe.y - pa.y, pn.y - pa.y;
+        const Eigen::Vector2d uv = basis.inverse() * Eigen::Vector2d(xs[i] - pa.x, ys[i] - pa.y);
+        out[i].position = {xs[i], ys[i]};
+        out[i].jacobian = js[k] + uv.x() * (js[k + 1] - js[k]) + uv.y() * (js[k + 2] - js[k]);
+    }
+    return out;
+}
+
+check::LocalPose Motion::pose(std::size_t i, double f) const {
+    const track::Fix& a = m_track.fixes[i];
+    if (f == 0 || i + 1 >= m_track.fixes.size()) return {m_local[i].position, m_local[i].jacobian * ship_to_en(a.heading_used_deg)};
+    const track::Fix& b = m_track.fixes[i + 1];
+    const double h = a.heading_used_deg + f * turn(a.heading_used_deg, b.heading_used_deg);
+    const Eigen::Matrix2d j = (1 - f) * m_local[i].jacobian + f * m_local[i + 1].jacobian;
+    return {m_local[i].position + f * (m_local[i + 1].position - m_local[i].position), j * ship_to_en(h)};
+}
+
+double Motion::time(std::size_t i, double f) const {
+    if (f == 0 || i + 1 >= m_track.fixes.size()) return m_track.fixes[i].time_s;
+    return m_track.fixes[i].time_s + f * (m_track.fixes[i + 1].time_s - m_track.fixes[i].time_s);
+}
+
+double Motion::heading(std::size_t i, double f) const {
+    const track::Fix& a = m_track.fixes[i];
+    if (f == 0 || i + 1 >= m_track.fixes.size()) return a.heading_used_deg;
+    const double h = a.heading_used_deg + f * turn(a.heading_used_deg, m_track.fixes[i + 1].heading_used_deg);
+    return std::fmod(h + 360.0, 360.0);
+}
+
+}  // namespace shoal::audit

@@ -1,0 +1,156 @@
+// The report's coast layer against GEOS: for random charts (islands with lakes, islands in
+// those lakes, shallow areas of several depths), each tile's features must cover exactly what
+// GEOS's intersection of the chart's polygons with the tile covers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "detail/geos_context.hpp"
+#include "report/qgis/chart_layer.hpp"
+
+namespace shoal::report {
+namespace {
+
+using Ring = std::vector<geo::LonLat>;
+
+/// A star-shaped ring around c (radius between lo and hi degrees), counter-clockwise or not.
+Ring star(std::mt19937& rng, geo::LonLat c, double lo, double hi, bool ccw) {
+    std::uniform_real_distribution<double> rad(lo, hi);
+    const int n = std::uniform_int_distribution<int>(5, 24)(rng);
+    Ring r;
+    for (int k = 0; k < n; ++k) {
+        const double a = 2 * std::numbers::pi * k / n;
+        const double d = rad(rng);
+        r.push_back({c.lon + d * std::cos(a), c.lat + d * std::sin(a)});
+    }
+    if (!ccw) std::reverse(r.begin(), r.end());
+    r.push_back(r.front());
+    return r;
+}
+
+geo::GeomPtr polygon(const geo::GeosContext& ctx, const std::vector<Ring>& rings) {
+    std::vector<std::vector<geo::XY>> xy;
+    for (const auto& r : rings) {
+        auto& v = xy.emplace_back();
+        for (const auto& p : r) v.push_back({p.lon, p.lat});
+    }
+    return geo::make_polygon(ctx, xy);
+}
+
+double area(const geo::GeosContext& ctx, const GEOSGeometry* g) {
+    double a = 0;
+    GEOSArea_r(ctx, g, &a);
+    return a;
+}
+
+TEST(ChartLayer, TilesEqualGeosIntersectionOfTheChartWithEachTile) {
+    std::mt19937 rng(17);
+    const geo::GeosContext ctx;
+    for (int trial = 0; trial < 25; ++trial) {
+        coast::Coastline coast;
+        // Per group (kind, depth): the polygons as GEOS sees them, unioned.
+        struct Truth {
+            coast::HazardKind kind;
+            double depth;
+            std::vector<geo::GeomPtr> parts;
+        };
+        std::vector<Truth> truth;
+        truth.push_back({coast::HazardKind::land, NAN, {}});
+        truth.push_back({coast::HazardKind::shallow, 2.0, {}});
+        truth.push_back({coast::HazardKind::shallow, 5.0, {}});
+        auto add = [&](std::size_t group, const std::vector<Ring>& rings) {
+            for (const auto& r : rings) {
+                coast::Polyline pl;
+                pl.points = r;
+                pl.land_left = true;
+                pl.hazard.kind = truth[group].kind;
+                pl.hazard.depth_m = truth[group].depth;
+                coast.polylines.push_back(pl);
+            }
+        };
+        // Islands in separate cells of 0.04 degrees (tiles are 0.05: they cross tile edges).
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 3; ++j) {
+                std::uniform_real_distribution<double> jitter(-0.004, 0.004);
+                const geo::LonLat c{10.0 + 0.04 * i + 0.02 + jitter(rng), 56.0 + 0.04 * j + 0.02 + jitter(rng)};
+                const std::size_t group = std::uniform_int_distribution<std::size_t>(0, 2)(rng);
+                const Ring shell = star(rng, c, 0.010, 0.016, true);
+                if (std::bernoulli_distribution(0.5)(rng)) {
+                    // A lake, and perhaps an island in it.
+                    const Ring lake = star(rng, c, 0.003, 0.005, false);
+                    add(group, {shell, lake});
+                    truth[group].parts.push_back(polygon(ctx, {shell, lake}));
+                    if (std::bernoulli_distribution(0.5)(rng)) {
+                        const Ring islet = star(rng, c, 0.0006, 0.0012, true);
+                        add(group, {islet});
+                        truth[group].parts.push_back(polygon(ctx, {islet}));
+                    }
+                } else {
+                    add(group, {shell});
+                    truth[group].parts.push_back(polygon(ctx, {shell}));
+                }
+            }
+        std::set<ChartTile> tiles;
+        for (int k = 0; k < 6; ++k) {
+            std::uniform_real_distribution<double> lon(10.0, 10.16), lat(56.0, 56.12);
+            tiles.insert(tile_of({lon(rng), lat(rng)}));
+        }
+        const std::vector<ChartFeature> features = chart_features(coast, tiles);
+        // Sorted by tile, then kind and depth; one feature per (tile, group).
+        for (std::size_t k = 1; k < features.size(); ++k) {
+            const auto& a = features[k - 1];
+            const auto& b = features[k];
+            ASSERT_TRUE(a.tile < b.tile || (a.tile == b.tile && (a.kind < b.kind || (a.kind == b.kind && a.depth_m < b.depth_m))))
+                << "trial " << trial << " feature " << k;
+        }
+        for (const ChartTile& t : tiles) {
+            const double x0 = (t.col - 3600) * chart_tile_deg, y0 = (t.row - 1800) * chart_tile_deg;
+            geo::GeomPtr box = polygon(ctx, {{{x0, y0}, {x0 + chart_tile_deg, y0}, {x0 + chart_tile_deg, y0 + chart_tile_deg},
+                                              {x0, y0 + chart_tile_deg}, {x0, y0}}});
+            for (auto& g : truth) {
+                geo::GeomPtr expected = geo::own(ctx, GEOSGeom_createEmptyPolygon_r(ctx), "empty");
+                for (const auto& p : g.parts) expected = geo::own(ctx, GEOSUnion_r(ctx, expected.get(), p.get()), "union");
+                expected = geo::own(ctx, GEOSIntersection_r(ctx, expected.get(), box.get()), "intersection");
+                geo::GeomPtr got = geo::own(ctx, GEOSGeom_createEmptyPolygon_r(ctx), "empty");
+                int n = 0;
+                for (const auto& f : features) {
+                    if (!(f.tile == t) || f.kind != g.kind || !(f.depth_m == g.depth || (std::isnan(f.depth_m) && std::isnan(g.depth)))) continue;
+                    ++n;
+                    for (const auto& rings : f.polygons) {
+                        geo::GeomPtr p = polygon(ctx, rings);
+                        EXPECT_TRUE(GEOSisValid_r(ctx, p.get())) << "trial " << trial << " tile " << tile_key(t);
+                        got = geo::own(ctx, GEOSUnion_r(ctx, got.get(), p.get()), "union");
+                    }
+                }
+                EXPECT_LE(n, 1) << "one feature per tile and group";
+                geo::GeomPtr diff = geo::own(ctx, GEOSSymDifference_r(ctx, expected.get(), got.get()), "difference");
+                EXPECT_LT(area(ctx, diff.get()), 1e-12 + 1e-9 * area(ctx, expected.get()))
+                    << "trial " << trial << " tile " << tile_key(t) << ": expected area " << area(ctx, expected.get()) << ", got "
+                    << area(ctx, got.get());
+            }
+        }
+    }
+}
+
+TEST(ChartLayer, TilesNearATrackFollowItsSegmentsAndTheMargin) {
+    auto tiles_near = [](const std::vector<geo::LonLat>& line, double margin_m) {
+        std::set<ChartTile> out;
+        add_tiles_near(out, line, margin_m);
+        return out;
+    };
+    // A segment 0.5 degrees long along a parallel: every tile it crosses, and the rows within 2 km.
+    const std::set<ChartTile> t = tiles_near({{10.01, 56.025}, {10.51, 56.025}}, 2000.0);
+    for (double lon = 10.01; lon < 10.51; lon += 0.01) EXPECT_TRUE(t.count(tile_of({lon, 56.025}))) << lon;
+    // 2 km is 0.018 degrees of latitude: 56.025 +- 0.018 stays within row 56.00-56.05.
+    for (const ChartTile& x : t) EXPECT_EQ(x.row, tile_of({10.0, 56.025}).row);
+    EXPECT_EQ(tile_key(tile_of({10.01, 56.025})), "R2920C3800");
+    // Near a tile edge, the margin reaches the next row.
+    const std::set<ChartTile> u = tiles_near({{10.02, 56.049}}, 2000.0);
+    EXPECT_TRUE(u.count(tile_of({10.02, 56.06})));
+    EXPECT_TRUE(u.count(tile_of({10.02, 56.04})));
+}
+
+}  // namespace
+}  // namespace shoal::report
