@@ -229,7 +229,7 @@ public:
         // Every output, checked before any work: none is an input or another output.
         std::vector<OutputSpec> outputs = m_traffic_only ? std::vector<OutputSpec>{{m_output, "-o", "the partition's traffic"}}
                                                          : report::report_outputs(m_output, format, !m_no_project);
-        if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture", is_shoal_picture});
+        if (!m_plot.empty()) outputs.push_back({m_plot, "--plot", "the picture", report::is_shoal_picture});
         check_outputs(outputs, all_inputs);
         if (!m_shard.empty()) {
             m_audit.shard = audit::parse_shard(m_shard);

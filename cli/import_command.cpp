@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include <shoal/grid/grid_cache.hpp>
+#include <shoal/grid/grid_file.hpp>
 #include <shoal/util/output_file.hpp>
 
 namespace shoal::cli {
@@ -35,7 +36,7 @@ public:
         add_hazard_options(*m_sub, m_request.import);
     }
     int run() override {
-        check_outputs({{m_output, "-o", "the grid", is_shoal_grid_file}}, m_inputs);
+        check_outputs({{m_output, "-o", "the grid", grid::looks_like_grid}}, m_inputs);
         check_readable(m_inputs);
         std::vector<std::string> warnings;
         grid::BuildStats stats;

@@ -49,7 +49,7 @@ CLI::App* ProbeArgs::add(CLI::App& app) {
 }
 
 int run_probe(const ProbeArgs& args, const ProbeInputs& inputs) {
-    check_outputs({{args.output, "-o", "the poses CSV", is_shoal_pose_csv}}, args.opts.inputs({args.poses}));
+    check_outputs({{args.output, "-o", "the poses CSV", io::is_probe_output}}, args.opts.inputs({args.poses}));
     const hull::Hull hull = inputs.hull();
     const io::PoseFile poses = inputs.poses();
     for (const auto& e : poses.errors) std::fprintf(stderr, "shoal: warning: %s\n", printable(e).c_str());
@@ -104,7 +104,7 @@ int run_probe(const ProbeArgs& args, const ProbeInputs& inputs) {
                      uncovered.load(), poses.poses.size());
     StagedOutput output(args.output);
     output.write_streamed([&](const StagedOutput::Sink& sink) {
-        sink("lat,lon,heading,collision,clearance_m,covered\n");
+        sink(io::probe_output_header);
         for (std::string& piece : pieces) {
             sink(piece);
             std::string().swap(piece);

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include <shoal/grid/grid_cache.hpp>
+#include <shoal/grid/grid_file.hpp>
 #include <shoal/util/output_file.hpp>
 
 namespace shoal::python {
@@ -70,7 +71,7 @@ GridHandle build(const py::object& coast_paths, const py::object& crs, const py:
 void save(const GridHandle& h, const py::object& path) {
     const std::vector<std::string> p = paths_of(path);
     if (p.size() != 1) throw py::value_error("Grid.save: one path");
-    check_outputs({{p[0], "path", "the grid", is_shoal_grid_file}}, h.coast);
+    check_outputs({{p[0], "path", "the grid", grid::looks_like_grid}}, h.coast);
     py::gil_scoped_release nogil;
     grid::GridFile::save(*h.grid, p[0]);
 }

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include <shoal/util/error.hpp>
+#include <shoal/util/output_file.hpp>
 
 namespace shoal::io {
 
@@ -126,5 +127,7 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
     }
     return out;
 }
+
+bool is_probe_output(const std::string& path) { return file_head(path, probe_output_header.size()) == probe_output_header; }
 
 }  // namespace shoal::io

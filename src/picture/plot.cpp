@@ -15,6 +15,7 @@
 #include <shoal/report/report.hpp>
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/error.hpp>
+#include <shoal/util/output_file.hpp>
 #include "picture/event_phrases.hpp"
 
 namespace shoal::report {
@@ -1731,7 +1732,7 @@ std::string plot_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
     const double height = std::ceil(y + margin);
 
     return "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n" +
-           svg_element(body, width, height, "shoal audit: " + summary);
+           svg_element(body, width, height, std::string(picture_title) + ": " + summary);
 }
 
 std::string overview_svg(const audit::AuditResult& result, const grid::CoastGrid& grid, const PlotOptions& options) {
@@ -1851,6 +1852,10 @@ std::string zoom_svg(const audit::AuditResult& result, const grid::CoastGrid& gr
 void write_plot_svg(const std::string& path, const audit::AuditResult& result, const grid::CoastGrid& grid,
                     const PlotOptions& options) {
     write_file_atomically(path, plot_svg(result, grid, options));
+}
+
+bool is_shoal_picture(const std::string& path) {
+    return file_head(path, 4096).find("<title>" + std::string(picture_title)) != std::string::npos;
 }
 
 }  // namespace shoal::report

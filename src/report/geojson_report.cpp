@@ -339,6 +339,11 @@ void check_project_name(const std::string& path) {
                          "--no-project");
 }
 
+bool is_shoal_geojson_report(const std::string& path) {
+    const std::string head = file_head(path, 4096);
+    return head.find('{') != std::string::npos && head.find("\"shoal\":") != std::string::npos;
+}
+
 std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project) {
     std::vector<OutputSpec> out{{path, "-o", "the report", format == "gpkg" ? WrittenByShoal(is_shoal_gpkg_report) : WrittenByShoal(is_shoal_geojson_report)}};
     // A GeoPackage's stored project, and the project beside a GeoJSON report in a file.

@@ -166,20 +166,6 @@ std::string file_head(const std::string& path, std::size_t n) {
     return head;
 }
 
-bool is_shoal_grid_file(const std::string& path) { return file_head(path, 8) == "SHOALGRD"; }
-
-bool is_shoal_geojson_report(const std::string& path) {
-    const std::string head = file_head(path, 4096);
-    return head.find('{') != std::string::npos && head.find("\"shoal\":") != std::string::npos;
-}
-
-bool is_shoal_picture(const std::string& path) { return file_head(path, 4096).find("<title>shoal audit") != std::string::npos; }
-
-bool is_shoal_pose_csv(const std::string& path) {
-    static constexpr std::string_view header = "lat,lon,heading,collision,clearance_m,covered\n";
-    return file_head(path, header.size()) == header;
-}
-
 void check_outputs(const std::vector<OutputSpec>& outputs, const std::vector<std::string>& inputs) {
     std::optional<FileIndex> input_index;  // built when an output exists (only then can it be an input)
     FileIndex output_index;

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shoal::io {
@@ -27,5 +28,10 @@ struct PoseFile {
 PoseFile read_pose_csv(const std::string& path);
 /// The same from text already in memory (`name` is used in messages).
 PoseFile parse_pose_csv(const std::string& text, const std::string& name);
+
+/// The header line of the CSV `shoal probe` writes.
+inline constexpr std::string_view probe_output_header = "lat,lon,heading,collision,clearance_m,covered\n";
+/// The file at `path` starts with that header: a probe's output, which a probe may replace.
+bool is_probe_output(const std::string& path);
 
 }  // namespace shoal::io

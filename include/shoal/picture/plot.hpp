@@ -137,6 +137,11 @@ const char* kind_colour(const std::string& kind) noexcept;
 
 /// Writes `plot_svg(...)` to `path` atomically ("-" or "" writes to stdout). Throws InputError
 /// naming the path when it cannot be written.
+/// The start of the picture's <title> ("shoal audit: 3 tracks, ..."): how shoal tells a picture
+/// it wrote, which --plot may replace (is_shoal_picture: in the file's first 4 KiB).
+inline constexpr std::string_view picture_title = "shoal audit";
+bool is_shoal_picture(const std::string& path);
+
 void write_plot_svg(const std::string& path, const audit::AuditResult& result, const grid::CoastGrid& grid,
                     const PlotOptions& options = {});
 

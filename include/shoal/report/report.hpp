@@ -120,6 +120,9 @@ void check_project_name(const std::string& path);
 /// The report itself is replaced only when shoal wrote it (OutputSpec::ours).
 std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project = true);
 
+/// A GeoJSON report or shard's part shoal wrote: its top-level member "shoal" (the run) within
+/// its first 4 KiB.
+bool is_shoal_geojson_report(const std::string& path);
 /// A GeoPackage shoal wrote as a report or a shard's part: GDAL opens it as a GeoPackage
 /// holding the layers events and tracks.
 bool is_shoal_gpkg_report(const std::string& path);

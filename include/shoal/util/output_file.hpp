@@ -34,15 +34,11 @@ struct OutputSpec {
     WrittenByShoal ours = {};
 };
 
-/// The first `n` bytes of the file at `path` (fewer when it is shorter; "" when unreadable).
+/// The first `n` bytes of the file at `path` (fewer when it is shorter; "" when unreadable): what
+/// the recognisers of shoal's own files read (each beside the writer of its format:
+/// grid::looks_like_grid, io::is_probe_output, report::is_shoal_geojson_report and
+/// is_shoal_gpkg_report, report::is_shoal_picture).
 std::string file_head(const std::string& path, std::size_t n);
-/// shoal's own files, told by their first bytes: a grid ("SHOALGRD"), a GeoJSON report or part
-/// (its top-level member "shoal" in the first 4 KiB), a picture (`<title>shoal audit` in the
-/// first 4 KiB), a probe's CSV (its header line).
-bool is_shoal_grid_file(const std::string& path);
-bool is_shoal_geojson_report(const std::string& path);
-bool is_shoal_picture(const std::string& path);
-bool is_shoal_pose_csv(const std::string& path);
 
 /// Standard output by any of its names: "" and "-" (stdout), /dev/stdout, /dev/fd/1, /proc/self/fd/1.
 bool is_standard_output(const std::string& path) noexcept;
