@@ -81,11 +81,7 @@ bool run_grid_probe(int argc, char** argv, int& rc) {
     if (!read_plain_file(args.poses, io::max_pose_file_bytes, pose_text)) return false;
 
     ProbeInputs inputs{
-        [&] {
-            if (!opts.ship_file.empty()) return hull::Hull::parse(ship_text, opts.ship_file);
-            if (!opts.dims.empty()) return hull::Hull::from_dims_string(opts.dims);
-            throw UsageError("give the ship with --ship SHIP.json or --dims A,B,C,D");
-        },
+        [&] { return opts.hull_with([&](const std::string& path) { return hull::Hull::parse(ship_text, path); }); },
         [&] {
             io::PoseFile poses = io::parse_pose_csv(pose_text, args.poses);
             std::string().swap(pose_text);

@@ -149,6 +149,12 @@ std::vector<std::string> CoastAndShip::inputs(std::vector<std::string> more) con
     return more;
 }
 
+hull::Hull CoastAndShip::hull_with(const std::function<hull::Hull(const std::string&)>& ship_file_hull) const {
+    if (!ship_file.empty()) return ship_file_hull(ship_file);
+    if (!dims.empty()) return hull::Hull::from_dims_string(dims);
+    throw UsageError("give the ship with --ship SHIP.json or --dims A,B,C,D");
+}
+
 std::string CoastAndShip::hull_label() const { return ship_file.empty() ? "--dims " + dims : "ship file"; }
 
 void CoastAndShip::warn_depth(const grid::DepthPlan& plan, const grid::CoastGrid& g) const {

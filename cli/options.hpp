@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,7 +60,11 @@ struct CoastAndShip {
     void add(CLI::App& sub);
     /// Every input file named: `more`, the coastline sources and the ship file.
     std::vector<std::string> inputs(std::vector<std::string> more) const;
+    /// The ship: --ship read through GDAL's virtual files (Hull::load), else --dims.
     hull::Hull load_hull() const;
+    /// The same with `ship_file_hull` reading the ship file (the executable's own probe parses
+    /// one it has read itself); UsageError when neither --ship nor --dims is given.
+    hull::Hull hull_with(const std::function<hull::Hull(const std::string& path)>& ship_file_hull) const;
     /// Where the default hull came from, for the report: "ship file" or "--dims A,B,C,D".
     std::string hull_label() const;
     /// The grid: a grid file as it is, or coastline sources built (or taken from the cache)
