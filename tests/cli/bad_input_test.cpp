@@ -724,18 +724,19 @@ TEST_F(BadInput, AFullDiskGivesNoSpaceLeftOnDeviceAndLeavesNoTemporary) {
     EXPECT_FALSE(fs::exists("/dev/null.qml"));
 }
 
+/// An earlier report of shoal's (its "shoal" member): the only kind of file a report replaces.
+const std::string earlier_report = "{\"type\": \"FeatureCollection\", \"shoal\": {\"an\": \"earlier report\"}, \"features\": []}\n";
+
 TEST_F(BadInput, AWriteThatFailsHalfwayLeavesNoTemporaryAndTheEarlierReport) {
     // A regular file that cannot grow past 4 KB (ulimit -f, SIGXFSZ ignored): the report's
     // temporary file fills up as on a full disk.
-    // An earlier report of shoal's (its "shoal" member): the only kind it replaces.
-    const std::string earlier = "{\"type\": \"FeatureCollection\", \"shoal\": {\"an\": \"earlier report\"}, \"features\": []}\n";
-    const std::string r = file("r.geojson", earlier);
+    const std::string r = file("r.geojson", earlier_report);
     const std::string cmd = "trap '' XFSZ; ulimit -f 4; exec '" + std::string(SHOAL_BINARY) + "' check --world simulated --coast '" + s_grid +
                             "' --dims 50,10,5,5 '" + good_tracks() + "' -o '" + r + "'";
     const Outcome o = wait_for(spawn({"/bin/sh", "-c", cmd}, m_dir.path()), m_dir.path());
     EXPECT_EQ(o.status, 2) << o.err;
     EXPECT_NE(o.err.find("cannot write '" + r + "': File too large"), std::string::npos) << o.err;
-    EXPECT_EQ(slurp(r), earlier);
+    EXPECT_EQ(slurp(r), earlier_report);
     EXPECT_TRUE(temporaries(m_dir.path()).empty());
 }
 
@@ -811,9 +812,7 @@ TEST_F(BadInput, CtrlCKeepsTheReportOfAnEarlierRunAsItWas) {
     // Deterministic: the track file is a pipe that shoal is still reading when interrupted.
     const fs::path fifo = m_dir.path() / "pipe.csv";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
-    // An earlier report of shoal's (its "shoal" member): the only kind it replaces.
-    const std::string earlier = "{\"type\": \"FeatureCollection\", \"shoal\": {\"an\": \"earlier report\"}, \"features\": []}\n";
-    const std::string r = file("r.geojson", earlier);
+    const std::string r = file("r.geojson", earlier_report);
     const pid_t pid = spawn({SHOAL_BINARY, "check", "--coast", s_grid, "--dims", "50,10,5,5", fifo.string(), "-o", r}, m_dir.path());
     ASSERT_GT(pid, 0);
     {
@@ -824,7 +823,7 @@ TEST_F(BadInput, CtrlCKeepsTheReportOfAnEarlierRunAsItWas) {
         const Outcome o = wait_for(pid, m_dir.path());
         EXPECT_EQ(o.status, 130) << o.err;
     }
-    EXPECT_EQ(slurp(r), earlier);
+    EXPECT_EQ(slurp(r), earlier_report);
     EXPECT_TRUE(temporaries(m_dir.path()).empty());
 }
 
