@@ -41,14 +41,20 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
     return d[a.size()][b.size()];
 }
 
+/// The commands, in the order of `shoal --help`: "import, info, probe, check, merge".
+std::string command_names(const CLI::App& app) {
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names += (names.empty() ? "" : ", ") + sub->get_name();
+    return names;
+}
+
 /// A first argument that is no command and no option ("shoal chek ..."): the usage error that says
 /// so and names the nearest command (CLI11 alone says "A subcommand is required", which hides the typo).
 std::string unknown_command(const CLI::App& app, const std::string& given) {
-    std::string names, nearest;
+    std::string nearest;
     std::size_t best = static_cast<std::size_t>(-1);
     for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
         const std::string& n = sub->get_name();
-        names += (names.empty() ? "" : ", ") + n;
         std::string lower = given;
         std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
         const std::size_t d = edit_distance(lower, n);
@@ -56,7 +62,8 @@ std::string unknown_command(const CLI::App& app, const std::string& given) {
     }
     // Near enough to be a typo: at most 2 edits, and fewer than half the command's letters.
     const bool suggest = best <= 2 && 2 * best < nearest.size();
-    return "unknown command '" + shoal::printable(given) + "'" + (suggest ? " (did you mean '" + nearest + "'?)" : "") + "; the commands are " + names;
+    return "unknown command '" + shoal::printable(given) + "'" + (suggest ? " (did you mean '" + nearest + "'?)" : "") + "; the commands are " +
+           command_names(app);
 }
 
 }  // namespace
@@ -96,7 +103,12 @@ extern "C" SHOAL_CLI_ENTRY int shoal_cli_main(int argc, char** argv) {
                 }
                 return 0;
             }
-    if (argc >= 2 && argv[1][0] != '-' && argv[1][0] != '\0') {
+    // No command at all (CLI11 alone says "A subcommand is required"): say which there are.
+    if (argc < 2) {
+        std::fprintf(stderr, "shoal: usage error: no command given; the commands are %s (see shoal --help)\n", command_names(app).c_str());
+        return shoal::cli::exit_usage;
+    }
+    if (argv[1][0] != '-' && argv[1][0] != '\0') {
         const std::string first = argv[1];
         const auto all = app.get_subcommands([](const CLI::App*) { return true; });
         if (std::none_of(all.begin(), all.end(), [&](const CLI::App* sub) { return sub->check_name(first); })) {
