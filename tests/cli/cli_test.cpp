@@ -139,9 +139,11 @@ TEST(Cli, AMisspeltCommandIsNamedWithTheNearestOne) {
         EXPECT_EQ(r.err, "shoal: usage error: " + c.expect + list) << c.args;
         EXPECT_TRUE(r.out.empty()) << c.args;
     }
-    // A command rightly spelt, and no command at all, are as before.
+    // A command rightly spelt is as before; no command at all names the commands too.
     EXPECT_EQ(shoal("info --help").status, 0);
-    EXPECT_NE(shoal("").err.find("subcommand"), std::string::npos);
+    const Outcome none = shoal("");
+    EXPECT_EQ(none.status, 2);
+    EXPECT_EQ(none.err, "shoal: usage error: no command given" + list);
 }
 
 TEST(Cli, ProbeWritesOneRowPerPoseAndSkipsBadRows) {
