@@ -2,10 +2,15 @@
 // file, atomic saving, and load_or_build's reuse and rebuild decisions.
 
 #include <shoal/grid/grid_cache.hpp>
+#include <shoal/grid/grid_builder.hpp>
+
+#include <gdal_priv.h>
+#include <unistd.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <random>
@@ -321,3 +326,43 @@ TEST_F(LoadOrBuild, MissingSourceIsAnInputError) {
 }
 
 }  // namespace
+
+namespace {
+
+/// GDAL's own answer: the dataset opened, its GetFileList, sorted.
+std::vector<std::string> gdal_file_list(const std::string& path) {
+    std::vector<std::string> files;
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    if (ds)
+        if (char** list = ds->GetFileList()) {
+            for (char** f = list; *f; ++f) files.emplace_back(*f);
+            CSLDestroy(list);
+        }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+}  // namespace
+
+// The files a source consists of (what its fingerprint covers) are those GDAL lists after
+// opening it, also where JSON is told by its driver alone (not opened: not parsed).
+TEST(DatasetFiles, AreTheFilesGdalListsForEveryKindOfSource) {
+    int json = 0;
+    for (const auto& e : fs::recursive_directory_iterator(t::data_path("coast"))) {
+        const std::string path = e.path().string();
+        if (!e.is_regular_file() || e.path().extension() == ".md" || e.path().extension() == ".py") continue;
+        std::vector<std::string> ours = shoal::grid::dataset_files(path);
+        std::sort(ours.begin(), ours.end());
+        EXPECT_EQ(ours, gdal_file_list(path)) << path;
+        json += e.path().extension() == ".geojson";
+    }
+    EXPECT_GE(json, 8);  // the committed coasts hold GeoJSON, Shapefiles, GeoPackages and S-57 cells
+    // Inside a zip (GDAL's virtual file), and a file that is not there.
+    const fs::path zip = fs::temp_directory_path() / ("shoal_dataset_files_" + std::to_string(::getpid()) + ".zip");
+    const std::string zipped = "/vsizip/" + zip.string() + "/solent.geojson";
+    ASSERT_EQ(CPLCopyFile(zipped.c_str(), t::data_path("coast/uk_solent_land.geojson").c_str()), 0);
+    EXPECT_EQ(shoal::grid::dataset_files(zipped), std::vector<std::string>{zipped});
+    EXPECT_EQ(shoal::grid::dataset_files(zipped), gdal_file_list(zipped));
+    fs::remove(zip);
+    EXPECT_TRUE(shoal::grid::dataset_files(t::data_path("coast/no_such.geojson")).empty());
+}

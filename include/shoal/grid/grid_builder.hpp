@@ -16,6 +16,11 @@ namespace shoal::grid {
 /// and shore constructions are read from them).
 std::vector<std::string> coast_sources(const std::vector<std::string>& coast, const CoastGrid& g);
 
+/// The files a vector dataset consists of (a Shapefile's .shp, .shx, .dbf, .prj ...), as GDAL's
+/// GetFileList lists them; a JSON dataset (GeoJSON, GeoJSONSeq, ESRIJSON, TopoJSON) is its one
+/// file, told without opening it. Empty when GDAL cannot open it.
+std::vector<std::string> dataset_files(const std::string& path);
+
 /// Fingerprint of coastline sources and the options that shape a grid: XXH3 over the bytes of
 /// every file the sources consist of (as GDAL lists them) and the option values. Throws
 /// InputError for a missing or unreadable source.
