@@ -48,7 +48,7 @@
 #include <shoal/check/brute_force.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/coast/coastline.hpp>
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>

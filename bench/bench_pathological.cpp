@@ -37,8 +37,8 @@
 #include <shoal/check/brute_force.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/coast/coastline.hpp>
-#include "detail/gdal_support.hpp"
-#include "detail/geos_context.hpp"
+#include "util/gdal_support.hpp"
+#include "geo/geos_context.hpp"
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include "pathological_shapes.hpp"

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include <shoal/coast/coastline.hpp>
 #include <shoal/geo/point.hpp>
 

@@ -1,5 +1,5 @@
 # Installing shoal: the static library (position-independent) and libshoal_c.so.1 with their
-# public headers (include/shoal/, internals in src/detail/ stay out), a relocatable CMake
+# public headers (include/shoal/, private headers beside their sources in src/ stay out), a relocatable CMake
 # package (find_package(Shoal 0.2 CONFIG): targets Shoal::shoal and Shoal::shoal_c) and the
 # pkg-config files shoal.pc and shoal_c.pc. Modelled on GEOS's install rules and geos-config.cmake.
 include(CMakePackageConfigHelpers)

@@ -47,7 +47,7 @@
 #include <shoal/track/reader.hpp>
 #include <shoal/track/track.hpp>
 #include <shoal/util/error.hpp>
-#include "detail/input_file.hpp"
+#include "util/input_file.hpp"
 #include "track/stream_readers.hpp"
 
 namespace shoal::fuzz {

@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 
 namespace shoal::test {
 

@@ -19,7 +19,7 @@
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
 
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 #include "report/report_fields.hpp"
 
 namespace shoal::python {

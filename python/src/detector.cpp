@@ -17,7 +17,7 @@
 #include <shoal/geo/jacobian_field.hpp>
 #include <shoal/util/error.hpp>
 
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 
 namespace shoal::python {
 

@@ -12,7 +12,7 @@
 #include <shoal/util/option_names.hpp>
 #include <shoal/version.hpp>
 
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 
 namespace shoal::python {
 

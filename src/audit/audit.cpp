@@ -18,7 +18,7 @@
 #include <shoal/track/merge.hpp>
 #include <shoal/util/error.hpp>
 
-#include "detail/parallel.hpp"
+#include "util/parallel.hpp"
 #include "read_files.hpp"
 #include "run_totals.hpp"
 

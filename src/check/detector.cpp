@@ -8,7 +8,7 @@
 #include <numbers>
 #include <span>
 
-#include "detail/parallel.hpp"
+#include "util/parallel.hpp"
 #include "grid/outward.hpp"
 
 #if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)

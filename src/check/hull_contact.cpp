@@ -1,10 +1,10 @@
 // Hull-to-hull contact (see include/shoal/check/hull_contact.hpp): the exact all-edges
-// answer and the pruned search over chunk and edge capsules (src/detail/hull_shape.hpp).
+// answer and the pruned search over chunk and edge capsules (src/check/hull_shape.hpp).
 #include <shoal/check/hull_contact.hpp>
 
 #include <algorithm>
 
-#include "detail/hull_shape.hpp"
+#include "check/hull_shape.hpp"
 #include <shoal/util/error.hpp>
 
 namespace shoal::check {

@@ -18,8 +18,8 @@
 
 #include "coast/ogr_source.hpp"
 #include "coast/s57_structure.hpp"
-#include "detail/geos_context.hpp"
-#include "detail/parse_util.hpp"
+#include "geo/geos_context.hpp"
+#include "util/parse_util.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/util/error.hpp>
 

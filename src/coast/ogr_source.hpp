@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 
 namespace shoal::coast::ogr {
 

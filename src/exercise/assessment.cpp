@@ -18,10 +18,10 @@
 #include <shoal/track/track.hpp>
 #include <shoal/util/error.hpp>
 
-#include "detail/geos_context.hpp"
-#include "detail/input_file.hpp"
-#include "detail/json_message.hpp"
-#include "detail/parse_util.hpp"
+#include "geo/geos_context.hpp"
+#include "util/input_file.hpp"
+#include "util/json_message.hpp"
+#include "util/parse_util.hpp"
 
 namespace shoal::audit {
 

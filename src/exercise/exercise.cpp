@@ -10,8 +10,8 @@
 
 #include <shoal/util/error.hpp>
 
-#include "detail/input_file.hpp"
-#include "detail/json_message.hpp"
+#include "util/input_file.hpp"
+#include "util/json_message.hpp"
 
 namespace shoal::audit {
 

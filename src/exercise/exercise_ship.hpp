@@ -12,7 +12,7 @@
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/track/track.hpp>
-#include "detail/hull_shape.hpp"
+#include "check/hull_shape.hpp"
 
 namespace shoal::audit::detail {
 

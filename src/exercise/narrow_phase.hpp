@@ -13,7 +13,7 @@
 
 #include <shoal/check/hull_contact.hpp>
 #include "exercise/exercise_ship.hpp"
-#include "detail/hull_shape.hpp"
+#include "check/hull_shape.hpp"
 
 namespace shoal::audit::detail {
 

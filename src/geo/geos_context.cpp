@@ -1,4 +1,4 @@
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 
 #include <shoal/util/error.hpp>
 

@@ -6,7 +6,7 @@
 #include <mutex>
 #include <numeric>
 
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 #include "grid/outward.hpp"
 #include <shoal/util/error.hpp>
 

@@ -10,8 +10,8 @@
 #include <map>
 #include <numeric>
 
-#include "detail/geos_context.hpp"
-#include "detail/parse_util.hpp"
+#include "geo/geos_context.hpp"
+#include "util/parse_util.hpp"
 #include <shoal/util/error.hpp>
 
 namespace shoal::grid {

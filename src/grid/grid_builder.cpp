@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 #include <shoal/grid/grid_file.hpp>
 #include <shoal/util/error.hpp>
 

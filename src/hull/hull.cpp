@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include <shoal/util/error.hpp>
-#include "detail/json_message.hpp"
+#include "util/json_message.hpp"
 
 namespace shoal::hull {
 

@@ -10,7 +10,7 @@
 #include <system_error>
 
 #include <shoal/util/error.hpp>
-#include "detail/input_file.hpp"
+#include "util/input_file.hpp"
 
 namespace shoal::hull {
 

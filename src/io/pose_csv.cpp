@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include <shoal/util/error.hpp>
-#include "detail/input_file.hpp"
+#include "util/input_file.hpp"
 
 namespace shoal::io {
 

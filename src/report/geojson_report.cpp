@@ -15,7 +15,7 @@
 #include <variant>
 #include <vector>
 
-#include "detail/parallel.hpp"
+#include "util/parallel.hpp"
 #include "report/qgis/qgis_styles.hpp"
 #include "report/qgis/chart_layer.hpp"
 #include "report/geojson_output.hpp"

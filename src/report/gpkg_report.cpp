@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <variant>
 
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 #include "report/qgis/qgis_styles.hpp"
 #include "report/qgis/chart_layer.hpp"
 #include "report/gpkg_output.hpp"

@@ -16,7 +16,7 @@
 #include <shoal/grid/grid_builder.hpp>
 #include <shoal/grid/limiting_depth.hpp>
 
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 
 namespace shoal::report {
 

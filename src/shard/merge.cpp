@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "detail/gdal_support.hpp"
-#include "detail/input_file.hpp"
-#include "detail/json_message.hpp"
+#include "util/gdal_support.hpp"
+#include "util/input_file.hpp"
+#include "util/json_message.hpp"
 #include "report/qgis/chart_layer.hpp"
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"

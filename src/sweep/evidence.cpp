@@ -7,7 +7,7 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 
 namespace shoal::audit {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 
 namespace shoal::audit {
 

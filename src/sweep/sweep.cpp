@@ -11,7 +11,7 @@
 #include <shoal/util/error.hpp>
 #include "sweep/interval_events.hpp"
 #include "sweep/pose_outline.hpp"
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 
 namespace shoal::audit {
 

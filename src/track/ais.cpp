@@ -2,7 +2,7 @@
 
 #include <charconv>
 
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 #include <shoal/track/time.hpp>
 
 namespace shoal::track::ais {

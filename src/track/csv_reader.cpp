@@ -19,7 +19,7 @@
 #include <emmintrin.h>
 #endif
 
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 #include "track/stream_readers.hpp"
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>

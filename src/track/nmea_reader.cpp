@@ -8,8 +8,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "detail/input_file.hpp"
-#include "detail/parse_util.hpp"
+#include "util/input_file.hpp"
+#include "util/parse_util.hpp"
 #include "stream_readers.hpp"
 #include <shoal/track/ais.hpp>
 #include <shoal/track/time.hpp>

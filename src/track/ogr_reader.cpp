@@ -1,4 +1,4 @@
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 #include <shoal/track/ogr_reader.hpp>
 
 #include <cpl_error.h>
@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "detail/json_message.hpp"
-#include "detail/parse_util.hpp"
+#include "util/json_message.hpp"
+#include "util/parse_util.hpp"
 #include "track/stream_readers.hpp"
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/time.hpp>

@@ -15,8 +15,8 @@
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/nmea_reader.hpp>
 #include <shoal/track/ogr_reader.hpp>
-#include "detail/input_file.hpp"
-#include "detail/parse_util.hpp"
+#include "util/input_file.hpp"
+#include "util/parse_util.hpp"
 #include "track/stream_readers.hpp"
 #include <shoal/util/error.hpp>
 

@@ -1,11 +1,11 @@
 #pragma once
-/// The track readers' entry points for a file already opened (detail/input_file.hpp), used by
+/// The track readers' entry points for a file already opened (util/input_file.hpp), used by
 /// read_tracks after it has recognised the format from the same handle. Internal to src/track.
 
 #include <string>
 
 #include <shoal/track/reader.hpp>
-#include "detail/input_file.hpp"
+#include "util/input_file.hpp"
 
 namespace shoal::track::detail {
 

@@ -1,4 +1,4 @@
-#include "detail/input_file.hpp"
+#include "util/input_file.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -15,8 +15,8 @@
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include "detail/gdal_support.hpp"
-#include "detail/json_message.hpp"
+#include "util/gdal_support.hpp"
+#include "util/json_message.hpp"
 
 namespace shoal::detail {
 

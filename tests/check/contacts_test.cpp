@@ -17,7 +17,7 @@
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include "pathological_shapes.hpp"
 
 namespace shoal::check {

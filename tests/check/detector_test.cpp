@@ -16,7 +16,7 @@
 
 #include <shoal/check/brute_force.hpp>
 #include <shoal/check/detector.hpp>
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/util/error.hpp>
 

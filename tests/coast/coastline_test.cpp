@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include "test_support.hpp"
 #include <shoal/util/error.hpp>

@@ -8,7 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 
 #include <bit>
 #include <cmath>

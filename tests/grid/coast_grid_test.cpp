@@ -23,7 +23,7 @@
 #include <vector>
 
 #include <shoal/coast/coastline.hpp>
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include "test_support.hpp"
 #include <shoal/util/error.hpp>

@@ -4,7 +4,7 @@
 #include <shoal/hull/hull.hpp>
 #include <shoal/util/option_names.hpp>
 
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -41,7 +41,7 @@ using testing::ThrowsMessage;
 std::string data_path(const std::string& name) { return std::string{SHOAL_TEST_DATA} + name; }
 
 // ---------------------------------------------------------------------------------------------
-// GEOS helpers, on the library's owners (src/detail/geos_context.hpp).
+// GEOS helpers, on the library's owners (src/geo/geos_context.hpp).
 
 using GeosGeomPtr = shoal::geo::GeomPtr;
 

@@ -15,7 +15,7 @@
 #include <cpl_minixml.h>
 #include <gdal_priv.h>
 
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 
 #include <algorithm>
 #include <cmath>

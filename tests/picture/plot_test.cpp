@@ -11,7 +11,7 @@
 #include <cpl_error.h>
 #include <cpl_minixml.h>
 
-#include "detail/gdal_support.hpp"
+#include "util/gdal_support.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -569,7 +569,7 @@ TEST(Sweep, ContactKindsFollowWhatWasObserved) {
 }  // namespace shoal::audit
 
 #include "sweep/pose_outline.hpp"
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 
 namespace shoal::audit {
 namespace {

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "detail/parse_util.hpp"
+#include "util/parse_util.hpp"
 #include "test_support.hpp"
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>

@@ -23,7 +23,7 @@
 #include <thread>
 #include <vector>
 
-#include "detail/input_file.hpp"
+#include "util/input_file.hpp"
 #include "track/stream_readers.hpp"
 #include "test_support.hpp"
 #include <shoal/hull/hull.hpp>

@@ -6,7 +6,7 @@
 #include <map>
 #include <tuple>
 
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/util/error.hpp>
 

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <random>
 
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include "report/qgis/chart_layer.hpp"
 
 namespace shoal::report {

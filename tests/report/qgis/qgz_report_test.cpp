@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "detail/geos_context.hpp"
+#include "geo/geos_context.hpp"
 #include "sweep/pose_outline.hpp"
 #include "run_shoal.hpp"
 #include "xml_support.hpp"

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <system_error>
 
-#include <shoal/track/track.hpp>
+
 
 namespace shoal::track::detail {
 
