@@ -4,13 +4,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 #include <span>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include <shoal/probe/probe.hpp>
@@ -19,18 +16,6 @@
 #include <shoal/util/printable.hpp>
 
 namespace shoal::cli {
-
-namespace {
-
-/// Appends `v` as printf's "%.<precision>f" would (std::to_chars is exact, as glibc's printf is).
-void append_fixed(std::string& out, double v, int precision) {
-    char buf[400];  // enough for any double in fixed notation with 7 decimals
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, precision);
-    if (ec != std::errc()) throw std::logic_error("probe: a number too long to write");
-    out.append(buf, end);
-}
-
-}  // namespace
 
 CLI::App* ProbeArgs::add(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("probe", "Check single poses (lat,lon,heading per CSV row): collision and clearance");
@@ -71,20 +56,8 @@ int run_probe(const ProbeArgs& args, const ProbeInputs& inputs) {
         std::string& out = pieces[from / check::placement_block];
         out.reserve(answers.size() * 48);
         for (std::size_t i = 0; i < answers.size(); ++i) {
-            const io::PoseRow& p = rows[from + i];
             const probe::Answer& a = answers[i];
-            append_fixed(out, p.lat, 7);
-            out += ',';
-            append_fixed(out, p.lon, 7);
-            out += ',';
-            append_fixed(out, p.heading_deg, 1);
-            if (a.claimed()) {
-                out += a.collision ? ",1," : ",0,";
-                append_fixed(out, a.clearance_m, 3);
-                out += a.covered ? ",1\n" : ",0\n";
-            } else {
-                out += ",,,0\n";  // outside the chart nothing is claimed
-            }
+            io::append_probe_row(out, rows[from + i], a.claimed(), a.collision, a.clearance_m, a.covered);
         }
     });
     // Every row was read valid: a pose refused here is one PROJ cannot place, and fails the run.

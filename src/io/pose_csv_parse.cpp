@@ -1,12 +1,15 @@
-// parse_pose_csv: GDAL-free (in shoal_core: the `shoal` executable's probe of a grid file
-// parses poses without loading GDAL); read_pose_csv, which reads through GDAL, is in pose_csv.cpp.
+// parse_pose_csv and append_probe_row: GDAL-free (in shoal_core: the `shoal` executable's probe of
+// a grid file reads and writes without loading GDAL); read_pose_csv, which reads through GDAL, is
+// in pose_csv.cpp.
 #include <shoal/io/pose_csv.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <stdexcept>
 #include <string_view>
+#include <system_error>
 
 #include <shoal/track/csv_splitter.hpp>
 #include <shoal/util/error.hpp>
@@ -144,6 +147,33 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
         out.poses.push_back(r);
     }
     return out;
+}
+
+namespace {
+
+/// Appends `v` as printf's "%.<precision>f" would (std::to_chars is exact, as glibc's printf is).
+void append_fixed(std::string& out, double v, int precision) {
+    char buf[400];  // enough for any double in fixed notation with 7 decimals
+    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, precision);
+    if (ec != std::errc()) throw std::logic_error("probe: a number too long to write");
+    out.append(buf, end);
+}
+
+}  // namespace
+
+void append_probe_row(std::string& out, const PoseRow& pose, bool claimed, bool collision, double clearance_m, bool covered) {
+    append_fixed(out, pose.lat, 7);
+    out += ',';
+    append_fixed(out, pose.lon, 7);
+    out += ',';
+    append_fixed(out, pose.heading_deg, 1);
+    if (claimed) {
+        out += collision ? ",1," : ",0,";
+        append_fixed(out, clearance_m, 3);
+        out += covered ? ",1\n" : ",0\n";
+    } else {
+        out += ",,,0\n";
+    }
 }
 
 bool is_probe_output(const std::string& path) { return file_head(path, probe_output_header.size()) == probe_output_header; }
