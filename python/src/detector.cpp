@@ -18,7 +18,6 @@
 #include <shoal/geo/jacobian_field.hpp>
 #include <shoal/util/error.hpp>
 
-#include "detail/parse_util.hpp"
 
 namespace shoal::python {
 
@@ -66,6 +65,12 @@ private:
     std::mutex m_mutex;
     std::vector<std::unique_ptr<geo::LocalFrame>> m_free;
 };
+
+/// A ValueError for a pose the probe would refuse (probe::pose_problem), in its words.
+void refuse_bad_pose(double lat, double lon, double heading) {
+    if (const std::optional<std::string> problem = probe::pose_problem(lat, lon, heading))
+        throw py::value_error(problem->rfind("heading", 0) == 0 ? *problem : "pose: " + *problem);
+}
 
 class PyDetector {
 public:
@@ -117,9 +122,7 @@ public:
     }
 
     py::dict surroundings(double lat, double lon, double heading, double max_m) const {
-        std::string what;
-        if (track::detail::position_problem(lat, lon, what)) throw py::value_error("pose: " + what);
-        if (!std::isfinite(heading)) throw py::value_error("heading " + track::detail::fmt(heading) + " is not a number");
+        refuse_bad_pose(lat, lon, heading);
         if (!(max_m > 0)) throw py::value_error("max_m must be > 0 (metres; inf: no limit)");
         check::Surroundings r;
         {
@@ -141,9 +144,7 @@ public:
 
     /// Every contact region at one pose, deepest first, as shoal_contacts gives them.
     py::list contacts(double lat, double lon, double heading) const {
-        std::string what;
-        if (track::detail::position_problem(lat, lon, what)) throw py::value_error("pose: " + what);
-        if (!std::isfinite(heading)) throw py::value_error("heading " + track::detail::fmt(heading) + " is not a number");
+        refuse_bad_pose(lat, lon, heading);
         std::vector<check::ShipFrameContact> found;
         {
             py::gil_scoped_release nogil;

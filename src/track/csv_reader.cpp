@@ -15,10 +15,6 @@
 #include <thread>
 #include <unordered_map>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "detail/parse_util.hpp"
 #include "track/stream_readers.hpp"
 #include <shoal/track/time.hpp>
