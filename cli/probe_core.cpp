@@ -4,34 +4,18 @@
 
 #include <CLI/CLI.hpp>
 
-#include <atomic>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 #include <span>
 #include <string>
-#include <system_error>
 #include <vector>
 
-#include <shoal/check/detector.hpp>
-#include <shoal/geo/jacobian_field.hpp>
+#include <shoal/probe/probe.hpp>
+#include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 #include <shoal/util/printable.hpp>
 
 namespace shoal::cli {
-
-namespace {
-
-/// Appends `v` as printf's "%.<precision>f" would (std::to_chars is exact, as glibc's printf is).
-void append_fixed(std::string& out, double v, int precision) {
-    char buf[400];  // enough for any double in fixed notation with 7 decimals
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, precision);
-    if (ec != std::errc()) throw std::logic_error("probe: a number too long to write");
-    out.append(buf, end);
-}
-
-}  // namespace
 
 CLI::App* ProbeArgs::add(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("probe", "Check single poses (lat,lon,heading per CSV row): collision and clearance");
@@ -61,47 +45,27 @@ int run_probe(const ProbeArgs& args, const ProbeInputs& inputs) {
     args.opts.warn_depth(depth, g);
     if (depth.source == grid::DepthPlan::Source::grid_default)
         std::fprintf(stderr, "shoal: limiting depth %.2f m (the grid's default, import --hazard-depth)\n", *depth.depth_m);
-    const check::Detector detector(g, hull, depth.depth_m);
-    // Only what is written: no penetration depth, no enclosing polyline, not where a contact is.
-    check::CheckOptions asked;
-    asked.want_penetration = false;
-    asked.want_polyline = false;
-    asked.want_contact_point = false;
-    // Poses placed a block at a time (one projection each, the Jacobian from a field fitted
-    // once over the chart) and checked on --jobs threads; each block's rows are written
-    // into a piece of their own, and the pieces go out in input order.
-    const geo::JacobianField field(g.frame(), g.extent());
+    const probe::Probe prober(g, hull, depth.depth_m);
+    // Poses checked a block at a time on --jobs threads (probe::Probe: placed with one
+    // projection each, the Jacobian from a field fitted once over the chart); each block's
+    // rows are written into a piece of their own, and the pieces go out in input order.
     const std::vector<io::PoseRow>& rows = poses.poses;
     std::vector<std::string> pieces((rows.size() + check::placement_block - 1) / check::placement_block);
-    std::atomic<std::size_t> uncovered{0};
     auto pose_of = [&](std::size_t k) { return check::Pose{{rows[k].lon, rows[k].lat}, rows[k].heading_deg}; };
-    check::place_in_blocks(g.frame(), field, rows.size(), pose_of, args.jobs, [&](std::size_t from, std::span<const check::LocalPose> placed, unsigned) {
+    const probe::Batch batch = prober.check_blocks(rows.size(), pose_of, probe::Ask{}, args.jobs, [&](std::size_t from, std::span<const probe::Answer> answers, unsigned) {
         std::string& out = pieces[from / check::placement_block];
-        out.reserve(placed.size() * 48);
-        std::size_t outside = 0;
-        for (std::size_t i = 0; i < placed.size(); ++i) {
-            const io::PoseRow& p = rows[from + i];
-            const check::Contact c = detector.check(placed[i], asked);
-            append_fixed(out, p.lat, 7);
-            out += ',';
-            append_fixed(out, p.lon, 7);
-            out += ',';
-            append_fixed(out, p.heading_deg, 1);
-            // Outside the chart nothing is claimed: no collision found there means nothing.
-            if (c.covered || c.collision) {
-                out += c.collision ? ",1," : ",0,";
-                append_fixed(out, c.collision ? 0.0 : c.clearance_m, 3);
-                out += c.covered ? ",1\n" : ",0\n";
-            } else {
-                out += ",,,0\n";
-            }
-            outside += c.covered ? 0 : 1;
+        out.reserve(answers.size() * 48);
+        for (std::size_t i = 0; i < answers.size(); ++i) {
+            const probe::Answer& a = answers[i];
+            io::append_probe_row(out, rows[from + i], a.claimed(), a.collision, a.clearance_m, a.covered);
         }
-        uncovered += outside;
     });
+    // Every row was read valid: a pose refused here is one PROJ cannot place, and fails the run.
+    if (batch.invalid) throw InputError(batch.first_problem);
+    const std::size_t uncovered = batch.uncovered;
     if (uncovered)
         std::fprintf(stderr, "shoal: warning: %zu of %zu poses lie (partly) outside the chart's area: covered 0, collision and clearance unknown\n",
-                     uncovered.load(), poses.poses.size());
+                     uncovered, poses.poses.size());
     StagedOutput output(args.output);
     output.write_streamed([&](const StagedOutput::Sink& sink) {
         sink(io::probe_output_header);

@@ -13,11 +13,11 @@
 
 #include <shoal/check/contacts.hpp>
 #include <shoal/check/detector.hpp>
+#include <shoal/probe/probe.hpp>
 #include <shoal/check/surroundings.hpp>
 #include <shoal/geo/jacobian_field.hpp>
 #include <shoal/util/error.hpp>
 
-#include "util/parse_util.hpp"
 
 namespace shoal::python {
 
@@ -66,12 +66,17 @@ private:
     std::vector<std::unique_ptr<geo::LocalFrame>> m_free;
 };
 
+/// A ValueError for a pose the probe would refuse (probe::pose_problem), in its words.
+void refuse_bad_pose(double lat, double lon, double heading) {
+    if (const std::optional<std::string> problem = probe::pose_problem(lat, lon, heading))
+        throw py::value_error(problem->rfind("heading", 0) == 0 ? *problem : "pose: " + *problem);
+}
+
 class PyDetector {
 public:
     PyDetector(GridHandle grid, const py::object& ship, const py::object& dims, const py::object& ukc, const py::object& hazard_depth_m)
         : m_grid(std::move(grid)), m_hull(hull_of(ship, dims, &m_label)),
-          m_detector(*m_grid.grid, m_hull, plan_depth(m_grid, m_hull, hazard_depth_m, ukc).depth_m),
-          m_field(m_grid.grid->frame(), m_grid.grid->extent()) {}
+          m_probe(*m_grid.grid, m_hull, plan_depth(m_grid, m_hull, hazard_depth_m, ukc).depth_m) {}
 
     py::dict check(const Array& lat, const Array& lon, const Array& heading, double max_clearance_m) const {
         if (!(max_clearance_m > 0)) throw py::value_error("max_clearance_m must be > 0 (metres; inf: no limit)");
@@ -88,64 +93,23 @@ public:
         bool* pv = covered.mutable_data();
         double* pcl = clearance.mutable_data();
         double* ppe = penetration.mutable_data();
-        std::size_t bad = 0;
-        std::string first_bad;
+        std::vector<check::Pose> poses(n);
+        for (std::size_t k = 0; k < n; ++k) poses[k] = {{plon[k], plat[k]}, phead[k]};
+        probe::Batch batch;
         {
             py::gil_scoped_release nogil;
-            // A frame of this call's own: PROJ transformations are not shared between threads.
-            const geo::LocalFrame frame(m_grid.grid->frame());
-            const check::CheckOptions options{.max_clearance_m = max_clearance_m, .want_penetration = true, .want_polyline = false, .want_contact_point = false};
-            std::size_t first_bad_at = n;
-            auto fail = [&](std::size_t k, const std::string& what) {
-                pc[k] = false, pv[k] = false, pcl[k] = NAN, ppe[k] = NAN;
-                ++bad;
-                if (k < first_bad_at) {
-                    first_bad_at = k;
-                    first_bad = "pose " + std::to_string(k) + ": " + what;
-                }
-            };
-            std::vector<std::size_t> valid;
-            for (std::size_t k = 0; k < n; ++k) {
-                std::string what;
-                if (track::detail::position_problem(plat[k], plon[k], what) || !std::isfinite(phead[k])) {
-                    if (what.empty()) what = "heading " + track::detail::fmt(phead[k]) + " is not a number";
-                    fail(k, what);
-                } else {
-                    valid.push_back(k);
-                }
-            }
-            // Placed as `shoal probe` places them: a block at a time (one projection each, the
-            // Jacobian from the field); a block with a pose PROJ cannot take is placed pose
-            // by pose (the same way), so that only that pose fails.
-            constexpr std::size_t block = 4096;
-            std::vector<check::Pose> todo;
-            std::vector<check::LocalPose> placed;
-            for (std::size_t from = 0; from < valid.size(); from += block) {
-                const std::size_t to = std::min(valid.size(), from + block);
-                todo.clear();
-                for (std::size_t v = from; v < to; ++v) todo.push_back({{plon[valid[v]], plat[valid[v]]}, phead[valid[v]]});
-                try {
-                    placed = check::place(frame, m_field, todo);
-                } catch (const InputError&) {
-                    placed.clear();
-                }
-                for (std::size_t v = from; v < to; ++v) {
-                    const std::size_t k = valid[v];
-                    try {
-                        const check::LocalPose pose = placed.empty() ? check::place(frame, m_field, todo[v - from]) : placed[v - from];
-                        const check::Contact c = m_detector.check(pose, options);
-                        // As `shoal probe`: a contact found is real, chart or not; outside the chart
-                        // no clearance is claimed.
-                        pc[k] = c.collision;
-                        pv[k] = c.covered;
-                        pcl[k] = c.collision ? 0.0 : c.covered ? c.clearance_m : NAN;
-                        ppe[k] = c.collision ? c.penetration_m : NAN;
-                    } catch (const InputError& e) {
-                        fail(k, e.what());
-                    }
-                }
-            }
+            // One thread, the blocks in turn (as before the probe had threads of its own here).
+            batch = m_probe.check(poses, {.max_clearance_m = max_clearance_m, .want_penetration = true}, 1);
         }
+        for (std::size_t k = 0; k < n; ++k) {
+            const probe::Answer& a = batch.answers[k];
+            pc[k] = a.collision;
+            pv[k] = a.covered;
+            pcl[k] = a.clearance_m;
+            ppe[k] = a.penetration_m;
+        }
+        const std::size_t bad = batch.invalid;
+        const std::string first_bad = bad ? "pose " + std::to_string(batch.first_invalid) + ": " + batch.first_problem : std::string();
         if (bad)
             warn_all({std::to_string(bad) + " of " + std::to_string(n) + " poses are not valid (first: " + first_bad +
                       "): covered False, clearance NaN"});
@@ -158,9 +122,7 @@ public:
     }
 
     py::dict surroundings(double lat, double lon, double heading, double max_m) const {
-        std::string what;
-        if (track::detail::position_problem(lat, lon, what)) throw py::value_error("pose: " + what);
-        if (!std::isfinite(heading)) throw py::value_error("heading " + track::detail::fmt(heading) + " is not a number");
+        refuse_bad_pose(lat, lon, heading);
         if (!(max_m > 0)) throw py::value_error("max_m must be > 0 (metres; inf: no limit)");
         check::Surroundings r;
         {
@@ -168,7 +130,7 @@ public:
             // A frame this call alone uses (PROJ transformations are not shared between
             // threads), kept for the next call: a copy of a frame costs far more than the call.
             const FramePool::Lease frame(*m_frames, m_grid.grid->frame());
-            r = check::surroundings(m_detector, *m_grid.grid, check::place(frame.get(), m_field, check::Pose{{lon, lat}, heading}), max_m);
+            r = check::surroundings(m_probe.detector(), *m_grid.grid, check::place(frame.get(), m_probe.field(), check::Pose{{lon, lat}, heading}), max_m);
         }
         py::dict out;
         out["covered"] = r.covered;
@@ -182,16 +144,14 @@ public:
 
     /// Every contact region at one pose, deepest first, as shoal_contacts gives them.
     py::list contacts(double lat, double lon, double heading) const {
-        std::string what;
-        if (track::detail::position_problem(lat, lon, what)) throw py::value_error("pose: " + what);
-        if (!std::isfinite(heading)) throw py::value_error("heading " + track::detail::fmt(heading) + " is not a number");
+        refuse_bad_pose(lat, lon, heading);
         std::vector<check::ShipFrameContact> found;
         {
             py::gil_scoped_release nogil;
             const FramePool::Lease frame(*m_frames, m_grid.grid->frame());
-            const check::LocalPose pose = check::place(frame.get(), m_field, check::Pose{{lon, lat}, heading});
-            for (const check::ContactRegion& r : check::contact_regions(m_detector, pose))
-                found.push_back(check::in_ship_frame(r, pose, frame.get(), &m_detector.grid()));
+            const check::LocalPose pose = check::place(frame.get(), m_probe.field(), check::Pose{{lon, lat}, heading});
+            for (const check::ContactRegion& r : check::contact_regions(m_probe.detector(), pose))
+                found.push_back(check::in_ship_frame(r, pose, frame.get(), &m_probe.detector().grid()));
         }
         py::list out;
         for (const check::ShipFrameContact& c : found) {
@@ -215,8 +175,7 @@ private:
     GridHandle m_grid;  // keeps the grid alive
     std::string m_label;
     hull::Hull m_hull;
-    check::Detector m_detector;
-    geo::JacobianField m_field;  ///< the frame's Jacobian over the grid, for placing poses
+    probe::Probe m_probe;  ///< the detector and the placement (the frame's Jacobian over the grid)
     std::unique_ptr<FramePool> m_frames = std::make_unique<FramePool>();  ///< frames for surroundings(), contacts()
 };
 

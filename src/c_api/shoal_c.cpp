@@ -23,6 +23,7 @@
 #include <shoal/check/surroundings.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
+#include <shoal/probe/probe.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/version.hpp>
 
@@ -32,8 +33,8 @@ struct shoal_grid {
 
 struct shoal_detector {
     std::shared_ptr<const shoal::grid::CoastGrid> grid;  // keeps the grid alive
-    shoal::check::Detector detector;
-    shoal::geo::JacobianField field;  // the frame's Jacobian over the grid: one projection per check
+    shoal::probe::Probe probe;  // the detector and the placement (one projection per check)
+    const shoal::check::Detector& detector() const noexcept { return probe.detector(); }
 };
 
 namespace {
@@ -84,15 +85,13 @@ shoal::hull::Hull load_ship_file(const std::string& path) {
 /// At limiting depth `limit` (none: land only).
 shoal_detector* make_detector(const shoal_grid* grid, shoal::hull::Hull hull, std::optional<double> limit) {
     if (!grid) throw std::invalid_argument("shoal_detector: the grid is NULL");
-    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull), limit),
-                              shoal::geo::JacobianField(grid->grid->frame(), grid->grid->extent())};
+    return new shoal_detector{grid->grid, shoal::probe::Probe(*grid->grid, std::move(hull), limit)};
 }
 
 /// At the grid's default limiting depth.
 shoal_detector* make_detector(const shoal_grid* grid, shoal::hull::Hull hull) {
     if (!grid) throw std::invalid_argument("shoal_detector: the grid is NULL");
-    return new shoal_detector{grid->grid, shoal::check::Detector(*grid->grid, std::move(hull)),
-                              shoal::geo::JacobianField(grid->grid->frame(), grid->grid->extent())};
+    return new shoal_detector{grid->grid, shoal::probe::Probe(*grid->grid, std::move(hull))};
 }
 
 /// At limiting depth `depth_m` as the C API gives it (NaN: land only; infinite is refused).
@@ -102,12 +101,12 @@ shoal_detector* make_detector_at(const shoal_grid* grid, shoal::hull::Hull hull,
 }
 
 void check_pose(const char* fn, double lat, double lon, double heading_deg) {
-    if (!(std::fabs(lat) <= 90) || !(std::fabs(lon) <= 180) || !std::isfinite(heading_deg))
+    if (shoal::probe::pose_problem(lat, lon, heading_deg))
         throw std::invalid_argument(std::string(fn) + ": lat must be in [-90, 90], lon in [-180, 180] and the heading finite");
 }
 
 shoal::check::LocalPose place(const shoal_detector* d, double lat, double lon, double heading_deg) {
-    return shoal::check::place(d->grid->frame(), d->field, shoal::check::Pose{{lon, lat}, heading_deg});
+    return d->probe.place(shoal::check::Pose{{lon, lat}, heading_deg});
 }
 
 /// A region as the C API gives it.
@@ -192,12 +191,12 @@ int shoal_check(const shoal_detector* detector, double lat, double lon, double h
             if (!detector || !out) throw std::invalid_argument("shoal_check: the detector or the result is NULL");
             check_pose("shoal_check", lat, lon, heading_deg);
             if (!(max_clearance_m > 0)) throw std::invalid_argument("shoal_check: max_clearance_m must be > 0");
-            const shoal::check::Contact c =
-                detector->detector.check(place(detector, lat, lon, heading_deg),
-                                         {.max_clearance_m = max_clearance_m, .want_penetration = false, .want_polyline = false, .want_contact_point = false});
-            out->covered = c.covered ? 1 : 0;
-            out->contact = c.collision ? 1 : 0;  // a contact found is real, chart or not
-            out->clearance_m = c.collision ? 0.0 : !c.covered ? -1.0 : std::min(c.clearance_m, max_clearance_m);
+            const shoal::probe::Answer a =
+                detector->probe.check(shoal::check::Pose{{lon, lat}, heading_deg}, {.max_clearance_m = max_clearance_m, .want_penetration = false});
+            out->covered = a.covered ? 1 : 0;
+            out->contact = a.collision ? 1 : 0;  // a contact found is real, chart or not
+            // Outside the chart nothing is claimed: -1.
+            out->clearance_m = a.claimed() ? std::min(a.clearance_m, max_clearance_m) : -1.0;
             return 0;
         },
         1);
@@ -210,8 +209,8 @@ int shoal_contacts(const shoal_detector* detector, double lat, double lon, doubl
             check_pose("shoal_contacts", lat, lon, heading_deg);
             check_out("shoal_contacts", out, capacity);
             const shoal::check::LocalPose pose = place(detector, lat, lon, heading_deg);
-            const std::vector<shoal::check::ContactRegion> regions = shoal::check::contact_regions(detector->detector, pose);
-            const shoal::grid::CoastGrid& g = detector->detector.grid();
+            const std::vector<shoal::check::ContactRegion> regions = shoal::check::contact_regions(detector->detector(), pose);
+            const shoal::grid::CoastGrid& g = detector->detector().grid();
             for (std::size_t i = 0; i < regions.size() && i < static_cast<std::size_t>(capacity); ++i) {
                 const shoal::check::ShipFrameContact c = shoal::check::in_ship_frame(regions[i], pose, g.frame(), &g);
                 shoal_contact_point& o = out[i];
@@ -238,7 +237,7 @@ int shoal_ship_contacts(const shoal_detector* a, double lat_a, double lon_a, dou
             // Both hulls in a's frame.
             const shoal::check::LocalPose pa = place(a, lat_a, lon_a, heading_a_deg);
             const shoal::check::LocalPose pb = place(a, lat_b, lon_b, heading_b_deg);
-            const shoal::check::HullContact hc = shoal::check::hull_contact(a->detector.hull(), pa, b->detector.hull(), pb);
+            const shoal::check::HullContact hc = shoal::check::hull_contact(a->detector().hull(), pa, b->detector().hull(), pb);
             const shoal::geo::LocalFrame& frame = a->grid->frame();
             const double scale = shoal::check::local_scale(pa);
             out->contact = hc.collision ? 1 : 0;
@@ -247,7 +246,7 @@ int shoal_ship_contacts(const shoal_detector* a, double lat_a, double lon_a, dou
             out->a_lat = ca.lat, out->a_lon = ca.lon, out->b_lat = cb.lat, out->b_lon = cb.lon;
             if (!hc.collision) return 0;
             const std::vector<shoal::check::ContactRegion> regions = shoal::check::hull_contact_regions(
-                shoal::check::hull_outline(a->detector.hull(), pa), shoal::check::hull_outline(b->detector.hull(), pb), scale);
+                shoal::check::hull_outline(a->detector().hull(), pa), shoal::check::hull_outline(b->detector().hull(), pb), scale);
             for (std::size_t i = 0; i < regions.size() && i < static_cast<std::size_t>(capacity); ++i)
                 fill(shoal::check::in_ship_frame(regions[i], pa, frame, nullptr), SHOAL_HAZARD_SHIP, points[i]);
             // Touching outlines overlap in no area: the contact point, depth 0.
@@ -272,7 +271,7 @@ int shoal_surroundings_at(const shoal_detector* detector, double lat, double lon
             check_pose("shoal_surroundings_at", lat, lon, heading_deg);
             if (!(max_m > 0)) throw std::invalid_argument("shoal_surroundings_at: max_m must be > 0 (metres; INFINITY: no limit)");
             const shoal::check::Surroundings r =
-                shoal::check::surroundings(detector->detector, *detector->grid, place(detector, lat, lon, heading_deg), max_m);
+                shoal::check::surroundings(detector->detector(), *detector->grid, place(detector, lat, lon, heading_deg), max_m);
             out->covered = r.covered ? 1 : 0;
             out->port_m = r.port_m;
             out->starboard_m = r.starboard_m;

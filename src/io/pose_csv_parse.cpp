@@ -1,14 +1,17 @@
-// parse_pose_csv: GDAL-free (in shoal_core: the `shoal` executable's probe of a grid file
-// parses poses without loading GDAL); read_pose_csv, which reads through GDAL, is in pose_csv.cpp.
+// parse_pose_csv and append_probe_row: GDAL-free (in shoal_core: the `shoal` executable's probe of
+// a grid file reads and writes without loading GDAL); read_pose_csv, which reads through GDAL, is
+// in pose_csv.cpp.
 #include <shoal/io/pose_csv.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
+#include <stdexcept>
 #include <string_view>
+#include <system_error>
 
+#include <shoal/track/csv_splitter.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 
@@ -17,32 +20,6 @@ namespace shoal::io {
 namespace {
 
 constexpr std::size_t max_messages = 10;
-
-/// The fields of `line` (separated by ',', ';' or a tab, quotes dropped, each trimmed of
-/// blanks) as views into `line`, or into `unquoted` when the line holds quotes.
-void split(std::string_view line, std::string& unquoted, std::vector<std::string_view>& out) {
-    out.clear();
-    if (line.find('"') != std::string_view::npos) {
-        unquoted.clear();
-        for (char c : line)
-            if (c != '"') unquoted += c;
-        line = unquoted;
-    }
-    auto trimmed = [](std::string_view f) {
-        const auto b = f.find_first_not_of(" \t");
-        if (b == std::string_view::npos) return std::string_view{};
-        return f.substr(b, f.find_last_not_of(" \t") - b + 1);
-    };
-    std::size_t from = 0;
-    for (std::size_t k = 0; k < line.size(); ++k) {
-        const char c = line[k];
-        if (c == ',' || c == ';' || c == '\t') {
-            out.push_back(trimmed(line.substr(from, k - from)));
-            from = k + 1;
-        }
-    }
-    out.push_back(trimmed(line.substr(from)));
-}
 
 bool parse_double(std::string_view s, double& v) {
     if (s.empty()) return false;
@@ -59,6 +36,47 @@ std::string lower(std::string_view v) {
     return s;
 }
 
+/// `text` from its first line that is not blank or a comment ('#' first, after blanks) on, a
+/// byte order mark skipped; `*passed` says how many lines were passed over.
+std::string_view from_first_row(std::string_view text, std::size_t* passed) {
+    if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+    *passed = 0;
+    while (!text.empty()) {
+        const std::size_t nl = text.find('\n');
+        const std::string_view line = text.substr(0, nl);
+        const std::size_t lead = line.find_first_not_of(" \t\r");
+        if (lead != std::string_view::npos && line[lead] != '#') break;
+        ++*passed;
+        text.remove_prefix(nl == std::string_view::npos ? text.size() : nl + 1);
+    }
+    return text;
+}
+
+/// `text` with its comment lines emptied (their line ends kept, so lines keep their numbers),
+/// into `copy` when there are any.
+std::string_view without_comments(std::string_view text, std::string& copy) {
+    bool any = false;
+    for (std::size_t pos = 0; pos < text.size() && !any;) {
+        const std::size_t nl = text.find('\n', pos);
+        const std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+        const std::size_t lead = line.find_first_not_of(" \t");
+        any = lead != std::string_view::npos && line[lead] == '#';
+        pos = nl == std::string_view::npos ? text.size() : nl + 1;
+    }
+    if (!any) return text;
+    copy.reserve(text.size());
+    for (std::size_t pos = 0; pos < text.size();) {
+        const std::size_t nl = text.find('\n', pos);
+        const std::size_t end = nl == std::string_view::npos ? text.size() : nl;
+        const std::string_view line = text.substr(pos, end - pos);
+        const std::size_t lead = line.find_first_not_of(" \t");
+        if (!(lead != std::string_view::npos && line[lead] == '#')) copy += line;
+        if (nl != std::string_view::npos) copy += '\n';
+        pos = end + 1;
+    }
+    return copy;
+}
+
 }  // namespace
 
 PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
@@ -70,21 +88,24 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
         ++out.skipped;
         if (out.errors.size() < max_messages) out.errors.push_back(name + " line " + std::to_string(lineno) + ": " + why + "; row skipped");
     };
-    std::string unquoted;
+    // Split as the track reader splits (track::CsvSplitter: RFC 4180 quotes, one separator, the
+    // one of ',', ';' and tab the first row holds most), from the first row that is not blank
+    // or a comment; later comment lines are emptied.
+    std::size_t passed = 0;
+    std::string copy;
+    const std::string_view rows = without_comments(from_first_row(text, &passed), copy);
+    track::CsvSplitter split(rows);
     std::vector<std::string_view> f;
-    const std::string_view all(text);
-    for (std::size_t pos = 0; pos < all.size();) {
-        const std::size_t nl = all.find('\n', pos);
-        std::string_view line = all.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
-        pos = nl == std::string_view::npos ? all.size() : nl + 1;
-        ++lineno;
-        if (lineno == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // UTF-8 BOM
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        const std::size_t lead = line.find_first_not_of(" \t");
-        if (lead == std::string_view::npos || line[lead] == '#') continue;
-        split(line, unquoted, f);
+    for (std::size_t from = 0; split.next(f); from = split.consumed()) {
+        lineno = passed + split.line();
+        // A line of blanks (and tabs, when they separate) is passed over, as an empty one.
+        if (std::all_of(f.begin(), f.end(), [](std::string_view s) { return s.empty(); }) &&
+            rows.substr(from, split.consumed() - from).find_first_not_of(" \t\r\n") == std::string_view::npos)
+            continue;
         if (first) {
             first = false;
+            std::string_view line = rows.substr(from, split.consumed() - from);
+            while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.remove_suffix(1);
             const bool header = std::any_of(line.begin(), line.end(), [](unsigned char c) { return std::isalpha(c) && c != 'e' && c != 'E'; });
             if (header) {
                 col_lat = col_lon = col_hdg = -1;
@@ -126,6 +147,33 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
         out.poses.push_back(r);
     }
     return out;
+}
+
+namespace {
+
+/// Appends `v` as printf's "%.<precision>f" would (std::to_chars is exact, as glibc's printf is).
+void append_fixed(std::string& out, double v, int precision) {
+    char buf[400];  // enough for any double in fixed notation with 7 decimals
+    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, precision);
+    if (ec != std::errc()) throw std::logic_error("probe: a number too long to write");
+    out.append(buf, end);
+}
+
+}  // namespace
+
+void append_probe_row(std::string& out, const PoseRow& pose, bool claimed, bool collision, double clearance_m, bool covered) {
+    append_fixed(out, pose.lat, 7);
+    out += ',';
+    append_fixed(out, pose.lon, 7);
+    out += ',';
+    append_fixed(out, pose.heading_deg, 1);
+    if (claimed) {
+        out += collision ? ",1," : ",0,";
+        append_fixed(out, clearance_m, 3);
+        out += covered ? ",1\n" : ",0\n";
+    } else {
+        out += ",,,0\n";
+    }
 }
 
 bool is_probe_output(const std::string& path) { return file_head(path, probe_output_header.size()) == probe_output_header; }

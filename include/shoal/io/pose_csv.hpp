@@ -1,7 +1,8 @@
 #pragma once
-/// Reading the poses of `shoal probe`: CSV rows `lat,lon,heading` (degrees, true heading).
-/// A header line naming the columns (lat/latitude, lon/lng/longitude, heading/hdg) is
-/// optional; without one the columns are in that order.
+/// The CSV of `shoal probe`: its poses read, rows `lat,lon,heading` (degrees, true heading),
+/// split by track::CsvSplitter (quotes honoured, one separator a file). A header line naming
+/// the columns (lat/latitude, lon/lng/longitude, heading/hdg) is optional; without one the
+/// columns are in that order. And its answers written, one row a pose.
 
 #include <cstddef>
 #include <string>
@@ -31,6 +32,11 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name);
 
 /// The header line of the CSV `shoal probe` writes.
 inline constexpr std::string_view probe_output_header = "lat,lon,heading,collision,clearance_m,covered\n";
+/// One row of that CSV for `pose`, appended to `out`: lat and lon to 7 decimals, the heading to
+/// 1, then, when the answer is `claimed`, collision 0/1 and the clearance in metres to 3 decimals,
+/// else both empty (outside the chart nothing is claimed), and covered 0/1. Numbers as printf's
+/// "%.Nf" writes them.
+void append_probe_row(std::string& out, const PoseRow& pose, bool claimed, bool collision, double clearance_m, bool covered);
 /// The file at `path` starts with that header: a probe's output, which a probe may replace.
 bool is_probe_output(const std::string& path);
 
