@@ -17,6 +17,7 @@
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
+#include "check/contact_search.hpp"
 #include "geo/geos_context.hpp"
 #include "pathological_shapes.hpp"
 
@@ -401,6 +402,85 @@ TEST(ContactRegions, RandomJaggedCoastsAgreeWithGeos) {
     }
     std::printf("%d poses, %d in contact, %d failures\n", poses, contacts, failures);
     EXPECT_GT(contacts, poses / 5);
+}
+
+TEST(ContactRegions, ShortcutsGiveTheDepthsOfTheFullSearch) {
+    // The search's shortcuts (src/check/contact_search.hpp): the first reach of 2 m, the ridge
+    // points of the two-site bounds tried as deepest points, the bounds of the pairs with a third
+    // site. Each may give another deepest point of the same depth, never another depth: on
+    // random jagged coasts with piers bent halfway along (a vertex in each side: near it the two
+    // nearest sites are two pieces of one side, the case the third site is for), over and
+    // beside the land, and islets, every region's depth with all of them, each alone, and a
+    // first reach of 0.25 m or 64 m, is that of the search without any (a first reach of 1 m),
+    // within 2 um (each exact to a micrometre), and the regions are as many.
+    std::mt19937_64 rng(53);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const detail::ContactSearch full{.first_reach_m = 1.0, .ridge_candidates = false, .third_site = false};
+    const std::vector<detail::ContactSearch> ways{
+        {},
+        {.first_reach_m = 1.0, .ridge_candidates = true, .third_site = false},
+        {.first_reach_m = 1.0, .ridge_candidates = false, .third_site = true},
+        {.first_reach_m = 2.0, .ridge_candidates = false, .third_site = false},
+        {.first_reach_m = 0.25},
+        {.first_reach_m = 64.0},
+    };
+    int contacts = 0, regions_seen = 0, deep = 0, differ = 0;
+    double worst = 0;
+    for (int scene = 0; scene < 4; ++scene) {
+        std::vector<coast::LocalPolyline> rings{ring_of(test::star_ring(60 + 40 * scene, 400, 25, 200 + scene))};
+        for (int k = 0; k < 10; ++k) {
+            const double a = unit(rng) * 2 * std::numbers::pi, w = 1 + 4 * unit(rng), len = 30 + 60 * unit(rng);
+            const double bend = 0.5 * unit(rng) - 0.25, w2 = w * (0.8 + 0.4 * unit(rng));  // the sides bent at mid-length
+            const XY c{std::cos(a), std::sin(a)}, nrm{-std::sin(a), std::cos(a)};
+            const XY base = (360 + 40 * unit(rng)) * c, mid = base + 0.5 * len * c + bend * nrm, tip = base + len * c + 2 * bend * nrm;
+            rings.push_back(ring_of({base - w * nrm, mid - w2 * nrm, tip - w * nrm, tip + w * nrm, mid + w2 * nrm, base + w * nrm}));
+        }
+        for (int k = 0; k < 4; ++k) {
+            const double a = unit(rng) * 2 * std::numbers::pi, r0 = 460 + 40 * unit(rng), rad = 2 + 8 * unit(rng);
+            std::vector<XY> islet;
+            for (int v = 0; v < 7; ++v) {
+                const double t = 2 * std::numbers::pi * v / 7;
+                islet.push_back({r0 * std::cos(a) + rad * (1 + 0.3 * unit(rng)) * std::cos(t), r0 * std::sin(a) + rad * (1 + 0.3 * unit(rng)) * std::sin(t)});
+            }
+            rings.push_back(ring_of(islet));
+        }
+        const grid::CoastGrid g = grid::CoastGrid::build(rings, any_frame(), 40 + 30 * scene);
+        const hull::Hull convex = hull::Hull::from_dimensions({60 + 80 * unit(rng), 10 + 20 * unit(rng), 5 + 10 * unit(rng), 5 + 10 * unit(rng)});
+        std::vector<XY> wavy = test::wavy_hull(48);
+        for (XY& q : wavy) q = 0.5 * q;
+        const hull::Hull nonconvex = hull::Hull::from_contour(wavy);
+        for (const hull::Hull* hull : {&convex, &nonconvex}) {
+            const Detector det(g, *hull);
+            for (int i = 0; i < 150; ++i) {
+                const double a = unit(rng) * 2 * std::numbers::pi, r = 330 + 190 * unit(rng);
+                const LocalPose p = LocalPose::at({r * std::cos(a), r * std::sin(a)}, 360 * unit(rng));
+                const auto want = detail::contact_regions(det, p, full);
+                if (want.empty()) continue;
+                ++contacts;
+                regions_seen += static_cast<int>(want.size());
+                for (const ContactRegion& region : want) deep += region.depth_m > 1.0 ? 1 : 0;
+                for (std::size_t w = 0; w < ways.size(); ++w) {
+                    const auto got = detail::contact_regions(det, p, ways[w]);
+                    if (got.size() != want.size()) {
+                        if (++differ <= 5) ADD_FAILURE() << "scene " << scene << " pose " << i << " way " << w << ": " << got.size() << " regions, the full search " << want.size();
+                        continue;
+                    }
+                    // Deepest first: the depths in order (regions of depths within 2 um may swap).
+                    for (std::size_t k = 0; k < got.size(); ++k) {
+                        const double dd = std::fabs(got[k].depth_m - want[k].depth_m);
+                        worst = std::max(worst, dd);
+                        if (dd > 2e-6 && ++differ <= 5)
+                            ADD_FAILURE() << "scene " << scene << " pose " << i << " way " << w << " region " << k << ": depth " << got[k].depth_m
+                                          << ", the full search " << want[k].depth_m;
+                    }
+                }
+            }
+        }
+    }
+    std::printf("%d poses in contact, %d regions (%d deeper than 1 m), worst depth difference %.3g m\n", contacts, regions_seen, deep, worst);
+    EXPECT_EQ(differ, 0);
+    EXPECT_GT(contacts, 300);
+    EXPECT_GT(deep, 30);  // the first reach grown: the reach's shortcut is tried
 }
 
 TEST(ContactRegions, ThreadsAskingOneDetectorGetTheAnswersOfOne) {

@@ -1,0 +1,26 @@
+#pragma once
+// How contact_regions searches (src/check/contacts.cpp), for the tests that pin its shortcuts
+// to the full search: each shortcut may give another deepest point of the same depth (within
+// the micrometre of include/shoal/check/contacts.hpp), never another depth.
+
+#include <vector>
+
+#include <shoal/check/contacts.hpp>
+
+namespace shoal::check::detail {
+
+struct ContactSearch {
+    /// The first attempt's reach (local metres; at least a thousandth of the hull's extent):
+    /// grown fourfold while a depth reaches it, so the answer does not depend on it.
+    double first_reach_m = 2.0;
+    /// The maximum of a two-site bound (a point on the ridge between two boundary pieces, the
+    /// medial axis, where the deepest point lies) tried as a deepest point itself.
+    bool ridge_candidates = true;
+    /// The pairs of the two nearest sites with a third each bound an interior cell as well.
+    bool third_site = true;
+};
+
+/// contact_regions(detector, pose), searched as `how` says.
+std::vector<ContactRegion> contact_regions(const Detector& detector, const LocalPose& pose, const ContactSearch& how);
+
+}  // namespace shoal::check::detail
