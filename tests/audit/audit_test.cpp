@@ -4,10 +4,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <random>
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/grid/grid_cache.hpp>
+#include <shoal/track/merge.hpp>
+#include <shoal/track/packed_track.hpp>
 #include <shoal/track/reader.hpp>
 
 #include "audit/solent_grid.hpp"
@@ -85,6 +89,77 @@ TEST_F(Audit, ABadFileCostsThatFileOnly) {
     EXPECT_TRUE(r.files[1].error.empty());
     EXPECT_EQ(r.tracks.size(), 2u);
     EXPECT_EQ(r.groundings, 1u);
+}
+
+TEST(MergeSameVessels, PackedMergeIsTheTracksConcatenatedAndNormalised) {
+    // One vessel in several files: merged packed, in place, it must be the unpacked tracks
+    // concatenated and normalised (sorted by time, repeated times kept once, filled from the
+    // repeats), the answer computed here from the unpacked fixes.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int round = 0; round < 40; ++round) {
+        std::vector<track::PackedTrack> tracks;
+        std::vector<track::Track> plain;
+        const int files = 2 + static_cast<int>(rng() % 5);
+        double time = 1714550400;
+        for (int f = 0; f < files; ++f)
+            for (const char* id : {"230000001", "230000002", "BUOY"}) {
+                track::Track t;
+                t.id = id;
+                t.file = "day" + std::to_string(f) + ".csv";
+                if (f == 1 && std::string(id) == "230000001") t.name = "SECOND";
+                const int n = static_cast<int>(rng() % 400);
+                for (int i = 0; i < n; ++i) {
+                    track::Fix x;
+                    // Mostly in order; now and then back in time, or a time given twice.
+                    time += u(rng) < 0.05 ? -100 * u(rng) : u(rng) < 0.05 ? 0 : 10;
+                    x.time_s = time;
+                    x.position = {-1.2 + 0.001 * i, u(rng) < 0.1 ? 50.7 + 1e-9 * i : 50.7 + 1e-4 * (i % 7)};  // some beyond 7 decimals
+                    if (u(rng) < 0.7) x.sog_kn = std::round(100 * 12 * u(rng)) / 100;
+                    if (u(rng) < 0.5) x.heading_deg = u(rng) < 0.1 ? 123.456789 : 90;
+                    if (u(rng) < 0.5) x.cog_deg = 91;
+                    x.line = static_cast<std::size_t>(i + 2);
+                    t.fixes.push_back(x);
+                }
+                plain.push_back(t);
+                tracks.push_back(track::PackedTrack::pack(std::move(t)));
+            }
+        std::vector<track::PackedTrack> merged_tracks;
+        for (const auto& t : tracks) {
+            merged_tracks.push_back(track::PackedTrack::pack(t.unpack()));
+            merged_tracks.back().file = t.file;
+        }
+        const std::vector<std::string> messages = track::merge_same_vessels(merged_tracks, {});
+        ASSERT_EQ(merged_tracks.size(), 2u + static_cast<std::size_t>(files)) << "two vessels merged, the non-MMSI id kept per file";
+        EXPECT_EQ(messages.size(), 2u);
+        for (const char* id : {"230000001", "230000002"}) {
+            track::Track answer;
+            answer.file = "x";
+            for (const auto& t : plain)
+                if (t.id == id) answer.fixes.insert(answer.fixes.end(), t.fixes.begin(), t.fixes.end());
+            track::ReadReport report;
+            track::normalise(answer, report);
+            const auto it = std::find_if(merged_tracks.begin(), merged_tracks.end(), [&](const auto& t) { return t.id == id; });
+            ASSERT_NE(it, merged_tracks.end());
+            const track::Track got = it->unpack();
+            std::string files_named = "day0.csv";
+            for (int f = 1; f < files; ++f) files_named += " + day" + std::to_string(f) + ".csv";
+            EXPECT_EQ(got.file, files_named);
+            if (std::string(id) == "230000001") {
+                EXPECT_EQ(got.name, "SECOND") << "the name from the first file that has one";
+            }
+            ASSERT_EQ(got.fixes.size(), answer.fixes.size()) << id << " round " << round;
+            for (std::size_t i = 0; i < got.fixes.size(); ++i) {
+                const track::Fix &g = got.fixes[i], &a = answer.fixes[i];
+                ASSERT_EQ(g.time_s, a.time_s) << i;
+                EXPECT_EQ(g.position, a.position) << i;
+                EXPECT_EQ(g.line, a.line) << i;
+                EXPECT_TRUE(g.sog_kn == a.sog_kn || (std::isnan(g.sog_kn) && std::isnan(a.sog_kn))) << i;
+                EXPECT_TRUE(g.heading_deg == a.heading_deg || (std::isnan(g.heading_deg) && std::isnan(a.heading_deg))) << i;
+                EXPECT_TRUE(g.cog_deg == a.cog_deg || (std::isnan(g.cog_deg) && std::isnan(a.cog_deg))) << i;
+            }
+        }
+    }
 }
 
 }  // namespace
