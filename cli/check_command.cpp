@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -39,16 +40,18 @@ namespace shoal::cli {
 
 namespace {
 
-/// A partition's task (a Dask task: one process, a few of the run's vessels, then it ends)
-/// keeps the memory it frees for its next track: blocks up to 32 MiB (a week's track unpacked,
-/// its projected positions) from the heap, not mapped afresh for each track, and the heap not
-/// given back to the system under 512 MiB. glibc's default (blocks mapped and given back, the
-/// thresholds grown as it goes) has the kernel zero fresh pages for every track: a third of
-/// the CPU time of a traffic task, a tenth of an audit's (docs/performance.md, issue 39).
+/// A partition's task (a Dask task: one process, one input or a few of the run's vessels,
+/// then it ends) keeps the memory it frees for what comes next: blocks up to 32 MiB (a week's
+/// track unpacked, its projected positions, a block of the input read) from the heap, not
+/// mapped afresh each time, and the heap not given back to the system under 512 MiB. glibc's
+/// default (blocks mapped and given back, the thresholds grown as it goes) has the kernel zero
+/// fresh pages again and again: a third of the CPU time of a traffic task, a quarter of a
+/// read task's, a tenth of an audit's (docs/performance.md, issue 39). MALLOC_MMAP_THRESHOLD_
+/// and MALLOC_TRIM_THRESHOLD_, when set, decide instead.
 void keep_freed_memory() noexcept {
 #if defined(__GLIBC__)
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);
-    mallopt(M_TRIM_THRESHOLD, 512 << 20);
+    if (std::getenv("MALLOC_MMAP_THRESHOLD_") == nullptr) mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    if (std::getenv("MALLOC_TRIM_THRESHOLD_") == nullptr) mallopt(M_TRIM_THRESHOLD, 512 << 20);
 #endif
 }
 
@@ -516,6 +519,7 @@ private:
             throw UsageError("--partitions: exercise mode checks an exercise whole, not by partitions of vessels; use --shard");
         apply_date();
         const auto t0 = std::chrono::steady_clock::now();
+        keep_freed_memory();
         const audit::PartitionSummary s = audit::write_partitions(m_output, m_tracks.front(), m_audit.read, m_partitions, m_audit.jobs,
                                                                   report::read_file_fingerprint);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
