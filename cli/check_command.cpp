@@ -5,10 +5,14 @@
 #include <CLI/CLI.hpp>
 
 #include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -35,6 +39,21 @@
 namespace shoal::cli {
 
 namespace {
+
+/// A partition's task (a Dask task: one process, one input or a few of the run's vessels,
+/// then it ends) keeps the memory it frees for what comes next: blocks up to 32 MiB (a week's
+/// track unpacked, its projected positions, a block of the input read) from the heap, not
+/// mapped afresh each time, and the heap not given back to the system under 512 MiB. glibc's
+/// default (blocks mapped and given back, the thresholds grown as it goes) has the kernel zero
+/// fresh pages again and again: a third of the CPU time of a traffic task, a quarter of a
+/// read task's, a tenth of an audit's (docs/performance.md, issue 39). MALLOC_MMAP_THRESHOLD_
+/// and MALLOC_TRIM_THRESHOLD_, when set, decide instead.
+void keep_freed_memory() noexcept {
+#if defined(__GLIBC__)
+    if (std::getenv("MALLOC_MMAP_THRESHOLD_") == nullptr) mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    if (std::getenv("MALLOC_TRIM_THRESHOLD_") == nullptr) mallopt(M_TRIM_THRESHOLD, 512 << 20);
+#endif
+}
 
 bool is_stream(const std::string& path) {
     std::error_code ec;
@@ -336,6 +355,7 @@ public:
         std::vector<std::size_t> partition_positions;
         std::optional<audit::ReadResult> partition;
         if (!m_from_partitions.empty()) {
+            keep_freed_memory();
             partition = audit::read_partition(m_from_partitions, m_tracks, m_audit.read, m_audit.shard, partition_positions, &partition_ids);
             if (m_audit.vessels)
                 for (std::string& w : track::unmatched_vessels_tables(*m_audit.vessels, partition_ids)) partition->warnings.push_back(std::move(w));
@@ -507,6 +527,7 @@ private:
             throw UsageError("--partitions: exercise mode checks an exercise whole, not by partitions of vessels; use --shard");
         apply_date();
         const auto t0 = std::chrono::steady_clock::now();
+        keep_freed_memory();
         const audit::PartitionSummary s = audit::write_partitions(m_output, m_tracks.front(), m_audit.read, m_partitions, m_audit.jobs,
                                                                   report::read_file_fingerprint);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

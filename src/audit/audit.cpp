@@ -144,16 +144,6 @@ void join_static_data(track::Track& t, const std::map<std::string, track::Vessel
     }
 }
 
-std::vector<track::WildFix> prepare_track(track::Track& t, const AuditOptions& options) {
-    if (options.vessels) join_static_data(t, *options.vessels);
-    track::WildFixOptions wo = options.wild;
-    wo.max_gap_s = options.sweep.max_gap_s;
-    std::vector<track::WildFix> wild = track::drop_wild_fixes(t, wo);
-    track::resolve_motion(t, options.sweep.motion());
-    track::resolve_headings(t, 0.5, options.sweep.max_gap_s, options.world != World::real);
-    return wild;
-}
-
 /// A track's hull length for its traffic: its AIS dimensions', else the default hull's.
 double traffic_length(const track::Track& t, const hull::Hull& default_hull) {
     return t.dims && hull::Hull::plausible(*t.dims) ? t.dims->a + t.dims->b : default_hull.length();
@@ -166,6 +156,25 @@ std::string dims_label(const hull::Dimensions& d) {
 }
 
 }  // namespace
+
+namespace {
+
+/// prepare_track and prepare_traffic: the headings resolved or not.
+std::vector<track::WildFix> prepare_for(track::Track& t, const AuditOptions& options, bool headings) {
+    if (options.vessels) join_static_data(t, *options.vessels);
+    track::WildFixOptions wo = options.wild;
+    wo.max_gap_s = options.sweep.max_gap_s;
+    std::vector<track::WildFix> wild = track::drop_wild_fixes(t, wo);
+    track::resolve_motion(t, options.sweep.motion());
+    if (headings) track::resolve_headings(t, 0.5, options.sweep.max_gap_s, options.world != World::real);
+    return wild;
+}
+
+}  // namespace
+
+std::vector<track::WildFix> prepare_track(track::Track& t, const AuditOptions& options) { return prepare_for(t, options, true); }
+
+void prepare_traffic(track::Track& t, const AuditOptions& options) { prepare_for(t, options, false); }
 
 namespace {
 
@@ -355,7 +364,7 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
             [&](std::size_t k, unsigned w) {
                 try {
                     track::Track t = source.take_other(k);
-                    prepare(t);
+                    prepare_traffic(t, options);
                     other[k] = traffic_of(t, traffic_length(t, default_hull), *frames[w], grid, sweep_options, options.evidence);
                 } catch (const InputError&) {  // that shard reports it
                 } catch (...) {
@@ -606,7 +615,7 @@ std::vector<TrackResult> traffic_of_partition(ReadResult& read, const grid::Coas
         [&](std::size_t k, unsigned w) {
             try {
                 track::Track t = take(read.tracks[k]);
-                prepare_track(t, options);
+                prepare_traffic(t, options);
                 out[k] = traffic_of(t, traffic_length(t, default_hull), *frames[w], grid, options.sweep, options.evidence);
                 ok[k] = 1;
             } catch (const InputError&) {  // the audit of this partition reports it

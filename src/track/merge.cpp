@@ -20,13 +20,15 @@ std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks, co
     for (const auto& [key, ks] : by_id) {
         if (ks.size() < 2) continue;
         const std::string& id = key.second;
-        Track merged = tracks[ks[0]].unpack();
+        // Merged packed, in place: the other tracks' fixes appended to the first's (packing is
+        // exact: each fix packs again to the values it unpacked to), sorted and made unique as
+        // normalise(Track&) does; no whole track unpacked, copied and packed again.
+        PackedTrack& merged = tracks[ks[0]];
         std::string files = tracks[ks[0]].file;
         std::string role_note;
         for (std::size_t i = 1; i < ks.size(); ++i) {
             const PackedTrack& other = tracks[ks[i]];
-            const Track t = other.unpack();
-            merged.fixes.insert(merged.fixes.end(), t.fixes.begin(), t.fixes.end());
+            for (std::size_t f = 0; f < other.size(); ++f) merged.push_back(other.fix(f));
             if (merged.name.empty()) merged.name = other.name;
             if (!merged.dims) {
                 merged.dims = other.dims;
@@ -48,6 +50,7 @@ std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks, co
             }
             files += " + " + other.file;
             gone[ks[i]] = true;
+            tracks[ks[i]].release_fixes();
         }
         ReadReport report;
         normalise(merged, report);
@@ -57,7 +60,6 @@ std::vector<std::string> merge_same_vessels(std::vector<PackedTrack>& tracks, co
                            std::to_string(merged.fixes.size()) + " fixes" +
                            (report.duplicates ? ", " + std::to_string(report.duplicates) + " fixes held twice kept once" : std::string()) +
                            role_note);
-        tracks[ks[0]] = PackedTrack::pack(std::move(merged));
     }
     std::size_t kept = 0;
     for (std::size_t k = 0; k < tracks.size(); ++k)

@@ -163,6 +163,16 @@ AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid
 AuditResult audit_tracks(ReadResult read, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
                          const AuditOptions& options);
 
+/// A track made ready for its sweep, as audit_tracks does: the static data of
+/// AuditOptions::vessels joined, wild fixes dropped (returned), motion and headings resolved.
+std::vector<track::WildFix> prepare_track(track::Track& t, const AuditOptions& options);
+
+/// A track made ready for its traffic only (sweep::traffic_of, of another shard's or another
+/// partition's vessel): prepare_track without the headings, which the traffic does not read
+/// (it reads positions, times, jumps, navigational status, the speed used and the stops), so
+/// its traffic is that of prepare_track's, for less work.
+void prepare_traffic(track::Track& t, const AuditOptions& options);
+
 /// read_inputs, then audit_tracks.
 AuditResult run_audit(const std::vector<std::string>& inputs, const grid::CoastGrid& grid, const hull::Hull& default_hull,
                       const std::string& hull_label, const AuditOptions& options);
