@@ -69,26 +69,15 @@ void place_in_blocks(const geo::LocalFrame& frame, const geo::JacobianField& fie
                      const std::function<void(std::size_t from, std::span<const LocalPose> placed, unsigned worker)>& use) {
     constexpr std::size_t block = placement_block;
     const std::size_t blocks = (n + block - 1) / block;
-    // The first block (in input order) that failed, and what it threw: the blocks after it
-    // are not started, those before it still are (one of them may fail first).
-    std::atomic<std::size_t> first_failed{blocks};
-    std::vector<std::exception_ptr> failures(blocks);
-    detail::parallel_for(blocks, detail::thread_count(jobs), [&](std::size_t b, unsigned worker) {
-        if (b > first_failed.load()) return;
-        try {
-            const std::size_t from = b * block, to = std::min(n, from + block);
-            std::vector<Pose> todo;
-            todo.reserve(to - from);
-            for (std::size_t k = from; k < to; ++k) todo.push_back(pose_of(k));
-            const std::vector<LocalPose> placed = place(frame, field, todo);
-            use(from, placed, worker);
-        } catch (...) {
-            failures[b] = std::current_exception();
-            for (std::size_t seen = first_failed.load(); b < seen && !first_failed.compare_exchange_weak(seen, b);) {
-            }
-        }
+    // A block that fails stops the blocks after it (the first failure in input order is thrown).
+    detail::parallel_blocks(blocks, detail::thread_count(jobs), [&](std::size_t b, unsigned worker) {
+        const std::size_t from = b * block, to = std::min(n, from + block);
+        std::vector<Pose> todo;
+        todo.reserve(to - from);
+        for (std::size_t k = from; k < to; ++k) todo.push_back(pose_of(k));
+        const std::vector<LocalPose> placed = place(frame, field, todo);
+        use(from, placed, worker);
     });
-    if (first_failed.load() < blocks) std::rethrow_exception(failures[first_failed.load()]);
 }
 
 std::vector<XY> hull_outline(const hull::Hull& hull, const LocalPose& pose) {

@@ -68,61 +68,51 @@ Batch Probe::check_blocks(std::size_t n, const std::function<check::Pose(std::si
         std::string problem;
     };
     std::vector<Tally> tallies(blocks);
-    // The first block (in input order) whose `use` threw, and what: the blocks after it are
-    // not started, those before it still are (one of them may fail first).
-    std::atomic<std::size_t> first_failed{blocks};
-    std::vector<std::exception_ptr> failures(blocks);
-    detail::parallel_for(blocks, detail::thread_count(jobs), [&](std::size_t b, unsigned worker) {
-        if (b > first_failed.load()) return;
+    // A block whose `use` throws stops the blocks after it (the first failure in input order
+    // is thrown).
+    detail::parallel_blocks(blocks, detail::thread_count(jobs), [&](std::size_t b, unsigned worker) {
+        const std::size_t from = b * block, to = std::min(n, from + block);
+        Tally& t = tallies[b];
+        std::vector<Answer> answers(to - from);
+        auto refuse = [&](std::size_t k, std::string why) {
+            answers[k - from] = Answer{};
+            if (t.invalid++ == 0) {
+                t.first = k;
+                t.problem = std::move(why);
+            }
+        };
+        // The valid poses of the block, placed together (one projection); when PROJ cannot
+        // take one, placed one by one, so that only that pose is refused.
+        std::vector<check::Pose> todo;
+        std::vector<std::size_t> index;
+        todo.reserve(to - from);
+        index.reserve(to - from);
+        for (std::size_t k = from; k < to; ++k) {
+            const check::Pose p = pose_of(k);
+            if (auto problem = pose_problem(p.position.lat, p.position.lon, p.heading_deg)) {
+                refuse(k, std::move(*problem));
+                continue;
+            }
+            todo.push_back(p);
+            index.push_back(k);
+        }
+        std::vector<check::LocalPose> placed;
         try {
-            const std::size_t from = b * block, to = std::min(n, from + block);
-            Tally& t = tallies[b];
-            std::vector<Answer> answers(to - from);
-            auto refuse = [&](std::size_t k, std::string why) {
-                answers[k - from] = Answer{};
-                if (t.invalid++ == 0) {
-                    t.first = k;
-                    t.problem = std::move(why);
-                }
-            };
-            // The valid poses of the block, placed together (one projection); when PROJ cannot
-            // take one, placed one by one, so that only that pose is refused.
-            std::vector<check::Pose> todo;
-            std::vector<std::size_t> index;
-            todo.reserve(to - from);
-            index.reserve(to - from);
-            for (std::size_t k = from; k < to; ++k) {
-                const check::Pose p = pose_of(k);
-                if (auto problem = pose_problem(p.position.lat, p.position.lon, p.heading_deg)) {
-                    refuse(k, std::move(*problem));
-                    continue;
-                }
-                todo.push_back(p);
-                index.push_back(k);
-            }
-            std::vector<check::LocalPose> placed;
+            placed = check::place(m_grid.frame(), m_field, todo);
+        } catch (const InputError&) {
+            placed.clear();
+        }
+        for (std::size_t v = 0; v < todo.size(); ++v) {
+            const std::size_t k = index[v];
             try {
-                placed = check::place(m_grid.frame(), m_field, todo);
-            } catch (const InputError&) {
-                placed.clear();
-            }
-            for (std::size_t v = 0; v < todo.size(); ++v) {
-                const std::size_t k = index[v];
-                try {
-                    answers[k - from] = answer(placed.empty() ? place(todo[v]) : placed[v], ask);
-                    t.uncovered += answers[k - from].covered ? 0 : 1;
-                } catch (const InputError& e) {
-                    refuse(k, e.what());
-                }
-            }
-            use(from, answers, worker);
-        } catch (...) {
-            failures[b] = std::current_exception();
-            for (std::size_t seen = first_failed.load(); b < seen && !first_failed.compare_exchange_weak(seen, b);) {
+                answers[k - from] = answer(placed.empty() ? place(todo[v]) : placed[v], ask);
+                t.uncovered += answers[k - from].covered ? 0 : 1;
+            } catch (const InputError& e) {
+                refuse(k, e.what());
             }
         }
+        use(from, answers, worker);
     });
-    if (first_failed.load() < blocks) std::rethrow_exception(failures[first_failed.load()]);
     Batch out;
     out.first_invalid = n;
     for (Tally& t : tallies) {

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <exception>
 #include <functional>
 #include <thread>
 #include <vector>
@@ -38,6 +39,28 @@ void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<v
     }
     for (auto& t : pool) t.join();
     if (tick) tick();
+}
+
+/// Runs `block(b, worker)` for the blocks b in [0, blocks) on `jobs` threads, as parallel_for;
+/// `block` may throw. Once one throws, the blocks after the first that threw (in block order)
+/// are not started, those before it still are (one of them may throw first); at the end the
+/// exception of the first block that threw is thrown again, so a failure is the one a run on
+/// one thread would meet.
+template <typename Block>
+void parallel_blocks(std::size_t blocks, unsigned jobs, Block block) {
+    std::atomic<std::size_t> first_failed{blocks};
+    std::vector<std::exception_ptr> failures(blocks);
+    parallel_for(blocks, jobs, [&](std::size_t b, unsigned worker) {
+        if (b > first_failed.load()) return;
+        try {
+            block(b, worker);
+        } catch (...) {
+            failures[b] = std::current_exception();
+            for (std::size_t seen = first_failed.load(); b < seen && !first_failed.compare_exchange_weak(seen, b);) {
+            }
+        }
+    });
+    if (first_failed.load() < blocks) std::rethrow_exception(failures[first_failed.load()]);
 }
 
 }  // namespace shoal::detail
