@@ -14,11 +14,13 @@ imports without the extension.
 
 try:
     from ._shoal import Detector, Grid, InputError, UsageError, __version__, _audit
+    from ._shoal import _column_table, _is_time_column_name, _normalise_column_name
 except ImportError as _error:  # the extension is not built here (a sanitizer build) or not found
     _import_error = _error
 
     def __getattr__(name):
-        if name.startswith("__") or name not in ("Detector", "Grid", "InputError", "UsageError", "__version__", "_audit", "audit"):
+        if name.startswith("__") or name not in ("Detector", "Grid", "InputError", "UsageError", "__version__", "_audit", "audit",
+                                                  "DEFAULT_COLUMNS"):
             # Not the extension's: the ordinary AttributeError, so `from shoal import dask` imports the submodule.
             raise AttributeError("module 'shoal' has no attribute %r" % name)
         raise ImportError(
@@ -29,26 +31,14 @@ except ImportError as _error:  # the extension is not built here (a sanitizer bu
 __all__ = ["Grid", "Detector", "InputError", "UsageError", "audit", "AuditResult", "DEFAULT_COLUMNS"]
 
 # The column names shoal.audit looks for when `columns` does not say (case-insensitive, a leading
-# "#" and blanks ignored; the first present wins): the names the CSV reader knows.
-DEFAULT_COLUMNS = {
-    "id": ["track_id", "mmsi", "id", "vessel", "vessel_id"],
-    "time": ["time", "timestamp", "basedatetime", "time_utc", "datetime", "date_time", "utc"],
-    "lat": ["lat", "latitude"],
-    "lon": ["lon", "lng", "long", "longitude"],
-    "heading": ["heading", "hdg", "heading_deg", "true_heading", "trueheading"],
-    "cog": ["cog", "course", "cog_deg"],
-    "sog": ["sog", "speed", "sog_kn", "sog_knots"],
-    "a": ["a", "to_bow_m", "to_bow"],
-    "b": ["b", "to_stern_m", "to_stern"],
-    "c": ["c", "to_port_m", "to_port"],
-    "d": ["d", "to_stbd_m", "to_stbd", "to_starboard_m"],
-    "draught": ["draught", "draught_m", "draft", "draft_m"],
-    "name": ["vesselname", "vessel_name", "name", "shipname", "ship_name"],
-    "nav_status": ["navigational status", "navigational_status", "nav_status", "navstatus", "status"],
-    "mobile_type": ["type of mobile"],
-    "ship_type": ["vesseltype", "shiptype", "ship_type", "ship type", "vessel_type"],
-    "line": [],
-}
+# "#" and blanks ignored; the first present wins): the track readers' own table
+# (shoal/track/columns.hpp), for the roles a DataFrame's fixes have, and `line`.
+_ROLES = ("id", "time", "lat", "lon", "heading", "cog", "sog", "a", "b", "c", "d", "draught", "name", "nav_status",
+          "mobile_type", "ship_type")
+if "_column_table" in globals():
+    DEFAULT_COLUMNS = {field: names for field, names in _column_table() if field in _ROLES}
+    DEFAULT_COLUMNS = {role: DEFAULT_COLUMNS[role] for role in _ROLES}
+    DEFAULT_COLUMNS["line"] = []
 
 
 class AuditResult:
@@ -70,14 +60,10 @@ class AuditResult:
             s["tracks"], s["fixes"], s["events"], s["groundings"], len(self.problems))
 
 
-def _normalise_name(name):
-    return str(name).strip().lstrip("#").strip().lower()
-
-
 def _find_columns(df, columns):
     by_name = {}
     for c in df.columns:
-        by_name.setdefault(_normalise_name(c), c)
+        by_name.setdefault(_normalise_column_name(str(c)), c)
     found = {}
     given = dict(columns or {})
     unknown = set(given) - set(DEFAULT_COLUMNS)
@@ -96,6 +82,8 @@ def _find_columns(df, columns):
             if n in by_name:
                 found[role] = by_name[n]
                 break
+        if role == "time" and role not in found:  # as the CSV reader: TIMESTAMP_UTC, Time (UTC), ...
+            found.update({role: c for c in reversed(list(df.columns)) if _is_time_column_name(str(c))})
     if "id" not in found and "name" in found:  # as the CSV reader: the vessel's name identifies it
         found["id"] = found["name"]
     for role in ("time", "lat", "lon"):

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include <shoal/grid/limiting_depth.hpp>
+#include <shoal/track/columns.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/option_names.hpp>
 #include <shoal/version.hpp>
@@ -120,6 +121,19 @@ PYBIND11_MODULE(_shoal, m) {
             PyErr_SetString(usage_error.ptr(), sp::in_python_terms(e.what()).c_str());
         }
     });
+    // The column names of the track readers (one table: shoal/track/columns.hpp), for
+    // shoal.DEFAULT_COLUMNS and the columns of a DataFrame found as the CSV reader finds them.
+    m.def("_column_table", [] {
+        py::list out;
+        for (const shoal::track::ColumnNames& c : shoal::track::column_table()) {
+            py::list names;
+            for (const std::string_view n : c.names) names.append(py::str(n.data(), n.size()));
+            out.append(py::make_tuple(py::str(c.field.data(), c.field.size()), names));
+        }
+        return out;
+    });
+    m.def("_normalise_column_name", [](const std::string& name) { return shoal::track::normalise_column_name(name); });
+    m.def("_is_time_column_name", [](const std::string& name) { return shoal::track::is_time_column_name(name); });
     sp::bind_grid(m);
     sp::bind_detector(m);
     sp::bind_audit(m);

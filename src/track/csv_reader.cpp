@@ -8,10 +8,10 @@
 #include <deque>
 #include <exception>
 #include <functional>
-#include <initializer_list>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <thread>
 #include <unordered_map>
 
@@ -23,46 +23,6 @@
 namespace shoal::track {
 
 using detail::trim;
-
-std::string normalise_column_name(std::string_view name) {
-    name = trim(name);
-    while (!name.empty() && (name.front() == '#' || name.front() == ' ')) name.remove_prefix(1);
-    std::string out(name);
-    for (char& c : out)
-        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    return out;
-}
-
-bool is_time_column_name(std::string_view name) {
-    const std::string n = normalise_column_name(name);
-    static constexpr std::string_view qualifiers[] = {"utc", "gmt", "z", "iso", "iso8601", "epoch", "unix"};
-    static constexpr std::string_view bases[] = {"time", "timestamp", "datetime", "basedatetime"};
-    const auto is_qualifier = [](std::string_view w) { return std::find(std::begin(qualifiers), std::end(qualifiers), w) != std::end(qualifiers); };
-    // The words (letters and digits between any other characters), the qualifiers left out.
-    std::string joined;
-    bool qualified = false;
-    for (std::size_t at = 0; at < n.size();) {
-        std::size_t end = at;
-        while (end < n.size() && std::isalnum(static_cast<unsigned char>(n[end]))) ++end;
-        const std::string_view word = std::string_view(n).substr(at, end - at);
-        if (!word.empty()) {
-            if (is_qualifier(word)) qualified = true;
-            else joined += word;
-        }
-        at = end == at ? at + 1 : end;
-    }
-    if (joined.empty()) return qualified && n.find("utc") != std::string::npos;  // "UTC" alone
-    const auto is_base = [](std::string_view w) { return std::find(std::begin(bases), std::end(bases), w) != std::end(bases); };
-    if (is_base(joined)) return true;
-    // A qualifier joined on either end: "timeutc", "datetimeutc", "utctime", "epochtime".
-    for (const std::string_view q : qualifiers) {
-        if (q.size() < 3) continue;  // "z" joined on would take "timez"-like names too lightly
-        if (joined.size() > q.size() && joined.compare(joined.size() - q.size(), q.size(), q) == 0 && is_base(std::string_view(joined).substr(0, joined.size() - q.size())))
-            return true;
-        if (joined.size() > q.size() && joined.compare(0, q.size(), q) == 0 && is_base(std::string_view(joined).substr(q.size()))) return true;
-    }
-    return false;
-}
 
 std::string to_utf8(std::string_view text) {
     // Validate UTF-8 (no overlongs or surrogates needed for this purpose: structure only).
@@ -111,7 +71,7 @@ struct Columns {
     std::size_t required = 0;  ///< fields a row needs: 1 + the largest required index
 };
 
-std::size_t find_column(const std::vector<std::string>& names, std::initializer_list<std::string_view> candidates) {
+std::size_t find_column(const std::vector<std::string>& names, std::span<const std::string_view> candidates) {
     for (const std::string_view c : candidates)
         for (std::size_t i = 0; i < names.size(); ++i)
             if (names[i] == c) return i;
@@ -133,28 +93,28 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     names.reserve(header.size());
     for (const auto h : header) names.push_back(normalise_column_name(h));
     Columns c;
-    c.id = find_column(names, {"track_id", "mmsi", "id", "vessel", "vessel_id"});  // mmsi before a possible row id
-    c.name = find_column(names, {"vesselname", "vessel_name", "name", "shipname", "ship_name"});
+    c.id = find_column(names, column_names("id"));  // mmsi before a possible row id
+    c.name = find_column(names, column_names("name"));
     if (c.id == absent) c.id = c.name;
     // The usual names first, in this order (a file with both "time" and "timestamp" keeps its
     // "time"), then the first column any spelling of a time names (is_time_column_name).
-    c.time = find_column(names, {"time", "timestamp", "basedatetime", "time_utc", "datetime", "date_time", "utc"});
+    c.time = find_column(names, column_names("time"));
     for (std::size_t i = 0; i < names.size() && c.time == absent; ++i)
         if (is_time_column_name(names[i])) c.time = i;
-    c.lat = find_column(names, {"lat", "latitude"});
-    c.lon = find_column(names, {"lon", "lng", "long", "longitude"});
-    c.heading = find_column(names, {"heading", "hdg", "heading_deg", "true_heading", "trueheading"});
-    c.cog = find_column(names, {"cog", "course", "cog_deg"});
-    c.sog = find_column(names, {"sog", "speed", "sog_kn", "sog_knots"});
-    c.dims = {find_column(names, {"a", "to_bow_m", "to_bow"}), find_column(names, {"b", "to_stern_m", "to_stern"}),
-              find_column(names, {"c", "to_port_m", "to_port"}), find_column(names, {"d", "to_stbd_m", "to_stbd", "to_starboard_m"})};
+    c.lat = find_column(names, column_names("lat"));
+    c.lon = find_column(names, column_names("lon"));
+    c.heading = find_column(names, column_names("heading"));
+    c.cog = find_column(names, column_names("cog"));
+    c.sog = find_column(names, column_names("sog"));
+    c.dims = {find_column(names, column_names("a")), find_column(names, column_names("b")),
+              find_column(names, column_names("c")), find_column(names, column_names("d"))};
     if (std::find(c.dims.begin(), c.dims.end(), absent) != c.dims.end()) c.dims = {absent, absent, absent, absent};
-    c.draught = find_column(names, {"draught", "draught_m", "draft", "draft_m"});
-    c.length = find_column(names, {"length", "length_m"});
-    c.width = find_column(names, {"width", "width_m", "beam", "beam_m"});
-    c.mobile_type = find_column(names, {"type of mobile"});
-    c.ship_type = find_column(names, {"vesseltype", "shiptype", "ship_type", "ship type", "vessel_type"});
-    c.nav_status = find_column(names, {"navigational status", "navigational_status", "nav_status", "navstatus", "status"});
+    c.draught = find_column(names, column_names("draught"));
+    c.length = find_column(names, column_names("length"));
+    c.width = find_column(names, column_names("width"));
+    c.mobile_type = find_column(names, column_names("mobile_type"));
+    c.ship_type = find_column(names, column_names("ship_type"));
+    c.nav_status = find_column(names, column_names("nav_status"));
 
     std::string missing;
     if (c.time == absent) missing = "time (time, timestamp, datetime or basedatetime, in any case, with or without utc, gmt, epoch: TIMESTAMP_UTC, Time (UTC))";
@@ -168,7 +128,8 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     auto named = [&](const std::string& wanted, const char* what, const char* field) {
         if (wanted.empty()) return absent;
         const std::string n = normalise_column_name(wanted);
-        const std::size_t at = find_column(names, {n});
+        const std::string_view wanted_name[] = {n};
+        const std::size_t at = find_column(names, wanted_name);
         if (at == absent)
             throw InputError(file + ": the header has no column '" + wanted + "', the " + what + " column (" + field + "); header: " + join(header));
         return at;

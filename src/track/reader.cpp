@@ -10,8 +10,10 @@
 #include <filesystem>
 #include <memory>
 #include <set>
+#include <span>
 #include <sstream>
 
+#include <shoal/track/columns.hpp>
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/nmea_reader.hpp>
 #include <shoal/track/ogr_reader.hpp>
@@ -272,13 +274,15 @@ bool is_vessels_table(const std::string& path) {
     if (split.separator() == '\0' || !split.next(f_names)) return false;
     std::set<std::string> names;
     for (const auto h : f_names) names.insert(normalise_column_name(h));
-    const auto any = [&](std::initializer_list<const char*> candidates) {
-        return std::any_of(candidates.begin(), candidates.end(), [&](const char* c) { return names.contains(c); });
+    const auto any = [&](std::initializer_list<std::string_view> fields) {
+        return std::any_of(fields.begin(), fields.end(), [&](std::string_view field) {
+            const auto known = column_names(field);
+            return std::any_of(known.begin(), known.end(), [&](std::string_view c) { return names.contains(std::string(c)); });
+        });
     };
     // A position makes it a track file; an MMSI and what a vessels table gives, a vessels table.
-    if (any({"lat", "latitude", "lon", "lng", "long", "longitude"})) return false;
-    return any({"mmsi"}) && any({"name", "vesselname", "vessel_name", "shipname", "shiptype", "ship_type", "vesseltype", "ship type", "draught_m",
-                                 "draught", "draft", "to_bow_m", "to_bow", "to_stern_m", "to_stern", "to_port_m", "to_port", "to_stbd_m", "to_stbd", "a", "b", "c", "d"});
+    if (any({"lat", "lon"})) return false;
+    return names.contains("mmsi") && any({"name", "ship_type", "draught", "a", "b", "c", "d"});
 }
 
 std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, std::vector<std::string>* warnings,
@@ -490,19 +494,20 @@ std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vec
         for (const auto h : f) names.push_back(normalise_column_name(h));
     }
     constexpr std::size_t absent = static_cast<std::size_t>(-1);
-    auto col = [&](std::initializer_list<std::string_view> candidates) {
+    // The columns by the track files' names (columns.hpp), the MMSI by its own.
+    auto col = [&](std::span<const std::string_view> candidates) {
         for (const auto c : candidates)
             for (std::size_t i = 0; i < names.size(); ++i)
                 if (names[i] == c) return i;
         return absent;
     };
-    const std::size_t mmsi = col({"mmsi"});
+    constexpr std::string_view mmsi_name[] = {"mmsi"};
+    const std::size_t mmsi = col(mmsi_name);
     if (mmsi == absent) throw InputError(path + ": vessels file without an 'mmsi' column");
-    const std::size_t name = col({"name", "vesselname", "vessel_name", "shipname"});
-    const std::size_t type = col({"shiptype", "ship_type", "vesseltype", "ship type"});
-    const std::size_t draught = col({"draught_m", "draught", "draft"});
-    const std::array<std::size_t, 4> dims{col({"to_bow_m", "to_bow", "a"}), col({"to_stern_m", "to_stern", "b"}),
-                                          col({"to_port_m", "to_port", "c"}), col({"to_stbd_m", "to_stbd", "d"})};
+    const std::size_t name = col(column_names("name"));
+    const std::size_t type = col(column_names("ship_type"));
+    const std::size_t draught = col(column_names("draught"));
+    const std::array<std::size_t, 4> dims{col(column_names("a")), col(column_names("b")), col(column_names("c")), col(column_names("d"))};
     const bool decimal_comma = sep != ',';
     std::size_t said = 0, bad = 0;
     std::string row_text;

@@ -112,6 +112,20 @@ class AuditAgainstCheck(unittest.TestCase):
         epoch = shoal.audit(df, self.grid, dims=DIMS, columns={"line": "line"}, file=track, margin_m=80, step_m=2)
         self.assert_same(report, epoch, track)
 
+    def test_columns_are_found_as_the_csv_reader_finds_them(self):
+        # One table of names for the CSV reader and shoal.audit: a time column the CSV reader takes
+        # by its spelling (TIMESTAMP_UTC, not among the listed names) is taken here too.
+        self.assertEqual(shoal.DEFAULT_COLUMNS["time"][:3], ["time", "timestamp", "basedatetime"])
+        self.assertEqual(shoal.DEFAULT_COLUMNS["line"], [])
+        track = os.path.join(support.AIS_CASES, "aground_at_speed.csv")
+        report = self.check_cli(track, "--margin", "80", "--step", "2")
+        df = read_fixes(track).rename(columns={"BaseDateTime": "TIMESTAMP_UTC", "LAT": "# Latitude "})
+        result = shoal.audit(df, self.grid, dims=DIMS, columns={"line": "line"}, file=track, margin_m=80, step_m=2)
+        self.assert_same(report, result, track)
+        df = df.rename(columns={"TIMESTAMP_UTC": "local_time"})  # not a UTC time: not taken, and said
+        with self.assertRaisesRegex(ValueError, "no time column"):
+            shoal.audit(df, self.grid, dims=DIMS, columns={"line": "line"})
+
     def test_options_reach_the_audit(self):
         track = os.path.join(support.AIS_CASES, "berthing_sideways.csv")
         report = self.check_cli(track, "--berthing-speed", "0.1", "--stop-time", "60", "--stop-diameter", "30",

@@ -18,10 +18,12 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "test_support.hpp"
+#include <shoal/track/columns.hpp>
 #include <shoal/track/packed_track.hpp>
 #include <shoal/track/track.hpp>
 #include <shoal/util/error.hpp>
@@ -312,6 +314,31 @@ TEST(ReadVessels, AnMmsiWrittenAsASpreadsheetsIntegralNumberIsTheMmsi) {
     const auto v = read_vessels(path);
     ASSERT_EQ(v.count("230035780"), 1u);
     EXPECT_EQ(v.at("230035780").name, "SHEET");
+}
+
+// The vessels table knows its columns by the track files' names (one table, columns.hpp): names
+// the CSV reader took and the table did not (ship_name, vessel_type, draft_m) are read too.
+TEST(ReadVessels, ColumnsAreKnownByTheTrackFilesNames) {
+    TempDir dir;
+    const std::string path = dir.file("named_vessels.csv");
+    std::ofstream(path) << "MMSI,Ship_Name,Vessel_Type,Draft_m,A,B,C,D\n230035780,SHEET,70,4.5,10,5,2,2\n";
+    EXPECT_TRUE(is_vessels_table(path));
+    const auto v = read_vessels(path);
+    ASSERT_EQ(v.count("230035780"), 1u);
+    const VesselInfo& s = v.at("230035780");
+    EXPECT_EQ(s.name, "SHEET");
+    EXPECT_EQ(s.draught_m, 4.5);
+    ASSERT_TRUE(s.dims.has_value());
+    EXPECT_EQ(s.dims->a, 10);
+    EXPECT_EQ(s.dims->d, 2);
+    // Every name of the table is written as a header is matched (normalised), and each field is
+    // asked for by its own name.
+    for (const ColumnNames& c : column_table()) {
+        EXPECT_FALSE(c.names.empty()) << c.field;
+        for (const std::string_view n : c.names) EXPECT_EQ(normalise_column_name(n), n) << c.field;
+        EXPECT_EQ(column_names(c.field).data(), c.names.data());
+    }
+    EXPECT_THROW(column_names("latitude"), std::logic_error);
 }
 
 TEST(ReadVessels, ATableNoneOfWhoseVesselsIsATrackIsSaidNamingItAndItsCount) {

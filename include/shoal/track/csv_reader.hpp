@@ -26,20 +26,11 @@
 #include <string_view>
 #include <vector>
 
+#include <shoal/track/columns.hpp>
 #include <shoal/track/csv_splitter.hpp>
 #include <shoal/track/reader.hpp>
 
 namespace shoal::track {
-
-/// A header name as matched: lower case, blanks and a leading `#` removed ("# Timestamp" -> "timestamp").
-std::string normalise_column_name(std::string_view name);
-
-/// Whether a header name (any case) names the time column: `time`, `timestamp`, `datetime`,
-/// `date_time` or `basedatetime`, with or without words that say only how the time is written
-/// (`utc`, `gmt`, `z`, `iso`, `iso8601`, `epoch`, `unix`), written apart (`TIMESTAMP_UTC`,
-/// `Time (UTC)`, `utc-time`, `epoch_time`) or joined on (`DateTimeUTC`, `TimeUTC`); `utc` alone
-/// too. Not `local_time`, `eta` or `date` (a local time or a date is not the fix's UTC time).
-bool is_time_column_name(std::string_view name);
 
 /// `text` unchanged when it is valid UTF-8, else read as Latin-1 and converted to UTF-8.
 std::string to_utf8(std::string_view text);
