@@ -10,7 +10,9 @@
 #include <stdexcept>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
+#include <shoal/track/columns.hpp>
 #include <shoal/track/csv_splitter.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
@@ -28,12 +30,6 @@ bool parse_double(std::string_view s, double& v) {
     if (*first == '+') ++first;
     const auto [p, ec] = std::from_chars(first, last, v);
     return ec == std::errc() && p == last;
-}
-
-std::string lower(std::string_view v) {
-    std::string s(v);
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
 }
 
 /// `text` from its first line that is not blank or a comment ('#' first, after blanks) on, a
@@ -108,13 +104,18 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
             while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.remove_suffix(1);
             const bool header = std::any_of(line.begin(), line.end(), [](unsigned char c) { return std::isalpha(c) && c != 'e' && c != 'E'; });
             if (header) {
-                col_lat = col_lon = col_hdg = -1;
-                for (int i = 0; i < static_cast<int>(f.size()); ++i) {
-                    const std::string h = lower(f[static_cast<std::size_t>(i)]);
-                    if (h == "lat" || h == "latitude") col_lat = i;
-                    else if (h == "lon" || h == "lng" || h == "long" || h == "longitude") col_lon = i;
-                    else if (h == "heading" || h == "hdg" || h == "heading_deg") col_hdg = i;
-                }
+                // The columns by the track files' names (track/columns.hpp), the first name present winning.
+                std::vector<std::string> names;
+                for (const std::string_view h : f) names.push_back(track::normalise_column_name(h));
+                const auto column = [&](std::string_view field) {
+                    for (const std::string_view n : track::column_names(field))
+                        for (std::size_t i = 0; i < names.size(); ++i)
+                            if (names[i] == n) return static_cast<int>(i);
+                    return -1;
+                };
+                col_lat = column("lat");
+                col_lon = column("lon");
+                col_hdg = column("heading");
                 if (col_lat < 0 || col_lon < 0 || col_hdg < 0)
                     throw InputError(name + " line 1: the header needs columns lat, lon and heading (got '" + std::string(line) + "')");
                 continue;
