@@ -35,6 +35,20 @@ coast::LocalPolyline ring_of(std::vector<XY> r) {
 
 std::vector<XY> rect(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}; }
 
+/// Four islets of 7 jagged vertices and 2-10 m across, 460-500 m from the centre, at random bearings.
+void add_islets(std::vector<coast::LocalPolyline>& rings, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (int k = 0; k < 4; ++k) {
+        const double a = unit(rng) * 2 * std::numbers::pi, r0 = 460 + 40 * unit(rng), rad = 2 + 8 * unit(rng);
+        std::vector<XY> islet;
+        for (int v = 0; v < 7; ++v) {
+            const double t = 2 * std::numbers::pi * v / 7;
+            islet.push_back({r0 * std::cos(a) + rad * (1 + 0.3 * unit(rng)) * std::cos(t), r0 * std::sin(a) + rad * (1 + 0.3 * unit(rng)) * std::sin(t)});
+        }
+        rings.push_back(ring_of(islet));
+    }
+}
+
 /// The land (union of the rings) in GEOS, and the answers to check a region against.
 class Oracle {
 public:
@@ -367,15 +381,7 @@ TEST(ContactRegions, RandomJaggedCoastsAgreeWithGeos) {
             const XY base = 360 * c;
             rings.push_back(ring_of({base - w * nrm, base + len * c - w * nrm, base + len * c + w * nrm, base + w * nrm}));
         }
-        for (int k = 0; k < 4; ++k) {
-            const double a = unit(rng) * 2 * std::numbers::pi, r0 = 460 + 40 * unit(rng), rad = 2 + 8 * unit(rng);
-            std::vector<XY> islet;
-            for (int v = 0; v < 7; ++v) {
-                const double t = 2 * std::numbers::pi * v / 7;
-                islet.push_back({r0 * std::cos(a) + rad * (1 + 0.3 * unit(rng)) * std::cos(t), r0 * std::sin(a) + rad * (1 + 0.3 * unit(rng)) * std::sin(t)});
-            }
-            rings.push_back(ring_of(islet));
-        }
+        add_islets(rings, rng);
         Scene s(rings, 40 + 30 * scene);
         const hull::Hull convex = hull::Hull::from_dimensions({60 + 80 * unit(rng), 10 + 20 * unit(rng), 5 + 10 * unit(rng), 5 + 10 * unit(rng)});
         std::vector<XY> wavy = test::wavy_hull(48);
@@ -435,15 +441,7 @@ TEST(ContactRegions, ShortcutsGiveTheDepthsOfTheFullSearch) {
             const XY base = (360 + 40 * unit(rng)) * c, mid = base + 0.5 * len * c + bend * nrm, tip = base + len * c + 2 * bend * nrm;
             rings.push_back(ring_of({base - w * nrm, mid - w2 * nrm, tip - w * nrm, tip + w * nrm, mid + w2 * nrm, base + w * nrm}));
         }
-        for (int k = 0; k < 4; ++k) {
-            const double a = unit(rng) * 2 * std::numbers::pi, r0 = 460 + 40 * unit(rng), rad = 2 + 8 * unit(rng);
-            std::vector<XY> islet;
-            for (int v = 0; v < 7; ++v) {
-                const double t = 2 * std::numbers::pi * v / 7;
-                islet.push_back({r0 * std::cos(a) + rad * (1 + 0.3 * unit(rng)) * std::cos(t), r0 * std::sin(a) + rad * (1 + 0.3 * unit(rng)) * std::sin(t)});
-            }
-            rings.push_back(ring_of(islet));
-        }
+        add_islets(rings, rng);
         const grid::CoastGrid g = grid::CoastGrid::build(rings, any_frame(), 40 + 30 * scene);
         const hull::Hull convex = hull::Hull::from_dimensions({60 + 80 * unit(rng), 10 + 20 * unit(rng), 5 + 10 * unit(rng), 5 + 10 * unit(rng)});
         std::vector<XY> wavy = test::wavy_hull(48);
