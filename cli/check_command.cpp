@@ -419,17 +419,9 @@ public:
         // or a device: report_outputs lists more than the report and its style; not a shard).
         const bool geojson_project = format != "gpkg" && !r.shard.active() && report::report_outputs(m_output, format, info.project).size() > 2;
         std::optional<coast::Coastline> chart;
-        // The layer draws the chart near the tracks' lines: with none (an empty input, every
-        // track refused) it is empty, whatever the chart, which is then not read.
-        const bool any_line = std::any_of(r.tracks.begin(), r.tracks.end(), [](const audit::TrackResult& t) {
-            return std::any_of(t.summary.lines.begin(), t.summary.lines.end(), [](const auto& line) { return !line.empty(); });
-        });
-        if (info.project && (format == "gpkg" || geojson_project) && !any_line) {
-            chart.emplace();
-            info.chart = &*chart;
-        } else if (info.project && (format == "gpkg" || geojson_project)) {
+        if (info.project && (format == "gpkg" || geojson_project)) {
             std::string chart_warning;
-            chart = report::read_chart(m_opts.coast, g, chart_warning);
+            chart = report::read_chart(m_opts.coast, g, r, chart_warning);
             if (chart) info.chart = &*chart;
             else print_warnings({chart_warning});
         }

@@ -79,8 +79,11 @@ struct RunInfo {
 /// (`coast` as given, or the files a .shoalgrid records) read again through the coast reader
 /// with the options the grid was built with (layers, source CRS, limiting depth, danger
 /// radius, depth field). Nothing, with the reason in `warning`, when they cannot be read (a
-/// grid whose sources have moved or are bad now): the report then has no coast layer.
-std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& grid, std::string& warning);
+/// grid whose sources have moved or are bad now): the report then has no coast layer. The
+/// layer draws the chart near the tracks' lines of `run`: with none (an empty input, every
+/// track refused) it is empty whatever the chart, which is then not read (an empty chart).
+std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const audit::AuditResult& run,
+                                           std::string& warning);
 
 /// The chart's box in lon/lat (RunInfo::chart_lonlat): the grid's extent taken back from its frame.
 geo::Box chart_box_lonlat(const grid::CoastGrid& grid);
