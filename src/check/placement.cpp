@@ -3,9 +3,7 @@
 #include <shoal/check/placement.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <numbers>
 
 #include "util/parallel.hpp"

@@ -1,8 +1,6 @@
 #include <shoal/probe/probe.hpp>
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
 
 #include <shoal/util/error.hpp>
 

@@ -57,7 +57,7 @@ struct Batch {
     std::size_t invalid = 0;      ///< poses refused (not valid, or not placeable)
     std::size_t uncovered = 0;    ///< valid poses whose hull is not covered by the chart
     /// The first pose refused (in input order), and why (pose_problem's words, or the
-    /// placement's InputError); first_invalid == answers.size() when none was.
+    /// placement's InputError); first_invalid is the number of poses when none was.
     std::size_t first_invalid = 0;
     std::string first_problem;
 };
