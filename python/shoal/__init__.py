@@ -83,7 +83,9 @@ def _find_columns(df, columns):
                 found[role] = by_name[n]
                 break
         if role == "time" and role not in found:  # as the CSV reader: TIMESTAMP_UTC, Time (UTC), ...
-            found.update({role: c for c in reversed(list(df.columns)) if _is_time_column_name(str(c))})
+            spelt = [c for c in df.columns if _is_time_column_name(str(c))]
+            if spelt:
+                found[role] = spelt[0]
     if "id" not in found and "name" in found:  # as the CSV reader: the vessel's name identifies it
         found["id"] = found["name"]
     for role in ("time", "lat", "lon"):
