@@ -23,7 +23,7 @@
 #include <shoal/audit/audit.hpp>
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/grid_cache.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/geojson_report.hpp>
 
 namespace fs = std::filesystem;
 using namespace shoal;

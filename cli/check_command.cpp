@@ -28,8 +28,12 @@
 #include <shoal/picture/debrief.hpp>
 #include <shoal/picture/debrief_record.hpp>
 #include <shoal/picture/plot.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
+#include <shoal/report/geojson_report.hpp>
+#include <shoal/report/gpkg_report.hpp>
+#include <shoal/report/summary.hpp>
 #include <shoal/track/reader.hpp>
+#include <shoal/track/vessels_table.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/report/read_fingerprints.hpp>
 #include <shoal/util/error.hpp>

@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "probe.hpp"
+#include "probe_core.hpp"
 #include "process.hpp"
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/version.hpp>

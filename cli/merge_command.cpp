@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <shoal/shard/merge.hpp>
+#include <shoal/merge/merge_parts.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 #include <shoal/util/printable.hpp>

@@ -2,7 +2,7 @@
 // a zip, /vsi paths, FIFOs) and coastline sources built into a cached grid. The executable
 // runs a probe of a grid file from plain files itself (grid_probe.cpp), the same way.
 #include "commands.hpp"
-#include "probe.hpp"
+#include "probe_core.hpp"
 
 #include <CLI/CLI.hpp>
 

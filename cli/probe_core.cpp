@@ -1,6 +1,6 @@
 // shoal probe: collision and clearance of single poses (the options and the run; probe.hpp).
 #include "commands.hpp"
-#include "probe.hpp"
+#include "probe_core.hpp"
 
 #include <CLI/CLI.hpp>
 

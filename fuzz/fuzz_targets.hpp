@@ -37,7 +37,7 @@
 #include <shoal/grid/grid_builder.hpp>
 #include <shoal/picture/debrief.hpp>
 #include <shoal/picture/debrief_record.hpp>
-#include <shoal/shard/merge.hpp>
+#include <shoal/merge/merge_parts.hpp>
 #include <shoal/picture/plot.hpp>
 #include <shoal/track/ais.hpp>
 #include <shoal/track/csv_reader.hpp>
@@ -45,6 +45,7 @@
 #include <shoal/track/ogr_reader.hpp>
 #include <shoal/track/packed_track.hpp>
 #include <shoal/track/reader.hpp>
+#include <shoal/track/vessels_table.hpp>
 #include <shoal/track/track.hpp>
 #include <shoal/util/error.hpp>
 #include "util/input_file.hpp"

@@ -13,7 +13,6 @@
 #include <shoal/util/option_names.hpp>
 #include <shoal/version.hpp>
 
-#include "util/parse_util.hpp"
 
 namespace shoal::python {
 
@@ -81,12 +80,19 @@ std::optional<double> depth_or_none(const py::object& o, const char* name, bool 
     return v;
 }
 
+/// A number for a message, as Python would write it ("50", "0.5", "nan").
+std::string number_text(double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return {buf, r.ptr};
+}
+
 double positive(const char* name, double v, bool zero_ok, double max, const char* why) {
     if (!std::isfinite(v) || v < 0 || (!zero_ok && v == 0))
-        throw py::value_error(std::string(name) + " must be a finite number " + (zero_ok ? ">= 0" : "> 0") + " (got " + track::detail::fmt(v) + ")");
+        throw py::value_error(std::string(name) + " must be a finite number " + (zero_ok ? ">= 0" : "> 0") + " (got " + number_text(v) + ")");
     if (!(v <= max))
-        throw py::value_error(std::string(name) + " must be at most " + track::detail::fmt(max) + " (" + (*why ? std::string(why) + "; " : std::string()) +
-                              "got " + track::detail::fmt(v) + ")");
+        throw py::value_error(std::string(name) + " must be at most " + number_text(max) + " (" + (*why ? std::string(why) + "; " : std::string()) +
+                              "got " + number_text(v) + ")");
     return v;
 }
 

@@ -13,9 +13,10 @@
 #include <tuple>
 
 #include <shoal/audit/partition.hpp>
-#include <shoal/exercise/worst_pairs.hpp>
+#include "exercise/worst_pairs.hpp"
 #include <shoal/grid/limiting_depth.hpp>
-#include <shoal/track/merge.hpp>
+#include "track/merge.hpp"
+#include <shoal/track/vessels_table.hpp>
 #include <shoal/util/error.hpp>
 
 #include "util/parallel.hpp"

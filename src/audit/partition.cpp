@@ -15,7 +15,7 @@
 #include <set>
 
 #include <shoal/shard/shard.hpp>
-#include <shoal/track/merge.hpp>
+#include "track/merge.hpp"
 #include <shoal/track/reader.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>

@@ -59,15 +59,6 @@ std::string exercise_key(ExerciseBy by, const std::string& file, const std::stri
 
 std::string exercise_key(ExerciseBy by, const track::Track& track) { return exercise_key(by, track.file, track.exercise); }
 
-const char* to_string(Role r) noexcept { return r == Role::target ? "target" : "trainee"; }
-
-bool parse_role(const std::string& s, Role& role) {
-    const char* v = track::role_value(s);
-    if (!v) return false;
-    role = std::string_view(v) == "target" ? Role::target : Role::trainee;
-    return true;
-}
-
 Roles Roles::parse(const std::string& text, const std::string& source) {
     nlohmann::json j;
     try {

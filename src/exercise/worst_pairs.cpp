@@ -1,4 +1,4 @@
-#include <shoal/exercise/worst_pairs.hpp>
+#include "exercise/worst_pairs.hpp"
 
 #include <algorithm>
 #include <cmath>

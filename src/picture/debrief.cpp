@@ -12,7 +12,8 @@
 #include <tuple>
 
 #include <shoal/picture/plot.hpp>
-#include <shoal/track/ship_type.hpp>
+#include <shoal/report/geojson_report.hpp>
+#include "track/ship_type.hpp"
 #include <shoal/util/error.hpp>
 #include <shoal/version.hpp>
 

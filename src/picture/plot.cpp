@@ -12,7 +12,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>

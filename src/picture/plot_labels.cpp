@@ -12,7 +12,7 @@
 #include <shoal/picture/plot.hpp>
 #include <shoal/picture/wording.hpp>
 #include <shoal/report/markup.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
 #include <shoal/util/error.hpp>
 #include "picture/event_phrases.hpp"
 

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include <shoal/report/report.hpp>
+#include <shoal/report/geojson_report.hpp>
 #include "picture/event_phrases.hpp"
 
 namespace shoal::report {

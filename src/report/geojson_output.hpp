@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "report/report_fields.hpp"
+#include <shoal/report/report_fields.hpp>
 #include <shoal/util/output_file.hpp>
 
 namespace shoal::report {

@@ -21,9 +21,11 @@
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"
 #include "report/qgis/qgis_project.hpp"
-#include "shard/part_order.hpp"
-#include "report/report_fields.hpp"
-#include <shoal/report/report.hpp>
+#include "report/part_order.hpp"
+#include <shoal/report/report_fields.hpp>
+#include <shoal/report/run_info.hpp>
+#include <shoal/report/geojson_report.hpp>
+#include <shoal/report/gpkg_report.hpp>
 #include <shoal/version.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>

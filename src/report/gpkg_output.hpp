@@ -8,7 +8,7 @@
 
 #include "report/qgis/qgis_project.hpp"
 #include <shoal/audit/audit.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/gpkg_report.hpp>
 #include <shoal/util/output_file.hpp>
 
 class GDALDataset;
@@ -24,7 +24,7 @@ struct GpkgLayers {
              *problems = nullptr, *approaches = nullptr, *run = nullptr, *summary = nullptr;
     OGRLayer *breaches = nullptr, *scores = nullptr;  ///< --assess
     OGRLayer* learned = nullptr;  ///< --world real: what the run's traffic taught
-    /// A shard's report only: one row, field `order`, the JSON of shard/part_order.hpp.
+    /// A shard's report only: one row, field `order`, the JSON of report/part_order.hpp.
     OGRLayer* part = nullptr;
 };
 

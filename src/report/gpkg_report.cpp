@@ -8,10 +8,11 @@
 #include "report/qgis/qgis_styles.hpp"
 #include "report/qgis/chart_layer.hpp"
 #include "report/gpkg_output.hpp"
-#include "shard/part_order.hpp"
+#include "report/part_order.hpp"
 #include "report/qgis/qgis_project.hpp"
-#include "report/report_fields.hpp"
-#include <shoal/report/report.hpp>
+#include <shoal/report/report_fields.hpp>
+#include <shoal/report/run_info.hpp>
+#include <shoal/report/gpkg_report.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 

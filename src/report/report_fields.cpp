@@ -1,4 +1,4 @@
-#include "report/report_fields.hpp"
+#include <shoal/report/report_fields.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -9,9 +9,12 @@
 #include <xxhash.h>
 
 #include <shoal/grid/coast_grid.hpp>
-#include <shoal/track/ship_type.hpp>
+#include <shoal/report/geojson_report.hpp>
+#include "track/ship_type.hpp"
 #include <shoal/track/track.hpp>
 #include <shoal/version.hpp>
+
+#include "report/qgis/chart_layer.hpp"
 
 namespace shoal::report::fields {
 

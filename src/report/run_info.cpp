@@ -1,5 +1,5 @@
 // The run header of a report (report::run_info): what was checked, against what, by which rules.
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -2,7 +2,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include <shoal/report/report.hpp>
+#include <shoal/report/geojson_report.hpp>
+#include <shoal/report/summary.hpp>
 #include <shoal/util/printable.hpp>
 
 namespace shoal::report {

@@ -17,6 +17,7 @@
 
 #include "util/parse_util.hpp"
 #include "track/stream_readers.hpp"
+#include <shoal/track/row_rules.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
 
@@ -336,8 +337,8 @@ private:
         }
         if (m_cols.mobile_type != absent && m_cols.mobile_type < f.size()) {
             const std::string_view type = f[m_cols.mobile_type];
-            if (type == "Base Station" || type == "AtoN") {
-                skip(out, "not a vessel (Type of mobile " + detail::quoted(type) + ")");
+            if (!is_vessel_row(type)) {
+                skip(out, not_a_vessel_message(type));
                 return;
             }
         }
@@ -366,11 +367,11 @@ private:
         }
         const auto time = parse_time(time_text);
         if (!time) {
-            skip(out, "time " + detail::quoted(time_text) + " is not a valid time (ISO 8601, epoch seconds, dd/mm/yyyy hh:mm:ss or hh:mm:ss)");
+            skip(out, invalid_time_message(time_text));
             return;
         }
         if (!time->date_missing && !plausible_fix_time(time->seconds)) {
-            skip(out, "time " + detail::quoted(time_text) + " is outside the years " + fix_time_range + " (a wrong unit, or a corrupt field?)");
+            skip(out, implausible_time_message(time_text));
             return;
         }
         geo::LonLat position;
@@ -560,39 +561,27 @@ private:
         if (c.name != absent && t.name.empty() && !at(vessel_name).empty()) t.name = to_utf8(at(vessel_name));
         if (c.dims[0] != absent && !t.dims) {
             const std::array<std::string_view, 4> dims{at(vessel_a), at(vessel_b), at(vessel_c), at(vessel_d)};
-            std::array<double, 4> d{};
-            bool ok = true;
-            for (std::size_t k = 0; k < 4; ++k) {
-                d[k] = number(dims[k]);
-                ok = ok && std::isfinite(d[k]) && d[k] > 0.0;
-            }
-            if (ok) {
-                t.dims = hull::Dimensions{d[0], d[1], d[2], d[3]};
-                t.dims_source = "A,B,C,D columns";
+            if (const auto d = dims_from_abcd(number(dims[0]), number(dims[1]), number(dims[2]), number(dims[3]))) {
+                t.dims = d;
+                t.dims_source = dims_from_abcd_source;
             }
         }
-        // Length and width alone (MarineCadastre): the reference point is not known; taken
-        // amidships, the hull reaches half the length fore and aft.
         if (m_options.hull_from_length_width && c.length != absent && c.width != absent && !t.dims) {
-            const double l = number(at(vessel_length)), w = number(at(vessel_width));
-            if (std::isfinite(l) && std::isfinite(w) && l > 0.0 && w > 0.0) {
-                t.dims = hull::Dimensions{l / 2, l / 2, w / 2, w / 2};
-                t.dims_source = "Length and Width columns (reference point taken amidships)";
+            if (const auto d = dims_from_length_width(number(at(vessel_length)), number(at(vessel_width)))) {
+                t.dims = d;
+                t.dims_source = dims_from_length_width_source;
             }
         }
         if (c.draught != absent && std::isnan(t.draught_m)) {
-            const double v = number(at(vessel_draught));
-            if (std::isfinite(v) && v > 0.0) {
+            if (const double v = number(at(vessel_draught)); usable_draught(v)) {
                 t.draught_m = v;
-                t.draught_source = "draught column";
+                t.draught_source = draught_source;
             }
         }
         if (c.ship_type != absent && t.ship_type < 0) {
-            // A number 1-255 (0: not available); a text (DMA's "Cargo", "Undefined") is not the number.
-            const double v = number(at(vessel_ship_type));
-            if (v >= 1.0 && v <= 255.0 && v == std::floor(v)) {
-                t.ship_type = static_cast<int>(v);
-                t.ship_type_source = "ship type column";
+            if (const int v = ship_type_number(number(at(vessel_ship_type))); v >= 0) {
+                t.ship_type = v;
+                t.ship_type_source = ship_type_source;
             }
         }
     }

@@ -1,4 +1,4 @@
-#include <shoal/track/merge.hpp>
+#include "track/merge.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include <shoal/track/ship_type.hpp>
+#include "track/ship_type.hpp"
 
 namespace shoal::track {
 

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <system_error>
 
+#include <shoal/track/row_rules.hpp>
+
 
 
 namespace shoal::track::detail {
@@ -91,42 +93,10 @@ inline std::string quoted(std::string_view s) {
     return out;
 }
 
-/// True when a latitude/longitude pair cannot be a position; `what` then says why
-/// ("latitude 91 (AIS: not available)").
-inline bool position_problem(double lat, double lon, std::string& what) {
-    if (!std::isfinite(lat)) {
-        what = "latitude " + fmt(lat) + " is not a number";
-        return true;
-    }
-    if (!std::isfinite(lon)) {
-        what = "longitude " + fmt(lon) + " is not a number";
-        return true;
-    }
-    if (lat == 91.0) {
-        what = "latitude 91 (AIS: not available)";
-        return true;
-    }
-    if (lon == 181.0) {
-        what = "longitude 181 (AIS: not available)";
-        return true;
-    }
-    if (std::fabs(lat) > 90.0) {
-        what = "latitude " + fmt(lat) + " is outside [-90, 90]";
-        return true;
-    }
-    if (std::fabs(lon) > 180.0) {
-        what = "longitude " + fmt(lon) + " is outside [-180, 180]";
-        return true;
-    }
-    return false;
-}
-
-/// Heading, COG and SOG as AIS defines their ranges; NAN for "not available" and nonsense.
-inline double valid_heading(double h) noexcept {
-    if (!(h >= 0.0 && h <= 360.0)) return NAN;  // AIS 511 = not available
-    return h == 360.0 ? 0.0 : h;
-}
-inline double valid_cog(double c) noexcept { return c >= 0.0 && c < 360.0 ? c : NAN; }     // AIS 360 = n/a
-inline double valid_sog(double s) noexcept { return s >= 0.0 && s < 102.3 ? s : NAN; }     // AIS 102.3 = n/a
+/// The row rules every reader shares (track/row_rules.hpp), under the names the readers use.
+using track::position_problem;
+using track::valid_cog;
+using track::valid_heading;
+using track::valid_sog;
 
 }  // namespace shoal::track::detail

@@ -11,7 +11,7 @@
 #include <shoal/audit/audit.hpp>
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/sweep/evidence.hpp>
-#include <shoal/track/merge.hpp>
+#include "track/merge.hpp"
 #include <shoal/track/packed_track.hpp>
 #include <shoal/track/reader.hpp>
 

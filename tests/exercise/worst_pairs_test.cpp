@@ -15,7 +15,7 @@
 #include <vector>
 
 #include <shoal/audit/audit.hpp>
-#include <shoal/exercise/worst_pairs.hpp>
+#include "exercise/worst_pairs.hpp"
 #include <shoal/grid/grid_cache.hpp>
 
 #include "audit/solent_grid.hpp"

@@ -37,7 +37,8 @@
 #include <shoal/hull/hull.hpp>
 #include <shoal/picture/debrief.hpp>
 #include <shoal/picture/plot.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
+#include <shoal/report/geojson_report.hpp>
 #include "run_shoal.hpp"
 #include "test_support.hpp"
 #include "xml_support.hpp"

@@ -27,7 +27,7 @@
 #include <shoal/grid/grid_cache.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/picture/plot.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/geojson_report.hpp>
 #include <shoal/track/track.hpp>
 #include "test_support.hpp"
 #include "xml_support.hpp"

@@ -26,10 +26,12 @@
 #include <vector>
 
 #include "report/geojson_output.hpp"
-#include "report/report_fields.hpp"
+#include <shoal/report/report_fields.hpp>
 #include "test_support.hpp"
 #include <shoal/audit/audit.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
+#include <shoal/report/geojson_report.hpp>
+#include <shoal/report/gpkg_report.hpp>
 
 namespace shoal::report {
 namespace {

@@ -23,7 +23,7 @@
 #include "track/ais_encoder.hpp"
 #include "track/decoders.hpp"
 #include <shoal/track/ais.hpp>
-#include <shoal/track/ship_type.hpp>
+#include "track/ship_type.hpp"
 
 namespace {
 

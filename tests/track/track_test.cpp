@@ -8,6 +8,7 @@
 // Vessel counts: awk -F, on gpsd_nl_vessels.csv (19 distinct MMSIs, 16 with A,B,C,D all > 0).
 
 #include <shoal/track/reader.hpp>
+#include <shoal/track/vessels_table.hpp>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -19,6 +19,7 @@
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/track/reader.hpp>
+#include <shoal/track/vessels_table.hpp>
 
 namespace shoal::audit {
 

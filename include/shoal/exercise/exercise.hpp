@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include <shoal/sweep/role.hpp>
 #include <shoal/track/track.hpp>
 
 namespace shoal::audit {
@@ -52,9 +53,6 @@ ExerciseBy parse_exercise_by(const std::string& s);
 std::string exercise_key(ExerciseBy by, const std::string& file, const std::string& column_value = {});
 /// The exercise of `track`: exercise_key(by, track.file, track.exercise).
 std::string exercise_key(ExerciseBy by, const track::Track& track);
-
-enum class Role { trainee, target };
-const char* to_string(Role r) noexcept;  ///< "trainee", "target"
 
 /// Roles of tracks, from an exercise file (JSON, schemas/exercise.schema.json):
 ///
@@ -101,9 +99,5 @@ struct Roles {
 /// trainee. So a role column gives every track its role, and an exercise file given beside it
 /// corrects the tracks it names.
 Role role_of(const Roles* roles, const std::string& exercise, const track::Track& track);
-
-/// Parses a role value ("trainee", "own", "own ship", "own_ship", "target"; any case); false if
-/// it is none of them.
-bool parse_role(const std::string& s, Role& role);
 
 }  // namespace shoal::audit

@@ -37,7 +37,7 @@
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/grid/coast_grid.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
 #include <shoal/util/output_file.hpp>
 
 namespace shoal::report {

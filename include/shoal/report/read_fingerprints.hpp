@@ -6,6 +6,7 @@
 #include <shoal/exercise/exercise.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/track/reader.hpp>
+#include <shoal/track/vessels_table.hpp>
 
 namespace shoal::report {
 

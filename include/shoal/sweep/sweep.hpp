@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include <shoal/exercise/exercise.hpp>
 #include <shoal/check/detector.hpp>
+#include <shoal/sweep/role.hpp>
 #include <shoal/track/kinematics.hpp>
 #include <shoal/track/track.hpp>
 #include <shoal/track/wild_fixes.hpp>

@@ -173,7 +173,7 @@ std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const st
 
 #include <shoal/grid/grid_builder.hpp>
 #include <shoal/grid/grid_file.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
 
 namespace shoal::report {
 

@@ -15,7 +15,7 @@
 
 #include "report/qgis/qgis_styles.hpp"
 #include <shoal/report/markup.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/geojson_report.hpp>
 #include <shoal/util/error.hpp>
 
 namespace shoal::report {

@@ -8,6 +8,7 @@
 #include <pybind11/numpy.h>
 
 #include <cmath>
+#include <filesystem>
 #include <exception>
 #include <map>
 #include <unordered_map>
@@ -15,12 +16,13 @@
 #include <shoal/audit/audit.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/grid/grid_builder.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
+#include <shoal/track/row_rules.hpp>
 #include <shoal/track/time.hpp>
+#include <shoal/track/vessels_table.hpp>
 #include <shoal/util/error.hpp>
 
-#include "util/parse_util.hpp"
-#include "report/report_fields.hpp"
+#include <shoal/report/report_fields.hpp>
 
 namespace shoal::python {
 
@@ -76,8 +78,8 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
         ++report.rows;
         const std::size_t row_line = line ? static_cast<std::size_t>(line.at(k)) : k + 1;
         const auto skip = [&](const std::string& what) { report.skip(file + " line " + std::to_string(row_line) + ": " + what + "; row skipped"); };
-        if (!mobile.empty() && (mobile[k] == "Base Station" || mobile[k] == "AtoN")) {  // DMA's export: not vessels
-            skip("not a vessel (Type of mobile " + track::detail::quoted(mobile[k]) + ")");
+        if (!mobile.empty() && !track::is_vessel_row(mobile[k])) {
+            skip(track::not_a_vessel_message(mobile[k]));
             continue;
         }
         if (has_id && ids[k].empty()) {
@@ -92,17 +94,15 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
             }
             const auto parsed = track::parse_time(time_text[k]);
             if (!parsed) {
-                skip("time " + track::detail::quoted(time_text[k]) +
-                     " is not a valid time (ISO 8601, epoch seconds, dd/mm/yyyy hh:mm:ss or hh:mm:ss)");
+                skip(track::invalid_time_message(time_text[k]));
                 continue;
             }
             if (parsed->date_missing) {
-                skip("time " + track::detail::quoted(time_text[k]) + " is a time of day without a date (give full times)");
+                skip(track::undated_time_message(time_text[k]));
                 continue;
             }
             if (!track::plausible_fix_time(parsed->seconds)) {
-                skip("time " + track::detail::quoted(time_text[k]) + " is outside the years " + std::string(track::fix_time_range) +
-                     " (a wrong unit, or a corrupt field?)");
+                skip(track::implausible_time_message(time_text[k]));
                 continue;
             }
             t = parsed->seconds;
@@ -112,23 +112,22 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
             continue;
         }
         if (!track::plausible_fix_time(t)) {
-            skip("time " + track::detail::fmt(t) + " (seconds since 1970) is outside the years " + std::string(track::fix_time_range) +
-                 " (a wrong unit, or a corrupt field?)");
+            skip(track::implausible_time_message(t));
             continue;
         }
         track::Fix fix;
         fix.time_s = t;
         fix.position = {lon.at(k), lat.at(k)};
-        if (std::string what; track::detail::position_problem(fix.position.lat, fix.position.lon, what)) {
+        if (std::string what; track::position_problem(fix.position.lat, fix.position.lon, what)) {
             skip(what);
             continue;
         }
-        fix.heading_deg = track::detail::valid_heading(heading.at(k));
-        fix.cog_deg = track::detail::valid_cog(cog.at(k));
-        fix.sog_kn = track::detail::valid_sog(sog.at(k));
+        fix.heading_deg = track::valid_heading(heading.at(k));
+        fix.cog_deg = track::valid_cog(cog.at(k));
+        fix.sog_kn = track::valid_sog(sog.at(k));
         if (!status.empty()) fix.nav_status = track::parse_nav_status(status[k]);
         fix.line = row_line;
-        const std::string id = has_id ? ids[k] : track::detail::file_stem(file);
+        const std::string id = has_id ? ids[k] : std::filesystem::path(file).stem().string();
         auto [it, added] = index.emplace(id, tracks.size());
         if (added) {
             track::Track& nt = tracks.emplace_back();
@@ -139,21 +138,19 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
         // Static data as the CSV reader takes it: the first name, complete dimensions, draught, ship type.
         if (!names.empty() && tr.name.empty() && !names[k].empty()) tr.name = names[k];
         if (has_dims && !tr.dims) {
-            const double v[4] = {dims[0].at(k), dims[1].at(k), dims[2].at(k), dims[3].at(k)};
-            if (std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]) && v[0] > 0 && v[1] > 0 && v[2] > 0 && v[3] > 0) {
-                tr.dims = hull::Dimensions{v[0], v[1], v[2], v[3]};
-                tr.dims_source = "A,B,C,D columns";
+            if (const auto d = track::dims_from_abcd(dims[0].at(k), dims[1].at(k), dims[2].at(k), dims[3].at(k))) {
+                tr.dims = d;
+                tr.dims_source = track::dims_from_abcd_source;
             }
         }
-        if (draught && std::isnan(tr.draught_m) && std::isfinite(draught.at(k)) && draught.at(k) > 0) {
+        if (draught && std::isnan(tr.draught_m) && track::usable_draught(draught.at(k))) {
             tr.draught_m = draught.at(k);
-            tr.draught_source = "draught column";
+            tr.draught_source = track::draught_source;
         }
         if (ship_type && tr.ship_type < 0) {
-            const double v = ship_type.at(k);
-            if (v >= 1.0 && v <= 255.0 && v == std::floor(v)) {
-                tr.ship_type = static_cast<int>(v);
-                tr.ship_type_source = "ship type column";
+            if (const int v = track::ship_type_number(ship_type.at(k)); v >= 0) {
+                tr.ship_type = v;
+                tr.ship_type_source = track::ship_type_source;
             }
         }
         tr.fixes.push_back(fix);

@@ -30,9 +30,12 @@
 #include <variant>
 #include <vector>
 
-#include "report/qgis/chart_layer.hpp"
 #include <shoal/audit/audit.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
+
+namespace shoal::report {
+struct ChartFeature;  // one feature of the `coast` layer (the QGIS packaging: report/qgis/chart_layer.hpp)
+}  // namespace shoal::report
 
 namespace shoal::report::fields {
 
@@ -108,7 +111,7 @@ struct PoseRow {
 };
 /// One feature of the `coast` layer: the chart's land, shallow areas or dangers in one tile.
 struct CoastRow {
-    std::string tile;   ///< the tile's key (report/qgis/chart_layer.hpp)
+    std::string tile;   ///< the tile's key (src/report/qgis/chart_layer.hpp)
     const char* kind;   ///< "land", "shallow", "danger", "structure"
     const char* danger; ///< the danger's kind ("rock", ...), "" otherwise
     double depth_m;     ///< the charted depth (least depth of the areas, danger's sounding); NaN unknown or land

@@ -1,24 +1,16 @@
 #pragma once
-/// Writing an audit's results: the GeoJSON report (RFC 7946, WGS84 lon/lat; one Point feature
-/// per event, the run in the top-level member "shoal"), the GeoPackage (the same fields:
-/// layers events, tracks, hulls, encounters; tables problems, closest_approaches, run,
-/// summary) and the summary table for stdout. Reports are deterministic (no wall-clock
-/// figures in them) and written atomically.
-///
-/// A caller that writes several outputs (the report, its style, a picture) checks them all
-/// first with `check_outputs(report_outputs(path, format) + the others, inputs)`, stages each
-/// (stage_geojson / stage_gpkg / StagedOutput), and puts them in place together with
-/// `commit_all`: an interrupt before then leaves every earlier file as it was.
+/// What a run was, for its report: the run header (RunInfo: the coast, the grid, the ship, the
+/// rules and options, the inputs' fingerprints) and the chart its `coast` layer draws.
 
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/coast/coastline.hpp>
 #include <shoal/geo/point.hpp>
-#include <shoal/util/output_file.hpp>
 
 namespace shoal::report {
 
@@ -82,6 +74,7 @@ struct RunInfo {
 /// grid whose sources have moved or are bad now): the report then has no coast layer. The
 /// layer draws the chart near the tracks' lines of `run`: with none (an empty input, every
 /// track refused) it is empty whatever the chart, which is then not read (an empty chart).
+/// (Made by the QGIS packaging, report/qgis/chart_layer.cpp.)
 std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const audit::AuditResult& run,
                                            std::string& warning);
 
@@ -107,70 +100,5 @@ std::pair<long long, std::string> file_size_and_fingerprint(const std::string& p
 /// be read again) by the bytes the readers were handed (ReadReport::stream_digest), any other
 /// file by file_size_and_fingerprint.
 std::pair<long long, std::string> read_file_fingerprint(const audit::FileResult& file);
-
-/// The GeoJSON report as text (schemas/report.schema.json).
-std::string geojson(const audit::AuditResult& result, const RunInfo& info);
-
-/// Throws UsageError when a QGIS project cannot name the report at `path`: its file name holds
-/// '|', which QGIS's OGR provider reads as the start of a layer's options.
-void check_project_name(const std::string& path);
-
-/// The files a report at `path` consists of, for check_outputs: the report ("-o", "the
-/// report") and, for a GeoJSON report in a regular file, its QGIS style REPORT.qml beside it
-/// and, with `project`, its QGIS project REPORT.qgz and the layer files that opens,
-/// REPORT.LAYER.geojson and REPORT.LAYER.qml for LAYER tracks, hulls, poses and coast.
-/// `format`: "geojson" or "gpkg".
-/// The report itself is replaced only when shoal wrote it (OutputSpec::ours).
-std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project = true);
-
-/// A GeoJSON report or shard's part shoal wrote: its top-level member "shoal" (the run) within
-/// its first 4 KiB.
-bool is_shoal_geojson_report(const std::string& path);
-/// A GeoPackage shoal wrote as a report or a shard's part: GDAL opens it as a GeoPackage
-/// holding the layers events and tracks.
-bool is_shoal_gpkg_report(const std::string& path);
-
-/// The GeoJSON report, staged at `path` (not yet in place: commit_all puts it there), and the
-/// QGIS style REPORT.qml beside it, unless a file of that name exists that shoal did not write
-/// (then a warning goes into `warnings`, when given, and that file is left alone). With
-/// `info.project`, also the QGIS project REPORT.qgz beside it and the layer files it opens
-/// (REPORT.tracks.geojson, .hulls, .poses and, with `info.chart`, .coast, each with its .qml),
-/// unless one of those exists that shoal did not write (a warning then, and none of them is
-/// written). Nothing beside stdout, a device or a pipe. Throws InputError naming the file it
-/// could not write.
-std::vector<StagedOutput> stage_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
-                                        std::vector<std::string>* warnings = nullptr);
-/// stage_geojson, then commit_all.
-void write_geojson(const std::string& path, const audit::AuditResult& result, const RunInfo& info,
-                   std::vector<std::string>* warnings = nullptr);
-
-/// The GeoPackage report, staged at `path`: layers events, encounters, tracks, hulls (with
-/// `info.project` also poses, coast and the stored QGIS project), tables
-/// problems, closest_approaches, run, summary (docs/user-guide.md), in
-/// EPSG:4326, QGIS styles in its `layer_styles` table. Throws InputError when `path` is not a
-/// regular file (a device: "a GeoPackage must be a regular file ...") or cannot be written.
-StagedOutput stage_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info);
-/// stage_gpkg, then commit.
-void write_gpkg(const std::string& path, const audit::AuditResult& result, const RunInfo& info);
-
-/// How much of a run the summary shows: `normal` the counts of each kind of event first, then
-/// one line per track with events; `verbose` one line per track (every track read).
-enum class SummaryDetail { normal, verbose };
-
-/// The human summary: the world, the totals and the counts of each kind of event first; then
-/// the table of tracks (those with events, or every track: `detail`), every grounding, the
-/// encounters and scores (exercise mode), and the problems met.
-std::string summary_table(const audit::AuditResult& result, SummaryDetail detail = SummaryDetail::normal);
-
-/// "FILE line N: fix at LAT, LON (TIME) of track 'ID' dropped as an outlier: WHY".
-std::string wild_fix_message(const audit::TrackSummary& track, const track::WildFix& fix);
-
-/// ISO 8601 UTC, e.g. 2014-08-15T19:00:00.042Z (milliseconds only when not whole seconds).
-std::string iso_time(double epoch_s);
-
-/// Short text for maps: "aground 10:03:12Z" (land), "aground shallow 3.6 m 10:03:12Z",
-/// "aground wreck 10:03:12Z" (a danger; its sounding when charted), "aground pier 'Pier 25'
-/// 10:03:12Z" (a structure: its kind, and its name when it has one), "close 10:03:12Z".
-std::string event_label(const audit::Event& e);
 
 }  // namespace shoal::report

@@ -16,7 +16,7 @@
 ///   counted once per set of inputs, earliest, latest);
 /// - `tracks`, `features`, `problems`, `closest_approaches` (and the GeoPackage's events,
 ///   encounters, hulls, poses): rows put back in one run's order by the positions each part
-///   lists in its `shoal.part` member or `part` table (shard/part_order.hpp: tracks in the
+///   lists in its `shoal.part` member or `part` table (report/part_order.hpp: tracks in the
 ///   order they were read, a track's rows after the earlier tracks', encounters after every
 ///   track's in one run's order; a file's problems once per set of inputs, then failed
 ///   tracks', then tracks' in track order);

@@ -1,5 +1,5 @@
-// Merging shard reports into one run's report (report/merge.hpp).
-#include <shoal/shard/merge.hpp>
+// Merging shard reports into one run's report (merge/merge_parts.hpp).
+#include <shoal/merge/merge_parts.hpp>
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -19,13 +19,14 @@
 #include "report/qgis/chart_layer.hpp"
 #include "report/geojson_output.hpp"
 #include "report/gpkg_output.hpp"
-#include "report/report_fields.hpp"
+#include <shoal/report/report_fields.hpp>
 #include <shoal/shard/shard.hpp>
 #include <shoal/picture/debrief.hpp>
 #include <shoal/picture/debrief_record.hpp>
 #include <shoal/picture/plot.hpp>
-#include <shoal/report/report.hpp>
-#include <shoal/track/merge.hpp>
+#include <shoal/report/run_info.hpp>
+#include <shoal/report/geojson_report.hpp>
+#include "track/merge.hpp"
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>

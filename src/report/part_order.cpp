@@ -1,10 +1,10 @@
-// Where a shard's rows go in one run's report (shard/part_order.hpp).
-#include "shard/part_order.hpp"
+// Where a shard's rows go in one run's report (report/part_order.hpp).
+#include "report/part_order.hpp"
 
 #include "report/qgis/qgis_project.hpp"
-#include "report/report_fields.hpp"
+#include <shoal/report/report_fields.hpp>
 #include <shoal/grid/coast_grid.hpp>
-#include <shoal/report/report.hpp>
+#include <shoal/report/run_info.hpp>
 
 namespace shoal::report {
 
