@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include <shoal/track/row_rules.hpp>
 #include <shoal/util/error.hpp>
 
 #include "util/parallel.hpp"
@@ -26,7 +27,7 @@ std::optional<double> default_limit(const grid::CoastGrid& grid) {
 
 std::optional<std::string> pose_problem(double lat, double lon, double heading_deg) {
     std::string what;
-    if (track::detail::position_problem(lat, lon, what)) return what;
+    if (track::position_problem(lat, lon, what)) return what;
     if (!std::isfinite(heading_deg)) return "heading " + track::detail::fmt(heading_deg) + " is not a number";
     return std::nullopt;
 }

@@ -3,6 +3,7 @@
 #include <charconv>
 
 #include "util/parse_util.hpp"
+#include <shoal/track/row_rules.hpp>
 #include <shoal/track/time.hpp>
 
 namespace shoal::track::ais {
@@ -104,8 +105,8 @@ bool parse_tag_block(std::string_view tag, TagBlock& out, std::string& problem) 
     return true;
 }
 
-double scaled_sog(std::uint32_t raw) noexcept { return detail::valid_sog(raw == 1023 ? NAN : raw / 10.0); }
-double scaled_cog(std::uint32_t raw) noexcept { return detail::valid_cog(raw / 10.0); }
+double scaled_sog(std::uint32_t raw) noexcept { return valid_sog(raw == 1023 ? NAN : raw / 10.0); }
+double scaled_cog(std::uint32_t raw) noexcept { return valid_cog(raw / 10.0); }
 double scaled_heading(std::uint32_t raw) noexcept { return raw < 360 ? static_cast<double>(raw) : NAN; }
 
 /// A position in 1/`per_degree` degrees; none when not available (181, 91) or off the globe.
@@ -262,7 +263,7 @@ Decode decode(std::string_view payload, unsigned fill, Message& out, std::string
             out.position = position(b.s(44, 18), b.s(62, 17), 600.0);
             const std::uint32_t sog = b.u(79, 6), cog = b.u(85, 9);
             out.sog_kn = sog == 63 ? NAN : static_cast<double>(sog);
-            out.cog_deg = detail::valid_cog(static_cast<double>(cog));
+            out.cog_deg = valid_cog(static_cast<double>(cog));
             break;
         }
         case 5: {

@@ -383,7 +383,7 @@ private:
             skip(out, f[m_cols.lon].empty() ? "no longitude" : "longitude " + detail::quoted(f[m_cols.lon]) + " is not a number");
             return;
         }
-        if (std::string what; detail::position_problem(position.lat, position.lon, what)) {
+        if (std::string what; position_problem(position.lat, position.lon, what)) {
             skip(out, what);
             return;
         }
@@ -481,9 +481,9 @@ private:
         const Columns& c = cols();
         Fix fix;
         fix.position = r.position;
-        if (c.heading != absent) fix.heading_deg = detail::valid_heading(number(r.heading));
-        if (c.cog != absent) fix.cog_deg = detail::valid_cog(number(r.cog));
-        if (c.sog != absent) fix.sog_kn = detail::valid_sog(number(r.sog));
+        if (c.heading != absent) fix.heading_deg = valid_heading(number(r.heading));
+        if (c.cog != absent) fix.cog_deg = valid_cog(number(r.cog));
+        if (c.sog != absent) fix.sog_kn = valid_sog(number(r.sog));
         if (c.nav_status != absent) fix.nav_status = parse_nav_status(r.nav_status);
         fix.line = r.line;
         if (r.long_row) {

@@ -10,6 +10,7 @@
 
 #include "util/input_file.hpp"
 #include "util/parse_util.hpp"
+#include <shoal/track/row_rules.hpp>
 #include "stream_readers.hpp"
 #include <shoal/track/ais.hpp>
 #include <shoal/track/time.hpp>
@@ -306,7 +307,7 @@ private:
         }
         geo::LonLat p;
         if (!time_of_day(1, "RMC", tod) || !position(3, "RMC", p)) return;
-        add_fix(day, tod, p, detail::valid_sog(number(7)), detail::valid_cog(number(8)));
+        add_fix(day, tod, p, valid_sog(number(7)), valid_cog(number(8)));
     }
 
     void gga() {
@@ -353,7 +354,7 @@ private:
     }
 
     void hdt() {
-        const double h = detail::valid_heading(number(1));
+        const double h = valid_heading(number(1));
         if (std::isnan(h) || fixes().empty()) return;
         Fix& f = fixes().back();
         if (std::isnan(f.heading_deg)) f.heading_deg = h;
@@ -370,8 +371,8 @@ private:
             cog = number(1);
             sog = number(3);
         }
-        cog = detail::valid_cog(cog);
-        sog = detail::valid_sog(sog);
+        cog = valid_cog(cog);
+        sog = valid_sog(sog);
         if (fixes().empty()) return;
         Fix& f = fixes().back();
         if (std::isnan(f.cog_deg)) f.cog_deg = cog;

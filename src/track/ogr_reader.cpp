@@ -15,6 +15,7 @@
 
 #include "util/json_message.hpp"
 #include "util/parse_util.hpp"
+#include <shoal/track/row_rules.hpp>
 #include "track/stream_readers.hpp"
 #include <shoal/track/csv_reader.hpp>
 #include <shoal/track/time.hpp>
@@ -162,14 +163,14 @@ private:
             Fix fix;
             fix.time_s = *t;
             fix.position = {g->toPoint()->getX(), g->toPoint()->getY()};
-            if (std::string what; detail::position_problem(fix.position.lat, fix.position.lon, what)) {
+            if (std::string what; position_problem(fix.position.lat, fix.position.lon, what)) {
                 skip(what);
                 continue;
             }
             if (course_field >= 0 && f->IsFieldSetAndNotNull(course_field))
-                fix.cog_deg = detail::valid_cog(f->GetFieldAsDouble(course_field));
+                fix.cog_deg = valid_cog(f->GetFieldAsDouble(course_field));
             if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field))
-                fix.sog_kn = detail::valid_sog(f->GetFieldAsDouble(speed_field) * 3600.0 / 1852.0);
+                fix.sog_kn = valid_sog(f->GetFieldAsDouble(speed_field) * 3600.0 / 1852.0);
             fix.line = m_point;
             if (!m_current || parent != m_current_parent) {
                 m_current = &m_set.get(id_of(kind, parent, p, single), p.name);
@@ -403,7 +404,7 @@ private:
             return false;
         }
         p = {c[0].get<double>(), c[1].get<double>()};
-        if (std::string what; detail::position_problem(p.lat, p.lon, what)) {
+        if (std::string what; position_problem(p.lat, p.lon, what)) {
             m_out.report.skip(at + what + "; point skipped");
             return false;
         }
@@ -436,13 +437,13 @@ private:
         fix.line = m_point;
         double h = json_number(props, "heading");
         if (std::isnan(h)) h = json_number(props, "heading_deg");
-        fix.heading_deg = detail::valid_heading(h);
+        fix.heading_deg = valid_heading(h);
         double c = json_number(props, "cog");
         if (std::isnan(c)) c = json_number(props, "cog_deg");
-        fix.cog_deg = detail::valid_cog(c);
+        fix.cog_deg = valid_cog(c);
         double s = json_number(props, "sog");
         if (std::isnan(s)) s = json_number(props, "sog_kn");
-        fix.sog_kn = detail::valid_sog(s);
+        fix.sog_kn = valid_sog(s);
         Track& track = m_set.get(id_of(f, props, k, false), name_of(props), exercise);
         take_role(track, role, k);
         track.fixes.push_back(fix);

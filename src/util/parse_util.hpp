@@ -10,8 +10,6 @@
 #include <string_view>
 #include <system_error>
 
-#include <shoal/track/row_rules.hpp>
-
 
 
 namespace shoal::track::detail {
@@ -92,11 +90,5 @@ inline std::string quoted(std::string_view s) {
     out += s.size() > 40 ? "...'" : "'";
     return out;
 }
-
-/// The row rules every reader shares (track/row_rules.hpp), under the names the readers use.
-using track::position_problem;
-using track::valid_cog;
-using track::valid_heading;
-using track::valid_sog;
 
 }  // namespace shoal::track::detail
