@@ -8,10 +8,8 @@
 #include <pybind11/numpy.h>
 
 #include <cmath>
-#include <filesystem>
 #include <exception>
 #include <map>
-#include <unordered_map>
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/coast/expected_areas.hpp>
@@ -19,6 +17,7 @@
 #include <shoal/report/run_info.hpp>
 #include <shoal/track/row_rules.hpp>
 #include <shoal/track/time.hpp>
+#include <shoal/track/track_table.hpp>
 #include <shoal/track/vessels_table.hpp>
 #include <shoal/util/error.hpp>
 
@@ -72,8 +71,10 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
     const std::vector<std::string> mobile = texts(cols, "mobile_type", n);
     const bool has_id = !ids.empty(), has_dims = dims[0] && dims[1] && dims[2] && dims[3];
     py::gil_scoped_release nogil;
-    std::vector<track::Track> tracks;
-    std::unordered_map<std::string, std::size_t> index;
+    // Tracks by the CSV reader's table (one per vessel id, in the order ids first appear; static
+    // data by the row rules), packed as the reader packs them, then unpacked.
+    std::vector<track::PackedTrack> packed;
+    track::TrackTable table(packed, file, has_id, false);
     for (std::size_t k = 0; k < n; ++k) {
         ++report.rows;
         const std::size_t row_line = line ? static_cast<std::size_t>(line.at(k)) : k + 1;
@@ -127,33 +128,18 @@ std::vector<track::Track> make_tracks(const py::dict& cols, const std::string& f
         fix.sog_kn = track::valid_sog(sog.at(k));
         if (!status.empty()) fix.nav_status = track::parse_nav_status(status[k]);
         fix.line = row_line;
-        const std::string id = has_id ? ids[k] : std::filesystem::path(file).stem().string();
-        auto [it, added] = index.emplace(id, tracks.size());
-        if (added) {
-            track::Track& nt = tracks.emplace_back();
-            nt.id = id;
-            nt.file = file;
-        }
-        track::Track& tr = tracks[it->second];
-        // Static data as the CSV reader takes it: the first name, complete dimensions, draught, ship type.
-        if (!names.empty() && tr.name.empty() && !names[k].empty()) tr.name = names[k];
-        if (has_dims && !tr.dims) {
-            if (const auto d = track::dims_from_abcd(dims[0].at(k), dims[1].at(k), dims[2].at(k), dims[3].at(k))) {
-                tr.dims = d;
-                tr.dims_source = track::dims_from_abcd_source;
-            }
-        }
-        if (draught && std::isnan(tr.draught_m) && track::usable_draught(draught.at(k))) {
-            tr.draught_m = draught.at(k);
-            tr.draught_source = track::draught_source;
-        }
-        if (ship_type && tr.ship_type < 0) {
-            if (const int v = track::ship_type_number(ship_type.at(k)); v >= 0) {
-                tr.ship_type = v;
-                tr.ship_type_source = track::ship_type_source;
-            }
-        }
-        tr.fixes.push_back(fix);
+        track::PackedTrack& tr = packed[table.track_for(has_id ? std::string_view(ids[k]) : std::string_view())];
+        if (!names.empty()) track::offer_name(tr, names[k]);
+        if (has_dims) track::offer_dims(tr, track::dims_from_abcd(dims[0].at(k), dims[1].at(k), dims[2].at(k), dims[3].at(k)), track::dims_from_abcd_source);
+        if (draught) track::offer_draught(tr, draught.at(k));
+        if (ship_type) track::offer_ship_type(tr, ship_type.at(k));
+        tr.push_back(fix);
+    }
+    std::vector<track::Track> tracks;
+    tracks.reserve(packed.size());
+    for (track::PackedTrack& p : packed) {
+        tracks.push_back(p.unpack());
+        p.release_fixes();
     }
     for (track::Track& tr : tracks) track::normalise(tr, report);
     return tracks;

@@ -18,6 +18,7 @@
 #include "util/parse_util.hpp"
 #include "track/stream_readers.hpp"
 #include <shoal/track/row_rules.hpp>
+#include <shoal/track/track_table.hpp>
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
 
@@ -141,65 +142,6 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     return c;
 }
 
-struct SvHash {
-    using is_transparent = void;
-    std::size_t operator()(std::string_view s) const noexcept { return std::hash<std::string_view>{}(s); }
-};
-
-/// An id of 1 to 18 decimal digits without a leading zero (an MMSI) as its number; such ids
-/// and only they are looked up by number, so "0123" and "123" stay two vessels.
-std::optional<std::uint64_t> integer_id(std::string_view id) noexcept {
-    if (id.empty() || id.size() > 18 || (id[0] == '0' && id.size() > 1)) return std::nullopt;
-    std::uint64_t v = 0;
-    for (const char c : id) {
-        if (c < '0' || c > '9') return std::nullopt;
-        v = v * 10 + static_cast<std::uint64_t>(c - '0');
-    }
-    return v;
-}
-
-/// Track indexes by integer id: open addressing with linear probing (a daily export has a few
-/// thousand vessels, and rows interleaved across them defeat the last-id shortcut).
-class IntegerIndex {
-public:
-    /// The index of `key`, or `absent_index` (then `insert` it).
-    std::size_t find(std::uint64_t key) const noexcept {
-        if (m_slots.empty()) return absent_index;
-        for (std::size_t i = slot_of(key);; i = (i + 1) & (m_slots.size() - 1)) {
-            const Slot& s = m_slots[i];
-            if (s.index == absent_index) return absent_index;
-            if (s.key == key) return s.index;
-        }
-    }
-    void insert(std::uint64_t key, std::size_t index) {
-        if ((m_count + 1) * 2 > m_slots.size()) grow();
-        place(key, index);
-        ++m_count;
-    }
-    static constexpr std::size_t absent_index = static_cast<std::size_t>(-1);
-
-private:
-    struct Slot {
-        std::uint64_t key = 0;
-        std::size_t index = absent_index;
-    };
-    std::size_t slot_of(std::uint64_t key) const noexcept {
-        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & (m_slots.size() - 1);
-    }
-    void place(std::uint64_t key, std::size_t index) noexcept {
-        std::size_t i = slot_of(key);
-        while (m_slots[i].index != absent_index) i = (i + 1) & (m_slots.size() - 1);
-        m_slots[i] = {key, index};
-    }
-    void grow() {
-        std::vector<Slot> old(std::max<std::size_t>(64, m_slots.size() * 2));
-        old.swap(m_slots);
-        for (const Slot& s : old)
-            if (s.index != absent_index) place(s.key, s.index);
-    }
-    std::vector<Slot> m_slots;
-    std::size_t m_count = 0;
-};
 
 /// A fix waiting for a date: its time of day and day number.
 struct Pending {
@@ -512,44 +454,8 @@ private:
 
     /// The track of (exercise, id); `exercise` is "" unless the exercise column is read.
     std::size_t track_for(std::string_view id, std::string_view exercise) {
-        if (m_last_track != absent && id == m_last_id && exercise == m_last_exercise) return m_last_track;
-        const Columns& c = cols();
-        // With an exercise column the key is (exercise, id), as text: no integer shortcut.
-        std::optional<std::uint64_t> mmsi;
-        if (c.exercise == absent) {
-            mmsi = integer_id(id);
-            if (mmsi && m_last_integer_track != absent && *mmsi == m_last_integer) return m_last_integer_track;
-        } else {
-            m_key.assign(exercise).push_back('\0');
-            m_key.append(id);
-            id = m_key;
-        }
-        std::size_t idx = absent;
-        if (mmsi) {
-            idx = m_integer_index.find(*mmsi);
-        } else if (auto it = m_index.find(id); it != m_index.end()) {
-            idx = it->second;
-        }
-        if (idx == absent) {
-            idx = m_out.tracks.size();
-            PackedTrack& t = m_out.tracks.emplace_back();
-            t.id = c.id == absent ? detail::file_stem(m_file) : to_utf8(c.exercise == absent ? id : id.substr(exercise.size() + 1));
-            t.file = m_file;
-            t.exercise = to_utf8(exercise);
-            if (mmsi) m_integer_index.insert(*mmsi, idx);
-            else m_index.emplace(std::string(id), idx);
-        }
-        if (mmsi) {  // the last track by number (no text to copy)
-            m_last_integer = *mmsi;
-            m_last_integer_track = idx;
-            m_last_track = absent;
-            return idx;
-        }
-        m_last_id.assign(c.exercise == absent ? id : id.substr(exercise.size() + 1));
-        m_last_exercise.assign(exercise);
-        m_last_track = idx;
-        m_last_integer_track = absent;
-        return idx;
+        if (!m_table) m_table.emplace(m_out.tracks, m_file, cols().id != absent, cols().exercise != absent);
+        return m_table->track_for(id, exercise);
     }
 
     void vessel_data(PackedTrack& t, const std::string_view* fields) {
@@ -557,33 +463,16 @@ private:
             const std::size_t k = m_parser.vessel_slot(w);
             return k == absent ? std::string_view{} : fields[k];
         };
+        // Each number parsed only while the track still lacks what it gives.
         const Columns& c = cols();
-        if (c.name != absent && t.name.empty() && !at(vessel_name).empty()) t.name = to_utf8(at(vessel_name));
-        if (c.dims[0] != absent && !t.dims) {
-            const std::array<std::string_view, 4> dims{at(vessel_a), at(vessel_b), at(vessel_c), at(vessel_d)};
-            if (const auto d = dims_from_abcd(number(dims[0]), number(dims[1]), number(dims[2]), number(dims[3]))) {
-                t.dims = d;
-                t.dims_source = dims_from_abcd_source;
-            }
-        }
-        if (m_options.hull_from_length_width && c.length != absent && c.width != absent && !t.dims) {
-            if (const auto d = dims_from_length_width(number(at(vessel_length)), number(at(vessel_width)))) {
-                t.dims = d;
-                t.dims_source = dims_from_length_width_source;
-            }
-        }
-        if (c.draught != absent && std::isnan(t.draught_m)) {
-            if (const double v = number(at(vessel_draught)); usable_draught(v)) {
-                t.draught_m = v;
-                t.draught_source = draught_source;
-            }
-        }
-        if (c.ship_type != absent && t.ship_type < 0) {
-            if (const int v = ship_type_number(number(at(vessel_ship_type))); v >= 0) {
-                t.ship_type = v;
-                t.ship_type_source = ship_type_source;
-            }
-        }
+        if (c.name != absent && t.name.empty()) offer_name(t, at(vessel_name));
+        if (c.dims[0] != absent && !t.dims)
+            offer_dims(t, dims_from_abcd(number(at(vessel_a)), number(at(vessel_b)), number(at(vessel_c)), number(at(vessel_d))),
+                       dims_from_abcd_source);
+        if (m_options.hull_from_length_width && c.length != absent && c.width != absent && !t.dims)
+            offer_dims(t, dims_from_length_width(number(at(vessel_length)), number(at(vessel_width))), dims_from_length_width_source);
+        if (c.draught != absent && std::isnan(t.draught_m)) offer_draught(t, number(at(vessel_draught)));
+        if (c.ship_type != absent && t.ship_type < 0) offer_ship_type(t, number(at(vessel_ship_type)));
     }
 
     /// A row's role for track `ti` (its row on `line`): the first gives the track's; a
@@ -628,13 +517,7 @@ private:
     const ReadOptions& m_options;
     const CsvRowParser& m_parser;
     PackedTrackFile m_out;
-    std::unordered_map<std::string, std::size_t, SvHash, std::equal_to<>> m_index;  ///< ids that are not integer_id()s
-    IntegerIndex m_integer_index;
-    std::string m_last_id, m_last_exercise;
-    std::string m_key;  ///< (exercise, id) as one text, for the lookup
-    std::size_t m_last_track = absent;  ///< the last track met by text (m_last_id, m_last_exercise)
-    std::uint64_t m_last_integer = 0;
-    std::size_t m_last_integer_track = absent;  ///< the last track met by number (m_last_integer)
+    std::optional<TrackTable> m_table;  ///< made at the first row, once the header has given the columns
     struct RoleConflict {
         std::size_t track, first_line, other_line;
         std::string other;
