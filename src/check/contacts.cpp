@@ -139,6 +139,7 @@ struct Scratch {
     std::vector<double> piece_d2;
     std::vector<Cell> queue;  // a heap (std::push_heap, std::pop_heap: as std::priority_queue)
     std::vector<XY> poly;
+    std::size_t on_land = 0;  // contact_regions: the hull vertex tried first for land
 };
 
 /// (Not inlined: the callers then hold the lists by plain references. Inlined, GCC
@@ -812,13 +813,32 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
         if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w});
         return w > 0;
     };
-    // No contact, no region: the pose check answers that in a microsecond.
     // No contact, no region: the pose check answers that in a microsecond. (Its penetration,
     // as a first reach, cost more on a harbour chart than the reach's growing saves.)
-    if (!detector.check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = false}).collision)
-        return {};
+    // A hull vertex on land is a contact: the one this thread last found deepest is tried
+    // first, as the check would try its own (one winding number), and its winding is kept as
+    // the first known point of its cell (the search below then counts from it, not from the
+    // cell's reference point again). Else the check, without that first try.
     const std::vector<XY> outline = hull_outline(detector.hull(), pose);
+    std::size_t& try_first = scratch().on_land;
+    bool q_on_boundary = false;
+    const XY q = outline.empty() ? pose.position : outline[try_first < outline.size() ? try_first : 0];
+    const int q_w = outline.empty() ? 0 : g.winding(q, &q_on_boundary);
+    if (q_w > 0) {
+        if (!q_on_boundary && g.valid_cell(g.col_of(q.x), g.row_of(q.y))) known.push_back({g.col_of(q.x), g.row_of(q.y), q, q_w});
+    } else if (!detector.check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = true}).collision) {
+        return {};
+    }
     std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose), how);
+    if (q_w <= 0 && !out.empty() && out.front().depth_m > 0) {
+        // The next pose's first try: the vertex nearest the deepest region's point (on land as
+        // a rule: only which vertex is tried first depends on it).
+        double best2 = INFINITY;
+        for (std::size_t k = 0; k < outline.size(); ++k) {
+            const double d2 = geo::norm2(outline[k] - out.front().hull_point);
+            if (d2 < best2) best2 = d2, try_first = k;
+        }
+    }
     if (out.empty()) {
         // A touch the search above cannot see as a region (a hull vertex exactly on the
         // boundary): the check's contact point, depth 0.
