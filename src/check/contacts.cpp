@@ -156,7 +156,9 @@ namespace {
 
 /// `outline` (open or closed) as a closed counter-clockwise ring; empty for fewer than 3 points.
 std::vector<XY> ccw_closed(const std::vector<XY>& outline) {
-    std::vector<XY> ring = outline;
+    std::vector<XY> ring;
+    ring.reserve(outline.size() + 1);  // (the closing point without a second allocation)
+    ring.assign(outline.begin(), outline.end());
     if (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
     if (ring.size() < 3) return {};
     double area2 = 0;
