@@ -81,12 +81,8 @@ inline bool boxes_apart(XY a, XY b, XY c, XY d) noexcept {
            std::max(c.y, d.y) < std::min(a.y, b.y);
 }
 
-/// Parameters of the crossing of segments ab and cd (touching counts): t on ab, u on cd.
-/// Collinear overlaps give the overlap's ends that lie on the other segment.
-void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
-    // Most pairs are far apart: their boxes say so for less than the orientation tests (the
-    // callers in loops ask boxes_apart first, inline).
-    if (boxes_apart(a, b, c, d)) return;
+/// crossings() of two segments whose boxes meet (the callers in loops test the boxes first).
+void crossings_of_near(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
     if (!geo::segments_intersect(a, b, c, d)) return;
     const XY r = b - a, s = d - c;
     const double den = geo::cross(r, s);
@@ -107,6 +103,14 @@ void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& o
         const double u = param(p, c, s, ss);
         if (u >= 0 && u <= 1) out.emplace_back(param(p, a, r, rr), u);
     }
+}
+
+/// Parameters of the crossing of segments ab and cd (touching counts): t on ab, u on cd.
+/// Collinear overlaps give the overlap's ends that lie on the other segment.
+void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
+    // Most pairs are far apart: their boxes say so for less than the orientation tests.
+    if (boxes_apart(a, b, c, d)) return;
+    crossings_of_near(a, b, c, d, out);
 }
 
 /// Even-odd point in polygon (closed ring, last point = first).
@@ -483,6 +487,8 @@ public:
     void set_reach(double r) noexcept { m_reach = r; }
 
     const std::vector<Site>& sites() const noexcept { return m_sites; }
+    /// Each site's box (min and max of its ends).
+    const std::vector<Box>& boxes() const noexcept { return m_boxes; }
 
     /// Upper bound of d over polygon `v` around `c` (a point of it, with its nearest `n` and
     /// signed distance `sd`; `r` the farthest vertex from c).

@@ -118,7 +118,7 @@ struct Cell {
 struct Scratch {
     std::vector<RawSegment> raw, bounds, lines;
     std::vector<Site> sites;
-    std::vector<Box> site_boxes;
+    std::vector<Box> site_boxes, edge_box;
     std::vector<ByX> site_by_x;
     std::vector<std::pair<std::size_t, double>> cut_at;
     std::vector<std::pair<double, double>> tu;
@@ -192,6 +192,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
     // deeper than 1 m, and an attempt done again cost more than a reach of 2 m gathers.
     double reach = std::max(how.first_reach_m, 1e-3 * extent);
     Scratch& sc = scratch();
+    std::vector<Box>& edge_box = sc.edge_box;
+    edge_box.clear();
+    for (std::size_t e = 0; e < n_edges; ++e)
+        edge_box.push_back({std::min(ring[e].x, ring[e + 1].x), std::min(ring[e].y, ring[e + 1].y), std::max(ring[e].x, ring[e + 1].x), std::max(ring[e].y, ring[e + 1].y)});
     for (int attempt = 0; attempt < 64; ++attempt) {
         const Box box = hbox.grown(reach);
         std::vector<RawSegment>& raw = sc.raw;
@@ -230,7 +234,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     const std::size_t i = std::min(p, by_x[jj]), j = std::max(p, by_x[jj]);
                     if (bounds[i].polyline == bounds[j].polyline || boxes_apart(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b)) continue;
                     tu.clear();
-                    crossings(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
+                    crossings_of_near(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
                     for (auto [t, u] : tu) cut_at.emplace_back(i, t), cut_at.emplace_back(j, u);
                 }
             }
@@ -299,18 +303,23 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         {
             // Only the sites whose box meets the hull's can cross an edge (most of the reach's
             // do not): listed once, in their order, so the crossings are found in the same order.
+            // (The boxes of the edges and of the sites once: the same test as boxes_apart.)
             std::vector<int>& near_hull = sc.near_hull;
             near_hull.clear();
+            const std::vector<Box>& site_box = search.boxes();
             for (std::size_t k = 0; k < S.size(); ++k)
                 if (!boxes_apart(XY{hbox.minx, hbox.miny}, XY{hbox.maxx, hbox.maxy}, S[k].a, S[k].b)) near_hull.push_back(static_cast<int>(k));
             std::vector<std::pair<double, double>>& tu = sc.tu;
-            for (std::size_t e = 0; e < n_edges; ++e)
+            for (std::size_t e = 0; e < n_edges; ++e) {
+                const Box& eb = edge_box[e];
                 for (const int k : near_hull) {
-                    if (boxes_apart(ring[e], ring[e + 1], S[k].a, S[k].b)) continue;
+                    const Box& sb = site_box[k];
+                    if (eb.maxx < sb.minx || sb.maxx < eb.minx || eb.maxy < sb.miny || sb.maxy < eb.miny) continue;
                     tu.clear();
-                    crossings(ring[e], ring[e + 1], S[k].a, S[k].b, tu);
+                    crossings_of_near(ring[e], ring[e + 1], S[k].a, S[k].b, tu);
                     for (auto [t, u] : tu) xs.push_back({static_cast<int>(e), t, static_cast<int>(k), u});
                 }
+            }
         }
         // Outline pieces inside, per edge; remember which piece ends at each crossing.
         std::vector<int>& piece_at_cross_out = sc.piece_at_cross_out;  // outline piece before / after crossing
