@@ -81,12 +81,8 @@ inline bool boxes_apart(XY a, XY b, XY c, XY d) noexcept {
            std::max(c.y, d.y) < std::min(a.y, b.y);
 }
 
-/// Parameters of the crossing of segments ab and cd (touching counts): t on ab, u on cd.
-/// Collinear overlaps give the overlap's ends that lie on the other segment.
-void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
-    // Most pairs are far apart: their boxes say so for less than the orientation tests (the
-    // callers in loops ask boxes_apart first, inline).
-    if (boxes_apart(a, b, c, d)) return;
+/// crossings() of two segments whose boxes meet (the callers in loops test the boxes first).
+void crossings_of_near(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
     if (!geo::segments_intersect(a, b, c, d)) return;
     const XY r = b - a, s = d - c;
     const double den = geo::cross(r, s);
@@ -107,6 +103,14 @@ void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& o
         const double u = param(p, c, s, ss);
         if (u >= 0 && u <= 1) out.emplace_back(param(p, a, r, rr), u);
     }
+}
+
+/// Parameters of the crossing of segments ab and cd (touching counts): t on ab, u on cd.
+/// Collinear overlaps give the overlap's ends that lie on the other segment.
+void crossings(XY a, XY b, XY c, XY d, std::vector<std::pair<double, double>>& out) {
+    // Most pairs are far apart: their boxes say so for less than the orientation tests.
+    if (boxes_apart(a, b, c, d)) return;
+    crossings_of_near(a, b, c, d, out);
 }
 
 /// Even-odd point in polygon (closed ring, last point = first).
@@ -210,29 +214,41 @@ public:
     /// edges of `edges` (those that did not hold a box around this one); returns those that do
     /// not hold this box.
     Edges cut(const Box& box, Edges edges, std::vector<XY>& poly) {
-        poly = {{box.minx, box.miny}, {box.maxx, box.miny}, {box.maxx, box.maxy}, {box.minx, box.maxy}};
-        Edges unheld = 0;
+        // Two buffers passed back and forth (no push_back: their sizes are checked once a pass,
+        // a pass at most doubling the vertices), the answer copied to `poly` at the end.
         const std::size_t n = m_ring.size() - 1;
-        for (std::size_t i = next_edge(edges, 0, n); i < n && !poly.empty(); i = next_edge(edges, i + 1, n)) {
+        if (m_buf[0].size() < 16) m_buf[0].resize(16), m_buf[1].resize(16);
+        int cur = 0;
+        std::size_t m = 4;
+        {
+            XY* v = m_buf[0].data();
+            v[0] = {box.minx, box.miny}, v[1] = {box.maxx, box.miny}, v[2] = {box.maxx, box.maxy}, v[3] = {box.minx, box.maxy};
+        }
+        Edges unheld = 0;
+        for (std::size_t i = next_edge(edges, 0, n); i < n && m > 0; i = next_edge(edges, i + 1, n)) {
             const Edges bit = i < 64 ? Edges{1} << i : 0;
             const XY a = m_ring[i], b = m_ring[i + 1];
             if (holds(a, b, box)) continue;
             unheld |= bit;
-            m_next.clear();
+            if (m_buf[1 - cur].size() < 2 * m) m_buf[1 - cur].resize(2 * m);
+            const XY* in = m_buf[cur].data();
+            XY* out = m_buf[1 - cur].data();
+            std::size_t k2 = 0;
             // Each vertex's side once (it is p of one step and q of the one before), the last
             // step back to the first vertex.
-            const std::size_t m = poly.size();
-            const double o_first = geo::orient(a, b, poly[0]);
+            const double o_first = geo::orient(a, b, in[0]);
             double op = o_first;
             for (std::size_t k = 0; k < m; ++k) {
-                const XY p = poly[k], q = k + 1 < m ? poly[k + 1] : poly[0];
+                const XY p = in[k], q = k + 1 < m ? in[k + 1] : in[0];
                 const double oq = k + 1 < m ? geo::orient(a, b, q) : o_first;
-                if (op >= 0) m_next.push_back(p);
-                if ((op > 0 && oq < 0) || (op < 0 && oq > 0)) m_next.push_back(p + (op / (op - oq)) * (q - p));
+                if (op >= 0) out[k2++] = p;
+                if ((op > 0 && oq < 0) || (op < 0 && oq > 0)) out[k2++] = p + (op / (op - oq)) * (q - p);
                 op = oq;
             }
-            poly.swap(m_next);
+            cur = 1 - cur;
+            m = k2;
         }
+        poly.assign(m_buf[cur].data(), m_buf[cur].data() + m);
         return unheld;
     }
 
@@ -256,7 +272,7 @@ private:
     }
 
     const std::vector<XY>& m_ring;
-    std::vector<XY> m_next;
+    std::vector<XY> m_buf[2];
 };
 
 /// A site in the order of its box's least x, with the greatest x of the boxes up to it.
@@ -370,32 +386,44 @@ public:
     double two_site_bound(std::span<const XY> v, int i, int j, XY* at = nullptr) const {
         double best = 0;
         XY best_at = v[0];
-        auto value = [&](XY p) { return std::min(dist_to_site(p, i), dist_to_site(p, j)); };
+        const Site* s[2] = {&m_sites[i], &m_sites[j]};
+        // Each site's direction, squared length and its inverse length, once (the same values
+        // as computed where they are used).
+        XY ab[2];
+        double ll[2], inv[2];
+        for (int w = 0; w < 2; ++w) {
+            ab[w] = s[w]->b - s[w]->a;
+            ll[w] = geo::norm2(ab[w]);
+            inv[w] = ll[w] > 0 ? 1 / std::sqrt(ll[w]) : 0.0;
+        }
+        // The lesser distance: the square root of the lesser square (the same number).
         auto consider = [&](XY p) {
-            const double f = value(p);
+            const double f = std::sqrt(std::min(dist2_to(p, s[0]->a, s[0]->b, nullptr), dist2_to(p, s[1]->a, s[1]->b, nullptr)));
             if (f > best) best = f, best_at = p;
         };
         for (XY p : v) consider(p);
         const std::size_t edges = v.size() == 2 ? 1 : v.size();
-        const Site* s[2] = {&m_sites[i], &m_sites[j]};
         for (std::size_t e = 0; e < edges; ++e) {
-            const XY p = v[e], d = v[(e + 1) % v.size()] - p;
+            const XY p = v[e], d = v[e + 1 < v.size() ? e + 1 : 0] - p;
             double breaks[6] = {0, 1};
             int nb = 2;
-            for (const Site* st : s) {
-                const XY ab = st->b - st->a;
-                const double ll = geo::norm2(ab);
-                if (ll == 0) continue;
-                // u(t) = ((p - a) + t d) . ab / |ab|^2, linear in t.
-                const double u0 = geo::dot(p - st->a, ab) / ll, du = geo::dot(d, ab) / ll;
+            // Per site along this edge: u(t) = ((p - a) + t d) . ab / |ab|^2, linear in t; and
+            // the signed distance to its line, (alpha + beta t).
+            double alpha[2], beta[2];
+            for (int w = 0; w < 2; ++w) {
+                alpha[w] = beta[w] = 0;
+                if (ll[w] == 0) continue;
+                const double u0 = geo::dot(p - s[w]->a, ab[w]) / ll[w], du = geo::dot(d, ab[w]) / ll[w];
                 if (du != 0)
                     for (double target : {0.0, 1.0}) {
                         const double t = (target - u0) / du;
                         if (t > 0 && t < 1 && nb < 6) breaks[nb++] = t;
                     }
+                alpha[w] = geo::cross(ab[w], p - s[w]->a) * inv[w], beta[w] = geo::cross(ab[w], d) * inv[w];
             }
             for (int a = 1; a < nb; ++a)  // insertion sort (std::sort on 6 doubles trips GCC 12's -Warray-bounds)
                 for (int b = a; b > 0 && breaks[b - 1] > breaks[b]; --b) std::swap(breaks[b - 1], breaks[b]);
+            const double dd = geo::norm2(d);
             for (int k = 0; k + 1 < nb; ++k) {
                 const double t0 = breaks[k], t1 = breaks[k + 1];
                 if (!(t1 > t0)) continue;
@@ -403,21 +431,16 @@ public:
                 // Each squared distance as A t^2 + B t + C on [t0, t1].
                 double A = 0, B = 0, C = 0;
                 for (int w = 0; w < 2; ++w) {
-                    const Site* st = s[w];
-                    const XY ab = st->b - st->a;
-                    const double ll = geo::norm2(ab);
-                    const double um = ll > 0 ? geo::dot(p + tm * d - st->a, ab) / ll : 0.0;
+                    const double um = ll[w] > 0 ? geo::dot(p + tm * d - s[w]->a, ab[w]) / ll[w] : 0.0;
                     double a2, b1, c0;
-                    if (ll == 0 || um <= 0 || um >= 1) {
-                        const XY e0 = p - (ll == 0 || um <= 0 ? st->a : st->b);
-                        a2 = geo::norm2(d), b1 = 2 * geo::dot(e0, d), c0 = geo::norm2(e0);
+                    if (ll[w] == 0 || um <= 0 || um >= 1) {
+                        const XY e0 = p - (ll[w] == 0 || um <= 0 ? s[w]->a : s[w]->b);
+                        a2 = dd, b1 = 2 * geo::dot(e0, d), c0 = geo::norm2(e0);
                     } else {
-                        const double inv = 1 / std::sqrt(ll);
-                        const double alpha = geo::cross(ab, p - st->a) * inv, beta = geo::cross(ab, d) * inv;
-                        a2 = beta * beta, b1 = 2 * alpha * beta, c0 = alpha * alpha;
+                        a2 = beta[w] * beta[w], b1 = 2 * alpha[w] * beta[w], c0 = alpha[w] * alpha[w];
                     }
-                    const double sign = w == 0 ? 1.0 : -1.0;
-                    A += sign * a2, B += sign * b1, C += sign * c0;
+                    if (w == 0) A += a2, B += b1, C += c0;
+                    else A -= a2, B -= b1, C -= c0;
                 }
                 double roots[2];
                 int nr = 0;
@@ -464,6 +487,8 @@ public:
     void set_reach(double r) noexcept { m_reach = r; }
 
     const std::vector<Site>& sites() const noexcept { return m_sites; }
+    /// Each site's box (min and max of its ends).
+    const std::vector<Box>& boxes() const noexcept { return m_boxes; }
 
     /// Upper bound of d over polygon `v` around `c` (a point of it, with its nearest `n` and
     /// signed distance `sd`; `r` the farthest vertex from c).

@@ -118,7 +118,7 @@ struct Cell {
 struct Scratch {
     std::vector<RawSegment> raw, bounds, lines;
     std::vector<Site> sites;
-    std::vector<Box> site_boxes;
+    std::vector<Box> site_boxes, edge_box;
     std::vector<ByX> site_by_x;
     std::vector<std::pair<std::size_t, double>> cut_at;
     std::vector<std::pair<double, double>> tu;
@@ -139,6 +139,7 @@ struct Scratch {
     std::vector<double> piece_d2;
     std::vector<Cell> queue;  // a heap (std::push_heap, std::pop_heap: as std::priority_queue)
     std::vector<XY> poly;
+    std::size_t on_land = 0;  // contact_regions: the hull vertex tried first for land
 };
 
 /// (Not inlined: the callers then hold the lists by plain references. Inlined, GCC
@@ -155,7 +156,9 @@ namespace {
 
 /// `outline` (open or closed) as a closed counter-clockwise ring; empty for fewer than 3 points.
 std::vector<XY> ccw_closed(const std::vector<XY>& outline) {
-    std::vector<XY> ring = outline;
+    std::vector<XY> ring;
+    ring.reserve(outline.size() + 1);  // (the closing point without a second allocation)
+    ring.assign(outline.begin(), outline.end());
     if (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
     if (ring.size() < 3) return {};
     double area2 = 0;
@@ -189,6 +192,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
     // deeper than 1 m, and an attempt done again cost more than a reach of 2 m gathers.
     double reach = std::max(how.first_reach_m, 1e-3 * extent);
     Scratch& sc = scratch();
+    std::vector<Box>& edge_box = sc.edge_box;
+    edge_box.clear();
+    for (std::size_t e = 0; e < n_edges; ++e)
+        edge_box.push_back({std::min(ring[e].x, ring[e + 1].x), std::min(ring[e].y, ring[e + 1].y), std::max(ring[e].x, ring[e + 1].x), std::max(ring[e].y, ring[e + 1].y)});
     for (int attempt = 0; attempt < 64; ++attempt) {
         const Box box = hbox.grown(reach);
         std::vector<RawSegment>& raw = sc.raw;
@@ -227,7 +234,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     const std::size_t i = std::min(p, by_x[jj]), j = std::max(p, by_x[jj]);
                     if (bounds[i].polyline == bounds[j].polyline || boxes_apart(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b)) continue;
                     tu.clear();
-                    crossings(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
+                    crossings_of_near(bounds[i].a, bounds[i].b, bounds[j].a, bounds[j].b, tu);
                     for (auto [t, u] : tu) cut_at.emplace_back(i, t), cut_at.emplace_back(j, u);
                 }
             }
@@ -296,18 +303,23 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         {
             // Only the sites whose box meets the hull's can cross an edge (most of the reach's
             // do not): listed once, in their order, so the crossings are found in the same order.
+            // (The boxes of the edges and of the sites once: the same test as boxes_apart.)
             std::vector<int>& near_hull = sc.near_hull;
             near_hull.clear();
+            const std::vector<Box>& site_box = search.boxes();
             for (std::size_t k = 0; k < S.size(); ++k)
                 if (!boxes_apart(XY{hbox.minx, hbox.miny}, XY{hbox.maxx, hbox.maxy}, S[k].a, S[k].b)) near_hull.push_back(static_cast<int>(k));
             std::vector<std::pair<double, double>>& tu = sc.tu;
-            for (std::size_t e = 0; e < n_edges; ++e)
+            for (std::size_t e = 0; e < n_edges; ++e) {
+                const Box& eb = edge_box[e];
                 for (const int k : near_hull) {
-                    if (boxes_apart(ring[e], ring[e + 1], S[k].a, S[k].b)) continue;
+                    const Box& sb = site_box[k];
+                    if (eb.maxx < sb.minx || sb.maxx < eb.minx || eb.maxy < sb.miny || sb.maxy < eb.miny) continue;
                     tu.clear();
-                    crossings(ring[e], ring[e + 1], S[k].a, S[k].b, tu);
+                    crossings_of_near(ring[e], ring[e + 1], S[k].a, S[k].b, tu);
                     for (auto [t, u] : tu) xs.push_back({static_cast<int>(e), t, static_cast<int>(k), u});
                 }
+            }
         }
         // Outline pieces inside, per edge; remember which piece ends at each crossing.
         std::vector<int>& piece_at_cross_out = sc.piece_at_cross_out;  // outline piece before / after crossing
@@ -812,13 +824,32 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
         if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w});
         return w > 0;
     };
-    // No contact, no region: the pose check answers that in a microsecond.
     // No contact, no region: the pose check answers that in a microsecond. (Its penetration,
     // as a first reach, cost more on a harbour chart than the reach's growing saves.)
-    if (!detector.check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = false}).collision)
-        return {};
+    // A hull vertex on land is a contact: the one this thread last found deepest is tried
+    // first, as the check would try its own (one winding number), and its winding is kept as
+    // the first known point of its cell (the search below then counts from it, not from the
+    // cell's reference point again). Else the check, without that first try.
     const std::vector<XY> outline = hull_outline(detector.hull(), pose);
+    std::size_t& try_first = scratch().on_land;
+    bool q_on_boundary = false;
+    const XY q = outline.empty() ? pose.position : outline[try_first < outline.size() ? try_first : 0];
+    const int q_w = outline.empty() ? 0 : g.winding(q, &q_on_boundary);
+    if (q_w > 0) {
+        if (!q_on_boundary && g.valid_cell(g.col_of(q.x), g.row_of(q.y))) known.push_back({g.col_of(q.x), g.row_of(q.y), q, q_w});
+    } else if (!detector.check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = true}).collision) {
+        return {};
+    }
     std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose), how);
+    if (q_w <= 0 && !out.empty() && out.front().depth_m > 0) {
+        // The next pose's first try: the vertex nearest the deepest region's point (on land as
+        // a rule: only which vertex is tried first depends on it).
+        double best2 = INFINITY;
+        for (std::size_t k = 0; k < outline.size(); ++k) {
+            const double d2 = geo::norm2(outline[k] - out.front().hull_point);
+            if (d2 < best2) best2 = d2, try_first = k;
+        }
+    }
     if (out.empty()) {
         // A touch the search above cannot see as a region (a hull vertex exactly on the
         // boundary): the check's contact point, depth 0.

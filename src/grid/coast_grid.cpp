@@ -346,8 +346,13 @@ inline int crossing_of(XY r, XY p, XY a, XY b) noexcept {
 int CoastGrid::winding_along(XY from, int w_from, XY p, std::span<const std::uint32_t> segs, bool* on_boundary) const noexcept {
     if (on_boundary) *on_boundary = false;
     int w = w_from;
+    // A segment whose box misses the path's box neither crosses the path nor holds p.
+    const double x0 = std::min(from.x, p.x), x1 = std::max(from.x, p.x), y0 = std::min(from.y, p.y), y1 = std::max(from.y, p.y);
     for (const std::uint32_t k : segs) {
-        const int c = crossing_of(from, p, m_segments[k].a, m_segments[k].b);
+        const Segment& sg = m_segments[k];
+        if (std::max(sg.a.x, sg.b.x) < x0 || std::min(sg.a.x, sg.b.x) > x1 || std::max(sg.a.y, sg.b.y) < y0 || std::min(sg.a.y, sg.b.y) > y1)
+            continue;
+        const int c = crossing_of(from, p, sg.a, sg.b);
         if (c == 2) {
             if (on_boundary) *on_boundary = true;
             return std::max(w, 1);
