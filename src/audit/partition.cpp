@@ -1,6 +1,9 @@
 // A run's fixes shuffled by vessel into partitions on disk (audit/partition.hpp).
 #include <shoal/audit/partition.hpp>
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #define XXH_INLINE_ALL
 #include <xxhash.h>
@@ -8,10 +11,12 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <set>
 
 #include <shoal/shard/shard.hpp>
@@ -55,9 +60,46 @@ private:
     std::string m_out;
 };
 
+/// A file shoal wrote, mapped read-only (partition files run to hundreds of megabytes a task:
+/// read into a string, each would be zeroed and copied first).
+class Mapped {
+public:
+    explicit Mapped(const std::string& path) {
+        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+        struct stat st {};
+        if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+            const int e = errno;
+            ::close(fd);
+            throw InputError(path + ": cannot read (" + (S_ISREG(st.st_mode) ? std::strerror(e) : "not a regular file") + ")");
+        }
+        m_size = static_cast<std::size_t>(st.st_size);
+        if (m_size > 0) {
+            void* p = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE, fd, 0);
+            const int e = errno;
+            ::close(fd);
+            if (p == MAP_FAILED) throw InputError(path + ": cannot read (" + std::strerror(e) + ")");
+            ::madvise(p, m_size, MADV_SEQUENTIAL);
+            m_data = static_cast<const char*>(p);
+        } else {
+            ::close(fd);
+        }
+    }
+    ~Mapped() {
+        if (m_data) ::munmap(const_cast<char*>(m_data), m_size);
+    }
+    Mapped(const Mapped&) = delete;
+    Mapped& operator=(const Mapped&) = delete;
+    std::string_view bytes() const noexcept { return {m_data ? m_data : "", m_size}; }
+
+private:
+    const char* m_data = nullptr;
+    std::size_t m_size = 0;
+};
+
 class Reader {
 public:
-    Reader(std::string bytes, std::string path) : m_in(std::move(bytes)), m_path(std::move(path)) {}
+    explicit Reader(std::string path) : m_file(std::make_unique<Mapped>(path)), m_in(m_file->bytes()), m_path(std::move(path)) {}
     void raw(void* p, std::size_t n) {
         if (n > m_in.size() - m_at) throw InputError(m_path + ": a partition file cut short (was it written by another run, or is the disk full?)");
         std::memcpy(p, m_in.data() + m_at, n);
@@ -99,7 +141,8 @@ public:
     const std::string& path() const noexcept { return m_path; }
 
 private:
-    std::string m_in;
+    std::unique_ptr<Mapped> m_file;
+    std::string_view m_in;
     std::size_t m_at = 0;
     std::string m_path;
 };
@@ -111,7 +154,7 @@ void write_file(const std::string& path, const std::string& bytes) {
     if (!out) throw InputError("cannot write '" + path + "' (disk full?)");
 }
 
-Reader open_file(const std::string& path) { return Reader(track::read_file(path), path); }
+Reader open_file(const std::string& path) { return Reader(path); }
 
 std::string part_name(unsigned k) {
     char buf[32];
