@@ -1,7 +1,7 @@
 // COLREG situations (see include/shoal/exercise/colreg.hpp): the classification at the moment a
 // pair comes within range, CPA/TCPA then, the actual closest approach and each ship's action.
 #include <shoal/exercise/colreg.hpp>
-#include <shoal/sweep/motion.hpp>
+#include "sweep/local_track.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // A ship's conduct under COLREG rules 8 and 13-17 (see include/shoal/exercise/colreg_conduct.hpp).
 #include <shoal/exercise/colreg_conduct.hpp>
-#include <shoal/sweep/motion.hpp>
+#include "sweep/local_track.hpp"
 
 #include <algorithm>
 #include <cmath>

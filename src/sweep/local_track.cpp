@@ -1,11 +1,12 @@
-#include <shoal/sweep/motion.hpp>
+// A track in the local frame (see local_track.hpp).
+#include "sweep/local_track.hpp"
 
 #include <Eigen/LU>
-#include <utility>
-
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 
 #include <shoal/util/error.hpp>
 
@@ -27,6 +28,12 @@ double turn(double a, double b) {
     if (d > 180) d -= 360;
     if (d <= -180) d += 360;
     return d;
+}
+
+double wrap_360(double a) noexcept {
+    a = std::fmod(a, 360.0);
+    if (a < 0) a += 360.0;
+    return a >= 360.0 ? 0.0 : a;  // -1e-17 + 360 rounds to 360
 }
 
 namespace {
@@ -115,25 +122,46 @@ std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame
     return out;
 }
 
-check::LocalPose Motion::pose(std::size_t i, double f) const {
-    const track::Fix& a = m_track.fixes[i];
-    if (f == 0 || i + 1 >= m_track.fixes.size()) return {m_local[i].position, m_local[i].jacobian * ship_to_en(a.heading_used_deg)};
-    const track::Fix& b = m_track.fixes[i + 1];
-    const double h = a.heading_used_deg + f * turn(a.heading_used_deg, b.heading_used_deg);
-    const Eigen::Matrix2d j = (1 - f) * m_local[i].jacobian + f * m_local[i + 1].jacobian;
-    return {m_local[i].position + f * (m_local[i + 1].position - m_local[i].position), j * ship_to_en(h)};
+LocalTrack::LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks)
+    : m_track(t), m_local(project_fixes(t, frame)) {
+    const std::size_t n = t.fixes.size();
+    m_heading.reserve(n);
+    for (const track::Fix& f : t.fixes) m_heading.push_back(f.heading_used_deg);
+    for (std::size_t i = 0; i + 1 < n; ++i)
+        m_sailed.push_back(!(t.fixes[i + 1].time_s - t.fixes[i].time_s > breaks.max_gap_s) && !(breaks.at_jumps && t.fixes[i + 1].jump_before));
+    for (const LocalFix& l : m_local) {
+        m_lo = {std::min(m_lo.x, l.position.x), std::min(m_lo.y, l.position.y)};
+        m_hi = {std::max(m_hi.x, l.position.x), std::max(m_hi.y, l.position.y)};
+    }
 }
 
-double Motion::time(std::size_t i, double f) const {
-    if (f == 0 || i + 1 >= m_track.fixes.size()) return m_track.fixes[i].time_s;
-    return m_track.fixes[i].time_s + f * (m_track.fixes[i + 1].time_s - m_track.fixes[i].time_s);
+namespace {
+/// The last fix at or before t (0 before the first).
+std::size_t fix_at_or_before(const std::vector<track::Fix>& fx, double t) {
+    const auto it = std::upper_bound(fx.begin(), fx.end(), t, [](double v, const track::Fix& x) { return v < x.time_s; });
+    return it == fx.begin() ? 0 : static_cast<std::size_t>(it - fx.begin()) - 1;
+}
+}  // namespace
+
+Where LocalTrack::at(double t) const {
+    if (m_track.fixes.empty() || t < time(0)) return {};
+    const std::size_t i = fix_at_or_before(m_track.fixes, t);
+    return {i, fraction(i, t)};
 }
 
-double Motion::heading(std::size_t i, double f) const {
-    const track::Fix& a = m_track.fixes[i];
-    if (f == 0 || i + 1 >= m_track.fixes.size()) return a.heading_used_deg;
-    const double h = a.heading_used_deg + f * turn(a.heading_used_deg, m_track.fixes[i + 1].heading_used_deg);
-    return std::fmod(h + 360.0, 360.0);
+std::size_t LocalTrack::interval(double t) const { return std::min(fix_at_or_before(m_track.fixes, t), size() - 2); }
+
+bool LocalTrack::present(double t) const {
+    if (m_track.fixes.empty() || t < time(0) || t > time(size() - 1)) return false;
+    const std::size_t i = fix_at_or_before(m_track.fixes, t);
+    return time(i) == t || sailed(i);
+}
+
+check::LocalPose LocalTrack::pose(Where w) const {
+    if (w.f == 0 || w.i + 1 >= size()) return {m_local[w.i].position, m_local[w.i].jacobian * ship_to_en(m_heading[w.i])};
+    const double h = heading(w);
+    const Eigen::Matrix2d j = (1 - w.f) * m_local[w.i].jacobian + w.f * m_local[w.i + 1].jacobian;
+    return {position(w), j * ship_to_en(h)};
 }
 
 }  // namespace shoal::audit
