@@ -341,7 +341,7 @@ struct Sailing {
     LocalTrack track;
     std::vector<double> speed_kn;  ///< per fix: track::Fix::speed_used_kn
 
-    Sailing(const track::Track& t, const geo::LocalFrame& frame, double max_gap_s) : track(t, frame, Breaks{.max_gap_s = max_gap_s}) {
+    Sailing(const track::Track& t, const geo::LocalFrame& frame, double max_gap_s) : track(t, frame, Breaks{.max_gap_s = max_gap_s}, Placing::positions) {
         for (const track::Fix& f : t.fixes) speed_kn.push_back(f.speed_used_kn);
     }
     std::size_t size() const { return track.size(); }

@@ -68,7 +68,7 @@ Local prepare(const track::Track& tr, const geo::LocalFrame& frame, double max_g
         if (!(tr.fixes[i + 1].time_s > tr.fixes[i].time_s))
             throw InputError("track '" + tr.id + "' in '" + tr.file + "', fix at line " + std::to_string(tr.fixes[i + 1].line) +
                              ": fix times not strictly increasing");
-    Local l{LocalTrack(tr, frame, Breaks{.max_gap_s = max_gap_s, .at_jumps = true}), {}, {}, {}};
+    Local l{LocalTrack(tr, frame, Breaks{.max_gap_s = max_gap_s, .at_jumps = true}, Placing::positions), {}, {}, {}};
     for (std::size_t i = 0; i + 1 < n; ++i)
         l.velocity.push_back((1.0 / (l.t(i + 1) - l.t(i))) * (l.track.position(i + 1) - l.track.position(i)));
     for (std::size_t j = 0; j < n; ++j) {

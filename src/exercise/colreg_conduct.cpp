@@ -25,7 +25,7 @@ struct ShipMotion {
     LocalTrack track;
     std::vector<double> heading, speed;
 
-    ShipMotion(const track::Track& tr, const geo::LocalFrame& frame) : track(tr, frame) {
+    ShipMotion(const track::Track& tr, const geo::LocalFrame& frame) : track(tr, frame, {}, Placing::positions) {
         const std::size_t n = tr.fixes.size();
         auto seg_v = [&](std::size_t i) { return (1.0 / (track.time(i + 1) - track.time(i))) * (track.position(i + 1) - track.position(i)); };
         for (std::size_t j = 0; j < n; ++j) {

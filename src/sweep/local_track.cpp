@@ -70,11 +70,14 @@ constexpr double anchor_arm_m = 1000.0;
 
 }  // namespace
 
-std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame& frame) {
+namespace {
+
+/// Every fix of `t` in `frame` (one batch through PROJ) into xs, ys; InputError naming the
+/// track, the file and the line of the first fix that cannot be projected.
+void project_positions(const track::Track& t, const geo::LocalFrame& frame, std::vector<double>& xs, std::vector<double>& ys) {
     const std::size_t n = t.fixes.size();
-    // One projected point per fix; the Jacobian (scale and meridian convergence) from a linear
-    // model around anchors every ~2 km: at the anchor, 1 km east and 1 km north of it.
-    std::vector<double> xs(n), ys(n);
+    xs.resize(n);
+    ys.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         xs[i] = t.fixes[i].position.lon;
         ys[i] = t.fixes[i].position.lat;
@@ -87,6 +90,29 @@ std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame
                       f.line, f.position.lat, f.position.lon, frame.description().c_str());
         throw InputError("track '" + t.id + "' in '" + t.file + "': " + buf);
     }
+}
+
+/// The fixes' positions only (Placing::positions): the Jacobians left NaN.
+std::vector<LocalFix> project_positions(const track::Track& t, const geo::LocalFrame& frame) {
+    std::vector<double> xs, ys;
+    project_positions(t, frame, xs, ys);
+    std::vector<LocalFix> out(xs.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i].position = {xs[i], ys[i]};
+        out[i].jacobian.setConstant(NAN);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame& frame) {
+    const std::size_t n = t.fixes.size();
+    // One projected point per fix; the Jacobian (scale and meridian convergence) from a linear
+    // model around anchors every ~2 km: at the anchor, 1 km east and 1 km north of it.
+    std::vector<double> xs, ys;
+    project_positions(t, frame, xs, ys);
+    std::size_t bad = 0;
     std::vector<std::size_t> anchor_of(n);
     std::vector<std::size_t> anchors;
     for (std::size_t i = 0; i < n; ++i) {
@@ -122,8 +148,8 @@ std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame
     return out;
 }
 
-LocalTrack::LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks)
-    : m_track(t), m_local(project_fixes(t, frame)) {
+LocalTrack::LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks, Placing placing)
+    : m_track(t), m_local(placing == Placing::poses ? project_fixes(t, frame) : project_positions(t, frame)), m_placing(placing) {
     const std::size_t n = t.fixes.size();
     m_heading.reserve(n);
     for (const track::Fix& f : t.fixes) m_heading.push_back(f.heading_used_deg);
@@ -158,6 +184,7 @@ bool LocalTrack::present(double t) const {
 }
 
 check::LocalPose LocalTrack::pose(Where w) const {
+    if (m_placing != Placing::poses) throw UsageError("LocalTrack::pose: the track was projected for positions only (Placing::positions)");
     if (w.f == 0 || w.i + 1 >= size()) return {m_local[w.i].position, m_local[w.i].jacobian * ship_to_en(m_heading[w.i])};
     const double h = heading(w);
     const Eigen::Matrix2d j = (1 - w.f) * m_local[w.i].jacobian + w.f * m_local[w.i + 1].jacobian;

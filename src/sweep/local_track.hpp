@@ -45,6 +45,11 @@ struct Breaks {
     bool at_jumps = false;
 };
 
+/// What a LocalTrack places: hulls (`poses`: the frame's Jacobian at each fix too, 12 more
+/// projected points every 2 km of track) or reference points only (`positions`: one projected
+/// point per fix; pose() refused).
+enum class Placing { poses, positions };
+
 /// A moment on a track: the fraction f of the way from fix i to fix i + 1 (f = 0: fix i itself;
 /// always 0 at the last fix).
 struct Where {
@@ -55,8 +60,9 @@ struct Where {
 /// A track in the local frame. Holds a reference: the track must outlive it.
 class LocalTrack {
 public:
-    /// Projects every fix of `t` (project_fixes: throws InputError for a fix the frame cannot hold).
-    LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks = {});
+    /// Projects every fix of `t` (throws InputError for a fix the frame cannot hold), with the
+    /// frame's Jacobians (project_fixes) when `placing` is poses.
+    LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks = {}, Placing placing = Placing::poses);
 
     const track::Track& track() const noexcept { return m_track; }
     const std::vector<LocalFix>& fixes() const noexcept { return m_local; }
@@ -86,6 +92,7 @@ public:
         return (t - time(i)) / (time(i + 1) - time(i));
     }
 
+    /// Epoch seconds at w.
     double time(Where w) const {
         if (w.f == 0 || w.i + 1 >= size()) return time(w.i);
         return time(w.i) + w.f * (time(w.i + 1) - time(w.i));
@@ -98,7 +105,7 @@ public:
     /// True heading from the fixes' resolved headings (track::Fix::heading_used_deg) turned by
     /// the shorter way; not wrapped between fixes (wrap_360 for [0, 360)).
     double heading(Where w) const { return interpolate_heading(m_heading, w); }
-    /// The pose: reference point and the map from ship coordinates to local metres.
+    /// The pose: reference point and the map from ship coordinates to local metres (Placing::poses only).
     check::LocalPose pose(Where w) const;
 
     /// A per-fix quantity (speed, velocity, ...) interpolated linearly at w (a value that is
@@ -117,7 +124,8 @@ public:
 
 private:
     const track::Track& m_track;
-    std::vector<LocalFix> m_local;
+    std::vector<LocalFix> m_local;  ///< Jacobians NaN with Placing::positions
+    Placing m_placing;
     std::vector<double> m_heading;  ///< per fix: track::Fix::heading_used_deg
     std::vector<bool> m_sailed;  ///< per fix interval
     geo::XY m_lo{INFINITY, INFINITY}, m_hi{-INFINITY, -INFINITY};

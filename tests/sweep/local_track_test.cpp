@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include <shoal/util/error.hpp>
+
 #include "sweep/local_track.hpp"
 
 namespace shoal::audit {
@@ -145,6 +147,18 @@ TEST(LocalTrack, BetweenFixesPositionIsLinearAndHeadingTurnsTheShorterWay) {
     // A per-fix quantity, linearly.
     EXPECT_DOUBLE_EQ(lt.interpolate(std::vector<double>{2.0, 12.0}, w), 5.0);
     EXPECT_DOUBLE_EQ(lt.interpolate(std::vector<double>{2.0, 12.0}, lt.at(200)), 12.0);
+}
+
+TEST(LocalTrack, PositionsOnlyPlacesTheSamePointsAndRefusesPoses) {
+    const geo::LocalFrame f = geo::LocalFrame::transverse_mercator({24.0, 60.0});
+    const track::Track t = wandering(f, 50, 7);
+    const LocalTrack poses(t, f), positions(t, f, {}, Placing::positions);
+    for (std::size_t i = 0; i < t.fixes.size(); ++i) {
+        EXPECT_EQ(positions.position(i), poses.position(i)) << i;
+        EXPECT_EQ(positions.position(i), f.forward(t.fixes[i].position)) << "one point at a time, the same " << i;
+    }
+    for (const double time : moments(t, 8)) EXPECT_EQ(positions.position(positions.at(time)), poses.position(poses.at(time))) << time;
+    EXPECT_THROW(positions.pose(positions.at(t.fixes[3].time_s)), UsageError);
 }
 
 TEST(LocalTrack, WrapAndTurn) {
