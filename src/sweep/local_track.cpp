@@ -92,18 +92,6 @@ void project_positions(const track::Track& t, const geo::LocalFrame& frame, std:
     }
 }
 
-/// The fixes' positions only (Placing::positions): the Jacobians left NaN.
-std::vector<LocalFix> project_positions(const track::Track& t, const geo::LocalFrame& frame) {
-    std::vector<double> xs, ys;
-    project_positions(t, frame, xs, ys);
-    std::vector<LocalFix> out(xs.size());
-    for (std::size_t i = 0; i < out.size(); ++i) {
-        out[i].position = {xs[i], ys[i]};
-        out[i].jacobian.setConstant(NAN);
-    }
-    return out;
-}
-
 }  // namespace
 
 std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame& frame) {
@@ -148,16 +136,24 @@ std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame
     return out;
 }
 
-LocalTrack::LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks, Placing placing)
-    : m_track(t), m_local(placing == Placing::poses ? project_fixes(t, frame) : project_positions(t, frame)), m_placing(placing) {
+LocalTrack::LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks, Placing placing) : m_track(t) {
     const std::size_t n = t.fixes.size();
-    m_heading.reserve(n);
-    for (const track::Fix& f : t.fixes) m_heading.push_back(f.heading_used_deg);
+    if (placing == Placing::poses) {
+        for (const LocalFix& l : project_fixes(t, frame)) {
+            m_position.push_back(l.position);
+            m_jacobian.push_back(l.jacobian);
+        }
+    } else {
+        std::vector<double> xs, ys;
+        project_positions(t, frame, xs, ys);
+        m_position.reserve(n);
+        for (std::size_t i = 0; i < n; ++i) m_position.push_back({xs[i], ys[i]});
+    }
     for (std::size_t i = 0; i + 1 < n; ++i)
         m_sailed.push_back(!(t.fixes[i + 1].time_s - t.fixes[i].time_s > breaks.max_gap_s) && !(breaks.at_jumps && t.fixes[i + 1].jump_before));
-    for (const LocalFix& l : m_local) {
-        m_lo = {std::min(m_lo.x, l.position.x), std::min(m_lo.y, l.position.y)};
-        m_hi = {std::max(m_hi.x, l.position.x), std::max(m_hi.y, l.position.y)};
+    for (const geo::XY& p : m_position) {
+        m_lo = {std::min(m_lo.x, p.x), std::min(m_lo.y, p.y)};
+        m_hi = {std::max(m_hi.x, p.x), std::max(m_hi.y, p.y)};
     }
 }
 
@@ -184,10 +180,10 @@ bool LocalTrack::present(double t) const {
 }
 
 check::LocalPose LocalTrack::pose(Where w) const {
-    if (m_placing != Placing::poses) throw UsageError("LocalTrack::pose: the track was projected for positions only (Placing::positions)");
-    if (w.f == 0 || w.i + 1 >= size()) return {m_local[w.i].position, m_local[w.i].jacobian * ship_to_en(m_heading[w.i])};
+    if (m_jacobian.size() != size()) throw UsageError("LocalTrack::pose: the track was projected for positions only (Placing::positions)");
+    if (w.f == 0 || w.i + 1 >= size()) return {m_position[w.i], m_jacobian[w.i] * ship_to_en(m_track.fixes[w.i].heading_used_deg)};
     const double h = heading(w);
-    const Eigen::Matrix2d j = (1 - w.f) * m_local[w.i].jacobian + w.f * m_local[w.i + 1].jacobian;
+    const Eigen::Matrix2d j = (1 - w.f) * m_jacobian[w.i] + w.f * m_jacobian[w.i + 1];
     return {position(w), j * ship_to_en(h)};
 }
 

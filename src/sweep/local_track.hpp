@@ -65,10 +65,11 @@ public:
     LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks = {}, Placing placing = Placing::poses);
 
     const track::Track& track() const noexcept { return m_track; }
-    const std::vector<LocalFix>& fixes() const noexcept { return m_local; }
-    std::size_t size() const noexcept { return m_local.size(); }
+    std::size_t size() const noexcept { return m_position.size(); }
     double time(std::size_t i) const { return m_track.fixes[i].time_s; }
-    geo::XY position(std::size_t i) const { return m_local[i].position; }
+    geo::XY position(std::size_t i) const { return m_position[i]; }
+    /// The map (east, north) metres -> local metres at fix i (Placing::poses only).
+    const Eigen::Matrix2d& jacobian(std::size_t i) const { return m_jacobian[i]; }
     /// The box of the fixes' positions (lo > hi for no fix).
     geo::XY lo() const noexcept { return m_lo; }
     geo::XY hi() const noexcept { return m_hi; }
@@ -99,12 +100,16 @@ public:
     }
     /// The reference point, local metres.
     geo::XY position(Where w) const {
-        if (w.f == 0 || w.i + 1 >= size()) return m_local[w.i].position;
-        return m_local[w.i].position + w.f * (m_local[w.i + 1].position - m_local[w.i].position);
+        if (w.f == 0 || w.i + 1 >= size()) return m_position[w.i];
+        return m_position[w.i] + w.f * (m_position[w.i + 1] - m_position[w.i]);
     }
     /// True heading from the fixes' resolved headings (track::Fix::heading_used_deg) turned by
     /// the shorter way; not wrapped between fixes (wrap_360 for [0, 360)).
-    double heading(Where w) const { return interpolate_heading(m_heading, w); }
+    double heading(Where w) const {
+        const double a = m_track.fixes[w.i].heading_used_deg;
+        if (w.f == 0 || w.i + 1 >= size()) return a;
+        return a + w.f * turn(a, m_track.fixes[w.i + 1].heading_used_deg);
+    }
     /// The pose: reference point and the map from ship coordinates to local metres (Placing::poses only).
     check::LocalPose pose(Where w) const;
 
@@ -124,9 +129,8 @@ public:
 
 private:
     const track::Track& m_track;
-    std::vector<LocalFix> m_local;  ///< Jacobians NaN with Placing::positions
-    Placing m_placing;
-    std::vector<double> m_heading;  ///< per fix: track::Fix::heading_used_deg
+    std::vector<geo::XY> m_position;         ///< per fix
+    std::vector<Eigen::Matrix2d> m_jacobian;  ///< per fix; none with Placing::positions
     std::vector<bool> m_sailed;  ///< per fix interval
     geo::XY m_lo{INFINITY, INFINITY}, m_hi{-INFINITY, -INFINITY};
 };

@@ -466,7 +466,6 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     sum.start_s = t.fixes.front().time_s;
     sum.end_s = t.fixes.back().time_s;
     const LocalTrack lt(t, frame);
-    const std::vector<LocalFix>& local = lt.fixes();
     EventBuilder events(t, frame, lt, checker, circle ? &*circle : nullptr, opt, ctx, out);
     const double radius = std::max(checker.hull().radius(), circle ? circle->hull().radius() : 0.0);
 
@@ -558,7 +557,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             have_prev = false;
         } else {
             // Sweep from fix i-1 to fix i: no hull point moves more than step between checks.
-            const XY d = local[i].position - local[i - 1].position;
+            const XY d = lt.position(i) - lt.position(i - 1);
             sum.distance_m += std::hypot(d.x, d.y);
             const double rot = std::fabs(turn(t.fixes[i - 1].heading_used_deg, t.fixes[i].heading_used_deg)) * deg;
             const double motion_m = std::hypot(d.x, d.y) + radius * rot;
@@ -615,7 +614,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             if (!take) {
                 const Pose& last = out.poses.back();
                 const double dt = t.fixes[i].time_s - last.time_s;
-                const XY d = local[i].position - local[last.fix_index].position;
+                const XY d = lt.position(i) - lt.position(last.fix_index);
                 take = (dt >= opt.pose_interval_s && std::hypot(d.x, d.y) >= opt.pose_distance_m) || dt >= opt.pose_max_interval_s;
             }
             if (state != last_state && !first && pending) keep(events.pose_at(pending->first, pending->second));  // the fix before the change
