@@ -267,89 +267,115 @@ AuditResult audit_tracks(std::vector<track::Track> tracks, const grid::CoastGrid
 
 namespace {
 
-AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
-                  const AuditOptions& options) {
-    AuditResult result;
-    result.shard = options.shard;
-    if (options.assessment && !options.encounters)
-        throw UsageError("AuditOptions::assessment needs exercise mode (AuditOptions::encounters): trainees are scored per exercise");
-    SweepOptions sweep_options = options.sweep;
-    if (options.assessment) sweep_options.watch_clearance_m = std::max(sweep_options.watch_clearance_m, options.assessment->watch_clearance_m());
-    const auto position = [&](std::size_t k) { return source.position ? source.position(k) : k; };
-    const unsigned jobs = thread_count(options.jobs);
-    // 2. Sweep every track.
+// The batch's stages, in the order audit() runs them: prepare each vessel and sweep it (on
+// threads), grade the contacts by the run's world, tally the run, the exercises, the assessment.
+
+/// A vessel ready to sweep: its wild fixes (dropped from the track), its hull and what labels
+/// it, its limiting depth.
+struct Vessel {
+    std::vector<track::WildFix> wild;
+    std::optional<hull::Hull> hull;
+    std::string hull_label;
+    grid::DepthPlan depth;
+};
+
+/// Stage "prepare each vessel": static data joined, outliers dropped, motion and headings
+/// resolved (prepare_track: the real world holds no heading for a vessel at rest with neither
+/// heading nor COG, it may have swung); the hull from its AIS dimensions when plausible, else
+/// the default; its own limiting depth (what is a hazard for it).
+Vessel prepare_vessel(track::Track& t, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
+                      const AuditOptions& options) {
+    Vessel v;
+    v.wild = prepare_track(t, options);
+    v.hull_label = hull_label;
+    v.hull = default_hull;
+    if (t.dims && hull::Hull::plausible(*t.dims)) {
+        v.hull = hull::Hull::from_dimensions(*t.dims, t.name);
+        v.hull_label = dims_label(*t.dims) + (t.dims_source.empty() ? "" : " (" + t.dims_source + ")");
+    }
+    v.depth = grid::plan_vessel_depth(options.hazard_depth_m, t.draught_m, default_hull.draught(), options.ukc_m, grid);
+    return v;
+}
+
+/// Stage "sweep", one vessel: its hull (and, for fixes with no heading known, the hull's circle)
+/// along its track at its limiting depth; in the real world the evidence its contacts are judged
+/// by, else its stays merged into one event each (the real world's decide_kinds does that);
+/// its summary completed. Throws InputError for a track of no exercise when exercises are by column.
+TrackResult sweep_vessel(const track::Track& t, Vessel& v, const grid::CoastGrid& grid, const geo::LocalFrame& frame,
+                         const SweepOptions& sweep_options, const AuditOptions& options) {
+    const DetectorChecker detector(grid, *v.hull, v.depth.depth_m);
+    const DetectorChecker circle(grid, circle_hull(*v.hull), v.depth.depth_m);
+    SweepContext context;
+    context.unknown_heading = &circle;
+    context.areas = options.areas;
+    TrackResult r = sweep_track(t, frame, detector, sweep_options, context);
+    if (options.world == World::real) gather_evidence(t, v.hull->length(), frame, grid, sweep_options, options.evidence, r);
+    else merge_stays(r, t, sweep_options, options.evidence.under_way_kn);
+    TrackSummary& s = r.summary;
+    s.fixes += v.wild.size();  // fixes read, the wild ones among them
+    s.wild_fixes = std::move(v.wild);
+    s.hull = v.hull_label;
+    s.draught_m = t.draught_m;
+    s.draught_source = t.draught_source;
+    s.ship_type = t.ship_type;
+    s.ship_type_source = t.ship_type_source;
+    s.limiting_depth_m = v.depth.depth_m.value_or(NAN);
+    s.limiting_depth_source = grid::to_string(v.depth.source);
+    if (options.encounters) {
+        s.exercise = exercise_key(options.exercise_by, t);
+        if (options.exercise_by == ExerciseBy::column && s.exercise.empty())
+            throw InputError("no exercise: AuditOptions::exercise_by is column, and the track's rows gave none");
+        s.role = role_of(options.roles, s.exercise, t);
+    }
+    return r;
+}
+
+/// The sweep stage's output, per track of the source.
+struct Swept {
+    std::vector<TrackResult> results;
+    std::vector<std::string> errors;         ///< non-empty: the track's bad input (it costs the track)
+    std::vector<track::Track> kept;          ///< exercise mode: every track, headings resolved
+    std::vector<std::optional<hull::Hull>> kept_hulls;  ///< exercise mode: its hull
+};
+
+/// Stage "sweep": every track of the source prepared and swept on the frames' threads (one
+/// frame per thread: PROJ transformations are per thread), with the progress callback.
+Swept sweep_tracks(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
+                   const SweepOptions& sweep_options, const AuditOptions& options, const std::vector<std::unique_ptr<geo::LocalFrame>>& frames) {
+    const unsigned jobs = static_cast<unsigned>(frames.size());
     std::size_t total_fixes = 0;
     for (std::size_t k = 0; k < source.count; ++k) total_fixes += source.fixes(k);
-    std::vector<TrackResult> swept(source.count);
-    std::vector<std::string> errors(source.count);
-    // Exercise mode keeps every track (headings resolved) and its hull for the encounters.
-    std::vector<track::Track> kept(options.encounters ? source.count : 0);
-    std::vector<std::optional<hull::Hull>> kept_hulls(kept.size());
-    std::vector<std::unique_ptr<geo::LocalFrame>> frames;  // PROJ transformations are per thread
-    for (unsigned w = 0; w < jobs; ++w) frames.push_back(std::make_unique<geo::LocalFrame>(grid.frame()));
+    Swept out;
+    out.results.resize(source.count);
+    out.errors.resize(source.count);
+    out.kept.resize(options.encounters ? source.count : 0);
+    out.kept_hulls.resize(out.kept.size());
     std::atomic<std::size_t> done{0};
     FirstFailure failure;
-    const auto t1 = Clock::now();
-    const bool real = options.world == World::real;
-    result.world = options.world;
-    result.chart_tolerance_m = options.evidence.chart_tolerance_m;
-    // Outliers dropped, static data joined, motion and headings resolved (the real world holds
-    // no heading for a vessel at rest with neither heading nor COG: it may have swung).
-    auto prepare = [&](track::Track& t) { return prepare_track(t, options); };
     std::function<void()> tick;
     if (options.progress) tick = [&] { options.progress(done.load(), total_fixes); };
     parallel_for(
         source.count, jobs,
         [&](std::size_t k, unsigned w) {
             track::Track t = source.take(k);
-            swept[k].summary.id = t.id;
-            swept[k].summary.file = t.file;
+            TrackResult& r = out.results[k];
+            r.summary.id = t.id;
+            r.summary.file = t.file;
             try {
-                std::vector<track::WildFix> wild = prepare(t);
-                std::string label = hull_label;
-                hull::Hull hull = default_hull;
-                if (t.dims && hull::Hull::plausible(*t.dims)) {
-                    hull = hull::Hull::from_dimensions(*t.dims, t.name);
-                    label = dims_label(*t.dims) + (t.dims_source.empty() ? "" : " (" + t.dims_source + ")");
-                }
-                // This vessel's own limiting depth: what is a hazard for it.
-                const grid::DepthPlan depth = grid::plan_vessel_depth(options.hazard_depth_m, t.draught_m, default_hull.draught(),
-                                                                      options.ukc_m, grid);
-                const DetectorChecker detector(grid, hull, depth.depth_m);
-                const DetectorChecker circle(grid, circle_hull(hull), depth.depth_m);
-                SweepContext context;
-                context.unknown_heading = &circle;
-                context.areas = options.areas;
-                swept[k] = sweep_track(t, *frames[w], detector, sweep_options, context);
-                if (real) gather_evidence(t, hull.length(), *frames[w], grid, sweep_options, options.evidence, swept[k]);
-                else merge_stays(swept[k], t, sweep_options, options.evidence.under_way_kn);  // the real world's decide_kinds makes one event per stay
-                swept[k].summary.fixes += wild.size();  // fixes read, the wild ones among them
-                swept[k].summary.wild_fixes = std::move(wild);
-                swept[k].summary.hull = label;
-                swept[k].summary.draught_m = t.draught_m;
-                swept[k].summary.draught_source = t.draught_source;
-                swept[k].summary.ship_type = t.ship_type;
-                swept[k].summary.ship_type_source = t.ship_type_source;
-                swept[k].summary.limiting_depth_m = depth.depth_m.value_or(NAN);
-                swept[k].summary.limiting_depth_source = grid::to_string(depth.source);
+                Vessel v = prepare_vessel(t, grid, default_hull, hull_label, options);
+                r = sweep_vessel(t, v, grid, *frames[w], sweep_options, options);
                 if (options.encounters) {
-                    swept[k].summary.exercise = exercise_key(options.exercise_by, t);
-                    if (options.exercise_by == ExerciseBy::column && swept[k].summary.exercise.empty())
-                        throw InputError("no exercise: AuditOptions::exercise_by is column, and the track's rows gave none");
-                    swept[k].summary.role = role_of(options.roles, swept[k].summary.exercise, t);
-                }
-                if (options.encounters) {
-                    kept[k] = t;
-                    kept_hulls[k] = hull;
+                    out.kept[k] = t;
+                    out.kept_hulls[k] = v.hull;
                 }
                 // Held until the report is written: no room to spare (a vector grown by doubling
                 // holds up to twice what it needs; 40 MB of poses on a 10 M-row day).
-                for (auto& line : swept[k].summary.lines) line.shrink_to_fit();
-                for (auto& times : swept[k].summary.line_times) times.shrink_to_fit();
-                swept[k].poses.shrink_to_fit();
-                swept[k].events.shrink_to_fit();
+                for (auto& line : r.summary.lines) line.shrink_to_fit();
+                for (auto& times : r.summary.line_times) times.shrink_to_fit();
+                r.poses.shrink_to_fit();
+                r.events.shrink_to_fit();
             } catch (const InputError& e) {  // bad input costs this track; anything else is a bug
-                errors[k] = e.what();
+                out.errors[k] = e.what();
             } catch (...) {
                 failure.keep(std::current_exception());
             }
@@ -357,11 +383,21 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         },
         tick);
     failure.rethrow();
-    if (real) {
+    return out;
+}
+
+/// Stage "grade": what kind each contact is. In the real world by the run's traffic (every track
+/// read: this shard's, the others' (TrackSource::take_other), those learned elsewhere
+/// (TrackSource::traffic)); in a simulated one by the sweep alone. The evidence is freed after.
+void grade_contacts(const TrackSource& source, Swept& swept, const grid::CoastGrid& grid, const hull::Hull& default_hull,
+                    const SweepOptions& sweep_options, const AuditOptions& options,
+                    const std::vector<std::unique_ptr<geo::LocalFrame>>& frames, AuditResult& result) {
+    FirstFailure failure;
+    if (options.world == World::real) {
         // The run's traffic: every track read, this shard's and the others'.
         std::vector<TrackResult> other(source.others);
         parallel_for(
-            source.others, jobs,
+            source.others, static_cast<unsigned>(frames.size()),
             [&](std::size_t k, unsigned w) {
                 try {
                     track::Track t = source.take_other(k);
@@ -377,9 +413,9 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
         std::vector<const TrackResult*> all;
         std::vector<std::string> ids;
         for (std::size_t k = 0; k < source.count; ++k)
-            if (errors[k].empty()) {
-                all.push_back(&swept[k]);
-                ids.push_back(swept[k].summary.id);
+            if (swept.errors[k].empty()) {
+                all.push_back(&swept.results[k]);
+                ids.push_back(swept.results[k].summary.id);
             }
         for (const TrackResult& o : other) {
             all.push_back(&o);
@@ -392,39 +428,51 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
             }
         const Traffic traffic = learn_traffic(all, ids, *frames[0], options.evidence);
         for (std::size_t k = 0, m = 0; k < source.count; ++k)
-            if (errors[k].empty()) {
-                decide_kinds(swept[k], traffic.berth_stays[m], traffic.own_visits[m], options.evidence);
+            if (swept.errors[k].empty()) {
+                decide_kinds(swept.results[k], traffic.berth_stays[m], traffic.own_visits[m], options.evidence);
                 ++m;
             }
         result.places = traffic.places;
     } else {
-        for (auto& r : swept) grade_simulated(r);
+        for (auto& r : swept.results) grade_simulated(r);
     }
-    for (auto& r : swept) {  // what the evidence needed, no longer
+    for (auto& r : swept.results) {  // what the evidence needed, no longer
         std::vector<Stay>().swap(r.stays);
         std::vector<geo::XY>().swap(r.over_land);
     }
-    result.sweep_s = std::chrono::duration<double>(Clock::now() - t1).count();
+}
 
-    std::vector<const track::Track*> exercise;
-    std::vector<std::size_t> exercise_index;  // exercise position -> index in result.tracks
-    std::vector<const track::Track*> kept_of;  // index in result.tracks -> its kept track (assessment)
-    std::vector<hull::Hull> exercise_hulls;
+/// The exercises' tracks, as the tally leaves them (exercise mode).
+struct ExerciseTracks {
+    std::vector<const track::Track*> tracks;  ///< with a hull and fixes, in the order of result.tracks
+    std::vector<std::size_t> index;           ///< position in `tracks` -> index in result.tracks
+    std::vector<hull::Hull> hulls;            ///< by position in `tracks`
+    std::vector<const track::Track*> kept_of;  ///< index in result.tracks -> its kept track (assessment)
+};
+
+/// Stage "tally": the swept tracks into `result` in the source's order (a track of bad input
+/// into its errors), the run's totals, and the warnings the whole run gives cause for: most
+/// fixes off the chart, vessels with and without draughts on a grid with or without depths,
+/// tracks broken into pieces by jumps.
+ExerciseTracks tally(const TrackSource& source, Swept& swept, const grid::CoastGrid& grid, const hull::Hull& default_hull,
+                     const AuditOptions& options, AuditResult& result) {
+    ExerciseTracks ex;
+    const auto position = [&](std::size_t k) { return source.position ? source.position(k) : k; };
     for (std::size_t k = 0; k < source.count; ++k) {
-        if (!errors[k].empty()) {
-            result.errors.push_back({swept[k].summary.file, swept[k].summary.id, errors[k]});
+        if (!swept.errors[k].empty()) {
+            result.errors.push_back({swept.results[k].summary.file, swept.results[k].summary.id, swept.errors[k]});
             result.error_positions.push_back(position(k));
             continue;
         }
-        if (options.encounters && kept_hulls[k] && !kept[k].fixes.empty()) {
-            exercise.push_back(&kept[k]);
-            exercise_hulls.push_back(*kept_hulls[k]);
-            exercise_index.push_back(result.tracks.size());
+        if (options.encounters && swept.kept_hulls[k] && !swept.kept[k].fixes.empty()) {
+            ex.tracks.push_back(&swept.kept[k]);
+            ex.hulls.push_back(*swept.kept_hulls[k]);
+            ex.index.push_back(result.tracks.size());
         }
-        add_to_totals(result, swept[k].summary);
-        result.tracks.push_back(std::move(swept[k]));
+        add_to_totals(result, swept.results[k].summary);
+        result.tracks.push_back(std::move(swept.results[k]));
         result.track_positions.push_back(position(k));
-        if (options.encounters) kept_of.push_back(kept[k].fixes.empty() ? nullptr : &kept[k]);
+        if (options.encounters) ex.kept_of.push_back(swept.kept[k].fixes.empty() ? nullptr : &swept.kept[k]);
     }
     if (result.fixes >= 10 && 2 * result.uncovered_fixes > result.fixes)
         result.warnings.push_back(std::to_string(result.uncovered_fixes) + " of " + std::to_string(result.fixes) +
@@ -467,136 +515,161 @@ AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const 
                                       std::to_string(s.fixes) + " fixes: jumps over WildFixOptions::max_speed_kn between most fixes, so almost nothing "
                                       "of it was swept (two vessels on one id, or a WildFixOptions::max_speed_kn too low for it?)");
     }
+    return ex;
+}
 
-    // 3. Exercise mode: ship-to-ship encounters and COLREG situations, each exercise on its own
-    // clock; pairs of two targets are not reported.
-    if (options.encounters) {
-        const auto t2 = Clock::now();
-        EncounterOptions eo = options.encounter;
-        eo.step_m = options.sweep.step_m;
-        eo.max_gap_s = options.sweep.max_gap_s;
-        std::map<std::string, std::vector<std::size_t>> by_exercise;  // exercise -> positions in `exercise`
-        for (std::size_t k = 0; k < exercise.size(); ++k) by_exercise[result.tracks[exercise_index[k]].summary.exercise].push_back(k);
-        std::set<std::string> named;
-        for (const auto& t : result.tracks) named.insert(t.summary.exercise);
-        result.exercises = named.size();
-        auto is_target = [&](std::size_t track_index) { return result.tracks[track_index].summary.role == Role::target; };
-        for (const auto& [name, members] : by_exercise) {
-            std::vector<const track::Track*> tracks;
-            std::vector<hull::Hull> hulls;
-            std::vector<std::size_t> index;  // position in this exercise -> index in result.tracks
-            for (const std::size_t k : members) {
-                tracks.push_back(exercise[k]);
-                hulls.push_back(exercise_hulls[k]);
-                index.push_back(exercise_index[k]);
-            }
-            auto wanted = [&](std::size_t a, std::size_t b) { return !(is_target(index[a]) && is_target(index[b])); };
-            EncounterResult er = find_encounters(tracks, hulls, *frames[0], eo);
-            // Each ship lists its worst pairs (worst_pairs.hpp); the situations of the others are
-            // dropped as they are found (a crowd has one for nearly every pair of ships).
-            WorstPairs worst(options.max_encounters_per_ship);
-            std::map<WorstPairs::Pair, ClosestApproach> approached;
-            for (auto& a : er.approaches) {
-                a.a = index[a.a];
-                a.b = index[a.b];
-                if (is_target(a.a) && is_target(a.b)) continue;
-                worst.offer(a.a, a.b, a.clearance_m, a.distance_m);
-                approached.emplace(WorstPairs::Pair{a.a, a.b}, a);
-            }
-            std::map<WorstPairs::Pair, std::pair<ColregEncounter, std::optional<ClosestApproach>>> situated;
-            std::size_t situations = 0;
-            const auto forget_unlisted = [&] {
-                for (auto it = situated.begin(); it != situated.end();)
-                    it = worst.listed(it->first.first, it->first.second) ? std::next(it) : situated.erase(it);
-            };
-            for_each_situation(tracks, *frames[0], options.colreg, options.sweep.max_gap_s, wanted, [&](ColregEncounter& c) {
-                ++situations;
-                c.a = index[c.a];
-                c.b = index[c.b];
-                std::optional<ClosestApproach> own;
-                if (!approached.count({c.a, c.b})) {  // never within the hull-to-hull threshold
-                    ClosestApproach a;
-                    a.a = c.a;
-                    a.b = c.b;
-                    a.time_s = c.closest_s;
-                    a.clearance_m = NAN;
-                    a.distance_m = c.closest_m;
-                    a.a_position = c.a_closest;
-                    a.b_position = c.b_closest;
-                    worst.offer(a.a, a.b, a.clearance_m, a.distance_m);
-                    own = a;
-                }
-                if (!worst.listed(c.a, c.b)) return;
-                situated.emplace(WorstPairs::Pair{c.a, c.b}, std::make_pair(c, own));
-                if (options.max_encounters_per_ship > 0 && situated.size() > 2 * worst.size() + 1024) forget_unlisted();
-            });
-            forget_unlisted();
-            AuditResult::Unlisted here;
-            for (auto& e : er.events) {
-                e.a.track = index[e.a.track];
-                e.b.track = index[e.b.track];
-                if (is_target(e.a.track) && is_target(e.b.track)) continue;
-                const bool collision = e.kind == EncounterKind::collision;
-                (collision ? result.collisions : result.close_quarters) += 1;
-                if (worst.listed(e.a.track, e.b.track)) result.encounters.events.push_back(std::move(e));
-                else (collision ? here.collisions : here.close_quarters) += 1;
-            }
-            for (const auto& entry : approached) {
-                if (worst.listed(entry.first.first, entry.first.second)) result.encounters.approaches.push_back(entry.second);
-                else ++here.approached;
-            }
-            for (auto& entry : situated) {
-                if (entry.second.second) result.encounters.approaches.push_back(*entry.second.second);
-                result.situations.push_back(entry.second.first);
-            }
-            here.pairs = options.max_encounters_per_ship == 0 ? 0 : worst.offered() - worst.size();
-            here.situations = situations - situated.size();
-            result.unlisted.pairs += here.pairs;
-            result.unlisted.collisions += here.collisions;
-            result.unlisted.close_quarters += here.close_quarters;
-            result.unlisted.situations += here.situations;
-            result.unlisted.approached += here.approached;
-            if (here.pairs > 0)
-                result.warnings.push_back("exercise '" + name + "': " + std::to_string(here.pairs) + " of " + std::to_string(worst.offered()) +
-                                          " pairs of ships not listed (" + std::to_string(here.collisions) + " collisions, " +
-                                          std::to_string(here.close_quarters) + " close quarters among them), each ship listing the " +
-                                          std::to_string(options.max_encounters_per_ship) +
-                                          " it came closest to (AuditOptions::max_encounters_per_ship); the summary counts every one");
-            result.encounters.instants += er.instants;
-            result.encounters.pairs_checked += er.pairs_checked;
-            result.encounters.hull_checks += er.hull_checks;
-            result.encounters.rebuilds += er.rebuilds;
-            result.encounters.threshold_m = std::max(result.encounters.threshold_m, er.threshold_m);
-            result.encounters.setup_s += er.setup_s;
-            result.encounters.sweep_s += er.sweep_s;
+/// Stage "exercises" (exercise mode): ship-to-ship encounters and COLREG situations, each
+/// exercise on its own clock; pairs of two targets are not reported; each ship lists its worst
+/// pairs, the summary counts every one.
+void run_exercises(const ExerciseTracks& ex, const AuditOptions& options, const geo::LocalFrame& frame, AuditResult& result) {
+    const auto t2 = Clock::now();
+    EncounterOptions eo = options.encounter;
+    eo.step_m = options.sweep.step_m;
+    eo.max_gap_s = options.sweep.max_gap_s;
+    std::map<std::string, std::vector<std::size_t>> by_exercise;  // exercise -> positions in ex.tracks
+    for (std::size_t k = 0; k < ex.tracks.size(); ++k) by_exercise[result.tracks[ex.index[k]].summary.exercise].push_back(k);
+    std::set<std::string> named;
+    for (const auto& t : result.tracks) named.insert(t.summary.exercise);
+    result.exercises = named.size();
+    auto is_target = [&](std::size_t track_index) { return result.tracks[track_index].summary.role == Role::target; };
+    for (const auto& [name, members] : by_exercise) {
+        std::vector<const track::Track*> tracks;
+        std::vector<hull::Hull> hulls;
+        std::vector<std::size_t> index;  // position in this exercise -> index in result.tracks
+        for (const std::size_t k : members) {
+            tracks.push_back(ex.tracks[k]);
+            hulls.push_back(ex.hulls[k]);
+            index.push_back(ex.index[k]);
         }
-        std::sort(result.encounters.approaches.begin(), result.encounters.approaches.end(),
-                  [](const ClosestApproach& x, const ClosestApproach& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
-        std::sort(result.situations.begin(), result.situations.end(),
-                  [](const ColregEncounter& x, const ColregEncounter& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
-        std::stable_sort(result.encounters.events.begin(), result.encounters.events.end(), [](const Encounter& x, const Encounter& y) {
-            return std::tie(x.start_s, x.a.track, x.b.track, x.kind) < std::tie(y.start_s, y.a.track, y.b.track, y.kind);
+        auto wanted = [&](std::size_t a, std::size_t b) { return !(is_target(index[a]) && is_target(index[b])); };
+        EncounterResult er = find_encounters(tracks, hulls, frame, eo);
+        // Each ship lists its worst pairs (worst_pairs.hpp); the situations of the others are
+        // dropped as they are found (a crowd has one for nearly every pair of ships).
+        WorstPairs worst(options.max_encounters_per_ship);
+        std::map<WorstPairs::Pair, ClosestApproach> approached;
+        for (auto& a : er.approaches) {
+            a.a = index[a.a];
+            a.b = index[a.b];
+            if (is_target(a.a) && is_target(a.b)) continue;
+            worst.offer(a.a, a.b, a.clearance_m, a.distance_m);
+            approached.emplace(WorstPairs::Pair{a.a, a.b}, a);
+        }
+        std::map<WorstPairs::Pair, std::pair<ColregEncounter, std::optional<ClosestApproach>>> situated;
+        std::size_t situations = 0;
+        const auto forget_unlisted = [&] {
+            for (auto it = situated.begin(); it != situated.end();)
+                it = worst.listed(it->first.first, it->first.second) ? std::next(it) : situated.erase(it);
+        };
+        for_each_situation(tracks, frame, options.colreg, options.sweep.max_gap_s, wanted, [&](ColregEncounter& c) {
+            ++situations;
+            c.a = index[c.a];
+            c.b = index[c.b];
+            std::optional<ClosestApproach> own;
+            if (!approached.count({c.a, c.b})) {  // never within the hull-to-hull threshold
+                ClosestApproach a;
+                a.a = c.a;
+                a.b = c.b;
+                a.time_s = c.closest_s;
+                a.clearance_m = NAN;
+                a.distance_m = c.closest_m;
+                a.a_position = c.a_closest;
+                a.b_position = c.b_closest;
+                worst.offer(a.a, a.b, a.clearance_m, a.distance_m);
+                own = a;
+            }
+            if (!worst.listed(c.a, c.b)) return;
+            situated.emplace(WorstPairs::Pair{c.a, c.b}, std::make_pair(c, own));
+            if (options.max_encounters_per_ship > 0 && situated.size() > 2 * worst.size() + 1024) forget_unlisted();
         });
-        result.has_encounters = true;
-        result.encounters_s = std::chrono::duration<double>(Clock::now() - t2).count();
+        forget_unlisted();
+        AuditResult::Unlisted here;
+        for (auto& e : er.events) {
+            e.a.track = index[e.a.track];
+            e.b.track = index[e.b.track];
+            if (is_target(e.a.track) && is_target(e.b.track)) continue;
+            const bool collision = e.kind == EncounterKind::collision;
+            (collision ? result.collisions : result.close_quarters) += 1;
+            if (worst.listed(e.a.track, e.b.track)) result.encounters.events.push_back(std::move(e));
+            else (collision ? here.collisions : here.close_quarters) += 1;
+        }
+        for (const auto& entry : approached) {
+            if (worst.listed(entry.first.first, entry.first.second)) result.encounters.approaches.push_back(entry.second);
+            else ++here.approached;
+        }
+        for (auto& entry : situated) {
+            if (entry.second.second) result.encounters.approaches.push_back(*entry.second.second);
+            result.situations.push_back(entry.second.first);
+        }
+        here.pairs = options.max_encounters_per_ship == 0 ? 0 : worst.offered() - worst.size();
+        here.situations = situations - situated.size();
+        result.unlisted.pairs += here.pairs;
+        result.unlisted.collisions += here.collisions;
+        result.unlisted.close_quarters += here.close_quarters;
+        result.unlisted.situations += here.situations;
+        result.unlisted.approached += here.approached;
+        if (here.pairs > 0)
+            result.warnings.push_back("exercise '" + name + "': " + std::to_string(here.pairs) + " of " + std::to_string(worst.offered()) +
+                                      " pairs of ships not listed (" + std::to_string(here.collisions) + " collisions, " +
+                                      std::to_string(here.close_quarters) + " close quarters among them), each ship listing the " +
+                                      std::to_string(options.max_encounters_per_ship) +
+                                      " it came closest to (AuditOptions::max_encounters_per_ship); the summary counts every one");
+        result.encounters.instants += er.instants;
+        result.encounters.pairs_checked += er.pairs_checked;
+        result.encounters.hull_checks += er.hull_checks;
+        result.encounters.rebuilds += er.rebuilds;
+        result.encounters.threshold_m = std::max(result.encounters.threshold_m, er.threshold_m);
+        result.encounters.setup_s += er.setup_s;
+        result.encounters.sweep_s += er.sweep_s;
     }
-    // 4. Assessment: every trainee scored against the criteria.
-    if (options.assessment) {
-        AssessInput in{result, kept_of, grid, *frames[0], default_hull.draught(), options.sweep.step_m, options.sweep.max_gap_s,
-                       options.sweep.time_tolerance_s, options.max_encounters_per_ship};
-        result.assessment = assess(*options.assessment, in);
-        result.has_assessment = true;
-        result.warnings.insert(result.warnings.end(), result.assessment.warnings.begin(), result.assessment.warnings.end());
-        // Time in close quarters is scored from the listed encounters: say when the cap left some out.
-        const auto& criteria = options.assessment->criteria;
-        const bool scores_close_quarters = std::any_of(criteria.begin(), criteria.end(), [](const Criterion& c) {
-            return c.kind == CriterionKind::close_quarters_time;
-        });
-        if (scores_close_quarters && result.unlisted.close_quarters > 0)
-            result.warnings.push_back(std::to_string(result.unlisted.close_quarters) +
-                                      " close-quarters encounters were not listed (AuditOptions::max_encounters_per_ship), so their time "
-                                      "in close quarters was not scored: raise the limit, or 0 for none, to score every one");
-    }
+    std::sort(result.encounters.approaches.begin(), result.encounters.approaches.end(),
+              [](const ClosestApproach& x, const ClosestApproach& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+    std::sort(result.situations.begin(), result.situations.end(),
+              [](const ColregEncounter& x, const ColregEncounter& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+    std::stable_sort(result.encounters.events.begin(), result.encounters.events.end(), [](const Encounter& x, const Encounter& y) {
+        return std::tie(x.start_s, x.a.track, x.b.track, x.kind) < std::tie(y.start_s, y.a.track, y.b.track, y.kind);
+    });
+    result.has_encounters = true;
+    result.encounters_s = std::chrono::duration<double>(Clock::now() - t2).count();
+}
+
+/// Stage "assessment": every trainee scored against the criteria.
+void assess_trainees(const ExerciseTracks& ex, const grid::CoastGrid& grid, const hull::Hull& default_hull, const AuditOptions& options,
+                     const geo::LocalFrame& frame, AuditResult& result) {
+    AssessInput in{result, ex.kept_of, grid, frame, default_hull.draught(), options.sweep.step_m, options.sweep.max_gap_s,
+                   options.sweep.time_tolerance_s, options.max_encounters_per_ship};
+    result.assessment = assess(*options.assessment, in);
+    result.has_assessment = true;
+    result.warnings.insert(result.warnings.end(), result.assessment.warnings.begin(), result.assessment.warnings.end());
+    // Time in close quarters is scored from the listed encounters: say when the cap left some out.
+    const auto& criteria = options.assessment->criteria;
+    const bool scores_close_quarters = std::any_of(criteria.begin(), criteria.end(), [](const Criterion& c) {
+        return c.kind == CriterionKind::close_quarters_time;
+    });
+    if (scores_close_quarters && result.unlisted.close_quarters > 0)
+        result.warnings.push_back(std::to_string(result.unlisted.close_quarters) +
+                                  " close-quarters encounters were not listed (AuditOptions::max_encounters_per_ship), so their time "
+                                  "in close quarters was not scored: raise the limit, or 0 for none, to score every one");
+}
+
+AuditResult audit(const TrackSource& source, const grid::CoastGrid& grid, const hull::Hull& default_hull, const std::string& hull_label,
+                  const AuditOptions& options) {
+    AuditResult result;
+    result.shard = options.shard;
+    if (options.assessment && !options.encounters)
+        throw UsageError("AuditOptions::assessment needs exercise mode (AuditOptions::encounters): trainees are scored per exercise");
+    SweepOptions sweep_options = options.sweep;
+    if (options.assessment) sweep_options.watch_clearance_m = std::max(sweep_options.watch_clearance_m, options.assessment->watch_clearance_m());
+    std::vector<std::unique_ptr<geo::LocalFrame>> frames;  // PROJ transformations are per thread
+    for (unsigned w = 0, jobs = thread_count(options.jobs); w < jobs; ++w) frames.push_back(std::make_unique<geo::LocalFrame>(grid.frame()));
+    result.world = options.world;
+    result.chart_tolerance_m = options.evidence.chart_tolerance_m;
+    const auto t1 = Clock::now();
+    Swept swept = sweep_tracks(source, grid, default_hull, hull_label, sweep_options, options, frames);
+    grade_contacts(source, swept, grid, default_hull, sweep_options, options, frames, result);
+    result.sweep_s = std::chrono::duration<double>(Clock::now() - t1).count();
+    const ExerciseTracks exercises = tally(source, swept, grid, default_hull, options, result);
+    if (options.encounters) run_exercises(exercises, options, *frames[0], result);
+    if (options.assessment) assess_trainees(exercises, grid, default_hull, options, *frames[0], result);
     return result;
 }
 

@@ -19,6 +19,7 @@
 #include <shoal/util/error.hpp>
 
 #include "geo/geos_context.hpp"
+#include "sweep/local_track.hpp"
 #include "util/input_file.hpp"
 #include "util/json_message.hpp"
 #include "util/parse_util.hpp"
@@ -334,57 +335,29 @@ std::vector<Run> runs_over(const std::vector<ValuePoint>& pts, double limit, boo
     return out;
 }
 
-/// A track in local metres: its fixes' times and positions, pieces split at gaps.
-struct LocalTrack {
-    std::vector<double> t;
-    std::vector<XY> p;
-    std::vector<double> speed_kn;
-    std::vector<bool> gap_before;  ///< fix k starts a new piece (a gap over max_gap_s before it)
+/// A track for the criteria: the local track, broken at gaps over max_gap_s (not at jumps),
+/// with its fixes' speeds; a moment is placed on the fix at or before it (LocalTrack::at).
+struct Sailing {
+    LocalTrack track;
+    std::vector<double> speed_kn;  ///< per fix: track::Fix::speed_used_kn
 
-    LocalTrack(const track::Track& track, const geo::LocalFrame& frame, double max_gap_s) {
-        for (std::size_t k = 0; k < track.fixes.size(); ++k) {
-            const track::Fix& f = track.fixes[k];
-            t.push_back(f.time_s);
-            p.push_back(frame.forward(f.position));
-            speed_kn.push_back(f.speed_used_kn);
-            gap_before.push_back(k == 0 || f.time_s - track.fixes[k - 1].time_s > max_gap_s);
-            lo = {std::min(lo.x, p.back().x), std::min(lo.y, p.back().y)};
-            hi = {std::max(hi.x, p.back().x), std::max(hi.y, p.back().y)};
-        }
+    Sailing(const track::Track& t, const geo::LocalFrame& frame, double max_gap_s) : track(t, frame, Breaks{.max_gap_s = max_gap_s}, Placing::positions) {
+        for (const track::Fix& f : t.fixes) speed_kn.push_back(f.speed_used_kn);
     }
-    XY lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};  ///< the box of its fixes
-    std::size_t size() const { return t.size(); }
+    std::size_t size() const { return track.size(); }
+    double t(std::size_t k) const { return track.time(k); }
+    XY p(std::size_t k) const { return track.position(k); }
     /// Segment k to k + 1 is sailed (no gap).
-    bool sailed(std::size_t k) const { return k + 1 < size() && !gap_before[k + 1]; }
-    /// Interval k with t[k] <= time <= t[k+1] (the last fix's: size() - 1).
-    std::size_t interval(double time) const {
-        const auto it = std::upper_bound(t.begin(), t.end(), time);
-        const auto k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, it - t.begin() - 1));
-        return std::min(k, size() - 1);
-    }
-    /// Present at `time`: within its span, not inside a gap.
-    bool present(double time) const {
-        if (t.empty() || time < t.front() || time > t.back()) return false;
-        const std::size_t k = interval(time);
-        return t[k] == time || sailed(k);
-    }
-    XY position(double time) const {
-        const std::size_t k = interval(time);
-        if (k + 1 >= size() || t[k + 1] == t[k]) return p[k];
-        const double f = std::clamp((time - t[k]) / (t[k + 1] - t[k]), 0.0, 1.0);
-        return {p[k].x + f * (p[k + 1].x - p[k].x), p[k].y + f * (p[k + 1].y - p[k].y)};
-    }
-    double speed(double time) const {
-        const std::size_t k = interval(time);
-        if (k + 1 >= size() || t[k + 1] == t[k]) return speed_kn[k];
-        const double f = std::clamp((time - t[k]) / (t[k + 1] - t[k]), 0.0, 1.0);
-        return speed_kn[k] + f * (speed_kn[k + 1] - speed_kn[k]);
-    }
+    bool sailed(std::size_t k) const { return track.sailed(k); }
+    /// Fix k starts a new piece (the first fix, or a gap before it).
+    bool gap_before(std::size_t k) const { return k == 0 || !track.sailed(k - 1); }
+    XY position(double time) const { return track.position(track.at(time)); }
+    double speed(double time) const { return track.interpolate(speed_kn, track.at(time)); }
 };
 
 /// The times a track spends inside a polygon (local metres), by GEOS: each sailed segment
 /// intersected with it, the parts' ends mapped back to times; parts that meet are joined.
-std::vector<std::pair<double, double>> inside_intervals(const LocalTrack& lt, const geo::GeosContext& ctx, const GEOSGeometry* area,
+std::vector<std::pair<double, double>> inside_intervals(const Sailing& lt, const geo::GeosContext& ctx, const GEOSGeometry* area,
                                                         const GEOSPreparedGeometry* prepared) {
     std::vector<std::pair<double, double>> out;
     const auto add = [&](double a, double b) {
@@ -398,13 +371,13 @@ std::vector<std::pair<double, double>> inside_intervals(const LocalTrack& lt, co
     for (std::size_t k = 0; k < lt.size(); ++k) {
         if (!lt.sailed(k)) {
             // A lone fix (a piece of one fix, or the last of a piece): inside or not, no duration.
-            if ((k == 0 || !lt.sailed(k - 1)) && point_inside(lt.p[k])) add(lt.t[k], lt.t[k]);
+            if ((k == 0 || !lt.sailed(k - 1)) && point_inside(lt.p(k))) add(lt.t(k), lt.t(k));
             continue;
         }
-        const XY a = lt.p[k], b = lt.p[k + 1];
+        const XY a = lt.p(k), b = lt.p(k + 1);
         const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
         if (len2 == 0) {
-            if (point_inside(a)) add(lt.t[k], lt.t[k + 1]);
+            if (point_inside(a)) add(lt.t(k), lt.t(k + 1));
             continue;
         }
         const XY seg[2] = {a, b};
@@ -425,8 +398,8 @@ std::vector<std::pair<double, double>> inside_intervals(const LocalTrack& lt, co
             fr.emplace_back(f0, f1);
         }
         std::sort(fr.begin(), fr.end());
-        const double dt = lt.t[k + 1] - lt.t[k];
-        for (const auto& [f0, f1] : fr) add(f0 <= 1e-12 ? lt.t[k] : lt.t[k] + f0 * dt, f1 >= 1 - 1e-12 ? lt.t[k + 1] : lt.t[k] + f1 * dt);
+        const double dt = lt.t(k + 1) - lt.t(k);
+        for (const auto& [f0, f1] : fr) add(f0 <= 1e-12 ? lt.t(k) : lt.t(k) + f0 * dt, f1 >= 1 - 1e-12 ? lt.t(k + 1) : lt.t(k) + f1 * dt);
     }
     return out;
 }
@@ -469,7 +442,7 @@ public:
             const TrackSummary& s = r.tracks[k].summary;
             if (s.role != Role::trainee) continue;
             const track::Track* t = k < m_in.tracks.size() ? m_in.tracks[k] : nullptr;
-            const LocalTrack* lt = t && !t->fixes.empty() ? &local(k) : nullptr;
+            const Sailing* lt = t && !t->fixes.empty() ? &local(k) : nullptr;
             for (std::size_t c = 0; c < m_a.criteria.size(); ++c) {
                 const Criterion& cr = m_a.criteria[c];
                 m_crit = c;
@@ -526,7 +499,7 @@ private:
     const TrackSummary& summary(std::size_t k) const { return m_in.result.tracks[k].summary; }
 
     /// Track k in local metres (projected once).
-    const LocalTrack& local(std::size_t k) {
+    const Sailing& local(std::size_t k) {
         if (m_local.size() < m_in.result.tracks.size()) m_local.resize(m_in.result.tracks.size());
         if (!m_local[k]) m_local[k].emplace(*m_in.tracks[k], m_in.frame, m_in.max_gap_s);
         return *m_local[k];
@@ -628,7 +601,7 @@ private:
         for (const Run& run : runs_over(pts, cr.limit, false)) add(k, cr, run, run.worst_v);
     }
 
-    void under_keel(std::size_t k, const Criterion& cr, const LocalTrack& lt) {
+    void under_keel(std::size_t k, const Criterion& cr, const Sailing& lt) {
         const TrackSummary& sum = summary(k);
         const double draught = std::isfinite(sum.draught_m) && sum.draught_m > 0 ? sum.draught_m : m_in.default_draught_m;
         if (!(draught > 0)) {
@@ -671,17 +644,17 @@ private:
         S prev;
         bool have_prev = false;  // prev is the sample before, in this piece
         for (std::size_t i = 0; i < lt.size(); ++i) {
-            if (lt.gap_before[i]) {
+            if (lt.gap_before(i)) {
                 if (cur) close();
                 have_prev = false;
             }
             std::vector<S> here;
-            here.push_back({lt.t[i], lt.p[i], hazards.is_land(lt.p[i])});
+            here.push_back({lt.t(i), lt.p(i), hazards.is_land(lt.p(i))});
             if (lt.sailed(i)) {
-                const double len = std::hypot(lt.p[i + 1].x - lt.p[i].x, lt.p[i + 1].y - lt.p[i].y);
+                const double len = std::hypot(lt.p(i + 1).x - lt.p(i).x, lt.p(i + 1).y - lt.p(i).y);
                 const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil(len / step)));
                 for (std::size_t j = 1; j < n; ++j) {
-                    const double t = lt.t[i] + (lt.t[i + 1] - lt.t[i]) * static_cast<double>(j) / static_cast<double>(n);
+                    const double t = lt.t(i) + (lt.t(i + 1) - lt.t(i)) * static_cast<double>(j) / static_cast<double>(n);
                     const XY p = lt.position(t);
                     here.push_back({t, p, hazards.is_land(p)});
                 }
@@ -714,7 +687,7 @@ private:
         if (cur) close();
     }
 
-    void cpa(std::size_t k, const Criterion& cr, const LocalTrack& a) {
+    void cpa(std::size_t k, const Criterion& cr, const Sailing& a) {
         // The breaches against each other ship (its closest approach among them, the ship, where
         // they start in m_track): listed for the max_others_per_trainee ships it came closest to.
         std::vector<std::tuple<double, std::size_t, std::size_t, std::size_t>> by_other;
@@ -726,7 +699,7 @@ private:
             for (std::size_t j = std::get<2>(by_other[i]); j < std::get<3>(by_other[i]); ++j) m_track[j].listed = false;
     }
 
-    void cpa_each(std::size_t k, const Criterion& cr, const LocalTrack& a, std::vector<std::tuple<double, std::size_t, std::size_t, std::size_t>>& by_other) {
+    void cpa_each(std::size_t k, const Criterion& cr, const Sailing& a, std::vector<std::tuple<double, std::size_t, std::size_t, std::size_t>>& by_other) {
         const AuditResult& r = m_in.result;
         const double L = cr.limit;
         for (std::size_t m = 0; m < r.tracks.size(); ++m) {
@@ -740,15 +713,15 @@ private:
             const track::Track* tb = m < m_in.tracks.size() ? m_in.tracks[m] : nullptr;
             if (!tb || tb->fixes.empty()) continue;
             // Never at the same time, or never within the limit of each other's box: no breach.
-            const double t0 = std::max(a.t.front(), tb->fixes.front().time_s), t1 = std::min(a.t.back(), tb->fixes.back().time_s);
+            const double t0 = std::max(a.t(0), tb->fixes.front().time_s), t1 = std::min(a.t(a.size() - 1), tb->fixes.back().time_s);
             if (!(t0 <= t1)) continue;
-            const LocalTrack& b = local(m);
-            if (std::max({b.lo.x - a.hi.x, a.lo.x - b.hi.x, b.lo.y - a.hi.y, a.lo.y - b.hi.y}) >= L) continue;
+            const Sailing& b = local(m);
+            const XY alo = a.track.lo(), ahi = a.track.hi(), blo = b.track.lo(), bhi = b.track.hi();
+            if (std::max({blo.x - ahi.x, alo.x - bhi.x, blo.y - ahi.y, alo.y - bhi.y}) >= L) continue;
             std::vector<double> cuts{t0, t1};
-            for (const double t : a.t)
-                if (t > t0 && t < t1) cuts.push_back(t);
-            for (const double t : b.t)
-                if (t > t0 && t < t1) cuts.push_back(t);
+            for (const Sailing* sp : {&a, &b})
+                for (std::size_t j = 0; j < sp->size(); ++j)
+                    if (const double t = sp->t(j); t > t0 && t < t1) cuts.push_back(t);
             std::sort(cuts.begin(), cuts.end());
             cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
             std::optional<Run> cur;
@@ -793,19 +766,19 @@ private:
             };
             for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
                 const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
-                if (!a.present(mid) || !b.present(mid)) {
+                if (!a.track.present(mid) || !b.track.present(mid)) {
                     flush();
                     continue;
                 }
                 consider(cuts[i], cuts[i + 1]);
             }
-            if (cuts.size() == 1 && a.present(t0) && b.present(t0)) consider(t0, t0);
+            if (cuts.size() == 1 && a.track.present(t0) && b.track.present(t0)) consider(t0, t0);
             flush();
             note();
         }
     }
 
-    void in_area(std::size_t k, const Criterion& cr, const LocalTrack& lt) {
+    void in_area(std::size_t k, const Criterion& cr, const Sailing& lt) {
         const geo::GeosContext ctx;
         std::vector<XY> ring;
         for (const LonLat& p : cr.area) ring.push_back(m_in.frame.forward(p));
@@ -827,7 +800,7 @@ private:
             std::vector<ValuePoint> pts;
             pts.push_back({t0, lt.speed(t0), lt.position(t0), false});
             for (std::size_t i = 0; i < lt.size(); ++i)
-                if (lt.t[i] > t0 && lt.t[i] < t1) pts.push_back({lt.t[i], lt.speed_kn[i], lt.p[i], true});
+                if (lt.t(i) > t0 && lt.t(i) < t1) pts.push_back({lt.t(i), lt.speed_kn[i], lt.p(i), true});
             if (t1 > t0) pts.push_back({t1, lt.speed(t1), lt.position(t1), true});
             for (const Run& run : runs_over(pts, cr.limit, true)) add(k, cr, run, run.worst_v);
         }
@@ -910,7 +883,7 @@ private:
     };
     std::vector<Pending> m_track;
     std::size_t m_unlisted = 0;  ///< breaches scored but not listed
-    std::vector<std::optional<LocalTrack>> m_local;  ///< by index in AuditResult::tracks
+    std::vector<std::optional<Sailing>> m_local;  ///< by index in AuditResult::tracks
 };
 
 }  // namespace

@@ -1,7 +1,6 @@
 // COLREG situations (see include/shoal/exercise/colreg.hpp): the classification at the moment a
 // pair comes within range, CPA/TCPA then, the actual closest approach and each ship's action.
 #include <shoal/exercise/colreg.hpp>
-#include <shoal/sweep/motion.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <string>
 
 #include <shoal/util/error.hpp>
+#include "sweep/local_track.hpp"
 
 namespace shoal::audit {
 
@@ -30,64 +30,47 @@ constexpr double deg = 180.0 / std::numbers::pi;
 constexpr double abaft_from_deg = 112.5;  // 22.5 degrees abaft the beam
 constexpr double slowest_reference_ms = 1852.0 / 3600.0;  // speed changes are judged against at least 1 knot
 
-double wrap360(double a) {
-    a = std::fmod(a, 360.0);
-    if (a < 0) a += 360.0;
-    return a >= 360.0 ? 0.0 : a;
-}
 /// |a - b| on the circle, in [0, 180].
 double angle_between(double a, double b) { return std::fabs(turn(b, a)); }
 bool abaft_the_beam(double bearing) { return bearing > abaft_from_deg && bearing < 360.0 - abaft_from_deg; }
 bool right_ahead(double bearing, double tol) { return bearing <= tol || bearing >= 360.0 - tol; }
 bool on_starboard(double bearing) { return bearing > 0 && bearing < 180; }
 
-/// One track in local metres, with per fix interval presence and velocity.
+/// One track for the rules: the local track (broken at gaps and at jumps), per fix a heading
+/// (an unknown one from the motion) and a velocity, per fix interval the velocity.
 struct Local {
-    std::vector<double> t;
-    std::vector<XY> p;
-    std::vector<double> heading;  ///< per fix
-    std::vector<bool> present;    ///< per fix interval
+    LocalTrack track;
+    std::vector<double> heading;  ///< per fix, [0, 360)
     std::vector<XY> velocity;     ///< per fix interval (m/s)
-    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< bounding box
-
-    /// The fix interval holding time tt (within the track's span; the last interval at its end).
-    std::size_t interval(double tt) const {
-        const auto it = std::upper_bound(t.begin(), t.end(), tt);
-        std::size_t i = it == t.begin() ? 0 : static_cast<std::size_t>(it - t.begin()) - 1;
-        return std::min(i, t.size() - 2);
-    }
-    XY at(std::size_t i, double tt) const {
-        const double f = (tt - t[i]) / (t[i + 1] - t[i]);
-        return p[i] + f * (p[i + 1] - p[i]);
-    }
-    double heading_at(std::size_t i, double tt) const {
-        const double f = (tt - t[i]) / (t[i + 1] - t[i]);
-        return wrap360(heading[i] + f * turn(heading[i], heading[i + 1]));
-    }
     std::vector<XY> fix_velocity;  ///< per fix: from its speed and course over ground when given, else from positions
+
+    std::size_t size() const { return track.size(); }
+    double t(std::size_t j) const { return track.time(j); }
+    /// Position at tt on fix interval i (tt may be its end).
+    XY at(std::size_t i, double tt) const { return track.position({i, track.fraction(i, tt)}); }
     double speed_at_fix(std::size_t j) const { return std::sqrt(geo::norm2(fix_velocity[j])); }
     VesselAt state(std::size_t i, double tt) const {
-        const double f = (tt - t[i]) / (t[i + 1] - t[i]);
-        return {at(i, tt), heading_at(i, tt), fix_velocity[i] + f * (fix_velocity[i + 1] - fix_velocity[i])};
+        const Where w{i, track.fraction(i, tt)};
+        return {track.position(w), wrap_360(track.interpolate_heading(heading, w)), track.interpolate(fix_velocity, w)};
+    }
+    /// The first fix after tt.
+    std::size_t first_after(double tt) const {
+        const auto& fx = track.track().fixes;
+        return static_cast<std::size_t>(std::upper_bound(fx.begin(), fx.end(), tt, [](double v, const track::Fix& x) { return v < x.time_s; }) - fx.begin());
     }
 };
 
 Local prepare(const track::Track& tr, const geo::LocalFrame& frame, double max_gap_s) {
-    Local l;
     const std::size_t n = tr.fixes.size();
-    for (const track::Fix& f : tr.fixes) {
+    for (const track::Fix& f : tr.fixes)
         if (!std::isfinite(f.time_s)) throw InputError("track '" + tr.id + "' in '" + tr.file + "', fix at line " + std::to_string(f.line) + ": no time");
-        l.t.push_back(f.time_s);
-        l.p.push_back(frame.forward(f.position));
-    }
-    for (std::size_t i = 0; i + 1 < n; ++i) {
-        if (!(l.t[i + 1] > l.t[i]))
+    for (std::size_t i = 0; i + 1 < n; ++i)
+        if (!(tr.fixes[i + 1].time_s > tr.fixes[i].time_s))
             throw InputError("track '" + tr.id + "' in '" + tr.file + "', fix at line " + std::to_string(tr.fixes[i + 1].line) +
                              ": fix times not strictly increasing");
-        const double dt = l.t[i + 1] - l.t[i];
-        l.present.push_back(dt <= max_gap_s && !tr.fixes[i + 1].jump_before);
-        l.velocity.push_back((1.0 / dt) * (l.p[i + 1] - l.p[i]));
-    }
+    Local l{LocalTrack(tr, frame, Breaks{.max_gap_s = max_gap_s, .at_jumps = true}, Placing::positions), {}, {}, {}};
+    for (std::size_t i = 0; i + 1 < n; ++i)
+        l.velocity.push_back((1.0 / (l.t(i + 1) - l.t(i))) * (l.track.position(i + 1) - l.track.position(i)));
     for (std::size_t j = 0; j < n; ++j) {
         const track::Fix& f = tr.fixes[j];
         double h = f.heading_used_deg;
@@ -95,7 +78,7 @@ Local prepare(const track::Track& tr, const geo::LocalFrame& frame, double max_g
             const XY v = l.velocity.empty() ? XY{} : l.velocity[std::min(j, l.velocity.size() - 1)];
             h = geo::norm2(v) > 0 ? std::atan2(v.x, v.y) * deg : (j > 0 ? l.heading[j - 1] : 0.0);
         }
-        l.heading.push_back(wrap360(h));
+        l.heading.push_back(wrap_360(h));
     }
     // Velocity at each fix: the speed and course over ground the source gives (smoother than
     // positions a few seconds apart), else the motion between fixes around it.
@@ -114,14 +97,6 @@ Local prepare(const track::Track& tr, const geo::LocalFrame& frame, double max_g
             l.fix_velocity.push_back(0.5 * (l.velocity[j - 1] + l.velocity[j]));
         }
     }
-    if (n) {
-        l.x0 = l.x1 = l.p[0].x;
-        l.y0 = l.y1 = l.p[0].y;
-        for (const XY& q : l.p) {
-            l.x0 = std::min(l.x0, q.x), l.x1 = std::max(l.x1, q.x);
-            l.y0 = std::min(l.y0, q.y), l.y1 = std::max(l.y1, q.y);
-        }
-    }
     return l;
 }
 
@@ -132,8 +107,8 @@ Manoeuvre action(const Local& s, double from_s, double until_s, const VesselAt& 
     const double ref = std::max(v0, slowest_reference_ms);
     auto course = [&](std::size_t j) { return angle_between(s.heading[j], start.heading_deg) >= o.course_change_deg; };
     auto speed = [&](std::size_t j) { return std::abs(s.speed_at_fix(j) - v0) >= o.speed_change * ref; };
-    const std::size_t n = s.t.size();
-    for (std::size_t j = static_cast<std::size_t>(std::upper_bound(s.t.begin(), s.t.end(), from_s) - s.t.begin()); j < n && s.t[j] <= until_s; ++j) {
+    const std::size_t n = s.size();
+    for (std::size_t j = s.first_after(from_s); j < n && s.t(j) <= until_s; ++j) {
         if (!course(j) && !speed(j)) continue;
         bool kept = true, long_enough = false;
         for (std::size_t k = j; k < n; ++k) {
@@ -141,7 +116,7 @@ Manoeuvre action(const Local& s, double from_s, double until_s, const VesselAt& 
                 kept = false;
                 break;
             }
-            if (s.t[k] >= s.t[j] + o.sustain_s) {
+            if (s.t(k) >= s.t(j) + o.sustain_s) {
                 long_enough = true;
                 break;
             }
@@ -150,7 +125,7 @@ Manoeuvre action(const Local& s, double from_s, double until_s, const VesselAt& 
         Manoeuvre m;
         m.course = course(j);
         m.speed = speed(j);
-        m.time_s = s.t[j];
+        m.time_s = s.t(j);
         return m;
     }
     return {};
@@ -160,7 +135,7 @@ Manoeuvre action(const Local& s, double from_s, double until_s, const VesselAt& 
 
 double relative_bearing_deg(const VesselAt& from, XY to) {
     const XY d = to - from.position;
-    return wrap360(std::atan2(d.x, d.y) * deg - from.heading_deg);
+    return wrap_360(std::atan2(d.x, d.y) * deg - from.heading_deg);
 }
 
 Classification classify(const VesselAt& a, const VesselAt& b, double head_on_tolerance_deg) {
@@ -240,16 +215,17 @@ void for_each_situation(const std::vector<const track::Track*>& tracks, const ge
         for (std::size_t ib = ia + 1; ib < ships.size(); ++ib) {
             const Local& A = ships[ia];
             const Local& B = ships[ib];
-            if (A.t.size() < 2 || B.t.size() < 2) continue;
-            if (A.x0 - B.x1 > R || B.x0 - A.x1 > R || A.y0 - B.y1 > R || B.y0 - A.y1 > R) continue;
-            const double lo = std::max(A.t.front(), B.t.front()), hi = std::min(A.t.back(), B.t.back());
+            if (A.size() < 2 || B.size() < 2) continue;
+            const XY a0 = A.track.lo(), a1 = A.track.hi(), b0 = B.track.lo(), b1 = B.track.hi();
+            if (a0.x - b1.x > R || b0.x - a1.x > R || a0.y - b1.y > R || b0.y - a1.y > R) continue;
+            const double lo = std::max(A.t(0), B.t(0)), hi = std::min(A.t(A.size() - 1), B.t(B.size() - 1));
             if (!(lo < hi)) continue;
             if (wanted && !wanted(ia, ib)) continue;
             times.clear();
             times.push_back(lo);
             for (const Local* s : {&A, &B})
-                for (const double tt : s->t)
-                    if (tt > lo && tt < hi) times.push_back(tt);
+                for (std::size_t j = 0; j < s->size(); ++j)
+                    if (s->t(j) > lo && s->t(j) < hi) times.push_back(s->t(j));
             times.push_back(hi);
             std::sort(times.begin(), times.end());
             times.erase(std::unique(times.begin(), times.end()), times.end());
@@ -263,8 +239,8 @@ void for_each_situation(const std::vector<const track::Track*>& tracks, const ge
             for (std::size_t k = 0; k + 1 < times.size(); ++k) {
                 const double u0 = times[k], u1 = times[k + 1];
                 const double mid = 0.5 * (u0 + u1);
-                const std::size_t i = A.interval(mid), j = B.interval(mid);
-                if (!A.present[i] || !B.present[j]) {
+                const std::size_t i = A.track.interval(mid), j = B.track.interval(mid);
+                if (!A.track.sailed(i) || !B.track.sailed(j)) {
                     if (started && !ended) {
                         ended = true;
                         e.end_s = u0;

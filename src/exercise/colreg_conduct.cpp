@@ -1,6 +1,5 @@
 // A ship's conduct under COLREG rules 8 and 13-17 (see include/shoal/exercise/colreg_conduct.hpp).
 #include <shoal/exercise/colreg_conduct.hpp>
-#include <shoal/sweep/motion.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +8,7 @@
 
 #include <shoal/track/time.hpp>
 #include <shoal/util/error.hpp>
+#include "sweep/local_track.hpp"
 
 namespace shoal::audit {
 
@@ -19,18 +19,15 @@ using geo::XY;
 constexpr double deg = 180.0 / std::numbers::pi;
 constexpr double knot_ms = 1852.0 / 3600.0;
 
-/// A track in local metres: per fix its time, position, heading and speed (m/s).
+/// A track for judging conduct: the local track (never broken), per fix a heading and a speed
+/// (m/s); between fixes the fraction of the interval holding a moment is clamped to it.
 struct ShipMotion {
-    std::vector<double> t, heading, speed;
-    std::vector<XY> p;
+    LocalTrack track;
+    std::vector<double> heading, speed;
 
-    ShipMotion(const track::Track& tr, const geo::LocalFrame& frame) {
+    ShipMotion(const track::Track& tr, const geo::LocalFrame& frame) : track(tr, frame, {}, Placing::positions) {
         const std::size_t n = tr.fixes.size();
-        for (const track::Fix& f : tr.fixes) {
-            t.push_back(f.time_s);
-            p.push_back(frame.forward(f.position));
-        }
-        auto seg_v = [&](std::size_t i) { return (1.0 / (t[i + 1] - t[i])) * (p[i + 1] - p[i]); };
+        auto seg_v = [&](std::size_t i) { return (1.0 / (track.time(i + 1) - track.time(i))) * (track.position(i + 1) - track.position(i)); };
         for (std::size_t j = 0; j < n; ++j) {
             const track::Fix& f = tr.fixes[j];
             // Speed: as resolved (SOG, else positions), else SOG, else the mean of the segments' speeds.
@@ -49,27 +46,14 @@ struct ShipMotion {
             heading.push_back(std::fmod(std::fmod(h, 360.0) + 360.0, 360.0));
         }
     }
-    std::size_t interval(double tt) const {
-        const auto it = std::upper_bound(t.begin(), t.end(), tt);
-        const std::size_t i = it == t.begin() ? 0 : static_cast<std::size_t>(it - t.begin()) - 1;
-        return std::min(i, t.size() - 2);
+    Where where(double tt) const {
+        if (track.size() < 2) return {};
+        const std::size_t i = track.interval(tt);
+        return {i, std::clamp(track.fraction(i, tt), 0.0, 1.0)};
     }
-    double fraction(std::size_t i, double tt) const { return std::clamp((tt - t[i]) / (t[i + 1] - t[i]), 0.0, 1.0); }
-    XY at(double tt) const {
-        if (t.size() < 2) return p.front();
-        const std::size_t i = interval(tt);
-        return p[i] + fraction(i, tt) * (p[i + 1] - p[i]);
-    }
-    double heading_at(double tt) const {
-        if (t.size() < 2) return heading.front();
-        const std::size_t i = interval(tt);
-        return heading[i] + fraction(i, tt) * turn(heading[i], heading[i + 1]);
-    }
-    double speed_at(double tt) const {
-        if (t.size() < 2) return speed.front();
-        const std::size_t i = interval(tt);
-        return speed[i] + fraction(i, tt) * (speed[i + 1] - speed[i]);
-    }
+    XY at(double tt) const { return track.position(where(tt)); }
+    double heading_at(double tt) const { return track.interpolate_heading(heading, where(tt)); }
+    double speed_at(double tt) const { return track.interpolate(speed, where(tt)); }
 };
 
 std::string clock(double t) { return track::format_iso8601(t, 0).substr(11); }
@@ -145,8 +129,8 @@ std::vector<Conduct> judge_conduct(const track::Track& own, const std::vector<co
             const double v_ref = std::max(v0, knot_ms);
             // The largest changes of heading and speed from the start up to the closest approach.
             std::vector<double> times{e.start_s, t_close};
-            for (const double tt : me.t)
-                if (tt > e.start_s && tt < t_close) times.push_back(tt);
+            for (std::size_t j = 0; j < me.track.size(); ++j)
+                if (const double tt = me.track.time(j); tt > e.start_s && tt < t_close) times.push_back(tt);
             for (const double tt : times) {
                 const double dh = turn(h0, me.heading_at(tt));
                 if (std::fabs(dh) > std::fabs(c.course_change_deg)) c.course_change_deg = dh;
@@ -205,8 +189,8 @@ std::vector<Conduct> judge_conduct(const track::Track& own, const std::vector<co
                         // Crossing ahead: where the ship crosses the other's heading line, is she ahead of it?
                         std::vector<double> ts{e.start_s, e.end_s};
                         for (const auto* m : {&me, &them})
-                            for (const double tt : m->t)
-                                if (tt > e.start_s && tt < e.end_s) ts.push_back(tt);
+                            for (std::size_t j = 0; j < m->track.size(); ++j)
+                                if (const double tt = m->track.time(j); tt > e.start_s && tt < e.end_s) ts.push_back(tt);
                         std::sort(ts.begin(), ts.end());
                         auto lateral = [&](double tt) {
                             const double h = them.heading_at(tt) / deg;

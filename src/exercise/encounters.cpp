@@ -12,12 +12,12 @@
 #include <string>
 #include <tuple>
 
-#include <shoal/sweep/motion.hpp>
 #include <shoal/util/error.hpp>
 #include "exercise/broad_phase.hpp"
 #include "exercise/exercise_clock.hpp"
 #include "exercise/exercise_ship.hpp"
 #include "sweep/interval_events.hpp"
+#include "sweep/local_track.hpp"
 #include "exercise/narrow_phase.hpp"
 
 namespace shoal::audit {
@@ -63,7 +63,7 @@ public:
         for (std::size_t k = 0; k < tracks.size(); ++k) {
             detail::prepare_ship(m_ships[k], *tracks[k], hulls[k], m_frame, m_opt.max_gap_s);
             thresholds.radius.push_back(m_ships[k].shape.radius);
-            timing.push_back({&tracks[k]->fixes, &m_ships[k].speed});
+            timing.push_back({&*m_ships[k].local, &m_ships[k].speed});
         }
         m_pos.resize(m_ships.size());
         m_clock.emplace(std::move(timing), m_opt.step_m);
@@ -113,10 +113,8 @@ private:
     PairSample sample_at(std::uint32_t a, std::uint32_t b, double t) {
         const detail::ExerciseShip& sa = m_ships[a];
         const detail::ExerciseShip& sb = m_ships[b];
-        const auto [ia, fa] = detail::locate(sa.track->fixes, t);
-        const auto [ib, fb] = detail::locate(sb.track->fixes, t);
-        check::detail::place(sa.shape, sa.motion->pose(ia, fa), m_scratch_a);
-        check::detail::place(sb.shape, sb.motion->pose(ib, fb), m_scratch_b);
+        check::detail::place(sa.shape, sa.local->pose(sa.local->at(t)), m_scratch_a);
+        check::detail::place(sb.shape, sb.local->pose(sb.local->at(t)), m_scratch_b);
         PairSample s;
         s.t = t;
         s.pos_a = m_scratch_a.position;
@@ -130,9 +128,8 @@ private:
         m_instant = m_clock->instant();
         for (const std::uint32_t k : m_clock->present()) {
             detail::ExerciseShip& s = m_ships[k];
-            s.cur = m_clock->fix(k);
-            s.f = m_clock->fraction(k);
-            s.pos = m_pos[k] = s.motion->position(s.cur, s.f);
+            s.at = m_clock->where(k);
+            s.pos = m_pos[k] = s.local->position(s.at);
         }
         m_broad->near_pairs(m_clock->present(), m_pos, m_clock->joined(), m_index, m_near);
         while (m_states.size() < m_index.size()) {
@@ -243,13 +240,13 @@ private:
 
     ShipAt ship_at(std::uint32_t k, double t, XY* position) const {
         const detail::ExerciseShip& s = m_ships[k];
-        const auto [i, f] = detail::locate(s.track->fixes, t);
-        const check::LocalPose pose = s.motion->pose(i, f);
+        const Where w = s.local->at(t);
+        const check::LocalPose pose = s.local->pose(w);
         ShipAt out;
         out.track = k;
         out.position = m_frame.inverse(pose.position);
-        out.heading_deg = s.motion->heading(i, f);
-        out.fix_index = i;
+        out.heading_deg = wrap_360(s.local->heading(w));
+        out.fix_index = w.i;
         for (const XY& q : check::hull_outline(*s.hull, pose)) out.hull.push_back(m_frame.inverse(q));
         if (!out.hull.empty()) out.hull.push_back(out.hull.front());
         *position = pose.position;

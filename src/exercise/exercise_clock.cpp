@@ -8,21 +8,10 @@
 
 namespace shoal::audit::detail {
 
-double fix_fraction(const std::vector<track::Fix>& fx, std::size_t i, double t) {
-    if (i + 1 >= fx.size() || t == fx[i].time_s) return 0;
-    return (t - fx[i].time_s) / (fx[i + 1].time_s - fx[i].time_s);
-}
-
-std::pair<std::size_t, double> locate(const std::vector<track::Fix>& fx, double t) {
-    auto it = std::upper_bound(fx.begin(), fx.end(), t, [](double v, const track::Fix& x) { return v < x.time_s; });
-    const std::size_t i = it == fx.begin() ? 0 : static_cast<std::size_t>(it - fx.begin()) - 1;
-    return {i, fix_fraction(fx, i, t)};
-}
-
 ExerciseClock::ExerciseClock(std::vector<Ship> ships, double step_m) : m_ships(std::move(ships)), m_state(m_ships.size()), m_step_m(step_m) {}
 
 void ExerciseClock::step(double t, const std::function<void(double)>& at_instant) {
-    for (const std::uint32_t k : m_present) m_state[k].f = fix_fraction(*m_ships[k].fixes, m_state[k].cur, t);
+    for (const std::uint32_t k : m_present) m_state[k].f = m_ships[k].track->fraction(m_state[k].cur, t);
     at_instant(t);
     ++m_instant;
     m_joined = false;
@@ -32,7 +21,7 @@ void ExerciseClock::run(const std::function<void(double)>& at_instant) {
     // Every fix of every ship, in time order.
     std::vector<std::pair<double, std::uint32_t>> fixes;
     for (std::uint32_t k = 0; k < m_ships.size(); ++k)
-        for (const track::Fix& f : *m_ships[k].fixes) fixes.push_back({f.time_s, k});
+        for (const track::Fix& f : m_ships[k].track->track().fixes) fixes.push_back({f.time_s, k});
     std::sort(fixes.begin(), fixes.end());
     std::multiset<double> speeds;  // of the moving ships
     for (std::size_t e = 0; e < fixes.size();) {

@@ -12,21 +12,16 @@
 #include <utility>
 #include <vector>
 
-#include <shoal/track/track.hpp>
+#include "sweep/local_track.hpp"
 
 namespace shoal::audit::detail {
 
-/// Fraction of fix interval i of `fixes` at time t (0 at fix i, and past the last fix).
-double fix_fraction(const std::vector<track::Fix>& fixes, std::size_t i, double t);
-/// Fix interval and fraction at time t (within the fixes' span).
-std::pair<std::size_t, double> locate(const std::vector<track::Fix>& fixes, double t);
-
 class ExerciseClock {
 public:
-    /// One ship's fixes (strictly increasing times) and per fix interval a bound on any of
+    /// One ship's track (fix times strictly increasing) and per fix interval a bound on any of
     /// its hull points' speed (m/s), < 0 across a gap. Both must outlive the clock.
     struct Ship {
-        const std::vector<track::Fix>* fixes = nullptr;
+        const LocalTrack* track = nullptr;
         const std::vector<double>* speed = nullptr;
     };
 
@@ -39,8 +34,7 @@ public:
     std::uint64_t instant() const noexcept { return m_instant; }  ///< 0-based index of the current instant
     const std::vector<std::uint32_t>& present() const noexcept { return m_present; }  ///< present ships, in no order
     bool joined() const noexcept { return m_joined; }  ///< some ship became present at this instant
-    std::size_t fix(std::uint32_t k) const { return m_state[k].cur; }         ///< last fix at or before now
-    double fraction(std::uint32_t k) const { return m_state[k].f; }           ///< of fix interval fix(k), now
+    Where where(std::uint32_t k) const { return {m_state[k].cur, m_state[k].f}; }  ///< last fix at or before now, the fraction of its interval
     std::uint64_t entered(std::uint32_t k) const { return m_state[k].entered; }  ///< instant it last became present
 
 private:

@@ -18,10 +18,10 @@ void prepare_ship(ExerciseShip& s, const track::Track& track, const hull::Hull& 
     s.track = &track;
     s.hull = &hull;
     s.shape = check::detail::prepare(hull.contour());
-    s.local = project_fixes(track, frame);
-    s.motion.emplace(track, s.local);
-    for (const LocalFix& lf : s.local) {
-        const Eigen::Matrix2d& j = lf.jacobian;
+    s.local.emplace(track, frame, Breaks{.max_gap_s = max_gap_s});
+    const LocalTrack& local = *s.local;
+    for (std::size_t i = 0; i < local.size(); ++i) {
+        const Eigen::Matrix2d& j = local.jacobian(i);
         s.sigma_max = std::max(s.sigma_max, spectral_norm(j(0, 0), j(0, 1), j(1, 0), j(1, 1)));
     }
     s.sigma_max *= 1 + 1e-9;
@@ -30,7 +30,7 @@ void prepare_ship(ExerciseShip& s, const track::Track& track, const hull::Hull& 
     s.odometer.assign(1, 0.0);
     for (std::size_t i = 0; i + 1 < fx.size(); ++i) {
         const double dt = fx[i + 1].time_s - fx[i].time_s;
-        if (dt > max_gap_s) {
+        if (!s.local->sailed(i)) {
             s.speed.push_back(-1);
             s.odometer.push_back(s.odometer.back());
             continue;
@@ -38,8 +38,8 @@ void prepare_ship(ExerciseShip& s, const track::Track& track, const hull::Hull& 
         const double rot = std::fabs(turn(fx[i].heading_used_deg, fx[i + 1].heading_used_deg)) * deg;
         // Any hull point: the reference point's move, the turn, and the change of the
         // frame's local map (scale and convergence) over the hull's radius.
-        const Eigen::Matrix2d dj = s.local[i + 1].jacobian - s.local[i].jacobian;
-        const double moved = geo::distance(s.local[i].position, s.local[i + 1].position) + s.sigma_max * s.shape.radius * rot +
+        const Eigen::Matrix2d dj = local.jacobian(i + 1) - local.jacobian(i);
+        const double moved = geo::distance(local.position(i), local.position(i + 1)) + s.sigma_max * s.shape.radius * rot +
                              spectral_norm(dj(0, 0), dj(0, 1), dj(1, 0), dj(1, 1)) * s.shape.radius;
         s.speed.push_back(moved / dt);
         s.odometer.push_back(s.odometer.back() + moved);

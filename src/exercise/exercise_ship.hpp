@@ -1,5 +1,5 @@
 #pragma once
-/// A ship of an exercise (internal to src/exercise): its fixes projected, its motion, its hull
+/// A ship of an exercise (internal to src/exercise): its track in the local frame, its hull
 /// prepared for contact checks, bounds on how fast and how far any of its hull points moves,
 /// and its pose at the current instant (placed when first asked for, once an instant).
 
@@ -8,22 +8,21 @@
 #include <optional>
 #include <vector>
 
-#include <shoal/sweep/motion.hpp>
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/hull/hull.hpp>
 #include <shoal/track/track.hpp>
 #include "check/hull_shape.hpp"
+#include "sweep/local_track.hpp"
 
 namespace shoal::audit::detail {
 
 struct ExerciseShip {
     ExerciseShip() = default;
-    ExerciseShip(const ExerciseShip&) = delete;  // motion refers to local
+    ExerciseShip(const ExerciseShip&) = delete;  // placed once an instant: one copy
     ExerciseShip& operator=(const ExerciseShip&) = delete;
 
     const track::Track* track = nullptr;
-    std::vector<LocalFix> local;
-    std::optional<Motion> motion;
+    std::optional<LocalTrack> local;  ///< broken at gaps over max_gap_s (not at jumps)
     const hull::Hull* hull = nullptr;
     check::detail::HullShape shape;
     double sigma_max = 1;       ///< largest stretch of the frame over the track's fixes
@@ -34,11 +33,10 @@ struct ExerciseShip {
     std::vector<double> odometer;
 
     // At the current instant (while present).
-    std::size_t cur = 0;  ///< last fix at or before it
-    double f = 0;         ///< fraction of fix interval `cur`
+    Where at;             ///< the last fix at or before it, and the fraction of its interval
     geo::XY pos;          ///< reference point
     double odometer_now() const {
-        return f == 0 ? odometer[cur] : odometer[cur] + f * (odometer[cur + 1] - odometer[cur]);
+        return at.f == 0 ? odometer[at.i] : odometer[at.i] + at.f * (odometer[at.i + 1] - odometer[at.i]);
     }
     std::uint64_t posed_at = UINT64_MAX;     ///< instant of placed's pose and chunks
     std::uint64_t outlined_at = UINT64_MAX;  ///< instant of placed's outline
@@ -47,7 +45,7 @@ struct ExerciseShip {
     /// The pose and chunk capsules at instant `now`.
     const check::detail::Placed& posed(std::uint64_t now) {
         if (posed_at != now) {
-            check::detail::place_chunks(shape, motion->pose(cur, f), placed);
+            check::detail::place_chunks(shape, local->pose(at), placed);
             posed_at = now;
         }
         return placed;

@@ -6,10 +6,10 @@
 
 #include <Eigen/LU>
 
-#include <shoal/sweep/motion.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/util/error.hpp>
 #include "sweep/interval_events.hpp"
+#include "sweep/local_track.hpp"
 #include "sweep/pose_outline.hpp"
 #include "util/parse_util.hpp"
 
@@ -68,9 +68,9 @@ struct Sample {
 
 class EventBuilder {
 public:
-    EventBuilder(const track::Track& t, const geo::LocalFrame& frame, const Motion& motion, const PoseChecker& checker,
+    EventBuilder(const track::Track& t, const geo::LocalFrame& frame, const LocalTrack& local, const PoseChecker& checker,
                  const PoseChecker* unknown_heading, const SweepOptions& options, const SweepContext& context, TrackResult& out)
-        : m_track(t), m_frame(frame), m_motion(motion), m_checker(checker), m_circle(unknown_heading), m_opt(options),
+        : m_track(t), m_frame(frame), m_local(local), m_checker(checker), m_circle(unknown_heading), m_opt(options),
           m_ctx(context), m_out(out), m_corners(drawn_corners(checker.hull())),
           m_circle_corners(unknown_heading ? drawn_corners(unknown_heading->hull()) : std::vector<std::size_t>{}) {}
 
@@ -90,9 +90,9 @@ public:
     /// `where`: the contact point matters (CheckOptions::want_contact_point): only at a sample
     /// that may be an event's first contact, i.e. unless the sample before was in contact.
     check::Contact check(std::size_t i, double f, bool penetration, bool where = true) const {
-        return check(i, f, m_motion.pose(i, f), penetration, where);
+        return check(i, f, m_local.pose({i, f}), penetration, where);
     }
-    /// The same, `pose` being m_motion.pose(i, f) (placed once by the caller).
+    /// The same, `pose` being m_local.pose({i, f}) (placed once by the caller).
     /// `hint`: CheckOptions::clearance_hint_m.
     check::Contact check(std::size_t i, double f, const check::LocalPose& pose, bool penetration, bool where, double hint = INFINITY) const {
         return checker_at(i, f).check(pose, {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false,
@@ -107,7 +107,7 @@ public:
     /// `clearance_m`, under the margin and over the least clearance of the pass so far. Where
     /// the contact is, only an event's first sample reports (always checked); the clearance of
     /// such a clear pose no one reads (it is not the pass's nearest, and no clearance is
-    /// watched), only that it is near. `pose` is m_motion.pose(i, f).
+    /// watched), only that it is near. `pose` is m_local.pose({i, f}).
     check::Contact carried(std::size_t i, double f, const check::LocalPose& pose, double clearance_m) const {
         check::Contact c;
         c.collision = clearance_m == 0;
@@ -132,9 +132,9 @@ public:
     void watch(const Sample& s, bool piece_start) {
         if (!(m_opt.watch_clearance_m > 0)) return;
         ClearanceSample c;
-        c.time_s = m_motion.time(s.i, s.f);
+        c.time_s = m_local.time({s.i, s.f});
         c.clearance_m = s.contact.collision ? 0.0 : s.contact.clearance_m;
-        c.ship = m_frame.inverse(m_motion.pose(s.i, s.f).position);
+        c.ship = m_frame.inverse(m_local.pose({s.i, s.f}).position);
         c.covered = s.contact.covered;
         if (piece_start) {
             m_watch_pending.reset();
@@ -176,7 +176,7 @@ private:
 
     // The interval events' handler (interval_events.hpp): contacts are groundings (of some
     // kind), near intervals that never reach contact close passes.
-    double time(const Sample& s) const { return m_motion.time(s.i, s.f); }
+    double time(const Sample& s) const { return m_local.time({s.i, s.f}); }
     static bool contact(const Sample& s) { return s.contact.collision; }
     bool near(const Sample& s) const { return s.contact.collision || s.contact.clearance_m < m_opt.margin_m; }
     static double clearance(const Sample& s) { return s.contact.clearance_m; }
@@ -253,7 +253,7 @@ private:
         const double t0 = e.start_s;
         if (const auto stop = track::stopped_after(m_track, after < fx.size() ? after : before, t0, m_opt.motion()))
             e.stopped_after_s = *stop - t0;
-        const check::LocalPose pose = m_motion.pose(first.i, first.f);
+        const check::LocalPose pose = m_local.pose({first.i, first.f});
         e.reference_inside_m = m_checker.inside_depth(pose.position, 2 * m_checker.hull().radius() + m_opt.margin_m);
         if (std::isinf(e.reference_inside_m)) e.reference_inside_m = NAN;
         e.orientation_unknown = &checker_at(first.i, first.f) != &m_checker;
@@ -313,7 +313,7 @@ private:
         const double f_start = f_hit;
         f_hit = detail::bisect_change(f_clear, f_hit, duration, m_opt.time_tolerance_s, 50, [&](double mid) {
             return checker_at(i, mid)
-                .check(m_motion.pose(i, mid), {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = false})
+                .check(m_local.pose({i, mid}), {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = false})
                 .collision;
         });
         if (forward && f_hit != f_start) hit.contact = check(i, f_hit, false);
@@ -326,8 +326,8 @@ private:
     Event make_event(EventKind kind, const Sample& s) const {
         Event e;
         e.kind = kind;
-        e.start_s = e.end_s = m_motion.time(s.i, s.f);
-        const check::LocalPose pose = m_motion.pose(s.i, s.f);
+        e.start_s = e.end_s = m_local.time({s.i, s.f});
+        const check::LocalPose pose = m_local.pose({s.i, s.f});
         e.point = m_frame.inverse(s.contact.coast_point);
         const PoseChecker& used = checker_at(s.i, s.f);
         if (const grid::CoastGrid* g = m_checker.grid()) {
@@ -351,7 +351,7 @@ private:
         e.fix_line = m_track.fixes[fix].line;
         e.orientation_unknown = &used != &m_checker;
         e.heading_source = e.orientation_unknown ? track::HeadingSource::none : m_track.fixes[fix].heading_source;
-        e.heading_deg = e.orientation_unknown ? NAN : m_motion.heading(s.i, s.f);
+        e.heading_deg = e.orientation_unknown ? NAN : wrap_360(m_local.heading({s.i, s.f}));
         for (const XY& p : check::hull_outline(used.hull(), pose)) e.hull.push_back(m_frame.inverse(p));
         if (!e.hull.empty()) e.hull.push_back(e.hull.front());
         return e;
@@ -365,14 +365,14 @@ public:
         p.time_s = p.until_s = fix.time_s;
         p.speed_kn = fix.speed_used_kn;
         const PoseChecker& used = checker_at(i, 0.0);
-        p.heading_deg = &used != &m_checker ? NAN : m_motion.heading(i, 0.0);
+        p.heading_deg = &used != &m_checker ? NAN : wrap_360(m_local.heading({i, 0.0}));
         p.contact = c.collision;
         p.clearance_m = c.collision ? 0.0 : c.clearance_m;
         p.covered = c.covered;
         p.fix_index = i;
         p.fix_line = fix.line;
         // The corners the drawn outline keeps (pose_outline.hpp), placed at the pose.
-        const std::vector<XY> outline = check::hull_outline(used.hull(), m_motion.pose(i, 0.0));
+        const std::vector<XY> outline = check::hull_outline(used.hull(), m_local.pose({i, 0.0}));
         for (const std::size_t k : &used != &m_checker ? m_circle_corners : m_corners) p.hull.push_back(m_frame.inverse(outline[k]));
         if (!p.hull.empty()) p.hull.push_back(p.hull.front());
         return p;
@@ -388,7 +388,7 @@ private:
 
     const track::Track& m_track;
     const geo::LocalFrame& m_frame;
-    const Motion& m_motion;
+    const LocalTrack& m_local;
     const PoseChecker& m_checker;
     const PoseChecker* m_circle;
     const SweepOptions& m_opt;
@@ -465,9 +465,8 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     if (t.fixes.empty()) return out;
     sum.start_s = t.fixes.front().time_s;
     sum.end_s = t.fixes.back().time_s;
-    const std::vector<LocalFix> local = project_fixes(t, frame);
-    const Motion motion(t, local);
-    EventBuilder events(t, frame, motion, checker, circle ? &*circle : nullptr, opt, ctx, out);
+    const LocalTrack lt(t, frame);
+    EventBuilder events(t, frame, lt, checker, circle ? &*circle : nullptr, opt, ctx, out);
     const double radius = std::max(checker.hull().radius(), circle ? circle->hull().radius() : 0.0);
 
     // Hull motion (metres) that may pass before the next check: what the last check proved clear.
@@ -558,7 +557,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             have_prev = false;
         } else {
             // Sweep from fix i-1 to fix i: no hull point moves more than step between checks.
-            const XY d = local[i].position - local[i - 1].position;
+            const XY d = lt.position(i) - lt.position(i - 1);
             sum.distance_m += std::hypot(d.x, d.y);
             const double rot = std::fabs(turn(t.fixes[i - 1].heading_used_deg, t.fixes[i].heading_used_deg)) * deg;
             const double motion_m = std::hypot(d.x, d.y) + radius * rot;
@@ -574,7 +573,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
                 // Proved in contact by the last fix's penetration, or near and not the nearest by
                 // the last clearance checked, or checked.
                 const PoseChecker& by = events.checker_at(s.i, s.f);
-                const check::LocalPose pose = motion.pose(s.i, s.f);
+                const check::LocalPose pose = lt.pose({s.i, s.f});
                 if (still_in_contact(by, pose)) {
                     s.contact = events.carried(s.i, s.f, pose, 0);
                 } else if (const double near = known_near(by, pose); !std::isnan(near)) {
@@ -593,7 +592,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         // contact's deepest (penetration moves no more than the hull's points), adds nothing
         // to its event: it is not checked, and that last fix stays the reference.
         const PoseChecker& at_fix = events.checker_at(i, 0.0);
-        const check::LocalPose pose = motion.pose(i, 0.0);
+        const check::LocalPose pose = lt.pose({i, 0.0});
         if (continues && still_in_contact(at_fix, pose) && contact_depth_m + slack(apart(contact_pose, pose)) <= events.contact_depth()) {
             s.contact = events.carried(i, 0.0, pose, 0);
         } else {
@@ -615,7 +614,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             if (!take) {
                 const Pose& last = out.poses.back();
                 const double dt = t.fixes[i].time_s - last.time_s;
-                const XY d = local[i].position - local[last.fix_index].position;
+                const XY d = lt.position(i) - lt.position(last.fix_index);
                 take = (dt >= opt.pose_interval_s && std::hypot(d.x, d.y) >= opt.pose_distance_m) || dt >= opt.pose_max_interval_s;
             }
             if (state != last_state && !first && pending) keep(events.pose_at(pending->first, pending->second));  // the fix before the change

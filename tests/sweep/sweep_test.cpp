@@ -421,7 +421,7 @@ TEST(Sweep, CarriedContactsAreTheFullChecks) {
 }  // namespace
 }  // namespace shoal::audit
 
-#include <shoal/sweep/motion.hpp>
+#include "sweep/local_track.hpp"
 
 namespace shoal::audit {
 namespace {
@@ -429,7 +429,7 @@ namespace {
 /// project_fixes takes the Jacobian from linear models around anchors every ~2 km; it must
 /// match the frame's own Jacobian at each fix to far better than 2.5e-5 (1 cm over 400 m),
 /// also 60 km from the central meridian at 60 N, on a track that wanders off its anchor line.
-TEST(Motion, JacobianFromAnchorsMatchesTheFrameAtEveryFix) {
+TEST(LocalTrack, JacobianFromAnchorsMatchesTheFrameAtEveryFix) {
     const geo::LocalFrame f = geo::LocalFrame::transverse_mercator({24.0, 60.0});
     track::Track t;
     t.id = "wander";
@@ -611,14 +611,13 @@ TEST(Sweep, KeptPosesDrawTheHullsOutlineWithinOnePercentOfItsLength) {
             o.pose_interval_s = 0;  // every fix
             const SweepContext ctx_circle{.unknown_heading = &round};
             const TrackResult r = sweep_track(t, f, fast, o, k == 5 ? ctx_circle : SweepContext{});
-            const std::vector<LocalFix> fixes_local = project_fixes(t, f);
-            const Motion motion(t, fixes_local);
+            const LocalTrack motion(t, f);
             ASSERT_EQ(r.poses.size(), t.fixes.size()) << t.id;
             for (const Pose& pose : r.poses) {
                 SCOPED_TRACE(t.id + " fix " + std::to_string(pose.fix_index));
                 const hull::Hull& used = k == 5 ? circle : hull;
                 std::vector<geo::LonLat> full;
-                for (const XY& q : check::hull_outline(used, motion.pose(pose.fix_index, 0.0))) full.push_back(f.inverse(q));
+                for (const XY& q : check::hull_outline(used, motion.pose({pose.fix_index, 0.0}))) full.push_back(f.inverse(q));
                 full.push_back(full.front());
                 ASSERT_GE(pose.hull.size(), pose_outline_min_corners + 1);
                 EXPECT_LT(pose.hull.size(), full.size()) << "fewer points";
@@ -692,15 +691,14 @@ TEST(Sweep, AGroundingsPointIsWhereHullAndCoastMeetAtItsStart) {
             t.fixes.push_back(fix);
         }
         const TrackResult r = sweep_track(t, f, checker, {});
-        const std::vector<LocalFix> local = project_fixes(t, f);
-        const Motion motion(t, local);
+        const LocalTrack motion(t, f);
         for (const Event& e : r.events) {
             if (e.kind != EventKind::grounding) continue;
             ++groundings;
             std::size_t i = 0;
             while (i + 2 < t.fixes.size() && t.fixes[i + 1].time_s <= e.start_s) ++i;
             const double frac = (e.start_s - t.fixes[i].time_s) / (t.fixes[i + 1].time_s - t.fixes[i].time_s);
-            std::vector<XY> ring = check::hull_outline(hull, motion.pose(i, frac));
+            std::vector<XY> ring = check::hull_outline(hull, motion.pose({i, frac}));
             ring.push_back(ring.front());
             const XY q = f.forward(e.point);
             double to_outline2 = INFINITY;

@@ -1,11 +1,12 @@
-#include <shoal/sweep/motion.hpp>
+// A track in the local frame (see local_track.hpp).
+#include "sweep/local_track.hpp"
 
 #include <Eigen/LU>
-#include <utility>
-
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 
 #include <shoal/util/error.hpp>
 
@@ -27,6 +28,12 @@ double turn(double a, double b) {
     if (d > 180) d -= 360;
     if (d <= -180) d += 360;
     return d;
+}
+
+double wrap_360(double a) noexcept {
+    a = std::fmod(a, 360.0);
+    if (a < 0) a += 360.0;
+    return a >= 360.0 ? 0.0 : a;  // -1e-17 + 360 rounds to 360
 }
 
 namespace {
@@ -63,11 +70,14 @@ constexpr double anchor_arm_m = 1000.0;
 
 }  // namespace
 
-std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame& frame) {
+namespace {
+
+/// Every fix of `t` in `frame` (one batch through PROJ) into xs, ys; InputError naming the
+/// track, the file and the line of the first fix that cannot be projected.
+void project_positions(const track::Track& t, const geo::LocalFrame& frame, std::vector<double>& xs, std::vector<double>& ys) {
     const std::size_t n = t.fixes.size();
-    // One projected point per fix; the Jacobian (scale and meridian convergence) from a linear
-    // model around anchors every ~2 km: at the anchor, 1 km east and 1 km north of it.
-    std::vector<double> xs(n), ys(n);
+    xs.resize(n);
+    ys.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         xs[i] = t.fixes[i].position.lon;
         ys[i] = t.fixes[i].position.lat;
@@ -80,6 +90,17 @@ std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame
                       f.line, f.position.lat, f.position.lon, frame.description().c_str());
         throw InputError("track '" + t.id + "' in '" + t.file + "': " + buf);
     }
+}
+
+}  // namespace
+
+std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame& frame) {
+    const std::size_t n = t.fixes.size();
+    // One projected point per fix; the Jacobian (scale and meridian convergence) from a linear
+    // model around anchors every ~2 km: at the anchor, 1 km east and 1 km north of it.
+    std::vector<double> xs, ys;
+    project_positions(t, frame, xs, ys);
+    std::size_t bad = 0;
     std::vector<std::size_t> anchor_of(n);
     std::vector<std::size_t> anchors;
     for (std::size_t i = 0; i < n; ++i) {
@@ -115,25 +136,55 @@ std::vector<LocalFix> project_fixes(const track::Track& t, const geo::LocalFrame
     return out;
 }
 
-check::LocalPose Motion::pose(std::size_t i, double f) const {
-    const track::Fix& a = m_track.fixes[i];
-    if (f == 0 || i + 1 >= m_track.fixes.size()) return {m_local[i].position, m_local[i].jacobian * ship_to_en(a.heading_used_deg)};
-    const track::Fix& b = m_track.fixes[i + 1];
-    const double h = a.heading_used_deg + f * turn(a.heading_used_deg, b.heading_used_deg);
-    const Eigen::Matrix2d j = (1 - f) * m_local[i].jacobian + f * m_local[i + 1].jacobian;
-    return {m_local[i].position + f * (m_local[i + 1].position - m_local[i].position), j * ship_to_en(h)};
+LocalTrack::LocalTrack(const track::Track& t, const geo::LocalFrame& frame, Breaks breaks, Placing placing) : m_track(t) {
+    const std::size_t n = t.fixes.size();
+    if (placing == Placing::poses) {
+        for (const LocalFix& l : project_fixes(t, frame)) {
+            m_position.push_back(l.position);
+            m_jacobian.push_back(l.jacobian);
+        }
+    } else {
+        std::vector<double> xs, ys;
+        project_positions(t, frame, xs, ys);
+        m_position.reserve(n);
+        for (std::size_t i = 0; i < n; ++i) m_position.push_back({xs[i], ys[i]});
+    }
+    for (std::size_t i = 0; i + 1 < n; ++i)
+        m_sailed.push_back(!(t.fixes[i + 1].time_s - t.fixes[i].time_s > breaks.max_gap_s) && !(breaks.at_jumps && t.fixes[i + 1].jump_before));
+    for (const geo::XY& p : m_position) {
+        m_lo = {std::min(m_lo.x, p.x), std::min(m_lo.y, p.y)};
+        m_hi = {std::max(m_hi.x, p.x), std::max(m_hi.y, p.y)};
+    }
 }
 
-double Motion::time(std::size_t i, double f) const {
-    if (f == 0 || i + 1 >= m_track.fixes.size()) return m_track.fixes[i].time_s;
-    return m_track.fixes[i].time_s + f * (m_track.fixes[i + 1].time_s - m_track.fixes[i].time_s);
+namespace {
+/// The last fix at or before t (0 before the first).
+std::size_t fix_at_or_before(const std::vector<track::Fix>& fx, double t) {
+    const auto it = std::upper_bound(fx.begin(), fx.end(), t, [](double v, const track::Fix& x) { return v < x.time_s; });
+    return it == fx.begin() ? 0 : static_cast<std::size_t>(it - fx.begin()) - 1;
+}
+}  // namespace
+
+Where LocalTrack::at(double t) const {
+    if (m_track.fixes.empty() || t < time(0)) return {};
+    const std::size_t i = fix_at_or_before(m_track.fixes, t);
+    return {i, fraction(i, t)};
 }
 
-double Motion::heading(std::size_t i, double f) const {
-    const track::Fix& a = m_track.fixes[i];
-    if (f == 0 || i + 1 >= m_track.fixes.size()) return a.heading_used_deg;
-    const double h = a.heading_used_deg + f * turn(a.heading_used_deg, m_track.fixes[i + 1].heading_used_deg);
-    return std::fmod(h + 360.0, 360.0);
+std::size_t LocalTrack::interval(double t) const { return std::min(fix_at_or_before(m_track.fixes, t), size() - 2); }
+
+bool LocalTrack::present(double t) const {
+    if (m_track.fixes.empty() || t < time(0) || t > time(size() - 1)) return false;
+    const std::size_t i = fix_at_or_before(m_track.fixes, t);
+    return time(i) == t || sailed(i);
+}
+
+check::LocalPose LocalTrack::pose(Where w) const {
+    if (m_jacobian.size() != size()) throw UsageError("LocalTrack::pose: the track was projected for positions only (Placing::positions)");
+    if (w.f == 0 || w.i + 1 >= size()) return {m_position[w.i], m_jacobian[w.i] * ship_to_en(m_track.fixes[w.i].heading_used_deg)};
+    const double h = heading(w);
+    const Eigen::Matrix2d j = (1 - w.f) * m_jacobian[w.i] + w.f * m_jacobian[w.i + 1];
+    return {position(w), j * ship_to_en(h)};
 }
 
 }  // namespace shoal::audit
