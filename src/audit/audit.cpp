@@ -635,7 +635,7 @@ void run_exercises(const ExerciseTracks& ex, const AuditOptions& options, const 
 /// Stage "assessment": every trainee scored against the criteria.
 void assess_trainees(const ExerciseTracks& ex, const grid::CoastGrid& grid, const hull::Hull& default_hull, const AuditOptions& options,
                      const geo::LocalFrame& frame, AuditResult& result) {
-    AssessInput in{result, ex.kept_of, grid, frame, default_hull.draught(), options.sweep.step_m, options.sweep.max_gap_s,
+    AssessInput in{result.tracks, result.encounters, ex.kept_of, grid, frame, default_hull.draught(), options.sweep.step_m, options.sweep.max_gap_s,
                    options.sweep.time_tolerance_s, options.max_encounters_per_ship};
     result.assessment = assess(*options.assessment, in);
     result.has_assessment = true;

@@ -11,7 +11,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <shoal/audit/audit.hpp>
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/track/time.hpp>
@@ -430,7 +429,7 @@ public:
     Assessor(const Assessment& a, const AssessInput& in) : m_a(a), m_in(in) {}
 
     AssessmentResult run() {
-        const AuditResult& r = m_in.result;
+        const std::vector<TrackResult>& swept = m_in.swept;
         m_out.criteria = m_a.criteria;
         m_out.pass_mark = m_a.pass_mark;
         m_out.source = m_a.source;
@@ -438,8 +437,8 @@ public:
             if (c.kind == CriterionKind::under_keel_clearance && m_in.grid.charted_depths().empty())
                 m_out.warnings.push_back("assessment: the grid holds no depth areas or dangers, so " + c.id +
                                          " (under-keel clearance) is breached only where a ship's reference point lies on land");
-        for (std::size_t k = 0; k < r.tracks.size(); ++k) {
-            const TrackSummary& s = r.tracks[k].summary;
+        for (std::size_t k = 0; k < swept.size(); ++k) {
+            const TrackSummary& s = swept[k].summary;
             if (s.role != Role::trainee) continue;
             const track::Track* t = k < m_in.tracks.size() ? m_in.tracks[k] : nullptr;
             const Sailing* lt = t && !t->fixes.empty() ? &local(k) : nullptr;
@@ -496,11 +495,11 @@ public:
     }
 
 private:
-    const TrackSummary& summary(std::size_t k) const { return m_in.result.tracks[k].summary; }
+    const TrackSummary& summary(std::size_t k) const { return m_in.swept[k].summary; }
 
     /// Track k in local metres (projected once).
     const Sailing& local(std::size_t k) {
-        if (m_local.size() < m_in.result.tracks.size()) m_local.resize(m_in.result.tracks.size());
+        if (m_local.size() < m_in.swept.size()) m_local.resize(m_in.swept.size());
         if (!m_local[k]) m_local[k].emplace(*m_in.tracks[k], m_in.frame, m_in.max_gap_s);
         return *m_local[k];
     }
@@ -576,11 +575,11 @@ private:
     }
 
     void land_clearance(std::size_t k, const Criterion& cr) {
-        const auto& samples = m_in.result.tracks[k].clearance;
+        const auto& samples = m_in.swept[k].clearance;
         // A contact the audit does not call a grounding (alongside a quay, in contact from the
         // first fix, in a berth or harbour area) is no breach of clearance: its samples are
         // left out, and the samples on either side of it are not joined across it.
-        const auto& events = m_in.result.tracks[k].events;
+        const auto& events = m_in.swept[k].events;
         const auto excused = [&](double t) {
             return std::any_of(events.begin(), events.end(), [t](const Event& e) {
                 return (e.kind == EventKind::alongside || e.kind == EventKind::contact_at_start ||
@@ -700,16 +699,16 @@ private:
     }
 
     void cpa_each(std::size_t k, const Criterion& cr, const Sailing& a, std::vector<std::tuple<double, std::size_t, std::size_t, std::size_t>>& by_other) {
-        const AuditResult& r = m_in.result;
+        const std::vector<TrackResult>& swept = m_in.swept;
         const double L = cr.limit;
-        for (std::size_t m = 0; m < r.tracks.size(); ++m) {
+        for (std::size_t m = 0; m < swept.size(); ++m) {
             const std::size_t from = m_track.size();
             const auto note = [&] {
                 double closest = INFINITY;
                 for (std::size_t j = from; j < m_track.size(); ++j) closest = std::min(closest, m_track[j].breach.value);
                 if (m_track.size() > from) by_other.emplace_back(closest, m, from, m_track.size());
             };
-            if (m == k || r.tracks[m].summary.exercise != summary(k).exercise) continue;
+            if (m == k || swept[m].summary.exercise != summary(k).exercise) continue;
             const track::Track* tb = m < m_in.tracks.size() ? m_in.tracks[m] : nullptr;
             if (!tb || tb->fixes.empty()) continue;
             // Never at the same time, or never within the limit of each other's box: no breach.
@@ -808,11 +807,11 @@ private:
 
     /// The trainee's conduct under the rules in each situation with another ship of its exercise.
     void colreg(std::size_t k, const Criterion& cr, const track::Track& own) {
-        const AuditResult& r = m_in.result;
+        const std::vector<TrackResult>& swept = m_in.swept;
         std::vector<const track::Track*> others;
         std::vector<std::size_t> index;
-        for (std::size_t m = 0; m < r.tracks.size(); ++m) {
-            if (m == k || r.tracks[m].summary.exercise != summary(k).exercise) continue;
+        for (std::size_t m = 0; m < swept.size(); ++m) {
+            if (m == k || swept[m].summary.exercise != summary(k).exercise) continue;
             const track::Track* t = m < m_in.tracks.size() ? m_in.tracks[m] : nullptr;
             if (!t || t->fixes.size() < 2) continue;
             others.push_back(t);
@@ -861,7 +860,7 @@ private:
     }
 
     void close_quarters(std::size_t k, const Criterion& cr) {
-        for (const Encounter& e : m_in.result.encounters.events) {
+        for (const Encounter& e : m_in.encounters.events) {
             if (e.kind != EncounterKind::close_quarters || (e.a.track != k && e.b.track != k)) continue;
             const double duration = e.end_s - e.start_s;
             if (!(duration > cr.limit)) continue;

@@ -38,6 +38,8 @@
 #include <vector>
 
 #include <shoal/exercise/colreg_conduct.hpp>
+#include <shoal/exercise/encounters.hpp>
+#include <shoal/sweep/sweep.hpp>
 #include <shoal/geo/point.hpp>
 
 namespace shoal::geo { class LocalFrame; }
@@ -45,8 +47,6 @@ namespace shoal::grid { class CoastGrid; }
 namespace shoal::track { struct Track; }
 
 namespace shoal::audit {
-
-struct AuditResult;
 
 enum class CriterionKind {
     land_clearance,       ///< clearance of the hull to land or hazards at least `limit` metres
@@ -171,7 +171,8 @@ struct AssessmentResult {
 /// What assess() needs besides the audit: the swept tracks (resolved motion), aligned with
 /// `result.tracks` (null: the track is not assessed), and how the run was swept.
 struct AssessInput {
-    const AuditResult& result;
+    const std::vector<TrackResult>& swept;  ///< every track of the run as swept (AuditResult::tracks)
+    const EncounterResult& encounters;     ///< the run's encounters (AuditResult::encounters)
     std::vector<const track::Track*> tracks;
     const grid::CoastGrid& grid;
     const geo::LocalFrame& frame;
