@@ -1,9 +1,6 @@
 // A run's fixes shuffled by vessel into partitions on disk (audit/partition.hpp).
 #include <shoal/audit/partition.hpp>
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
 #define XXH_INLINE_ALL
 #include <xxhash.h>
@@ -11,7 +8,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
-#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +23,7 @@
 #include <shoal/util/output_file.hpp>
 
 #include "read_files.hpp"
+#include "util/mapped_file.hpp"
 
 namespace shoal::audit {
 
@@ -60,46 +57,15 @@ private:
     std::string m_out;
 };
 
-/// A file shoal wrote, mapped read-only (partition files run to hundreds of megabytes a task:
-/// read into a string, each would be zeroed and copied first).
-class Mapped {
-public:
-    explicit Mapped(const std::string& path) {
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd < 0) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
-        struct stat st {};
-        if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-            const int e = errno;
-            ::close(fd);
-            throw InputError(path + ": cannot read (" + (S_ISREG(st.st_mode) ? std::strerror(e) : "not a regular file") + ")");
-        }
-        m_size = static_cast<std::size_t>(st.st_size);
-        if (m_size > 0) {
-            void* p = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE, fd, 0);
-            const int e = errno;
-            ::close(fd);
-            if (p == MAP_FAILED) throw InputError(path + ": cannot read (" + std::strerror(e) + ")");
-            ::madvise(p, m_size, MADV_SEQUENTIAL);
-            m_data = static_cast<const char*>(p);
-        } else {
-            ::close(fd);
-        }
-    }
-    ~Mapped() {
-        if (m_data) ::munmap(const_cast<char*>(m_data), m_size);
-    }
-    Mapped(const Mapped&) = delete;
-    Mapped& operator=(const Mapped&) = delete;
-    std::string_view bytes() const noexcept { return {m_data ? m_data : "", m_size}; }
-
-private:
-    const char* m_data = nullptr;
-    std::size_t m_size = 0;
-};
-
 class Reader {
 public:
-    explicit Reader(std::string path) : m_file(std::make_unique<Mapped>(path)), m_in(m_file->bytes()), m_path(std::move(path)) {}
+    // Partition files run to hundreds of megabytes a task: mapped, not read into a zeroed string.
+    explicit Reader(std::string path)
+        : m_file(std::make_unique<detail::MappedFile>(path, [&](detail::MappedFile::Failure, const std::string& reason) {
+              return path + ": cannot read (" + reason + ")";
+          })),
+          m_in(m_file->bytes().data(), m_file->bytes().size()),
+          m_path(std::move(path)) {}
     void raw(void* p, std::size_t n) {
         if (n > m_in.size() - m_at) throw InputError(m_path + ": a partition file cut short (was it written by another run, or is the disk full?)");
         std::memcpy(p, m_in.data() + m_at, n);
@@ -141,7 +107,7 @@ public:
     const std::string& path() const noexcept { return m_path; }
 
 private:
-    std::unique_ptr<Mapped> m_file;
+    std::unique_ptr<detail::MappedFile> m_file;
     std::string_view m_in;
     std::size_t m_at = 0;
     std::string m_path;

@@ -1,15 +1,10 @@
 #include <shoal/grid/grid_file.hpp>
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -19,6 +14,8 @@
 
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/error.hpp>
+
+#include "util/mapped_file.hpp"
 
 namespace shoal::grid {
 
@@ -108,56 +105,6 @@ private:
 constexpr std::uint32_t byte_order_mark = 0x01020304u;
 constexpr std::size_t header_size = 8 + 4 + 4 + 8 + 8;
 
-/// A grid file's bytes, mapped read-only (not copied: the kernel's page cache is read in place).
-class MappedFile {
-public:
-    explicit MappedFile(const std::string& path) {
-        std::error_code ec;
-        if (fs::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a grid file");
-        if (const auto st = fs::status(path, ec); !ec && fs::exists(st) && !fs::is_regular_file(st))
-            throw InputError("'" + path + "' is not a regular file (a device, a pipe or a FIFO), not a grid file");
-        m_fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        if (m_fd < 0) throw InputError("cannot open grid file '" + path + "': " + std::strerror(errno));
-        struct stat st{};
-        if (::fstat(m_fd, &st) != 0 || st.st_size < 0) fail(path);
-        m_size = static_cast<std::size_t>(st.st_size);
-        if (m_size == 0) return;
-        void* p = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE, m_fd, 0);
-        if (p == MAP_FAILED) {  // a file system that cannot map: read it
-            m_copy.resize(m_size);
-            std::size_t got = 0;
-            while (got < m_size) {
-                const ssize_t n = ::read(m_fd, m_copy.data() + got, m_size - got);
-                if (n < 0 && errno == EINTR) continue;
-                if (n <= 0) fail(path);
-                got += static_cast<std::size_t>(n);
-            }
-            m_data = m_copy.data();
-            return;
-        }
-        m_map = p;
-        m_data = static_cast<const char*>(p);
-    }
-    ~MappedFile() {
-        if (m_map) ::munmap(m_map, m_size);
-        if (m_fd >= 0) ::close(m_fd);
-    }
-    MappedFile(const MappedFile&) = delete;
-    MappedFile& operator=(const MappedFile&) = delete;
-    std::span<const char> bytes() const noexcept { return {m_data, m_size}; }
-
-private:
-    [[noreturn]] void fail(const std::string& path) {
-        ::close(m_fd);
-        m_fd = -1;
-        throw InputError("cannot read grid file '" + path + "'");
-    }
-    int m_fd = -1;
-    void* m_map = nullptr;
-    const char* m_data = nullptr;
-    std::size_t m_size = 0;
-    std::vector<char> m_copy;
-};
 
 }  // namespace
 
@@ -241,7 +188,12 @@ void GridFile::save(const CoastGrid& grid, const std::string& path) {
 CoastGrid GridFile::load(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
-    const MappedFile file(path);
+    if (fs::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a grid file");
+    if (const auto st = fs::status(path, ec); !ec && fs::exists(st) && !fs::is_regular_file(st))
+        throw InputError("'" + path + "' is not a regular file (a device, a pipe or a FIFO), not a grid file");
+    const detail::MappedFile file(path, [&](detail::MappedFile::Failure f, const std::string& reason) {
+        return f == detail::MappedFile::Failure::open ? "cannot open grid file '" + path + "': " + reason : "cannot read grid file '" + path + "'";
+    });
     return parse(file.bytes(), path);
 }
 
