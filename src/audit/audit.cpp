@@ -522,7 +522,7 @@ ExerciseTracks tally(const TrackSource& source, Swept& swept, const grid::CoastG
 /// exercise on its own clock; pairs of two targets are not reported; each ship lists its worst
 /// pairs, the summary counts every one.
 void run_exercises(const ExerciseTracks& ex, const AuditOptions& options, const geo::LocalFrame& frame, AuditResult& result) {
-    const auto t2 = Clock::now();
+    const auto start = Clock::now();
     EncounterOptions eo = options.encounter;
     eo.step_m = options.sweep.step_m;
     eo.max_gap_s = options.sweep.max_gap_s;
@@ -629,7 +629,7 @@ void run_exercises(const ExerciseTracks& ex, const AuditOptions& options, const 
         return std::tie(x.start_s, x.a.track, x.b.track, x.kind) < std::tie(y.start_s, y.a.track, y.b.track, y.kind);
     });
     result.has_encounters = true;
-    result.encounters_s = std::chrono::duration<double>(Clock::now() - t2).count();
+    result.encounters_s = std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 /// Stage "assessment": every trainee scored against the criteria.

@@ -118,7 +118,7 @@ std::vector<std::pair<double, double>> inside_intervals(const Sailing& lt, const
     for (std::size_t k = 0; k < lt.size(); ++k) {
         if (!lt.sailed(k)) {
             // A lone fix (a piece of one fix, or the last of a piece): inside or not, no duration.
-            if ((k == 0 || !lt.sailed(k - 1)) && point_inside(lt.p(k))) add(lt.t(k), lt.t(k));
+            if (lt.gap_before(k) && point_inside(lt.p(k))) add(lt.t(k), lt.t(k));
             continue;
         }
         const XY a = lt.p(k), b = lt.p(k + 1);

@@ -15,7 +15,6 @@ constexpr double deg = std::numbers::pi / 180.0;
 }  // namespace
 
 void prepare_ship(ExerciseShip& s, const track::Track& track, const hull::Hull& hull, const geo::LocalFrame& frame, double max_gap_s) {
-    s.track = &track;
     s.hull = &hull;
     s.shape = check::detail::prepare(hull.contour());
     s.local.emplace(track, frame, Breaks{.max_gap_s = max_gap_s});

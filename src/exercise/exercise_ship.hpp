@@ -21,7 +21,6 @@ struct ExerciseShip {
     ExerciseShip(const ExerciseShip&) = delete;  // placed once an instant: one copy
     ExerciseShip& operator=(const ExerciseShip&) = delete;
 
-    const track::Track* track = nullptr;
     std::optional<LocalTrack> local;  ///< broken at gaps over max_gap_s (not at jumps)
     const hull::Hull* hull = nullptr;
     check::detail::HullShape shape;
@@ -35,9 +34,7 @@ struct ExerciseShip {
     // At the current instant (while present).
     Where at;             ///< the last fix at or before it, and the fraction of its interval
     geo::XY pos;          ///< reference point
-    double odometer_now() const {
-        return at.f == 0 ? odometer[at.i] : odometer[at.i] + at.f * (odometer[at.i + 1] - odometer[at.i]);
-    }
+    double odometer_now() const { return local->interpolate(odometer, at); }
     std::uint64_t posed_at = UINT64_MAX;     ///< instant of placed's pose and chunks
     std::uint64_t outlined_at = UINT64_MAX;  ///< instant of placed's outline
     check::detail::Placed placed;

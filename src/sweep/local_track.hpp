@@ -45,7 +45,7 @@ struct Breaks {
     bool at_jumps = false;
 };
 
-/// What a LocalTrack places: hulls (`poses`: the frame's Jacobian at each fix too, 12 more
+/// What a LocalTrack places: hulls (`poses`: the frame's Jacobian at each fix too, 15 more
 /// projected points every 2 km of track) or reference points only (`positions`: one projected
 /// point per fix; pose() refused).
 enum class Placing { poses, positions };
