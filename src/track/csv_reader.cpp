@@ -142,7 +142,6 @@ Columns map_columns(const std::vector<std::string_view>& header, const std::stri
     return c;
 }
 
-
 /// A fix waiting for a date: its time of day and day number.
 struct Pending {
     std::size_t track, fix;
