@@ -1,7 +1,8 @@
 // The `shoal` executable's own probe of a grid file: no GDAL. It runs only a command line it can
 // run exactly as the full front end (main.cpp, in the module) would: `probe` parsed by the same
 // options, --coast one .shoalgrid, the ship file and the poses plain regular files (not
-// compressed, not standard input, a FIFO or a /vsi path), within their size limits. Anything
+// compressed, not standard input, a FIFO or a /vsi path), within their size limits, the grid in
+// shoal's own frame (no PROJ: frame_without_proj.cpp). Anything
 // else is left, untouched, to the module: nothing has been printed or read from a stream then.
 #include "launcher.hpp"
 
@@ -17,7 +18,9 @@
 
 #include "probe_core.hpp"
 #include "process.hpp"
+#include <shoal/geo/local_frame.hpp>
 #include <shoal/grid/grid_cache.hpp>
+#include <shoal/grid/grid_file.hpp>
 #include <shoal/version.hpp>
 
 namespace shoal::cli {
@@ -76,6 +79,8 @@ bool run_grid_probe(int argc, char** argv, int& rc) {
                 if (value.empty()) return false;
     const CoastAndShip& opts = args.opts;
     if (opts.coast.size() != 1 || opts.coast[0].rfind("/vsi", 0) == 0 || !grid::looks_like_grid(opts.coast[0])) return false;
+    // shoal's own transverse Mercator is computed here; any other frame needs PROJ (the module).
+    if (!geo::LocalFrame::is_own_transverse_mercator(grid::GridFile::frame_definition(opts.coast[0]))) return false;
     std::string ship_text, pose_text;
     if (!opts.ship_file.empty() && !read_plain_file(opts.ship_file, hull::Hull::max_file_bytes, ship_text)) return false;
     if (!read_plain_file(args.poses, io::max_pose_file_bytes, pose_text)) return false;

@@ -197,6 +197,23 @@ CoastGrid GridFile::load(const std::string& path) {
     return parse(file.bytes(), path);
 }
 
+std::string GridFile::frame_definition(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    // The header, the grid's parameters (3 doubles, 2 ints, 3 doubles, 1 byte), the frame.
+    constexpr std::size_t before_frame = header_size + 3 * 8 + 2 * 4 + 3 * 8 + 1;
+    constexpr std::size_t most = 65536;  // parse's limit of a frame definition
+    std::vector<char> head(before_frame + 8);
+    if (!in.read(head.data(), static_cast<std::streamsize>(head.size()))) return "";
+    std::uint32_t version = 0;
+    std::uint64_t n = 0;
+    std::memcpy(&version, head.data() + 8, 4);
+    std::memcpy(&n, head.data() + before_frame, 8);
+    if (std::memcmp(head.data(), grid_magic, 8) != 0 || version != grid_format_version || n == 0 || n > most) return "";
+    std::string frame(static_cast<std::size_t>(n), '\0');
+    if (!in.read(frame.data(), static_cast<std::streamsize>(n))) return "";
+    return frame;
+}
+
 CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& name) { return parse(std::span<const char>(bytes), name); }
 
 CoastGrid GridFile::parse(std::span<const char> bytes, const std::string& name) {

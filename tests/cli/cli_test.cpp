@@ -243,6 +243,17 @@ TEST(Cli, ProbeOfAGridRunsWithoutGdalAndWritesWhatTheFullFrontEndWrites) {
     EXPECT_EQ(grid_run.out, plain.out);
     EXPECT_EQ(grid_run.err.find("libgdal"), std::string::npos) << "a probe of a grid loaded GDAL";
     EXPECT_EQ(grid_run.err.find("libshoal_cli_full"), std::string::npos) << "a probe of a grid loaded the full module";
+    EXPECT_EQ(grid_run.err.find("libproj"), std::string::npos) << "a probe of a grid in shoal's own frame loaded PROJ";
+    // A grid in a user's CRS needs PROJ: the module probes it (the executable has no PROJ).
+    const std::string utm_grid = (temp_dir() / "solent-utm.shoalgrid").string();
+    ASSERT_EQ(shoal("import " + data("coast/uk_solent_land.geojson") + " --crs EPSG:32630 -o '" + utm_grid + "'").status, 0);
+    const Outcome utm_run = run_command(env + "probe --coast '" + utm_grid + "' --dims 100,20,8,8 '" + poses.string() + "'", err);
+    ASSERT_EQ(utm_run.status, 0) << utm_run.err;
+    EXPECT_NE(utm_run.err.find("libshoal_cli_full"), std::string::npos) << "the executable probed a grid in a user's CRS";
+    const Outcome utm_gzipped = shoal("probe --coast '" + utm_grid + "' --dims 100,20,8,8 '" + poses.string() + ".gz'");
+    ASSERT_EQ(utm_gzipped.status, 0) << utm_gzipped.err;
+    EXPECT_EQ(utm_run.out, utm_gzipped.out);
+    EXPECT_EQ(lines_of(utm_run.out), 5u) << utm_run.out;
     const Outcome coast_run = run_command(env + "probe --coast " + data("coast/uk_solent_land.geojson") + " --dims 100,20,8,8 '" + poses.string() + "'", err);
     ASSERT_EQ(coast_run.status, 0) << coast_run.err;
     EXPECT_EQ(coast_run.out, plain.out);

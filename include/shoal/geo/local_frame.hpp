@@ -44,9 +44,12 @@ public:
     /// Human-readable description, e.g. "transverse Mercator centred on 23.91E 60.10N".
     const std::string& description() const noexcept { return m_description; }
 
-    /// Whether the transformation was made from shoal's own transverse Mercator pipeline (no
-    /// GDAL parse, no search of PROJ's database; the same numbers): for tests and diagnostics.
+    /// Whether the frame is computed by shoal's own transverse Mercator (PROJ's numbers for the
+    /// pipeline of that projection, bit for bit, without PROJ): for tests and diagnostics.
     bool made_from_pipeline() const noexcept;
+    /// Whether a frame made from `definition` is shoal's own transverse Mercator, which needs no
+    /// PROJ (any other CRS is read and transformed by PROJ).
+    static bool is_own_transverse_mercator(const std::string& definition);
 
     /// Largest relative scale error of the frame over the lon/lat box, sampled on a grid.
     double max_scale_error(LonLat min, LonLat max) const;

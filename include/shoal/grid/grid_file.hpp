@@ -36,6 +36,11 @@ public:
     static CoastGrid parse(const std::vector<char>& bytes, const std::string& name);
     static CoastGrid parse(std::span<const char> bytes, const std::string& name);
     static std::vector<char> serialize(const CoastGrid& grid);
+    /// The definition of the frame a grid file is in (`geo::LocalFrame::definition()`), read from
+    /// its first bytes alone, or "" when they are not those of a grid of this format version
+    /// (`load` says what is wrong). Nothing else is checked: for a program that decides before
+    /// loading whether it can compute the frame.
+    static std::string frame_definition(const std::string& path);
 };
 
 /// True when the file starts with the grid magic (it is a grid, perhaps a damaged one).
