@@ -8,7 +8,12 @@
 // land rings). It writes probe's columns (covered is always 1: the GEOS checker has no chart
 // extent), so the answers can be compared with probe's, row by row.
 //
+// --checker polygons: the simplest careful GEOS design instead (bench/geos_tree.hpp
+// GeosPolygonTree: an STRtree of prepared land polygons, GEOSPreparedIntersects, then
+// GEOSPreparedDistance in a growing box), the peer issue 40 measures against.
+//
 // Usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS] [--jobs N]
+//                         [--checker pieces|polygons]
 
 #include <cerrno>
 #include <charconv>
@@ -41,14 +46,15 @@ void append_fixed(std::string& out, double v, int precision) {
 }
 
 int usage() {
-    std::fprintf(stderr, "usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS] [--jobs N]\n");
+    std::fprintf(stderr, "usage: bench_geos_probe --coast COAST --dims A,B,C,D POSES.csv [-o OUT.csv] [--chunk SEGMENTS] [--jobs N] "
+                         "[--checker pieces|polygons]\n");
     return 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string coast_path, dims, poses_path, output, chunk_text = "8", jobs_text = "1";
+    std::string coast_path, dims, poses_path, output, chunk_text = "8", jobs_text = "1", checker = "pieces";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const bool more = i + 1 < argc;
@@ -57,6 +63,7 @@ int main(int argc, char** argv) {
         else if ((a == "-o" || a == "--output") && more) output = argv[++i];
         else if (a == "--chunk" && more) chunk_text = argv[++i];
         else if (a == "--jobs" && more) jobs_text = argv[++i];
+        else if (a == "--checker" && more) checker = argv[++i];
         else if (!a.empty() && a[0] != '-' && poses_path.empty()) poses_path = a;
         else return usage();
     }
@@ -72,7 +79,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bench_geos_probe: --jobs '%s' is not a number of threads from 0 (every core) to 256\n", jobs_text.c_str());
         return 2;
     }
-    if (coast_path.empty() || dims.empty() || poses_path.empty()) return usage();
+    if (coast_path.empty() || dims.empty() || poses_path.empty() || (checker != "pieces" && checker != "polygons")) return usage();
     try {
         const shoal::hull::Hull hull = shoal::hull::Hull::from_dims_string(dims);
         const shoal::io::PoseFile poses = shoal::io::read_pose_csv(poses_path);
@@ -90,7 +97,11 @@ int main(int argc, char** argv) {
         // One tree a thread (each its own GEOS context): GEOS objects are not shared by threads.
         const unsigned threads = jobs ? jobs : std::max(1u, std::thread::hardware_concurrency());
         std::vector<std::unique_ptr<shoal::bench::GeosTree>> trees;
-        for (unsigned w = 0; w < threads; ++w) trees.push_back(std::make_unique<shoal::bench::GeosTree>(lines, chunk));
+        std::vector<std::unique_ptr<shoal::bench::GeosPolygonTree>> polygons;
+        for (unsigned w = 0; w < threads; ++w) {
+            if (checker == "pieces") trees.push_back(std::make_unique<shoal::bench::GeosTree>(lines, chunk));
+            else polygons.push_back(std::make_unique<shoal::bench::GeosPolygonTree>(lines));
+        }
         const std::vector<shoal::io::PoseRow>& rows = poses.poses;
         std::vector<std::string> pieces((rows.size() + shoal::check::placement_block - 1) / shoal::check::placement_block);
         auto pose_of = [&](std::size_t k) { return shoal::check::Pose{{rows[k].lon, rows[k].lat}, rows[k].heading_deg}; };
@@ -100,7 +111,8 @@ int main(int argc, char** argv) {
             out.reserve(placed.size() * 48);
             for (std::size_t i = 0; i < placed.size(); ++i) {
                 const shoal::io::PoseRow& p = rows[from + i];
-                const shoal::bench::Answer a = trees[worker]->check(shoal::check::hull_outline(hull, placed[i]), INFINITY);
+                const std::vector<shoal::geo::XY> outline = shoal::check::hull_outline(hull, placed[i]);
+                const shoal::bench::Answer a = trees.empty() ? polygons[worker]->check(outline, INFINITY) : trees[worker]->check(outline, INFINITY);
                 append_fixed(out, p.lat, 7);
                 out += ',';
                 append_fixed(out, p.lon, 7);

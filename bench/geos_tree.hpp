@@ -196,4 +196,98 @@ private:
     double m_span = 0;  // diagonal of all pieces' envelope
 };
 
+/// The GEOS-only checker as the simplest careful design has it (issue 40): the land as prepared
+/// polygons (each land shell with the holes it holds) in an STRtree. Per pose: the hull polygon;
+/// the polygons whose envelopes meet the hull's, each asked GEOSPreparedIntersects (a
+/// collision); else GEOSPreparedDistance to the polygons in the hull's envelope grown 250 m,
+/// 1 km, 4 km, ... until one lies within the grown distance (or `max_clearance`). The same
+/// answers as GeosTree.
+class GeosPolygonTree {
+public:
+    explicit GeosPolygonTree(const std::vector<shoal::coast::LocalPolyline>& lines) : m_hull(m_ctx.get()) {
+        std::vector<const std::vector<XY>*> shells, holes;
+        for (const auto& l : lines) {
+            if (!l.land_left || l.points.size() < 4 || l.points.front() != l.points.back()) continue;
+            (signed_area2(l.points) > 0 ? shells : holes).push_back(&l.points);
+        }
+        // Each hole to the shell that holds its first point.
+        std::vector<std::vector<std::vector<XY>>> rings(shells.size());
+        std::vector<GeomPtr> plain;
+        for (std::size_t i = 0; i < shells.size(); ++i) {
+            rings[i].push_back(*shells[i]);
+            plain.push_back(shoal::geo::make_polygon(m_ctx, {*shells[i]}));
+        }
+        for (const auto* h : holes) {
+            const GeomPtr pt(GEOSGeom_createPointFromXY_r(m_ctx, h->front().x, h->front().y), {m_ctx.get()});
+            for (std::size_t i = 0; i < shells.size(); ++i)
+                if (GEOSContains_r(m_ctx, plain[i].get(), pt.get()) == 1) {
+                    rings[i].push_back(*h);
+                    break;
+                }
+        }
+        shoal::geo::Box all;
+        for (std::size_t i = 0; i < shells.size(); ++i) {
+            Land land;
+            land.geom = shoal::geo::make_polygon(m_ctx, rings[i]);
+            land.prepared = PreparedPtr(GEOSPrepare_r(m_ctx, land.geom.get()), {m_ctx.get()});
+            land.box = box_of(*shells[i]);
+            all.extend(land.box);
+            m_land.push_back(std::move(land));
+        }
+        m_span = std::hypot(all.maxx - all.minx, all.maxy - all.miny);
+        m_tree = TreePtr(GEOSSTRtree_create_r(m_ctx, 10), {m_ctx.get()});
+        for (Land& l : m_land) GEOSSTRtree_insert_r(m_ctx, m_tree.get(), l.geom.get(), &l);
+        const GeomPtr probe(GEOSGeom_createPointFromXY_r(m_ctx, 0, 0), {m_ctx.get()});
+        GEOSSTRtree_query_r(m_ctx, m_tree.get(), probe.get(), [](void*, void*) {}, nullptr);
+    }
+    GeosPolygonTree(const GeosPolygonTree&) = delete;
+    GeosPolygonTree& operator=(const GeosPolygonTree&) = delete;
+
+    Answer check(const std::vector<XY>& outline, double max_clearance) {
+        const GeomPtr hull(m_hull.make(outline), {m_ctx.get()});
+        const shoal::geo::Box hb = box_of(outline);
+        Answer a;
+        query(hb);
+        for (const Land* l : m_cand)
+            if (GEOSPreparedIntersects_r(m_ctx, l->prepared.get(), hull.get()) == 1) {
+                a.collision = true;
+                a.clearance = 0;
+                return a;
+            }
+        double best = INFINITY;
+        for (double r = std::isfinite(max_clearance) ? max_clearance : 250;; r *= 4) {
+            query(hb.grown(r));
+            for (const Land* l : m_cand) {
+                double d = INFINITY;
+                GEOSPreparedDistance_r(m_ctx, l->prepared.get(), hull.get(), &d);
+                best = std::min(best, d);
+            }
+            if (std::isfinite(max_clearance) || best <= r || r > m_span) break;
+        }
+        if (best <= max_clearance) a.clearance = best;
+        return a;
+    }
+
+private:
+    struct Land {
+        GeomPtr geom;
+        PreparedPtr prepared;  // of geom: declared after it, destroyed before it
+        shoal::geo::Box box;
+    };
+    void query(const shoal::geo::Box& q) {
+        GeomPtr rect(GEOSGeom_createRectangle_r(m_ctx, q.minx, q.miny, q.maxx, q.maxy), {m_ctx.get()});
+        m_cand.clear();
+        GEOSSTRtree_query_r(
+            m_ctx, m_tree.get(), rect.get(),
+            [](void* item, void* self) { static_cast<GeosPolygonTree*>(self)->m_cand.push_back(static_cast<const Land*>(item)); }, this);
+    }
+
+    shoal::geo::GeosContext m_ctx;
+    HullPolygon m_hull;
+    std::vector<Land> m_land;  // owns the tree's geometries: declared before it
+    TreePtr m_tree{nullptr, {m_ctx.get()}};
+    std::vector<const Land*> m_cand;
+    double m_span = 0;
+};
+
 }  // namespace shoal::bench

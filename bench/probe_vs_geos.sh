@@ -3,7 +3,11 @@
 # one run: the same coastline, the same poses, the same hull; runs interleaved, best of N; the
 # answers compared row by row (collision equal, clearance within 1 mm of each other).
 #
-#   bench/probe_vs_geos.sh BUILD_DIR COAST.geojson POSES.csv [RUNS] [DIMS] [JOBS]
+#   bench/probe_vs_geos.sh BUILD_DIR COAST.geojson POSES.csv [RUNS] [DIMS] [JOBS] [CHECKER]
+#
+# CHECKER (default pieces): bench_geos_probe's --checker: `pieces` (coastline pieces in an
+# STRtree, nearest first, early exit) or `polygons` (prepared land polygons in an STRtree,
+# PreparedIntersects then PreparedDistance in a growing box: issue 40's peer).
 #
 # JOBS (default 1): threads for both, `shoal probe --jobs` and the GEOS probe's `--jobs` (one
 # STRtree and GEOS context a thread).
@@ -13,7 +17,7 @@
 # the index). shoal reads the grid `shoal import` made of the coast (a user imports once);
 # the GEOS probe builds its trees from the coastline file, which is its import.
 set -euo pipefail
-build=$1 coast=$2 poses=$3 runs=${4:-5} dims=${5:-150,40,14,18} jobs=${6:-1}
+build=$1 coast=$2 poses=$3 runs=${4:-5} dims=${5:-150,40,14,18} jobs=${6:-1} checker=${7:-pieces}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 "$build/cli/shoal" import "$coast" -o "$work/coast.shoalgrid" > /dev/null
 head -2 "$poses" > "$work/one.csv"
@@ -23,9 +27,9 @@ best() { printf '%s\n' "$@" | sort -n | head -1; }
 declare -a s_all s_one g_all g_one
 for ((r = 0; r < runs; ++r)); do
   t=$(now); "$build/cli/shoal" probe --coast "$work/coast.shoalgrid" --dims "$dims" --jobs "$jobs" "$poses" -o "$work/shoal.csv"; s_all+=($(($(now) - t)))
-  t=$(now); "$build/bench/bench_geos_probe" --coast "$coast" --dims "$dims" --jobs "$jobs" "$poses" -o "$work/geos.csv"; g_all+=($(($(now) - t)))
+  t=$(now); "$build/bench/bench_geos_probe" --coast "$coast" --dims "$dims" --jobs "$jobs" --checker "$checker" "$poses" -o "$work/geos.csv"; g_all+=($(($(now) - t)))
   t=$(now); "$build/cli/shoal" probe --coast "$work/coast.shoalgrid" --dims "$dims" --jobs "$jobs" "$work/one.csv" -o "$work/s1.csv"; s_one+=($(($(now) - t)))
-  t=$(now); "$build/bench/bench_geos_probe" --coast "$coast" --dims "$dims" --jobs "$jobs" "$work/one.csv" -o "$work/g1.csv"; g_one+=($(($(now) - t)))
+  t=$(now); "$build/bench/bench_geos_probe" --coast "$coast" --dims "$dims" --jobs "$jobs" --checker "$checker" "$work/one.csv" -o "$work/g1.csv"; g_one+=($(($(now) - t)))
 done
 sa=$(best "${s_all[@]}") so=$(best "${s_one[@]}") ga=$(best "${g_all[@]}") go=$(best "${g_one[@]}")
 /usr/bin/python3 - "$work/shoal.csv" "$work/geos.csv" "$n" "$sa" "$so" "$ga" "$go" "$jobs" <<'PY'
