@@ -15,6 +15,9 @@ install(TARGETS shoal_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # The `shoal` executable loads every command but a probe of a grid file from this module, found
 # relative to itself (cli/CMakeLists.txt: SHOAL_CLI_MODULE_DIR, ../lib/shoal).
 install(TARGETS shoal_cli_full LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/shoal)
+# libshoal_c.so.1 loads PROJ only for a grid in a user's CRS, through this module, found in
+# shoal/ beside itself (src/geo/crs_loader.cpp).
+install(TARGETS shoal_crs LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/shoal)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/shoal DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
 install(FILES ${PROJECT_BINARY_DIR}/include/shoal/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shoal)

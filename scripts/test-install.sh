@@ -39,6 +39,9 @@ fi
 for exe in "$work/frame_check_pc" "$work/sim/frame_check_c"; do
   ldd "$exe" > "$work/ldd.txt"
   if grep -qi 'libgdal' "$work/ldd.txt"; then echo "test-install: $exe loads GDAL:"; grep -i gdal "$work/ldd.txt"; exit 1; fi
+  # PROJ and GEOS only where used: PROJ by the module libshoal_crs.so for a grid in a user's CRS
+  # (below), GEOS never (the C API builds no grid).
+  if grep -Eqi 'libproj|libgeos' "$work/ldd.txt"; then echo "test-install: $exe loads PROJ or GEOS at start:"; grep -Ei 'proj|geos' "$work/ldd.txt"; exit 1; fi
   if grep -q 'not found' "$work/ldd.txt"; then echo "test-install: $exe cannot start without LD_LIBRARY_PATH:"; grep 'not found' "$work/ldd.txt"; exit 1; fi
   loaded="$(awk '$1 == "libshoal_c.so.1" {print $3}' "$work/ldd.txt")"
   if [ -z "$loaded" ] || [ "$(realpath "$loaded")" != "$(realpath "$prefix/lib/libshoal_c.so.1")" ]; then
@@ -67,6 +70,20 @@ for exe in "$work/frame_check_pc" "$work/sim/frame_check_c"; do
   cat "$work/c.err"
 done
 "$work/sim/frame_check_cpp" "$work/helsinki.shoalgrid" 3000
+# A grid in a user's CRS (UTM 35N): libshoal_c loads PROJ for it, through the installed module
+# lib/shoal/libshoal_crs.so, and gives shoal probe's answers; for the grid in shoal's own frame
+# above it loaded no PROJ.
+"$prefix/bin/shoal" import "$src/examples/data/gof_helsinki_land.geojson" --crs EPSG:32635 -o "$work/helsinki-utm.shoalgrid" > /dev/null 2>&1
+"$prefix/bin/shoal" probe --coast "$work/helsinki-utm.shoalgrid" --dims 150,35,14,15 "$work/poses.csv" -o "$work/probe-utm.csv"
+LD_DEBUG=libs "$work/frame_check_pc" "$work/helsinki-utm.shoalgrid" "$work/poses.csv" > "$work/c-utm.csv" 2> "$work/c-utm.err"
+cmp -s "$work/probe-utm.csv" "$work/c-utm.csv" || { echo "test-install: frame_check disagrees with shoal probe on a UTM grid:"; diff "$work/probe-utm.csv" "$work/c-utm.csv" | head; exit 1; }
+crs_module="$(sed -n 's/.*calling init: \(.*libshoal_crs\.so\)$/\1/p' "$work/c-utm.err" | head -1)"
+[ -n "$crs_module" ] && [ "$(realpath "$crs_module")" = "$(realpath "$prefix/lib/shoal/libshoal_crs.so")" ] ||
+  { echo "test-install: the UTM grid did not load the installed PROJ module"; grep -i crs "$work/c-utm.err" | head; exit 1; }
+grep -q 'calling init: .*libproj' "$work/c-utm.err" || { echo "test-install: the UTM grid did not load PROJ"; exit 1; }
+if LD_DEBUG=libs "$work/frame_check_pc" "$work/helsinki.shoalgrid" "$work/poses.csv" 2>&1 >/dev/null | grep -qi 'libproj'; then
+  echo "test-install: a grid in shoal's own frame loaded PROJ"; exit 1
+fi
 # The Python module, when this build has it: importable by Debian's python3 from the prefix, and
 # its Detector gives shoal probe's answers on the same poses.
 if [ -e "$build/python/shoal/__init__.py" ]; then
