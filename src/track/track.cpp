@@ -30,6 +30,21 @@ double distance_m(geo::LonLat a, geo::LonLat b) noexcept {
     return 2.0 * earth_radius_m * std::asin(std::min(1.0, std::sqrt(h)));
 }
 
+DistanceBounds distance_bounds_m(geo::LonLat a, geo::LonLat b) noexcept {
+    const double pa = std::fabs(a.lat), pb = std::fabs(b.lat);
+    if (!(pa <= 90 && pb <= 90) || !std::isfinite(a.lon) || !std::isfinite(b.lon)) return {};
+    const double dlat = std::fabs(b.lat - a.lat) * deg;
+    double dlon = std::fmod(std::fabs(b.lon - a.lon) * deg, 2 * std::numbers::pi);
+    if (dlon > std::numbers::pi) dlon = 2 * std::numbers::pi - dlon;
+    const double x = std::max(pa, pb) * deg;
+    const double x2 = x * x;
+    const double cos_up = 1 - x2 / 2 + x2 * x2 / 24;  // >= cos x for every x (Taylor, alternating); > 0 up to the pole
+    const double lower = earth_radius_m * dlat;
+    const double upper = earth_radius_m * (dlat + cos_up * dlon);
+    constexpr double rel = 1e-9, abs_m = 1e-6;
+    return {std::max(0.0, lower * (1 - rel) - abs_m), upper * (1 + rel) + abs_m};
+}
+
 namespace {
 
 /// Initial great-circle bearing from a to b, degrees clockwise from true north in [0, 360).
@@ -64,7 +79,11 @@ const Fix* baseline_fix(const std::vector<Fix>& fx, std::size_t i, int dir) noex
             if (k + 1 >= fx.size() || fx[k + 1].jump_before) return nullptr;
             ++k;
         }
-        if (distance_m(fx[k].position, f.position) >= baseline_m) return &fx[k];
+        // distance_m's answer, asked only when its bounds leave it open (most fixes of a slow or
+        // moored vessel lie well within the baseline).
+        const DistanceBounds d = distance_bounds_m(fx[k].position, f.position);
+        if (d.upper < baseline_m) continue;
+        if (d.lower >= baseline_m || distance_m(fx[k].position, f.position) >= baseline_m) return &fx[k];
     }
     return nullptr;
 }

@@ -35,7 +35,12 @@ bool null_island(const Fix& f) noexcept { return std::fabs(f.position.lat) < 1e-
 
 bool plausible(const Fix& a, const Fix& b, const WildFixOptions& o) noexcept {
     const double dt = std::fabs(b.time_s - a.time_s);
-    return distance_m(a.position, b.position) <= o.tolerance_m + o.max_speed_kn * metres_per_nm / 3600.0 * dt;
+    const double limit = o.tolerance_m + o.max_speed_kn * metres_per_nm / 3600.0 * dt;
+    // distance_m's answer, its sines asked only when its bounds leave the comparison open.
+    const DistanceBounds d = distance_bounds_m(a.position, b.position);
+    if (d.upper <= limit) return true;
+    if (d.lower > limit) return false;
+    return distance_m(a.position, b.position) <= limit;
 }
 
 std::vector<WildFix> drop_wild_fixes(Track& track, const WildFixOptions& o) {
@@ -127,9 +132,16 @@ std::vector<WildFix> drop_wild_fixes(Track& track, const WildFixOptions& o) {
             const double dt = b.time_s - a.time_s, dt1 = f.time_s - a.time_s, dt2 = b.time_s - f.time_s;
             if (!(dt > 0 && dt1 > 0 && dt2 > 0)) continue;
             const double sog = std::max(a.sog_kn, b.sog_kn);
+            const double allowed_kn = std::max(2 * sog, sog + 10);
+            // Marked only when both legs are faster than allowed: a leg whose distance's upper
+            // bound already keeps it within (the same expression, and rounding is monotone) rules
+            // the fix out, as the full test below would, without its sines.
+            auto leg_bound_kn = [&](const Fix& x, const Fix& y, double t) {
+                return std::max(0.0, distance_bounds_m(x.position, y.position).upper - o.tolerance_m) / t * 3600.0 / metres_per_nm;
+            };
+            if (leg_bound_kn(a, f, dt1) <= allowed_kn || leg_bound_kn(f, b, dt2) <= allowed_kn) continue;
             const double direct_kn = distance_m(a.position, b.position) / dt * 3600.0 / metres_per_nm;
             if (std::fabs(direct_kn - (a.sog_kn + b.sog_kn) / 2) > 0.5 * sog + 2) continue;  // SOG not borne out here
-            const double allowed_kn = std::max(2 * sog, sog + 10);
             auto leg_kn = [&](const Fix& x, const Fix& y, double t) {
                 return std::max(0.0, distance_m(x.position, y.position) - o.tolerance_m) / t * 3600.0 / metres_per_nm;
             };

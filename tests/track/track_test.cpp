@@ -27,6 +27,7 @@
 #include <shoal/track/columns.hpp>
 #include <shoal/track/packed_track.hpp>
 #include <shoal/track/track.hpp>
+#include <shoal/track/wild_fixes.hpp>
 #include <shoal/util/error.hpp>
 
 namespace {
@@ -484,3 +485,81 @@ TEST(PackedTrack, EveryFixComesBackBitForBit) {
 }
 
 }  // namespace
+
+namespace {
+
+using shoal::geo::LonLat;
+using shoal::track::distance_bounds_m;
+using shoal::track::distance_m;
+
+/// A point `metres` from p in the direction `bearing` (radians), on the flat approximation: the
+/// pairs need only be near each other, not at an exact distance.
+LonLat offset(LonLat p, double metres, double bearing) {
+    const double lat = p.lat + metres * std::cos(bearing) / 111195.0;
+    const double lon = p.lon + metres * std::sin(bearing) / (111195.0 * std::max(1e-6, std::cos(p.lat * M_PI / 180)));
+    return {lon, std::clamp(lat, -90.0, 90.0)};
+}
+
+}  // namespace
+
+TEST(DistanceBounds, HoldDistanceMOnRandomAndAdversarialPairs) {
+    std::mt19937_64 rng(20261206);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    long checked = 0, tight = 0, near_pairs = 0;
+    auto check = [&](LonLat a, LonLat b) {
+        const double d = distance_m(a, b);
+        const auto bnd = distance_bounds_m(a, b);
+        ASSERT_LE(bnd.lower, d) << a.lon << "," << a.lat << " " << b.lon << "," << b.lat;
+        ASSERT_GE(bnd.upper, d) << a.lon << "," << a.lat << " " << b.lon << "," << b.lat;
+        ++checked;
+        // Near pairs off the polar caps: the upper bound within 3x of the distance (the shortcut
+        // is only worth having when it decides), the lower one within it when north-south.
+        if (d < 100e3 && std::max(std::fabs(a.lat), std::fabs(b.lat)) < 60) {
+            ++near_pairs;
+            if (bnd.upper <= 3 * d + 1e-5) ++tight;
+        }
+    };
+    for (int i = 0; i < 400000; ++i) {
+        const LonLat a{-180 + 360 * u(rng), -90 + 180 * u(rng)};
+        switch (i % 8) {
+        case 0: check(a, {-180 + 360 * u(rng), -90 + 180 * u(rng)}); break;                          // anywhere
+        case 1: check(a, offset(a, std::pow(10, -3 + 8 * u(rng)), 2 * M_PI * u(rng))); break;       // 1 mm to 100 km
+        case 2: check(a, a); break;                                                                    // the same point
+        case 3: check(a, {a.lon + 180 - 1e-6 * u(rng), -a.lat}); break;                                // nearly antipodal
+        case 4: check({a.lon, 90 - 1e-4 * u(rng)}, {a.lon + 360 * u(rng) - 180, 90 - 1e-3 * u(rng)}); break;  // at a pole
+        case 5: check({180 - 1e-5 * u(rng), a.lat}, {-180 + 1e-5 * u(rng), a.lat + 1e-5 * (u(rng) - 0.5)}); break;  // across the date line
+        case 6: check(a, {a.lon + 1e-9 * (u(rng) - 0.5), a.lat + 1e-9 * (u(rng) - 0.5)}); break;      // a micrometre apart
+        default: check(a, offset(a, 10 + 300 * u(rng), 2 * M_PI * u(rng))); break;                    // AIS fix to fix
+        }
+    }
+    EXPECT_EQ(checked, 400000);
+    EXPECT_GT(tight, near_pairs * 99 / 100) << tight << " of " << near_pairs;
+    // Nothing proved beyond the poles or for a value that is not a number.
+    const auto beyond = distance_bounds_m({0, 91}, {0, 89});
+    EXPECT_EQ(beyond.lower, 0);
+    EXPECT_TRUE(std::isinf(beyond.upper));
+    EXPECT_TRUE(std::isinf(distance_bounds_m({NAN, 10}, {0, 10}).upper));
+}
+
+TEST(DistanceBounds, PlausibleDecidesAsTheDistanceItself) {
+    // Pairs whose distance lies around the plausibility limit (tolerance + max speed x time):
+    // plausible() answers as distance_m(a, b) <= limit does, on either side and on the edge.
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const shoal::track::WildFixOptions o;
+    int within = 0, beyond = 0;
+    for (int i = 0; i < 200000; ++i) {
+        shoal::track::Fix a, b;
+        a.position = {-180 + 360 * u(rng), -89 + 178 * u(rng)};
+        a.time_s = 1000;
+        b.time_s = 1000 + std::floor(1 + 120 * u(rng));
+        const double limit = o.tolerance_m + o.max_speed_kn * 1852.0 / 3600.0 * (b.time_s - a.time_s);
+        b.position = offset(a.position, limit * (0.5 + u(rng)), 2 * M_PI * u(rng));
+        const bool exact = distance_m(a.position, b.position) <= limit;
+        ASSERT_EQ(shoal::track::plausible(a, b, o), exact) << i;
+        ASSERT_EQ(shoal::track::plausible(b, a, o), exact) << i;
+        (exact ? within : beyond)++;
+    }
+    EXPECT_GT(within, 50000);
+    EXPECT_GT(beyond, 50000);
+}

@@ -130,4 +130,19 @@ void resolve_headings(Track& track, double moving_kn = 0.5, double max_gap_s = I
 /// Great-circle distance in metres (haversine, mean Earth radius).
 double distance_m(geo::LonLat a, geo::LonLat b) noexcept;
 
+/// Bounds of distance_m(a, b), its rounding included, without a sine: lower <= distance_m(a, b)
+/// <= upper. For the tests that only compare a distance with a limit (wild fixes, the heading's
+/// baseline): a bound on the right side of the limit decides the comparison as distance_m would.
+/// Lower: R |dlat| (the haversine's first term alone). Upper: R (|dlat| + c |dlon|), the length
+/// of a path along a meridian and then along the parallel of the endpoint farther from the
+/// equator (a great circle is no longer), c = 1 - x^2/2 + x^4/24 >= cos x at that latitude x,
+/// |dlon| the shorter way round. Both widened by 1e-9 of themselves and 1 micrometre, far beyond
+/// the rounding of either computation. {0, INFINITY} when a latitude is beyond a pole or a
+/// value is not a number (nothing proved).
+struct DistanceBounds {
+    double lower = 0;
+    double upper = INFINITY;
+};
+DistanceBounds distance_bounds_m(geo::LonLat a, geo::LonLat b) noexcept;
+
 }  // namespace shoal::track
