@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 #include <sys/stat.h>
 
+#include <cstdlib>
 #include <mutex>
 #include <string>
 
@@ -17,14 +18,20 @@ namespace {
 
 using Make = CrsProjection* (*)(const char*, char*, std::size_t);
 
-/// The folder this library was loaded from, or "".
+/// The folder this library was loaded from (symbolic links and a relative path resolved), or "".
 std::string own_folder() {
     Dl_info info{};
     if (::dladdr(reinterpret_cast<void*>(&own_folder), &info) == 0 || !info.dli_fname) return "";
-    const std::string path = info.dli_fname;
+    char* real = ::realpath(info.dli_fname, nullptr);
+    const std::string path = real ? real : info.dli_fname;
+    std::free(real);
     const std::size_t slash = path.rfind('/');
     return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
 }
+
+/// Told when the library is loaded: a path relative to the working folder then (a relative
+/// LD_LIBRARY_PATH entry) would be wrong after the program changes folder.
+const std::string loaded_from = own_folder();
 
 /// The module's entry point, loaded once a process; throws UsageError saying why it cannot be.
 Make entry() {
@@ -32,7 +39,7 @@ Make entry() {
     static Make make = nullptr;
     static std::string why;
     std::call_once(once, [] {
-        const std::string dir = own_folder();
+        const std::string& dir = loaded_from;
         std::string path = dir + "/" SHOAL_CRS_MODULE_FILE;
         struct stat st{};
         if (dir.empty() || ::stat(path.c_str(), &st) != 0) path = (dir.empty() ? std::string(".") : dir) + "/shoal/" SHOAL_CRS_MODULE_FILE;
@@ -52,7 +59,7 @@ Make entry() {
 
 std::unique_ptr<CrsProjection> make_crs_projection(const std::string& definition) {
     const Make make = entry();
-    char error[1024] = "";
+    char error[8192] = "";  // room for a message that quotes a long WKT
     CrsProjection* p = make(definition.c_str(), error, sizeof error);
     if (!p) throw UsageError(error[0] ? error : "CRS '" + definition + "' cannot be used");
     return std::unique_ptr<CrsProjection>(p);

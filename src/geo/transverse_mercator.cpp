@@ -4,7 +4,6 @@
 #include "geo/transverse_mercator.hpp"
 
 #include <cmath>
-#include <cstdlib>
 
 namespace shoal::geo {
 
@@ -84,8 +83,10 @@ double clens(const double* a, int size, double arg_r) {
 TransverseMercator::TransverseMercator(double lat0_deg, double lon0_deg) {
     // ell_set.cpp, +ellps=WGS84 (a=6378137.0 rf=298.257223563): ellps_shape, then
     // pj_calc_ellipsoid_params.
-    const double a = std::strtod("6378137.0", nullptr);
-    const double rf = std::strtod("298.257223563", nullptr);
+    // The numbers of PROJ's table of ellipsoids ("a=6378137.0", "rf=298.257223563"), which it
+    // reads with a correctly rounding strtod in the C locale: the same doubles as these literals.
+    const double a = 6378137.0;
+    const double rf = 298.257223563;
     const double f = 1 / rf;
     const double es = 2 * f - f * f;
     const double e = std::sqrt(es);

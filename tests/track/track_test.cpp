@@ -534,6 +534,14 @@ TEST(DistanceBounds, HoldDistanceMOnRandomAndAdversarialPairs) {
     }
     EXPECT_EQ(checked, 400000);
     EXPECT_GT(tight, near_pairs * 99 / 100) << tight << " of " << near_pairs;
+    // Exactly antipodal along the equator and pole to pole (the haversine rounds by decimetres
+    // there), and longitudes more than a turn apart: nothing proved, the haversine decides.
+    for (const double off : {0.0, 1.2e-6, 1e-4}) {
+        check({0, 0}, {180 - off, 0});
+        check({10, 90 - off}, {10, -90});
+    }
+    EXPECT_TRUE(std::isinf(distance_bounds_m({0, 0}, {179.9999988, 0}).upper));
+    EXPECT_TRUE(std::isinf(distance_bounds_m({0, 10}, {1e12, 10}).upper));
     // Nothing proved beyond the poles or for a value that is not a number.
     const auto beyond = distance_bounds_m({0, 91}, {0, 89});
     EXPECT_EQ(beyond.lower, 0);

@@ -137,8 +137,9 @@ double distance_m(geo::LonLat a, geo::LonLat b) noexcept;
 /// of a path along a meridian and then along the parallel of the endpoint farther from the
 /// equator (a great circle is no longer), c = 1 - x^2/2 + x^4/24 >= cos x at that latitude x,
 /// |dlon| the shorter way round. Both widened by 1e-9 of themselves and 1 micrometre, far beyond
-/// the rounding of either computation. {0, INFINITY} when a latitude is beyond a pole or a
-/// value is not a number (nothing proved).
+/// the rounding of either computation. {0, INFINITY} (nothing proved) when a latitude is beyond a
+/// pole, the longitudes are more than 360 degrees apart, a value is not a number, or the path is
+/// over 0.9 of half the circumference (near the antipode the haversine rounds by decimetres).
 struct DistanceBounds {
     double lower = 0;
     double upper = INFINITY;
