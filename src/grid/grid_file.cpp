@@ -104,6 +104,37 @@ private:
 
 constexpr std::uint32_t byte_order_mark = 0x01020304u;
 constexpr std::size_t header_size = 8 + 4 + 4 + 8 + 8;
+/// Longest frame definition a grid file may hold.
+constexpr std::size_t max_frame_text = 65536;
+
+/// The payload's first fields, in the order serialize writes them: the grid's parameters and
+/// the frame's definition.
+struct Head {
+    double cell = 0, x0 = 0, y0 = 0;
+    std::int32_t nx = 0, ny = 0;
+    double fx = 0, fy = 0, slack = 0;
+    bool land = false;
+    std::string frame;
+};
+
+Head read_head(Reader& r) {
+    Head h;
+    h.cell = r.pod<double>();
+    h.x0 = r.pod<double>();
+    h.y0 = r.pod<double>();
+    h.nx = r.pod<std::int32_t>();
+    h.ny = r.pod<std::int32_t>();
+    h.fx = r.pod<double>();
+    h.fy = r.pod<double>();
+    h.slack = r.pod<double>();
+    h.land = r.pod<std::uint8_t>() != 0;
+    h.frame = r.str();
+    // The frame's CRS text goes to GDAL/PROJ, which may look a name up at length: only text does.
+    if (h.frame.empty() || h.frame.size() > max_frame_text ||
+        std::any_of(h.frame.begin(), h.frame.end(), [](char c) { return (c >= 0 && c < ' ' && c != '\n' && c != '\t') || c == 0x7F; }))
+        r.fail("bad frame definition");
+    return h;
+}
 
 
 }  // namespace
@@ -198,20 +229,22 @@ CoastGrid GridFile::load(const std::string& path) {
 }
 
 std::string GridFile::frame_definition(const std::string& path) {
+    // The header and as much of the payload as its first fields can take (the frame's text at most
+    // max_frame_text), read by the same read_head as parse; any shortfall is "".
     std::ifstream in(path, std::ios::binary);
-    // The header, the grid's parameters (3 doubles, 2 ints, 3 doubles, 1 byte), the frame.
-    constexpr std::size_t before_frame = header_size + 3 * 8 + 2 * 4 + 3 * 8 + 1;
-    constexpr std::size_t most = 65536;  // parse's limit of a frame definition
-    std::vector<char> head(before_frame + 8);
-    if (!in.read(head.data(), static_cast<std::streamsize>(head.size()))) return "";
+    std::vector<char> bytes(header_size + 256 + max_frame_text);
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
     std::uint32_t version = 0;
-    std::uint64_t n = 0;
-    std::memcpy(&version, head.data() + 8, 4);
-    std::memcpy(&n, head.data() + before_frame, 8);
-    if (std::memcmp(head.data(), grid_magic, 8) != 0 || version != grid_format_version || n == 0 || n > most) return "";
-    std::string frame(static_cast<std::size_t>(n), '\0');
-    if (!in.read(frame.data(), static_cast<std::streamsize>(n))) return "";
-    return frame;
+    if (bytes.size() < header_size || std::memcmp(bytes.data(), grid_magic, 8) != 0) return "";
+    std::memcpy(&version, bytes.data() + 8, 4);
+    if (version != grid_format_version) return "";
+    try {
+        Reader r(bytes.data() + header_size, bytes.size() - header_size, path);
+        return read_head(r).frame;
+    } catch (const InputError&) {
+        return "";
+    }
 }
 
 CoastGrid GridFile::parse(const std::vector<char>& bytes, const std::string& name) { return parse(std::span<const char>(bytes), name); }
@@ -237,30 +270,17 @@ CoastGrid GridFile::parse(std::span<const char> bytes, const std::string& name) 
     if (XXH3_64bits(payload, size) != checksum) h.fail("checksum mismatch");
 
     Reader r(payload, size, name);
-    const auto cell = r.pod<double>();
-    const auto x0 = r.pod<double>();
-    const auto y0 = r.pod<double>();
-    const auto nx = r.pod<std::int32_t>();
-    const auto ny = r.pod<std::int32_t>();
-    const auto fx = r.pod<double>();
-    const auto fy = r.pod<double>();
-    const auto slack = r.pod<double>();
-    const bool land = r.pod<std::uint8_t>() != 0;
-    const std::string frame_def = r.str();
-    // The frame's CRS text goes to GDAL/PROJ, which may look a name up at length: only text does.
-    if (frame_def.empty() || frame_def.size() > 65536 ||
-        std::any_of(frame_def.begin(), frame_def.end(), [](char c) { return (c >= 0 && c < ' ' && c != '\n' && c != '\t') || c == 0x7F; }))
-        r.fail("bad frame definition");
-    CoastGrid g(geo::LocalFrame::from_definition(frame_def));
-    g.m_cell = cell;
-    g.m_x0 = x0;
-    g.m_y0 = y0;
-    g.m_nx = nx;
-    g.m_ny = ny;
-    g.m_ref_fx = fx;
-    g.m_ref_fy = fy;
-    g.m_clip_slack = slack;
-    g.m_has_land_side = land;
+    const Head head = read_head(r);
+    CoastGrid g(geo::LocalFrame::from_definition(head.frame));
+    g.m_cell = head.cell;
+    g.m_x0 = head.x0;
+    g.m_y0 = head.y0;
+    g.m_nx = head.nx;
+    g.m_ny = head.ny;
+    g.m_ref_fx = head.fx;
+    g.m_ref_fy = head.fy;
+    g.m_clip_slack = head.slack;
+    g.m_has_land_side = head.land;
     GridSource& s = g.m_source;
     s.inputs = r.strings();
     s.layers = r.strings();
@@ -319,10 +339,10 @@ CoastGrid GridFile::parse(std::span<const char> bytes, const std::string& name) 
         r.fail("too many levels of charted depth");
     }
     // Consistency: a checksum protects against damage, these against a wrong writer.
-    if (!(cell > 0) || !std::isfinite(cell) || !std::isfinite(x0) || !std::isfinite(y0) || nx <= 0 || ny <= 0 ||
-        !(fx > 0 && fx < 1 && fy > 0 && fy < 1))
+    if (!(head.cell > 0) || !std::isfinite(head.cell) || !std::isfinite(head.x0) || !std::isfinite(head.y0) || head.nx <= 0 || head.ny <= 0 ||
+        !(head.fx > 0 && head.fx < 1 && head.fy > 0 && head.fy < 1))
         r.fail("bad grid parameters");
-    if (static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny) != g.m_slot.size()) r.fail("cell array size");
+    if (static_cast<std::uint64_t>(head.nx) * static_cast<std::uint64_t>(head.ny) != g.m_slot.size()) r.fail("cell array size");
     const std::size_t ncoast = g.m_ref_winding.size();
     if (g.m_seg_offset.size() != ncoast + 1 || g.m_seg_offset.front() != 0 || g.m_seg_offset.back() != g.m_segments.size() ||
         !std::is_sorted(g.m_seg_offset.begin(), g.m_seg_offset.end()) || g.m_seg_info.size() != g.m_segments.size())
