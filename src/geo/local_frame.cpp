@@ -109,12 +109,12 @@ LocalFrame LocalFrame::from_definition(const std::string& definition) {
     return from_user_crs(definition);
 }
 
-bool LocalFrame::made_from_pipeline() const noexcept { return m_impl && m_impl->tm.has_value(); }
+bool LocalFrame::computed_by_shoal() const noexcept { return m_impl && m_impl->tm.has_value(); }
 
 bool LocalFrame::is_own_transverse_mercator(const std::string& definition) { return own_tmerc_centre(definition).has_value(); }
 
 LocalFrame::LocalFrame(const LocalFrame& other)
-    : LocalFrame(other.m_definition, other.m_description, other.made_from_pipeline()) {}
+    : LocalFrame(other.m_definition, other.m_description, other.computed_by_shoal()) {}
 LocalFrame& LocalFrame::operator=(const LocalFrame& other) {
     if (this != &other) *this = LocalFrame(other);
     return *this;

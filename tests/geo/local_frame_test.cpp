@@ -194,20 +194,20 @@ TEST(LocalFrame, OwnTransverseMercatorEqualsPROJsSearchedOperationBitForBit) {
     for (int k = 0; k < 24; ++k) centres.push_back({-180 + 360 * u(rng), -85 + 170 * u(rng)});
     auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
     auto near_whole = [](double v) { return v != std::round(v) && std::fabs(v - std::round(v)) <= 1.5e-8; };
-    int made_from_pipeline = 0;
+    int computed_by_shoal_count = 0;
     unsigned seed = 1;
     for (const LonLat c : centres) {
         const LocalFrame own = LocalFrame::transverse_mercator(c);
         const LocalFrame searched = LocalFrame::from_user_crs(own.definition());
         const LocalFrame rebuilt = LocalFrame::from_definition(own.definition());
-        ASSERT_FALSE(searched.made_from_pipeline());
+        ASSERT_FALSE(searched.computed_by_shoal());
         // The centre as written (9 decimals) decides the path.
         double lat = 0, lon = 0;
         ASSERT_EQ(std::sscanf(own.definition().c_str(), "+proj=tmerc +lat_0=%lf +lon_0=%lf", &lat, &lon), 2);
-        EXPECT_EQ(own.made_from_pipeline(), !near_whole(lat) && !near_whole(lon)) << own.definition();
-        EXPECT_EQ(rebuilt.made_from_pipeline(), own.made_from_pipeline());
-        EXPECT_EQ(LocalFrame(own).made_from_pipeline(), own.made_from_pipeline());
-        made_from_pipeline += own.made_from_pipeline() ? 1 : 0;
+        EXPECT_EQ(own.computed_by_shoal(), !near_whole(lat) && !near_whole(lon)) << own.definition();
+        EXPECT_EQ(rebuilt.computed_by_shoal(), own.computed_by_shoal());
+        EXPECT_EQ(LocalFrame(own).computed_by_shoal(), own.computed_by_shoal());
+        computed_by_shoal_count += own.computed_by_shoal() ? 1 : 0;
         const auto pts = points_around(c, 200e3, 300, seed++);
         std::vector<double> xs, ys, xs2, ys2;
         for (const LonLat& p : pts) {
@@ -241,7 +241,7 @@ TEST(LocalFrame, OwnTransverseMercatorEqualsPROJsSearchedOperationBitForBit) {
         }).join();
         for (std::size_t i = 0; i < pts.size(); ++i) ASSERT_EQ(there_own[i], there_searched[i]);
     }
-    EXPECT_EQ(made_from_pipeline, static_cast<int>(centres.size()) - 4);  // the four a hair off whole degrees
+    EXPECT_EQ(computed_by_shoal_count, static_cast<int>(centres.size()) - 4);  // the four a hair off whole degrees
 }
 
 TEST(LocalFrame, ScaleErrorOfTransverseMercatorGrowsAwayFromTheCentralMeridian) {

@@ -46,7 +46,7 @@ public:
 
     /// Whether the frame is computed by shoal's own transverse Mercator (PROJ's numbers for the
     /// pipeline of that projection, bit for bit, without PROJ): for tests and diagnostics.
-    bool made_from_pipeline() const noexcept;
+    bool computed_by_shoal() const noexcept;
     /// Whether a frame made from `definition` is shoal's own transverse Mercator, which needs no
     /// PROJ (any other CRS is read and transformed by PROJ).
     static bool is_own_transverse_mercator(const std::string& definition);
