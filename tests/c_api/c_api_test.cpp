@@ -29,13 +29,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// A folder for this run's files, removed when the tests end.
+struct TempDir {
+    fs::path path = fs::temp_directory_path() / ("shoal-c-api-test-" + std::to_string(::getpid()));
+    TempDir() { fs::create_directories(path); }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
 fs::path temp_dir() {
-    static const fs::path d = [] {
-        fs::path p = fs::temp_directory_path() / ("shoal-c-api-test-" + std::to_string(::getpid()));
-        fs::create_directories(p);
-        return p;
-    }();
-    return d;
+    static const TempDir d;
+    return d.path;
 }
 
 int run(const std::string& cmd) {
