@@ -54,7 +54,15 @@ double dist2_to(XY p, XY a, XY b, XY* foot) noexcept {
 }
 
 /// Liang-Barsky: clips segment ab to `box`; false when nothing is left.
-bool clip_to(XY& a, XY& b, const Box& box) noexcept {
+/// Two slabs, lo[k] <= n[k] . p <= hi[k] for unit normals n[k]: with the box, where a
+/// convex hull's reach lies (regions_of).
+struct Slabs {
+    XY n[2];
+    double lo[2], hi[2];
+};
+
+/// Clips segment ab to `box` and, when given, to `slabs`; false when nothing is left.
+bool clip_to(XY& a, XY& b, const Box& box, const Slabs* slabs = nullptr) noexcept {
     double t0 = 0, t1 = 1;
     const XY d = b - a;
     const double p[4] = {-d.x, d.x, -d.y, d.y};
@@ -68,6 +76,19 @@ bool clip_to(XY& a, XY& b, const Box& box) noexcept {
         if (p[k] < 0) t0 = std::max(t0, r);
         else t1 = std::min(t1, r);
         if (t0 > t1) return false;
+    }
+    if (slabs) {
+        for (int k = 0; k < 2; ++k) {
+            const double an = geo::dot(slabs->n[k], a), dn = geo::dot(slabs->n[k], d);
+            if (dn == 0) {
+                if (an < slabs->lo[k] || an > slabs->hi[k]) return false;
+                continue;
+            }
+            const double r0 = (slabs->lo[k] - an) / dn, r1 = (slabs->hi[k] - an) / dn;
+            t0 = std::max(t0, std::min(r0, r1));
+            t1 = std::min(t1, std::max(r0, r1));
+            if (t0 > t1) return false;
+        }
     }
     const XY a0 = a;
     if (t0 > 0) a = a0 + t0 * d;

@@ -18,6 +18,10 @@ struct ContactSearch {
     bool ridge_candidates = true;
     /// The pairs of the two nearest sites with a third each bound an interior cell as well.
     bool third_site = true;
+    /// A convex hull's reach is also bounded by two slabs along and across its longest edge
+    /// (grown by the reach), not by the box alone: a hull at 45 degrees fills half of its box,
+    /// and the segments of the box's corners are no nearer than the reach to it.
+    bool hull_slabs = true;
 };
 
 /// contact_regions(detector, pose), searched as `how` says.

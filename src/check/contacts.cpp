@@ -196,8 +196,27 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
     edge_box.clear();
     for (std::size_t e = 0; e < n_edges; ++e)
         edge_box.push_back({std::min(ring[e].x, ring[e + 1].x), std::min(ring[e].y, ring[e + 1].y), std::max(ring[e].x, ring[e + 1].x), std::max(ring[e].y, ring[e + 1].y)});
+    // A convex hull's slabs along and across its longest edge (every point within the reach of
+    // the hull lies in them grown by the reach; the margin covers the normals' rounding).
+    Slabs slabs{};
+    bool use_slabs = convex && how.hull_slabs;
+    if (use_slabs) {
+        std::size_t longest = 0;
+        for (std::size_t e = 1; e < n_edges; ++e)
+            if (geo::norm2(ring[e + 1] - ring[e]) > geo::norm2(ring[longest + 1] - ring[longest])) longest = e;
+        const XY d = ring[longest + 1] - ring[longest];
+        const double len = std::sqrt(geo::norm2(d));
+        use_slabs = len > 0;
+        slabs.n[0] = (len > 0 ? 1 / len : 0.0) * d, slabs.n[1] = XY{-slabs.n[0].y, slabs.n[0].x};
+        for (int k = 0; k < 2; ++k) {
+            slabs.lo[k] = INFINITY, slabs.hi[k] = -INFINITY;
+            for (XY p : ring) slabs.lo[k] = std::min(slabs.lo[k], geo::dot(slabs.n[k], p)), slabs.hi[k] = std::max(slabs.hi[k], geo::dot(slabs.n[k], p));
+        }
+    }
     for (int attempt = 0; attempt < 64; ++attempt) {
         const Box box = hbox.grown(reach);
+        Slabs reach_slabs = slabs;
+        for (int k = 0; k < 2; ++k) reach_slabs.lo[k] -= reach + tol, reach_slabs.hi[k] += reach + tol;
         std::vector<RawSegment>& raw = sc.raw;
         raw.clear();
         obstacle.collect(box, raw);
@@ -205,7 +224,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
         bounds.clear(), lines.clear();
         for (const RawSegment& whole : raw) {
             RawSegment r = whole;
-            if (!clip_to(r.a, r.b, box)) continue;
+            if (!clip_to(r.a, r.b, box, use_slabs ? &reach_slabs : nullptr)) continue;
             if (r.a == r.b) continue;
             // A line is kept whole: where it crosses the hull must not depend on the reach.
             if (r.boundary) bounds.push_back(r);
