@@ -35,9 +35,26 @@ struct RawSegment {
 };
 
 /// What the hull must not overlap: its boundary segments in a box, and membership.
+/// A callable `f` referred to, not owned (std::function allocated for each of a call's two
+/// lambdas, whose captures are larger than its small buffer): `f` outlives the reference.
+template <class Sig>
+class CallableRef;
+template <class R, class... A>
+class CallableRef<R(A...)> {
+public:
+    template <class F>
+    CallableRef(F& f) noexcept  // NOLINT(google-explicit-constructor): as std::function
+        : m_f(&f), m_call([](void* o, A... a) -> R { return (*static_cast<F*>(o))(std::forward<A>(a)...); }) {}
+    R operator()(A... a) const { return m_call(m_f, std::forward<A>(a)...); }
+
+private:
+    void* m_f;
+    R (*m_call)(void*, A...);
+};
+
 struct Obstacle {
-    std::function<void(const Box&, std::vector<RawSegment>&)> collect;
-    std::function<bool(XY)> inside;
+    CallableRef<void(const Box&, std::vector<RawSegment>&)> collect;
+    CallableRef<bool(XY)> inside;
 };
 
 /// A piece of the union's boundary, land on its left.
@@ -229,7 +246,8 @@ public:
     using Edges = std::uint64_t;
     static constexpr Edges all_edges = ~Edges{0};
 
-    explicit ConvexCutter(const std::vector<XY>& ccw) : m_ring(ccw) {}
+    /// `buffers`: two working lists, kept by the caller between cutters.
+    ConvexCutter(const std::vector<XY>& ccw, std::vector<XY> (&buffers)[2]) : m_ring(ccw), m_buf(buffers) {}
 
     /// `poly` := `box` cut to the ring (fewer than 3 points: they do not overlap), trying the
     /// edges of `edges` (those that did not hold a box around this one); returns those that do
@@ -293,7 +311,7 @@ private:
     }
 
     const std::vector<XY>& m_ring;
-    std::vector<XY> m_buf[2];
+    std::vector<XY> (&m_buf)[2];
 };
 
 /// A site in the order of its box's least x, with the greatest x of the boxes up to it.

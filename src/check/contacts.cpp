@@ -100,6 +100,20 @@ struct Cross {
     double u;
 };
 
+/// A grid cell's land boundary segments met in the reach's box (their indices in the grid's
+/// array): a path inside the box meets only those (contact_regions' winding numbers).
+struct CellNear {
+    int i, j;
+    std::vector<std::uint32_t> near;
+};
+
+/// A point whose winding number is known, the first asked in its grid cell (contact_regions).
+struct KnownWinding {
+    int i, j;
+    XY at;
+    int w;
+};
+
 /// A cell of the interior search (regions_of): a cell carries its parent's centre, side and
 /// distance to the boundary: a centre nearer the parent's than that distance is on the same
 /// side (no winding number).
@@ -138,8 +152,32 @@ struct Scratch {
     std::vector<Interval> intervals;
     std::vector<double> piece_d2;
     std::vector<Cell> queue;  // a heap (std::push_heap, std::pop_heap: as std::priority_queue)
-    std::vector<XY> poly;
-    std::size_t on_land = 0;  // contact_regions: the hull vertex tried first for land
+    std::vector<XY> poly, ring;
+    std::vector<XY> cut_buffers[2];  // ConvexCutter's
+    std::vector<Region> regions;     // the first Regions::n in use, their lists kept
+    // contact_regions:
+    std::vector<CellNear> cells_near;  // the first `n_cells_near` are the focus's
+    std::vector<KnownWinding> known;
+    std::size_t on_land = 0;  // the hull vertex tried first for land
+};
+
+/// The regions of an attempt: the first `n` of the kept list (their piece lists cleared, not
+/// freed, when taken again).
+struct Regions {
+    std::vector<Region>& pool;
+    std::size_t n = 0;
+    std::size_t size() const noexcept { return n; }
+    Region& operator[](std::size_t i) noexcept { return pool[i]; }
+    Region* begin() noexcept { return pool.data(); }
+    Region* end() noexcept { return pool.data() + n; }
+    void emplace_back() {
+        if (n == pool.size()) pool.emplace_back();
+        else {
+            Region& r = pool[n];
+            r.pieces.clear(), r.has_outline = false, r.best = Best{};
+        }
+        ++n;
+    }
 };
 
 /// (Not inlined: the callers then hold the lists by plain references. Inlined, GCC
@@ -154,24 +192,34 @@ struct Scratch {
 
 namespace {
 
-/// `outline` (open or closed) as a closed counter-clockwise ring; empty for fewer than 3 points.
-std::vector<XY> ccw_closed(const std::vector<XY>& outline) {
-    std::vector<XY> ring;
+/// `ring` := `outline` (open or closed) as a closed counter-clockwise ring; empty for fewer
+/// than 3 points.
+void ccw_closed(const std::vector<XY>& outline, std::vector<XY>& ring) {
     ring.reserve(outline.size() + 1);  // (the closing point without a second allocation)
     ring.assign(outline.begin(), outline.end());
     if (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
-    if (ring.size() < 3) return {};
+    if (ring.size() < 3) {
+        ring.clear();
+        return;
+    }
     double area2 = 0;
     for (std::size_t i = 0; i < ring.size(); ++i) area2 += geo::cross(ring[i], ring[(i + 1) % ring.size()]);
     if (area2 < 0) std::reverse(ring.begin(), ring.end());
     ring.push_back(ring.front());
+}
+
+std::vector<XY> ccw_closed(const std::vector<XY>& outline) {
+    std::vector<XY> ring;
+    ccw_closed(outline, ring);
     return ring;
 }
 
 /// The regions of hull outline `outline` (open or closed) against `obstacle`; depths in metres
 /// on the ground (local metres / `scale`).
 std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obstacle& obstacle, double scale, const detail::ContactSearch& how) {
-    const std::vector<XY> ring = ccw_closed(outline);
+    Scratch& sc = scratch();
+    std::vector<XY>& ring = sc.ring;
+    ccw_closed(outline, ring);
     if (ring.empty()) return {};
     const std::size_t n_edges = ring.size() - 1;
     bool convex = true;
@@ -191,7 +239,6 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
     // 2 m by default (detail::ContactSearch): on the Tacoma bench a third of the contacts are
     // deeper than 1 m, and an attempt done again cost more than a reach of 2 m gathers.
     double reach = std::max(how.first_reach_m, 1e-3 * extent);
-    Scratch& sc = scratch();
     std::vector<Box>& edge_box = sc.edge_box;
     edge_box.clear();
     for (std::size_t e = 0; e < n_edges; ++e)
@@ -472,7 +519,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             // (a boundary vertex on the outline) are joined through the crossings above.
         }
         // The hull wholly inside the hazards: the whole outline is one piece chain (joined above).
-        std::vector<Region> regions;
+        Regions regions{sc.regions};
         std::vector<int>& region_of_root = sc.region_of_root;
         region_of_root.assign(pieces.size(), -1);
         for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -592,7 +639,7 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                     push({{x, y, x + side, y + side}, INFINITY, {}, 0.0, false, ConvexCutter::all_edges});
             int steps = 0;
             std::vector<XY>& poly = sc.poly;
-            ConvexCutter cutter(ring);
+            ConvexCutter cutter(ring, sc.cut_buffers);
             ConvexCutter::Edges edges = ConvexCutter::all_edges;
             while (!queue.empty() && ++steps < 100000) {
                 std::pop_heap(queue.begin(), queue.end());
@@ -763,19 +810,15 @@ std::vector<ContactRegion> contact_regions(const Detector& detector, const Local
 
 std::vector<ContactRegion> detail::contact_regions(const Detector& detector, const LocalPose& pose, const ContactSearch& how) {
     const grid::CoastGrid& g = detector.grid();
-    Obstacle o;
+    Scratch& sc = scratch();
     // The reach's box of the attempt under way: every point asked then lies in it, but for
     // a few a micrometre out (winding numbers below).
     // And, per cell, the land boundary segments met in it (their indices in the grid's array):
     // a path inside the focus meets only those (winding numbers below).
     Box focus;
-    struct CellNear {
-        int i, j;
-        std::vector<std::uint32_t> near;
-    };
-    std::vector<CellNear> cells_near;  // the first `n_cells_near` are the focus's
+    std::vector<CellNear>& cells_near = sc.cells_near;  // the first `n_cells_near` are the focus's
     std::size_t n_cells_near = 0;
-    o.collect = [&g, &focus, &cells_near, &n_cells_near](const Box& box, std::vector<RawSegment>& out) {
+    auto collect = [&g, &focus, &cells_near, &n_cells_near](const Box& box, std::vector<RawSegment>& out) {
         focus = box, n_cells_near = 0;
         const geo::Box ext = g.extent();
         const int i0 = std::max(0, g.col_of(std::max(box.minx, ext.minx))), i1 = std::min(g.nx() - 1, g.col_of(std::min(box.maxx, ext.maxx)));
@@ -822,16 +865,12 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
     // (a harbour's coast cell holds ~760 segments, and the long path met many of them).
     // And a path inside the reach's box meets only the cell's segments whose box meets it:
     // listed by the gathering above, each point tries those only (~14, not ~760).
-    struct Known {
-        int i, j;
-        XY at;
-        int w;
-    };
-    std::vector<Known> known;
+    std::vector<KnownWinding>& known = sc.known;
+    known.clear();
     auto holds = [](const Box& b, XY p) { return p.x >= b.minx && p.x <= b.maxx && p.y >= b.miny && p.y <= b.maxy; };
-    o.inside = [&g, &known, &focus, &cells_near, &n_cells_near, holds](XY p) {
+    auto inside = [&g, &known, &focus, &cells_near, &n_cells_near, holds](XY p) {
         const int i = g.col_of(p.x), j = g.row_of(p.y);
-        for (const Known& k : known)
+        for (const KnownWinding& k : known)
             if (k.i == i && k.j == j) {
                 if (!holds(focus, p) || !holds(focus, k.at)) return g.winding_from(k.at, k.w, p) > 0;
                 for (std::size_t c = 0; c < n_cells_near; ++c)
@@ -843,6 +882,7 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
         if (!on_boundary && g.valid_cell(i, j)) known.push_back({i, j, p, w});
         return w > 0;
     };
+    const Obstacle o{collect, inside};
     // No contact, no region: the pose check answers that in a microsecond. (Its penetration,
     // as a first reach, cost more on a harbour chart than the reach's growing saves.)
     // A hull vertex on land is a contact: the one this thread last found deepest is tried
@@ -850,7 +890,7 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
     // the first known point of its cell (the search below then counts from it, not from the
     // cell's reference point again). Else the check, without that first try.
     const std::vector<XY> outline = hull_outline(detector.hull(), pose);
-    std::size_t& try_first = scratch().on_land;
+    std::size_t& try_first = sc.on_land;
     bool q_on_boundary = false;
     const XY q = outline.empty() ? pose.position : outline[try_first < outline.size() ? try_first : 0];
     const int q_w = outline.empty() ? 0 : g.winding(q, &q_on_boundary);
@@ -891,11 +931,11 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
 std::vector<ContactRegion> hull_contact_regions(const std::vector<XY>& a, const std::vector<XY>& b, double scale) {
     const std::vector<XY> ring = ccw_closed(b);
     if (ring.empty()) return {};
-    Obstacle o;
-    o.collect = [&ring](const Box&, std::vector<RawSegment>& out) {
+    auto collect = [&ring](const Box&, std::vector<RawSegment>& out) {
         for (std::size_t i = 0; i + 1 < ring.size(); ++i) out.push_back({ring[i], ring[i + 1], 0, true});
     };
-    o.inside = [&ring](XY p) { return in_polygon(ring, p); };
+    auto inside = [&ring](XY p) { return in_polygon(ring, p); };
+    const Obstacle o{collect, inside};
     std::vector<ContactRegion> out = regions_of(a, o, scale, {});
     for (ContactRegion& r : out) r.polyline = no_polyline;
     return out;
