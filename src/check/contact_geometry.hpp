@@ -314,6 +314,47 @@ private:
     std::vector<XY> (&m_buf)[2];
 };
 
+/// `out` := convex polygon `in` cut to `box` (as ConvexCutter::cut, one side of the box at a
+/// time, only the sides the polygon crosses; a cut point lies on the side exactly). `tmp`: a
+/// working list.
+inline void clip_to_box(std::span<const XY> in, const Box& box, std::vector<XY>& out, std::vector<XY>& tmp) {
+    const std::size_t cap = in.size() + 4;  // a side adds at most one vertex to a convex polygon
+    if (out.size() < cap) out.resize(cap);
+    if (tmp.size() < cap) tmp.resize(cap);
+    Box pb;
+    for (XY p : in) pb.extend(p);
+    XY* cur = out.data();
+    XY* next = tmp.data();
+    std::copy(in.begin(), in.end(), cur);
+    std::size_t m = in.size();
+    for (int side = 0; side < 4 && m > 0; ++side) {
+        const bool along_x = side < 2;
+        const double at = side == 0 ? box.minx : side == 1 ? box.maxx : side == 2 ? box.miny : box.maxy;
+        // Wholly inside this side: nothing to cut.
+        if (side == 0 ? pb.minx >= at : side == 1 ? pb.maxx <= at : side == 2 ? pb.miny >= at : pb.maxy <= at) continue;
+        const double sign = side % 2 == 0 ? 1.0 : -1.0;
+        auto dist = [along_x, at, sign](XY p) { return sign * ((along_x ? p.x : p.y) - at); };
+        std::size_t k2 = 0;
+        double dp = dist(cur[0]);
+        const double d_first = dp;
+        for (std::size_t k = 0; k < m; ++k) {
+            const XY p = cur[k], q = k + 1 < m ? cur[k + 1] : cur[0];
+            const double dq = k + 1 < m ? dist(q) : d_first;
+            if (dp >= 0) next[k2++] = p;
+            if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) {
+                XY x = p + (dp / (dp - dq)) * (q - p);
+                (along_x ? x.x : x.y) = at;
+                next[k2++] = x;
+            }
+            dp = dq;
+        }
+        std::swap(cur, next);
+        m = k2;
+    }
+    if (cur != out.data()) std::copy(cur, cur + m, out.data());
+    out.resize(m < 3 ? 0 : m);
+}
+
 /// A site in the order of its box's least x, with the greatest x of the boxes up to it.
 struct ByX {
     double minx, max_maxx;

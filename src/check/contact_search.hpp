@@ -22,6 +22,9 @@ struct ContactSearch {
     /// (grown by the reach), not by the box alone: a hull at 45 degrees fills half of its box,
     /// and the segments of the box's corners are no nearer than the reach to it.
     bool hull_slabs = true;
+    /// An interior cell of a convex hull is its parent's polygon (the parent's box cut to the
+    /// hull) cut to the cell's box, not the cell's box cut to the hull again.
+    bool cut_from_parent = true;
 };
 
 /// contact_regions(detector, pose), searched as `how` says.

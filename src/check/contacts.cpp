@@ -124,6 +124,9 @@ struct Cell {
     double parent_clear = 0;  // the parent centre's distance to the boundary (a lower bound)
     bool parent_inside = false;
     ConvexCutter::Edges edges = ConvexCutter::all_edges;  // the hull's edges that may cut it
+    // The parent's polygon (its box cut to the hull): its first vertex in Scratch::cell_polys
+    // and how many (0: none, a first cell).
+    std::uint32_t parent_poly = 0, parent_poly_n = 0;
     bool operator<(const Cell& o) const noexcept { return bound < o.bound; }
 };
 
@@ -152,7 +155,7 @@ struct Scratch {
     std::vector<Interval> intervals;
     std::vector<double> piece_d2;
     std::vector<Cell> queue;  // a heap (std::push_heap, std::pop_heap: as std::priority_queue)
-    std::vector<XY> poly, ring;
+    std::vector<XY> poly, ring, cell_polys, clip_tmp;
     std::vector<XY> cut_buffers[2];  // ConvexCutter's
     std::vector<Region> regions;     // the first Regions::n in use, their lists kept
     // contact_regions:
@@ -641,6 +644,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
             std::vector<XY>& poly = sc.poly;
             ConvexCutter cutter(ring, sc.cut_buffers);
             ConvexCutter::Edges edges = ConvexCutter::all_edges;
+            std::vector<XY>& cell_polys = sc.cell_polys;
+            cell_polys.clear();
             while (!queue.empty() && ++steps < 100000) {
                 std::pop_heap(queue.begin(), queue.end());
                 const Cell cell = queue.back();
@@ -649,7 +654,10 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 if (cell.box.minx > hbox.maxx || cell.box.maxx < hbox.minx || cell.box.miny > hbox.maxy || cell.box.maxy < hbox.miny)
                     continue;
                 if (convex) {  // cut to the hull
-                    edges = cutter.cut(cell.box, cell.edges, poly);
+                    if (how.cut_from_parent && cell.parent_poly_n > 0)
+                        clip_to_box(std::span<const XY>(cell_polys).subspan(cell.parent_poly, cell.parent_poly_n), cell.box, poly, sc.clip_tmp);
+                    else
+                        edges = cutter.cut(cell.box, cell.edges, poly);
                     if (poly.size() < 3) continue;
                 } else {
                     poly = {{cell.box.minx, cell.box.miny}, {cell.box.maxx, cell.box.miny},
@@ -730,10 +738,15 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 }
                 const double hx = (cell.box.minx + cell.box.maxx) / 2, hy = (cell.box.miny + cell.box.maxy) / 2;
                 const double clear_c = std::min(n.d, reach);
-                push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard, edges});
-                push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard, edges});
-                push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
-                push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard, edges});
+                std::uint32_t at_poly = 0, n_poly = 0;
+                if (convex && how.cut_from_parent) {
+                    at_poly = static_cast<std::uint32_t>(cell_polys.size()), n_poly = static_cast<std::uint32_t>(poly.size());
+                    cell_polys.insert(cell_polys.end(), poly.begin(), poly.end());
+                }
+                push({{cell.box.minx, cell.box.miny, hx, hy}, b, c, clear_c, in_hazard, edges, at_poly, n_poly});
+                push({{hx, cell.box.miny, cell.box.maxx, hy}, b, c, clear_c, in_hazard, edges, at_poly, n_poly});
+                push({{cell.box.minx, hy, hx, cell.box.maxy}, b, c, clear_c, in_hazard, edges, at_poly, n_poly});
+                push({{hx, hy, cell.box.maxx, cell.box.maxy}, b, c, clear_c, in_hazard, edges, at_poly, n_poly});
             }
         }
         // 3. A depth at the reach: a nearer boundary may lie beyond it.

@@ -413,7 +413,7 @@ TEST(ContactRegions, RandomJaggedCoastsAgreeWithGeos) {
 TEST(ContactRegions, ShortcutsGiveTheDepthsOfTheFullSearch) {
     // The search's shortcuts (src/check/contact_search.hpp): the first reach of 2 m, the ridge
     // points of the two-site bounds tried as deepest points, the bounds of the pairs with a third
-    // site, a convex hull's reach cut to its slabs. Each may give another deepest point of the same depth, never another depth: on
+    // site, a convex hull's reach cut to its slabs, a cell's polygon cut from its parent's. Each may give another deepest point of the same depth, never another depth: on
     // random jagged coasts with piers bent halfway along (a vertex in each side: near it the two
     // nearest sites are two pieces of one side, the case the third site is for), over and
     // beside the land, and islets, every region's depth with all of them, each alone, and a
@@ -421,13 +421,14 @@ TEST(ContactRegions, ShortcutsGiveTheDepthsOfTheFullSearch) {
     // within 2 um (each exact to a micrometre), and the regions are as many.
     std::mt19937_64 rng(53);
     std::uniform_real_distribution<double> unit(0, 1);
-    const detail::ContactSearch full{.first_reach_m = 1.0, .ridge_candidates = false, .third_site = false, .hull_slabs = false};
+    const detail::ContactSearch full{.first_reach_m = 1.0, .ridge_candidates = false, .third_site = false, .hull_slabs = false, .cut_from_parent = false};
     const std::vector<detail::ContactSearch> ways{
         {},
-        {.first_reach_m = 1.0, .ridge_candidates = true, .third_site = false, .hull_slabs = false},
-        {.first_reach_m = 1.0, .ridge_candidates = false, .third_site = true, .hull_slabs = false},
-        {.first_reach_m = 2.0, .ridge_candidates = false, .third_site = false, .hull_slabs = false},
-        {.first_reach_m = 1.0, .ridge_candidates = false, .third_site = false, .hull_slabs = true},
+        {.first_reach_m = 1.0, .ridge_candidates = true, .third_site = false, .hull_slabs = false, .cut_from_parent = false},
+        {.first_reach_m = 1.0, .ridge_candidates = false, .third_site = true, .hull_slabs = false, .cut_from_parent = false},
+        {.first_reach_m = 2.0, .ridge_candidates = false, .third_site = false, .hull_slabs = false, .cut_from_parent = false},
+        {.first_reach_m = 1.0, .ridge_candidates = false, .third_site = false, .hull_slabs = true, .cut_from_parent = false},
+        {.first_reach_m = 1.0, .ridge_candidates = false, .third_site = false, .hull_slabs = false, .cut_from_parent = true},
         {.first_reach_m = 0.25},
         {.first_reach_m = 64.0},
     };
