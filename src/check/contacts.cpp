@@ -160,8 +160,9 @@ struct Scratch {
     std::vector<Region> regions;     // the first Regions::n in use, their lists kept
     // contact_regions:
     std::vector<CellNear> cells_near;  // the first `n_cells_near` are the focus's
-    std::vector<KnownWinding> known;
-    std::size_t on_land = 0;  // the hull vertex tried first for land
+    std::vector<KnownWinding> known;  // kept from call to call on one grid (known_grid)
+    std::uint64_t known_grid = 0;     // CoastGrid::instance() of `known`
+    std::size_t on_land = 0;          // the hull vertex tried first for land
 };
 
 /// The regions of an attempt: the first `n` of the kept list (their piece lists cleared, not
@@ -878,8 +879,12 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
     // (a harbour's coast cell holds ~760 segments, and the long path met many of them).
     // And a path inside the reach's box meets only the cell's segments whose box meets it:
     // listed by the gathering above, each point tries those only (~14, not ~760).
+    // Points whose windings are known, the first asked in their grid cells, kept from the calls
+    // before on this grid (a ship moves little from one frame to the next: counted from them,
+    // a winding crosses a short path, not one from the cell's reference point).
     std::vector<KnownWinding>& known = sc.known;
-    known.clear();
+    if (sc.known_grid != g.instance() || known.size() > 16) known.clear();
+    sc.known_grid = g.instance();
     auto holds = [](const Box& b, XY p) { return p.x >= b.minx && p.x <= b.maxx && p.y >= b.miny && p.y <= b.maxy; };
     auto inside = [&g, &known, &focus, &cells_near, &n_cells_near, holds](XY p) {
         const int i = g.col_of(p.x), j = g.row_of(p.y);
@@ -906,12 +911,18 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
     std::size_t& try_first = sc.on_land;
     bool q_on_boundary = false;
     const XY q = outline.empty() ? pose.position : outline[try_first < outline.size() ? try_first : 0];
-    const int q_w = outline.empty() ? 0 : g.winding(q, &q_on_boundary);
-    if (q_w > 0) {
-        if (!q_on_boundary && g.valid_cell(g.col_of(q.x), g.row_of(q.y))) known.push_back({g.col_of(q.x), g.row_of(q.y), q, q_w});
-    } else if (!detector.check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = true}).collision) {
-        return {};
+    const int q_i = g.col_of(q.x), q_j = g.row_of(q.y);
+    KnownWinding* q_known = nullptr;
+    for (KnownWinding& k : known)
+        if (k.i == q_i && k.j == q_j) q_known = &k;
+    const int q_w = outline.empty() ? 0 : q_known ? g.winding_from(q_known->at, q_known->w, q, &q_on_boundary) : g.winding(q, &q_on_boundary);
+    if (!outline.empty() && !q_on_boundary && g.valid_cell(q_i, q_j)) {
+        // q is where the next call's windings in this cell count from.
+        if (q_known) q_known->at = q, q_known->w = q_w;
+        else known.push_back({q_i, q_j, q, q_w});
     }
+    if (q_w <= 0 && !detector.check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = true}).collision)
+        return {};
     std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose), how);
     if (q_w <= 0 && !out.empty() && out.front().depth_m > 0) {
         // The next pose's first try: the vertex nearest the deepest region's point (on land as

@@ -1,6 +1,7 @@
 #include <shoal/grid/coast_grid.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -71,6 +72,16 @@ struct CoastGrid::Levels {
     std::mutex mutex;
     std::map<std::size_t, std::unique_ptr<CoastGrid>> grids;  // by level; nodes stay put
 };
+namespace {
+std::atomic<std::uint64_t> next_instance{1};
+}  // namespace
+CoastGrid::InstanceNumber::InstanceNumber() noexcept : number(next_instance.fetch_add(1, std::memory_order_relaxed)) {}
+CoastGrid::InstanceNumber::InstanceNumber(const InstanceNumber&) noexcept : InstanceNumber() {}
+CoastGrid::InstanceNumber& CoastGrid::InstanceNumber::operator=(const InstanceNumber&) noexcept {
+    number = next_instance.fetch_add(1, std::memory_order_relaxed);
+    return *this;
+}
+
 CoastGrid::LevelCache::LevelCache() : p(std::make_unique<Levels>()) {}
 CoastGrid::LevelCache::LevelCache(const LevelCache&) : p(std::make_unique<Levels>()) {}
 CoastGrid::LevelCache& CoastGrid::LevelCache::operator=(const LevelCache&) {

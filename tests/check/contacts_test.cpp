@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <thread>
 
@@ -242,6 +243,37 @@ TEST(ContactRegions, BowIntoAStraightQuay) {
     EXPECT_NEAR(regions[0].normal.y, 1, 1e-12);
     EXPECT_NEAR(regions[0].hull_point.y, -2, 1e-9);
     EXPECT_EQ(s.oracle.verify(hull_outline(hull, p), regions, "bow"), 0);
+}
+
+TEST(ContactRegions, WindingsKeptBetweenCallsAreThoseOfTheGridAsked) {
+    // A thread keeps the windings it knows from call to call on one grid (CoastGrid::instance):
+    // a grid made where another was, with the same cells but other land, is not answered with
+    // the first one's. A: land up to y = 0; B: up to y = -10; the same extent (an islet each).
+    // The bow 2 m past y = 0 is in A's land and in B's water.
+    const hull::Hull hull = hull::Hull::from_dimensions({100, 20, 8, 8});
+    const LocalPose p = LocalPose::at({0, 98}, 180);
+    const coast::LocalPolyline islet = ring_of(rect(900, 900, 910, 910));
+    std::optional<grid::CoastGrid> g;
+    g.emplace(grid::CoastGrid::build({ring_of(rect(-1000, -1000, 1000, 0)), islet}, any_frame(), 100));
+    const grid::CoastGrid* where = &*g;
+    const std::uint64_t a = g->instance();
+    {
+        const Detector det(*g, hull);
+        for (int k = 0; k < 3; ++k) {
+            const auto regions = contact_regions(det, p);
+            ASSERT_EQ(regions.size(), 1u);
+            EXPECT_NEAR(regions[0].depth_m, 2, 1e-9);
+        }
+    }
+    g.emplace(grid::CoastGrid::build({ring_of(rect(-1000, -1000, 1000, -10)), islet}, any_frame(), 100));
+    ASSERT_EQ(&*g, where);
+    EXPECT_NE(g->instance(), a);
+    const Detector det(*g, hull);
+    EXPECT_TRUE(contact_regions(det, p).empty());
+    EXPECT_EQ(contact_regions(det, LocalPose::at({0, 88}, 180)).size(), 1u);  // 2 m past y = -10
+    // A copy is another grid object: another number.
+    const grid::CoastGrid copy = *g;
+    EXPECT_NE(copy.instance(), g->instance());
 }
 
 TEST(ContactRegions, SidePressedIntoAQuayAlongItsLength) {

@@ -204,6 +204,11 @@ public:
 
     friend bool operator==(const CoastGrid& a, const CoastGrid& b);
 
+    /// A number no other grid object of this process has had: a copy, a moved-to grid and a
+    /// grid assigned to take a new one. A key for answers about this grid kept outside it (the
+    /// windings a thread knows, check/contacts.cpp).
+    std::uint64_t instance() const noexcept { return m_instance.number; }
+
 private:
     friend class GridFile;
     /// floor(f) as a cell index, clamped to +-2^30 (far outside any grid, with room for i + 1):
@@ -247,6 +252,15 @@ private:
         ~LevelCache();
     };
 
+    /// instance(): drawn anew whenever the grid is made, copied, moved or assigned.
+    struct InstanceNumber {
+        std::uint64_t number;
+        InstanceNumber() noexcept;
+        InstanceNumber(const InstanceNumber&) noexcept;
+        InstanceNumber& operator=(const InstanceNumber&) noexcept;
+    };
+
+    InstanceNumber m_instance;
     geo::LocalFrame m_frame;
     double m_cell = 0;
     double m_x0 = 0, m_y0 = 0;
