@@ -481,10 +481,26 @@ public:
             const double f = std::sqrt(std::min(dist2_to(p, s[0]->a, s[0]->b, nullptr), dist2_to(p, s[1]->a, s[1]->b, nullptr)));
             if (f > best) best = f, best_at = p;
         };
-        for (XY p : v) consider(p);
+        // The vertices, and each one's squared distances to the two sites (for up to 64).
+        constexpr std::size_t kept = 64;
+        double v2[2][kept];
+        for (std::size_t k = 0; k < v.size(); ++k) {
+            const double a2 = dist2_to(v[k], s[0]->a, s[0]->b, nullptr), b2 = dist2_to(v[k], s[1]->a, s[1]->b, nullptr);
+            if (k < kept) v2[0][k] = a2, v2[1][k] = b2;
+            const double f = std::sqrt(std::min(a2, b2));
+            if (f > best) best = f, best_at = v[k];
+        }
         const std::size_t edges = v.size() == 2 ? 1 : v.size();
         for (std::size_t e = 0; e < edges; ++e) {
-            const XY p = v[e], d = v[e + 1 < v.size() ? e + 1 : 0] - p;
+            const std::size_t e1 = e + 1 < v.size() ? e + 1 : 0;
+            if (e1 < kept && e < kept) {
+                // A distance to a segment is convex along a line: on this edge each is at most
+                // its greater value at the ends, so the lesser of the two is at most the lesser
+                // of those; an edge that cannot beat the best (by more than rounding) is passed.
+                const double ub2 = std::min(std::max(v2[0][e], v2[0][e1]), std::max(v2[1][e], v2[1][e1]));
+                if (std::sqrt(ub2) * (1 + 1e-12) <= best) continue;
+            }
+            const XY p = v[e], d = v[e1] - p;
             double breaks[6] = {0, 1};
             int nb = 2;
             // Per site along this edge: u(t) = ((p - a) + t d) . ab / |ab|^2, linear in t; and
