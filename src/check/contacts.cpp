@@ -657,6 +657,8 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 if (convex) {  // cut to the hull
                     if (how.cut_from_parent && cell.parent_poly_n > 0)
                         clip_to_box(std::span<const XY>(cell_polys).subspan(cell.parent_poly, cell.parent_poly_n), cell.box, poly, sc.clip_tmp);
+                    else if (how.cut_from_parent)  // a first cell: the hull cut to its box
+                        clip_to_box(std::span<const XY>(ring).first(n_edges), cell.box, poly, sc.clip_tmp);
                     else
                         edges = cutter.cut(cell.box, cell.edges, poly);
                     if (poly.size() < 3) continue;
