@@ -80,6 +80,11 @@ struct Slabs {
 
 /// Clips segment ab to `box` and, when given, to `slabs`; false when nothing is left.
 bool clip_to(XY& a, XY& b, const Box& box, const Slabs* slabs = nullptr) noexcept {
+    if (slabs)  // both ends beyond one side of a slab (most segments left out): nothing left
+        for (int k = 0; k < 2; ++k) {
+            const double an = geo::dot(slabs->n[k], a), bn = geo::dot(slabs->n[k], b);
+            if ((an < slabs->lo[k] && bn < slabs->lo[k]) || (an > slabs->hi[k] && bn > slabs->hi[k])) return false;
+        }
     double t0 = 0, t1 = 1;
     const XY d = b - a;
     const double p[4] = {-d.x, d.x, -d.y, d.y};
@@ -591,9 +596,10 @@ public:
     double bound(const std::vector<XY>& v, const Near& n, int second_site, double sd, double r) const {
         double b = sd + r;
         if (n.site < 0) return b;
-        double single = 0;
-        for (XY p : v) single = std::max(single, dist_to_site(p, n.site));
-        b = std::min(b, single);
+        // (The root of the greatest square: the same number as the greatest root.)
+        double single2 = 0;
+        for (XY p : v) single2 = std::max(single2, dist2_to(p, m_sites[n.site].a, m_sites[n.site].b, nullptr));
+        b = std::min(b, std::sqrt(single2));
         if (second_site >= 0) b = std::min(b, two_site_bound(v, n.site, second_site));
         return b;
     }

@@ -670,8 +670,9 @@ std::vector<ContactRegion> regions_of(const std::vector<XY>& outline, const Obst
                 XY c{0, 0};
                 for (XY p : poly) c = c + p;
                 c = (1.0 / static_cast<double>(poly.size())) * c;
-                double r = 0;
-                for (XY p : poly) r = std::max(r, std::sqrt(geo::norm2(p - c)));
+                double r2 = 0;  // (the root of the greatest square: the same number as the greatest root)
+                for (XY p : poly) r2 = std::max(r2, geo::norm2(p - c));
+                const double r = std::sqrt(r2);
                 Search::Near n;
                 n = search.nearest(c);
                 const bool in_hazard = cell.parent_clear > 0 && geo::distance(c, cell.parent) < cell.parent_clear
