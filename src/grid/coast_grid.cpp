@@ -6,6 +6,9 @@
 #include <map>
 #include <mutex>
 #include <numeric>
+#if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)
+#include <emmintrin.h>
+#endif
 
 #include "util/parse_util.hpp"
 #include "grid/outward.hpp"
@@ -188,16 +191,51 @@ CoastGrid CoastGrid::make_level(std::size_t level) const {
     return v;
 }
 
-void CoastGrid::compute_chunk_boxes() {
-    m_chunk_box.assign((m_segments.size() + chunk_segments - 1) / chunk_segments, geo::Box{});
-    for (std::size_t k = 0; k < m_segments.size(); ++k) {
-        m_chunk_box[k / chunk_segments].extend(m_segments[k].a);
-        m_chunk_box[k / chunk_segments].extend(m_segments[k].b);
+bool CoastGrid::compute_chunk_boxes() {
+    // A chunk's bounds in registers, stored once (the same numbers as extending its box by
+    // each end: min and max are exact; two lanes, x and y, where SSE2 is there).
+    const std::size_t n = m_segments.size(), chunks = (n + chunk_segments - 1) / chunk_segments;
+    m_chunk_box.resize(chunks);
+    // x - x is 0 for a finite x and NaN for an infinite or NaN one: their sum is 0 when every
+    // coordinate is finite.
+#if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)
+    __m128d finite = _mm_setzero_pd();
+#else
+    double finite = 0;
+#endif
+    for (std::size_t c = 0; c < chunks; ++c) {
+        const std::size_t from = c * chunk_segments, to = std::min(n, from + chunk_segments);
+#if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)
+        __m128d lo = _mm_set1_pd(INFINITY), hi = _mm_set1_pd(-INFINITY);
+        for (std::size_t k = from; k < to; ++k) {
+            const __m128d a = _mm_loadu_pd(&m_segments[k].a.x), b = _mm_loadu_pd(&m_segments[k].b.x);
+            lo = _mm_min_pd(lo, _mm_min_pd(a, b)), hi = _mm_max_pd(hi, _mm_max_pd(a, b));
+            finite = _mm_add_pd(finite, _mm_add_pd(_mm_sub_pd(a, a), _mm_sub_pd(b, b)));
+        }
+        double l[2], h[2];
+        _mm_storeu_pd(l, lo), _mm_storeu_pd(h, hi);
+        m_chunk_box[c] = {l[0], l[1], h[0], h[1]};
+#else
+        geo::Box box;
+        for (std::size_t k = from; k < to; ++k) {
+            const Segment& sg = m_segments[k];
+            box.extend(sg.a), box.extend(sg.b);
+            finite += (sg.a.x - sg.a.x) + (sg.a.y - sg.a.y) + (sg.b.x - sg.b.x) + (sg.b.y - sg.b.y);
+        }
+        m_chunk_box[c] = box;
+#endif
     }
     static_assert(block_segments % chunk_segments == 0);
     m_block_box.assign((m_segments.size() + block_segments - 1) / block_segments, geo::Box{});
     for (std::size_t c = 0; c < m_chunk_box.size(); ++c)
         if (!m_chunk_box[c].empty()) m_block_box[c * chunk_segments / block_segments].extend(m_chunk_box[c]);
+#if (defined(__SSE2__) || defined(_M_X64)) && !defined(SHOAL_NO_SSE2)
+    double f[2];
+    _mm_storeu_pd(f, finite);
+    return f[0] == 0 && f[1] == 0;
+#else
+    return finite == 0;
+#endif
 }
 
 namespace {

@@ -1,20 +1,18 @@
 #include <shoal/grid/grid_file.hpp>
 
-
-#define XXH_INLINE_ALL
-#include <xxhash.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <type_traits>
 #include <unordered_map>
 
 #include <shoal/util/atomic_file.hpp>
 #include <shoal/util/error.hpp>
 
+#include "util/fast_hash.hpp"
 #include "util/mapped_file.hpp"
 
 namespace shoal::grid {
@@ -78,8 +76,9 @@ public:
     template <typename T>
     std::vector<T> vec() {
         const auto n = count(sizeof(T));
-        std::vector<T> v(n);
-        if (n) std::memcpy(v.data(), m_p, n * sizeof(T));
+        // Each element copied from the bytes as it is made (not zeroed first, then copied):
+        // the array may lie at any alignment in the file, so it is read through memcpy.
+        std::vector<T> v(Elements<T>{m_p}, Elements<T>{m_p + n * sizeof(T)});
         m_p += n * sizeof(T);
         return v;
     }
@@ -89,6 +88,34 @@ public:
     }
 
 private:
+    /// The elements of type T stored from `p` on, at any alignment, as a random access iterator.
+    template <typename T>
+    struct Elements {
+        using iterator_category = std::random_access_iterator_tag;
+        using value_type = T;
+        using difference_type = std::ptrdiff_t;
+        using pointer = const T*;
+        using reference = T;
+        const char* p;
+        T operator*() const noexcept {
+            T t;
+            std::memcpy(&t, p, sizeof(T));
+            return t;
+        }
+        T operator[](difference_type k) const noexcept { return *(*this + k); }
+        Elements& operator++() noexcept { p += sizeof(T); return *this; }
+        Elements operator++(int) noexcept { Elements o = *this; p += sizeof(T); return o; }
+        Elements& operator--() noexcept { p -= sizeof(T); return *this; }
+        Elements operator--(int) noexcept { Elements o = *this; p -= sizeof(T); return o; }
+        Elements& operator+=(difference_type k) noexcept { p += k * static_cast<difference_type>(sizeof(T)); return *this; }
+        Elements& operator-=(difference_type k) noexcept { p -= k * static_cast<difference_type>(sizeof(T)); return *this; }
+        friend Elements operator+(Elements a, difference_type k) noexcept { return a += k; }
+        friend Elements operator+(difference_type k, Elements a) noexcept { return a += k; }
+        friend Elements operator-(Elements a, difference_type k) noexcept { return a -= k; }
+        friend difference_type operator-(Elements a, Elements b) noexcept { return (a.p - b.p) / static_cast<difference_type>(sizeof(T)); }
+        friend auto operator<=>(Elements a, Elements b) noexcept = default;
+    };
+
     std::size_t count(std::size_t elem) {
         const auto n = pod<std::uint64_t>();
         if (n > static_cast<std::uint64_t>(m_end - m_p) / elem) fail("an array runs past the end of the file");
@@ -206,7 +233,7 @@ std::vector<char> GridFile::serialize(const CoastGrid& g) {
     out.pod(grid_format_version);
     out.pod(byte_order_mark);
     out.pod<std::uint64_t>(payload.size());
-    out.pod<std::uint64_t>(XXH3_64bits(payload.data(), payload.size()));
+    out.pod<std::uint64_t>(util::xxh3_64(payload.data(), payload.size()));
     out.bytes().insert(out.bytes().end(), payload.begin(), payload.end());
     return std::move(out.bytes());
 }
@@ -267,7 +294,7 @@ CoastGrid GridFile::parse(std::span<const char> bytes, const std::string& name) 
         h.fail("its length is " + std::to_string(bytes.size() - header_size) + " bytes, the header says " + std::to_string(size) +
                " (cut short?)");
     const char* payload = bytes.data() + header_size;
-    if (XXH3_64bits(payload, size) != checksum) h.fail("checksum mismatch");
+    if (util::xxh3_64(payload, size) != checksum) h.fail("checksum mismatch");
 
     Reader r(payload, size, name);
     const Head head = read_head(r);
@@ -331,8 +358,11 @@ CoastGrid GridFile::parse(std::span<const char> bytes, const std::string& name) 
         hz.name = names[name_of[k]];
         g.m_hazards.push_back(std::move(hz));
     }
-    for (std::uint32_t info : g.m_seg_info)
-        if ((info & ~CoastGrid::boundary_bit) >= kinds.size()) r.fail("segment of a polyline out of range");
+    {
+        std::uint32_t most = 0;  // the greatest polyline index (no branch a segment)
+        for (std::uint32_t info : g.m_seg_info) most = std::max(most, info & ~CoastGrid::boundary_bit);
+        if (!g.m_seg_info.empty() && most >= kinds.size()) r.fail("segment of a polyline out of range");
+    }
     try {
         g.assign_levels();
     } catch (const UsageError&) {
@@ -347,8 +377,14 @@ CoastGrid GridFile::parse(std::span<const char> bytes, const std::string& name) 
     if (g.m_seg_offset.size() != ncoast + 1 || g.m_seg_offset.front() != 0 || g.m_seg_offset.back() != g.m_segments.size() ||
         !std::is_sorted(g.m_seg_offset.begin(), g.m_seg_offset.end()) || g.m_seg_info.size() != g.m_segments.size())
         r.fail("segment offsets");
-    for (std::uint32_t v : g.m_slot)
-        if (v < CoastGrid::land_slot && v >= ncoast) r.fail("cell slot out of range");
+    {
+        // A slot is a coast cell's index (below ncoast), land or water: v - ncoast, unsigned,
+        // falls below land_slot - ncoast only for the others (one test, no branch, a cell).
+        bool bad = false;
+        const std::uint32_t n32 = static_cast<std::uint32_t>(std::min<std::size_t>(ncoast, CoastGrid::land_slot));
+        for (std::uint32_t v : g.m_slot) bad |= static_cast<std::uint32_t>(v - n32) < CoastGrid::land_slot - n32;
+        if (bad) r.fail("cell slot out of range");
+    }
     const std::size_t top = g.m_level_depth.size();
     if (top == 0) {
         if (!g.m_lw_offset.empty() || !g.m_lw_level.empty() || !g.m_lw_winding.empty() || !g.m_land_level.empty())
@@ -363,10 +399,7 @@ CoastGrid GridFile::parse(std::span<const char> bytes, const std::string& name) 
         for (std::uint16_t lv : g.m_land_level)
             if (lv > top) r.fail("land level out of range");
     }
-    for (const Segment& sg : g.m_segments)
-        if (!std::isfinite(sg.a.x) || !std::isfinite(sg.a.y) || !std::isfinite(sg.b.x) || !std::isfinite(sg.b.y))
-            r.fail("non-finite segment");
-    g.compute_chunk_boxes();
+    if (!g.compute_chunk_boxes()) r.fail("non-finite segment");
     return g;
 }
 

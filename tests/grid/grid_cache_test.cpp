@@ -13,11 +13,14 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "test_support.hpp"
+#include "util/fast_hash.hpp"
 #include <shoal/util/error.hpp>
 
 namespace {
@@ -177,6 +180,64 @@ TEST_F(GridCache, AnotherFormatVersion) {
     EXPECT_TRUE(shoal::grid::looks_like_grid(path));
     EXPECT_THAT([&] { GridFile::load(path); },
                 ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("format version " + std::to_string(v)), HasSubstr("rebuild"))));
+}
+
+TEST_F(GridCache, WrongWriterBehindAValidChecksum) {
+    // What a checksum cannot catch (a writer that wrote wrong values and their checksum): a
+    // segment's coordinate that is not finite, a cell slot beyond the coast cells, a segment of
+    // a polyline beyond the table; each named, with the checksum made right again.
+    auto resum = [](std::vector<char>& bytes) {
+        const std::uint64_t sum = shoal::util::xxh3_64(bytes.data() + header_size, bytes.size() - header_size);
+        std::memcpy(bytes.data() + header_size - 8, &sum, sizeof sum);
+    };
+    {
+        std::vector<char> bytes = *s_bytes;
+        resum(bytes);
+        EXPECT_NO_THROW(GridFile::load(write_grid(bytes)));  // the resumming alone changes nothing
+    }
+    // The segments: their array's count (u64) then each segment's four doubles, then the
+    // segments' polyline table (count, then a u32 each).
+    std::span<const shoal::grid::Segment> first_cell;
+    for (int j = 0; j < s_grid->ny() && first_cell.empty(); ++j)
+        for (int i = 0; i < s_grid->nx() && first_cell.empty(); ++i) first_cell = s_grid->segments(i, j);
+    ASSERT_FALSE(first_cell.empty());
+    const shoal::grid::Segment sg = first_cell.front();
+    const auto at = std::search(s_bytes->begin() + header_size, s_bytes->end(), reinterpret_cast<const char*>(&sg),
+                                reinterpret_cast<const char*>(&sg) + sizeof sg);
+    ASSERT_NE(at, s_bytes->end());
+    const std::size_t seg_at = static_cast<std::size_t>(at - s_bytes->begin());
+    for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()})
+        for (std::size_t coord = 0; coord < 4; ++coord) {
+            std::vector<char> bytes = *s_bytes;
+            std::memcpy(bytes.data() + seg_at + 8 * coord, &bad, sizeof bad);
+            resum(bytes);
+            const std::string path = write_grid(bytes);
+            EXPECT_THAT([&] { GridFile::load(path); }, ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("non-finite segment"))))
+                << bad << " at coordinate " << coord;
+        }
+    std::uint64_t n_segments = 0;
+    std::memcpy(&n_segments, s_bytes->data() + seg_at - 8, sizeof n_segments);
+    ASSERT_GT(n_segments, 0u);
+    const std::size_t info_at = seg_at + n_segments * sizeof(shoal::grid::Segment) + 8;
+    {
+        std::vector<char> bytes = *s_bytes;
+        const std::uint32_t beyond = 0x7FFFFFFFu;  // a polyline index past any table, boundary bit clear
+        std::memcpy(bytes.data() + info_at + 4 * (n_segments / 2), &beyond, sizeof beyond);
+        resum(bytes);
+        EXPECT_THAT([&] { GridFile::load(write_grid(bytes)); }, ThrowsMessage<InputError>(HasSubstr("segment of a polyline out of range")));
+    }
+    // The cell slots: nx * ny of them after their count, the first array after the head.
+    const std::uint64_t n_cells = static_cast<std::uint64_t>(s_grid->nx()) * static_cast<std::uint64_t>(s_grid->ny());
+    const auto count_at = std::search(s_bytes->begin() + header_size, s_bytes->end(), reinterpret_cast<const char*>(&n_cells),
+                                      reinterpret_cast<const char*>(&n_cells) + sizeof n_cells);
+    ASSERT_NE(count_at, s_bytes->end());
+    const std::size_t slots_at = static_cast<std::size_t>(count_at - s_bytes->begin()) + 8;
+    for (std::uint32_t bad : {0x7FFFFFFFu, 0xFFFFFFFDu}) {  // a coast index past the coast cells (land and water are the two above)
+        std::vector<char> bytes = *s_bytes;
+        std::memcpy(bytes.data() + slots_at + 4 * (n_cells / 3), &bad, sizeof bad);
+        resum(bytes);
+        EXPECT_THAT([&] { GridFile::load(write_grid(bytes)); }, ThrowsMessage<InputError>(HasSubstr("cell slot out of range"))) << bad;
+    }
 }
 
 TEST_F(GridCache, TruncatedFile) {

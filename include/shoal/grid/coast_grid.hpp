@@ -224,8 +224,10 @@ private:
 
     explicit CoastGrid(geo::LocalFrame frame) : m_frame(std::move(frame)) {}
     void assign_windings(const std::vector<coast::LocalPolyline>& lines);
-    /// Fills m_chunk_box and m_block_box from m_segments (after a build or a load: they are not saved).
-    void compute_chunk_boxes();
+    /// Fills m_chunk_box and m_block_box from m_segments (after a build or a load: they are not
+    /// saved); false when a segment has a coordinate that is not finite (its boxes are then
+    /// not to be used).
+    bool compute_chunk_boxes();
     bool reference_points_clear() const;
     /// Winding at p of coast cell slot `s`, counted from `r` (winding `w`) in the same cell.
     int winding_in_cell(std::uint32_t s, geo::XY r, int w, geo::XY p, bool* on_boundary) const noexcept;
