@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "geo/geos_context.hpp"
+#include "temp_dir.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/geo/point.hpp>
 
@@ -29,26 +30,6 @@ namespace shoal::test {
 /// Absolute path of a file under tests/data/ (`rel` like "coast/uk_solent_land.geojson").
 inline std::string data_path(const std::string& rel) { return std::string(SHOAL_TEST_DATA) + rel; }
 
-/// A fresh, empty folder under the system temp folder, removed with everything in it.
-class TempDir {
-public:
-    TempDir() {
-        std::string templ = (std::filesystem::temp_directory_path() / "shoal-test-XXXXXX").string();
-        if (!::mkdtemp(templ.data())) throw std::runtime_error("mkdtemp failed for " + templ);
-        m_path = templ;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(m_path, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const std::filesystem::path& path() const noexcept { return m_path; }
-    std::string file(const std::string& name) const { return (m_path / name).string(); }
-
-private:
-    std::filesystem::path m_path;
-};
 
 inline std::vector<char> read_bytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);

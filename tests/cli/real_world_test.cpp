@@ -22,24 +22,16 @@
 #include <unistd.h>
 
 #include "run_shoal.hpp"
+#include "temp_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 /// A folder for this run's files, removed when the tests end.
-struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("shoal-real-world-test-" + std::to_string(::getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
-
 fs::path temp_dir() {
-    static const TempDir d;
-    return d.path;
+    static const shoal::test::TempDir d;
+    return d.path();
 }
 
 std::string slurp(const fs::path& p) {

@@ -24,23 +24,16 @@
 
 #include "build_kind.hpp"
 #include "run_shoal.hpp"
+#include "temp_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("shoal-shard-test-" + std::to_string(::getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
-
+/// A folder for this run's files, removed when the tests end.
 fs::path temp_dir() {
-    static const TempDir d;
-    return d.path;
+    static const shoal::test::TempDir d;
+    return d.path();
 }
 
 std::string slurp(const fs::path& p) {

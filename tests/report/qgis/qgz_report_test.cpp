@@ -25,6 +25,7 @@
 #include "run_shoal.hpp"
 #include "xml_support.hpp"
 #include <shoal/hull/hull.hpp>
+#include "temp_dir.hpp"
 
 namespace {
 
@@ -32,18 +33,10 @@ namespace fs = std::filesystem;
 using shoal::test::attr;
 using shoal::test::each_element;
 
-struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("shoal-qgz-test-" + std::to_string(::getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
-
+/// A folder for this run's files, removed when the tests end.
 fs::path dir() {
-    static const TempDir d;
-    return d.path;
+    static const shoal::test::TempDir d;
+    return d.path();
 }
 
 std::string slurp(const fs::path& p) {
