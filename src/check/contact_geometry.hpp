@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <numeric>
 #include <span>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -43,6 +44,7 @@ template <class R, class... A>
 class CallableRef<R(A...)> {
 public:
     template <class F>
+        requires(!std::is_same_v<std::remove_cv_t<F>, CallableRef>)  // (a copy is a copy, not a reference to a reference)
     CallableRef(F& f) noexcept  // NOLINT(google-explicit-constructor): as std::function
         : m_f(&f), m_call([](void* o, A... a) -> R { return (*static_cast<F*>(o))(std::forward<A>(a)...); }) {}
     R operator()(A... a) const { return m_call(m_f, std::forward<A>(a)...); }
@@ -321,42 +323,47 @@ private:
 
 /// `out` := convex polygon `in` cut to `box` (as ConvexCutter::cut, one side of the box at a
 /// time, only the sides the polygon crosses; a cut point lies on the side exactly). `tmp`: a
-/// working list.
+/// working list. (A polygon convex only to rounding may gain two vertices at a side: the
+/// lists are grown to twice the vertices before each side, as ConvexCutter's.)
 inline void clip_to_box(std::span<const XY> in, const Box& box, std::vector<XY>& out, std::vector<XY>& tmp) {
-    const std::size_t cap = in.size() + 4;  // a side adds at most one vertex to a convex polygon
-    if (out.size() < cap) out.resize(cap);
-    if (tmp.size() < cap) tmp.resize(cap);
+    std::vector<XY>* cur = &out;
+    std::vector<XY>* next = &tmp;
+    if (cur->size() < in.size()) cur->resize(in.size());
+    std::copy(in.begin(), in.end(), cur->begin());
+    std::size_t m = in.size();
     Box pb;
     for (XY p : in) pb.extend(p);
-    XY* cur = out.data();
-    XY* next = tmp.data();
-    std::copy(in.begin(), in.end(), cur);
-    std::size_t m = in.size();
     for (int side = 0; side < 4 && m > 0; ++side) {
         const bool along_x = side < 2;
         const double at = side == 0 ? box.minx : side == 1 ? box.maxx : side == 2 ? box.miny : box.maxy;
         // Wholly inside this side: nothing to cut.
         if (side == 0 ? pb.minx >= at : side == 1 ? pb.maxx <= at : side == 2 ? pb.miny >= at : pb.maxy <= at) continue;
+        if (next->size() < 2 * m) next->resize(2 * m);
+        const XY* in_v = cur->data();
+        XY* out_v = next->data();
         const double sign = side % 2 == 0 ? 1.0 : -1.0;
         auto dist = [along_x, at, sign](XY p) { return sign * ((along_x ? p.x : p.y) - at); };
         std::size_t k2 = 0;
-        double dp = dist(cur[0]);
+        double dp = dist(in_v[0]);
         const double d_first = dp;
         for (std::size_t k = 0; k < m; ++k) {
-            const XY p = cur[k], q = k + 1 < m ? cur[k + 1] : cur[0];
+            const XY p = in_v[k], q = k + 1 < m ? in_v[k + 1] : in_v[0];
             const double dq = k + 1 < m ? dist(q) : d_first;
-            if (dp >= 0) next[k2++] = p;
+            if (dp >= 0) out_v[k2++] = p;
             if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) {
                 XY x = p + (dp / (dp - dq)) * (q - p);
                 (along_x ? x.x : x.y) = at;
-                next[k2++] = x;
+                out_v[k2++] = x;
             }
             dp = dq;
         }
         std::swap(cur, next);
         m = k2;
     }
-    if (cur != out.data()) std::copy(cur, cur + m, out.data());
+    if (cur != &out) {
+        if (out.size() < m) out.resize(m);
+        std::copy(cur->begin(), cur->begin() + static_cast<std::ptrdiff_t>(m), out.begin());
+    }
     out.resize(m < 3 ? 0 : m);
 }
 

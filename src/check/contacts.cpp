@@ -918,12 +918,18 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
     KnownWinding* q_known = nullptr;
     for (KnownWinding& k : known)
         if (k.i == q_i && k.j == q_j) q_known = &k;
-    const int q_w = outline.empty() ? 0 : q_known ? g.winding_from(q_known->at, q_known->w, q, &q_on_boundary) : g.winding(q, &q_on_boundary);
-    if (!outline.empty() && !q_on_boundary && g.valid_cell(q_i, q_j)) {
-        // q is where the next call's windings in this cell count from.
-        if (q_known) q_known->at = q, q_known->w = q_w;
-        else known.push_back({q_i, q_j, q, q_w});
+    // A point kept is one whose winding was counted from its cell's reference point, never one
+    // counted from another kept point (an error of rounding in one count, at a point within
+    // rounding of a boundary, would be carried on to every later count from it). One kept
+    // farther than an eighth of a cell from q (the ship has moved on) is replaced by q, counted
+    // from the reference point: the paths counted from it stay short.
+    if (q_known && geo::norm2(q - q_known->at) > 0.015625 * g.cell_size() * g.cell_size()) {
+        *q_known = known.back();
+        known.pop_back();
+        q_known = nullptr;
     }
+    const int q_w = outline.empty() ? 0 : q_known ? g.winding_from(q_known->at, q_known->w, q, &q_on_boundary) : g.winding(q, &q_on_boundary);
+    if (!outline.empty() && !q_on_boundary && !q_known && g.valid_cell(q_i, q_j)) known.push_back({q_i, q_j, q, q_w});
     if (q_w <= 0 && !detector.check(pose, {.max_clearance_m = 0, .want_penetration = false, .want_polyline = false, .want_contact_point = true}).collision)
         return {};
     std::vector<ContactRegion> out = regions_of(outline, o, local_scale(pose), how);

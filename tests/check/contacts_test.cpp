@@ -18,6 +18,12 @@
 #include <shoal/check/detector.hpp>
 #include <shoal/grid/coast_grid.hpp>
 #include <shoal/hull/hull.hpp>
+// The search's private geometry, for its cell cut (CellCutToItsBoxIsGeosIntersection); its
+// other functions, not called here, are not warned about.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include "check/contact_geometry.hpp"
+#pragma GCC diagnostic pop
 #include "check/contact_search.hpp"
 #include "geo/geos_context.hpp"
 #include "pathological_shapes.hpp"
@@ -229,6 +235,58 @@ struct Scene {
     Scene(std::vector<coast::LocalPolyline> r, double cell)
         : rings(std::move(r)), grid(grid::CoastGrid::build(rings, any_frame(), cell)), oracle(rings) {}
 };
+
+TEST(ContactRegions, CellCutToItsBoxIsGeosIntersection) {
+    // clip_to_box (an interior cell: its parent's polygon cut to its box) against GEOS's
+    // intersection of the same polygon and box, by area, on random convex polygons and boxes
+    // over, across and beside them; and a hexagon convex only to rounding (a dent of 5e-11 the
+    // convexity test lets through) whose cut gains two vertices at one side.
+    geo::GeosContext ctx;
+    auto geos_area = [&](const std::vector<XY>& poly, const geo::Box& b) {
+        std::vector<XY> ring = poly;
+        ring.push_back(poly.front());
+        geo::GeomPtr pg = geo::make_polygon(ctx, {ring});
+        geo::GeomPtr bx = geo::make_polygon(ctx, {rect(b.minx, b.miny, b.maxx, b.maxy)});
+        geo::GeomPtr inter = geo::own(ctx, GEOSIntersection_r(ctx, pg.get(), bx.get()), "intersection");
+        double a = 0;
+        GEOSArea_r(ctx, inter.get(), &a);
+        return a;
+    };
+    auto area = [](const std::vector<XY>& v) {
+        double a2 = 0;
+        for (std::size_t i = 0; i < v.size(); ++i) a2 += geo::cross(v[i], v[(i + 1) % v.size()]);
+        return a2 / 2;
+    };
+    std::mt19937_64 rng(41);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<XY> out, tmp;
+    int cut = 0;
+    for (int k = 0; k < 3000; ++k) {
+        // Points on an ellipse at sorted angles: a convex polygon, counter-clockwise.
+        const int n = 3 + static_cast<int>(unit(rng) * 30);
+        std::vector<double> t(static_cast<std::size_t>(n));
+        for (double& a : t) a = unit(rng) * 2 * std::numbers::pi;
+        std::sort(t.begin(), t.end());
+        t.erase(std::unique(t.begin(), t.end()), t.end());
+        const double rx = 1 + 50 * unit(rng), ry = 1 + 50 * unit(rng), cx = 100 * unit(rng), cy = 100 * unit(rng);
+        std::vector<XY> poly;
+        for (double a : t) poly.push_back({cx + rx * std::cos(a), cy + ry * std::sin(a)});
+        if (poly.size() < 3 || !(area(poly) > 1e-9)) continue;
+        const double x0 = cx - 1.5 * rx + 3 * rx * unit(rng), y0 = cy - 1.5 * ry + 3 * ry * unit(rng);
+        const geo::Box b{x0, y0, x0 + 2 * rx * unit(rng) + 1e-3, y0 + 2 * ry * unit(rng) + 1e-3};
+        clip_to_box(poly, b, out, tmp);
+        const double want = geos_area(poly, b);
+        ASSERT_NEAR(out.empty() ? 0.0 : area(out), want, 1e-9 * (1 + rx * ry)) << "polygon " << k;
+        for (XY p : out) ASSERT_TRUE(p.x >= b.minx && p.x <= b.maxx && p.y >= b.miny && p.y <= b.maxy) << "polygon " << k;
+        cut += out.empty() ? 0 : 1;
+    }
+    EXPECT_GT(cut, 1000);
+    const double d = 5e-11;
+    const std::vector<XY> dented{{0.5, 0}, {1, 0.4}, {1 - d, 0.5}, {1, 0.6}, {0.5, 1}, {0, 0.5}};
+    const geo::Box b{0.01, 0.01, 1 - d / 2, 0.99};
+    clip_to_box(dented, b, out, tmp);
+    EXPECT_NEAR(area(out), geos_area(dented, b), 1e-9);
+}
 
 TEST(ContactRegions, BowIntoAStraightQuay) {
     // Land south of y = 0; the ship heads south with its bow 2 m past the quay's edge.
