@@ -60,8 +60,10 @@ std::string hazard_text(const Event& e) {
                     : e.hit == coast::HazardKind::structure ? e.structure
                                                             : coast::to_string(e.hit);
     if (s.empty()) s = coast::to_string(e.hit);
-    if (e.hit == coast::HazardKind::structure && !e.hit_name.empty()) s += " '" + e.hit_name + "'";
-    if (std::isfinite(e.charted_depth_m)) s += " " + fixed_text(e.charted_depth_m, 1) + " m";
+    // (Appended piece by piece: `" " + text` built a string by inserting at its front, where
+    // GCC 12 at -O3 warns -Wrestrict, a false positive.)
+    if (e.hit == coast::HazardKind::structure && !e.hit_name.empty()) s.append(" '").append(e.hit_name).append("'");
+    if (std::isfinite(e.charted_depth_m)) s.append(" ").append(fixed_text(e.charted_depth_m, 1)).append(" m");
     return s;
 }
 

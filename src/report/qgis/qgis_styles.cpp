@@ -33,8 +33,13 @@ std::optional<StagedOutput> stage_sidecar_style(const std::string& qml_path, std
     std::error_code ec;
     if (std::filesystem::exists(p, ec)) {
         if (!is_shoal_sidecar(p.string())) {
-            warning = "'" + p.string() + "' exists and was not written by shoal: left as it is, so the report has no QGIS style beside it "
-                      "(move that file, or write the report elsewhere)";
+            // (Built by appending to a new string: `"'" + text` inserts at a string's front and
+            // assign() replaces, where GCC 12 at -O3 warns -Wrestrict, a false positive.)
+            std::string w(1, '\'');
+            w += p.string();
+            w += "' exists and was not written by shoal: left as it is, so the report has no QGIS style beside it "
+                 "(move that file, or write the report elsewhere)";
+            warning = std::move(w);
             return std::nullopt;
         }
     }
