@@ -35,7 +35,6 @@ struct RawSegment {
     bool boundary = true;  // land on the left
 };
 
-/// What the hull must not overlap: its boundary segments in a box, and membership.
 /// A callable `f` referred to, not owned (std::function allocated for each of a call's two
 /// lambdas, whose captures are larger than its small buffer): `f` outlives the reference.
 template <class Sig>
@@ -54,6 +53,7 @@ private:
     R (*m_call)(void*, A...);
 };
 
+/// What the hull must not overlap: its boundary segments in a box, and membership.
 struct Obstacle {
     CallableRef<void(const Box&, std::vector<RawSegment>&)> collect;
     CallableRef<bool(XY)> inside;
@@ -72,7 +72,6 @@ double dist2_to(XY p, XY a, XY b, XY* foot) noexcept {
     return d2;
 }
 
-/// Liang-Barsky: clips segment ab to `box`; false when nothing is left.
 /// Two slabs, lo[k] <= n[k] . p <= hi[k] for unit normals n[k]: with the box, where a
 /// convex hull's reach lies (regions_of).
 struct Slabs {
@@ -80,7 +79,8 @@ struct Slabs {
     double lo[2], hi[2];
 };
 
-/// Clips segment ab to `box` and, when given, to `slabs`; false when nothing is left.
+/// Liang-Barsky: clips segment ab to `box` and, when given, to `slabs`; false when nothing is
+/// left.
 bool clip_to(XY& a, XY& b, const Box& box, const Slabs* slabs = nullptr) noexcept {
     if (slabs)  // both ends beyond one side of a slab (most segments left out): nothing left
         for (int k = 0; k < 2; ++k) {
