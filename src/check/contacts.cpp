@@ -907,9 +907,9 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
     // No contact, no region: the pose check answers that in a microsecond. (Its penetration,
     // as a first reach, cost more on a harbour chart than the reach's growing saves.)
     // A hull vertex on land is a contact: the one this thread last found deepest is tried
-    // first, as the check would try its own (one winding number), and its winding is kept as
-    // the first known point of its cell (the search below then counts from it, not from the
-    // cell's reference point again). Else the check, without that first try.
+    // first, as the check would try its own (one winding number), counted from its cell's known
+    // point when the cell has one, else kept as that point (the search below then counts from
+    // it, not from the cell's reference point again). Else the check, without that first try.
     const std::vector<XY> outline = hull_outline(detector.hull(), pose);
     std::size_t& try_first = sc.on_land;
     bool q_on_boundary = false;
@@ -923,7 +923,8 @@ std::vector<ContactRegion> detail::contact_regions(const Detector& detector, con
     // rounding of a boundary, would be carried on to every later count from it). One kept
     // farther than an eighth of a cell from q (the ship has moved on) is replaced by q, counted
     // from the reference point: the paths counted from it stay short.
-    if (q_known && geo::norm2(q - q_known->at) > 0.015625 * g.cell_size() * g.cell_size()) {
+    const double eighth = g.cell_size() / 8;
+    if (q_known && geo::norm2(q - q_known->at) > eighth * eighth) {
         *q_known = known.back();
         known.pop_back();
         q_known = nullptr;

@@ -503,8 +503,9 @@ TEST(ContactRegions, RandomJaggedCoastsAgreeWithGeos) {
 TEST(ContactRegions, ShortcutsGiveTheDepthsOfTheFullSearch) {
     // The search's shortcuts (src/check/contact_search.hpp): the first reach of 2 m, the ridge
     // points of the two-site bounds tried as deepest points, the bounds of the pairs with a third
-    // site, a convex hull's reach cut to its slabs, a cell's polygon cut from its parent's. Each may give another deepest point of the same depth, never another depth: on
-    // random jagged coasts with piers bent halfway along (a vertex in each side: near it the two
+    // site, a convex hull's reach cut to its slabs, a cell's polygon cut from its parent's.
+    // Each may give another deepest point of the same depth, never another depth: on random
+    // jagged coasts with piers bent halfway along (a vertex in each side: near it the two
     // nearest sites are two pieces of one side, the case the third site is for), over and
     // beside the land, and islets, every region's depth with all of them, each alone, and a
     // first reach of 0.25 m or 64 m, is that of the search without any (a first reach of 1 m),
