@@ -161,7 +161,10 @@ struct Scratch {
     std::size_t on_land = 0;
 };
 
-Scratch& scratch() {
+/// (Not inlined: a check then holds its scratch by a plain reference. Inlined, GCC recomputed
+/// the thread-local's address at each use, which in a shared library (the CLI's module,
+/// libshoal_c) is a call to __tls_get_addr: 43 a check, 4 % of a day of AIS.)
+[[gnu::noinline]] Scratch& scratch() {
     thread_local Scratch s;
     return s;
 }
