@@ -308,8 +308,10 @@ TrackResult sweep_vessel(const track::Track& t, Vessel& v, const grid::CoastGrid
     SweepContext context;
     context.unknown_heading = &circle;
     context.areas = options.areas;
+    std::vector<geo::XY> positions;  // the fixes as the sweep projected them, for the evidence
+    if (options.world == World::real) context.positions = &positions;
     TrackResult r = sweep_track(t, frame, detector, sweep_options, context);
-    if (options.world == World::real) gather_evidence(t, v.hull->length(), frame, grid, sweep_options, options.evidence, r);
+    if (options.world == World::real) gather_evidence(t, positions, v.hull->length(), frame, grid, sweep_options, options.evidence, r);
     else merge_stays(r, t, sweep_options, options.evidence.under_way_kn);
     TrackSummary& s = r.summary;
     s.fixes += v.wild.size();  // fixes read, the wild ones among them

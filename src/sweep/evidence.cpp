@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "util/parse_util.hpp"
+#include <shoal/util/error.hpp>
 
 namespace shoal::audit {
 
@@ -119,7 +120,12 @@ TrackResult traffic_of(const track::Track& t, double hull_length_m, const geo::L
 
 void gather_evidence(const track::Track& t, double hull_length_m, const geo::LocalFrame& frame, const grid::CoastGrid& grid,
                      const SweepOptions& sweep, const EvidenceOptions& opt, TrackResult& r) {
-    const std::vector<XY> p = project(t, frame);
+    gather_evidence(t, project(t, frame), hull_length_m, frame, grid, sweep, opt, r);
+}
+
+void gather_evidence(const track::Track& t, const std::vector<XY>& p, double hull_length_m, const geo::LocalFrame& frame,
+                     const grid::CoastGrid& grid, const SweepOptions& sweep, const EvidenceOptions& opt, TrackResult& r) {
+    if (p.size() != t.fixes.size()) throw LibraryError("gather_evidence: " + std::to_string(p.size()) + " positions for " + std::to_string(t.fixes.size()) + " fixes");
     fill_traffic(t, p, hull_length_m, grid, sweep, opt, r);
     const auto& fx = t.fixes;
     if (fx.empty()) return;

@@ -68,6 +68,7 @@ public:
     std::size_t size() const noexcept { return m_position.size(); }
     double time(std::size_t i) const { return m_track.fixes[i].time_s; }
     geo::XY position(std::size_t i) const { return m_position[i]; }
+    const std::vector<geo::XY>& positions() const noexcept { return m_position; }
     /// The map (east, north) metres -> local metres at fix i (Placing::poses only).
     const Eigen::Matrix2d& jacobian(std::size_t i) const { return m_jacobian[i]; }
     /// The box of the fixes' positions (lo > hi for no fix).

@@ -466,6 +466,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     sum.start_s = t.fixes.front().time_s;
     sum.end_s = t.fixes.back().time_s;
     const LocalTrack lt(t, frame);
+    if (ctx.positions) *ctx.positions = lt.positions();
     EventBuilder events(t, frame, lt, checker, circle ? &*circle : nullptr, opt, ctx, out);
     const double radius = std::max(checker.hull().radius(), circle ? circle->hull().radius() : 0.0);
 

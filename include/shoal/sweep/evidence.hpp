@@ -71,6 +71,10 @@ struct EvidenceOptions {
 /// Event::evidence facts. `grid` tells charted land; `frame` projects.
 void gather_evidence(const track::Track& t, double hull_length_m, const geo::LocalFrame& frame, const grid::CoastGrid& grid,
                      const SweepOptions& sweep, const EvidenceOptions& options, TrackResult& r);
+/// The same with the fixes' local positions already known (`positions[i]` fix i's, in `frame`:
+/// what SweepContext::positions receives from the track's sweep).
+void gather_evidence(const track::Track& t, const std::vector<geo::XY>& positions, double hull_length_m, const geo::LocalFrame& frame,
+                     const grid::CoastGrid& grid, const SweepOptions& sweep, const EvidenceOptions& options, TrackResult& r);
 
 /// The traffic a track shows, without sweeping it (a track of another shard): r.stays and
 /// r.over_land only.

@@ -294,6 +294,9 @@ struct SweepContext {
     const PoseChecker* unknown_heading = nullptr;
     /// Areas where contact is expected (berths, harbours, anchorages) and shore constructions.
     const coast::ExpectedAreas* areas = nullptr;
+    /// When set, receives the fixes' local positions as the sweep projected them (one per fix;
+    /// gather_evidence takes them instead of projecting every fix again).
+    std::vector<geo::XY>* positions = nullptr;
 };
 
 /// The hull's circle: a 36-gon circumscribed about the circle of the hull's radius around the
