@@ -404,6 +404,34 @@ TEST(ReportFields, LayerCoordinatesAreWhatPrintfWritesWithoutTrailingZeros) {
     EXPECT_EQ(nan, "nullnull");
 }
 
+/// A table names each field once: the layer files' writer appends every field it lists (a
+/// JSON object would keep one of two fields of the same name), and a GeoPackage layer has one
+/// column a name. Each name is plain printable ASCII.
+TEST(ReportFields, EveryTableNamesEachFieldOnce) {
+    auto check = [](const auto& table, const char* what) {
+        std::set<std::string> seen;
+        for (const auto& f : table) {
+            EXPECT_TRUE(seen.insert(f.name).second) << what << ": " << f.name << " twice";
+            for (const char c : std::string(f.name)) EXPECT_TRUE(c > 0x20 && c < 0x7f && c != '"' && c != '\\') << what << ": " << f.name;
+        }
+        EXPECT_FALSE(seen.empty()) << what;
+    };
+    check(fields::event_fields(), "events");
+    check(fields::encounter_fields(), "encounters");
+    check(fields::track_fields(), "tracks");
+    check(fields::hull_fields(), "hulls");
+    check(fields::problem_fields(), "problems");
+    check(fields::pose_fields(), "poses");
+    check(fields::coast_fields(), "coast");
+    check(fields::approach_fields(), "approaches");
+    check(fields::run_fields(), "run");
+    check(fields::summary_fields(), "summary");
+    check(fields::breach_fields(), "breaches");
+    check(fields::learned_fields(), "learned");
+    check(fields::score_fields(), "scores");
+    check(fields::criterion_fields(), "criteria");
+}
+
 /// The layer files' properties, written without building a JSON object, are what nlohmann's
 /// dump() writes of the object of the same fields: random poses and names (quotes, control
 /// characters, UTF-8; numbers not finite, negative zero, huge, tiny, random bits).
