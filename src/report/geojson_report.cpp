@@ -462,8 +462,9 @@ void append_object(std::string& out, const std::vector<fields::Field<Row>>& tabl
         if (f.present && !f.present(r)) continue;
         if (!first) out += ',';
         first = false;
-        append_json_string(out, f.name);
-        out += ':';
+        out += '"';  // a name is printable ASCII with no quote or backslash (ReportFields.EveryTableNamesEachFieldOnce)
+        out += f.name;
+        out += "\":";
         append_json_value(out, fields::value_of(f, row));
     }
     out += '}';

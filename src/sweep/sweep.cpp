@@ -99,6 +99,29 @@ public:
                                              .want_contact_point = where, .clearance_hint_m = hint});
     }
 
+    /// check() at fix i, the clearance searched `extra_m` further: the same answer (a
+    /// clearance beyond search_m() is none, CheckOptions::max_clearance_m), and in `clear_m`
+    /// how far the pose is proved clear of every segment (0 when a contact or a clearance
+    /// within search_m() was found): beyond that answer, what the next fixes need to be
+    /// carried (beyond()).
+    check::Contact check_further(std::size_t i, const check::LocalPose& pose, bool where, double hint, double extra_m, double& clear_m) const {
+        const double limit = search_m();
+        const check::Contact c = checker_at(i, 0.0).check(pose, {.max_clearance_m = limit + extra_m, .want_penetration = true, .want_polyline = false,
+                                                                 .want_contact_point = where, .clearance_hint_m = hint});
+        clear_m = 0;
+        if (c.collision || c.clearance_m <= limit) return c;
+        clear_m = std::isfinite(c.clearance_m) ? c.clearance_m : limit + extra_m;
+        return beyond(c.covered);
+    }
+
+    /// The answer of check() for a pose with nothing within search_m(): no contact, no
+    /// clearance, `covered` the pose's.
+    static check::Contact beyond(bool covered) {
+        check::Contact c;
+        c.covered = covered;
+        return c;
+    }
+
     /// An open contact goes on: the next sample in contact is not its first.
     bool in_contact() const noexcept { return m_intervals.in_contact(); }
 
@@ -418,9 +441,11 @@ public:
     check::Contact check(const check::LocalPose& pose, const check::CheckOptions& options) const override {
         // An answer with the polyline (or the contact point) also serves a question without it
         // (make_event asks for the polyline of an event's first sample; the same pose at the
-        // next fixes costs nothing).
+        // next fixes costs nothing), and a contact one with any clearance limit (contact does
+        // not depend on it: CheckOptions::max_clearance_m; a fix's check searches further).
         if (!(m_have && pose.position == m_pose.position && pose.ship_to_local == m_pose.ship_to_local &&
-              options.max_clearance_m == m_options.max_clearance_m && options.want_penetration == m_options.want_penetration &&
+              (options.max_clearance_m == m_options.max_clearance_m || m_contact.collision) &&
+              options.want_penetration == m_options.want_penetration &&
               (m_options.want_polyline || !options.want_polyline) && (m_options.want_contact_point || !options.want_contact_point))) {
             m_contact = m_inner.check(pose, options);
             m_pose = pose;
@@ -514,6 +539,30 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         if (&c != clear_checker || !std::isfinite(clear_ref_m)) return INFINITY;
         return clear_ref_m + slack(apart(clear_pose, pose));
     };
+    // The fix last checked with nothing found within the search (carry_over): how far it is
+    // proved clear of every segment, its checker and pose. A later fix no nearer than that
+    // distance less its motion, and that still beyond the search, has check()'s answer
+    // without a check: nothing within the search (EventBuilder::beyond).
+    double far_m = 0;
+    const PoseChecker* far_checker = nullptr;
+    check::LocalPose far_pose;
+    auto proved_beyond = [&](const PoseChecker& c, const check::LocalPose& pose) {
+        return opt.carry_over && &c == far_checker && far_m - slack(apart(far_pose, pose)) > events.search_m();
+    };
+    // How much further than the search a fix's check reaches: the hull's motion over the next
+    // fixes of the piece (up to further_fixes of them, at most the lookahead), so that they
+    // can be proved beyond it. (Only the work depends on it, not an answer.)
+    constexpr std::size_t further_fixes = 8;
+    auto further_m = [&](std::size_t i) {
+        if (!opt.carry_over) return 0.0;
+        double reach = 0;
+        for (std::size_t k = i + 1; k < t.fixes.size() && k <= i + further_fixes; ++k) {
+            if (t.fixes[k].time_s - t.fixes[k - 1].time_s > opt.max_gap_s || t.fixes[k].jump_before) break;
+            const XY d = lt.position(k) - lt.position(i);
+            reach = std::max(reach, std::hypot(d.x, d.y));
+        }
+        return std::min(opt.lookahead_m, reach * 1.25 + 0.25 * radius + 1.0);
+    };
     auto checked = [&](const check::Contact& c, const PoseChecker& by, const check::LocalPose& pose) {  // a pose checked in full
         clear_ref_m = !c.collision && std::isfinite(c.clearance_m) ? c.clearance_m : NAN;
         clear_checker = &by;
@@ -597,7 +646,18 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
         if (continues && still_in_contact(at_fix, pose) && contact_depth_m + slack(apart(contact_pose, pose)) <= events.contact_depth()) {
             s.contact = events.carried(i, 0.0, pose, 0);
         } else {
-            s.contact = events.check(i, 0.0, pose, true, !continues || !events.in_contact(), continues ? hint(at_fix, pose) : INFINITY);
+            if (continues && proved_beyond(at_fix, pose)) {
+                // Nothing within the search, as its check would say, and all below as after
+                // that check; the last fix checked stays the proof's reference.
+                s.contact = EventBuilder::beyond(at_fix.covered(pose));
+            } else {
+                double clear_m = 0;
+                s.contact = events.check_further(i, pose, !continues || !events.in_contact(), continues ? hint(at_fix, pose) : INFINITY,
+                                                 further_m(i), clear_m);
+                far_m = clear_m;
+                far_checker = &at_fix;
+                far_pose = pose;
+            }
             contact_depth_m = s.contact.collision ? s.contact.penetration_m : 0.0;
             contact_checker = &at_fix;
             contact_pose = pose;

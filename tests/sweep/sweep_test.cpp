@@ -329,6 +329,104 @@ void expect_same_results(const TrackResult& a, const TrackResult& b, const std::
     EXPECT_EQ(a.summary.close_passes, b.summary.close_passes) << what;
 }
 
+/// SweepOptions::carry_over at fixes far from the coast: a fix's check searches further than
+/// the lookahead, and the next fixes that cannot have come within it are not checked (a day of
+/// AIS in open water). Sparse fixes (30-600 m apart, a gap now and then) in and out of the
+/// search around the Solent's shores, some with the heading unknown (the hull's circle), swept
+/// with answers carried and with every pose checked: the same events, poses and figures; on
+/// some, the moments of the brute-force sweep; and fewer fix checks.
+TEST(Sweep, FixesProvedBeyondTheSearchAreTheFullChecks) {
+    const Solent solent;
+    const geo::LocalFrame& f = solent.frame;
+    const grid::CoastGrid& grid = solent.grid;
+    const hull::Hull hull = hull::Hull::from_dimensions({120, 25, 10, 12});
+    const CountingChecker fast(grid, hull);
+    const CountingChecker round(grid, circle_hull(hull));
+    const BruteChecker slow(solent.lines, hull);
+    const SweepContext ctx{.unknown_heading = &round};
+    SweepOptions carry, every;
+    every.carry_over = false;
+    std::mt19937_64 rng(41);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const geo::Box ext = grid.extent();
+    std::size_t saved = 0, fixes = 0, beyond = 0, near = 0;
+    for (int k = 0; k < 40; ++k) {
+        track::Track t;
+        t.id = "sparse" + std::to_string(k);
+        XY p{ext.minx + (ext.maxx - ext.minx) * unit(rng), ext.miny + (ext.maxy - ext.miny) * unit(rng)};
+        double time = 1.7e9, hdg = 360 * unit(rng);
+        const double spacing = 30 + 570 * unit(rng) * unit(rng);
+        for (int i = 0; i < 80; ++i) {
+            track::Fix fix;
+            fix.time_s = time;
+            fix.position = f.inverse(p);
+            fix.heading_used_deg = hdg;
+            fix.heading_source = k % 5 == 3 && i % 7 < 2 ? track::HeadingSource::none : track::HeadingSource::heading;
+            fix.line = static_cast<std::size_t>(i + 2);
+            t.fixes.push_back(fix);
+            hdg = std::fmod(hdg + (unit(rng) - 0.5) * 20 + 360, 360);
+            const double h = hdg * std::numbers::pi / 180;
+            p = p + spacing * (0.5 + unit(rng)) * XY{std::sin(h), std::cos(h)};
+            time += unit(rng) < 0.03 ? 900 : 30;  // a gap now and then: a new piece
+        }
+        fast.calls = round.calls = 0;
+        const TrackResult all = sweep_track(t, f, fast, every, ctx);
+        const std::size_t full_calls = fast.calls + round.calls;
+        fast.calls = round.calls = 0;
+        const TrackResult carried = sweep_track(t, f, fast, carry, ctx);
+        const std::size_t calls = fast.calls + round.calls;
+        ASSERT_LE(calls, full_calls) << t.id;
+        saved += full_calls - calls;
+        fixes += t.fixes.size();
+        expect_same_results(carried, all, t.id);
+        for (const Pose& q : carried.poses) ++(std::isinf(q.clearance_m) ? beyond : near);
+        if (k % 5 != 0) continue;
+        // The brute force (no chart's edge, no penetration): the same moments.
+        const TrackResult brute = sweep_track(t, f, slow, carry);
+        const TrackResult mine = sweep_track(t, f, fast, carry);
+        ASSERT_EQ(mine.events.size(), brute.events.size()) << t.id;
+        for (std::size_t e = 0; e < brute.events.size(); ++e) {
+            EXPECT_EQ(mine.events[e].kind, brute.events[e].kind) << t.id << " event " << e;
+            EXPECT_NEAR(mine.events[e].start_s, brute.events[e].start_s, 1e-6) << t.id << " event " << e;
+            EXPECT_NEAR(mine.events[e].end_s, brute.events[e].end_s, 1e-6) << t.id << " event " << e;
+            EXPECT_NEAR(mine.events[e].min_clearance_m, brute.events[e].min_clearance_m, 1e-6) << t.id << " event " << e;
+        }
+    }
+    std::printf("%zu fixes, %zu poses kept beyond the search and %zu within it, %zu checks saved\n", fixes, beyond, near, saved);
+    EXPECT_GT(beyond, 200u) << "too few poses beyond the search to mean anything";
+    EXPECT_GT(near, 50u) << "too few poses near the coast to mean anything";
+    EXPECT_GT(saved, fixes / 4) << "the carried answers saved no checks";
+}
+
+/// A vessel on a straight course 3 km off the coast, a fix every 50 m: nothing within the
+/// search anywhere, and a fix's check proves the next several clear of it; each fix's answer
+/// is still nothing within the search.
+TEST(Sweep, OpenWaterCostsACheckEveryFewFixes) {
+    World w({land({{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}})});
+    track::Track t;
+    t.id = "open";
+    for (int i = 0; i < 400; ++i) {
+        track::Fix fix;
+        fix.time_s = 1.7e9 + 10.0 * i;
+        fix.position = frame().inverse({-10000 + 50.0 * i, -3000});
+        fix.heading_used_deg = 90;
+        fix.heading_source = track::HeadingSource::heading;
+        fix.line = static_cast<std::size_t>(i + 2);
+        t.fixes.push_back(fix);
+    }
+    const CountingChecker counted(w.grid, w.hull);
+    SweepOptions every;
+    every.carry_over = false;
+    const TrackResult all = sweep_track(t, frame(), counted, every);
+    EXPECT_EQ(counted.calls, 400u);  // every fix, nothing between (the lookahead covers 50 m)
+    counted.calls = 0;
+    const TrackResult carried = sweep_track(t, frame(), counted, {});
+    expect_same_results(carried, all, "open water");
+    EXPECT_LE(counted.calls, 400u / 4) << "a fix's check proves the next fixes clear";
+    EXPECT_GE(counted.calls, 400u / 11) << "a check reaches no further than the lookahead (500 m, ten fixes) ahead";
+    for (const Pose& q : carried.poses) EXPECT_TRUE(std::isinf(q.clearance_m));
+}
+
 /// SweepOptions::carry_over: the poses after a fix deep in contact are not checked while the
 /// hull cannot have left it; every answer is still that of the full check. Tracks that cross
 /// land (straight legs over the Solent's islands and shores, and off the chart's edge),
