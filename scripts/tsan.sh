@@ -6,7 +6,7 @@
 #   2. the tests that run the audit on several threads (audit_test, cli_test, bad_input_test;
 #      cli_test also runs `shoal probe --jobs 2` and 3), those that read a CSV file on two
 #      threads (track_test), poses placed in blocks on threads (check_test), and the report's
-#      events made on threads (report_test).
+#      events and the chart layer's tiles made on threads (report_test).
 # Any data race or other report from ThreadSanitizer makes it fail (halt_on_error).
 # GDAL, GEOS and PROJ are not instrumented: races inside them are not seen, only ours.
 #
@@ -64,5 +64,5 @@ halves "$build/tests/cli_test"
 halves "$build/tests/bad_input_test" --gtest_filter='-BadInput.EveryNumericOption*:BadInput.*CostNoMemoryPerLine*'
 "$build/tests/track_test" --gtest_brief=1 --gtest_filter='Input.ACsvReadByTwoThreads*'
 "$build/tests/check_test" --gtest_brief=1 --gtest_filter='Placement.InBlocks*'
-"$build/tests/report_test" --gtest_brief=1 --gtest_filter='ReportFields.TheStreamedGeoJsonIsTheDocumentsDump'
+"$build/tests/report_test" --gtest_brief=1 --gtest_filter='ReportFields.TheStreamedGeoJsonIsTheDocumentsDump:ChartLayer.*'
 echo "ThreadSanitizer: no report"

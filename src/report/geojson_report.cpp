@@ -603,7 +603,7 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
         }
         case MapLayer::coast: {
             if (!info.chart) throw LibraryError("the coast layer without a chart");
-            const std::vector<ChartFeature> rows = chart_features_near(r, *info.chart);
+            const std::vector<ChartFeature> rows = chart_features_near(r, *info.chart, info.jobs);
             auto points = [&](std::size_t k) {
                 std::size_t n = 0;
                 for (const auto& polygon : rows[k].polygons)

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <tuple>
 
 #include "geo/geos_context.hpp"
+#include "util/parallel.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/util/error.hpp>
 
@@ -91,9 +93,10 @@ void add_tiles_near(std::set<ChartTile>& out, const std::vector<geo::LonLat>& li
     }
 }
 
-std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles) {
-    const geo::GeosContext ctx;
-    auto own = [&](GEOSGeometry* g, const char* what) { return geo::own(ctx, g, what); };
+namespace {
+
+/// The chart's closed land-left rings by group, largest first.
+std::map<Group, std::vector<Ring>> chart_rings(const coast::Coastline& coast) {
     std::map<Group, std::vector<Ring>> groups;
     for (const auto& pl : coast.polylines) {
         if (!pl.land_left || pl.points.size() < 4 || !(pl.points.front() == pl.points.back())) continue;
@@ -107,65 +110,95 @@ std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const st
     }
     for (auto& [g, rings] : groups)
         std::stable_sort(rings.begin(), rings.end(), [](const Ring& a, const Ring& b) { return std::fabs(a.area) > std::fabs(b.area); });
+    return groups;
+}
 
-    std::vector<ChartFeature> out;
-    for (const ChartTile& t : tiles) {
-        const double x0 = (t.col - col_offset) * chart_tile_deg, y0 = (t.row - row_offset) * chart_tile_deg;
-        const double x1 = x0 + chart_tile_deg, y1 = y0 + chart_tile_deg;
-        for (auto& [g, rings] : groups) {
-            geo::GeomPtr acc;
-            // Runs of rings of one sign are unioned together, then added to or taken from the result.
-            std::vector<geo::GeomPtr> run;
-            int run_sign = 0;
-            auto flush = [&] {
-                if (run.empty()) return;
-                std::vector<GEOSGeometry*> parts;
-                for (auto& p : run) parts.push_back(p.release());  // the collection takes them
-                run.clear();
-                geo::GeomPtr coll = own(GEOSGeom_createCollection_r(ctx, GEOS_GEOMETRYCOLLECTION, parts.data(), static_cast<unsigned>(parts.size())),
-                                        "collecting chart rings");
-                geo::GeomPtr u = own(GEOSUnaryUnion_r(ctx, coll.get()), "union of chart rings");
-                if (run_sign > 0) acc = acc ? own(GEOSUnion_r(ctx, acc.get(), u.get()), "union of chart areas") : std::move(u);
-                else if (acc) acc = own(GEOSDifference_r(ctx, acc.get(), u.get()), "holes of chart areas");
-            };
-            for (Ring& r : rings) {
-                if (r.max.lon < x0 || r.min.lon > x1 || r.max.lat < y0 || r.min.lat > y1) continue;
-                const int sign = r.area > 0 ? 1 : -1;
-                if (sign != run_sign) {
-                    flush();
-                    run_sign = sign;
-                }
-                if (!r.polygon) {  // once, not at every tile it crosses (a mainland's ring crosses many)
-                    std::vector<geo::XY> pts;
-                    pts.reserve(r.line->points.size());
-                    for (const auto& p : r.line->points) pts.push_back({p.lon, p.lat});
-                    r.polygon = geo::make_polygon(ctx, {pts});
-                    if (!GEOSisValid_r(ctx, r.polygon.get())) r.polygon = own(GEOSMakeValid_r(ctx, r.polygon.get()), "repairing a chart ring");
-                }
-                geo::GeomPtr clipped = own(GEOSClipByRect_r(ctx, r.polygon.get(), x0, y0, x1, y1), "clipping a chart ring");
-                if (GEOSisEmpty_r(ctx, clipped.get())) continue;
-                run.push_back(std::move(clipped));
+/// One thread's share of the work: its GEOS context and its own rings (a GEOS geometry is
+/// not shared between threads: it caches its envelope as it is read), each made a polygon at
+/// the first of this thread's tiles it crosses.
+struct TileWorker {
+    geo::GeosContext ctx;
+    std::map<Group, std::vector<Ring>> groups;
+};
+
+/// The chart's features of tile `t`, group by group.
+void tile_features(TileWorker& w, const ChartTile& t, std::vector<ChartFeature>& out) {
+    const geo::GeosContext& ctx = w.ctx;
+    auto own = [&](GEOSGeometry* g, const char* what) { return geo::own(ctx, g, what); };
+    const double x0 = (t.col - col_offset) * chart_tile_deg, y0 = (t.row - row_offset) * chart_tile_deg;
+    const double x1 = x0 + chart_tile_deg, y1 = y0 + chart_tile_deg;
+    for (auto& [g, rings] : w.groups) {
+        geo::GeomPtr acc;
+        // Runs of rings of one sign are unioned together, then added to or taken from the result.
+        std::vector<geo::GeomPtr> run;
+        int run_sign = 0;
+        auto flush = [&] {
+            if (run.empty()) return;
+            std::vector<GEOSGeometry*> parts;
+            for (auto& p : run) parts.push_back(p.release());  // the collection takes them
+            run.clear();
+            geo::GeomPtr coll = own(GEOSGeom_createCollection_r(ctx, GEOS_GEOMETRYCOLLECTION, parts.data(), static_cast<unsigned>(parts.size())),
+                                    "collecting chart rings");
+            geo::GeomPtr u = own(GEOSUnaryUnion_r(ctx, coll.get()), "union of chart rings");
+            if (run_sign > 0) acc = acc ? own(GEOSUnion_r(ctx, acc.get(), u.get()), "union of chart areas") : std::move(u);
+            else if (acc) acc = own(GEOSDifference_r(ctx, acc.get(), u.get()), "holes of chart areas");
+        };
+        for (Ring& r : rings) {
+            if (r.max.lon < x0 || r.min.lon > x1 || r.max.lat < y0 || r.min.lat > y1) continue;
+            const int sign = r.area > 0 ? 1 : -1;
+            if (sign != run_sign) {
+                flush();
+                run_sign = sign;
             }
-            flush();
-            if (!acc || GEOSisEmpty_r(ctx, acc.get())) continue;
-            // Only the areas: the clip and the holes may leave lines or points on the tile's edge.
-            acc = own(GEOSClipByRect_r(ctx, acc.get(), x0, y0, x1, y1), "clipping chart areas");
-            std::vector<std::vector<std::vector<geo::XY>>> polys;
-            geo::collect_polygons(ctx, acc.get(), polys);
-            ChartFeature f{t, g.kind, g.danger, g.depth, {}};
-            for (auto& poly : polys) {
-                auto& dst = f.polygons.emplace_back();
-                for (std::size_t k = 0; k < poly.size(); ++k) {
-                    auto& ring = dst.emplace_back();
-                    for (const auto& p : poly[k]) ring.push_back({p.x, p.y});
-                    // Shells counter-clockwise, holes clockwise (as GeoJSON and QGIS expect).
-                    if ((signed_area(ring) > 0) != (k == 0)) std::reverse(ring.begin(), ring.end());
-                }
-                if (dst.empty() || std::fabs(signed_area(dst[0])) == 0) f.polygons.pop_back();
+            if (!r.polygon) {  // once, not at every tile it crosses (a mainland's ring crosses many)
+                std::vector<geo::XY> pts;
+                pts.reserve(r.line->points.size());
+                for (const auto& p : r.line->points) pts.push_back({p.lon, p.lat});
+                r.polygon = geo::make_polygon(ctx, {pts});
+                if (!GEOSisValid_r(ctx, r.polygon.get())) r.polygon = own(GEOSMakeValid_r(ctx, r.polygon.get()), "repairing a chart ring");
             }
-            if (!f.polygons.empty()) out.push_back(std::move(f));
+            geo::GeomPtr clipped = own(GEOSClipByRect_r(ctx, r.polygon.get(), x0, y0, x1, y1), "clipping a chart ring");
+            if (GEOSisEmpty_r(ctx, clipped.get())) continue;
+            run.push_back(std::move(clipped));
         }
+        flush();
+        if (!acc || GEOSisEmpty_r(ctx, acc.get())) continue;
+        // Only the areas: the clip and the holes may leave lines or points on the tile's edge.
+        acc = own(GEOSClipByRect_r(ctx, acc.get(), x0, y0, x1, y1), "clipping chart areas");
+        std::vector<std::vector<std::vector<geo::XY>>> polys;
+        geo::collect_polygons(ctx, acc.get(), polys);
+        ChartFeature f{t, g.kind, g.danger, g.depth, {}};
+        for (auto& poly : polys) {
+            auto& dst = f.polygons.emplace_back();
+            for (std::size_t k = 0; k < poly.size(); ++k) {
+                auto& ring = dst.emplace_back();
+                for (const auto& p : poly[k]) ring.push_back({p.x, p.y});
+                // Shells counter-clockwise, holes clockwise (as GeoJSON and QGIS expect).
+                if ((signed_area(ring) > 0) != (k == 0)) std::reverse(ring.begin(), ring.end());
+            }
+            if (dst.empty() || std::fabs(signed_area(dst[0])) == 0) f.polygons.pop_back();
+        }
+        if (!f.polygons.empty()) out.push_back(std::move(f));
     }
+}
+
+}  // namespace
+
+std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles, unsigned jobs) {
+    // Each tile on its own (GEOS gives the same geometry on any thread), gathered in tile order.
+    const std::vector<ChartTile> list(tiles.begin(), tiles.end());
+    std::vector<std::vector<ChartFeature>> per_tile(list.size());
+    std::vector<std::unique_ptr<TileWorker>> workers(detail::thread_count(jobs));
+    detail::parallel_blocks(list.size(), static_cast<unsigned>(workers.size()), [&](std::size_t k, unsigned w) {
+        if (!workers[w]) {
+            workers[w] = std::make_unique<TileWorker>();
+            workers[w]->groups = chart_rings(coast);
+        }
+        tile_features(*workers[w], list[k], per_tile[k]);
+    });
+    std::vector<ChartFeature> out;
+    for (auto& features : per_tile)
+        for (auto& f : features) out.push_back(std::move(f));
     return out;
 }
 
@@ -207,11 +240,11 @@ std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast
     }
 }
 
-std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart) {
+std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart, unsigned jobs) {
     std::set<ChartTile> tiles;  // the tracks' lines are read where they are (a copy would be 16 bytes a fix)
     for (const auto& t : r.tracks)
         for (const auto& line : t.summary.lines) add_tiles_near(tiles, line);
-    return chart_features(chart, tiles);
+    return chart_features(chart, tiles, jobs);
 }
 
 }  // namespace shoal::report

@@ -55,9 +55,10 @@ struct ChartFeature {
     std::vector<std::vector<std::vector<geo::LonLat>>> polygons;
 };
 
-/// The chart `coast` cut to `tiles`, in the order of the merge contract above.
-std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles);
+/// The chart `coast` cut to `tiles`, in the order of the merge contract above; the tiles on
+/// `jobs` threads (0: every core), the same features on any number.
+std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles, unsigned jobs = 1);
 /// The chart cut to the tiles near every piece of the run's tracks: the report's `coast` layer.
-std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart);
+std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart, unsigned jobs = 1);
 
 }  // namespace shoal::report

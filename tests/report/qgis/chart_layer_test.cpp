@@ -98,6 +98,15 @@ TEST(ChartLayer, TilesEqualGeosIntersectionOfTheChartWithEachTile) {
             tiles.insert(tile_of({lon(rng), lat(rng)}));
         }
         const std::vector<ChartFeature> features = chart_features(coast, tiles);
+        // On threads: the same features, point for point, in the same order.
+        for (const unsigned jobs : {2u, 3u, 8u}) {
+            const std::vector<ChartFeature> threaded = chart_features(coast, tiles, jobs);
+            ASSERT_EQ(threaded.size(), features.size()) << "trial " << trial << ", " << jobs << " threads";
+            for (std::size_t k = 0; k < features.size(); ++k) {
+                EXPECT_TRUE(threaded[k].tile == features[k].tile && threaded[k].kind == features[k].kind) << "trial " << trial << " feature " << k;
+                EXPECT_EQ(threaded[k].polygons, features[k].polygons) << "trial " << trial << " feature " << k << ", " << jobs << " threads";
+            }
+        }
         // Sorted by tile, then kind and depth; one feature per (tile, group).
         for (std::size_t k = 1; k < features.size(); ++k) {
             const auto& a = features[k - 1];
