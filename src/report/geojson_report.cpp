@@ -376,25 +376,27 @@ void append_coordinate(std::string& out, double v) {
     if (a < 4e8) {
         // The nearest integer to a * 1e7, with ties to even, as printf rounds: p = a * 1e7 is
         // rounded, e its exact error (fma). p can only land on a half when a * 1e7 is at or
-        // near it (halves are doubles here), and then e says on which side a * 1e7 is.
+        // near it (halves are doubles here), and then e says on which side a * 1e7 is. (p is
+        // under 2^52: adding and taking away 2^52 rounds it to the nearest integer, ties to
+        // even, in the default rounding mode, as nearbyint does, without a call.)
         const double p = a * 1e7;
-        const double e = std::fma(a, 1e7, -p);
-        const double f = std::floor(p);
-        double r = std::nearbyint(p);  // to even at a half (the default rounding mode)
-        if (p - f == 0.5 && e != 0) r = e > 0 ? f + 1 : f;
+        constexpr double two52 = 4503599627370496.0;
+        double r = (p + two52) - two52;
+        if (std::fabs(p - r) == 0.5) {
+            const double e = std::fma(a, 1e7, -p);
+            if (e != 0) r = e > 0 ? p + 0.5 : p - 0.5;
+        }
         const auto n = static_cast<std::uint64_t>(r);
-        char buf[32];
+        char buf[40];
         char* end = buf;
         if (std::signbit(v)) *end++ = '-';  // "-0.0" for a negative that rounds to zero, as printf
-        end = std::to_chars(end, buf + sizeof buf, n / 10000000).ptr;
+        end = std::to_chars(end, buf + 24, n / 10000000).ptr;
         *end++ = '.';
         std::uint64_t frac = n % 10000000;
-        char digits[7];
-        for (int k = 6; k >= 0; --k, frac /= 10) digits[k] = static_cast<char>('0' + frac % 10);
+        for (int k = 6; k >= 0; --k, frac /= 10) end[k] = static_cast<char>('0' + frac % 10);
         int keep = 7;
-        while (keep > 1 && digits[keep - 1] == '0') --keep;  // one digit after the point at least
-        out.append(buf, static_cast<std::size_t>(end - buf));
-        out.append(digits, static_cast<std::size_t>(keep));
+        while (keep > 1 && end[keep - 1] == '0') --keep;  // one digit after the point at least
+        out.append(buf, static_cast<std::size_t>(end + keep - buf));
         return;
     }
     char buf[400];

@@ -66,18 +66,37 @@ ChartTile tile_of(geo::LonLat p) {
 
 void add_tiles_near(std::set<ChartTile>& out, const std::vector<geo::LonLat>& line, double margin_m) {
     ChartTile last_a{0, 0}, last_b{-1, -1};  // the tiles marked last (none yet)
+    // The margin in degrees at least and at most over the whole line (a degree of latitude is
+    // 110,574-111,694 m; one of longitude shrinks away from the equator). A tile's edge is a
+    // monotonic function of the point's coordinate, and the sums are too: when the bounds give
+    // the same tiles, so does the point's own margin, which then needs no metres_per_degree.
+    double least_lat = 90, most_lat = 0;
+    for (const geo::LonLat& p : line)
+        if (std::isfinite(p.lat)) {
+            least_lat = std::min(least_lat, std::fabs(p.lat));
+            most_lat = std::max(most_lat, std::fabs(p.lat));
+        }
+    const double dlat_most = margin_m / 110500.0, dlat_least = margin_m / 111800.0;
+    const double dlon_most = margin_m / std::max(1.0, geo::metres_per_degree(std::min(most_lat, 89.0)).x()) * 1.001;
+    const double dlon_least = margin_m / std::max(1.0, geo::metres_per_degree(std::min(least_lat, 89.0)).x()) * 0.999;
     auto mark = [&](geo::LonLat p) {
         if (!std::isfinite(p.lon) || !std::isfinite(p.lat)) return;
-        const Eigen::Vector2d m = geo::metres_per_degree(std::clamp(p.lat, -89.0, 89.0));
-        const double dlat = margin_m / m.y();
-        const double dlon = margin_m / std::max(1.0, m.x());
-        const ChartTile a = tile_of({p.lon - dlon, std::max(-90.0, p.lat - dlat)});
-        const ChartTile b = tile_of({p.lon + dlon, std::min(89.999999, p.lat + dlat)});
+        ChartTile a = tile_of({p.lon - dlon_most, std::max(-90.0, p.lat - dlat_most)});
+        ChartTile b = tile_of({p.lon + dlon_most, std::min(89.999999, p.lat + dlat_most)});
+        if (!(a == tile_of({p.lon - dlon_least, std::max(-90.0, p.lat - dlat_least)}) &&
+              b == tile_of({p.lon + dlon_least, std::min(89.999999, p.lat + dlat_least)}))) {  // the point's own margin
+            const Eigen::Vector2d m = geo::metres_per_degree(std::clamp(p.lat, -89.0, 89.0));
+            const double dlat = margin_m / m.y();
+            const double dlon = margin_m / std::max(1.0, m.x());
+            a = tile_of({p.lon - dlon, std::max(-90.0, p.lat - dlat)});
+            b = tile_of({p.lon + dlon, std::min(89.999999, p.lat + dlat)});
+        }
         if (a == last_a && b == last_b) return;  // the tiles of the point before
+        for (int r = a.row; r <= b.row; ++r)
+            for (int c = a.col; c <= b.col; ++c)
+                if (r < last_a.row || r > last_b.row || c < last_a.col || c > last_b.col) out.insert({c, r});  // not in already
         last_a = a;
         last_b = b;
-        for (int r = a.row; r <= b.row; ++r)
-            for (int c = a.col; c <= b.col; ++c) out.insert({c, r});
     };
     for (std::size_t i = 0; i < line.size(); ++i) {
         mark(line[i]);

@@ -1,6 +1,8 @@
 // The report's coast layer against GEOS: for random charts (islands with lakes, islands in
 // those lakes, shallow areas of several depths), each tile's features must cover exactly what
 // GEOS's intersection of the chart's polygons with the tile covers.
+#include <set>
+#include <Eigen/Core>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -159,6 +161,54 @@ TEST(ChartLayer, TilesNearATrackFollowItsSegmentsAndTheMargin) {
     const std::set<ChartTile> u = tiles_near({{10.02, 56.049}}, 2000.0);
     EXPECT_TRUE(u.count(tile_of({10.02, 56.06})));
     EXPECT_TRUE(u.count(tile_of({10.02, 56.04})));
+}
+
+/// The tiles near a line are those of each point's own margin in degrees (metres_per_degree at
+/// its latitude), whatever the bounds over the line that spare most points that computation:
+/// random lines from the equator to the poles, across the antimeridian and over tiles' edges,
+/// margins from 1 m to 20 km.
+TEST(ChartLayer, TilesNearALineAreThoseOfEachPointsOwnMargin) {
+    auto reference = [](const std::vector<geo::LonLat>& line, double margin_m) {
+        std::set<ChartTile> out;
+        auto mark = [&](geo::LonLat p) {
+            if (!std::isfinite(p.lon) || !std::isfinite(p.lat)) return;
+            const Eigen::Vector2d m = geo::metres_per_degree(std::clamp(p.lat, -89.0, 89.0));
+            const double dlat = margin_m / m.y(), dlon = margin_m / std::max(1.0, m.x());
+            const ChartTile a = tile_of({p.lon - dlon, std::max(-90.0, p.lat - dlat)});
+            const ChartTile b = tile_of({p.lon + dlon, std::min(89.999999, p.lat + dlat)});
+            for (int r = a.row; r <= b.row; ++r)
+                for (int c = a.col; c <= b.col; ++c) out.insert({c, r});
+        };
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            mark(line[i]);
+            if (i == 0) continue;
+            const geo::LonLat a = line[i - 1], b = line[i];
+            const double span = std::max(std::fabs(b.lon - a.lon), std::fabs(b.lat - a.lat));
+            const int n = static_cast<int>(std::min(1e5, std::ceil(span / (chart_tile_deg / 4))));
+            for (int k = 1; k < n; ++k) {
+                const double f = static_cast<double>(k) / n;
+                mark({a.lon + f * (b.lon - a.lon), a.lat + f * (b.lat - a.lat)});
+            }
+        }
+        return out;
+    };
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (int trial = 0; trial < 3000; ++trial) {
+        const double margin = std::pow(10.0, 4.3 * unit(rng));
+        geo::LonLat p{-180 + 360 * unit(rng), trial % 10 == 0 ? 89.99 * (2 * unit(rng) - 1) : 80 * (2 * unit(rng) - 1)};
+        if (trial % 7 == 0) p.lat = std::round(p.lat / chart_tile_deg) * chart_tile_deg + 1e-9 * (unit(rng) - 0.5);  // on a tile's edge
+        std::vector<geo::LonLat> line;
+        const double step = trial % 3 == 0 ? 0.0005 : 0.01;
+        for (int k = 0; k < 60; ++k) {
+            line.push_back(p);
+            p = {p.lon + step * (2 * unit(rng) - 1), std::clamp(p.lat + step * (2 * unit(rng) - 1), -89.999, 89.999)};
+        }
+        if (trial % 11 == 0) line.push_back({NAN, 10});
+        std::set<ChartTile> got;
+        add_tiles_near(got, line, margin);
+        ASSERT_EQ(got, reference(line, margin)) << "trial " << trial << ", margin " << margin << " m, from " << line[0].lon << ", " << line[0].lat;
+    }
 }
 
 }  // namespace
