@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <numbers>
 #include <vector>
 
@@ -24,18 +23,23 @@ class WindowExtreme {
 public:
     explicit WindowExtreme(bool greater) : m_greater(greater) {}
     void push(std::size_t i, const std::vector<double>& v) {
-        while (!m_q.empty() && (m_greater ? v[m_q.back()] <= v[i] : v[m_q.back()] >= v[i])) m_q.pop_back();
+        while (m_head < m_q.size() && (m_greater ? v[m_q.back()] <= v[i] : v[m_q.back()] >= v[i])) m_q.pop_back();
         m_q.push_back(i);
     }
     void drop_before(std::size_t start) {
-        while (!m_q.empty() && m_q.front() < start) m_q.pop_front();
+        while (m_head < m_q.size() && m_q[m_head] < start) ++m_head;
+        if (m_head >= 16 && 2 * m_head >= m_q.size()) {  // what left the front, let go of (amortised)
+            m_q.erase(m_q.begin(), m_q.begin() + static_cast<std::ptrdiff_t>(m_head));
+            m_head = 0;
+        }
     }
-    double value(const std::vector<double>& v) const { return v[m_q.front()]; }
-    void clear() { m_q.clear(); }
+    double value(const std::vector<double>& v) const { return v[m_q[m_head]]; }
 
 private:
     bool m_greater;
-    std::deque<std::size_t> m_q;
+    /// The queue is m_q[m_head ..] (a vector: a deque's blocks cost more to come and go).
+    std::vector<std::size_t> m_q;
+    std::size_t m_head = 0;
 };
 
 /// Per fix of a piece [b, e): the start of the longest window ending at it whose fixes fit in

@@ -160,9 +160,35 @@ std::vector<bool> brute_stopped(const Track& t, const MotionOptions& o) {
     return out;
 }
 
+/// Where each fix's stay began: the first fix of the longest window [s, i] (within its piece)
+/// whose fixes fit in the stop diameter's box, every window tried.
+std::vector<double> brute_stay_since(const Track& t, const MotionOptions& o) {
+    const std::size_t n = t.fixes.size();
+    std::vector<double> out(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t b = piece_start(t, i, o.max_gap_s);
+        const geo::LonLat p0 = t.fixes[b].position;
+        const double kx = 6371008.8 * deg * std::cos(p0.lat * deg), ky = 6371008.8 * deg;
+        std::size_t first = i;
+        for (std::size_t s = b; s < i; ++s) {
+            double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+            for (std::size_t k = s; k <= i; ++k) {
+                const double x = (t.fixes[k].position.lon - p0.lon) * kx, y = (t.fixes[k].position.lat - p0.lat) * ky;
+                x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+            }
+            if (std::hypot(x1 - x0, y1 - y0) <= o.stop_diameter_m) {
+                first = s;
+                break;
+            }
+        }
+        out[i] = t.fixes[first].time_s;
+    }
+    return out;
+}
+
 TEST(Stops, AgreeWithEveryWindowReadByBruteForce) {
     std::mt19937_64 rng(99);
-    std::size_t stopped = 0, moving = 0;
+    std::size_t stopped = 0, moving = 0, longest = 0;
     for (int trial = 0; trial < 60; ++trial) {
         Track t = random_voyage(rng, 300);
         if (trial % 3 == 0)  // some gaps too
@@ -171,12 +197,18 @@ TEST(Stops, AgreeWithEveryWindowReadByBruteForce) {
         o.stop_diameter_m = trial % 2 ? 50.0 : 20.0;
         resolve_motion(t, o);
         const std::vector<bool> want = brute_stopped(t, o);
+        const std::vector<double> since = brute_stay_since(t, o);
         for (std::size_t i = 0; i < t.fixes.size(); ++i) {
             ASSERT_EQ(t.fixes[i].stopped, want[i]) << "trial " << trial << " fix " << i;
+            ASSERT_EQ(t.fixes[i].stay_since_s, since[i]) << "trial " << trial << " fix " << i;
+            longest = std::max(longest, i - static_cast<std::size_t>(std::find_if(t.fixes.begin(), t.fixes.end(), [&](const Fix& f) {
+                                                                          return f.time_s == since[i];
+                                                                      }) - t.fixes.begin()));
             (want[i] ? stopped : moving) += 1;
         }
     }
     EXPECT_GT(stopped, 1000u) << "the random voyages stop often enough to test the rule";
+    EXPECT_GT(longest, 100u) << "stays longer than the sliding window's queues keep (16) before they let go of their front";
     EXPECT_GT(moving, 1000u);
 }
 
