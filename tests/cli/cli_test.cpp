@@ -588,6 +588,56 @@ TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
     EXPECT_EQ(reports[0], reports[1]);
 }
 
+/// A run of more than a megabyte of tracks on two threads reads the chart of the report's
+/// coast layer while it audits (check_command.cpp); the report and every file beside it are
+/// those of --jobs 1, which reads it after; and when the chart's files have gone, both say so
+/// the same way and write the same report without the chart.
+TEST(CliCheck, TheChartReadDuringTheAuditIsTheChartReadAfterIt) {
+    const fs::path dir = temp_dir() / "early-chart";
+    fs::create_directories(dir);
+    const fs::path coast = dir / "solent.geojson";
+    fs::copy_file(std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson", coast, fs::copy_options::overwrite_existing);
+    const fs::path grid = dir / "solent.shoalgrid";
+    ASSERT_EQ(shoal("import '" + coast.string() + "' -o '" + grid.string() + "'").status, 0);
+    const fs::path tracks = dir / "day.csv";
+    {
+        std::ofstream out(tracks);
+        out << "mmsi,timestamp,lat,lon,sog,cog,heading\n";
+        for (int v = 0; v < 60; ++v)  // 60 vessels past the island's shores, a fix every 10 s
+            for (int i = 0; i < 400; ++i) {
+                char row[160];
+                std::snprintf(row, sizeof row, "%d,2024-05-01T%02d:%02d:%02dZ,%.5f,%.5f,9.5,90,90\n", 300000000 + v, 10 + i / 360, i / 6 % 60, i % 6 * 10,
+                              50.60 + 0.004 * v, -1.60 + 0.0009 * i);
+                out << row;
+            }
+    }
+    ASSERT_GT(fs::file_size(tracks), std::uintmax_t{1} << 20);
+    // Each run writes r.geojson and the files beside it (which name it), then they are moved to a folder of the run's.
+    const char* beside[] = {".geojson", ".coast.geojson", ".poses.geojson", ".tracks.geojson", ".qgz"};
+    auto run = [&](int jobs, const std::string& name) {
+        const Outcome o = shoal("check --coast '" + grid.string() + "' --dims 50,10,5,5 '" + tracks.string() + "' -o '" + (dir / "r.geojson").string() +
+                                "' --jobs " + std::to_string(jobs));
+        EXPECT_NE(o.status, 2) << o.err;
+        fs::create_directories(dir / name);
+        for (const char* ext : beside)
+            if (fs::exists(dir / (std::string("r") + ext))) fs::rename(dir / (std::string("r") + ext), dir / name / (std::string("r") + ext));
+        return o;
+    };
+    auto file = [&](const std::string& run_name, const char* ext) { return slurp(dir / run_name / (std::string("r") + ext)); };
+    const Outcome one = run(1, "one"), two = run(2, "two");
+    for (const char* ext : beside) {
+        EXPECT_FALSE(file("one", ext).empty()) << ext;
+        EXPECT_TRUE(file("one", ext) == file("two", ext)) << "r" << ext << " differs";
+    }
+    EXPECT_GT(file("two", ".coast.geojson").size(), 10000u) << "the coast layer holds the chart near the tracks";
+    EXPECT_EQ(one.err, two.err);
+    fs::remove(coast);
+    const Outcome gone1 = run(1, "gone1"), gone2 = run(2, "gone2");
+    EXPECT_NE(gone2.err.find("the report has no coast layer: the coast files the grid"), std::string::npos) << gone2.err;
+    EXPECT_EQ(gone1.err, gone2.err);
+    for (const char* ext : {".geojson", ".poses.geojson", ".tracks.geojson", ".qgz"}) EXPECT_TRUE(file("gone1", ext) == file("gone2", ext)) << ext;
+}
+
 TEST(CliCheck, GeoPackageHasStyledLayersInWgs84) {
     const fs::path report = temp_dir() / "solent.gpkg";
     const Outcome r = shoal("check --coast " + data("coast/uk_solent_land.geojson") + " --world simulated --dims 50,10,5,5 '" +
