@@ -14,11 +14,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <future>
 #include <map>
 #include <optional>
 #include <string>
-#include <tuple>
 
 
 #include <shoal/audit/audit.hpp>
@@ -64,18 +62,6 @@ void keep_freed_memory() noexcept {
 bool is_stream(const std::string& path) {
     std::error_code ec;
     return !std::filesystem::is_regular_file(path, ec);
-}
-
-/// Whether the track inputs hold more than `bytes` (a folder, a stream or a pattern: maybe).
-bool tracks_over(const std::vector<std::string>& paths, std::uintmax_t bytes) {
-    std::uintmax_t total = 0;
-    for (const std::string& p : paths) {
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(p, ec)) return true;
-        const std::uintmax_t n = std::filesystem::file_size(p, ec);
-        if (ec || (total += n) > bytes) return true;
-    }
-    return false;
 }
 
 /// A progress line on stderr: fixes done, rate and time left. Only when stderr is a terminal.
@@ -389,18 +375,6 @@ public:
         }
         if (partition && m_audit.world == audit::World::real && m_traffic.empty())
             throw UsageError("--from-partitions in the real world needs --traffic T0 --traffic T1 ... (one per partition, in order): every partition's traffic (--traffic-only)");
-        // The chart of the coast layer (read again from the grid's sources: below) is read on a
-        // thread of its own while the audit runs, when the report will want it and the tracks
-        // are more than a megabyte (a run with no track's line does not read it; an empty input
-        // then pays nothing), on more than one thread (--jobs 1 keeps to one).
-        std::future<std::pair<std::optional<coast::Coastline>, std::string>> early_chart;
-        if (!partition && m_audit.jobs != 1 && !m_no_project && !m_audit.shard.active() &&
-            (format == "gpkg" || report::report_outputs(m_output, format, true).size() > 2) && tracks_over(m_tracks, std::uintmax_t{1} << 20))
-            early_chart = std::async(std::launch::async, [&coast = m_opts.coast, &g] {
-                std::string warning;
-                std::optional<coast::Coastline> c = report::read_chart_sources(coast, g, warning);
-                return std::pair{std::move(c), std::move(warning)};
-            });
         const audit::AuditResult r =
             partition ? audit::audit_partition(std::move(*partition), std::move(partition_positions),
                                                m_audit.world == audit::World::real ? audit::read_traffic(m_traffic, m_audit.shard, traffic_key)
@@ -451,8 +425,7 @@ public:
         std::optional<coast::Coastline> chart;
         if (info.project && (format == "gpkg" || geojson_project)) {
             std::string chart_warning;
-            if (early_chart.valid() && report::run_has_lines(r)) std::tie(chart, chart_warning) = early_chart.get();
-            else chart = report::read_chart(m_opts.coast, g, r, chart_warning);
+            chart = report::read_chart(m_opts.coast, g, r, chart_warning);
             if (chart) info.chart = &*chart;
             else print_warnings({chart_warning});
         }

@@ -77,12 +77,6 @@ struct RunInfo {
 /// (Made by the QGIS packaging, report/qgis/chart_layer.cpp.)
 std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const audit::AuditResult& run,
                                            std::string& warning);
-/// read_chart's reading alone, for a run with a track's line: what it gives then, before the
-/// run is known (the chart can be read while the audit goes on).
-std::optional<coast::Coastline> read_chart_sources(const std::vector<std::string>& coast, const grid::CoastGrid& grid, std::string& warning);
-/// Whether `run` has a track's line for the coast layer to draw the chart around (read_chart
-/// reads the chart only then).
-bool run_has_lines(const audit::AuditResult& run);
 
 /// The chart's box in lon/lat (RunInfo::chart_lonlat): the grid's extent taken back from its frame.
 geo::Box chart_box_lonlat(const grid::CoastGrid& grid);

@@ -229,19 +229,12 @@ std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const st
 
 namespace shoal::report {
 
-bool run_has_lines(const audit::AuditResult& run) {
-    return std::any_of(run.tracks.begin(), run.tracks.end(), [](const audit::TrackResult& t) {
-        return std::any_of(t.summary.lines.begin(), t.summary.lines.end(), [](const auto& line) { return !line.empty(); });
-    });
-}
-
 std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& g, const audit::AuditResult& run,
                                            std::string& warning) {
-    if (!run_has_lines(run)) return coast::Coastline{};
-    return read_chart_sources(coast, g, warning);
-}
-
-std::optional<coast::Coastline> read_chart_sources(const std::vector<std::string>& coast, const grid::CoastGrid& g, std::string& warning) {
+    const bool any_line = std::any_of(run.tracks.begin(), run.tracks.end(), [](const audit::TrackResult& t) {
+        return std::any_of(t.summary.lines.begin(), t.summary.lines.end(), [](const auto& line) { return !line.empty(); });
+    });
+    if (!any_line) return coast::Coastline{};
     const grid::GridSource& src = g.source();
     const std::vector<std::string> paths = grid::coast_sources(coast, g);
     const bool from_grid = coast.size() == 1 && grid::looks_like_grid(coast[0]);
