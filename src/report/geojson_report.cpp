@@ -68,36 +68,6 @@ std::string wild_fix_message(const audit::TrackSummary& t, const track::WildFix&
 
 namespace {
 
-json to_json(const fields::Value& v) {
-    return std::visit([](const auto& x) -> json {
-        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>) return nullptr;
-        else return x;
-    }, v);
-}
-
-/// One row of a layer as a JSON object: every field of the table, in its order. `omit_null`:
-/// fields whose value is null are left out (problems: "track" and "line" only when known).
-template <class Row>
-json object_of(const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r, bool omit_null = false) {
-    json j = json::object();
-    for (const auto& f : table) {
-        if (f.present && !f.present(r)) continue;
-        fields::Value v = fields::value_of(f, row);
-        if (omit_null && std::holds_alternative<std::monostate>(v)) continue;
-        j[f.name] = to_json(v);
-    }
-    return j;
-}
-
-json point_feature(geo::LonLat p, json properties) {
-    using fields::round_to, fields::coordinate_decimals;
-    json f;
-    f["type"] = "Feature";
-    f["geometry"] = {{"type", "Point"}, {"coordinates", {round_to(p.lon, coordinate_decimals), round_to(p.lat, coordinate_decimals)}}};
-    f["properties"] = std::move(properties);
-    return f;
-}
-
 /// Writes the report to a sink as nlohmann's dump(1) of the whole document would, one
 /// member or element at a time (only one feature a thread is ever held as JSON; the events'
 /// features are made on threads, a few blocks of them held as text: values()), in pieces of
@@ -117,6 +87,11 @@ public:
         if (!m_buf.empty()) m_sink(m_buf);
         m_buf.clear();
     }
+    /// A field's value (a scalar: the same text at any depth).
+    void scalar(const fields::Value& v) {
+        append_json_value(m_buf, v);
+        if (m_buf.size() >= chunk) flush();
+    }
     /// A value nested `depth` levels deep (see render).
     void value(const json& j, int depth) {
         render(j, depth, m_buf);
@@ -133,9 +108,10 @@ public:
         }
         out.append(d, from);
     }
-    /// Elements 0 .. n-1 of an open array nested `depth` levels deep, value(make(k), depth + 1)
-    /// each: made and rendered a block at a time on `jobs` threads, written in order.
-    void values(std::size_t n, int depth, unsigned jobs, const std::function<json(std::size_t)>& make) {
+    /// Elements 0 .. n-1 of an open array nested `depth` levels deep, each the text `make(k,
+    /// out)` appends (what value(element k, depth + 1) writes): made a block at a time on
+    /// `jobs` threads, written in order.
+    void values(std::size_t n, int depth, unsigned jobs, const std::function<void(std::size_t, std::string&)>& make) {
         constexpr std::size_t block = 512;
         const unsigned threads = detail::thread_count(jobs);
         const std::size_t blocks = (n + block - 1) / block, window = 4 * std::size_t{threads};
@@ -148,7 +124,7 @@ public:
                 out.clear();
                 try {
                     for (std::size_t k = (b0 + i) * block, end = std::min(n, k + block); k < end; ++k)
-                        render(make(k), depth + 1, out.emplace_back());
+                        make(k, out.emplace_back());
                 } catch (...) {
                     failed[i] = std::current_exception();
                 }
@@ -176,7 +152,7 @@ public:
     }
     void key(int depth, const char* name) {
         item(depth);
-        put(json(name).dump());
+        append_json_string(m_buf, name);
         put(": ");
     }
     void close(char bracket, int depth) {
@@ -196,6 +172,56 @@ private:
     std::vector<bool> m_first;
 };
 
+/// Appends what Stream::render(feature, depth) would write of the GeoJSON Point feature at `p`
+/// (rounded to the coordinates' decimals) with `row`'s fields as its properties, as text:
+/// nlohmann's dump(1) of the feature (its keys in order, ": " after each, members and
+/// elements a line each indented one space a level, an empty object {}), every line after
+/// the first indented `depth` more.
+template <class Row>
+void append_point_feature(std::string& out, geo::LonLat p, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r,
+                          int depth) {
+    using fields::round_to, fields::coordinate_decimals;
+    auto line = [&](int level) {
+        out += '\n';
+        out.append(static_cast<std::size_t>(depth + level), ' ');
+    };
+    out += '{';
+    line(1);
+    out += "\"type\": \"Feature\",";
+    line(1);
+    out += "\"geometry\": {";
+    line(2);
+    out += "\"type\": \"Point\",";
+    line(2);
+    out += "\"coordinates\": [";
+    line(3);
+    append_json_value(out, round_to(p.lon, coordinate_decimals));
+    out += ',';
+    line(3);
+    append_json_value(out, round_to(p.lat, coordinate_decimals));
+    line(2);
+    out += ']';
+    line(1);
+    out += "},";
+    line(1);
+    out += "\"properties\": {";
+    bool any = false;
+    for (const auto& f : table) {
+        if (f.present && !f.present(r)) continue;
+        if (any) out += ',';
+        any = true;
+        line(2);
+        out += '"';  // a name is printable ASCII with no quote or backslash (ReportFields.EveryTableNamesEachFieldOnce)
+        out += f.name;
+        out += "\": ";
+        append_json_value(out, fields::value_of(f, row));
+    }
+    if (any) line(1);
+    out += '}';
+    line(0);
+    out += '}';
+}
+
 /// The members of one row (every field of the table, in order) into an open object.
 template <class Row>
 void members_of(Stream& out, int depth, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r,
@@ -205,7 +231,7 @@ void members_of(Stream& out, int depth, const std::vector<fields::Field<Row>>& t
         fields::Value v = fields::value_of(f, row);
         if (omit_null && std::holds_alternative<std::monostate>(v)) continue;
         out.key(depth, f.name);
-        out.value(to_json(v), depth + 1);
+        out.scalar(v);
     }
 }
 
@@ -270,17 +296,22 @@ void write_report(const audit::AuditResult& r, const RunInfo& info, const Staged
     std::vector<std::pair<const audit::TrackSummary*, const audit::Event*>> events;
     for (const auto& t : r.tracks)
         for (const auto& e : t.events) events.emplace_back(&t.summary, &e);
-    out.values(events.size(), 1, info.jobs, [&](std::size_t k) {
+    out.values(events.size(), 1, info.jobs, [&](std::size_t k, std::string& text) {
         const auto [t, e] = events[k];
-        return point_feature(e->point, object_of(fields::event_fields(), fields::EventRow{*t, *e}, r));
+        append_point_feature(text, e->point, fields::event_fields(), fields::EventRow{*t, *e}, r, 2);
     });
+    std::string text;
     for (const auto& e : r.encounters.events) {
         out.item(1);
-        out.value(point_feature(e.point, object_of(fields::encounter_fields(), fields::EncounterRow{r, e}, r)), 2);
+        text.clear();
+        append_point_feature(text, e.point, fields::encounter_fields(), fields::EncounterRow{r, e}, r, 2);
+        out.put(text);
     }
     for (const auto& b : r.assessment.breaches) {
         out.item(1);
-        out.value(point_feature({b.lon, b.lat}, object_of(fields::breach_fields(), fields::BreachRow{r, b}, r)), 2);
+        text.clear();
+        append_point_feature(text, {b.lon, b.lat}, fields::breach_fields(), fields::BreachRow{r, b}, r, 2);
+        out.put(text);
     }
     out.close(']', 1);
     out.close('}', 0);
@@ -455,9 +486,9 @@ void append_polygon(std::string& out, const std::vector<std::vector<geo::LonLat>
 
 template <class Row>
 void append_object(std::string& out, const std::vector<fields::Field<Row>>& table, const Row& row, const audit::AuditResult& r) {
-    // The text nlohmann's dump() writes of object_of's object (the table's order; names are
-    // unique in a table), appended field by field: built as a JSON object and dumped, a pose
-    // row took 10,500 instructions, the third of a day of AIS's writing.
+    // The text nlohmann's dump() writes of the row's fields as a JSON object (the table's
+    // order; names are unique in a table), appended field by field: built as a JSON object
+    // and dumped, a pose row took 10,500 instructions, the third of a day of AIS's writing.
     out += '{';
     bool first = true;
     for (const auto& f : table) {

@@ -332,6 +332,20 @@ TEST(ReportFields, TheStreamedGeoJsonIsTheDocumentsDump) {
     const RunInfo info = hand_info();
     const std::string text = geojson(full, info);
     EXPECT_EQ(nlohmann::ordered_json::parse(text).dump(1) + "\n", text);
+    // Text that must be escaped, in the header's rows and in the features (written as text,
+    // not as JSON values): quotes, backslashes, control characters, UTF-8.
+    audit::AuditResult odd = hand_result();
+    ASSERT_FALSE(odd.tracks.empty());
+    ASSERT_FALSE(odd.tracks.front().events.empty());
+    odd.tracks.front().summary.name = "Tug \"\xc3\x84\"\n\t\\ \x01 \xe2\x98\x83 /";
+    odd.tracks.front().summary.id = "id \x7f \"q\"";
+    for (auto& e : odd.tracks.front().events) {
+        e.hit_name = "Pier \"A\"\r\n\xe2\x82\xac";
+        e.area_name = "\\\\server";
+    }
+    const std::string escaped = geojson(odd, info);
+    EXPECT_EQ(nlohmann::ordered_json::parse(escaped).dump(1) + "\n", escaped);
+    EXPECT_NE(escaped.find("Pier \\\"A\\\"\\r\\n\xe2\x82\xac"), std::string::npos);
     // The same with nothing to list: empty arrays are written [] as dump writes them.
     audit::AuditResult empty;
     const std::string none = geojson(empty, info);
