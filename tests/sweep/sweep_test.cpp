@@ -329,6 +329,18 @@ void expect_same_results(const TrackResult& a, const TrackResult& b, const std::
     EXPECT_EQ(a.summary.close_passes, b.summary.close_passes) << what;
 }
 
+/// The events of `a` at the moments of the brute-force sweep's (to 1 us and 1 um: it knows no
+/// chart's edge and no penetration, so only kinds, times and least clearances are compared).
+void expect_same_moments(const TrackResult& a, const TrackResult& brute, const std::string& what) {
+    ASSERT_EQ(a.events.size(), brute.events.size()) << what;
+    for (std::size_t e = 0; e < brute.events.size(); ++e) {
+        EXPECT_EQ(a.events[e].kind, brute.events[e].kind) << what << " event " << e;
+        EXPECT_NEAR(a.events[e].start_s, brute.events[e].start_s, 1e-6) << what << " event " << e;
+        EXPECT_NEAR(a.events[e].end_s, brute.events[e].end_s, 1e-6) << what << " event " << e;
+        EXPECT_NEAR(a.events[e].min_clearance_m, brute.events[e].min_clearance_m, 1e-6) << what << " event " << e;
+    }
+}
+
 /// SweepOptions::carry_over at fixes far from the coast: a fix's check searches further than
 /// the lookahead, and the next fixes that cannot have come within it are not checked (a day of
 /// AIS in open water). Sparse fixes (30-600 m apart, a gap now and then) in and out of the
@@ -384,13 +396,7 @@ TEST(Sweep, FixesProvedBeyondTheSearchAreTheFullChecks) {
         // The brute force (no chart's edge, no penetration): the same moments.
         const TrackResult brute = sweep_track(t, f, slow, carry);
         const TrackResult mine = sweep_track(t, f, fast, carry);
-        ASSERT_EQ(mine.events.size(), brute.events.size()) << t.id;
-        for (std::size_t e = 0; e < brute.events.size(); ++e) {
-            EXPECT_EQ(mine.events[e].kind, brute.events[e].kind) << t.id << " event " << e;
-            EXPECT_NEAR(mine.events[e].start_s, brute.events[e].start_s, 1e-6) << t.id << " event " << e;
-            EXPECT_NEAR(mine.events[e].end_s, brute.events[e].end_s, 1e-6) << t.id << " event " << e;
-            EXPECT_NEAR(mine.events[e].min_clearance_m, brute.events[e].min_clearance_m, 1e-6) << t.id << " event " << e;
-        }
+        expect_same_moments(mine, brute, t.id);
     }
     std::printf("%zu fixes, %zu poses kept beyond the search and %zu within it, %zu checks saved\n", fixes, beyond, near, saved);
     EXPECT_GT(beyond, 200u) << "too few poses beyond the search to mean anything";
@@ -501,13 +507,7 @@ TEST(Sweep, CarriedContactsAreTheFullChecks) {
         if (k % 4 != 1) continue;
         // The brute force knows no chart's edge and no penetration: the moments and the checks.
         const TrackResult brute = sweep_track(t, f, slow, carry);
-        ASSERT_EQ(carried.events.size(), brute.events.size()) << t.id;
-        for (std::size_t e = 0; e < brute.events.size(); ++e) {
-            EXPECT_EQ(carried.events[e].kind, brute.events[e].kind) << t.id << " event " << e;
-            EXPECT_NEAR(carried.events[e].start_s, brute.events[e].start_s, 1e-6) << t.id << " event " << e;
-            EXPECT_NEAR(carried.events[e].end_s, brute.events[e].end_s, 1e-6) << t.id << " event " << e;
-            EXPECT_NEAR(carried.events[e].min_clearance_m, brute.events[e].min_clearance_m, 1e-6) << t.id << " event " << e;
-        }
+        expect_same_moments(carried, brute, t.id);
         EXPECT_EQ(carried.summary.poses, brute.summary.poses) << t.id;
     }
     std::printf("carried over: %zu contacts, %zu close passes, %zu checks saved\n", contacts, passes, saved);
