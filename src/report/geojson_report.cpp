@@ -44,6 +44,7 @@ std::string event_label(const audit::Event& e) {
                     : e.kind == EventKind::alongside        ? "alongside "
                     : e.kind == EventKind::contact_at_start ? "in contact at start "
                     : e.kind == EventKind::expected_contact ? "contact in " + (e.area_kind.empty() ? std::string("area") : e.area_kind) + " "
+                    : e.kind == EventKind::chart_disagrees  ? "chart disagrees "
                                                             : "close ";
     if (audit::is_contact(e.kind) && e.hit != coast::HazardKind::land) {
         s += e.hit == coast::HazardKind::danger                               ? coast::to_string(e.danger)

@@ -418,6 +418,25 @@ TEST(ReportFields, LayerCoordinatesAreWhatPrintfWritesWithoutTrailingZeros) {
     EXPECT_EQ(nan, "nullnull");
 }
 
+/// The map's label of an event says its kind: a contact is never labelled as a close pass
+/// (chart_disagrees was, "close 22:58:03.307Z"), and each kind has its own words.
+TEST(ReportFields, EveryEventKindHasItsOwnLabel) {
+    using audit::EventKind;
+    std::set<std::string> words;
+    for (const EventKind k : {EventKind::grounding, EventKind::alongside, EventKind::contact_at_start, EventKind::expected_contact,
+                              EventKind::close_pass, EventKind::chart_disagrees}) {
+        audit::Event e;
+        e.kind = k;
+        e.start_s = 1.7e9 + 3.307;
+        e.hit = coast::HazardKind::land;
+        const std::string label = event_label(e);
+        const std::string head = label.substr(0, label.size() - std::string("22:13:23.307Z").size());
+        EXPECT_EQ(label.substr(head.size()), "22:13:23.307Z") << label;
+        EXPECT_TRUE(words.insert(head).second) << audit::to_string(k) << ": " << label;
+        EXPECT_EQ(audit::is_contact(k), head != "close ") << audit::to_string(k) << ": " << label;
+    }
+}
+
 /// A table names each field once: the layer files' writer appends every field it lists (a
 /// JSON object would keep one of two fields of the same name), and a GeoPackage layer has one
 /// column a name. Each name is plain printable ASCII.
