@@ -46,7 +46,10 @@ struct SweepOptions {
     /// the margin, a pose whose clearance is known to lie between the last checked one's plus
     /// or minus that distance, all of it under the margin and over the least clearance of the
     /// pass so far (it cannot be the pass's nearest), is not checked either (unless
-    /// watch_clearance_m keeps every value). False: every pose swept and every fix is checked.
+    /// watch_clearance_m keeps every value); and a fix's check searches past the lookahead by
+    /// the hull's motion over the next fixes, so that a later fix whose pose cannot have come
+    /// within the search since gets its check's answer, nothing within it, unchecked.
+    /// False: every pose swept and every fix is checked.
     bool carry_over = true;
     /// Assessment (assessment.hpp): clearance is followed up to this (metres) as it is up to
     /// the margin, and every checked pose under it is kept in TrackResult::clearance (with the
