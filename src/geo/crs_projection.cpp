@@ -3,6 +3,7 @@
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <thread>
 #include <proj.h>
@@ -119,8 +120,11 @@ public:
     }
     const std::string& name() const override { return m_name; }
     void forward(double* xs, double* ys, std::size_t n) const override {
+        // A point alone is given the time a batch's points get (none: HUGE_VAL, the
+        // operation's own epoch), so that a time-dependent step places it as in a batch (time
+        // 0 would be the year 0).
         if (n == 1) {
-            const PJ_COORD c = proj_trans(op(), PJ_FWD, proj_coord(*xs, *ys, 0, 0));
+            const PJ_COORD c = proj_trans(op(), PJ_FWD, proj_coord(*xs, *ys, 0, HUGE_VAL));
             *xs = c.xy.x;
             *ys = c.xy.y;
             return;
@@ -128,7 +132,7 @@ public:
         proj_trans_generic(op(), PJ_FWD, xs, sizeof(double), n, ys, sizeof(double), n, nullptr, 0, 0, nullptr, 0, 0);
     }
     void inverse(double& x, double& y) const override {
-        const PJ_COORD c = proj_trans(op(), PJ_INV, proj_coord(x, y, 0, 0));
+        const PJ_COORD c = proj_trans(op(), PJ_INV, proj_coord(x, y, 0, HUGE_VAL));
         x = c.lp.lam;
         y = c.lp.phi;
     }
