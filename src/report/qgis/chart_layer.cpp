@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <memory>
 #include <tuple>
 
 #include "geo/geos_context.hpp"
@@ -70,11 +69,13 @@ void add_tiles_near(std::set<ChartTile>& out, const std::vector<geo::LonLat>& li
     // 110,574-111,694 m; one of longitude shrinks away from the equator). A tile's edge is a
     // monotonic function of the point's coordinate, and the sums are too: when the bounds give
     // the same tiles, so does the point's own margin, which then needs no metres_per_degree.
-    double least_lat = 90, most_lat = 0;
+    double least_lat = 90, most_lat = 0, last_lat = NAN;
     for (const geo::LonLat& p : line)
         if (std::isfinite(p.lat)) {
             least_lat = std::min(least_lat, std::fabs(p.lat));
             most_lat = std::max(most_lat, std::fabs(p.lat));
+            if ((p.lat < 0) != (last_lat < 0) && !std::isnan(last_lat)) least_lat = 0;  // the points between cross the equator
+            last_lat = p.lat;
         }
     const double dlat_most = margin_m / 110500.0, dlat_least = margin_m / 111800.0;
     const double dlon_most = margin_m / std::max(1.0, geo::metres_per_degree(std::min(most_lat, 89.0)).x()) * 1.001;
@@ -204,16 +205,17 @@ void tile_features(TileWorker& w, const ChartTile& t, std::vector<ChartFeature>&
 }  // namespace
 
 std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles, unsigned jobs) {
-    // Each tile on its own (GEOS gives the same geometry on any thread), gathered in tile order.
+    // Each tile on its own (GEOS gives the same geometry on any thread), gathered in tile order;
+    // each thread takes one run of neighbouring tiles (a ring crossing many is made a polygon
+    // by as few threads as can be), and stops at its first failing tile (the first of all is
+    // the one a single thread would meet).
     const std::vector<ChartTile> list(tiles.begin(), tiles.end());
     std::vector<std::vector<ChartFeature>> per_tile(list.size());
-    std::vector<std::unique_ptr<TileWorker>> workers(detail::thread_count(jobs));
-    detail::parallel_blocks(list.size(), static_cast<unsigned>(workers.size()), [&](std::size_t k, unsigned w) {
-        if (!workers[w]) {
-            workers[w] = std::make_unique<TileWorker>();
-            workers[w]->groups = chart_rings(coast);
-        }
-        tile_features(*workers[w], list[k], per_tile[k]);
+    const std::size_t runs = std::min<std::size_t>(detail::thread_count(jobs), std::max<std::size_t>(1, list.size()));
+    detail::parallel_blocks(runs, static_cast<unsigned>(runs), [&](std::size_t b, unsigned) {
+        TileWorker w;
+        w.groups = chart_rings(coast);
+        for (std::size_t k = b * list.size() / runs, end = (b + 1) * list.size() / runs; k < end; ++k) tile_features(w, list[k], per_tile[k]);
     });
     std::vector<ChartFeature> out;
     for (auto& features : per_tile)

@@ -205,6 +205,7 @@ TEST(ChartLayer, TilesNearALineAreThoseOfEachPointsOwnMargin) {
             p = {p.lon + step * (2 * unit(rng) - 1), std::clamp(p.lat + step * (2 * unit(rng) - 1), -89.999, 89.999)};
         }
         if (trial % 11 == 0) line.push_back({NAN, 10});
+        if (trial % 13 == 0) line = {{p.lon, 2.6 + 3 * unit(rng)}, {p.lon + 0.4, -2.6 - 3 * unit(rng)}, {p.lon + 0.5, 3.0}};  // over the equator
         std::set<ChartTile> got;
         add_tiles_near(got, line, margin);
         ASSERT_EQ(got, reference(line, margin)) << "trial " << trial << ", margin " << margin << " m, from " << line[0].lon << ", " << line[0].lat;
