@@ -551,7 +551,9 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
     };
     // How much further than the search a fix's check reaches: the hull's motion over the next
     // fixes of the piece (up to further_fixes of them, at most the lookahead), so that they
-    // can be proved beyond it. (Only the work depends on it, not an answer.)
+    // can be proved beyond it. Only the work depends on it, not an answer, but for one case
+    // that CheckOptions::clearance_hint_m also has: of two hull and coast points exactly as
+    // near, the search may report the other.
     constexpr std::size_t further_fixes = 8;
     auto further_m = [&](std::size_t i) {
         if (!opt.carry_over) return 0.0;
@@ -561,7 +563,7 @@ TrackResult sweep_track(const track::Track& t, const geo::LocalFrame& frame, con
             const XY d = lt.position(k) - lt.position(i);
             reach = std::max(reach, std::hypot(d.x, d.y));
         }
-        return std::min(opt.lookahead_m, reach * 1.25 + 0.25 * radius + 1.0);
+        return std::max(0.0, std::min(opt.lookahead_m, reach * 1.25 + 0.25 * radius + 1.0));
     };
     auto checked = [&](const check::Contact& c, const PoseChecker& by, const check::LocalPose& pose) {  // a pose checked in full
         clear_ref_m = !c.collision && std::isfinite(c.clearance_m) ? c.clearance_m : NAN;

@@ -361,7 +361,7 @@ TEST(Sweep, FixesProvedBeyondTheSearchAreTheFullChecks) {
     std::mt19937_64 rng(41);
     std::uniform_real_distribution<double> unit(0, 1);
     const geo::Box ext = grid.extent();
-    std::size_t saved = 0, fixes = 0, beyond = 0, near = 0;
+    std::size_t saved = 0, fixes = 0, beyond = 0, near = 0, watched = 0;
     for (int k = 0; k < 40; ++k) {
         track::Track t;
         t.id = "sparse" + std::to_string(k);
@@ -392,6 +392,20 @@ TEST(Sweep, FixesProvedBeyondTheSearchAreTheFullChecks) {
         fixes += t.fixes.size();
         expect_same_results(carried, all, t.id);
         for (const Pose& q : carried.poses) ++(std::isinf(q.clearance_m) ? beyond : near);
+        if (k % 2 == 0) {  // the clearance watched (an assessment's): the same samples kept
+            SweepOptions carry_watch = carry, every_watch = every;
+            carry_watch.watch_clearance_m = every_watch.watch_clearance_m = 150;
+            const TrackResult a = sweep_track(t, f, fast, carry_watch, ctx), b = sweep_track(t, f, fast, every_watch, ctx);
+            expect_same_results(a, b, t.id + " watched");
+            ASSERT_EQ(a.clearance.size(), b.clearance.size()) << t.id;
+            for (std::size_t j = 0; j < a.clearance.size(); ++j) {
+                const ClearanceSample &x = a.clearance[j], &y = b.clearance[j];
+                EXPECT_TRUE(x.time_s == y.time_s && x.clearance_m == y.clearance_m && x.ship == y.ship && x.covered == y.covered &&
+                            x.after_break == y.after_break)
+                    << t.id << " watched sample " << j;
+            }
+            watched += a.clearance.size();
+        }
         if (k % 5 != 0) continue;
         // The brute force (no chart's edge, no penetration): the same moments.
         const TrackResult brute = sweep_track(t, f, slow, carry);
@@ -401,6 +415,7 @@ TEST(Sweep, FixesProvedBeyondTheSearchAreTheFullChecks) {
     std::printf("%zu fixes, %zu poses kept beyond the search and %zu within it, %zu checks saved\n", fixes, beyond, near, saved);
     EXPECT_GT(beyond, 200u) << "too few poses beyond the search to mean anything";
     EXPECT_GT(near, 50u) << "too few poses near the coast to mean anything";
+    EXPECT_GT(watched, 100u) << "too few clearance samples watched to mean anything";
     EXPECT_GT(saved, fixes / 4) << "the carried answers saved no checks";
 }
 

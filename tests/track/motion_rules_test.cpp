@@ -169,17 +169,15 @@ std::vector<double> brute_stay_since(const Track& t, const MotionOptions& o) {
         const std::size_t b = piece_start(t, i, o.max_gap_s);
         const geo::LonLat p0 = t.fixes[b].position;
         const double kx = 6371008.8 * deg * std::cos(p0.lat * deg), ky = 6371008.8 * deg;
+        // Going back from i, the box grows: the last window that fits is the longest (every
+        // window inside a fitting one fits).
         std::size_t first = i;
-        for (std::size_t s = b; s < i; ++s) {
-            double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-            for (std::size_t k = s; k <= i; ++k) {
-                const double x = (t.fixes[k].position.lon - p0.lon) * kx, y = (t.fixes[k].position.lat - p0.lat) * ky;
-                x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
-            }
-            if (std::hypot(x1 - x0, y1 - y0) <= o.stop_diameter_m) {
-                first = s;
-                break;
-            }
+        double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+        for (std::size_t s = i + 1; s-- > b;) {
+            const double x = (t.fixes[s].position.lon - p0.lon) * kx, y = (t.fixes[s].position.lat - p0.lat) * ky;
+            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+            if (!(std::hypot(x1 - x0, y1 - y0) <= o.stop_diameter_m)) break;
+            first = s;
         }
         out[i] = t.fixes[first].time_s;
     }
