@@ -125,7 +125,8 @@ void gather_evidence(const track::Track& t, double hull_length_m, const geo::Loc
 
 void gather_evidence(const track::Track& t, const std::vector<XY>& p, double hull_length_m, const geo::LocalFrame& frame,
                      const grid::CoastGrid& grid, const SweepOptions& sweep, const EvidenceOptions& opt, TrackResult& r) {
-    if (p.size() != t.fixes.size()) throw LibraryError("gather_evidence: " + std::to_string(p.size()) + " positions for " + std::to_string(t.fixes.size()) + " fixes");
+    if (p.size() != t.fixes.size())
+        throw LibraryError("gather_evidence: " + std::to_string(p.size()) + " positions for " + std::to_string(t.fixes.size()) + " fixes");
     fill_traffic(t, p, hull_length_m, grid, sweep, opt, r);
     const auto& fx = t.fixes;
     if (fx.empty()) return;

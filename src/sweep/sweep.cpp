@@ -93,9 +93,11 @@ public:
         return check(i, f, m_local.pose({i, f}), penetration, where);
     }
     /// The same, `pose` being m_local.pose({i, f}) (placed once by the caller).
-    /// `hint`: CheckOptions::clearance_hint_m.
-    check::Contact check(std::size_t i, double f, const check::LocalPose& pose, bool penetration, bool where, double hint = INFINITY) const {
-        return checker_at(i, f).check(pose, {.max_clearance_m = search_m(), .want_penetration = penetration, .want_polyline = false,
+    /// `hint`: CheckOptions::clearance_hint_m. `extra_m`: the clearance searched that much
+    /// further than search_m() (check_further).
+    check::Contact check(std::size_t i, double f, const check::LocalPose& pose, bool penetration, bool where, double hint = INFINITY,
+                         double extra_m = 0) const {
+        return checker_at(i, f).check(pose, {.max_clearance_m = search_m() + extra_m, .want_penetration = penetration, .want_polyline = false,
                                              .want_contact_point = where, .clearance_hint_m = hint});
     }
 
@@ -106,8 +108,7 @@ public:
     /// carried (beyond()).
     check::Contact check_further(std::size_t i, const check::LocalPose& pose, bool where, double hint, double extra_m, double& clear_m) const {
         const double limit = search_m();
-        const check::Contact c = checker_at(i, 0.0).check(pose, {.max_clearance_m = limit + extra_m, .want_penetration = true, .want_polyline = false,
-                                                                 .want_contact_point = where, .clearance_hint_m = hint});
+        const check::Contact c = check(i, 0.0, pose, true, where, hint, extra_m);
         clear_m = 0;
         if (c.collision || c.clearance_m <= limit) return c;
         clear_m = std::isfinite(c.clearance_m) ? c.clearance_m : limit + extra_m;
