@@ -133,9 +133,9 @@ std::map<Group, std::vector<Ring>> chart_rings(const coast::Coastline& coast) {
     return groups;
 }
 
-/// One thread's share of the work: its GEOS context and its own rings (a GEOS geometry is
-/// not shared between threads: it caches its envelope as it is read), each made a polygon at
-/// the first of this thread's tiles it crosses.
+/// One thread's share of the work: its GEOS context and its own rings (no GEOS geometry is
+/// read by two threads at once: GEOS promises that only of separate objects), each made a
+/// polygon at the first of this thread's tiles it crosses.
 struct TileWorker {
     geo::GeosContext ctx;
     std::map<Group, std::vector<Ring>> groups;
