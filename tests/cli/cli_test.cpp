@@ -594,7 +594,7 @@ TEST(CliCheck, ReportIsTheSameWhateverTheNumberOfJobs) {
 /// (Reading the chart on a thread of its own while the audit ran was tried: 0.2 s of 7.9 s on
 /// a 10 M-row day, but 59 MB more at the peak: GDAL's parse of the chart beside the rows read.)
 TEST(CliCheck, TheReportAndItsChartAreTheSameOnAnyNumberOfThreads) {
-    const fs::path dir = temp_dir() / "early-chart";
+    const fs::path dir = temp_dir() / "chart-on-threads";
     fs::create_directories(dir);
     const fs::path coast = dir / "solent.geojson";
     fs::copy_file(std::string(SHOAL_TEST_DATA) + "coast/uk_solent_land.geojson", coast, fs::copy_options::overwrite_existing);

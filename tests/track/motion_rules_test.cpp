@@ -161,10 +161,10 @@ std::vector<bool> brute_stopped(const Track& t, const MotionOptions& o) {
 }
 
 /// Where each fix's stay began: the first fix of the longest window [s, i] (within its piece)
-/// whose fixes fit in the stop diameter's box, every window tried.
-std::vector<double> brute_stay_since(const Track& t, const MotionOptions& o) {
+/// whose fixes fit in the stop diameter's box, each window from [i, i] back tried in turn.
+std::vector<std::size_t> brute_stay_start(const Track& t, const MotionOptions& o) {
     const std::size_t n = t.fixes.size();
-    std::vector<double> out(n);
+    std::vector<std::size_t> out(n);
     for (std::size_t i = 0; i < n; ++i) {
         const std::size_t b = piece_start(t, i, o.max_gap_s);
         const geo::LonLat p0 = t.fixes[b].position;
@@ -179,7 +179,7 @@ std::vector<double> brute_stay_since(const Track& t, const MotionOptions& o) {
             if (!(std::hypot(x1 - x0, y1 - y0) <= o.stop_diameter_m)) break;
             first = s;
         }
-        out[i] = t.fixes[first].time_s;
+        out[i] = first;
     }
     return out;
 }
@@ -195,13 +195,11 @@ TEST(Stops, AgreeWithEveryWindowReadByBruteForce) {
         o.stop_diameter_m = trial % 2 ? 50.0 : 20.0;
         resolve_motion(t, o);
         const std::vector<bool> want = brute_stopped(t, o);
-        const std::vector<double> since = brute_stay_since(t, o);
+        const std::vector<std::size_t> start = brute_stay_start(t, o);
         for (std::size_t i = 0; i < t.fixes.size(); ++i) {
             ASSERT_EQ(t.fixes[i].stopped, want[i]) << "trial " << trial << " fix " << i;
-            ASSERT_EQ(t.fixes[i].stay_since_s, since[i]) << "trial " << trial << " fix " << i;
-            longest = std::max(longest, i - static_cast<std::size_t>(std::find_if(t.fixes.begin(), t.fixes.end(), [&](const Fix& f) {
-                                                                          return f.time_s == since[i];
-                                                                      }) - t.fixes.begin()));
+            ASSERT_EQ(t.fixes[i].stay_since_s, t.fixes[start[i]].time_s) << "trial " << trial << " fix " << i;
+            longest = std::max(longest, i - start[i]);
             (want[i] ? stopped : moving) += 1;
         }
     }

@@ -1,13 +1,13 @@
 // The report's coast layer against GEOS: for random charts (islands with lakes, islands in
 // those lakes, shallow areas of several depths), each tile's features must cover exactly what
 // GEOS's intersection of the chart's polygons with the tile covers.
-#include <set>
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "geo/geos_context.hpp"
 #include "report/qgis/chart_layer.hpp"
