@@ -84,6 +84,9 @@ void add_tiles_near(std::set<ChartTile>& out, const std::vector<geo::LonLat>& li
         if (!std::isfinite(p.lon) || !std::isfinite(p.lat)) return;
         ChartTile a = tile_of({p.lon - dlon_most, std::max(-90.0, p.lat - dlat_most)});
         ChartTile b = tile_of({p.lon + dlon_most, std::min(89.999999, p.lat + dlat_most)});
+        // The point's own tiles lie within these, which are all in `out` when they are the
+        // tiles marked last (every tile of a marked box is in): nothing to add.
+        if (a == last_a && b == last_b) return;
         if (!(a == tile_of({p.lon - dlon_least, std::max(-90.0, p.lat - dlat_least)}) &&
               b == tile_of({p.lon + dlon_least, std::min(89.999999, p.lat + dlat_least)}))) {  // the point's own margin
             const Eigen::Vector2d m = geo::metres_per_degree(std::clamp(p.lat, -89.0, 89.0));
@@ -261,11 +264,33 @@ std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast
     }
 }
 
+std::set<ChartTile> tiles_near(const audit::AuditResult& r, unsigned jobs) {
+    // The tracks' lines are read where they are (a copy would be 16 bytes a fix), in runs of
+    // tracks of about equal fixes, a run's tiles in a set of its own: the union is the same
+    // on any number of threads.
+    std::vector<std::size_t> before{0};  // fixes of the tracks before track k
+    for (const auto& t : r.tracks) {
+        std::size_t n = 0;
+        for (const auto& line : t.summary.lines) n += line.size();
+        before.push_back(before.back() + n);
+    }
+    const std::size_t runs = std::min<std::size_t>(detail::thread_count(jobs), std::max<std::size_t>(1, r.tracks.size()));
+    auto start = [&](std::size_t b) {  // the first track of run b
+        if (b == runs) return r.tracks.size();
+        return static_cast<std::size_t>(std::lower_bound(before.begin(), before.end() - 1, before.back() * b / runs) - before.begin());
+    };
+    std::vector<std::set<ChartTile>> found(runs);
+    detail::parallel_blocks(runs, static_cast<unsigned>(runs), [&](std::size_t b, unsigned) {
+        for (std::size_t k = start(b), end = start(b + 1); k < end; ++k)
+            for (const auto& line : r.tracks[k].summary.lines) add_tiles_near(found[b], line);
+    });
+    std::set<ChartTile> tiles = std::move(found[0]);
+    for (std::size_t b = 1; b < runs; ++b) tiles.merge(found[b]);
+    return tiles;
+}
+
 std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart, unsigned jobs) {
-    std::set<ChartTile> tiles;  // the tracks' lines are read where they are (a copy would be 16 bytes a fix)
-    for (const auto& t : r.tracks)
-        for (const auto& line : t.summary.lines) add_tiles_near(tiles, line);
-    return chart_features(chart, tiles, jobs);
+    return chart_features(chart, tiles_near(r, jobs), jobs);
 }
 
 }  // namespace shoal::report

@@ -58,6 +58,9 @@ struct ChartFeature {
 /// The chart `coast` cut to `tiles`, in the order of the merge contract above; the tiles on
 /// `jobs` threads (0: every core), the same features on any number.
 std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const std::set<ChartTile>& tiles, unsigned jobs = 1);
+/// The tiles within chart_margin_m of every piece of the run's tracks (add_tiles_near), the
+/// tracks on `jobs` threads: the same tiles on any number.
+std::set<ChartTile> tiles_near(const audit::AuditResult& r, unsigned jobs = 1);
 /// The chart cut to the tiles near every piece of the run's tracks: the report's `coast` layer.
 std::vector<ChartFeature> chart_features_near(const audit::AuditResult& r, const coast::Coastline& chart, unsigned jobs = 1);
 

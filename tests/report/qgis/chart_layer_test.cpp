@@ -11,6 +11,7 @@
 
 #include "geo/geos_context.hpp"
 #include "report/qgis/chart_layer.hpp"
+#include <shoal/audit/audit.hpp>
 
 namespace shoal::report {
 namespace {
@@ -209,6 +210,34 @@ TEST(ChartLayer, TilesNearALineAreThoseOfEachPointsOwnMargin) {
         std::set<ChartTile> got;
         add_tiles_near(got, line, margin);
         ASSERT_EQ(got, reference(line, margin)) << "trial " << trial << ", margin " << margin << " m, from " << line[0].lon << ", " << line[0].lat;
+    }
+}
+
+/// The run's tiles on any number of threads are the union of each line's (add_tiles_near):
+/// runs of tracks of very different lengths, tracks without a line, one track, none.
+TEST(ChartLayer, TheRunsTilesAreEachLinesOnAnyNumberOfThreads) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (int trial = 0; trial < 40; ++trial) {
+        audit::AuditResult r;
+        const int tracks = trial == 0 ? 0 : trial == 1 ? 1 : 1 + static_cast<int>(30 * unit(rng));
+        for (int k = 0; k < tracks; ++k) {
+            audit::TrackResult& t = r.tracks.emplace_back();
+            const int lines = static_cast<int>(3 * unit(rng));  // 0: a track refused, or of no line
+            for (int l = 0; l < lines; ++l) {
+                auto& line = t.summary.lines.emplace_back();
+                geo::LonLat p{-10 + 40 * unit(rng), 30 + 30 * unit(rng)};
+                const int n = unit(rng) < 0.2 ? 2000 : static_cast<int>(50 * unit(rng));
+                for (int i = 0; i < n; ++i) {
+                    line.push_back(p);
+                    p = {p.lon + 0.02 * (2 * unit(rng) - 1), p.lat + 0.02 * (2 * unit(rng) - 1)};
+                }
+            }
+        }
+        std::set<ChartTile> expected;
+        for (const auto& t : r.tracks)
+            for (const auto& line : t.summary.lines) add_tiles_near(expected, line);
+        for (const unsigned jobs : {1u, 2u, 3u, 8u}) ASSERT_EQ(tiles_near(r, jobs), expected) << "trial " << trial << ", " << jobs << " threads";
     }
 }
 
