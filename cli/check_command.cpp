@@ -14,10 +14,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <map>
 #include <optional>
 #include <string>
-
+#include <system_error>
+#include <thread>
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/audit/partition.hpp>
@@ -423,11 +425,31 @@ public:
         // or a device: report_outputs lists more than the report and its style; not a shard).
         const bool geojson_project = format != "gpkg" && !r.shard.active() && report::report_outputs(m_output, format, info.project).size() > 2;
         std::optional<coast::Coastline> chart;
+        std::string chart_warning;
+        std::promise<const coast::Coastline*> chart_read;
+        std::jthread chart_reader;  // joined before `chart` goes, whatever is thrown
         if (info.project && (format == "gpkg" || geojson_project)) {
-            std::string chart_warning;
-            chart = report::read_chart(m_opts.coast, g, r, chart_warning);
-            if (chart) info.chart = &*chart;
-            else print_warnings({chart_warning});
+            // On more than one thread, a GeoJSON report's chart is read while the report and its
+            // other files are written; its coast layer waits for it (report::chart_of).
+            if (format != "gpkg" && m_audit.jobs != 1) {
+                try {
+                    chart_reader = std::jthread([&] {
+                        try {
+                            chart = report::read_chart(m_opts.coast, g, r, chart_warning);
+                            chart_read.set_value(chart ? &*chart : nullptr);
+                        } catch (...) {
+                            chart_read.set_exception(std::current_exception());
+                        }
+                    });
+                    info.chart_later = chart_read.get_future().share();
+                } catch (const std::system_error&) {  // no thread to be had: read here
+                }
+            }
+            if (!info.chart_later.valid()) {
+                chart = report::read_chart(m_opts.coast, g, r, chart_warning);
+                if (chart) info.chart = &*chart;
+                else print_warnings({chart_warning});
+            }
         }
         const auto t0 = std::chrono::steady_clock::now();
         // The report, its style and its picture are staged, then put in place together: an
@@ -438,6 +460,7 @@ public:
         } else {
             std::vector<std::string> style_warnings;
             staged = report::stage_geojson(m_output, r, info, &style_warnings);
+            if (info.chart_later.valid() && !info.chart_later.get()) print_warnings({chart_warning});
             print_warnings(style_warnings);
         }
         // A shard's debrief record, beside its part (fingerprinted from the part's bytes as staged).

@@ -636,8 +636,9 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
             break;
         }
         case MapLayer::coast: {
-            if (!info.chart) throw LibraryError("the coast layer without a chart");
-            const std::vector<ChartFeature> rows = chart_features_near(r, *info.chart, info.jobs);
+            const coast::Coastline* chart = chart_of(info);
+            if (!chart) throw LibraryError("the coast layer without a chart");
+            const std::vector<ChartFeature> rows = chart_features_near(r, *chart, info.jobs);
             auto points = [&](std::size_t k) {
                 std::size_t n = 0;
                 for (const auto& polygon : rows[k].polygons)
@@ -673,17 +674,27 @@ StagedOutput stage_layer_file(const std::string& path, MapLayer which, const aud
 /// blocks of features by RunInfo::jobs threads (write_features). More threads than cores, but
 /// one file's thread waits on its disk (the fsync of a file of hundreds of megabytes) while
 /// the others write (on 2 cores, the near-coast set's report and layers took 0.95 s so, 1.32 s
-/// with the files one after another). The first failure is thrown once every file is done
-/// (the others' temporary files are removed with them).
-std::vector<StagedOutput> stage_layer_files(const std::vector<const ProjectFiles::Layer*>& layers, const audit::AuditResult& r,
-                                            const RunInfo& info) {
+/// with the files one after another). The coast layer is begun first: it may wait for its chart
+/// (RunInfo::chart_later) and has work on one thread (the tiles of few tracks) the other files
+/// can go on beside; none is staged for it when the chart cannot be read (chart_of() null).
+/// The first failure is thrown once every file is done (the others' temporary files are
+/// removed with them).
+std::vector<std::optional<StagedOutput>> stage_layer_files(const std::vector<const ProjectFiles::Layer*>& layers, const audit::AuditResult& r,
+                                                           const RunInfo& info) {
     const std::size_t n = layers.size();
+    std::vector<std::size_t> order;  // the coast layer first, then the others as given
+    for (std::size_t k = 0; k < n; ++k)
+        if (layers[k]->which == MapLayer::coast) order.push_back(k);
+    for (std::size_t k = 0; k < n; ++k)
+        if (layers[k]->which != MapLayer::coast) order.push_back(k);
     std::vector<std::optional<StagedOutput>> staged(n);
     std::vector<std::exception_ptr> failed(n);
     std::atomic<std::size_t> next{0};
     auto work = [&] {
-        for (std::size_t k; (k = next.fetch_add(1)) < n;) {
+        for (std::size_t i; (i = next.fetch_add(1)) < n;) {
+            const std::size_t k = order[i];
             try {
+                if (layers[k]->which == MapLayer::coast && !chart_of(info)) continue;
                 staged[k].emplace(stage_layer_file(layers[k]->geojson, layers[k]->which, r, info));
             } catch (...) {
                 failed[k] = std::current_exception();
@@ -701,9 +712,7 @@ std::vector<StagedOutput> stage_layer_files(const std::vector<const ProjectFiles
     for (std::thread& t : pool) t.join();
     for (const std::exception_ptr& e : failed)
         if (e) std::rethrow_exception(e);
-    std::vector<StagedOutput> out;
-    for (auto& s : staged) out.push_back(std::move(*s));
-    return out;
+    return staged;
 }
 
 /// The QGIS project REPORT.qgz beside a GeoJSON report and the layer files it opens, unless
@@ -747,11 +756,13 @@ void stage_project_beside(const std::string& path, const audit::AuditResult& r, 
     std::vector<ProjectLayer> layers{{"events", "Point", "./" + name + "|geometrytype=Point", any_event}};
     std::vector<const ProjectFiles::Layer*> written;
     for (const auto& l : f.layers)
-        if ((l.which != MapLayer::coast || info.chart) && (l.which != MapLayer::learned || r.world == audit::World::real)) written.push_back(&l);
-    std::vector<StagedOutput> files_out = stage_layer_files(written, r, info);
+        if ((l.which != MapLayer::coast || info.chart || info.chart_later.valid()) && (l.which != MapLayer::learned || r.world == audit::World::real))
+            written.push_back(&l);
+    std::vector<std::optional<StagedOutput>> files_out = stage_layer_files(written, r, info);
     for (std::size_t k = 0; k < written.size(); ++k) {
         const auto& l = *written[k];
-        out.push_back(std::move(files_out[k]));
+        if (!files_out[k]) continue;  // the coast layer of a chart that could not be read
+        out.push_back(std::move(*files_out[k]));
         std::string warning;  // checked above: shoal's, or none
         if (std::optional<StagedOutput> s = stage_sidecar_style(l.qml, name_of(l.which), warning)) out.push_back(std::move(*s));
         const char* type = l.which == MapLayer::tracks    ? "MultiLineString"

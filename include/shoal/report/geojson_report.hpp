@@ -40,7 +40,7 @@ bool is_shoal_geojson_report(const std::string& path);
 /// QGIS style REPORT.qml beside it, unless a file of that name exists that shoal did not write
 /// (then a warning goes into `warnings`, when given, and that file is left alone). With
 /// `info.project`, also the QGIS project REPORT.qgz beside it and the layer files it opens
-/// (REPORT.tracks.geojson, .hulls, .poses and, with `info.chart`, .coast, each with its .qml),
+/// (REPORT.tracks.geojson, .hulls, .poses and, with a chart (`chart_of(info)`), .coast, each with its .qml),
 /// unless one of those exists that shoal did not write (a warning then, and none of them is
 /// written). Nothing beside stdout, a device or a pipe. Throws InputError naming the file it
 /// could not write.

@@ -3,6 +3,7 @@
 /// rules and options, the inputs' fingerprints) and the chart its `coast` layer draws.
 
 #include <cmath>
+#include <future>
 #include <optional>
 #include <string>
 #include <utility>
@@ -57,6 +58,10 @@ struct RunInfo {
     geo::Box chart_lonlat;
     /// The chart for the report's `coast` layer (read_chart); null: no coast layer.
     const coast::Coastline* chart = nullptr;
+    /// When valid (and `chart` null), the chart for the `coast` layer of a GeoJSON report is
+    /// still being read while the report's other files are written (check does so on more than
+    /// one thread): the coast layer waits for it; null from it, no coast layer. chart_of().
+    std::shared_future<const coast::Coastline*> chart_later;
     /// The report's map for QGIS: its `poses` and `coast` layers and its QGIS project (a
     /// GeoPackage's stored project; beside a GeoJSON report REPORT.qgz and the layer files it
     /// opens). false (--no-project): the events, tracks and hulls only.
@@ -66,6 +71,12 @@ struct RunInfo {
     /// another; 0: all cores; the CLI passes --jobs).
     unsigned jobs = 0;
 };
+
+/// RunInfo::chart, else what RunInfo::chart_later gives (waiting for it), else null.
+inline const coast::Coastline* chart_of(const RunInfo& info) {
+    if (info.chart || !info.chart_later.valid()) return info.chart;
+    return info.chart_later.get();
+}
 
 /// The chart the run was checked against, for the report's `coast` layer: the grid's sources
 /// (`coast` as given, or the files a .shoalgrid records) read again through the coast reader
