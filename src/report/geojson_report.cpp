@@ -398,37 +398,50 @@ std::vector<OutputSpec> report_outputs(const std::string& path, const std::strin
     return out;
 }
 
-void append_coordinate(std::string& out, double v) {
-    if (!std::isfinite(v)) {
-        out += "null";
-        return;
-    }
+namespace {
+
+/// `v` as append_coordinate writes it, for `v` not finite or under 4e8 in size: at most 18
+/// bytes at `at`; returns their end.
+char* put_coordinate(char* at, double v) {
+    if (!std::isfinite(v)) return std::copy_n("null", 4, at);
     static_assert(fields::coordinate_decimals == 7, "the digits below are for 7 decimals");
     const double a = std::fabs(v);
-    if (a < 4e8) {
-        // The nearest integer to a * 1e7, with ties to even, as printf rounds: p = a * 1e7 is
-        // rounded, e its exact error (fma). p can only land on a half when a * 1e7 is at or
-        // near it (halves are doubles here), and then e says on which side a * 1e7 is. (p is
-        // under 2^52: adding and taking away 2^52 rounds it to the nearest integer, ties to
-        // even, in the default rounding mode, as nearbyint does, without a call.)
-        const double p = a * 1e7;
-        constexpr double two52 = 4503599627370496.0;
-        double r = (p + two52) - two52;
-        if (std::fabs(p - r) == 0.5) {
-            const double e = std::fma(a, 1e7, -p);
-            if (e != 0) r = e > 0 ? p + 0.5 : p - 0.5;
-        }
-        const auto n = static_cast<std::uint64_t>(r);
-        char buf[40];
-        char* end = buf;
-        if (std::signbit(v)) *end++ = '-';  // "-0.0" for a negative that rounds to zero, as printf
-        end = std::to_chars(end, buf + 24, n / 10000000).ptr;
-        *end++ = '.';
-        std::uint64_t frac = n % 10000000;
-        for (int k = 6; k >= 0; --k, frac /= 10) end[k] = static_cast<char>('0' + frac % 10);
-        int keep = 7;
-        while (keep > 1 && end[keep - 1] == '0') --keep;  // one digit after the point at least
-        out.append(buf, static_cast<std::size_t>(end + keep - buf));
+    // The nearest integer to a * 1e7, with ties to even, as printf rounds: p = a * 1e7 is
+    // rounded, e its exact error (fma). p can only land on a half when a * 1e7 is at or
+    // near it (halves are doubles here), and then e says on which side a * 1e7 is. (p is
+    // under 2^52: adding and taking away 2^52 rounds it to the nearest integer, ties to
+    // even, in the default rounding mode, as nearbyint does, without a call.)
+    const double p = a * 1e7;
+    constexpr double two52 = 4503599627370496.0;
+    double r = (p + two52) - two52;
+    if (std::fabs(p - r) == 0.5) {
+        const double e = std::fma(a, 1e7, -p);
+        if (e != 0) r = e > 0 ? p + 0.5 : p - 0.5;
+    }
+    const auto n = static_cast<std::uint64_t>(r);
+    if (std::signbit(v)) *at++ = '-';  // "-0.0" for a negative that rounds to zero, as printf
+    at = std::to_chars(at, at + 10, n / 10000000).ptr;
+    *at++ = '.';
+    std::uint64_t frac = n % 10000000;
+    for (int k = 6; k >= 0; --k, frac /= 10) at[k] = static_cast<char>('0' + frac % 10);
+    int keep = 7;
+    while (keep > 1 && at[keep - 1] == '0') --keep;  // one digit after the point at least
+    return at + keep;
+}
+
+/// Whether put_coordinate writes `v`.
+bool small_coordinate(double v) { return !(std::fabs(v) >= 4e8); }
+
+}  // namespace
+
+void append_coordinate(std::string& out, double v) {
+    if (small_coordinate(v)) {
+        char buf[24];
+        out.append(buf, static_cast<std::size_t>(put_coordinate(buf, v) - buf));
+        return;
+    }
+    if (!std::isfinite(v)) {
+        out += "null";
         return;
     }
     char buf[400];
@@ -437,6 +450,38 @@ void append_coordinate(std::string& out, double v) {
     while (end[-1] == '0') --end;
     if (end[-1] == '.') ++end;  // "24.0": still a number with a fraction
     out.append(buf, static_cast<std::size_t>(end - buf));
+}
+
+void PositionWriter::put(char before, geo::LonLat p) {
+    if (m_n > sizeof m_buf - 48) flush();
+    char* at = m_buf + m_n;
+    if (before) *at++ = before;
+    if (small_coordinate(p.lon) && small_coordinate(p.lat)) {
+        *at++ = '[';
+        at = put_coordinate(at, p.lon);
+        *at++ = ',';
+        at = put_coordinate(at, p.lat);
+        *at++ = ']';
+        m_n = static_cast<std::size_t>(at - m_buf);
+        return;
+    }
+    m_n = static_cast<std::size_t>(at - m_buf);
+    flush();
+    m_out += '[';
+    append_coordinate(m_out, p.lon);
+    m_out += ',';
+    append_coordinate(m_out, p.lat);
+    m_out += ']';
+}
+
+void PositionWriter::put(char c) {
+    if (m_n == sizeof m_buf) flush();
+    m_buf[m_n++] = c;
+}
+
+void PositionWriter::flush() {
+    m_out.append(m_buf, m_n);
+    m_n = 0;
 }
 
 namespace {
@@ -452,35 +497,39 @@ void stage_style_beside(const std::string& path, std::vector<StagedOutput>& out,
 }
 
 void append_position(std::string& out, geo::LonLat p) {
-    out += '[';
-    append_coordinate(out, p.lon);
-    out += ',';
-    append_coordinate(out, p.lat);
-    out += ']';
+    PositionWriter w(out);
+    w.put('\0', p);
+    w.flush();
 }
 
-/// Appends a ring's GeoJSON coordinates, running counter-clockwise (`ccw`: a polygon's shell)
+/// Writes a ring's GeoJSON coordinates, running counter-clockwise (`ccw`: a polygon's shell)
 /// or clockwise (a hole), as RFC 7946 has them. `ring` is closed.
-void append_ring(std::string& out, const std::vector<geo::LonLat>& ring, bool ccw) {
+void put_ring(PositionWriter& w, const std::vector<geo::LonLat>& ring, bool ccw) {
     double area2 = 0;  // twice the signed area in degrees: > 0 counter-clockwise
     for (std::size_t i = 0; i + 1 < ring.size(); ++i) area2 += ring[i].lon * ring[i + 1].lat - ring[i + 1].lon * ring[i].lat;
     const bool reverse = area2 != 0 && (area2 > 0) != ccw;
-    out += '[';
-    for (std::size_t k = 0; k < ring.size(); ++k) {
-        if (k) out += ',';
-        append_position(out, ring[reverse ? ring.size() - 1 - k : k]);
-    }
-    out += ']';
+    w.put('[');
+    for (std::size_t k = 0; k < ring.size(); ++k) w.put(k ? ',' : '\0', ring[reverse ? ring.size() - 1 - k : k]);
+    w.put(']');
+}
+
+/// Appends a ring's coordinates (put_ring).
+void append_ring(std::string& out, const std::vector<geo::LonLat>& ring, bool ccw) {
+    PositionWriter w(out);
+    put_ring(w, ring, ccw);
+    w.flush();
 }
 
 /// Appends a polygon's coordinates: its shell, then its holes.
 void append_polygon(std::string& out, const std::vector<std::vector<geo::LonLat>>& rings) {
-    out += '[';
+    PositionWriter w(out);
+    w.put('[');
     for (std::size_t k = 0; k < rings.size(); ++k) {
-        if (k) out += ',';
-        append_ring(out, rings[k], k == 0);
+        if (k) w.put(',');
+        put_ring(w, rings[k], k == 0);
     }
-    out += ']';
+    w.put(']');
+    w.flush();
 }
 
 }  // namespace
@@ -583,21 +632,18 @@ void write_layer(MapLayer which, const audit::AuditResult& r, const RunInfo& inf
             write_features(rows.size(), info.jobs, points, [&](std::size_t k, std::string& out) {
                 const fields::TrackRow& t = rows[k];
                 open_feature(out, fields::track_fields(), t, r, "MultiLineString");
-                out += '[';
+                PositionWriter w(out);
+                w.put('[');
                 for (std::size_t j = 0; j < t.track.lines.size(); ++j) {
                     const auto& piece = t.track.lines[j];
-                    out += j ? ",[" : "[";
-                    for (std::size_t i = 0; i < piece.size(); ++i) {
-                        if (i) out += ',';
-                        append_position(out, piece[i]);
-                    }
-                    if (piece.size() == 1) {  // a piece of one fix: a line of no length
-                        out += ',';
-                        append_position(out, piece[0]);
-                    }
-                    out += ']';
+                    if (j) w.put(',');
+                    w.put('[');
+                    for (std::size_t i = 0; i < piece.size(); ++i) w.put(i ? ',' : '\0', piece[i]);
+                    if (piece.size() == 1) w.put(',', piece[0]);  // a piece of one fix: a line of no length
+                    w.put(']');
                 }
-                out += ']';
+                w.put(']');
+                w.flush();
             }, sink);
             break;
         }

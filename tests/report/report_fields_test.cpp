@@ -418,6 +418,48 @@ TEST(ReportFields, LayerCoordinatesAreWhatPrintfWritesWithoutTrailingZeros) {
     EXPECT_EQ(nan, "nullnull");
 }
 
+/// The positions a PositionWriter puts are those append_coordinate writes one number at a
+/// time, with the text between them, over many of its buffers' flushes: ordinary, huge, not
+/// finite and negative-zero coordinates, after text already in the string.
+TEST(ReportFields, PositionsWrittenTogetherAreEachCoordinateAppended) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> unit(0, 1);
+    auto coordinate = [&]() -> double {
+        const double u = unit(rng);
+        if (u < 0.01) return NAN;
+        if (u < 0.02) return -INFINITY;
+        if (u < 0.03) return -0.0;
+        if (u < 0.05) return (unit(rng) - 0.5) * 1e12;  // beyond the fast path
+        if (u < 0.06) return (unit(rng) < 0.5 ? -1 : 1) * (4e8 - unit(rng));
+        return 360 * (unit(rng) - 0.5);
+    };
+    for (int trial = 0; trial < 200; ++trial) {
+        std::string got = "head", expected = "head";
+        {
+            PositionWriter w(got);
+            const int n = static_cast<int>(2000 * unit(rng));
+            for (int i = 0; i < n; ++i) {
+                const geo::LonLat p{coordinate(), coordinate()};
+                const char before = "\0,[]"[static_cast<int>(4 * unit(rng))];
+                if (unit(rng) < 0.2) {
+                    w.put(before);
+                    expected += before;
+                    continue;
+                }
+                w.put(before, p);
+                if (before) expected += before;
+                expected += '[';
+                append_coordinate(expected, p.lon);
+                expected += ',';
+                append_coordinate(expected, p.lat);
+                expected += ']';
+            }
+            w.flush();
+        }
+        ASSERT_EQ(got, expected) << "trial " << trial;
+    }
+}
+
 /// The map's label of an event says its kind: a contact is never labelled as a close pass
 /// (chart_disagrees was, "close 22:58:03.307Z"), and each kind has its own words.
 TEST(ReportFields, EveryEventKindHasItsOwnLabel) {
