@@ -19,7 +19,10 @@
 namespace shoal::report::fields {
 
 double round_to(double v, int decimals) {
-    const double k = std::pow(10.0, decimals);
+    // 10^0 .. 10^22 are doubles exactly, which pow gives (ReportFields.RoundingTakesPowersOfTenExactly).
+    static constexpr double powers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const double k = decimals >= 0 && decimals <= 22 ? powers[decimals] : std::pow(10.0, decimals);
     return std::round(v * k) / k;
 }
 

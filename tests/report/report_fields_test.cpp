@@ -418,6 +418,21 @@ TEST(ReportFields, LayerCoordinatesAreWhatPrintfWritesWithoutTrailingZeros) {
     EXPECT_EQ(nan, "nullnull");
 }
 
+/// round_to's powers of ten are pow's, and it rounds as with them: every decimals a field
+/// may ask for, on random values.
+TEST(ReportFields, RoundingTakesPowersOfTenExactly) {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    for (int d = -3; d <= 25; ++d) {
+        const volatile double exponent = d;  // pow at run time, not folded by the compiler
+        const double k = std::pow(10.0, exponent);
+        for (int i = 0; i < 2000; ++i) {
+            const double v = unit(rng) * std::pow(10.0, i % 12 - 4);
+            ASSERT_EQ(fields::round_to(v, d), std::round(v * k) / k) << v << " to " << d << " decimals";
+        }
+    }
+}
+
 /// The positions a PositionWriter puts are those append_coordinate writes one number at a
 /// time, with the text between them, over many of its buffers' flushes: ordinary, huge, not
 /// finite and negative-zero coordinates, after text already in the string.
