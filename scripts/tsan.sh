@@ -62,7 +62,7 @@ halves() {
 halves "$build/tests/audit_test"
 halves "$build/tests/cli_test"
 halves "$build/tests/bad_input_test" --gtest_filter='-BadInput.EveryNumericOption*:BadInput.*CostNoMemoryPerLine*'
-"$build/tests/track_test" --gtest_brief=1 --gtest_filter='Input.ACsvReadByTwoThreads*'
+"$build/tests/track_test" --gtest_brief=1 --gtest_filter='Input.ACsvReadByTwoThreads*:PackedTrack.TracksNormalisedOnThreads*'
 "$build/tests/check_test" --gtest_brief=1 --gtest_filter='Placement.InBlocks*'
 "$build/tests/report_test" --gtest_brief=1 --gtest_filter='ReportFields.TheStreamedGeoJsonIsTheDocumentsDump:ChartLayer.*'
 echo "ThreadSanitizer: no report"

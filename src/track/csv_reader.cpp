@@ -400,7 +400,7 @@ public:
                                             "'): it is taken as a target");
             t.role = "target";
         }
-        for (PackedTrack& t : m_out.tracks) normalise(t, m_out.report);
+        normalise(m_out.tracks, m_out.report, m_options.threads);
         return std::move(m_out);
     }
 

@@ -484,6 +484,68 @@ TEST(PackedTrack, EveryFixComesBackBitForBit) {
     }
 }
 
+/// The tracks of a file normalised on threads are those normalised one after another, and so
+/// are the report's counts and messages (a fix without a time is said, within the report's
+/// limit, in track order): tracks in order, out of order, with repeated times, without times.
+TEST(PackedTrack, TracksNormalisedOnThreadsAreThoseNormalisedInTurn) {
+    std::mt19937_64 rng(41);
+    for (int round = 0; round < 6; ++round) {
+        std::vector<PackedTrack> tracks(1 + rng() % 300);
+        for (std::size_t k = 0; k < tracks.size(); ++k) {
+            tracks[k].id = std::to_string(k);
+            tracks[k].file = "day.csv";
+            const std::size_t n = rng() % 20 == 0 ? 20000 + rng() % 40000 : rng() % 900;
+            const int kind = static_cast<int>(rng() % 4);  // 0 in order, 1 repeats, 2 out of order, 3 times missing
+            for (std::size_t i = 0; i < n; ++i) {
+                Fix f;
+                f.time_s = 1.7e9 + (kind == 2 ? static_cast<double>(rng() % n) : static_cast<double>(i / (kind == 1 ? 2 : 1)));
+                if (kind == 3 && rng() % 50 == 0) f.time_s = NAN;
+                f.position = {24 + 1e-5 * static_cast<double>(i), 60.0};
+                f.heading_deg = rng() % 3 == 0 ? NAN : static_cast<double>(rng() % 360);
+                f.line = i + 2;
+                tracks[k].push_back(f);
+            }
+        }
+        auto normalised = [&](unsigned threads, ReadReport& report) {
+            std::vector<PackedTrack> copy;
+            for (const PackedTrack& t : tracks) {
+                PackedTrack& c = copy.emplace_back();
+                c.id = t.id;
+                c.file = t.file;
+                for (std::size_t i = 0; i < t.size(); ++i) c.push_back(t.fix(i));
+            }
+            if (threads == 0)
+                for (PackedTrack& t : copy) normalise(t, report);
+            else
+                normalise(copy, report, threads);
+            return copy;
+        };
+        ReadReport want_report;
+        want_report.max_messages = 1 + round;
+        const std::vector<PackedTrack> want = normalised(0, want_report);
+        for (const unsigned threads : {1u, 2u, 3u, 8u}) {
+            ReadReport got_report;
+            got_report.max_messages = want_report.max_messages;
+            const std::vector<PackedTrack> got = normalised(threads, got_report);
+            ASSERT_EQ(got.size(), want.size());
+            for (std::size_t k = 0; k < want.size(); ++k) {
+                ASSERT_EQ(got[k].size(), want[k].size()) << "track " << k;
+                for (std::size_t i = 0; i < want[k].size(); ++i) {
+                    const Fix g = got[k].fix(i), w = want[k].fix(i);
+                    ASSERT_TRUE(same_bits(g.time_s, w.time_s) && same_bits(g.heading_deg, w.heading_deg) && g.line == w.line)
+                        << "round " << round << ", " << threads << " threads, track " << k << " fix " << i;
+                }
+            }
+            EXPECT_EQ(got_report.skipped, want_report.skipped);
+            EXPECT_EQ(got_report.skips_said, want_report.skips_said);
+            EXPECT_EQ(got_report.duplicates, want_report.duplicates);
+            EXPECT_EQ(got_report.reordered, want_report.reordered);
+            EXPECT_EQ(got_report.messages, want_report.messages) << threads << " threads";
+        }
+        EXPECT_GT(want_report.duplicates + want_report.reordered, 0u);
+    }
+}
+
 }  // namespace
 
 namespace {

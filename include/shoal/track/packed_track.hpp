@@ -116,5 +116,9 @@ private:
 /// (stable), drops exact duplicates in time, keeping the first and filling its missing
 /// heading, COG and SOG from the repeats; counts and messages in `report`.
 void normalise(PackedTrack& track, ReadReport& report);
+/// normalise() of every track of `tracks`, in runs of tracks on up to `threads` threads when
+/// they hold many fixes: the same tracks, counts and messages (in track order, within the
+/// report's limit) as one after another.
+void normalise(std::vector<PackedTrack>& tracks, ReadReport& report, unsigned threads);
 
 }  // namespace shoal::track
