@@ -1,6 +1,7 @@
 #include <shoal/util/output_file.hpp>
 
 #include <dirent.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -289,10 +290,25 @@ void StagedOutput::write_streamed(const std::function<void(const Sink&)>& produc
         discard();
         throw InputError("cannot write '" + m_target + "': " + std::strerror(err));
     }
+    // A staged file is fsynced before it is put in place (flush_and_close): its pages are
+    // handed to the disk every few megabytes as it is written, so that the fsync at its end
+    // waits for the last of them, not for all (hundreds of megabytes of layer files waited
+    // 0.1-0.3 s on a day of AIS, while nothing else was left to do). A hint only: what it
+    // cannot do, the fsync does.
+    constexpr std::size_t hand_over = std::size_t{8} << 20;
+    std::size_t written = 0, handed = 0;
     try {
         produce([&](std::string_view bytes) {
             if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size())
                 throw InputError("cannot write '" + m_target + "': " + std::strerror(errno));
+            written += bytes.size();
+#if defined(__linux__)
+            if (!direct() && written - handed >= hand_over) {
+                if (std::fflush(f) != 0) throw InputError("cannot write '" + m_target + "': " + std::strerror(errno));
+                ::sync_file_range(::fileno(f), static_cast<off_t>(handed), static_cast<off_t>(written - handed), SYNC_FILE_RANGE_WRITE);
+                handed = written;
+            }
+#endif
         });
     } catch (...) {
         std::fclose(f);
