@@ -298,12 +298,20 @@ Traffic learn_traffic(const std::vector<const TrackResult*>& tracks, const std::
         std::set<std::string> vessels;
     };
     std::map<std::pair<long long, long long>, Cell> water;
-    for (std::size_t k = 0; k < tracks.size(); ++k)
-        for (const XY& q : tracks[k]->over_land) {
-            Cell& c = water[{static_cast<long long>(std::floor(q.x / W)), static_cast<long long>(std::floor(q.y / W))}];
-            ++c.fixes;
+    std::vector<std::pair<long long, long long>> track_cells;  // one track's, sorted: each cell's fixes counted at once
+    for (std::size_t k = 0; k < tracks.size(); ++k) {
+        track_cells.clear();
+        for (const XY& q : tracks[k]->over_land)
+            track_cells.emplace_back(static_cast<long long>(std::floor(q.x / W)), static_cast<long long>(std::floor(q.y / W)));
+        std::sort(track_cells.begin(), track_cells.end());
+        for (std::size_t i = 0, j; i < track_cells.size(); i = j) {
+            for (j = i + 1; j < track_cells.size() && track_cells[j] == track_cells[i]; ++j) {
+            }
+            Cell& c = water[track_cells[i]];
+            c.fixes += j - i;
             c.vessels.insert(ids[k]);
         }
+    }
     for (const auto& [at, c] : water) {
         LearnedPlace pl;
         pl.kind = LearnedPlace::Kind::water;

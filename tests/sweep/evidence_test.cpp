@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <random>
+#include <set>
+#include <string>
 
 #include <shoal/sweep/evidence.hpp>
 
@@ -79,6 +81,46 @@ TEST(Traffic, WaterTheChartLacksIsCountedPerCellAndVessel) {
     EXPECT_DOUBLE_EQ(t.places[0].local.x, 125);
     EXPECT_EQ(t.places[1].count, 1u);
     EXPECT_DOUBLE_EQ(t.places[1].local.x, 375);
+}
+
+/// Water the chart lacks against a brute force: each cell of fixes on land holds every such
+/// fix in it and the vessels (ids, one vessel in two tracks once) that made them; random fixes
+/// either side of zero, ids repeated.
+TEST(Traffic, WaterCellsEqualABruteForceCountOnRandomFixes) {
+    std::mt19937 rng(20261207);
+    std::uniform_real_distribution<double> pos(-1500, 1500);
+    for (int round = 0; round < 20; ++round) {
+        std::vector<TrackResult> tracks(1 + rng() % 20);
+        std::vector<std::string> ids;
+        for (std::size_t k = 0; k < tracks.size(); ++k) {
+            ids.push_back("V" + std::to_string(k % 7));
+            const std::size_t n = rng() % 200;
+            for (std::size_t i = 0; i < n; ++i) tracks[k].over_land.push_back({pos(rng), pos(rng)});
+        }
+        std::vector<const TrackResult*> ptr;
+        for (const auto& r : tracks) ptr.push_back(&r);
+        const Traffic got = learn_traffic(ptr, ids, frame(), {});
+        const double W = EvidenceOptions{}.water_cell_m;
+        std::size_t cells = 0;
+        for (const LearnedPlace& pl : got.places) {
+            if (pl.kind != LearnedPlace::Kind::water) continue;
+            ++cells;
+            std::size_t fixes = 0;
+            std::set<std::string> vessels;
+            for (std::size_t k = 0; k < tracks.size(); ++k)
+                for (const auto& q : tracks[k].over_land)
+                    if (std::fabs(q.x - pl.local.x) < W / 2 && std::fabs(q.y - pl.local.y) < W / 2) {
+                        ++fixes;
+                        vessels.insert(ids[k]);
+                    }
+            EXPECT_EQ(pl.count, fixes) << "round " << round << " cell at " << pl.local.x << ", " << pl.local.y;
+            EXPECT_EQ(pl.vessels, vessels.size()) << "round " << round;
+        }
+        std::set<std::pair<long long, long long>> expected_cells;
+        for (const auto& t : tracks)
+            for (const auto& q : t.over_land) expected_cells.insert({static_cast<long long>(std::floor(q.x / W)), static_cast<long long>(std::floor(q.y / W))});
+        EXPECT_EQ(cells, expected_cells.size()) << "round " << round;
+    }
 }
 
 TEST(Traffic, BerthEvidenceEqualsABruteForceCountOnRandomStays) {
