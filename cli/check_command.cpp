@@ -459,8 +459,20 @@ public:
             staged.push_back(report::stage_gpkg(m_output, r, info));
         } else {
             std::vector<std::string> style_warnings;
-            staged = report::stage_geojson(m_output, r, info, &style_warnings);
-            if (info.chart_later.valid() && !info.chart_later.get()) print_warnings({chart_warning});
+            // The chart's warning (its read going on meanwhile) said once it is known, also when
+            // the report could not be written.
+            const auto chart_said = [&] {
+                if (!info.chart_later.valid()) return;
+                info.chart_later.wait();
+                if (!chart && !chart_warning.empty()) print_warnings({chart_warning});
+            };
+            try {
+                staged = report::stage_geojson(m_output, r, info, &style_warnings);
+            } catch (...) {
+                chart_said();
+                throw;
+            }
+            chart_said();
             print_warnings(style_warnings);
         }
         // A shard's debrief record, beside its part (fingerprinted from the part's bytes as staged).

@@ -637,6 +637,9 @@ TEST(CliCheck, TheReportAndItsChartAreTheSameOnAnyNumberOfThreads) {
     EXPECT_NE(gone2.err.find("the report has no coast layer: the coast files the grid"), std::string::npos) << gone2.err;
     EXPECT_EQ(gone1.err, gone2.err);
     for (const char* ext : {".geojson", ".poses.geojson", ".tracks.geojson", ".qgz"}) EXPECT_TRUE(file("gone1", ext) == file("gone2", ext)) << ext;
+    for (const char* name : {"gone1", "gone2"})
+        EXPECT_FALSE(fs::exists(dir / "r.coast.geojson") || fs::exists(dir / name / "r.coast.geojson"))
+            << name << ": no coast layer without its chart";
 }
 
 TEST(CliCheck, GeoPackageHasStyledLayersInWgs84) {
