@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <exception>
 #include <functional>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -20,7 +21,8 @@ inline unsigned thread_count(unsigned jobs) {
 }
 
 /// Runs `work(k, worker)` for k in [0, n) on `jobs` threads, never more than there is work
-/// (work must not throw); `worker` is the thread's number, 0 .. threads - 1. Calls `tick` on
+/// (work must not throw); `worker` is the thread's number, 0 .. threads - 1 (fewer when no
+/// more threads can be started: this one then works too). Calls `tick` on
 /// this thread about ten times a second meanwhile, and once at the end.
 template <typename Work>
 void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<void()>& tick = {}) {
@@ -32,7 +34,16 @@ void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<v
         finished.fetch_add(1);
     };
     std::vector<std::thread> pool;
-    for (unsigned w = 0; w < threads; ++w) pool.emplace_back(worker, w);
+    pool.reserve(threads);
+    unsigned started = 0;
+    try {
+        for (; started < threads; ++started) pool.emplace_back(worker, started);
+    } catch (const std::system_error&) {  // no thread to be had (nested in other threads' work): fewer do it
+    }
+    if (started < threads) {  // this thread as the next worker; the ones not started never finish
+        worker(started);
+        finished.fetch_add(threads - started - 1);
+    }
     for (int i = 0; tick && finished.load() < threads; ++i) {
         if (i % 5 == 0) tick();
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
