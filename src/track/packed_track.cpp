@@ -195,22 +195,23 @@ void normalise(PackedTrack& track, ReadReport& report) {
 }
 
 void normalise(std::vector<PackedTrack>& tracks, ReadReport& report, unsigned threads) {
-    std::vector<std::size_t> before{0};  // fixes of the tracks before track k
-    for (const PackedTrack& t : tracks) before.push_back(before.back() + t.size());
+    std::vector<std::size_t> fixes;
+    std::size_t all = 0;
+    for (const PackedTrack& t : tracks) {
+        fixes.push_back(t.size());
+        all += t.size();
+    }
     constexpr std::size_t worth_a_thread = 65536;  // fixes: fewer are normalised sooner than a thread starts
-    const std::size_t runs = std::clamp<std::size_t>(std::min<std::size_t>(threads, before.back() / worth_a_thread), 1, std::max<std::size_t>(1, tracks.size()));
+    const std::size_t runs = std::clamp<std::size_t>(std::min<std::size_t>(threads, all / worth_a_thread), 1, std::max<std::size_t>(1, tracks.size()));
     if (runs == 1) {
         for (PackedTrack& t : tracks) normalise(t, report);
         return;
     }
-    auto start = [&](std::size_t b) {  // the first track of run b
-        if (b == runs) return tracks.size();
-        return static_cast<std::size_t>(std::lower_bound(before.begin(), before.end() - 1, before.back() * b / runs) - before.begin());
-    };
+    const std::vector<std::size_t> start = shoal::detail::weighted_runs(fixes, runs);
     std::vector<ReadReport> found(runs);
     for (ReadReport& f : found) f.max_messages = report.max_messages;
     shoal::detail::parallel_blocks(runs, static_cast<unsigned>(runs), [&](std::size_t b, unsigned) {
-        for (std::size_t k = start(b), end = start(b + 1); k < end; ++k) normalise(tracks[k], found[b]);
+        for (std::size_t k = start[b]; k < start[b + 1]; ++k) normalise(tracks[k], found[b]);
     });
     // Each run's report as its rows would have come one after another: its first messages
     // (each run kept as many as the report can) kept while the report has room.

@@ -52,6 +52,20 @@ void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<v
     if (tick) tick();
 }
 
+/// Items [0, weights.size()) cut into `runs` (at least 1) runs of neighbouring items of about
+/// equal weight: the first item of each run, then the number of items (runs + 1 numbers, never
+/// decreasing; a run may be empty). Each run a block of parallel_blocks, for work whose items
+/// differ in size (tracks of a few fixes and of thousands).
+inline std::vector<std::size_t> weighted_runs(const std::vector<std::size_t>& weights, std::size_t runs) {
+    std::vector<std::size_t> before{0};  // the weight of the items before item k
+    for (const std::size_t w : weights) before.push_back(before.back() + w);
+    std::vector<std::size_t> starts;
+    for (std::size_t b = 0; b < runs; ++b)
+        starts.push_back(static_cast<std::size_t>(std::lower_bound(before.begin(), before.end() - 1, before.back() * b / runs) - before.begin()));
+    starts.push_back(weights.size());
+    return starts;
+}
+
 /// Runs `block(b, worker)` for the blocks b in [0, blocks) on `jobs` threads, as parallel_for;
 /// `block` may throw. Once one throws, the blocks after the first that threw (in block order)
 /// are not started, those before it still are (one of them may throw first); at the end the

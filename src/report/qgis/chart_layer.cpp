@@ -268,20 +268,17 @@ std::set<ChartTile> tiles_near(const audit::AuditResult& r, unsigned jobs) {
     // The tracks' lines are read where they are (a copy would be 16 bytes a fix), in runs of
     // tracks of about equal fixes, a run's tiles in a set of its own: the union is the same
     // on any number of threads.
-    std::vector<std::size_t> before{0};  // fixes of the tracks before track k
+    std::vector<std::size_t> fixes;
     for (const auto& t : r.tracks) {
         std::size_t n = 0;
         for (const auto& line : t.summary.lines) n += line.size();
-        before.push_back(before.back() + n);
+        fixes.push_back(n);
     }
     const std::size_t runs = std::min<std::size_t>(detail::thread_count(jobs), std::max<std::size_t>(1, r.tracks.size()));
-    auto start = [&](std::size_t b) {  // the first track of run b
-        if (b == runs) return r.tracks.size();
-        return static_cast<std::size_t>(std::lower_bound(before.begin(), before.end() - 1, before.back() * b / runs) - before.begin());
-    };
+    const std::vector<std::size_t> start = detail::weighted_runs(fixes, runs);
     std::vector<std::set<ChartTile>> found(runs);
     detail::parallel_blocks(runs, static_cast<unsigned>(runs), [&](std::size_t b, unsigned) {
-        for (std::size_t k = start(b), end = start(b + 1); k < end; ++k)
+        for (std::size_t k = start[b]; k < start[b + 1]; ++k)
             for (const auto& line : r.tracks[k].summary.lines) add_tiles_near(found[b], line);
     });
     std::set<ChartTile> tiles = std::move(found[0]);
