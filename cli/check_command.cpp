@@ -14,12 +14,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <future>
 #include <map>
 #include <optional>
 #include <string>
-#include <system_error>
-#include <thread>
 
 #include <shoal/audit/audit.hpp>
 #include <shoal/audit/partition.hpp>
@@ -424,32 +421,13 @@ public:
         // GeoPackage, and for a GeoJSON report whose project files go beside it (not on stdout
         // or a device: report_outputs lists more than the report and its style; not a shard).
         const bool geojson_project = format != "gpkg" && !r.shard.active() && report::report_outputs(m_output, format, info.project).size() > 2;
-        std::optional<coast::Coastline> chart;
-        std::string chart_warning;
-        std::promise<const coast::Coastline*> chart_read;
-        std::jthread chart_reader;  // joined before `chart` goes, whatever is thrown
+        std::optional<report::ChartRead> chart;
         if (info.project && (format == "gpkg" || geojson_project)) {
             // On more than one thread, a GeoJSON report's chart is read while the report and its
-            // other files are written; its coast layer waits for it (report::chart_of).
-            if (format != "gpkg" && m_audit.jobs != 1) {
-                try {
-                    chart_reader = std::jthread([&] {
-                        try {
-                            chart = report::read_chart(m_opts.coast, g, r, chart_warning);
-                            chart_read.set_value(chart ? &*chart : nullptr);
-                        } catch (...) {
-                            chart_read.set_exception(std::current_exception());
-                        }
-                    });
-                    info.chart_later = chart_read.get_future().share();
-                } catch (const std::system_error&) {  // no thread to be had: read here
-                }
-            }
-            if (!info.chart_later.valid()) {
-                chart = report::read_chart(m_opts.coast, g, r, chart_warning);
-                if (chart) info.chart = &*chart;
-                else print_warnings({chart_warning});
-            }
+            // other files are written; its coast layer waits for it.
+            chart.emplace(m_opts.coast, g, r, format != "gpkg" && m_audit.jobs != 1);
+            chart->give(info);
+            if (!chart->meanwhile() && !info.chart) print_warnings({chart->warning()});
         }
         const auto t0 = std::chrono::steady_clock::now();
         // The report, its style and its picture are staged, then put in place together: an
@@ -462,9 +440,7 @@ public:
             // The chart's warning (its read going on meanwhile) said once it is known, also when
             // the report could not be written.
             const auto chart_said = [&] {
-                if (!info.chart_later.valid()) return;
-                info.chart_later.wait();
-                if (!chart && !chart_warning.empty()) print_warnings({chart_warning});
+                if (chart && chart->meanwhile() && !chart->warning().empty()) print_warnings({chart->warning()});
             };
             try {
                 staged = report::stage_geojson(m_output, r, info, &style_warnings);

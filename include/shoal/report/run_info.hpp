@@ -6,6 +6,7 @@
 #include <future>
 #include <optional>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -88,6 +89,30 @@ inline const coast::Coastline* chart_of(const RunInfo& info) {
 /// (Made by the QGIS packaging, report/qgis/chart_layer.cpp.)
 std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const audit::AuditResult& run,
                                            std::string& warning);
+
+/// The chart for the report's `coast` layer (read_chart), read when made, or, `meanwhile`, on
+/// a thread of its own while the report is written (given to the report as RunInfo::chart_later:
+/// its coast layer waits for it). The thread is joined when this goes, whatever was thrown.
+class ChartRead {
+public:
+    ChartRead(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const audit::AuditResult& run, bool meanwhile);
+    ChartRead(const ChartRead&) = delete;
+    ChartRead& operator=(const ChartRead&) = delete;
+    /// Whether the chart is being read on its thread (false: read already, or no thread to be had).
+    bool meanwhile() const noexcept { return m_later.valid(); }
+    /// The chart to `info`: RunInfo::chart when read already, else RunInfo::chart_later.
+    void give(RunInfo& info) const;
+    /// Why there is no chart, once the read is over (waits for it): "" when there is one, or
+    /// when the read threw (what it threw comes out of RunInfo::chart_later).
+    const std::string& warning() const;
+
+private:
+    std::optional<coast::Coastline> m_chart;
+    std::string m_warning;
+    std::promise<const coast::Coastline*> m_read;
+    std::shared_future<const coast::Coastline*> m_later;
+    std::jthread m_thread;  // last: joined before the chart and the warning it writes go
+};
 
 /// The chart's box in lon/lat (RunInfo::chart_lonlat): the grid's extent taken back from its frame.
 geo::Box chart_box_lonlat(const grid::CoastGrid& grid);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <system_error>
 #include <tuple>
 
 #include "geo/geos_context.hpp"
@@ -262,6 +263,35 @@ std::optional<coast::Coastline> read_chart(const std::vector<std::string>& coast
         warning = std::string("the report has no coast layer: reading the chart again failed: ") + e.what();
         return std::nullopt;
     }
+}
+
+ChartRead::ChartRead(const std::vector<std::string>& coast, const grid::CoastGrid& grid, const audit::AuditResult& run, bool meanwhile) {
+    if (meanwhile) {
+        try {
+            m_thread = std::jthread([this, &coast, &grid, &run] {
+                try {
+                    m_chart = read_chart(coast, grid, run, m_warning);
+                    m_read.set_value(m_chart ? &*m_chart : nullptr);
+                } catch (...) {
+                    m_read.set_exception(std::current_exception());
+                }
+            });
+            m_later = m_read.get_future().share();
+            return;
+        } catch (const std::system_error&) {  // no thread to be had: read here
+        }
+    }
+    m_chart = read_chart(coast, grid, run, m_warning);
+}
+
+void ChartRead::give(RunInfo& info) const {
+    if (meanwhile()) info.chart_later = m_later;
+    else info.chart = m_chart ? &*m_chart : nullptr;
+}
+
+const std::string& ChartRead::warning() const {
+    if (meanwhile()) m_later.wait();
+    return m_warning;
 }
 
 std::set<ChartTile> tiles_near(const audit::AuditResult& r, unsigned jobs) {
