@@ -4,6 +4,8 @@
 #include "geo/transverse_mercator.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace shoal::geo {
 
@@ -80,7 +82,17 @@ double clens(const double* a, int size, double arg_r) {
 
 }  // namespace
 
-TransverseMercator::TransverseMercator(double lat0_deg, double lon0_deg) {
+// init.cpp: +lat_0, +lon_0 by dmstor (the number times DEG_TO_RAD), +k=1.
+TransverseMercator::TransverseMercator(double lat0_deg, double lon0_deg) : TransverseMercator(lat0_deg * deg_to_rad, lon0_deg * deg_to_rad, 1., 0., 0.) {}
+
+TransverseMercator TransverseMercator::utm(int zone, bool south) {
+    if (zone < 1 || zone > 60) throw std::invalid_argument("UTM zone " + std::to_string(zone) + " is not 1 to 60");
+    // tmerc.cpp PJ_PROJECTION(utm): x0, y0, the zone counted from 0, lam0, k0 = 0.9996, phi0 = 0.
+    const int z = zone - 1;
+    return TransverseMercator(0., (z + .5) * M_PI / 30. - M_PI, 0.9996, 500000., south ? 10000000. : 0.);
+}
+
+TransverseMercator::TransverseMercator(double phi0, double lam0, double k0, double x0, double y0) : m_x0(x0), m_y0(y0) {
     // ell_set.cpp, +ellps=WGS84 (a=6378137.0 rf=298.257223563): ellps_shape, then
     // pj_calc_ellipsoid_params.
     // The numbers of PROJ's table of ellipsoids ("a=6378137.0", "rf=298.257223563"), which it
@@ -94,10 +106,7 @@ TransverseMercator::TransverseMercator(double lat0_deg, double lon0_deg) {
     const double n = std::pow(std::tan(alpha / 2), 2);
     m_a = a;
     m_ra = 1. / a;
-    // init.cpp: +lat_0, +lon_0 by dmstor (the number times DEG_TO_RAD), +k=1.
-    const double phi0 = lat0_deg * deg_to_rad;
-    m_lam0 = lon0_deg * deg_to_rad;
-    const double k0 = 1.;
+    m_lam0 = lam0;
 
     // tmerc.cpp setup_exact, as written there.
     double np = n;
@@ -216,11 +225,11 @@ bool TransverseMercator::forward(double lon_deg, double lat_deg, double& x, doub
     double px = m_qn * Ce;        // easting
     double py = m_qn * Cn + m_zb;  // northing
     if (HUGE_VAL == px) return false;  // fwd.cpp pj_fwd4d
-    // fwd.cpp fwd_finalize, classic units: times a, then the false origin (0) and units (1).
+    // fwd.cpp fwd_finalize, classic units: times a, then the false origin and units (1).
     px *= m_a;
     py *= m_a;
-    x = 1. * (px + 0.);
-    y = 1. * (py + 0.);
+    x = 1. * (px + m_x0);
+    y = 1. * (py + m_y0);
     return true;
 }
 
@@ -228,8 +237,8 @@ bool TransverseMercator::inverse(double x, double y, double& lon_deg, double& la
     lon_deg = lat_deg = HUGE_VAL;
     // inv.cpp inv_prepare, classic units.
     if (x == HUGE_VAL || y == HUGE_VAL) return false;
-    double px = 1. * x - 0.;
-    double py = 1. * y - 0.;
+    double px = 1. * x - m_x0;
+    double py = 1. * y - m_y0;
     px *= m_ra;
     py *= m_ra;
 

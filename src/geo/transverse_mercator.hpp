@@ -20,6 +20,12 @@ public:
     /// Centred on (lat0_deg, lon0_deg), the numbers of the definition's text as strtod reads them.
     TransverseMercator(double lat0_deg, double lon0_deg);
 
+    /// UTM zone `zone` (1-60) of WGS84, north or south: PROJ's `+proj=utm +zone=.. [+south]
+    /// +ellps=WGS84` (tmerc.cpp PJ_PROJECTION(utm): its central meridian from the zone, scale
+    /// 0.9996, false easting 500 km, false northing 10,000 km in the south), the numbers of EPSG's
+    /// WGS 84 / UTM zones as PROJ computes them (geo_test TransverseMercator.UtmZonesAre*).
+    static TransverseMercator utm(int zone, bool south);
+
     /// WGS84 degrees -> metres; false where PROJ gives no point (a latitude beyond the poles, a
     /// longitude beyond 10 radians, a point more than about 150 degrees from the centre).
     bool forward(double lon_deg, double lat_deg, double& x, double& y) const;
@@ -28,6 +34,9 @@ public:
 
 private:
     static constexpr int order = 6;
+    TransverseMercator(double phi0, double lam0, double k0, double x0, double y0);
+    double m_x0 = 0;    ///< false easting, metres
+    double m_y0 = 0;    ///< false northing, metres
     double m_lam0 = 0;  ///< central meridian, radians
     double m_a = 0;     ///< semi-major axis, metres
     double m_ra = 0;    ///< 1 / a

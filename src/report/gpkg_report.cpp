@@ -179,7 +179,39 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
     if (ds.CommitTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage commit failed: " + std::string(CPLGetLastErrorMsg()));
 }
 
+/// A layer's geometry as the QGIS project names it.
+const char* geometry_of(OGRLayer& l) {
+    switch (wkbFlatten(l.GetGeomType())) {
+        case wkbPoint: case wkbMultiPoint: return "Point";
+        case wkbLineString: case wkbMultiLineString: return "Line";
+        default: return "Polygon";
+    }
+}
+
 }  // namespace
+
+void add_qgis_project(GDALDataset& ds, const std::string& file_name, const ProjectView& view) {
+    std::vector<ProjectLayer> layers;
+    for (const char* name : report_layers_top_first)
+        if (OGRLayer* l = ds.GetLayerByName(name)) layers.push_back({name, geometry_of(*l), "./" + file_name + "|layername=" + name});
+    const std::string qgz = qgz_of("shoal.qgs", qgis_project_xml(layers, file_name, view));
+    static const char hex[] = "0123456789abcdef";
+    std::string h;
+    h.reserve(qgz.size() * 2);
+    for (unsigned char c : qgz) {
+        h += hex[c >> 4];
+        h += hex[c & 15];
+    }
+    for (const std::string& sql : {std::string("CREATE TABLE qgis_projects(name TEXT PRIMARY KEY, metadata BLOB, content BLOB)"),
+                                  "INSERT INTO qgis_projects VALUES ('" + std::string(qgis_project_name) +
+                                      "', '{\"last_modified_time\": \"2000-01-01T00:00:00\", \"last_modified_user\": \"shoal\" }', '" + h + "')"}) {
+        CPLErrorReset();
+        OGRLayer* res = ds.ExecuteSQL(sql.c_str(), nullptr, nullptr);
+        if (res) ds.ReleaseResultSet(res);
+        if (CPLGetLastErrorType() == CE_Failure) throw LibraryError("writing the QGIS project into the GeoPackage: " + std::string(CPLGetLastErrorMsg()));
+    }
+}
+
 
 GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& r, bool chart, bool poses) {
     GpkgLayers l;

@@ -114,3 +114,44 @@ TEST(TransverseMercator, RefusesWhatPROJRefuses) {
         expect_same(iok, lon, lat, proj_trans(proj.op, PJ_INV, proj_coord(p[0] * 1e5, p[1] * 1e5, 0, 0)), "inverse");
     }
 }
+
+// Every UTM zone of WGS 84, north and south, against the operation PROJ finds in its database
+// from EPSG:4326 to EPSG:326zz / 327zz (what OGR's coordinate transformation runs): the same bits
+// forward and back, the same points refused.
+TEST(TransverseMercator, UtmZonesAreTheOperationsPROJFindsForTheirEpsgCodes) {
+    PJ_CONTEXT* ctx = proj_context_create();
+    proj_log_level(ctx, PJ_LOG_NONE);
+    std::mt19937_64 rng(20261207);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    long compared = 0;
+    for (int zone = 1; zone <= 60; ++zone)
+        for (const bool south : {false, true}) {
+            const std::string target = "EPSG:" + std::to_string((south ? 32700 : 32600) + zone);
+            PJ* raw = proj_create_crs_to_crs(ctx, "EPSG:4326", target.c_str(), nullptr);
+            ASSERT_NE(raw, nullptr) << target;
+            PJ* op = proj_normalize_for_visualization(ctx, raw);  // lon, lat order, as OGR's traditional GIS order
+            proj_destroy(raw);
+            ASSERT_NE(op, nullptr) << target;
+            const TransverseMercator own = TransverseMercator::utm(zone, south);
+            const double lon0 = zone * 6.0 - 183.0;
+            for (int i = 0; i < 400; ++i) {
+                // Within the zone and its neighbours (a chart's box), and anywhere.
+                const bool near = i % 4 != 0;
+                const double lon = near ? lon0 + 20 * (u(rng) - 0.5) : -180 + 360 * u(rng);
+                const double lat = near ? (south ? -84 * u(rng) : 84 * u(rng)) : -90 + 180 * u(rng);
+                double x = 0, y = 0;
+                const bool ok = own.forward(lon, lat, x, y);
+                expect_same(ok, x, y, proj_trans(op, PJ_FWD, proj_coord(lon, lat, 0, 0)), target + " forward " + nine_decimals(lon) + ", " + nine_decimals(lat));
+                double ilon = 0, ilat = 0;
+                const double px = 500000 + 1.2e6 * (u(rng) - 0.5), py = (south ? 1e7 : 0) + (south ? -1 : 1) * 9.3e6 * u(rng);
+                const bool iok = own.inverse(px, py, ilon, ilat);
+                expect_same(iok, ilon, ilat, proj_trans(op, PJ_INV, proj_coord(px, py, 0, 0)), target + " inverse");
+                ++compared;
+            }
+            proj_destroy(op);
+        }
+    proj_context_destroy(ctx);
+    EXPECT_EQ(compared, 48000);
+    EXPECT_THROW(TransverseMercator::utm(0, false), std::invalid_argument);
+    EXPECT_THROW(TransverseMercator::utm(61, true), std::invalid_argument);
+}

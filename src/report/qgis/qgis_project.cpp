@@ -1,18 +1,19 @@
 #include "report/qgis/qgis_project.hpp"
 
-#include <gdal_priv.h>
-#include <ogr_spatialref.h>
-#include <ogrsf_frmts.h>
-#include <cpl_conv.h>
-#include <cpl_vsi.h>
+#include <iconv.h>
+#include <zlib.h>
 
 #include <algorithm>
-#include <atomic>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <optional>
 
+#include "geo/transverse_mercator.hpp"
 #include "report/qgis/qgis_styles.hpp"
 #include <shoal/report/markup.hpp>
 #include <shoal/report/geojson_report.hpp>
@@ -25,16 +26,22 @@ namespace {
 /// The project's text: the one markup escaper, `'` kept (every attribute is in double quotes).
 std::string xml_text(std::string_view s) { return markup_text(s, Apostrophe::kept); }
 
+/// The project's coordinate systems: WGS 84 (EPSG:4326) and its UTM zones (EPSG:326zz north,
+/// 327zz south), each as GDAL's OSR describes it from PROJ's database (its PROJ.4 text and
+/// name; report_test QgisProject.SpatialReferencesAreWhatOsrSaysOfTheirEpsgCodes), without
+/// opening the database: the zone and the hemisphere say it all.
 std::string srs_xml(int epsg) {
-    OGRSpatialReference s;
-    s.importFromEPSG(epsg);
-    char* proj4 = nullptr;
-    s.exportToProj4(&proj4);
-    std::string p4 = proj4 ? proj4 : "";
-    CPLFree(proj4);
-    const char* name = s.GetName();
-    return "<spatialrefsys><proj4>" + xml_text(p4) + "</proj4><srid>" + std::to_string(epsg) + "</srid><authid>EPSG:" + std::to_string(epsg) +
-           "</authid><description>" + xml_text(name ? name : "") + "</description><geographicflag>" + (s.IsGeographic() ? "true" : "false") +
+    const bool geographic = epsg == 4326;
+    const int zone = epsg % 100;
+    const bool south = epsg / 100 == 327;
+    if (!geographic && (zone < 1 || zone > 60 || (epsg / 100 != 326 && !south)))
+        throw LibraryError("the QGIS project's CRS EPSG:" + std::to_string(epsg) + " is neither WGS 84 nor one of its UTM zones");
+    const std::string z = std::to_string(zone);
+    const std::string proj4 =
+        geographic ? "+proj=longlat +datum=WGS84 +no_defs" : "+proj=utm +zone=" + z + (south ? " +south" : "") + " +datum=WGS84 +units=m +no_defs";
+    const std::string name = geographic ? "WGS 84" : "WGS 84 / UTM zone " + z + (south ? "S" : "N");
+    return "<spatialrefsys><proj4>" + xml_text(proj4) + "</proj4><srid>" + std::to_string(epsg) + "</srid><authid>EPSG:" + std::to_string(epsg) +
+           "</authid><description>" + xml_text(name) + "</description><geographicflag>" + (geographic ? "true" : "false") +
            "</geographicflag></spatialrefsys>";
 }
 
@@ -53,14 +60,6 @@ std::string map_layer(const ProjectLayer& layer, const std::string& id) {
     return "    <maplayer type=\"vector\" geometry=\"" + layer.geometry + "\" " + attrs + ">\n      <id>" + xml_text(id) + "</id>\n      <datasource>" +
            xml_text(layer.source) + "</datasource>\n      <layername>" + name + "</layername>\n      <srs>" + srs_xml(4326) +
            "</srs>\n      <provider encoding=\"UTF-8\">ogr</provider>\n" + qml.substr(open_end + 1, close - open_end - 1) + "    </maplayer>\n";
-}
-
-const char* geometry_of(OGRLayer& l) {
-    switch (wkbFlatten(l.GetGeomType())) {
-        case wkbPoint: case wkbMultiPoint: return "Point";
-        case wkbLineString: case wkbMultiLineString: return "Line";
-        default: return "Polygon";
-    }
 }
 
 }  // namespace
@@ -154,19 +153,16 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
          "<SpatialRefSys><ProjectionsEnabled type=\"int\">1</ProjectionsEnabled></SpatialRefSys></properties>\n";
     if (have_extent) {
         // The box in the project CRS (its edges sampled: a box in lon/lat is curved in UTM), plus 5 %.
-        OGRSpatialReference wgs, utm;
-        wgs.importFromEPSG(4326);
-        wgs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-        utm.importFromEPSG(epsg);
-        utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-        std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&wgs, &utm));
-        if (!ct) throw LibraryError("no transformation from EPSG:4326 to EPSG:" + std::to_string(epsg));
+        // The UTM zone as PROJ computes EPSG's (bit for bit: geo_test TransverseMercator.Utm*);
+        // in EPSG:4326, the degrees as they are.
+        const std::optional<geo::TransverseMercator> utm =
+            geographic ? std::nullopt : std::optional<geo::TransverseMercator>(geo::TransverseMercator::utm(zone, lat_c < 0));
         double e0 = INFINITY, n0 = INFINITY, e1 = -INFINITY, n1 = -INFINITY;
         for (int i = 0; i <= 10; ++i)
             for (int j = 0; j <= 10; ++j) {
                 if (i != 0 && i != 10 && j != 0 && j != 10) continue;
                 double e = x0 + (x1 - x0) * i / 10, n = y0 + (y1 - y0) * j / 10;
-                if (!ct->Transform(1, &e, &n)) continue;
+                if (utm && !utm->forward(e, n, e, n)) continue;
                 e0 = std::min(e0, e), n0 = std::min(n0, n), e1 = std::max(e1, e), n1 = std::max(n1, n);
             }
         const double pad = std::max({(e1 - e0) * 0.05, (n1 - n0) * 0.05, geographic ? 0.005 : 500.0});
@@ -203,54 +199,161 @@ std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std:
     return x;
 }
 
+namespace {
+
+void put16(std::string& out, unsigned v) {
+    out += static_cast<char>(v & 0xff);
+    out += static_cast<char>((v >> 8) & 0xff);
+}
+void put32(std::string& out, std::uint32_t v) {
+    put16(out, v & 0xffff);
+    put16(out, v >> 16);
+}
+
+/// `utf8` in code page 437, as GDAL's CPLRecode (UTF-8 to CP437, through iconv) makes a zip
+/// member's name: a byte that cannot be converted is skipped (and with it, byte by byte, a
+/// character that has no place in CP437); anything else ends the conversion.
+std::string cp437_of(const std::string& utf8) {
+    iconv_t cd = ::iconv_open("CP437", "UTF-8");
+    if (cd == reinterpret_cast<iconv_t>(-1)) throw LibraryError("this system's iconv has no CP437, for the QGIS project's member name '" + utf8 + "'");
+    std::string out(std::max<std::size_t>(32768, utf8.size() + 1), '\0');
+    char* in = const_cast<char*>(utf8.data());
+    std::size_t in_left = utf8.size();
+    char* dst = out.data();
+    std::size_t dst_left = out.size();
+    while (in_left > 0) {
+        if (::iconv(cd, &in, &in_left, &dst, &dst_left) != static_cast<std::size_t>(-1)) continue;
+        if (errno == EILSEQ) {
+            --in_left;
+            ++in;
+        } else if (errno == E2BIG) {
+            const auto used = static_cast<std::size_t>(dst - out.data());
+            out.resize(out.size() * 2);
+            dst = out.data() + used;
+            dst_left = out.size() - used;
+        } else {
+            break;
+        }
+    }
+    ::iconv_close(cd);
+    out.resize(static_cast<std::size_t>(dst - out.data()));
+    return out;
+}
+
+/// The name of `member` in the zip and its extra field, as GDAL's zip writer makes them: a name
+/// that is not ASCII in CP437, its UTF-8 in an Info-ZIP Unicode Path field (0x7075).
+std::pair<std::string, std::string> member_name_and_unicode_field(const std::string& member) {
+    const bool ascii = std::all_of(member.begin(), member.end(), [](char c) { return static_cast<unsigned char>(c) < 0x80; });
+    if (ascii) return {member, ""};
+    std::string name = cp437_of(member);
+    std::string extra;
+    const std::size_t data = 1 + 4 + member.size();
+    if (4 + data <= 0xffff) {  // else GDAL leaves the field out
+        put16(extra, 0x7075);
+        put16(extra, static_cast<unsigned>(data));
+        extra += '\1';
+        put32(extra, static_cast<std::uint32_t>(::crc32(0, reinterpret_cast<const Bytef*>(name.data()), static_cast<uInt>(name.size()))));
+        extra += member;
+    }
+    return {std::move(name), std::move(extra)};
+}
+
+/// The local header of a member called `name` up to its data, as GDAL's zip writer
+/// (cpl_minizip_zip.cpp, ZIP64 on) writes it: version 4.5, no date, the name's extra field
+/// `unicode`, then an empty ZIP64 field; its checksum and sizes (bytes 14-25) left 0.
+std::string local_header(const std::string& name, const std::string& unicode) {
+    std::string h;
+    put32(h, 0x04034b50);
+    put16(h, 45);  // version needed: ZIP64
+    put16(h, 0);   // flags
+    put16(h, 8);   // deflated
+    put16(h, 0);   // time
+    put16(h, 0);   // date
+    put32(h, 0), put32(h, 0), put32(h, 0);
+    put16(h, static_cast<unsigned>(name.size()));
+    put16(h, static_cast<unsigned>(unicode.size() + 20));
+    h += name;
+    h += unicode;
+    put16(h, 1);  // ZIP64 extended information, its sizes 0
+    put16(h, 16);
+    h.append(16, '\0');
+    return h;
+}
+
+}  // namespace
+
 std::string qgz_of(const std::string& member, const std::string& qgs) {
-    // Through GDAL's zip writer into a file in memory (GDAL stamps no date: the same XML, the same bytes).
-    static std::atomic<unsigned> serial{0};
-    const std::string zip = "/vsimem/shoal-qgz-" + std::to_string(serial++) + ".qgz";
-    void* z = CPLCreateZip(zip.c_str(), nullptr);
-    if (!z) throw LibraryError("GDAL cannot create a zip in memory: " + std::string(CPLGetLastErrorMsg()));
-    const bool ok = CPLCreateFileInZip(z, member.c_str(), nullptr) == CE_None &&
-                    CPLWriteFileInZip(z, qgs.data(), static_cast<int>(qgs.size())) == CE_None && CPLCloseFileInZip(z) == CE_None;
-    const bool closed = CPLCloseZip(z) == CE_None;
-    vsi_l_offset n = 0;
-    GByte* bytes = VSIGetMemFileBuffer(zip.c_str(), &n, FALSE);
-    std::string out = ok && closed && bytes ? std::string(reinterpret_cast<const char*>(bytes), static_cast<std::size_t>(n)) : std::string();
-    VSIUnlink(zip.c_str());
-    if (out.empty()) throw LibraryError("GDAL could not zip the QGIS project: " + std::string(CPLGetLastErrorMsg()));
+    // The bytes GDAL's CPLCreateZip, CPLCreateFileInZip and CPLWriteFileInZip wrote for the
+    // project (report_test QgisProject.TheQgzIsTheZipGdalWrites), deflated by zlib as GDAL
+    // has it do (level 6, raw, a 32 KiB window, memory level 8), without loading GDAL.
+    if (qgs.size() >= 0xffffffffu || member.size() > 0xffff) throw LibraryError("the QGIS project is too big for its zip");
+    const auto [name, unicode] = member_name_and_unicode_field(member);
+    z_stream z{};
+    if (::deflateInit2(&z, Z_DEFAULT_COMPRESSION, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+        throw LibraryError("zlib cannot deflate the QGIS project");
+    std::string data(::deflateBound(&z, static_cast<uLong>(qgs.size())), '\0');
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(qgs.data()));
+    z.avail_in = static_cast<uInt>(qgs.size());
+    z.next_out = reinterpret_cast<Bytef*>(data.data());
+    z.avail_out = static_cast<uInt>(data.size());
+    const int rc = ::deflate(&z, Z_FINISH);
+    data.resize(z.total_out);
+    ::deflateEnd(&z);
+    if (rc != Z_STREAM_END) throw LibraryError("zlib could not deflate the QGIS project");
+    std::string sizes;
+    put32(sizes, static_cast<std::uint32_t>(::crc32(0, reinterpret_cast<const Bytef*>(qgs.data()), static_cast<uInt>(qgs.size()))));
+    put32(sizes, static_cast<std::uint32_t>(data.size()));
+    put32(sizes, static_cast<std::uint32_t>(qgs.size()));
+    std::string out = local_header(name, unicode);
+    out.replace(14, 12, sizes);
+    out += data;
+    // The central directory, its one entry, and its end.
+    const auto directory_at = static_cast<std::uint32_t>(out.size());
+    put32(out, 0x02014b50);
+    put16(out, 45);  // made by
+    put16(out, 45);  // needed
+    put16(out, 0), put16(out, 8), put16(out, 0), put16(out, 0);  // flags, deflated, time, date
+    out += sizes;
+    put16(out, static_cast<unsigned>(name.size()));
+    put16(out, static_cast<unsigned>(unicode.size()));
+    put16(out, 0), put16(out, 0), put16(out, 0);  // comment, disk, internal attributes
+    put32(out, 0), put32(out, 0);                 // external attributes, the local header's offset
+    out += name;
+    out += unicode;
+    const auto directory_size = static_cast<std::uint32_t>(out.size() - directory_at);
+    put32(out, 0x06054b50);
+    put16(out, 0), put16(out, 0), put16(out, 1), put16(out, 1);
+    put32(out, directory_size), put32(out, directory_at);
+    put16(out, 0);
     return out;
 }
 
 bool is_shoal_qgz(const std::string& path, const std::string& member) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return false;  // a FIFO or a device is never opened
-    VSILFILE* f = VSIFOpenL(("/vsizip/{" + path + "}/" + member).c_str(), "rb");
-    if (!f) return false;
-    std::string head(4096, '\0');
-    head.resize(VSIFReadL(head.data(), 1, head.size(), f));
-    VSIFCloseL(f);
-    return head.find(sidecar_mark) != std::string::npos;
-}
-
-void add_qgis_project(GDALDataset& ds, const std::string& file_name, const ProjectView& view) {
-    std::vector<ProjectLayer> layers;
-    for (const char* name : report_layers_top_first)
-        if (OGRLayer* l = ds.GetLayerByName(name)) layers.push_back({name, geometry_of(*l), "./" + file_name + "|layername=" + name});
-    const std::string qgz = qgz_of("shoal.qgs", qgis_project_xml(layers, file_name, view));
-    static const char hex[] = "0123456789abcdef";
-    std::string h;
-    h.reserve(qgz.size() * 2);
-    for (unsigned char c : qgz) {
-        h += hex[c >> 4];
-        h += hex[c & 15];
+    // shoal's zip begins with the local header qgz_of writes for `member`; its data inflated as
+    // far as the project's first 4 KiB, which hold the mark.
+    const auto [name, unicode] = member_name_and_unicode_field(member);
+    const std::string head = local_header(name, unicode);
+    std::ifstream in(path, std::ios::binary);
+    std::string got(head.size(), '\0');
+    if (!in.read(got.data(), static_cast<std::streamsize>(got.size()))) return false;
+    if (got.compare(0, 14, head, 0, 14) != 0 || got.compare(26, std::string::npos, head, 26, std::string::npos) != 0) return false;
+    z_stream z{};
+    if (::inflateInit2(&z, -MAX_WBITS) != Z_OK) return false;
+    std::string text(4096, '\0');
+    z.next_out = reinterpret_cast<Bytef*>(text.data());
+    z.avail_out = static_cast<uInt>(text.size());
+    char buf[4096];
+    int rc = Z_OK;
+    while (rc == Z_OK && z.avail_out > 0 && in.read(buf, sizeof buf).gcount() > 0) {
+        z.next_in = reinterpret_cast<Bytef*>(buf);
+        z.avail_in = static_cast<uInt>(in.gcount());
+        while (rc == Z_OK && z.avail_in > 0 && z.avail_out > 0) rc = ::inflate(&z, Z_NO_FLUSH);
     }
-    for (const std::string& sql : {std::string("CREATE TABLE qgis_projects(name TEXT PRIMARY KEY, metadata BLOB, content BLOB)"),
-                                  "INSERT INTO qgis_projects VALUES ('" + std::string(qgis_project_name) +
-                                      "', '{\"last_modified_time\": \"2000-01-01T00:00:00\", \"last_modified_user\": \"shoal\" }', '" + h + "')"}) {
-        CPLErrorReset();
-        OGRLayer* res = ds.ExecuteSQL(sql.c_str(), nullptr, nullptr);
-        if (res) ds.ReleaseResultSet(res);
-        if (CPLGetLastErrorType() == CE_Failure) throw LibraryError("writing the QGIS project into the GeoPackage: " + std::string(CPLGetLastErrorMsg()));
-    }
+    text.resize(text.size() - z.avail_out);
+    ::inflateEnd(&z);
+    return text.find(sidecar_mark) != std::string::npos;
 }
 
 }  // namespace shoal::report

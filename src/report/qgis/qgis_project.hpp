@@ -62,8 +62,8 @@ struct ProjectLayer {
 /// coast) stay below, shared.
 std::string qgis_project_xml(const std::vector<ProjectLayer>& layers, const std::string& report_name, const ProjectView& view);
 
-/// `qgs` as a .qgz: a zip holding it as `member` (deflated), written with GDAL's zip support;
-/// the same XML gives the same bytes (GDAL writes no date).
+/// `qgs` as a .qgz: a zip holding it as `member` (deflated by zlib), the bytes GDAL's zip writer
+/// wrote for it (no date: the same XML gives the same bytes), made without GDAL.
 std::string qgz_of(const std::string& member, const std::string& qgs);
 
 /// Whether the .qgz at `path` (a regular file) holds `member` and that says shoal wrote it
@@ -72,7 +72,8 @@ std::string qgz_of(const std::string& member, const std::string& qgs);
 bool is_shoal_qgz(const std::string& path, const std::string& member);
 
 /// Writes the project into the `qgis_projects` table of `gpkg` (named `file_name`): its
-/// layers, those of report_layers_top_first that it has.
+/// layers, those of report_layers_top_first that it has (defined with the GeoPackage report,
+/// gpkg_report.cpp: the one part of the project that needs GDAL).
 void add_qgis_project(GDALDataset& gpkg, const std::string& file_name, const ProjectView& view);
 
 /// The layers that have an `exercise` field in exercise mode.
