@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -76,9 +77,18 @@ public:
     template <typename T>
     std::vector<T> vec() {
         const auto n = count(sizeof(T));
-        // Each element copied from the bytes as it is made (not zeroed first, then copied):
-        // the array may lie at any alignment in the file, so it is read through memcpy.
-        std::vector<T> v(Elements<T>{m_p}, Elements<T>{m_p + n * sizeof(T)});
+        // Each element copied from the bytes as it is made (not zeroed first, then copied). An
+        // array at its type's alignment in the file is copied as one block (memmove: a loop of
+        // wide moves whatever the build's optimisation, where an element at a time is 3 M
+        // instructions of a 1-pose probe of an 11.8 MB grid at -O2); at any other alignment,
+        // an element at a time through memcpy.
+        std::vector<T> v;
+        if (reinterpret_cast<std::uintptr_t>(m_p) % alignof(T) == 0) {
+            const T* first = reinterpret_cast<const T*>(m_p);
+            v.assign(first, first + n);
+        } else {
+            v.assign(Elements<T>{m_p}, Elements<T>{m_p + n * sizeof(T)});
+        }
         m_p += n * sizeof(T);
         return v;
     }
