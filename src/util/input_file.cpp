@@ -10,13 +10,14 @@
 #include <fstream>
 #include <system_error>
 
-#include <cpl_error.h>
-#include <cpl_string.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
-#include "util/gdal_support.hpp"
+#include "util/gdal_input.hpp"
 #include "util/json_message.hpp"
 
 namespace shoal::detail {
@@ -52,9 +53,9 @@ enum class Kind { file, stream };
 Kind kind_of(const std::string& path) {
     if (is_stdin(path)) return Kind::stream;
     if (is_virtual_path(path)) {
-        VSIStatBufL st;
-        if (VSIStatL(path.c_str(), &st) != 0) throw InputOpenError(path, "no such file");
-        if (VSI_ISDIR(st.st_mode)) throw InputOpenError(path, "is a folder");
+        const gdal_input::Stat st = gdal_input::stat(path);
+        if (!st.exists) throw InputOpenError(path, "no such file");
+        if (st.folder) throw InputOpenError(path, "is a folder");
         return Kind::file;
     }
     std::error_code ec;
@@ -67,10 +68,61 @@ Kind kind_of(const std::string& path) {
     return fs::is_regular_file(status) ? Kind::file : Kind::stream;
 }
 
-std::string memory_name(const std::string& extension) {
-    static std::atomic<unsigned long> counter{0};
-    return "/vsimem/shoal-input-" + std::to_string(counter.fetch_add(1)) + extension;
-}
+/// A file to read at offsets: a plain file by the system's calls, a `/vsi` path by GDAL's.
+class RandomAccess {
+public:
+    explicit RandomAccess(const std::string& path) {
+        if (is_virtual_path(path)) {
+            int err = 0;
+            std::string message;
+            m_vsi = gdal_input::open(path, err, message);
+        } else {
+            m_fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        }
+    }
+    ~RandomAccess() {
+        if (m_fd >= 0) ::close(m_fd);
+        gdal_input::close(m_vsi);
+    }
+    RandomAccess(const RandomAccess&) = delete;
+    RandomAccess& operator=(const RandomAccess&) = delete;
+    bool is_open() const noexcept { return m_fd >= 0 || m_vsi; }
+    /// The size in bytes; false when it cannot be told.
+    bool size(std::uint64_t& out) {
+        if (m_vsi) {
+            if (!gdal_input::seek(m_vsi, 0, true)) return false;
+            out = gdal_input::tell(m_vsi);
+            return true;
+        }
+        struct stat st {};
+        if (::fstat(m_fd, &st) != 0) return false;
+        out = static_cast<std::uint64_t>(st.st_size);
+        return true;
+    }
+    /// Up to `n` bytes from `at` (fewer at the end, none when it cannot be read there).
+    std::string read_at(std::uint64_t at, std::size_t n) {
+        std::string b(n, '\0');
+        std::size_t got = 0;
+        if (m_vsi) {
+            std::string failure;
+            if (!gdal_input::seek(m_vsi, at, false)) return std::string();
+            got = gdal_input::read(m_vsi, b.data(), n, failure);
+        } else {
+            while (got < n) {
+                const ssize_t r = ::pread(m_fd, b.data() + got, n - got, static_cast<off_t>(at + got));
+                if (r < 0 && errno == EINTR) continue;
+                if (r <= 0) break;
+                got += static_cast<std::size_t>(r);
+            }
+        }
+        b.resize(got);
+        return b;
+    }
+
+private:
+    int m_fd = -1;
+    void* m_vsi = nullptr;
+};
 
 }  // namespace
 
@@ -85,27 +137,18 @@ bool is_virtual_path(const std::string& path) noexcept { return path == "-" || s
 std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read) {
     std::vector<std::string> names;
     if (directory_read) *directory_read = false;
-    VSILFILE* fp = VSIFOpenL(path.c_str(), "rb");
-    if (!fp) return names;
-    struct Closer {
-        VSILFILE* f;
-        ~Closer() { VSIFCloseL(f); }
-    } closer{fp};
-    const auto read_at = [&](vsi_l_offset at, std::size_t n) {
-        std::string b(n, '\0');
-        if (VSIFSeekL(fp, at, SEEK_SET) != 0) return std::string();
-        b.resize(VSIFReadL(b.data(), 1, n, fp));
-        return b;
-    };
+    RandomAccess file(path);
+    if (!file.is_open()) return names;
+    const auto read_at = [&](std::uint64_t at, std::size_t n) { return file.read_at(at, n); };
     const auto u16 = [](const std::string& b, std::size_t at) -> std::uint64_t {
         return static_cast<unsigned char>(b[at]) | static_cast<std::uint64_t>(static_cast<unsigned char>(b[at + 1])) << 8;
     };
     const auto u32 = [&](const std::string& b, std::size_t at) { return u16(b, at) | u16(b, at + 2) << 16; };
     const auto u64 = [&](const std::string& b, std::size_t at) { return u32(b, at) | u32(b, at + 4) << 32; };
-    if (VSIFSeekL(fp, 0, SEEK_END) != 0) return names;
-    const vsi_l_offset size = VSIFTellL(fp);
+    std::uint64_t size = 0;
+    if (!file.size(size)) return names;
     // The end of central directory record: in the last 22 bytes + a comment of at most 65,535.
-    const std::size_t tail_n = static_cast<std::size_t>(std::min<vsi_l_offset>(size, 22 + 65535));
+    const std::size_t tail_n = static_cast<std::size_t>(std::min<std::uint64_t>(size, 22 + 65535));
     const std::string tail = read_at(size - tail_n, tail_n);
     if (tail.size() != tail_n || tail_n < 22) return names;
     std::size_t eocd = std::string::npos;
@@ -161,33 +204,20 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
         head.resize(static_cast<std::size_t>(in.read(head.data(), static_cast<std::streamsize>(head.size())).gcount()));
         if (!is_zip(head)) return out;
     }
-    register_drivers();
-    QuietErrors quiet;
-    {
-        VSILFILE* fp = VSIFOpenL(path.c_str(), "rb");
-        if (!fp) return out;
-        std::string head(magic_bytes, '\0');
-        head.resize(VSIFReadL(head.data(), 1, magic_bytes, fp));
-        VSIFCloseL(fp);
-        if (!is_zip(head)) return out;
+    else {
+        RandomAccess file(path);
+        if (!file.is_open() || !is_zip(file.read_at(0, magic_bytes))) return out;
     }
     // GDAL finds the archive in a /vsizip/ path by its .zip extension; braces name any other.
     const std::string root = lower_ends_with(path, ".zip") ? "/vsizip/" + path : "/vsizip/{" + path + "}";
-    char** names = VSIReadDirRecursive(root.c_str());
-    for (char** n = names; n && *n; ++n) {
-        const std::string member = root + "/" + *n;
-        VSIStatBufL st;
-        if (VSIStatL(member.c_str(), &st) == 0 && VSI_ISREG(st.st_mode)) out.push_back(member);
-    }
-    CSLDestroy(names);
+    out = gdal_input::zip_files(root);
     // GDAL leaves out of its listing every member whose name holds a '..' component (unzip would
     // put it outside the folder): said, and read when GDAL reads it (only read, never extracted).
     std::size_t climbing = 0;
     for (const std::string& name : zip_entry_names(path)) {
         if (name.empty() || name.back() == '/' || !has_parent_component(name)) continue;
         const std::string member = root + "/" + name;
-        VSIStatBufL st;
-        const bool readable = VSIStatL(member.c_str(), &st) == 0 && VSI_ISREG(st.st_mode);
+        const bool readable = gdal_input::stat(member).regular;
         if (readable && std::find(out.begin(), out.end(), member) == out.end()) out.push_back(member);
         if (notes && climbing++ < 10)  // the first ten, then a count (a hostile zip may hold 500,000)
             notes->push_back(path + ": member '" + shortened(name, 240) + "' has '..' in its path (extracted, it would land outside the zip's folder): " +
@@ -219,17 +249,18 @@ InputFile::InputFile(const std::string& path) : m_path(path) {
 }
 
 void InputFile::close() noexcept {
-    if (m_fp) VSIFCloseL(m_fp);
-    m_fp = nullptr;
-    if (!m_mem_name.empty()) VSIUnlink(m_mem_name.c_str());
+    if (m_fd > 0) ::close(m_fd);  // standard input (0) stays open
+    m_fd = -1;
+    gdal_input::close(m_vsi);
+    m_vsi = nullptr;
+    if (!m_mem_name.empty()) gdal_input::unlink(m_mem_name);
     m_mem_name.clear();
 }
 
 void InputFile::open_content(const std::string& path) {
-    register_drivers();
     const bool stream = kind_of(path) == Kind::stream;
     if (stream) m_hash = std::make_unique<ContentHash>();
-    open(is_stdin(path) ? std::string("/vsistdin/") : path);
+    open(path);
     if (stream) m_gdal_path.clear();
     // Compressed content, recognised by its magic bytes: a zip in a zip or a gzip in a zip is
     // unpacked too, up to three layers deep.
@@ -249,14 +280,14 @@ void InputFile::open_content(const std::string& path) {
             m_kept.clear();
             append_all(m_memory, max_compressed_stream_bytes, "a compressed stream (gzip or zip on a pipe)", m_memory.size());
             m_hash = std::make_unique<ContentHash>();  // the content is what is decompressed from it, not these bytes
-            m_mem_name = memory_name(is_zip(m_memory) ? ".zip" : ".gz");
-            VSIFCloseL(VSIFileFromMemBuffer(m_mem_name.c_str(), reinterpret_cast<GByte*>(m_memory.data()),
-                                            static_cast<vsi_l_offset>(m_memory.size()), FALSE));
+            m_mem_name = gdal_input::memory_file(m_memory.data(), m_memory.size(), is_zip(m_memory) ? ".zip" : ".gz");
             base = m_mem_name;
         }
         const bool zip = is_zip(m_kept.empty() ? m_memory : m_kept);
-        VSIFCloseL(m_fp);
-        m_fp = nullptr;
+        if (m_fd > 0) ::close(m_fd);
+        m_fd = -1;
+        gdal_input::close(m_vsi);
+        m_vsi = nullptr;
         if (!zip) {
             open("/vsigzip/" + base);
             continue;
@@ -291,28 +322,41 @@ void InputFile::open_content(const std::string& path) {
 
 InputFile::~InputFile() { close(); }
 
-void InputFile::open(const std::string& gdal_path) {
-    QuietErrors quiet;
-    errno = 0;
-    m_fp = VSIFOpenL(gdal_path.c_str(), "rb");
-    if (!m_fp) {
-        const int err = errno;
-        const std::string gdal = QuietErrors::last();
-        throw InputOpenError(m_path, err ? std::string(std::strerror(err)) : gdal.empty() ? "cannot open" : gdal);
+void InputFile::open(const std::string& path) {
+    if (path == "-") {  // standard input, read as it comes
+        m_fd = 0;
+        m_gdal_path = "/vsistdin/";
+        return;
     }
-    m_gdal_path = gdal_path;
+    int err = 0;
+    std::string gdal;
+    if (is_virtual_path(path)) {
+        m_vsi = gdal_input::open(path, err, gdal);
+    } else {  // a plain file or stream: the system's calls
+        do m_fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        while (m_fd < 0 && errno == EINTR);
+        err = m_fd < 0 ? errno : 0;
+    }
+    if (m_fd < 0 && !m_vsi) throw InputOpenError(m_path, err ? std::string(std::strerror(err)) : gdal.empty() ? "cannot open" : gdal);
+    m_gdal_path = path;
 }
 
 std::size_t InputFile::read_raw(char* data, std::size_t n) {
-    QuietErrors quiet;
     std::size_t total = 0;
-    while (total < n) {
-        const std::size_t got = VSIFReadL(data + total, 1, n - total, m_fp);
-        total += got;
-        if (got == 0) break;
+    if (m_fd >= 0) {
+        while (total < n) {
+            const ssize_t got = ::read(m_fd, data + total, n - total);
+            if (got < 0 && errno == EINTR) continue;
+            if (got < 0) throw InputError(m_path + ": cannot read (" + std::strerror(errno) + ")");
+            if (got == 0) break;
+            total += static_cast<std::size_t>(got);
+        }
+        return total;
     }
-    if (total < n && CPLGetLastErrorType() >= CE_Failure) {
-        const std::string why = QuietErrors::last("read error");
+    std::string failure;
+    total = gdal_input::read(m_vsi, data, n, failure);
+    if (total < n && !failure.empty()) {
+        const std::string why = failure;
         // A compressed stream cut short or damaged part way: keep what came before it (a bad
         // row costs that row, not the file), and say so.
         if (m_gdal_path.rfind("/vsigzip/", 0) == 0 || m_gdal_path.rfind("/vsizip/", 0) == 0) {
@@ -395,14 +439,6 @@ std::string read_json_object_input(const std::string& path, std::size_t limit, c
     if (got == head) in.append_all(out, limit, what, out.size());
     return out;
 }
-
-MemoryFile::MemoryFile(std::string bytes, const std::string& extension) : m_bytes(std::move(bytes)), m_name(memory_name(extension)) {
-    register_drivers();
-    VSIFCloseL(VSIFileFromMemBuffer(m_name.c_str(), reinterpret_cast<GByte*>(m_bytes.data()),
-                                    static_cast<vsi_l_offset>(m_bytes.size()), FALSE));
-}
-
-MemoryFile::~MemoryFile() { VSIUnlink(m_name.c_str()); }
 
 std::string read_json_settings(const std::string& path, std::size_t limit, const char* what, const std::string& label) {
     try {

@@ -1,6 +1,7 @@
 #pragma once
-/// Every input file (tracks, ship files, pose files) is read through GDAL's virtual file layer
-/// (VSIFOpenL / VSIFReadL), opened once and read front to back. Internal.
+/// Every input file (tracks, ship files, pose files) is opened once and read front to back: a
+/// plain file or stream with the system's calls, anything else through GDAL's virtual file
+/// layer (util/gdal_input.hpp: VSIFOpenL / VSIFReadL). Internal.
 ///
 /// - `-` and `/vsistdin/` are standard input; other `/vsi...` paths are given to GDAL as they are.
 /// - Content that starts with the gzip magic bytes is read decompressed (`/vsigzip/`), and a zip
@@ -17,8 +18,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <cpl_vsi.h>
 
 #include <shoal/util/error.hpp>
 
@@ -88,7 +87,7 @@ public:
 
 private:
     void open_content(const std::string& path);
-    void open(const std::string& gdal_path);
+    void open(const std::string& path);
     void close() noexcept;
     std::size_t read_raw(char* data, std::size_t n);
 
@@ -96,7 +95,8 @@ private:
 
     std::string m_damage;       ///< as given, for messages
     std::string m_gdal_path;  ///< what is open now, when it can be opened again
-    VSILFILE* m_fp = nullptr;
+    int m_fd = -1;             ///< a plain file or stream (0: standard input), or
+    void* m_vsi = nullptr;     ///< what GDAL opened (gdal_input::open)
     std::string m_kept;       ///< bytes read to recognise the content, given back first
     std::size_t m_kept_pos = 0;
     std::string m_memory;     ///< a compressed stream, read whole
