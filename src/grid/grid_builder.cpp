@@ -1,7 +1,5 @@
 #include <shoal/grid/grid_builder.hpp>
 
-#include <gdal_priv.h>
-
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
@@ -19,33 +17,8 @@ namespace shoal::grid {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> dataset_files(const std::string& path) {
-    detail::register_drivers();
-    std::vector<std::string> files;
-    detail::QuietErrors quiet;
-    // A JSON dataset is its one file (GDAL's GetFileList says so too), and opening it parses
-    // all of it (275 M instructions for a 1 MB GeoJSON coast): told by its driver alone.
-    if (GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_VECTOR, nullptr, nullptr)) {
-        const std::string name = GDALGetDriverShortName(driver);
-        if (name == "GeoJSON" || name == "GeoJSONSeq" || name == "ESRIJSON" || name == "TopoJSON") {
-            VSIStatBufL st;
-            if (VSIStatExL(path.c_str(), &st, VSI_STAT_EXISTS_FLAG) == 0) files.push_back(path);
-            return files;
-        }
-    }
-    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-    if (ds) {
-        if (char** list = ds->GetFileList()) {
-            for (char** f = list; *f; ++f) files.emplace_back(*f);
-            CSLDestroy(list);
-        }
-    }
-    return files;
-}
-
 std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const coast::ImportOptions& options,
                                   const std::string& crs, double cell_m) {
-    detail::register_drivers();
     XXH3_state_t* st = XXH3_createState();
     XXH3_64bits_reset(st);
     auto feed = [&](const std::string& s) {

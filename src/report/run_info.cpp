@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <vector>
 
-#include <cpl_vsi.h>
-#include <gdal_priv.h>
 #define XXH_INLINE_ALL
 #include <xxhash.h>
 
@@ -16,7 +14,7 @@
 #include <shoal/grid/grid_builder.hpp>
 #include <shoal/grid/limiting_depth.hpp>
 
-#include "util/gdal_support.hpp"
+#include "util/input_file.hpp"
 
 namespace shoal::report {
 
@@ -32,49 +30,36 @@ std::string joined(const std::vector<std::string>& parts) {
 /// when it is not a regular file or cannot be read).
 long long feed_file(XXH3_state_t* st, const std::string& path) {
     const auto feed = [&](const void* p, std::size_t n) { XXH3_64bits_update(st, p, n); };
-    VSIStatBufL stat{};
-    VSILFILE* f = nullptr;
-    // Only a regular file is opened: a FIFO would wait for a writer, a device never end.
-    if (VSIStatExL(path.c_str(), &stat, VSI_STAT_EXISTS_FLAG | VSI_STAT_NATURE_FLAG | VSI_STAT_SIZE_FLAG) == 0 && VSI_ISREG(stat.st_mode))
-        f = VSIFOpenL(path.c_str(), "rb");
-    if (!f) {
+    long long size = 0;
+    XXH3_state_t* content = XXH3_createState();
+    XXH3_64bits_reset(content);
+    // Only a regular file is read (detail::read_blocks): a FIFO would wait for a writer, a
+    // device never end.
+    const bool read = shoal::detail::read_blocks(path, std::size_t{1} << 20, [&](const char* p, std::size_t n) {
+        XXH3_64bits_update(content, p, n);
+        size += static_cast<long long>(n);
+    });
+    const std::uint64_t digest = XXH3_64bits_digest(content);
+    XXH3_freeState(content);
+    if (!read) {
         const long long none = -1;
         feed(&none, sizeof none);
         feed(path.data(), path.size());
         return -1;
     }
-    std::vector<char> buf(1 << 20);
-    long long size = 0;
-    XXH3_state_t* content = XXH3_createState();
-    XXH3_64bits_reset(content);
-    for (std::size_t n; (n = VSIFReadL(buf.data(), 1, buf.size(), f)) > 0;) {
-        XXH3_64bits_update(content, buf.data(), n);
-        size += static_cast<long long>(n);
-    }
-    VSIFCloseL(f);
-    const std::uint64_t digest = XXH3_64bits_digest(content);
-    XXH3_freeState(content);
     feed(&size, sizeof size);
     feed(&digest, sizeof digest);
     return size;
 }
 
-/// The files of each vector source, as GDAL lists them (a Shapefile's .shp, .shx, .dbf, .prj),
-/// sorted; the path itself when GDAL lists none (or cannot open it).
+/// The files of each vector source, as GDAL lists them (a Shapefile's .shp, .shx, .dbf, .prj;
+/// grid::dataset_files), sorted; the path itself when GDAL lists none (or cannot open it, or it
+/// is not a regular file).
 std::vector<std::string> source_files(const std::vector<std::string>& paths) {
-    shoal::detail::register_drivers();
     std::vector<std::string> out;
     for (const std::string& path : paths) {
         std::vector<std::string> files;
-        VSIStatBufL stat{};
-        if (VSIStatExL(path.c_str(), &stat, VSI_STAT_EXISTS_FLAG | VSI_STAT_NATURE_FLAG) == 0 && VSI_ISREG(stat.st_mode)) {
-            shoal::detail::QuietErrors quiet;
-            if (GDALDatasetUniquePtr ds{GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY)})
-                if (char** list = ds->GetFileList()) {
-                    for (char** f = list; *f; ++f) files.emplace_back(*f);
-                    CSLDestroy(list);
-                }
-        }
+        if (shoal::detail::is_regular_input(path)) files = grid::dataset_files(path);
         std::sort(files.begin(), files.end());
         if (files.empty()) files.push_back(path);
         out.insert(out.end(), files.begin(), files.end());

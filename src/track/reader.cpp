@@ -1,7 +1,5 @@
 #include <shoal/track/reader.hpp>
 
-#include <cpl_vsi.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -18,6 +16,7 @@
 #include <shoal/track/nmea_reader.hpp>
 #include <shoal/track/ogr_reader.hpp>
 #include <shoal/track/vessels_table.hpp>
+#include "util/gdal_input.hpp"
 #include "util/input_file.hpp"
 #include "util/parse_util.hpp"
 #include "track/stream_readers.hpp"
@@ -317,11 +316,14 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
     };
     for (const std::string& p : paths) {
         if (shoal::detail::is_virtual_path(p)) {
-            VSIStatBufL st;
-            if (p == "-" || p.starts_with("/vsistdin")) take(p);  // never looked at before it is read
-            else if (VSIStatL(p.c_str(), &st) != 0) throw InputError(p + ": no such file or folder");
-            else if (VSI_ISDIR(st.st_mode)) throw InputError(p + ": is a folder inside a virtual file; name its files");
-            else take_file(p);
+            if (p == "-" || p.starts_with("/vsistdin")) {
+                take(p);  // never looked at before it is read
+                continue;
+            }
+            const shoal::detail::gdal_input::Stat st = shoal::detail::gdal_input::stat(p);
+            if (!st.exists) throw InputError(p + ": no such file or folder");
+            if (st.folder) throw InputError(p + ": is a folder inside a virtual file; name its files");
+            take_file(p);
             continue;
         }
         std::error_code ec;

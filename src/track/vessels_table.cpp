@@ -1,8 +1,6 @@
 // Tables of AIS static data, "vessels tables" (track/vessels_table.hpp).
 #include <shoal/track/vessels_table.hpp>
 
-#include <cpl_vsi.h>
-
 #include <algorithm>
 #include <set>
 #include <sstream>
@@ -18,11 +16,7 @@ namespace shoal::track {
 
 bool is_vessels_table(const std::string& path) {
     // The first line, of at most 64 KiB (a header longer than that is no vessels table's).
-    VSILFILE* f = VSIFOpenL(path.c_str(), "rb");
-    if (!f) return false;
-    std::string head(64 * 1024, '\0');
-    head.resize(VSIFReadL(head.data(), 1, head.size(), f));
-    VSIFCloseL(f);
+    std::string head = shoal::detail::read_head(path, 64 * 1024);
     if (head.starts_with("\xEF\xBB\xBF")) head.erase(0, 3);
     const std::size_t nl = head.find('\n');
     if (nl == std::string::npos && head.size() == 64 * 1024) return false;

@@ -182,6 +182,29 @@ std::vector<std::string> zip_entry_names(const std::string& path, bool* director
     return names;
 }
 
+std::string read_head(const std::string& path, std::size_t n) {
+    RandomAccess file(path);
+    return file.is_open() ? file.read_at(0, n) : std::string();
+}
+
+bool is_regular_input(const std::string& path) {
+    if (is_virtual_path(path)) return path != "-" && gdal_input::stat(path).regular;
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+bool read_blocks(const std::string& path, std::size_t block_bytes, const std::function<void(const char*, std::size_t)>& block) {
+    if (!is_regular_input(path)) return false;
+    RandomAccess file(path);
+    if (!file.is_open()) return false;
+    for (std::uint64_t at = 0;;) {
+        const std::string b = file.read_at(at, block_bytes);
+        if (b.empty()) return true;
+        block(b.data(), b.size());
+        at += b.size();
+    }
+}
+
 bool has_parent_component(std::string_view name) noexcept {
     for (std::size_t at = 0; at <= name.size();) {
         const std::size_t end = std::min(name.find_first_of("/\\", at), name.size());
@@ -204,9 +227,8 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
         head.resize(static_cast<std::size_t>(in.read(head.data(), static_cast<std::streamsize>(head.size())).gcount()));
         if (!is_zip(head)) return out;
     }
-    else {
-        RandomAccess file(path);
-        if (!file.is_open() || !is_zip(file.read_at(0, magic_bytes))) return out;
+    else if (!is_zip(read_head(path, magic_bytes))) {
+        return out;
     }
     // GDAL finds the archive in a /vsizip/ path by its .zip extension; braces name any other.
     const std::string root = lower_ends_with(path, ".zip") ? "/vsizip/" + path : "/vsizip/{" + path + "}";

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,6 +57,18 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
 /// when given, says whether the end record and the central directory were found and read (false:
 /// not a zip, or a corrupt or truncated one).
 std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read = nullptr);
+
+/// The first `n` bytes of `path` as they are (nothing unpacked), fewer when it is shorter, ""
+/// when it cannot be opened: a plain file read with the system's calls, a `/vsi` path by GDAL.
+std::string read_head(const std::string& path, std::size_t n);
+
+/// Whether `path` is a regular file (through GDAL for a `/vsi` path; `-` is none).
+bool is_regular_input(const std::string& path);
+
+/// Hands the bytes of the regular file `path` (nothing unpacked) to `block`, a block of up to
+/// `block_bytes` at a time, and returns true; false, handing nothing, when `path` is not a
+/// regular file (a FIFO would wait for a writer, a device never end) or cannot be opened.
+bool read_blocks(const std::string& path, std::size_t block_bytes, const std::function<void(const char*, std::size_t)>& block);
 
 class InputFile {
 public:

@@ -1,0 +1,173 @@
+// GPX tracks, read with OGR: the one track format that needs GDAL (the `shoal` executable,
+// which links no GDAL, defines detail::read_gpx_at otherwise: cli/without_gdal.cpp).
+#include "util/gdal_support.hpp"
+#include <shoal/track/ogr_reader.hpp>
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <map>
+#include <mutex>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
+
+#include "util/parse_util.hpp"
+#include <shoal/track/row_rules.hpp>
+#include "track/stream_readers.hpp"
+#include "track/track_set.hpp"
+#include <shoal/track/csv_reader.hpp>
+#include <shoal/track/time.hpp>
+#include <shoal/util/error.hpp>
+
+namespace shoal::track {
+
+namespace {
+
+using detail::TrackSet;
+
+/// GDAL's quiet scope; its last message, or "no reason given".
+class QuietErrors : public shoal::detail::QuietErrors {
+public:
+    static std::string last() { return shoal::detail::QuietErrors::last("no reason given"); }
+};
+using shoal::detail::register_drivers;
+
+/// One GPX track or route as OGR numbers it in the `tracks` / `routes` layer.
+struct GpxParent {
+    std::string name;
+    std::size_t timed = 0;
+    std::size_t points = 0;
+};
+
+class GpxReader {
+public:
+    GpxReader(const std::string& gdal_path, const std::string& file, const ReadOptions& options)
+        : m_gdal_path(gdal_path), m_file(file), m_set(m_out, m_file) {
+        m_out.format = "gpx";
+        m_out.report.max_messages = options.max_messages;
+    }
+
+    TrackFile read() {
+        register_drivers();
+        QuietErrors quiet;
+        const char* const drivers[] = {"GPX", nullptr};
+        GDALDatasetUniquePtr ds(GDALDataset::Open(m_gdal_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers));
+        if (!ds) throw InputError(m_file + ": not a GPX file OGR can read (" + QuietErrors::last() + ")");
+        auto tracks = parents(*ds, "tracks");
+        auto routes = parents(*ds, "routes");
+        const bool single = tracks.size() + routes.size() == 1;
+        points(*ds, "track_points", "track_fid", "track", tracks, single);
+        points(*ds, "route_points", "route_fid", "route", routes, single);
+        for (Track& t : m_out.tracks) normalise(t, m_out.report);
+        return std::move(m_out);
+    }
+
+private:
+    static std::map<GIntBig, GpxParent> parents(GDALDataset& ds, const char* layer_name) {
+        std::map<GIntBig, GpxParent> out;
+        OGRLayer* layer = ds.GetLayerByName(layer_name);
+        if (!layer) return out;
+        const int name_field = layer->GetLayerDefn()->GetFieldIndex("name");
+        for (auto& f : *layer)
+            out[f->GetFID()].name = name_field >= 0 && f->IsFieldSetAndNotNull(name_field) ? f->GetFieldAsString(name_field) : "";
+        return out;
+    }
+
+    std::string id_of(const char* kind, GIntBig fid, const GpxParent& parent, bool single) const {
+        if (!parent.name.empty()) return parent.name;
+        if (single) return detail::file_stem(m_file);
+        return detail::file_stem(m_file) + ":" + kind + std::to_string(fid + 1);
+    }
+
+    static std::optional<double> time_of(OGRFeature& f, int field) {
+        if (field < 0 || !f.IsFieldSetAndNotNull(field)) return std::nullopt;
+        int y = 0, mo = 0, d = 0, h = 0, mi = 0, tz = 0;
+        float s = 0.0f;
+        if (!f.GetFieldAsDateTime(field, &y, &mo, &d, &h, &mi, &s, &tz)) return std::nullopt;
+        // OGR keeps seconds as a float: round to the millisecond GPX files write.
+        const double sec = std::round(static_cast<double>(s) * 1000.0) / 1000.0;
+        auto t = utc_seconds(y, mo, d, h, mi, std::min(sec, 59.999));
+        if (!t) return std::nullopt;
+        if (tz > 1) *t -= (tz - 100) * 15.0 * 60.0;  // 100 = UTC, each step 15 minutes east
+        return t;
+    }
+
+    void points(GDALDataset& ds, const char* layer_name, const char* parent_field, const char* kind,
+                std::map<GIntBig, GpxParent>& parents, bool single) {
+        OGRLayer* layer = ds.GetLayerByName(layer_name);
+        if (!layer) return;
+        OGRFeatureDefn* defn = layer->GetLayerDefn();
+        const int fid_field = defn->GetFieldIndex(parent_field);
+        const int time_field = defn->GetFieldIndex("time");
+        const int course_field = defn->GetFieldIndex("course");
+        const int speed_field = defn->GetFieldIndex("speed");
+        m_current = nullptr;
+        for (auto& f : *layer) {
+            ++m_out.report.rows;
+            ++m_point;
+            const GIntBig parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
+            GpxParent& p = parents[parent];
+            ++p.points;
+            auto skip = [&](const std::string& what) {
+                m_out.report.skip(m_file + " point " + std::to_string(m_point) + " (" + kind + " '" +
+                                  id_of(kind, parent, p, single) + "'): " + what + "; point skipped");
+            };
+            const auto t = time_of(*f, time_field);
+            if (!t) {
+                skip("no time");
+                continue;
+            }
+            if (!plausible_fix_time(*t)) {
+                skip("time " + format_iso8601(*t, 0) + " is outside the years " + fix_time_range);
+                continue;
+            }
+            ++p.timed;
+            const OGRGeometry* g = f->GetGeometryRef();
+            if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) {
+                skip("no point geometry");
+                continue;
+            }
+            Fix fix;
+            fix.time_s = *t;
+            fix.position = {g->toPoint()->getX(), g->toPoint()->getY()};
+            if (std::string what; position_problem(fix.position.lat, fix.position.lon, what)) {
+                skip(what);
+                continue;
+            }
+            if (course_field >= 0 && f->IsFieldSetAndNotNull(course_field))
+                fix.cog_deg = valid_cog(f->GetFieldAsDouble(course_field));
+            if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field))
+                fix.sog_kn = valid_sog(f->GetFieldAsDouble(speed_field) * 3600.0 / 1852.0);
+            fix.line = m_point;
+            if (!m_current || parent != m_current_parent) {
+                m_current = &m_set.get(id_of(kind, parent, p, single), p.name);
+                m_current_parent = parent;
+            }
+            m_current->fixes.push_back(fix);
+        }
+        for (const auto& [fid, p] : parents)
+            if (p.points > 0 && p.timed == 0)
+                throw InputError(m_file + ": " + kind + " '" + id_of(kind, fid, p, single) + "' (" + kind + " " +
+                                 std::to_string(fid + 1) + ") has no times; shoal needs a time on every point");
+    }
+
+    std::string m_gdal_path;
+    std::string m_file;
+    TrackFile m_out;
+    TrackSet m_set;
+    std::size_t m_point = 0;
+    Track* m_current = nullptr;  ///< track of the latest point (valid until the next get)
+    GIntBig m_current_parent = -1;
+};
+
+}  // namespace
+
+TrackFile detail::read_gpx_at(const std::string& gdal_path, const std::string& file, const ReadOptions& options) {
+    return GpxReader(gdal_path, file, options).read();
+}
+
+TrackFile read_gpx(const std::string& path, const ReadOptions& options) { return detail::read_gpx_at(path, path, options); }
+
+}  // namespace shoal::track
