@@ -442,3 +442,47 @@ TEST(Input, TrackWithImpossibleAisDimensionsKeepsItsFixesAndLosesTheDimensions) 
 }
 
 }  // namespace
+
+// The raw reads of the input layer (a file's fingerprint, a folder's vessels table, a zip's
+// magic bytes): a plain file by the system's calls and a /vsizip member by GDAL give the file's
+// bytes as they are (not unpacked), in blocks of any size; a FIFO, a folder, `-` and a missing
+// file are no regular file and are never opened (no writer: opening the FIFO would block).
+TEST(Input, RawReadsGiveTheBytesAsTheyAreAndOpenNoStream) {
+    TempDir dir;
+    std::mt19937 rng(40);
+    std::string bytes(300000, '\0');
+    for (char& c : bytes) c = static_cast<char>(rng());
+    write(dir.file("raw.bin"), bytes);
+    run("gzip -c " + dir.file("raw.bin") + " > " + dir.file("raw.bin.gz"));
+    const std::string gz = slurp(dir.file("raw.bin.gz"));
+    std::vector<std::pair<std::string, std::string>> cases{{dir.file("raw.bin"), bytes}, {dir.file("raw.bin.gz"), gz}};
+    if (have_tool("zip")) {  // a member of a zip, read by GDAL
+        run("cd " + dir.path().string() + " && zip -q -0 raw.zip raw.bin");
+        cases.emplace_back("/vsizip/" + dir.file("raw.zip") + "/raw.bin", bytes);
+    }
+    for (const auto& [path, want] : cases) {
+        EXPECT_TRUE(shoal::detail::is_regular_input(path)) << path;
+        for (const std::size_t block : {std::size_t{1}, std::size_t{4096}, std::size_t{65537}, std::size_t{1} << 20}) {
+            if (block == 1 && path.rfind("/vsi", 0) == 0) continue;  // a byte at a time through GDAL: slow, and no other path
+            std::string got;
+            std::size_t calls = 0;
+            EXPECT_TRUE(shoal::detail::read_blocks(path, block, [&](const char* p, std::size_t n) {
+                EXPECT_LE(n, block);
+                got.append(p, n);
+                ++calls;
+            }));
+            EXPECT_EQ(got, want) << path << " in blocks of " << block;
+            EXPECT_EQ(calls, (want.size() + block - 1) / block);
+        }
+        EXPECT_EQ(shoal::detail::read_head(path, 10), want.substr(0, 10));
+        EXPECT_EQ(shoal::detail::read_head(path, 1 << 21), want);
+    }
+    const std::string fifo = dir.file("fifo");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fs::create_directory(dir.path() / "folder");
+    for (const std::string& path : {fifo, dir.file("folder"), std::string("-"), dir.file("missing")}) {
+        EXPECT_FALSE(shoal::detail::is_regular_input(path)) << path;
+        EXPECT_FALSE(shoal::detail::read_blocks(path, 4096, [](const char*, std::size_t) { ADD_FAILURE() << "read"; })) << path;
+    }
+    EXPECT_EQ(shoal::detail::read_head(dir.file("missing"), 10), "");
+}
