@@ -62,6 +62,7 @@ int run_module(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    shoal::cli::keep_standard_streams();
     shoal::cli::fewer_malloc_arenas();
     // From the start, as before the split: Ctrl-C while the module loads is "interrupted" (130);
     // the module installs its own handler (for the files it writes) when it starts.

@@ -4,7 +4,10 @@
 // Ctrl-C removing the temporary files being written, and the exceptions said as messages with
 // their exit status.
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cerrno>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
@@ -59,6 +62,17 @@ inline void fewer_malloc_arenas() {
 #ifdef __GLIBC__
     if (std::getenv("MALLOC_ARENA_MAX") == nullptr) mallopt(M_ARENA_MAX, static_cast<int>(std::max(2u, std::thread::hardware_concurrency())));
 #endif
+}
+
+/// Standard input, output and error, when the process was started with one closed, opened on
+/// /dev/null: else the first file the run opens would take its number, and be read as `-`
+/// (standard input) or written over by a message (standard error).
+inline void keep_standard_streams() {
+    for (int fd = 0; fd <= 2; ++fd)
+        if (::fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
+            const int got = ::open("/dev/null", O_RDWR);  // the lowest free number: fd
+            if (got > fd) ::close(got);
+        }
 }
 
 /// Runs `command` (returning its exit status) and says its exception, if any, on stderr with the

@@ -3,6 +3,7 @@
 /// areas, GPX tracks): driver registration once, a scope that keeps GDAL quiet on stderr and
 /// reads its last message back, and the coordinate transformation's owner. Internal.
 
+#include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
 #include <ogr_spatialref.h>
@@ -17,10 +18,15 @@
 
 namespace shoal::detail {
 
-/// GDALAllRegister(), once per process, from any thread.
+/// GDALAllRegister(), once per process, from any thread. GDAL's gzip reader is told not to
+/// write its index (FILE.gz.properties) beside a gzip it reads: shoal writes no file beside
+/// its inputs.
 inline void register_drivers() {
     static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
+    std::call_once(once, [] {
+        CPLSetConfigOption("CPL_VSIL_GZIP_WRITE_PROPERTIES", "NO");
+        GDALAllRegister();
+    });
 }
 
 /// Silences GDAL's stderr output for its lifetime; errors are read back with last().

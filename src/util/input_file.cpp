@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -136,6 +137,12 @@ bool is_virtual_path(const std::string& path) noexcept { return path == "-" || s
 
 std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read) {
     std::vector<std::string> names;
+    for (ZipEntry& e : zip_directory(path, directory_read)) names.push_back(std::move(e.name));
+    return names;
+}
+
+std::vector<ZipEntry> zip_directory(const std::string& path, bool* directory_read) {
+    std::vector<ZipEntry> names;
     if (directory_read) *directory_read = false;
     RandomAccess file(path);
     if (!file.is_open()) return names;
@@ -176,15 +183,30 @@ std::vector<std::string> zip_entry_names(const std::string& path, bool* director
         if (cd.compare(at, 4, std::string_view("PK\x01\x02", 4)) != 0) break;
         const std::size_t n = u16(cd, at + 28), extra = u16(cd, at + 30), comment = u16(cd, at + 32);
         if (at + 46 + n > cd.size()) break;
-        names.push_back(cd.substr(at + 46, n));
+        // The sizes and the local header's offset, from the ZIP64 field when they are 0xFFFFFFFF.
+        std::uint64_t packed = u32(cd, at + 20), unpacked = u32(cd, at + 24), local = u32(cd, at + 42);
+        const std::size_t extra_at = at + 46 + n, extra_end = std::min(extra_at + extra, cd.size());
+        for (std::size_t x = extra_at; x + 4 <= extra_end;) {
+            const std::size_t id = u16(cd, x), len = u16(cd, x + 2);
+            if (x + 4 + len > extra_end) break;
+            if (id == 1) {
+                std::size_t v = x + 4;
+                for (std::uint64_t* field : {&unpacked, &packed, &local})
+                    if (*field == 0xFFFFFFFF && v + 8 <= x + 4 + len) *field = u64(cd, v), v += 8;
+            }
+            x += 4 + len;
+        }
+        names.push_back({cd.substr(at + 46, n), static_cast<unsigned>(u16(cd, at + 10)), packed, unpacked, local});
         at += 46 + n + extra + comment;
     }
     return names;
 }
 
-std::string read_head(const std::string& path, std::size_t n) {
+std::string read_head(const std::string& path, std::size_t n) { return read_at(path, 0, n); }
+
+std::string read_at(const std::string& path, std::uint64_t at, std::size_t n) {
     RandomAccess file(path);
-    return file.is_open() ? file.read_at(0, n) : std::string();
+    return file.is_open() ? file.read_at(at, n) : std::string();
 }
 
 bool is_regular_input(const std::string& path) {
@@ -230,8 +252,10 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
     else if (!is_zip(read_head(path, magic_bytes))) {
         return out;
     }
-    // GDAL finds the archive in a /vsizip/ path by its .zip extension; braces name any other.
-    const std::string root = lower_ends_with(path, ".zip") ? "/vsizip/" + path : "/vsizip/{" + path + "}";
+    // GDAL finds the archive in a /vsizip/ path by its .zip extension; braces name any other,
+    // and a zip inside a zip (whose path already holds a ".zip/", where GDAL would cut it).
+    const bool bare = lower_ends_with(path, ".zip") && !starts_with(path, "/vsizip/");
+    const std::string root = bare ? "/vsizip/" + path : "/vsizip/{" + path + "}";
     out = gdal_input::zip_files(root);
     // GDAL leaves out of its listing every member whose name holds a '..' component (unzip would
     // put it outside the folder): said, and read when GDAL reads it (only read, never extracted).
@@ -271,8 +295,9 @@ InputFile::InputFile(const std::string& path) : m_path(path) {
 }
 
 void InputFile::close() noexcept {
-    if (m_fd > 0) ::close(m_fd);  // standard input (0) stays open
+    if (m_fd >= 0 && !m_stdin) ::close(m_fd);  // standard input stays open
     m_fd = -1;
+    m_stdin = false;
     gdal_input::close(m_vsi);
     m_vsi = nullptr;
     if (!m_mem_name.empty()) gdal_input::unlink(m_mem_name);
@@ -282,7 +307,7 @@ void InputFile::close() noexcept {
 void InputFile::open_content(const std::string& path) {
     const bool stream = kind_of(path) == Kind::stream;
     if (stream) m_hash = std::make_unique<ContentHash>();
-    open(path);
+    open(is_stdin(path) ? std::string("-") : path);  // `-`, /vsistdin, /vsistdin/NAME: standard input
     if (stream) m_gdal_path.clear();
     // Compressed content, recognised by its magic bytes: a zip in a zip or a gzip in a zip is
     // unpacked too, up to three layers deep.
@@ -306,8 +331,9 @@ void InputFile::open_content(const std::string& path) {
             base = m_mem_name;
         }
         const bool zip = is_zip(m_kept.empty() ? m_memory : m_kept);
-        if (m_fd > 0) ::close(m_fd);
+        if (m_fd >= 0 && !m_stdin) ::close(m_fd);
         m_fd = -1;
+        m_stdin = false;
         gdal_input::close(m_vsi);
         m_vsi = nullptr;
         if (!zip) {
@@ -346,7 +372,8 @@ InputFile::~InputFile() { close(); }
 
 void InputFile::open(const std::string& path) {
     if (path == "-") {  // standard input, read as it comes
-        m_fd = 0;
+        m_fd = STDIN_FILENO;
+        m_stdin = true;
         m_gdal_path = "/vsistdin/";
         return;
     }
@@ -369,6 +396,11 @@ std::size_t InputFile::read_raw(char* data, std::size_t n) {
         while (total < n) {
             const ssize_t got = ::read(m_fd, data + total, n - total);
             if (got < 0 && errno == EINTR) continue;
+            if (got < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {  // a non-blocking pipe handed down: wait for it
+                pollfd p{m_fd, POLLIN, 0};
+                ::poll(&p, 1, -1);
+                continue;
+            }
             if (got < 0) throw InputError(m_path + ": cannot read (" + std::strerror(errno) + ")");
             if (got == 0) break;
             total += static_cast<std::size_t>(got);

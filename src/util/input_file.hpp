@@ -58,9 +58,21 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
 /// not a zip, or a corrupt or truncated one).
 std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read = nullptr);
 
+/// An entry of a zip's central directory: its name as written, its method (0 stored, 8
+/// deflated), its sizes and where its local header is (ZIP64's where they need it).
+struct ZipEntry {
+    std::string name;
+    unsigned method = 0;
+    std::uint64_t packed = 0, unpacked = 0, local_header = 0;
+};
+/// zip_entry_names' entries, whole.
+std::vector<ZipEntry> zip_directory(const std::string& path, bool* directory_read = nullptr);
+
 /// The first `n` bytes of `path` as they are (nothing unpacked), fewer when it is shorter, ""
 /// when it cannot be opened: a plain file read with the system's calls, a `/vsi` path by GDAL.
 std::string read_head(const std::string& path, std::size_t n);
+/// Up to `n` bytes of `path` from byte `at` on, as they are (read_head's from 0).
+std::string read_at(const std::string& path, std::uint64_t at, std::size_t n);
 
 /// Whether `path` is a regular file (through GDAL for a `/vsi` path; `-` is none).
 bool is_regular_input(const std::string& path);
@@ -108,7 +120,8 @@ private:
 
     std::string m_damage;       ///< as given, for messages
     std::string m_gdal_path;  ///< what is open now, when it can be opened again
-    int m_fd = -1;             ///< a plain file or stream (0: standard input), or
+    int m_fd = -1;             ///< a plain file or stream (standard input: m_stdin), or
+    bool m_stdin = false;      ///< m_fd is standard input, never closed here
     void* m_vsi = nullptr;     ///< what GDAL opened (gdal_input::open)
     std::string m_kept;       ///< bytes read to recognise the content, given back first
     std::size_t m_kept_pos = 0;

@@ -113,8 +113,10 @@ FileKey file_key(const std::string& path) {
     }
     const std::string real = behind_virtual(path);
     std::error_code ec;
-    const fs::path c = fs::weakly_canonical(fs::absolute(real), ec);
-    if (!ec) k.canonical = c.string();
+    // fs::absolute without an error_code throws for "" (behind `/vsistdin/`, which names no file).
+    const fs::path absolute = real.empty() ? fs::path() : fs::absolute(real, ec);
+    const fs::path c = ec || absolute.empty() ? fs::path() : fs::weakly_canonical(absolute, ec);
+    if (!ec && !c.empty()) k.canonical = c.string();
     struct stat st {};
     if (::stat(real.c_str(), &st) == 0) {
         k.exists = true;

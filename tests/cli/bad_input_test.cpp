@@ -1355,6 +1355,7 @@ nlohmann::json summary_counts(const nlohmann::json& doc) {
 }
 
 TEST_F(BadInput, StandardInputDevStdinAFifoAZipAndAGzipGiveTheReportOfThePlainFile) {
+    // (and /vsistdin, a closed standard input, a zip in a zip)
     const std::string good = good_tracks(), plain = m_dir.file("plain.geojson");
     const Outcome base = check({good}, plain);
     ASSERT_EQ(base.status, 1) << base.err;  // vessel A grounds
@@ -1372,6 +1373,15 @@ TEST_F(BadInput, StandardInputDevStdinAFifoAZipAndAGzipGiveTheReportOfThePlainFi
         {"gzip", cmd + m_dir.file("gzip.geojson") + " " + gz},
         {"zip", have_zip ? cmd + m_dir.file("zip.geojson") + " " + zip : ""},
         {"vsizip", have_zip ? cmd + m_dir.file("vsizip.geojson") + " /vsizip/" + zip + "/good.csv" : ""},
+        // GDAL's names for standard input, each read as `-` is.
+        {"vsistdin", cmd + m_dir.file("vsistdin.geojson") + " /vsistdin < " + good},
+        {"vsistdin-named", "cat " + gz + " | " + cmd + m_dir.file("vsistdin-named.geojson") + " /vsistdin/good.csv"},
+        // Standard input closed: the file opened in its place is read once, as itself.
+        {"stdin-closed", cmd + m_dir.file("stdin-closed.geojson") + " " + good + " 0<&-"},
+        // A zip inside a zip (both named .zip): read as a folder of the inner zip's file.
+        {"zip-in-zip", have_zip ? "cp " + zip + " " + m_dir.file("inner.zip") + " && zip -q -j " + m_dir.file("outer.zip") + " " +
+                                      m_dir.file("inner.zip") + " && " + cmd + m_dir.file("zip-in-zip.geojson") + " " + m_dir.file("outer.zip")
+                                : ""},
     };
     for (const auto& [name, line] : runs) {
         if (line.empty()) continue;

@@ -9,12 +9,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 
 #include "geo/transverse_mercator.hpp"
 #include "report/qgis/qgis_styles.hpp"
+#include "util/input_file.hpp"
 #include <shoal/report/markup.hpp>
 #include <shoal/report/geojson_report.hpp>
 #include <shoal/util/error.hpp>
@@ -331,28 +331,45 @@ std::string qgz_of(const std::string& member, const std::string& qgs) {
 bool is_shoal_qgz(const std::string& path, const std::string& member) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return false;  // a FIFO or a device is never opened
-    // shoal's zip begins with the local header qgz_of writes for `member`; its data inflated as
-    // far as the project's first 4 KiB, which hold the mark.
-    const auto [name, unicode] = member_name_and_unicode_field(member);
-    const std::string head = local_header(name, unicode);
-    std::ifstream in(path, std::ios::binary);
-    std::string got(head.size(), '\0');
-    if (!in.read(got.data(), static_cast<std::streamsize>(got.size()))) return false;
-    if (got.compare(0, 14, head, 0, 14) != 0 || got.compare(26, std::string::npos, head, 26, std::string::npos) != 0) return false;
-    z_stream z{};
-    if (::inflateInit2(&z, -MAX_WBITS) != Z_OK) return false;
-    std::string text(4096, '\0');
-    z.next_out = reinterpret_cast<Bytef*>(text.data());
-    z.avail_out = static_cast<uInt>(text.size());
-    char buf[4096];
-    int rc = Z_OK;
-    while (rc == Z_OK && z.avail_out > 0 && in.read(buf, sizeof buf).gcount() > 0) {
-        z.next_in = reinterpret_cast<Bytef*>(buf);
-        z.avail_in = static_cast<uInt>(in.gcount());
-        while (rc == Z_OK && z.avail_in > 0 && z.avail_out > 0) rc = ::inflate(&z, Z_NO_FLUSH);
+    // The member found by its name in the zip's directory, as GDAL's /vsizip/ finds it: as
+    // written, or in CP437 as shoal writes a name that is not ASCII.
+    std::string cp437;
+    try {
+        cp437 = member_name_and_unicode_field(member).first;
+    } catch (const LibraryError&) {  // no CP437 in this system's iconv: the name as it is
     }
-    text.resize(text.size() - z.avail_out);
-    ::inflateEnd(&z);
+    const std::vector<detail::ZipEntry> entries = detail::zip_directory(path);
+    const auto entry = std::find_if(entries.begin(), entries.end(), [&](const detail::ZipEntry& e) {
+        return e.name == member || (!cp437.empty() && e.name == cp437);
+    });
+    if (entry == entries.end() || (entry->method != 0 && entry->method != 8)) return false;
+    const std::string local = detail::read_at(path, entry->local_header, 30);
+    if (local.size() != 30 || local.compare(0, 4, std::string_view("PK\x03\x04", 4)) != 0) return false;
+    const auto u16 = [&](std::size_t at) { return static_cast<std::uint64_t>(static_cast<unsigned char>(local[at])) | static_cast<std::uint64_t>(static_cast<unsigned char>(local[at + 1])) << 8; };
+    const std::uint64_t data_at = entry->local_header + 30 + u16(26) + u16(28);
+    // The project's first 4 KiB (the mark is on its second line), read from at most its packed bytes.
+    constexpr std::size_t head = 4096;
+    std::string text;
+    if (entry->method == 0) {
+        text = detail::read_at(path, data_at, static_cast<std::size_t>(std::min<std::uint64_t>(head, entry->packed)));
+    } else {
+        z_stream z{};
+        if (::inflateInit2(&z, -MAX_WBITS) != Z_OK) return false;
+        text.assign(head, '\0');
+        z.next_out = reinterpret_cast<Bytef*>(text.data());
+        z.avail_out = static_cast<uInt>(text.size());
+        int rc = Z_OK;
+        for (std::uint64_t at = 0; rc == Z_OK && z.avail_out > 0 && at < entry->packed;) {
+            std::string block = detail::read_at(path, data_at + at, static_cast<std::size_t>(std::min<std::uint64_t>(head, entry->packed - at)));
+            if (block.empty()) break;
+            at += block.size();
+            z.next_in = reinterpret_cast<Bytef*>(block.data());
+            z.avail_in = static_cast<uInt>(block.size());
+            while (rc == Z_OK && z.avail_in > 0 && z.avail_out > 0) rc = ::inflate(&z, Z_NO_FLUSH);
+        }
+        text.resize(text.size() - z.avail_out);
+        ::inflateEnd(&z);
+    }
     return text.find(sidecar_mark) != std::string::npos;
 }
 

@@ -172,9 +172,39 @@ std::string gdal_zip(const std::string& member, const std::string& qgs) {
     return out;
 }
 
+/// Whether GDAL finds `member` in the zip at `path` and its first 4 KiB hold shoal's mark: what
+/// is_shoal_qgz said when it read the zip through GDAL's /vsizip/ (the independent answer).
+bool gdal_says_shoal(const std::string& path, const std::string& member) {
+    VSILFILE* f = VSIFOpenL(("/vsizip/{" + path + "}/" + member).c_str(), "rb");
+    if (!f) return false;
+    std::string head(4096, '\0');
+    head.resize(VSIFReadL(head.data(), 1, head.size(), f));
+    VSIFCloseL(f);
+    return head.find(sidecar_mark) != std::string::npos;
+}
+
+/// A zip of `members` (name, content) written by GDAL, deflated or stored.
+std::string gdal_zip_of(const std::vector<std::pair<std::string, std::string>>& members, bool compressed) {
+    const std::string zip = "/vsimem/qgz_test_many.zip";
+    void* z = CPLCreateZip(zip.c_str(), nullptr);
+    const char* options[] = {compressed ? "COMPRESSED=YES" : "COMPRESSED=NO", nullptr};
+    for (const auto& [name, content] : members) {
+        EXPECT_EQ(CPLCreateFileInZip(z, name.c_str(), const_cast<char**>(options)), CE_None);
+        EXPECT_EQ(CPLWriteFileInZip(z, content.data(), static_cast<int>(content.size())), CE_None);
+        EXPECT_EQ(CPLCloseFileInZip(z), CE_None);
+    }
+    EXPECT_EQ(CPLCloseZip(z), CE_None);
+    vsi_l_offset n = 0;
+    GByte* bytes = VSIGetMemFileBuffer(zip.c_str(), &n, FALSE);
+    std::string out(reinterpret_cast<const char*>(bytes), static_cast<std::size_t>(n));
+    VSIUnlink(zip.c_str());
+    return out;
+}
+
 // The .qgz, made with zlib, is the zip GDAL's writer made, byte for byte: names in ASCII, in
 // CP437 and beyond it (the Unicode path field), contents empty, text, incompressible and large;
-// GDAL reads the project back from it. is_shoal_qgz knows shoal's and nothing else.
+// GDAL reads the project back from it. is_shoal_qgz, reading the zip's directory with zlib, says
+// what GDAL's /vsizip/ says, on shoal's zips, other zips and damaged ones.
 TEST(QgisProject, TheQgzIsTheZipGdalWrites) {
     CPLPushErrorHandler(CPLQuietErrorHandler);  // GDAL warns of characters CP437 lacks
     std::mt19937_64 rng(7);
@@ -183,23 +213,38 @@ TEST(QgisProject, TheQgzIsTheZipGdalWrites) {
     while (xml.size() < 200000) xml += "<layer id=\"shoal_" + std::to_string(rng() % 1000) + "\" source=\"./r.geojson\"/>\n";
     std::string noise(300000, '\0');
     for (char& c : noise) c = static_cast<char>(rng());
-    const std::vector<std::string> contents = {"", "x", mark, xml, noise, std::string(3 << 20, 'a') + xml};
+    const std::vector<std::string> contents = {"", "x", mark, xml, noise, std::string(3 << 20, 'a') + xml, std::string(5000, ' ') + mark};
     const std::vector<std::string> members = {"r.qgs", "Hämeenlinna_Ørsted_ÿ.qgs", "łódź 港 report.qgs", std::string("bad\xFF\xFEutf8.qgs"),
                                               std::string(300, 'n') + ".qgs"};
     test::TempDir dir;
+    const std::string path = dir.file("t.qgz");
+    const auto agree = [&](const std::string& bytes, const std::string& member, const std::string& what) {
+        std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+        EXPECT_EQ(is_shoal_qgz(path, member), gdal_says_shoal(path, member)) << what << ", member " << member;
+    };
+    int shoals = 0;
     for (const std::string& member : members)
         for (const std::string& content : contents) {
             const std::string ours = qgz_of(member, content);
             ASSERT_EQ(ours, gdal_zip(member, content)) << member << ", " << content.size() << " bytes";
-            const std::string path = dir.file("t.qgz");
-            std::ofstream(path, std::ios::binary) << ours;
-            EXPECT_EQ(is_shoal_qgz(path, member), content.find(mark) != std::string::npos && content.find(mark) < 4096 - mark.size())
-                << member << ", " << content.size();
-            EXPECT_FALSE(is_shoal_qgz(path, member + "x"));
+            agree(ours, member, "shoal's zip of " + std::to_string(content.size()) + " bytes");
+            agree(ours, member + "x", "another member's name");
+            std::ofstream(path, std::ios::binary | std::ios::trunc) << ours;
+            shoals += is_shoal_qgz(path, member);
         }
+    EXPECT_EQ(shoals, 2 * 5);  // the mark in the first 4 KiB (`mark` and `xml`), under each of the five names
+    // Zips that shoal did not write: the project second of three members, stored, or both.
+    for (const bool compressed : {true, false})
+        agree(gdal_zip_of({{"a.txt", "hello"}, {"r.qgs", xml}, {"b/c.qgs", mark}}, compressed), "r.qgs", compressed ? "deflated, second" : "stored, second");
+    agree(gdal_zip_of({{"r.qgs", "<qgis>QGIS saved over it</qgis>"}}, true), "r.qgs", "QGIS's own project");
+    // Damaged: cut short (no directory), its data spoilt, junk, empty.
+    const std::string whole = qgz_of("r.qgs", xml);
+    std::string spoilt = whole;
+    for (std::size_t k = 60; k < 2000; ++k) spoilt[k] = static_cast<char>(rng());
+    for (const std::string& bad : {whole.substr(0, 40), whole.substr(0, whole.size() - 30), spoilt, std::string(9000, 'P'), std::string()})
+        agree(bad, "r.qgs", "damaged, " + std::to_string(bad.size()) + " bytes");
     // GDAL reads the project back, under its own name.
-    const std::string path = dir.file("r.qgz");
-    std::ofstream(path, std::ios::binary) << qgz_of("Hämeenlinna.qgs", xml);
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << qgz_of("Hämeenlinna.qgs", xml);
     VSILFILE* f = VSIFOpenL(("/vsizip/{" + path + "}/Hämeenlinna.qgs").c_str(), "rb");
     ASSERT_NE(f, nullptr);
     std::string back(xml.size() + 10, '\0');
@@ -207,13 +252,7 @@ TEST(QgisProject, TheQgzIsTheZipGdalWrites) {
     VSIFCloseL(f);
     EXPECT_EQ(back, xml);
     EXPECT_TRUE(is_shoal_qgz(path, "Hämeenlinna.qgs"));
-    // Not shoal's: cut short, its data spoilt, junk, a folder.
-    const std::string whole = qgz_of("r.qgs", xml);
-    for (const std::string& bad : {whole.substr(0, 40), whole.substr(0, 60) + std::string(5000, '\x7f'), std::string(9000, 'P'), std::string()}) {
-        std::ofstream(path, std::ios::binary | std::ios::trunc) << bad;
-        EXPECT_FALSE(is_shoal_qgz(path, "r.qgs")) << bad.size();
-    }
-    EXPECT_FALSE(is_shoal_qgz(dir.path().string(), "r.qgs"));
+    EXPECT_FALSE(is_shoal_qgz(dir.path().string(), "r.qgs"));  // a folder
     CPLPopErrorHandler();
 }
 
