@@ -155,23 +155,6 @@ TEST(QgisProject, SpatialReferencesAreWhatOsrSaysOfTheirEpsgCodes) {
     EXPECT_EQ(between(qgs, "<extent>", "</extent>"), "<xmin>-180.000000</xmin><ymin>-77.000000</ymin><xmax>180.000000</xmax><ymax>87.000000</ymax>");
 }
 
-/// `qgs` zipped as `member` by GDAL's own zip writer (what the report's .qgz was before it went
-/// without GDAL).
-std::string gdal_zip(const std::string& member, const std::string& qgs) {
-    const std::string zip = "/vsimem/qgz_test.zip";
-    void* z = CPLCreateZip(zip.c_str(), nullptr);
-    EXPECT_NE(z, nullptr);
-    EXPECT_EQ(CPLCreateFileInZip(z, member.c_str(), nullptr), CE_None);
-    EXPECT_EQ(CPLWriteFileInZip(z, qgs.data(), static_cast<int>(qgs.size())), CE_None);
-    EXPECT_EQ(CPLCloseFileInZip(z), CE_None);
-    EXPECT_EQ(CPLCloseZip(z), CE_None);
-    vsi_l_offset n = 0;
-    GByte* bytes = VSIGetMemFileBuffer(zip.c_str(), &n, FALSE);
-    std::string out(reinterpret_cast<const char*>(bytes), static_cast<std::size_t>(n));
-    VSIUnlink(zip.c_str());
-    return out;
-}
-
 /// Whether GDAL finds `member` in the zip at `path` and its first 4 KiB hold shoal's mark: what
 /// is_shoal_qgz said when it read the zip through GDAL's /vsizip/ (the independent answer).
 bool gdal_says_shoal(const std::string& path, const std::string& member) {
@@ -187,7 +170,7 @@ bool gdal_says_shoal(const std::string& path, const std::string& member) {
 std::string gdal_zip_of(const std::vector<std::pair<std::string, std::string>>& members, bool compressed) {
     const std::string zip = "/vsimem/qgz_test_many.zip";
     void* z = CPLCreateZip(zip.c_str(), nullptr);
-    const char* options[] = {compressed ? "COMPRESSED=YES" : "COMPRESSED=NO", nullptr};
+    const char* options[] = {compressed ? nullptr : "COMPRESSED=NO", nullptr};  // deflated: GDAL's default
     for (const auto& [name, content] : members) {
         EXPECT_EQ(CPLCreateFileInZip(z, name.c_str(), const_cast<char**>(options)), CE_None);
         EXPECT_EQ(CPLWriteFileInZip(z, content.data(), static_cast<int>(content.size())), CE_None);
@@ -200,6 +183,10 @@ std::string gdal_zip_of(const std::vector<std::pair<std::string, std::string>>& 
     VSIUnlink(zip.c_str());
     return out;
 }
+
+/// `qgs` zipped as `member` by GDAL's own zip writer with its defaults (what the report's .qgz
+/// was before it went without GDAL).
+std::string gdal_zip(const std::string& member, const std::string& qgs) { return gdal_zip_of({{member, qgs}}, true); }
 
 // The .qgz, made with zlib, is the zip GDAL's writer made, byte for byte: names in ASCII, in
 // CP437 and beyond it (the Unicode path field), contents empty, text, incompressible and large;
