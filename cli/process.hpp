@@ -65,12 +65,13 @@ inline void fewer_malloc_arenas() {
 }
 
 /// Standard input, output and error, when the process was started with one closed, opened on
-/// /dev/null: else the first file the run opens would take its number, and be read as `-`
-/// (standard input) or written over by a message (standard error).
+/// /dev/null for reading: else the first file the run opens would take its number, and be read
+/// as `-` (standard input) or written over by a message (standard error). Read-only, so that a
+/// report written to a closed standard output (`-o -`) still fails to be written, as before.
 inline void keep_standard_streams() {
     for (int fd = 0; fd <= 2; ++fd)
         if (::fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
-            const int got = ::open("/dev/null", O_RDWR);  // the lowest free number: fd
+            const int got = ::open("/dev/null", O_RDONLY);  // the lowest free number: fd
             if (got > fd) ::close(got);
         }
 }

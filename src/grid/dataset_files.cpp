@@ -1,6 +1,6 @@
 // grid::dataset_files: the files of a vector dataset, as GDAL lists them (grid_builder.hpp). A
-// file of its own: the one part of fingerprinting a grid's sources that needs GDAL (the `shoal`
-// executable, which links no GDAL, defines it otherwise: cli/without_gdal.cpp).
+// file of its own: the one part of fingerprinting a grid's sources that needs GDAL, which a
+// program without GDAL could define otherwise (docs/performance.md, "What a check without GDAL needs").
 #include <shoal/grid/grid_builder.hpp>
 
 #include <gdal_priv.h>

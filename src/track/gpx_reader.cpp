@@ -1,5 +1,5 @@
-// GPX tracks, read with OGR: the one track format that needs GDAL (the `shoal` executable,
-// which links no GDAL, defines detail::read_gpx_at otherwise: cli/without_gdal.cpp).
+// GPX tracks, read with OGR: the one track format that needs GDAL, in a file of its own (a
+// program without GDAL could define detail::read_gpx_at otherwise).
 #include "util/gdal_support.hpp"
 #include <shoal/track/ogr_reader.hpp>
 

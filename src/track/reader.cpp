@@ -269,7 +269,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
         std::string key = file;
         // Standard input by any of its names is one stream: read once (a second read would
         // race the first for the same bytes).
-        if (file == "-" || file == "/dev/stdin" || file == "/vsistdin/" || file == "/vsistdin" || file == "/proc/self/fd/0") {
+        if (shoal::detail::names_standard_input(file) || file == "/dev/stdin" || file == "/dev/fd/0" || file == "/proc/self/fd/0") {
             key = "standard input";
         } else if (!shoal::detail::is_virtual_path(file)) {
             std::error_code ec;

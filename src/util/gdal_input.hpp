@@ -2,10 +2,9 @@
 /// What reading an input needs of GDAL's virtual file layer (VSI), and only that: `/vsi...`
 /// paths, gzip and zip content, a compressed stream held in memory, a zip's listing. Internal.
 ///
-/// Defined with GDAL in the full library (util/gdal_input.cpp). The `shoal` executable, which
-/// links no GDAL and reads only plain files itself, defines them by refusing
-/// (cli/without_gdal.cpp): a run that needs them goes to the command module. Plain files and
-/// streams are read with the system's calls in util/input_file.cpp, by both.
+/// Defined with GDAL in util/gdal_input.cpp, a file of their own so that a program without GDAL
+/// could define them otherwise (docs/performance.md, "What a check without GDAL needs"). Plain
+/// files and streams are read with the system's calls, in util/input_file.cpp.
 
 #include <cstddef>
 #include <cstdint>

@@ -288,6 +288,7 @@ std::string qgz_of(const std::string& member, const std::string& qgs) {
     // has it do (level 6, raw, a 32 KiB window, memory level 8), without loading GDAL.
     if (qgs.size() >= 0xffffffffu || member.size() > 0xffff) throw LibraryError("the QGIS project is too big for its zip");
     const auto [name, unicode] = member_name_and_unicode_field(member);
+    if (name.size() > 0xffff || unicode.size() + 20 > 0xffff) throw LibraryError("the QGIS project's name is too long for its zip");
     z_stream z{};
     if (::deflateInit2(&z, Z_DEFAULT_COMPRESSION, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
         throw LibraryError("zlib cannot deflate the QGIS project");
@@ -343,30 +344,33 @@ bool is_shoal_qgz(const std::string& path, const std::string& member) {
         return e.name == member || (!cp437.empty() && e.name == cp437);
     });
     if (entry == entries.end() || (entry->method != 0 && entry->method != 8)) return false;
-    const std::string local = detail::read_at(path, entry->local_header, 30);
-    if (local.size() != 30 || local.compare(0, 4, std::string_view("PK\x03\x04", 4)) != 0) return false;
-    const auto u16 = [&](std::size_t at) { return static_cast<std::uint64_t>(static_cast<unsigned char>(local[at])) | static_cast<std::uint64_t>(static_cast<unsigned char>(local[at + 1])) << 8; };
+    // Its local header, which must be the entry's (its name and method, as zip readers check:
+    // a directory entry pointing at another member is no such member).
+    const std::string local = detail::read_at(path, entry->local_header, 30 + entry->name.size());
+    const auto u16 = [&](std::size_t at) {
+        return static_cast<std::uint64_t>(static_cast<unsigned char>(local[at])) | static_cast<std::uint64_t>(static_cast<unsigned char>(local[at + 1])) << 8;
+    };
+    if (local.size() != 30 + entry->name.size() || local.compare(0, 4, std::string_view("PK\x03\x04", 4)) != 0 || u16(8) != entry->method ||
+        u16(26) != entry->name.size() || local.compare(30, std::string::npos, entry->name) != 0)
+        return false;
     const std::uint64_t data_at = entry->local_header + 30 + u16(26) + u16(28);
-    // The project's first 4 KiB (the mark is on its second line), read from at most its packed bytes.
-    constexpr std::size_t head = 4096;
+    // The project's first 4 KiB (the mark is on its second line), from at most 64 KiB of its
+    // packed bytes (4 KiB of XML deflate to far less), read at once.
+    constexpr std::size_t head = 4096, most_packed = 64 * 1024;
     std::string text;
     if (entry->method == 0) {
         text = detail::read_at(path, data_at, static_cast<std::size_t>(std::min<std::uint64_t>(head, entry->packed)));
     } else {
+        std::string packed = detail::read_at(path, data_at, static_cast<std::size_t>(std::min<std::uint64_t>(most_packed, entry->packed)));
         z_stream z{};
         if (::inflateInit2(&z, -MAX_WBITS) != Z_OK) return false;
         text.assign(head, '\0');
+        z.next_in = reinterpret_cast<Bytef*>(packed.data());
+        z.avail_in = static_cast<uInt>(packed.size());
         z.next_out = reinterpret_cast<Bytef*>(text.data());
         z.avail_out = static_cast<uInt>(text.size());
         int rc = Z_OK;
-        for (std::uint64_t at = 0; rc == Z_OK && z.avail_out > 0 && at < entry->packed;) {
-            std::string block = detail::read_at(path, data_at + at, static_cast<std::size_t>(std::min<std::uint64_t>(head, entry->packed - at)));
-            if (block.empty()) break;
-            at += block.size();
-            z.next_in = reinterpret_cast<Bytef*>(block.data());
-            z.avail_in = static_cast<uInt>(block.size());
-            while (rc == Z_OK && z.avail_in > 0 && z.avail_out > 0) rc = ::inflate(&z, Z_NO_FLUSH);
-        }
+        while (rc == Z_OK && z.avail_in > 0 && z.avail_out > 0) rc = ::inflate(&z, Z_NO_FLUSH);
         text.resize(text.size() - z.avail_out);
         ::inflateEnd(&z);
     }

@@ -224,6 +224,17 @@ TEST(QgisProject, TheQgzIsTheZipGdalWrites) {
     for (const bool compressed : {true, false})
         agree(gdal_zip_of({{"a.txt", "hello"}, {"r.qgs", xml}, {"b/c.qgs", mark}}, compressed), "r.qgs", compressed ? "deflated, second" : "stored, second");
     agree(gdal_zip_of({{"r.qgs", "<qgis>QGIS saved over it</qgis>"}}, true), "r.qgs", "QGIS's own project");
+    // A directory entry r.qgs pointing at the local header of another member, which holds a
+    // shoal project: no such member for GDAL (the names differ), nor for shoal.
+    {
+        std::string z = gdal_zip_of({{"backup/r_old.qgs", xml}, {"r.qgs", noise}}, true);  // r.qgs longer, packed, than the other
+        const std::size_t second = z.find(std::string_view("PK\x01\x02", 4), z.find(std::string_view("PK\x01\x02", 4)) + 4);
+        ASSERT_NE(second, std::string::npos);
+        z.replace(second + 42, 4, std::string(4, '\0'));  // its local header: the first member's
+        agree(z, "r.qgs", "a directory entry pointing at another member");
+        std::ofstream(path, std::ios::binary | std::ios::trunc) << z;
+        EXPECT_FALSE(is_shoal_qgz(path, "r.qgs"));
+    }
     // Damaged: cut short (no directory), its data spoilt, junk, empty.
     const std::string whole = qgz_of("r.qgs", xml);
     std::string spoilt = whole;
