@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <system_error>
 
 #include <fcntl.h>
@@ -185,7 +184,8 @@ std::vector<ZipEntry> zip_directory(const std::string& path, bool* directory_rea
         if (cd.compare(at, 4, std::string_view("PK\x01\x02", 4)) != 0) break;
         const std::size_t n = u16(cd, at + 28), extra = u16(cd, at + 30), comment = u16(cd, at + 32);
         if (at + 46 + n > cd.size()) break;
-        // The sizes and the local header's offset, from the ZIP64 field when they are 0xFFFFFFFF.
+        // The packed size and the local header's offset, from the ZIP64 field when they are
+        // 0xFFFFFFFF (the unpacked size is read only to find where they stand in it).
         std::uint64_t packed = u32(cd, at + 20), unpacked = u32(cd, at + 24), local = u32(cd, at + 42);
         const std::size_t extra_at = at + 46 + n, extra_end = std::min(extra_at + extra, cd.size());
         for (std::size_t x = extra_at; x + 4 <= extra_end;) {
@@ -198,7 +198,7 @@ std::vector<ZipEntry> zip_directory(const std::string& path, bool* directory_rea
             }
             x += 4 + len;
         }
-        names.push_back({cd.substr(at + 46, n), static_cast<unsigned>(u16(cd, at + 10)), packed, unpacked, local});
+        names.push_back({cd.substr(at + 46, n), static_cast<unsigned>(u16(cd, at + 10)), packed, local});
         at += 46 + n + extra + comment;
     }
     return names;
@@ -244,16 +244,9 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
     if (!is_virtual_path(path)) {
         std::error_code ec;
         if (!fs::is_regular_file(path, ec)) return out;  // never open a pipe to look at it
-        // A plain file's first bytes read as they are: GDAL (its drivers registered: some 8 M
-        // instructions) only for a zip.
-        std::ifstream in(path, std::ios::binary);
-        std::string head(magic_bytes, '\0');
-        head.resize(static_cast<std::size_t>(in.read(head.data(), static_cast<std::streamsize>(head.size())).gcount()));
-        if (!is_zip(head)) return out;
     }
-    else if (!is_zip(read_head(path, magic_bytes))) {
-        return out;
-    }
+    // Its first bytes read as they are (a plain file without GDAL): GDAL lists only a zip.
+    if (!is_zip(read_head(path, magic_bytes))) return out;
     // GDAL finds the archive in a /vsizip/ path by its .zip extension; braces name any other,
     // and a zip inside a zip (whose path already holds a ".zip/", where GDAL would cut it).
     const bool bare = lower_ends_with(path, ".zip") && !starts_with(path, "/vsizip/");
@@ -296,12 +289,16 @@ InputFile::InputFile(const std::string& path) : m_path(path) {
     }
 }
 
-void InputFile::close() noexcept {
+void InputFile::close_handle() noexcept {
     if (m_fd >= 0 && !m_stdin) ::close(m_fd);  // standard input stays open
     m_fd = -1;
     m_stdin = false;
     gdal_input::close(m_vsi);
     m_vsi = nullptr;
+}
+
+void InputFile::close() noexcept {
+    close_handle();
     if (!m_mem_name.empty()) gdal_input::unlink(m_mem_name);
     m_mem_name.clear();
 }
@@ -333,11 +330,7 @@ void InputFile::open_content(const std::string& path) {
             base = m_mem_name;
         }
         const bool zip = is_zip(m_kept.empty() ? m_memory : m_kept);
-        if (m_fd >= 0 && !m_stdin) ::close(m_fd);
-        m_fd = -1;
-        m_stdin = false;
-        gdal_input::close(m_vsi);
-        m_vsi = nullptr;
+        close_handle();
         if (!zip) {
             open("/vsigzip/" + base);
             continue;

@@ -62,11 +62,11 @@ std::vector<std::string> zip_members(const std::string& path, std::vector<std::s
 std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read = nullptr);
 
 /// An entry of a zip's central directory: its name as written, its method (0 stored, 8
-/// deflated), its sizes and where its local header is (ZIP64's where they need it).
+/// deflated), its packed size and where its local header is (ZIP64's where they need it).
 struct ZipEntry {
     std::string name;
     unsigned method = 0;
-    std::uint64_t packed = 0, unpacked = 0, local_header = 0;
+    std::uint64_t packed = 0, local_header = 0;
 };
 /// zip_entry_names' entries, whole.
 std::vector<ZipEntry> zip_directory(const std::string& path, bool* directory_read = nullptr);
@@ -117,6 +117,7 @@ private:
     void open_content(const std::string& path);
     void open(const std::string& path);
     void close() noexcept;
+    void close_handle() noexcept;  ///< the file or stream open now (not a compressed stream's memory)
     std::size_t read_raw(char* data, std::size_t n);
 
     std::string m_path;
