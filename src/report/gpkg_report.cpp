@@ -212,7 +212,6 @@ void add_qgis_project(GDALDataset& ds, const std::string& file_name, const Proje
     }
 }
 
-
 GpkgLayers make_gpkg_layers(GDALDataset& ds, const audit::AuditResult& r, bool chart, bool poses) {
     GpkgLayers l;
     l.events = &make_layer(ds, "events", wkbPoint, fields::event_fields(), r);

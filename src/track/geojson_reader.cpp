@@ -2,9 +2,7 @@
 #include <shoal/track/ogr_reader.hpp>
 
 #include <map>
-#include <mutex>
 #include <tuple>
-#include <unordered_map>
 #include <vector>
 
 #include <nlohmann/json.hpp>

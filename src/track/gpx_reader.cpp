@@ -8,9 +8,7 @@
 #include <ogrsf_frmts.h>
 
 #include <map>
-#include <mutex>
-#include <tuple>
-#include <unordered_map>
+#include <string>
 #include <vector>
 
 #include "util/parse_util.hpp"
