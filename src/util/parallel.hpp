@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <exception>
 #include <functional>
+#include <mutex>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -27,11 +29,20 @@ inline unsigned thread_count(unsigned jobs) {
 template <typename Work>
 void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<void()>& tick = {}) {
     std::atomic<std::size_t> next{0};
-    std::atomic<unsigned> finished{0};
+    std::mutex mutex;
+    std::condition_variable all_done;
+    unsigned finished = 0;  // under mutex
     const auto threads = static_cast<unsigned>(std::clamp<std::size_t>(n, 1, std::max(1u, jobs)));
+    auto finish = [&](unsigned count) {
+        {
+            const std::lock_guard<std::mutex> lock(mutex);
+            finished += count;
+        }
+        all_done.notify_one();
+    };
     auto worker = [&](unsigned w) {
         for (std::size_t k; (k = next.fetch_add(1)) < n;) work(k, w);
-        finished.fetch_add(1);
+        finish(1);
     };
     std::vector<std::thread> pool;
     pool.reserve(threads);
@@ -42,11 +53,16 @@ void parallel_for(std::size_t n, unsigned jobs, Work work, const std::function<v
     }
     if (started < threads) {  // this thread as the next worker; the ones not started never finish
         worker(started);
-        finished.fetch_add(threads - started - 1);
+        finish(threads - started - 1);
     }
-    for (int i = 0; tick && finished.load() < threads; ++i) {
-        if (i % 5 == 0) tick();
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (tick) {  // every tenth of a second until the work is done, woken as soon as it is
+        std::unique_lock<std::mutex> lock(mutex);
+        while (finished < threads) {
+            lock.unlock();
+            tick();
+            lock.lock();
+            all_done.wait_for(lock, std::chrono::milliseconds(100), [&] { return finished >= threads; });
+        }
     }
     for (auto& t : pool) t.join();
     if (tick) tick();
