@@ -360,12 +360,14 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
     if (!(tolerance_m > 0) || !(tolerance_m <= max_tolerance_m))
         throw UsageError("the tolerance around lines and points of expected areas must be > 0 and at most " + track::detail::fmt(max_tolerance_m) + " metres (got " +
                          std::to_string(tolerance_m) + ")");
-    register_drivers();
-    auto impl = std::make_unique<Impl>();
+    // GDAL's drivers are registered by the first file opened (ogr::open_vector): a run with no
+    // --berths and no S-57 chart among its sources needs no GDAL here (util/lazy_libraries.hpp).
+    std::unique_ptr<Impl> impl;  // made (with its GEOS context) by the first file read
     std::vector<std::string> local_warnings;
     std::vector<std::string>& warn = warnings ? *warnings : local_warnings;
     auto read_layers = [&](const std::string& path, const std::vector<std::pair<OGRLayer*, LayerRole>>& layers, bool user) {
         QuietErrors quiet;
+        if (!impl) impl = std::make_unique<Impl>();
         for (const auto& [layer, role] : layers)
             for (Built& b : LayerReader(path, *layer, role, user, frame, tolerance_m, impl->geos, warn).read()) {
                 impl->areas.push_back(std::move(b.area));
@@ -405,7 +407,7 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
     }
 
     ExpectedAreas out;
-    if (impl->areas.empty()) return out;
+    if (!impl || impl->areas.empty()) return out;
     impl->index();
     out.m_impl = std::move(impl);
     return out;

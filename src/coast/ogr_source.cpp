@@ -9,6 +9,8 @@
 
 #include <shoal/util/error.hpp>
 
+#include "util/input_file.hpp"
+
 namespace shoal::coast::ogr {
 
 namespace fs = std::filesystem;
@@ -29,7 +31,22 @@ GDALDatasetUniquePtr open_vector(const std::string& path) {
 
 bool is_s57(GDALDataset& ds) { return std::string(ds.GetDriver()->GetDescription()) == "S57"; }
 
+bool s57_leader_possible(std::string_view head) {
+    // GDAL's S-57 driver reads the first 1,024 bytes (GDALOpenInfo, a C string ending at the
+    // first NUL) and claims them only when there are at least 10, the ISO 8211 leader's byte 6
+    // is 'L', and "DSID" stands in that string. Anything that fails these cannot be claimed.
+    head = head.substr(0, 1024);
+    if (head.size() < 10 || head[6] != 'L') return false;
+    return head.substr(0, head.find('\0')).find("DSID") != std::string_view::npos;
+}
+
 bool may_be_s57(const std::string& path) {
+    // A local regular file whose first bytes cannot be an S-57 chart's is told without GDAL
+    // (which the run may then never load: util/lazy_libraries.hpp); the rest, GDAL tells.
+    if (path.rfind("/vsi", 0) != 0) {
+        std::error_code ec;
+        if (fs::is_regular_file(path, ec) && !s57_leader_possible(detail::read_head(path, 1024))) return false;
+    }
     detail::register_drivers();
     detail::QuietErrors quiet;
     const char* const s57_only[] = {"S57", nullptr};

@@ -11,6 +11,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "util/gdal_support.hpp"
@@ -26,6 +27,9 @@ bool is_s57(GDALDataset& ds);
 /// Whether GDAL's S-57 driver claims `path` (it reads the file's first bytes only): a file it
 /// does not claim is no chart, and need not be opened (opening a GeoJSON coast parses it whole).
 bool may_be_s57(const std::string& path);
+/// False when `head`, a file's first bytes, cannot be claimed by GDAL's S-57 driver (too short,
+/// no ISO 8211 leader mark, no "DSID" field name): may_be_s57 then answers without GDAL.
+bool s57_leader_possible(std::string_view head);
 /// "A, B, C" (or "none"): the layer names of `ds`, for messages.
 std::string layer_names(GDALDataset& ds);
 /// The layers of `ds` named in `names`, in that order, those it has.

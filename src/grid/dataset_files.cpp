@@ -5,11 +5,39 @@
 
 #include <gdal_priv.h>
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
 #include "util/gdal_support.hpp"
+#include "util/input_file.hpp"
 
 namespace shoal::grid {
 
+namespace {
+
+/// A local regular file named *.geojson whose first character that is not blank is '{'. Of
+/// GDAL 3.6's vector drivers, only the JSON ones (GeoJSON, GeoJSONSeq, ESRIJSON, TopoJSON) claim
+/// or open such a file (the others want another name, a prefix, binary magic, XML or a folder),
+/// and each lists it alone: GDAL's answer is the path, or none when it cannot read it, which
+/// dataset_files gives as the path too. Told without GDAL, which a check may then never load
+/// (util/lazy_libraries.hpp); grid_cache_test compares it with GDAL's list on every committed
+/// GeoJSON and on files made to sit at its edges.
+bool geojson_alone(const std::string& path) {
+    if (path.rfind("/vsi", 0) == 0 || path.size() < 8) return false;
+    std::string ext = path.substr(path.size() - 8);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::error_code ec;
+    if (ext != ".geojson" || !std::filesystem::is_regular_file(path, ec)) return false;
+    const std::string head = detail::read_head(path, 4096);
+    const std::size_t first = head.find_first_not_of(" \t\r\n");
+    return first != std::string::npos && head[first] == '{';
+}
+
+}  // namespace
+
 std::vector<std::string> dataset_files(const std::string& path) {
+    if (geojson_alone(path)) return {path};
     detail::register_drivers();
     std::vector<std::string> files;
     detail::QuietErrors quiet;
@@ -18,9 +46,7 @@ std::vector<std::string> dataset_files(const std::string& path) {
     if (GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_VECTOR, nullptr, nullptr)) {
         const std::string name = GDALGetDriverShortName(driver);
         if (name == "GeoJSON" || name == "GeoJSONSeq" || name == "ESRIJSON" || name == "TopoJSON") {
-            VSIStatBufL st;
-            if (VSIStatExL(path.c_str(), &st, VSI_STAT_EXISTS_FLAG) == 0) files.push_back(path);
-            return files;
+            return {path};
         }
     }
     GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
@@ -30,6 +56,7 @@ std::vector<std::string> dataset_files(const std::string& path) {
             CSLDestroy(list);
         }
     }
+    if (files.empty()) files.push_back(path);
     return files;
 }
 

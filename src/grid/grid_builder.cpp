@@ -41,7 +41,6 @@ std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const c
             throw;
         }
         std::vector<std::string> files = dataset_files(path);
-        if (files.empty()) files.push_back(path);
         std::sort(files.begin(), files.end());
         for (const std::string& f : files) {
             if (fs::is_directory(f, ec)) continue;

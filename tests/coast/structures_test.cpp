@@ -18,11 +18,15 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <random>
+#include <iterator>
+#include <unistd.h>
 #include <set>
 
 #include <shoal/coast/coastline.hpp>
 #include <shoal/coast/expected_areas.hpp>
 #include <shoal/geo/local_frame.hpp>
+#include "coast/ogr_source.hpp"
 #include "test_support.hpp"
 
 namespace shoal::coast {
@@ -350,4 +354,68 @@ TEST(StructureAreas, WholeCellHasHulksAndNoMooringBuoys) {
 }
 
 }  // namespace
+// Whether a file may be an S-57 chart is first told from its first bytes without GDAL (a check
+// of a grid whose sources are GeoJSON may then never load GDAL): the answer is GDAL's S-57
+// driver's own, on the committed cells and on their beginnings cut, spoilt byte by byte, cut by
+// a NUL or without their DSID, and on random files; and the rule never refuses a file the
+// driver claims.
+TEST(S57Identify, TheLeaderRuleAnswersAsGdalsDriverAndNeverRefusesWhatItClaims) {
+    GDALAllRegister();
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("shoal_s57_identify_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    std::vector<std::string> contents;
+    std::mt19937 rng(57);
+    for (const char* cell : {"coast/US5WA22M_tacoma_cut.000", "coast/US4MD81M_cut.000", "coast/US4MD81M_hazard_cut.000"}) {
+        const std::string whole = bytes(t::data_path(cell));
+        const std::string head = whole.substr(0, 2048);
+        contents.push_back(whole);
+        for (std::size_t n : {0, 5, 9, 10, 11, 24, 100, 1023, 1024, 1025}) contents.push_back(head.substr(0, n));
+        for (std::size_t at = 0; at < 40; ++at) {  // the leader's bytes: each digit, blank and mark, and random ones
+            std::string values = at < 24 ? "0123456789 LDAR-" : "";
+            for (int k = 0; k < 3; ++k) values += static_cast<char>(rng() % 256);
+            for (char v : values) {
+                std::string c = head;
+                c[at] = v;
+                contents.push_back(c);
+            }
+        }
+        for (std::size_t at = 0; at < 200; at += 7) {
+            std::string c = head;
+            c[at] = '\0';
+            contents.push_back(c);
+        }
+        std::string no_dsid = head;
+        for (std::size_t at = no_dsid.find("DSID"); at != std::string::npos; at = no_dsid.find("DSID", at + 1)) no_dsid[at + 3] = 'X';
+        contents.push_back(no_dsid);
+        std::string far_dsid = head;  // the field names moved beyond the first 1,024 bytes
+        far_dsid.insert(24, std::string(1100, '0'));
+        contents.push_back(far_dsid);
+    }
+    for (int k = 0; k < 40; ++k) {
+        std::string c(rng() % 64, ' ');
+        for (char& ch : c) ch = static_cast<char>(rng() % 256);
+        contents.push_back(c);
+    }
+    int told_without_gdal = 0, claimed = 0;
+    for (std::size_t i = 0; i < contents.size(); ++i) {
+        const std::string path = (dir / ("c" + std::to_string(i) + ".000")).string();
+        std::ofstream(path, std::ios::binary) << contents[i];
+        const char* const s57_only[] = {"S57", nullptr};
+        const bool gdal = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_VECTOR, s57_only, nullptr) != nullptr;
+        EXPECT_EQ(ogr::may_be_s57(path), gdal) << "content " << i;
+        if (gdal) {
+            EXPECT_TRUE(ogr::s57_leader_possible(contents[i])) << "content " << i;
+        }
+        claimed += gdal;
+        told_without_gdal += !ogr::s57_leader_possible(contents[i]);
+    }
+    EXPECT_GE(claimed, 30);
+    EXPECT_GE(told_without_gdal, 60);
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace shoal::coast

@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <span>
@@ -413,6 +415,8 @@ TEST_F(LoadOrBuild, MissingSourceIsAnInputError) {
 namespace {
 
 /// GDAL's own answer: the dataset opened, its GetFileList, sorted.
+/// What GDAL lists after opening `path`, sorted; the path itself when it lists none (it cannot
+/// open it), as dataset_files gives it.
 std::vector<std::string> gdal_file_list(const std::string& path) {
     std::vector<std::string> files;
     GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
@@ -422,7 +426,13 @@ std::vector<std::string> gdal_file_list(const std::string& path) {
             CSLDestroy(list);
         }
     std::sort(files.begin(), files.end());
+    if (files.empty()) files.push_back(path);
     return files;
+}
+
+std::string file_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 }  // namespace
@@ -447,5 +457,61 @@ TEST(DatasetFiles, AreTheFilesGdalListsForEveryKindOfSource) {
     EXPECT_EQ(shoal::grid::dataset_files(zipped), std::vector<std::string>{zipped});
     EXPECT_EQ(shoal::grid::dataset_files(zipped), gdal_file_list(zipped));
     fs::remove(zip);
-    EXPECT_TRUE(shoal::grid::dataset_files(t::data_path("coast/no_such.geojson")).empty());
+    const std::string missing = t::data_path("coast/no_such.geojson");
+    EXPECT_EQ(shoal::grid::dataset_files(missing), std::vector<std::string>{missing});
+}
+
+// A plain *.geojson file whose first character that is not blank is '{' is told to be its one
+// file without GDAL (a check may then never load GDAL): the same answer as GDAL's, on every
+// committed GeoJSON and on files made at the edges of that rule (blanks, a byte order mark,
+// arrays, sequences, garbage, other formats under the name, other JSON drivers' documents) and
+// on random mutations of a real one's beginning.
+TEST(DatasetFiles, PlainGeoJsonToldWithoutGdalIsWhatGdalLists) {
+    const fs::path dir = fs::temp_directory_path() / ("shoal_plain_geojson_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string real = file_bytes(t::data_path("coast/island_with_lake.geojson"));
+    ASSERT_EQ(real.substr(0, 1), "{");
+    std::vector<std::pair<std::string, std::string>> cases = {  // name, content
+        {"real.geojson", real},
+        {"blanks.geojson", " \t\r\n  " + real},
+        {"upper.GeoJSON", real},
+        {"bom.geojson", "\xEF\xBB\xBF" + real},
+        {"array.geojson", "[" + real + "]"},
+        {"empty.geojson", ""},
+        {"blank.geojson", "   \n"},
+        {"garbage.geojson", "{not json at all"},
+        {"minimal.geojson", R"({"type":"FeatureCollection","features":[]})"},
+        {"seq_rs.geojson", "\x1e" + std::string(R"({"type":"Feature","geometry":{"type":"Point","coordinates":[1,2]},"properties":{}})") + "\n"},
+        {"seq_lines.geojson", std::string(R"({"type":"Feature","geometry":{"type":"Point","coordinates":[1,2]},"properties":{}})") + "\n" +
+                                  R"({"type":"Feature","geometry":{"type":"Point","coordinates":[3,4]},"properties":{}})" + "\n"},
+        {"esri.geojson", R"({"geometryType":"esriGeometryPoint","spatialReference":{"wkid":4326},"fields":[],"features":[{"geometry":{"x":1,"y":2},"attributes":{}}]})"},
+        {"topo.geojson", R"({"type":"Topology","objects":{"a":{"type":"GeometryCollection","geometries":[{"type":"Point","coordinates":[1,2]}]}},"arcs":[]})"},
+        {"metadata.geojson", R"({"name":"x","format":"pbf","json":"{\"vector_layers\":[]}"})"},
+        {"shp.geojson", file_bytes(t::data_path("coast/gr_saronic_piraeus_land.shp"))},
+        {"gpkg.geojson", file_bytes(t::data_path("coast/uk_solent.gpkg"))},
+        {"s57.geojson", file_bytes(t::data_path("coast/US4MD81M_cut.000"))},
+        {"real.json", real},
+        {"real.geojson.txt", real},
+    };
+    std::mt19937 rng(40);
+    const std::string alphabet = "{}[] \t\r\n\":,0aeFT\x1e\xEF";
+    for (int k = 0; k < 120; ++k) {
+        std::string c = real;
+        const int edits = 1 + static_cast<int>(rng() % 6);
+        for (int e = 0; e < edits; ++e) c[rng() % 64] = alphabet[rng() % alphabet.size()];
+        if (k % 3 == 0) c = c.substr(0, rng() % 200);
+        cases.emplace_back("random_" + std::to_string(k) + ".geojson", c);
+    }
+    int claimed = 0;
+    for (const auto& [name, content] : cases) {
+        const std::string path = (dir / name).string();
+        std::ofstream(path, std::ios::binary) << content;
+        std::vector<std::string> ours = shoal::grid::dataset_files(path);
+        std::sort(ours.begin(), ours.end());
+        EXPECT_EQ(ours, gdal_file_list(path)) << name;
+        const std::size_t first = content.find_first_not_of(" \t\r\n");
+        claimed += first != std::string::npos && content[first] == '{';
+    }
+    EXPECT_GE(claimed, 60);  // the rule was taken often, not only its fallback through GDAL
+    fs::remove_all(dir);
 }

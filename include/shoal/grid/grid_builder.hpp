@@ -18,7 +18,8 @@ std::vector<std::string> coast_sources(const std::vector<std::string>& coast, co
 
 /// The files a vector dataset consists of (a Shapefile's .shp, .shx, .dbf, .prj ...), as GDAL's
 /// GetFileList lists them; a JSON dataset (GeoJSON, GeoJSONSeq, ESRIJSON, TopoJSON) is its one
-/// file, told without opening it. Empty when GDAL cannot open it.
+/// file, told without opening it (a plain *.geojson file without GDAL). The path itself when GDAL
+/// lists none (it cannot open it, or it is not there).
 std::vector<std::string> dataset_files(const std::string& path);
 
 /// Fingerprint of coastline sources and the options that shape a grid: XXH3 over the bytes of

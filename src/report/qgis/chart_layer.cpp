@@ -213,6 +213,7 @@ std::vector<ChartFeature> chart_features(const coast::Coastline& coast, const st
     // each thread takes one run of neighbouring tiles (a ring crossing many is made a polygon
     // by as few threads as can be), and stops at its first failing tile (the first of all is
     // the one a single thread would meet).
+    if (tiles.empty()) return {};  // no GEOS context either (a run that needs none may not load GEOS)
     const std::vector<ChartTile> list(tiles.begin(), tiles.end());
     std::vector<std::vector<ChartFeature>> per_tile(list.size());
     const std::size_t runs = std::min<std::size_t>(detail::thread_count(jobs), std::max<std::size_t>(1, list.size()));
