@@ -16,6 +16,7 @@
 
 #include "commands.hpp"
 #include "process.hpp"
+#include "util/lazy_libraries.hpp"
 
 #ifndef SHOAL_CLI_MODULE_DIR
 #define SHOAL_CLI_MODULE_DIR "../lib/shoal"
@@ -45,11 +46,23 @@ std::string module_path() {
 
 int run_module(int argc, char** argv) {
     const std::string path = module_path();
-    void* module = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // Lazily bound: the module calls GDAL, GEOS and PROJ without naming them, and loads each when
+    // a run first needs it (src/util/lazy_libraries.hpp). Where lazy binding is turned off
+    // (LD_BIND_NOW), the module cannot be loaded before them: they are loaded first, and it again.
+    void* module = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
+    std::string first_failure;
+    if (!module) {
+        const char* why = ::dlerror();
+        first_failure = why ? why : "";
+        const char* failure = nullptr;
+        if (shoal::detail::load_all_now(&failure)) module = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
+        else first_failure += std::string("; ") + (failure ? failure : "");
+    }
     using Entry = int (*)(int, char**);
     Entry entry = module ? reinterpret_cast<Entry>(::dlsym(module, SHOAL_CLI_ENTRY_NAME)) : nullptr;
     if (!entry) {
         const char* why = ::dlerror();
+        if (!first_failure.empty()) why = first_failure.c_str();
         std::fprintf(stderr,
                      "shoal: internal error: cannot load shoal's command module '%s' (%s): the installation is incomplete "
                      "(every command but a probe of a .shoalgrid needs it; reinstall shoal)\n",

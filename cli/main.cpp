@@ -1,8 +1,8 @@
 // shoal: the command-line front end. Parsing, messages and exit codes only; every
 // capability lives in the library (src/).
 //
-// This is the full front end, every command, in the module libshoal_cli_full.so (it links
-// GDAL): the `shoal` executable (launcher.cpp, GDAL-free) runs a probe of a grid file itself and
+// This is the full front end, every command, in the module libshoal_cli_full.so (it calls
+// GDAL, GEOS and PROJ, loaded when a run first needs them): the `shoal` executable (launcher.cpp, GDAL-free) runs a probe of a grid file itself and
 // loads this module for everything else, calling shoal_cli_main with its arguments.
 //
 // Exit status: 0 success (check: no grounding), 1 check found at least one grounding,
@@ -22,6 +22,8 @@
 #include "launcher.hpp"
 #include "options.hpp"
 #include "process.hpp"
+#include "util/gdal_support.hpp"
+#include "util/lazy_libraries.hpp"
 #include <shoal/util/printable.hpp>
 #include <shoal/version.hpp>
 
@@ -72,8 +74,10 @@ extern "C" SHOAL_CLI_ENTRY int shoal_cli_main(int argc, char** argv) {
     using namespace shoal::cli;
     fewer_malloc_arenas();
     handle_interrupts();
-    // GDAL reports through our exceptions, which name the file and feature; keep its own lines off stderr.
-    CPLSetErrorHandler(CPLQuietErrorHandler);
+    // GDAL reports through our exceptions, which name the file and feature; keep its own lines off
+    // stderr. This module is linked without GDAL, GEOS and PROJ, and loads each when a run first
+    // needs it (util/lazy_libraries.hpp): the handler is set then.
+    shoal::detail::on_gdal_loaded([] { CPLSetErrorHandler(shoal::detail::quiet_error_handler); });
     CLI::App app{"shoal: audit ship tracks against chart coastlines"};
     app.require_subcommand(1);
     // One line per usage error, like every other error (subcommands inherit this).

@@ -10,6 +10,8 @@
 
 #include <shoal/util/error.hpp>
 
+#include "util/lazy_libraries.hpp"
+
 namespace shoal::geo::detail {
 
 namespace {
@@ -78,6 +80,7 @@ struct UserCrs {
 
 /// Throws UsageError naming `text` when PROJ cannot read it as a CRS, or it is not projected.
 UserCrs read_user_crs(const std::string& text) {
+    shoal::detail::need_proj();  // loaded first when this program was linked without it (util/lazy_libraries.hpp)
     std::string input = text;
     const auto first = input.find_first_not_of(" \t\n");
     if (first != std::string::npos && input[first] == '+' && input.find("+type=crs") == std::string::npos) input += " +type=crs";
@@ -165,6 +168,9 @@ private:
 
 }  // namespace
 
-std::unique_ptr<CrsProjection> make_crs_projection(const std::string& definition) { return std::make_unique<ProjProjection>(definition); }
+std::unique_ptr<CrsProjection> make_crs_projection(const std::string& definition) {
+    shoal::detail::need_proj();
+    return std::make_unique<ProjProjection>(definition);
+}
 
 }  // namespace shoal::geo::detail

@@ -2,9 +2,13 @@
 
 #include <shoal/util/error.hpp>
 
+#include "util/lazy_libraries.hpp"
+
 namespace shoal::geo {
 
-GeosContext::GeosContext() : m_handle(GEOS_init_r()) {
+// GEOS loaded first when this program was linked without it (util/lazy_libraries.hpp): every
+// GEOS call goes through a context.
+GeosContext::GeosContext() : m_handle((detail::need_geos(), GEOS_init_r())) {
     GEOSContext_setErrorMessageHandler_r(m_handle, &GeosContext::on_message, this);
 }
 

@@ -251,7 +251,7 @@ const char* name_of(MapLayer which) noexcept {
 }
 
 StagedOutput stage_gpkg_with(const std::string& path, const std::function<void(GDALDataset&)>& fill, const ProjectView* view) {
-    GDALAllRegister();
+    detail::register_drivers();
     StagedOutput out(path);  // removed (with SQLite's journal) if interrupted or if anything below fails
     if (out.direct())
         throw InputError("cannot write '" + path + "': a GeoPackage must be a regular file (write it elsewhere, or write GeoJSON)");
@@ -283,7 +283,7 @@ bool is_shoal_gpkg_report(const std::string& path) {
     detail::register_drivers();  // merge asks before anything else of GDAL has been used
     const char* drivers[] = {"GPKG", nullptr};
     const CPLErrorStateBackuper keep;  // the last error as it was: this is a question, not a failure
-    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLPushErrorHandler(detail::quiet_error_handler);
     const GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, drivers, nullptr, nullptr));
     CPLPopErrorHandler();
     return ds && ds->GetLayerByName("events") && ds->GetLayerByName("tracks");

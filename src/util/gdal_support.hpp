@@ -16,12 +16,23 @@
 
 #include <shoal/util/error.hpp>
 
+#include "util/lazy_libraries.hpp"
+
 namespace shoal::detail {
+
+/// GDAL's quiet error handler (debug messages only, when CPL_DEBUG asks), called from here
+/// rather than taken by its address: a program linked without GDAL (the CLI's module, which
+/// loads it when first needed: util/lazy_libraries.hpp) can hold no GDAL address before GDAL
+/// is loaded.
+inline void CPL_STDCALL quiet_error_handler(CPLErr type, CPLErrorNum number, const char* message) {
+    CPLQuietErrorHandler(type, number, message);
+}
 
 /// GDALAllRegister(), once per process, from any thread. GDAL's gzip reader is told not to
 /// write its index (FILE.gz.properties) beside a gzip it reads: shoal writes no file beside
 /// its inputs.
 inline void register_drivers() {
+    need_gdal();
     static std::once_flag once;
     std::call_once(once, [] {
         CPLSetConfigOption("CPL_VSIL_GZIP_WRITE_PROPERTIES", "NO");
@@ -33,7 +44,8 @@ inline void register_drivers() {
 class QuietErrors {
 public:
     QuietErrors() {
-        CPLPushErrorHandler(CPLQuietErrorHandler);
+        need_gdal();
+        CPLPushErrorHandler(quiet_error_handler);
         CPLErrorReset();
     }
     ~QuietErrors() { CPLPopErrorHandler(); }

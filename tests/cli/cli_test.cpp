@@ -879,4 +879,52 @@ TEST(CliContactKinds, NonFiniteRuleOptionsAreRefused) {
     }
 }
 
+// The command module is linked without GDAL, GEOS and PROJ and loads each when a run first needs
+// it (src/util/lazy_libraries.hpp; docs/performance.md): a check of a file without tracks against
+// a grid whose source is GeoJSON loads none of them; tracks reported with a QGIS project need
+// the chart (GDAL) and geometry (GEOS). Where lazy binding is turned off (LD_BIND_NOW), the
+// executable loads all three before the module, which then binds every symbol at once (a
+// symbol in none of its libraries fails there): the same report files, byte for byte.
+TEST(Cli, TheModuleLoadsGdalGeosAndProjOnlyWhenARunNeedsThem) {
+    const std::string grid = (temp_dir() / "lazy-solent.shoalgrid").string();
+    ASSERT_EQ(shoal("import " + data("coast/uk_solent_land.geojson") + " -o '" + grid + "'").status, 0);
+    const fs::path module = fs::path(SHOAL_BINARY).parent_path() / "libshoal_cli_full.so";
+    ASSERT_TRUE(fs::exists(module));
+    const fs::path err = temp_dir() / "lazy-err.txt";
+    const Outcome needed = run_command("readelf -d '" + module.string() + "'", err);
+    ASSERT_EQ(needed.status, 0) << needed.err;
+    EXPECT_NE(needed.out.find("(NEEDED)"), std::string::npos) << needed.out;
+    for (const char* lib : {"libgdal", "libgeos", "libproj"}) EXPECT_EQ(needed.out.find(lib), std::string::npos) << lib << " in\n" << needed.out;
+
+    const fs::path none = temp_dir() / "lazy-no-tracks.csv";
+    std::ofstream(none) << "mmsi,timestamp,lat,lon,sog,cog,heading\n";
+    const fs::path tracks = solent_tracks();
+    struct Case {
+        fs::path input;
+        std::vector<const char*> loaded;  // what the dynamic loader says the run loaded (PROJ with GDAL, which links it)
+    };
+    for (const Case& c : {Case{none, {}}, Case{tracks, {"libgdal.so", "libgeos_c.so", "libproj.so"}}}) {
+        const std::string name = c.input.stem().string();
+        const fs::path lazy = temp_dir() / ("lazy-" + name), eager = temp_dir() / ("eager-" + name);
+        fs::remove_all(lazy);
+        fs::remove_all(eager);
+        fs::create_directories(lazy);
+        fs::create_directories(eager);
+        const std::string args = " check --coast '" + grid + "' --dims 50,10,5,5 '" + c.input.string() + "' -o ";
+        const Outcome l = run_command("LD_DEBUG=libs '" + std::string(SHOAL_BINARY) + "'" + args + "'" + (lazy / "r.geojson").string() + "'", err);
+        ASSERT_LE(l.status, 2) << l.err;  // 2 for the file with no fix (skipped), 1 for the grounding
+        ASSERT_TRUE(fs::exists(lazy / "r.geojson")) << name;
+        for (const char* lib : {"libgdal.so", "libgeos_c.so", "libproj.so"}) {
+            const bool want = std::find_if(c.loaded.begin(), c.loaded.end(), [&](const char* w) { return std::string(w) == lib; }) != c.loaded.end();
+            EXPECT_EQ(l.err.find(std::string("/") + lib) != std::string::npos, want) << name << ": " << lib;
+        }
+        const Outcome e = run_command("LD_BIND_NOW=1 '" + std::string(SHOAL_BINARY) + "'" + args + "'" + (eager / "r.geojson").string() + "'", err);
+        ASSERT_EQ(e.status, l.status) << e.err;
+        std::vector<std::string> files;
+        for (const auto& f : fs::directory_iterator(lazy)) files.push_back(f.path().filename().string());
+        EXPECT_GE(files.size(), 10u) << name;  // the report, its layer files and styles, the QGIS project
+        for (const std::string& f : files) EXPECT_EQ(slurp(lazy / f), slurp(eager / f)) << name << ": " << f;
+    }
+}
+
 }  // namespace
