@@ -48,8 +48,10 @@ public:
         print_grid(g);
         std::printf("build time:     %.3f s (project %.3f s, clip %.3f s with %llu GEOSClipByRect calls, cell states %.3f s)\n",
                     stats.total_s, stats.project_s, stats.clip_s, static_cast<unsigned long long>(stats.clip_calls), stats.state_s);
-        std::printf("wrote:          %s (%llu bytes)\n", m_output.c_str(),
-                    static_cast<unsigned long long>(std::filesystem::file_size(m_output)));
+        std::error_code ec;  // no size to tell of a device (-o /dev/null)
+        const std::uintmax_t bytes = std::filesystem::file_size(m_output, ec);
+        if (ec) std::printf("wrote:          %s\n", m_output.c_str());
+        else std::printf("wrote:          %s (%llu bytes)\n", m_output.c_str(), static_cast<unsigned long long>(bytes));
         return exit_ok;
     }
 

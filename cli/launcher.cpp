@@ -48,21 +48,30 @@ int run_module(int argc, char** argv) {
     const std::string path = module_path();
     // Lazily bound: the module calls GDAL, GEOS and PROJ without naming them, and loads each when
     // a run first needs it (src/util/lazy_libraries.hpp). Where lazy binding is turned off
-    // (LD_BIND_NOW), the module cannot be loaded before them: they are loaded first, and it again.
+    // (LD_BIND_NOW, or a module linked with -z now), the module cannot be loaded before them:
+    // then, and only then, they are loaded first, and it again.
     void* module = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
-    std::string first_failure;
+    std::string failure;
     if (!module) {
-        const char* why = ::dlerror();
-        first_failure = why ? why : "";
-        const char* failure = nullptr;
-        if (shoal::detail::load_all_now(&failure)) module = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
-        else first_failure += std::string("; ") + (failure ? failure : "");
+        const char* e = ::dlerror();
+        failure = e ? e : "no reason given";
+        if (failure.find("undefined symbol") != std::string::npos) {
+            std::string why;
+            if (!shoal::detail::load_all_now(&why)) failure += "; " + why;
+            else if (!(module = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL))) {
+                const char* again = ::dlerror();
+                failure = again ? again : "no reason given";
+            }
+        }
     }
     using Entry = int (*)(int, char**);
     Entry entry = module ? reinterpret_cast<Entry>(::dlsym(module, SHOAL_CLI_ENTRY_NAME)) : nullptr;
     if (!entry) {
-        const char* why = ::dlerror();
-        if (!first_failure.empty()) why = first_failure.c_str();
+        if (module) {
+            const char* e = ::dlerror();
+            failure = e ? e : "no entry point";
+        }
+        const char* why = failure.c_str();
         std::fprintf(stderr,
                      "shoal: internal error: cannot load shoal's command module '%s' (%s): the installation is incomplete "
                      "(every command but a probe of a .shoalgrid needs it; reinstall shoal)\n",

@@ -4,6 +4,7 @@
 // Ctrl-C removing the temporary files being written, and the exceptions said as messages with
 // their exit status.
 
+#include "util/lazy_libraries.hpp"
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -91,6 +92,10 @@ int run_reporting_errors(F&& command) {
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "shoal: error: out of memory (try a larger --cell, or fewer inputs at once)\n");
         return exit_usage;
+    } catch (const shoal::detail::MissingLibrary& e) {
+        std::fprintf(stderr, "shoal: internal error: %s (the installation is incomplete: install that library, or reinstall shoal)\n",
+                     shoal::printable(e.what()).c_str());
+        return exit_internal;
     } catch (const shoal::LibraryError& e) {
         std::fprintf(stderr, "shoal: internal error: %s (not the input's fault: please report it)\n", shoal::printable(e.what()).c_str());
         return exit_internal;

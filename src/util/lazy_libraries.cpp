@@ -6,11 +6,10 @@
 #include <mutex>
 #include <string>
 
-#include <shoal/util/error.hpp>
-
 // The libraries this build was made against (src/CMakeLists.txt): their sonames, loaded as the
 // dynamic linker would load a library named in DT_NEEDED, and their folders, tried when the
-// soname alone is not found there (a GDAL installed under its own prefix).
+// soname alone is not found there (a GDAL installed under its own prefix). Empty when the
+// program is linked with them (SHOAL_LAZY_LIBRARIES off): they are then always found already.
 #ifndef SHOAL_GDAL_SONAME
 #error "SHOAL_GDAL_SONAME, SHOAL_GEOS_SONAME and SHOAL_PROJ_SONAME come from src/CMakeLists.txt"
 #endif
@@ -20,50 +19,56 @@ namespace {
 
 struct Library {
     const char* name;    ///< for messages
-    const char* probe;   ///< a function it exports: found already, the library is there
+    const char* probe;   ///< a function it exports: found, the library is there
     const char* soname;
     const char* folder;
-    std::once_flag once;
+    std::mutex mutex;
+    std::atomic<bool> ready{false};
 };
 
-Library gdal{"GDAL", "GDALAllRegister", SHOAL_GDAL_SONAME, SHOAL_GDAL_FOLDER, {}};
-Library geos{"GEOS", "GEOS_init_r", SHOAL_GEOS_SONAME, SHOAL_GEOS_FOLDER, {}};
-Library proj{"PROJ", "proj_context_create", SHOAL_PROJ_SONAME, SHOAL_PROJ_FOLDER, {}};
+Library gdal{"GDAL", "GDALAllRegister", SHOAL_GDAL_SONAME, SHOAL_GDAL_FOLDER, {}, {}};
+Library geos{"GEOS", "GEOS_init_r", SHOAL_GEOS_SONAME, SHOAL_GEOS_FOLDER, {}, {}};
+Library proj{"PROJ", "proj_context_create", SHOAL_PROJ_SONAME, SHOAL_PROJ_FOLDER, {}, {}};
 
 std::atomic<void (*)()> gdal_setup{nullptr};
-std::atomic<bool> gdal_ready{false};
 
-/// Loads `lib` into the global scope unless its functions are already found from here; nullptr
-/// when done, else the loader's message.
-const char* load(const Library& lib) {
-    if (::dlsym(RTLD_DEFAULT, lib.probe)) return nullptr;
-    if (::dlopen(lib.soname, RTLD_NOW | RTLD_GLOBAL)) return nullptr;
-    const char* first = ::dlerror();
-    static thread_local std::string message;
-    message = first ? first : "no reason given";
-    const std::string path = std::string(lib.folder) + "/" + lib.soname;
-    if (*lib.folder && ::dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL)) return nullptr;
-    return message.c_str();
+/// Loads `lib` into the global scope unless its functions are found from here already; "" when
+/// they are found after, else why not (each place tried, with the loader's reason).
+std::string load(const Library& lib) {
+    if (::dlsym(RTLD_DEFAULT, lib.probe)) return "";
+    std::string why;
+    auto attempt = [&](const std::string& file) {
+        // Lazily bound, as a library named in DT_NEEDED would be (Debian's are built to bind
+        // at once anyway); global, so that the module's calls find its functions.
+        if (::dlopen(file.c_str(), RTLD_LAZY | RTLD_GLOBAL)) {
+            if (::dlsym(RTLD_DEFAULT, lib.probe)) return true;
+            why += (why.empty() ? "" : "; ") + file + " has no " + lib.probe;
+            return false;
+        }
+        const char* e = ::dlerror();
+        why += (why.empty() ? "" : "; ") + std::string(e ? e : file + ": not loaded");
+        return false;
+    };
+    if (!*lib.soname) return std::string(lib.probe) + " is not linked into this program";
+    if (attempt(lib.soname)) return "";
+    if (*lib.folder && attempt(std::string(lib.folder) + "/" + lib.soname)) return "";
+    return why;
 }
 
 void need(Library& lib) {
-    std::call_once(lib.once, [&lib] {
-        if (const char* why = load(lib))
-            throw LibraryError(std::string("cannot load ") + lib.name + " (" + lib.soname + "), which this run needs: " + why);
-    });
+    if (lib.ready.load(std::memory_order_acquire)) return;
+    const std::lock_guard<std::mutex> lock(lib.mutex);
+    if (lib.ready.load(std::memory_order_relaxed)) return;
+    if (const std::string why = load(lib); !why.empty())  // not ready: the next need tries again
+        throw MissingLibrary(std::string("cannot load ") + lib.name + " (" + lib.soname + "), which this run needs: " + why);
+    if (&lib == &gdal)
+        if (auto* setup = gdal_setup.load()) setup();
+    lib.ready.store(true, std::memory_order_release);
 }
 
 }  // namespace
 
-void need_gdal() {
-    if (gdal_ready.load(std::memory_order_acquire)) return;
-    need(gdal);
-    static std::once_flag setup_once;
-    std::call_once(setup_once, [] {
-        if (auto* setup = gdal_setup.load()) setup();
-    });
-    gdal_ready.store(true, std::memory_order_release);
-}
+void need_gdal() { need(gdal); }
 
 void need_geos() { need(geos); }
 
@@ -71,13 +76,13 @@ void need_proj() { need(proj); }
 
 void on_gdal_loaded(void (*setup)()) {
     gdal_setup.store(setup);
-    if (gdal_ready.load(std::memory_order_acquire)) setup();
+    if (gdal.ready.load(std::memory_order_acquire)) setup();
 }
 
-bool load_all_now(const char** failure) {
+bool load_all_now(std::string* failure) {
     for (const Library* lib : {&gdal, &geos, &proj})
-        if (const char* why = load(*lib)) {
-            if (failure) *failure = why;
+        if (std::string why = load(*lib); !why.empty()) {
+            if (failure) *failure = std::string("cannot load ") + lib->name + " (" + lib->soname + "): " + why;
             return false;
         }
     return true;

@@ -11,10 +11,20 @@
 /// user CRSs (geo/crs_projection.cpp). In a program linked with the library (the tests, the
 /// Python module, a user's program), each finds its library already there and does nothing else.
 ///
-/// Each is thread-safe and cheap once done. A library that cannot be loaded is a LibraryError
-/// naming it and the loader's reason (tried again at the next need).
+/// Each is thread-safe and cheap once done. A library that cannot be loaded is a MissingLibrary
+/// naming it and the loader's reasons (tried again at the next need).
+
+#include <string>
+
+#include <shoal/util/error.hpp>
 
 namespace shoal::detail {
+
+/// GDAL, GEOS or PROJ could not be loaded when a run needed it: the installation is incomplete
+/// (not the input's fault, nor a bug).
+struct MissingLibrary : LibraryError {
+    using LibraryError::LibraryError;
+};
 
 void need_gdal();
 void need_geos();
@@ -25,8 +35,8 @@ void need_proj();
 void on_gdal_loaded(void (*setup)());
 
 /// Loads all three now, into the global scope (a program whose lazy binding is turned off, by
-/// LD_BIND_NOW, must have them before it loads a module that calls them). False, with the
-/// loader's message, when one cannot be loaded.
-bool load_all_now(const char** failure);
+/// LD_BIND_NOW, must have them before it loads a module that calls them). False, with why,
+/// when one cannot be loaded.
+bool load_all_now(std::string* failure);
 
 }  // namespace shoal::detail

@@ -927,4 +927,13 @@ TEST(Cli, TheModuleLoadsGdalGeosAndProjOnlyWhenARunNeedsThem) {
     }
 }
 
+// A grid written to a device (-o /dev/null: to see an import's account without keeping the
+// grid) has no size to tell: the account names it without one, not an internal error.
+TEST(Cli, ImportToADeviceSaysWhatItWroteWithoutASize) {
+    const Outcome r = shoal("import " + data("coast/uk_solent_land.geojson") + " -o /dev/null");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("wrote:          /dev/null\n"), std::string::npos) << r.out;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+}
+
 }  // namespace
