@@ -26,7 +26,7 @@ CLI::App* ProbeArgs::add(CLI::App& app) {
                 "Shallow water and dangers count as hazards for a limiting depth: --hazard-depth, else the ship's draught + --ukc,\n"
                 "else the grid's default (import --hazard-depth), else land only.");
     opts.add(*sub);
-    sub->add_option("poses", poses, "CSV of poses: lat,lon,heading (a header line is optional)")->required();
+    sub->add_option("poses", poses, "CSV of poses: lat,lon,heading (a header line is optional; - for standard input)")->required();
     sub->add_option("-o,--output", output, "Write the CSV here instead of stdout (written atomically)");
     sub->add_option("--jobs,-j", jobs, "Threads checking poses (default: all cores); the output is the same whatever the number");
     return sub;

@@ -8,9 +8,13 @@
 namespace shoal::io {
 
 PoseFile read_pose_csv(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
-    if (std::filesystem::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a CSV file");
+    // Standard input (-, /vsistdin) and GDAL's paths (/vsigzip/..., /vsizip/...) are read as a
+    // track file's are (util/input_file.hpp); a path on disk must be there, and be a file.
+    if (!detail::names_standard_input(path) && path.rfind("/vsi", 0) != 0) {
+        std::error_code ec;
+        if (!std::filesystem::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
+        if (std::filesystem::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a CSV file");
+    }
     std::string text;
     try {
         text = detail::read_input(path, max_pose_file_bytes, "a pose file");

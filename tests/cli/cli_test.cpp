@@ -225,6 +225,13 @@ TEST(Cli, ProbeOfAGridRunsWithoutGdalAndWritesWhatTheFullFrontEndWrites) {
     EXPECT_EQ(gzipped.out, plain.out);
     EXPECT_NE(plain.err.find("line 4: latitude 'not'"), std::string::npos) << plain.err;
     EXPECT_NE(gzipped.err.find("line 4: latitude 'not'"), std::string::npos) << gzipped.err;
+    // Standard input, plain and gzipped (read by the module, as a track file would be).
+    for (const std::string& in : {poses.string(), poses.string() + ".gz"}) {
+        const Outcome piped = shoal("probe --coast '" + grid + "' --dims 100,20,8,8 - < '" + in + "'");
+        ASSERT_EQ(piped.status, 0) << piped.err;
+        EXPECT_EQ(piped.out, plain.out) << in;
+        EXPECT_NE(piped.err.find("line 4: latitude 'not'"), std::string::npos) << piped.err;
+    }
 
     // The dynamic loader's own account: no GDAL for the grid's probe; GDAL for a coastline's
     // (read by the module), so the check can fail.
