@@ -6,7 +6,9 @@
 #   2. the tests that run the audit on several threads (audit_test, cli_test, bad_input_test;
 #      cli_test also runs `shoal probe --jobs 2` and 3), those that read a CSV file on two
 #      threads (track_test), poses placed in blocks on threads (check_test), and the report's
-#      events and the chart layer's tiles made on threads (report_test).
+#      events and the chart layer's tiles made on threads (report_test), and the threads' pool
+#      itself (util_test Parallel*). The module loads GDAL, GEOS and PROJ from whichever thread
+#      first needs them (src/util/lazy_libraries.hpp): the runs above do it from the chart's.
 # Any data race or other report from ThreadSanitizer makes it fail (halt_on_error).
 # GDAL, GEOS and PROJ are not instrumented: races inside them are not seen, only ours.
 #
@@ -20,7 +22,7 @@ build=build-tsan
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHOAL_BUILD_BENCH=OFF \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
   -DCMAKE_MODULE_LINKER_FLAGS="-fsanitize=thread" -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=thread" >/dev/null
-cmake --build "$build" -j "$(nproc)" --target shoal_cli audit_test cli_test bad_input_test track_test check_test report_test
+cmake --build "$build" -j "$(nproc)" --target shoal_cli audit_test cli_test bad_input_test track_test check_test report_test util_test
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 history_size=4 suppressions=$PWD/.ci/tsan.supp"
 shoal="$build/cli/shoal"
 out="$build/tsan-out"
@@ -64,5 +66,6 @@ halves "$build/tests/cli_test"
 halves "$build/tests/bad_input_test" --gtest_filter='-BadInput.EveryNumericOption*:BadInput.*CostNoMemoryPerLine*'
 "$build/tests/track_test" --gtest_brief=1 --gtest_filter='Input.ACsvReadByTwoThreads*:PackedTrack.TracksNormalisedOnThreads*'
 "$build/tests/check_test" --gtest_brief=1 --gtest_filter='Placement.InBlocks*'
+"$build/tests/util_test" --gtest_brief=1 --gtest_filter='Parallel*'
 "$build/tests/report_test" --gtest_brief=1 --gtest_filter='ReportFields.TheStreamedGeoJsonIsTheDocumentsDump:ChartLayer.*'
 echo "ThreadSanitizer: no report"
