@@ -55,7 +55,7 @@ int run_module(int argc, char** argv) {
     if (!module) {
         const char* e = ::dlerror();
         failure = e ? e : "no reason given";
-        if (failure.find("undefined symbol") != std::string::npos) {
+        if (failure.find("undefined symbol") != std::string::npos || failure.find("symbol not found") != std::string::npos) {  // glibc's, musl's
             std::string why;
             if (!shoal::detail::load_all_now(&why)) failure += "; " + why;
             else if (!(module = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL))) {
@@ -71,11 +71,10 @@ int run_module(int argc, char** argv) {
             const char* e = ::dlerror();
             failure = e ? e : "no entry point";
         }
-        const char* why = failure.c_str();
         std::fprintf(stderr,
                      "shoal: internal error: cannot load shoal's command module '%s' (%s): the installation is incomplete "
                      "(every command but a probe of a .shoalgrid needs it; reinstall shoal)\n",
-                     path.c_str(), why ? why : "no reason given");
+                     path.c_str(), failure.c_str());
         return shoal::cli::exit_internal;
     }
     return entry(argc, argv);  // never closed: its static objects end with the process, as before

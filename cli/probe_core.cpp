@@ -15,6 +15,8 @@
 #include <shoal/util/output_file.hpp>
 #include <shoal/util/printable.hpp>
 
+#include "util/standard_input.hpp"
+
 namespace shoal::cli {
 
 CLI::App* ProbeArgs::add(CLI::App& app) {
@@ -33,7 +35,18 @@ CLI::App* ProbeArgs::add(CLI::App& app) {
 }
 
 int run_probe(const ProbeArgs& args, const ProbeInputs& inputs) {
-    check_outputs({{args.output, "-o", "the poses CSV", io::is_probe_output}}, args.opts.inputs({args.poses}));
+    const std::vector<std::string> read = args.opts.inputs({args.poses});
+    check_outputs({{args.output, "-o", "the poses CSV", io::is_probe_output}}, read);
+    // Standard input can be read once: the ship file read first would leave the poses nothing.
+    std::vector<std::string> named;
+    auto name = [&](const std::string& path, const std::string& what) {
+        if (detail::reads_standard_input(path)) named.push_back(what + " ('" + path + "')");
+    };
+    name(args.poses, "the poses");
+    for (const std::string& c : args.opts.coast) name(c, "--coast");
+    name(args.opts.ship_file, "--ship");
+    if (named.size() > 1)
+        throw UsageError("standard input can be read once, and both " + named[0] + " and " + named[1] + " name it: give one of them as a file");
     const hull::Hull hull = inputs.hull();
     const io::PoseFile poses = inputs.poses();
     for (const auto& e : poses.errors) std::fprintf(stderr, "shoal: warning: %s\n", printable(e).c_str());

@@ -16,6 +16,7 @@
 #include <shoal/track/nmea_reader.hpp>
 #include <shoal/track/ogr_reader.hpp>
 #include <shoal/track/vessels_table.hpp>
+#include "util/standard_input.hpp"
 #include "util/gdal_input.hpp"
 #include "util/input_file.hpp"
 #include "util/parse_util.hpp"
@@ -269,7 +270,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& paths, st
         std::string key = file;
         // Standard input by any of its names is one stream: read once (a second read would
         // race the first for the same bytes).
-        if (shoal::detail::names_standard_input(file) || file == "/dev/stdin" || file == "/dev/fd/0" || file == "/proc/self/fd/0") {
+        if (shoal::detail::reads_standard_input(file)) {
             key = "standard input";
         } else if (!shoal::detail::is_virtual_path(file)) {
             std::error_code ec;

@@ -35,13 +35,17 @@ std::atomic<void (*)()> gdal_setup{nullptr};
 /// Loads `lib` into the global scope unless its functions are found from here already; "" when
 /// they are found after, else why not (each place tried, with the loader's reason).
 std::string load(const Library& lib) {
+    // Without SHOAL_LAZY_LIBRARIES the program is linked with the library (shared or static:
+    // a static one's functions are in no dynamic symbol table), and its calls are bound by then.
+    if (!*lib.soname) return "";
     if (::dlsym(RTLD_DEFAULT, lib.probe)) return "";
     std::string why;
     auto attempt = [&](const std::string& file) {
         // Lazily bound, as a library named in DT_NEEDED would be (Debian's are built to bind
         // at once anyway); global, so that the module's calls find its functions.
-        if (::dlopen(file.c_str(), RTLD_LAZY | RTLD_GLOBAL)) {
+        if (void* handle = ::dlopen(file.c_str(), RTLD_LAZY | RTLD_GLOBAL)) {
             if (::dlsym(RTLD_DEFAULT, lib.probe)) return true;
+            ::dlclose(handle);  // not the library: its symbols leave the global scope again
             why += (why.empty() ? "" : "; ") + file + " has no " + lib.probe;
             return false;
         }
@@ -49,7 +53,6 @@ std::string load(const Library& lib) {
         why += (why.empty() ? "" : "; ") + std::string(e ? e : file + ": not loaded");
         return false;
     };
-    if (!*lib.soname) return std::string(lib.probe) + " is not linked into this program";
     if (attempt(lib.soname)) return "";
     if (*lib.folder && attempt(std::string(lib.folder) + "/" + lib.soname)) return "";
     return why;
@@ -61,6 +64,8 @@ void need(Library& lib) {
     if (lib.ready.load(std::memory_order_relaxed)) return;
     if (const std::string why = load(lib); !why.empty())  // not ready: the next need tries again
         throw MissingLibrary(std::string("cannot load ") + lib.name + " (" + lib.soname + "), which this run needs: " + why);
+    // Under the lock: a setup must not need GDAL itself (register_drivers, QuietErrors), which
+    // would take this lock again. The CLI's sets GDAL's error handler, nothing more.
     if (&lib == &gdal)
         if (auto* setup = gdal_setup.load()) setup();
     lib.ready.store(true, std::memory_order_release);
