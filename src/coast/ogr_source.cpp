@@ -43,7 +43,7 @@ bool s57_leader_possible(std::string_view head) {
 bool may_be_s57(const std::string& path) {
     // A local regular file whose first bytes cannot be an S-57 chart's is told without GDAL
     // (which the run may then never load: util/lazy_libraries.hpp); the rest, GDAL tells.
-    if (path.rfind("/vsi", 0) != 0) {
+    if (!detail::is_virtual_path(path)) {
         std::error_code ec;
         if (fs::is_regular_file(path, ec) && !s57_leader_possible(detail::read_head(path, 1024))) return false;
     }

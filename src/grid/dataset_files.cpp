@@ -1,6 +1,7 @@
 // grid::dataset_files: the files of a vector dataset, as GDAL lists them (grid_builder.hpp). A
-// file of its own: the one part of fingerprinting a grid's sources that needs GDAL, which a
-// program without GDAL could define otherwise (docs/performance.md, "What a check without GDAL needs").
+// file of its own: the one part of fingerprinting a grid's sources that needs GDAL, but for a
+// plain GeoJSON file, told without it (docs/performance.md, "GDAL, GEOS and PROJ loaded when a
+// run needs them").
 #include <shoal/grid/grid_builder.hpp>
 
 #include <gdal_priv.h>
@@ -24,7 +25,7 @@ namespace {
 /// (util/lazy_libraries.hpp); grid_cache_test compares it with GDAL's list on every committed
 /// GeoJSON and on files made to sit at its edges.
 bool geojson_alone(const std::string& path) {
-    if (path.rfind("/vsi", 0) == 0 || path.size() < 8) return false;
+    if (detail::is_virtual_path(path) || path.size() < 8) return false;
     std::string ext = path.substr(path.size() - 8);
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     std::error_code ec;

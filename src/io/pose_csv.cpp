@@ -10,7 +10,7 @@ namespace shoal::io {
 PoseFile read_pose_csv(const std::string& path) {
     // Standard input (-, /vsistdin) and GDAL's paths (/vsigzip/..., /vsizip/...) are read as a
     // track file's are (util/input_file.hpp); a path on disk must be there, and be a file.
-    if (!detail::names_standard_input(path) && path.rfind("/vsi", 0) != 0) {
+    if (!detail::is_virtual_path(path)) {
         std::error_code ec;
         if (!std::filesystem::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
         if (std::filesystem::is_directory(path, ec)) throw InputError("'" + path + "' is a directory, not a CSV file");

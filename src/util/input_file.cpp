@@ -132,8 +132,6 @@ std::string size_text(std::size_t bytes) {
     return std::to_string(bytes) + " bytes";
 }
 
-bool names_standard_input(const std::string& path) noexcept { return is_stdin(path); }
-
 bool is_virtual_path(const std::string& path) noexcept { return path == "-" || starts_with(path, "/vsi"); }
 
 std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read) {

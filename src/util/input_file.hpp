@@ -43,9 +43,6 @@ struct InputOpenError : InputError {
     std::string reason;
 };
 
-/// True for the names InputFile reads standard input by: `-`, `/vsistdin`, `/vsistdin/NAME`.
-bool names_standard_input(const std::string& path) noexcept;
-
 /// True for `-` and the paths GDAL reads itself (`/vsi...`).
 bool is_virtual_path(const std::string& path) noexcept;
 
