@@ -115,6 +115,7 @@ struct Search {
         if (!found) std::sort(order.begin(), order.end());  // ties by chunk: the order read otherwise
         for (const auto& [cd2, c] : order) {
             if (cd2 >= best2) continue;
+            hull.ensure_chunk(c);
             const std::size_t e_end = std::min(n, (c + 1) * chunk_edges);
             for (std::size_t e = c * chunk_edges; e < e_end; ++e) {
                 const double de2 = box_dist2(hull.edge_box[e], sb);

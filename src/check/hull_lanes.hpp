@@ -30,7 +30,7 @@ using geo::XY;
 //   box grown by that bound; only the survivors are rotated into the ship-aligned frame and
 //   tested against the tighter aligned box, then against boxes of chunks of hull edges and
 //   of single edges, before any exact distance;
-// - hull edges, their boxes and 1/|d|^2 are built only when a segment comes near;
+// - hull edges, their boxes and 1/|d|^2 are made only when a segment comes near their chunk;
 // - each hull vertex is measured once per segment, not once per edge.
 
 /// Edges are grouped in chunks of this many consecutive edges, each with its box in the
@@ -142,11 +142,12 @@ struct AlignedHull {
     XY u, v;  // unit axes in local metres
     std::size_t n = 0;
     std::vector<XY> pts;  // n + 1 points: the outline, first point repeated at the end
-    // Per edge e (pts[e] -> pts[e + 1]), built on demand: direction, 1 / |d|^2, box.
+    // Per edge e (pts[e] -> pts[e + 1]), made on demand by chunks: direction, 1 / |d|^2, box.
     std::vector<XY> dir;
     std::vector<double> inv_len2;
     std::vector<geo::Box> edge_box;
     std::vector<geo::Box> chunk_box;
+    std::vector<unsigned char> chunk_ready;  // per chunk: its edges made (ensure_chunk)
     bool edges_ready = false;
     geo::Box box;        // aligned frame
     geo::Box local_box;  // local metres
@@ -186,38 +187,49 @@ struct AlignedHull {
         edges_ready = false;
     }
 
-    /// Edges and chunk boxes: built on the first segment that comes near (open-water poses
-    /// never need them).
+    /// The chunks' boxes: made on the first segment that comes near (open-water poses never
+    /// need them), from the points (a chunk's box is its edges' boxes' box). Each chunk's
+    /// edges are made when a segment first comes near that chunk (ensure_chunk).
     void ensure_edges() {
         if (edges_ready) return;
         edges_ready = true;
         dir.resize(n);
         inv_len2.resize(n);
         edge_box.resize(n);
-        chunk_box.resize((n + chunk_edges - 1) / chunk_edges);
-        for (std::size_t e = 0; e < n; ++e) {
+        const std::size_t n_chunks = (n + chunk_edges - 1) / chunk_edges;
+        chunk_box.resize(n_chunks);
+        chunk_ready.assign(n_chunks, 0);
+        for (std::size_t c = 0; c < n_chunks; ++c) {
+            V2 cmin = splat(INFINITY), cmax = splat(-INFINITY);
+            for (std::size_t k = c * chunk_edges, k_end = std::min(n, k + chunk_edges); k <= k_end; ++k) {
+                const V2 p = load(pts[k]);
+                cmin = vmin(p, cmin);
+                cmax = vmax(p, cmax);
+            }
+            store_box(chunk_box[c], cmin, cmax);
+        }
+    }
+
+    /// Chunk c's edges: direction, box and 1 / |d|^2 (0 for a degenerate edge), two edges
+    /// per division. After ensure_edges().
+    void ensure_chunk(std::size_t c) {
+        if (chunk_ready[c]) return;
+        chunk_ready[c] = 1;
+        const std::size_t e0 = c * chunk_edges, e_end = std::min(n, e0 + chunk_edges);
+        for (std::size_t e = e0; e < e_end; ++e) {
             const V2 a = load(pts[e]), b = load(pts[e + 1]);
             store(dir[e], b - a);
             store_box(edge_box[e], vmin(a, b), vmax(a, b));
         }
-        // 1 / |d|^2 (0 for a degenerate edge), two edges per division.
-        std::size_t e = 0;
-        for (; e + 1 < n; e += 2) {
+        std::size_t e = e0;
+        for (; e + 1 < e_end; e += 2) {
             const V2 d0 = load(dir[e]), d1 = load(dir[e + 1]);
             const V2 s0 = d0 * d0, s1 = d1 * d1;
             store2(&inv_len2[e], recip_or_zero(lows(s0, s1) + highs(s0, s1)));
         }
-        for (; e < n; ++e) {
+        for (; e < e_end; ++e) {
             const double len2 = geo::norm2(dir[e]);
             inv_len2[e] = len2 > 0 ? 1.0 / len2 : 0.0;
-        }
-        for (std::size_t c = 0; c < chunk_box.size(); ++c) {
-            V2 cmin = splat(INFINITY), cmax = splat(-INFINITY);
-            for (std::size_t k = c * chunk_edges, k_end = std::min(n, k + chunk_edges); k < k_end; ++k) {
-                cmin = vmin(load_min(edge_box[k]), cmin);
-                cmax = vmax(load_max(edge_box[k]), cmax);
-            }
-            store_box(chunk_box[c], cmin, cmax);
         }
     }
 
