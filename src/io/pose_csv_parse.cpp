@@ -17,6 +17,8 @@
 #include <shoal/util/error.hpp>
 #include <shoal/util/output_file.hpp>
 
+#include "util/fixed_decimal.hpp"
+
 namespace shoal::io {
 
 namespace {
@@ -153,24 +155,17 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
 namespace {
 
 /// Appends `v` as printf's "%.<precision>f" would (std::to_chars is exact, as glibc's printf is).
-void append_fixed(std::string& out, double v, int precision) {
-    char buf[400];  // enough for any double in fixed notation with 7 decimals
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, precision);
-    if (ec != std::errc()) throw std::logic_error("probe: a number too long to write");
-    out.append(buf, end);
-}
-
 }  // namespace
 
 void append_probe_row(std::string& out, const PoseRow& pose, bool claimed, bool collision, double clearance_m, bool covered) {
-    append_fixed(out, pose.lat, 7);
+    detail::append_fixed(out, pose.lat, 7);
     out += ',';
-    append_fixed(out, pose.lon, 7);
+    detail::append_fixed(out, pose.lon, 7);
     out += ',';
-    append_fixed(out, pose.heading_deg, 1);
+    detail::append_fixed(out, pose.heading_deg, 1);
     if (claimed) {
         out += collision ? ",1," : ",0,";
-        append_fixed(out, clearance_m, 3);
+        detail::append_fixed(out, clearance_m, 3);
         out += covered ? ",1\n" : ",0\n";
     } else {
         out += ",,,0\n";

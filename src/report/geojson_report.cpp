@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "util/fixed_decimal.hpp"
 #include "util/parallel.hpp"
 #include "report/qgis/qgis_styles.hpp"
 #include "report/qgis/chart_layer.hpp"
@@ -404,29 +405,11 @@ namespace {
 /// bytes at `at`; returns their end.
 char* put_coordinate(char* at, double v) {
     if (!std::isfinite(v)) return std::copy_n("null", 4, at);
-    static_assert(fields::coordinate_decimals == 7, "the digits below are for 7 decimals");
-    const double a = std::fabs(v);
-    // The nearest integer to a * 1e7, with ties to even, as printf rounds: p = a * 1e7 is
-    // rounded, e its exact error (fma). p can only land on a half when a * 1e7 is at or
-    // near it (halves are doubles here), and then e says on which side a * 1e7 is. (p is
-    // under 2^52: adding and taking away 2^52 rounds it to the nearest integer, ties to
-    // even, in the default rounding mode, as nearbyint does, without a call.)
-    const double p = a * 1e7;
-    constexpr double two52 = 4503599627370496.0;
-    double r = (p + two52) - two52;
-    if (std::fabs(p - r) == 0.5) {
-        const double e = std::fma(a, 1e7, -p);
-        if (e != 0) r = e > 0 ? p + 0.5 : p - 0.5;
-    }
-    const auto n = static_cast<std::uint64_t>(r);
-    if (std::signbit(v)) *at++ = '-';  // "-0.0" for a negative that rounds to zero, as printf
-    at = std::to_chars(at, at + 10, n / 10000000).ptr;
-    *at++ = '.';
-    std::uint64_t frac = n % 10000000;
-    for (int k = 6; k >= 0; --k, frac /= 10) at[k] = static_cast<char>('0' + frac % 10);
-    int keep = 7;
-    while (keep > 1 && at[keep - 1] == '0') --keep;  // one digit after the point at least
-    return at + keep;
+    static_assert(fields::coordinate_decimals == 7, "small_coordinate's bound is for 7 decimals");
+    at = detail::put_fixed(at, v, 7);
+    const char* const first = at - 7;  // the first decimal: one is kept at least
+    while (at - 1 > first && at[-1] == '0') --at;
+    return at;
 }
 
 /// Whether put_coordinate writes `v`.
