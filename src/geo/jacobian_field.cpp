@@ -98,7 +98,7 @@ bool JacobianField::fit(const LocalFrame& frame, int n) {
                         sum += f[static_cast<std::size_t>(k * m + l)][static_cast<std::size_t>(e)] * t[static_cast<std::size_t>(k * m + i)] *
                                t[static_cast<std::size_t>(l * m + j)];
                 const double a = (i == 0 ? 1.0 : 2.0) * (j == 0 ? 1.0 : 2.0) / (m * m);
-                m_coef[static_cast<std::size_t>((e * m + i) * m + j)] = a * sum;
+                m_coef[static_cast<std::size_t>((i * m + j) * 4 + e)] = a * sum;
             }
     m_degree = n;
     return true;
@@ -109,19 +109,18 @@ Eigen::Matrix2d JacobianField::at(XY p) const noexcept {
     double tu[max_degree + 1], tv[max_degree + 1];
     chebyshev((2 * p.x - (m_x0 + m_x1)) / (m_x1 - m_x0), n, tu);
     chebyshev((2 * p.y - (m_y0 + m_y1)) / (m_y1 - m_y0), n, tv);
-    double r[4];
+    // The four entries side by side (SIMD lanes where there are), each lane the same
+    // operations in the same order as one entry alone: row = sum_j c_ij T_j(v), then
+    // sum = sum_i T_i(u) row.
     const double* c = m_coef.data();
-    for (int e = 0; e < 4; ++e) {
-        double sum = 0;
-        for (int i = 0; i < m; ++i) {
-            double row = 0;
-            for (int j = 0; j < m; ++j) row += *c++ * tv[j];
-            sum += tu[i] * row;
-        }
-        r[e] = sum;
+    Eigen::Array4d sum = Eigen::Array4d::Zero();
+    for (int i = 0; i < m; ++i) {
+        Eigen::Array4d row = Eigen::Array4d::Zero();
+        for (int j = 0; j < m; ++j, c += 4) row += Eigen::Map<const Eigen::Array4d>(c) * tv[j];
+        sum += tu[i] * row;
     }
     Eigen::Matrix2d out;
-    out << r[0], r[1], r[2], r[3];
+    out << sum[0], sum[1], sum[2], sum[3];
     return out;
 }
 

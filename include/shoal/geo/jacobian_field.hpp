@@ -51,8 +51,8 @@ private:
     double m_x0 = 0, m_y0 = 0, m_x1 = 0, m_y1 = 0;
     int m_degree = 0;
     double m_worst = INFINITY;
-    /// (n + 1)^2 coefficients per entry, entry-major: c[e][i * (n + 1) + j] multiplies
-    /// T_i(u) T_j(v), for entries (0,0), (0,1), (1,0), (1,1).
+    /// (n + 1)^2 coefficients per entry, the four entries side by side: c[(i * (n + 1) + j)
+    /// * 4 + e] multiplies T_i(u) T_j(v) for entry e of (0,0), (0,1), (1,0), (1,1).
     std::vector<double> m_coef;
 };
 
