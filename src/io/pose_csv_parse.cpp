@@ -18,6 +18,7 @@
 #include <shoal/util/output_file.hpp>
 
 #include "util/fixed_decimal.hpp"
+#include "util/parse_util.hpp"
 
 namespace shoal::io {
 
@@ -30,6 +31,7 @@ bool parse_double(std::string_view s, double& v) {
     const char* first = s.data();
     const char* last = s.data() + s.size();
     if (*first == '+') ++first;
+    if (track::detail::plain_decimal({first, static_cast<std::size_t>(last - first)}, v)) return true;  // from_chars' number, sooner
     const auto [p, ec] = std::from_chars(first, last, v);
     return ec == std::errc() && p == last;
 }
