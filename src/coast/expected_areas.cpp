@@ -19,6 +19,7 @@
 #include "coast/ogr_source.hpp"
 #include "coast/s57_structure.hpp"
 #include "geo/geos_context.hpp"
+#include "util/input_file.hpp"
 #include "util/parse_util.hpp"
 #include <shoal/geo/local_frame.hpp>
 #include <shoal/util/error.hpp>
@@ -401,7 +402,7 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
         if (user_keys.count(file_key(path))) continue;  // already read as a user file
         // A file the S-57 driver does not claim (a GeoJSON, a shapefile) is no chart and is not
         // opened: opening a GeoJSON coast would parse it whole. A missing one fails as any input.
-        if (std::error_code ec; fs::exists(path, ec) && !ogr::may_be_s57(path)) continue;
+        if (detail::input_exists(path) && !ogr::may_be_s57(path)) continue;
         GDALDatasetUniquePtr ds = ogr::open_vector(path);
         if (ogr::is_s57(*ds)) read_layers(path, s57_layers(*ds), false);
     }

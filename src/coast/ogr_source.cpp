@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include <shoal/util/error.hpp>
@@ -15,16 +16,30 @@ namespace shoal::coast::ogr {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// For a zip or gzip OGR could not open as it is: how to name what it holds (GDAL's paths).
+std::string packed_hint(const std::string& path) {
+    if (detail::is_virtual_path(path)) return "";
+    std::string lower = path;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    auto ends = [&](const char* e) { return lower.size() >= std::strlen(e) && lower.compare(lower.size() - std::strlen(e), std::string::npos, e) == 0; };
+    if (ends(".zip")) return "; a file inside a zip is read as /vsizip/" + path + "/NAME (e.g. the .shp of a Shapefile)";
+    if (ends(".gz")) return "; a gzipped file is read as /vsigzip/" + path;
+    return "";
+}
+
+}  // namespace
+
 GDALDatasetUniquePtr open_vector(const std::string& path) {
     detail::register_drivers();
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file or directory");
+    if (!detail::input_exists(path)) throw InputError("'" + path + "': no such file or directory");
     detail::require_dataset_file(path, "a coastline, chart or areas file");
     detail::QuietErrors quiet;
     GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
     if (!ds) {
         const std::string why = detail::QuietErrors::last();
-        throw InputError("'" + path + "': not a vector dataset OGR can read" + (why.empty() ? "" : " (" + why + ")"));
+        throw InputError("'" + path + "': not a vector dataset OGR can read" + (why.empty() ? "" : " (" + why + ")") + packed_hint(path));
     }
     return ds;
 }

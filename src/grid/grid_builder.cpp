@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "util/gdal_support.hpp"
+#include "util/input_file.hpp"
 #include <shoal/grid/grid_file.hpp>
 #include <shoal/util/error.hpp>
 
@@ -27,10 +27,8 @@ std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const c
         XXH3_64bits_update(st, s.data(), s.size());
     };
     feed("shoal-grid-v" + std::to_string(grid_format_version));
-    std::vector<char> buf(1 << 20);
     for (const std::string& path : paths) {
-        std::error_code ec;
-        if (!fs::exists(path, ec)) {
+        if (!detail::input_exists(path)) {
             XXH3_freeState(st);
             throw InputError("'" + path + "': no such file or directory");
         }
@@ -43,13 +41,10 @@ std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const c
         std::vector<std::string> files = dataset_files(path);
         std::sort(files.begin(), files.end());
         for (const std::string& f : files) {
-            if (fs::is_directory(f, ec)) continue;
+            if (detail::is_folder_input(f)) continue;
             feed(fs::path(f).filename().string());
-            std::ifstream in(f, std::ios::binary);
-            while (in) {
-                in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-                XXH3_64bits_update(st, buf.data(), static_cast<std::size_t>(in.gcount()));
-            }
+            // Its bytes as they are stored (a member of a zip unpacked by GDAL).
+            detail::read_blocks(f, std::size_t{1} << 20, [&](const char* data, std::size_t n) { XXH3_64bits_update(st, data, n); });
         }
     }
     for (const auto& l : options.layers) feed("layer:" + l);
@@ -115,7 +110,7 @@ std::vector<std::string> coast_sources(const std::vector<std::string>& coast, co
     if (!(coast.size() == 1 && looks_like_grid(coast[0]))) return coast;
     std::vector<std::string> out;
     for (const std::string& in : g.source().inputs)
-        if (std::error_code ec; fs::is_regular_file(in, ec)) out.push_back(in);
+        if (detail::is_regular_input(in)) out.push_back(in);
     return out;
 }
 

@@ -215,6 +215,18 @@ bool is_regular_input(const std::string& path) {
     return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
+bool input_exists(const std::string& path) {
+    if (is_virtual_path(path)) return path != "-" && gdal_input::stat(path).exists;
+    std::error_code ec;
+    return fs::exists(path, ec);
+}
+
+bool is_folder_input(const std::string& path) {
+    if (is_virtual_path(path)) return path != "-" && gdal_input::stat(path).folder;
+    std::error_code ec;
+    return fs::is_directory(path, ec);
+}
+
 bool read_blocks(const std::string& path, std::size_t block_bytes, const std::function<void(const char*, std::size_t)>& block) {
     if (!is_regular_input(path)) return false;
     RandomAccess file(path);

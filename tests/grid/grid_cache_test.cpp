@@ -467,6 +467,61 @@ TEST(DatasetFiles, AreTheFilesGdalListsForEveryKindOfSource) {
     fs::remove_all(copy);
 }
 
+// A coast inside a zip or a gzip, named by GDAL's paths (/vsizip/, /vsigzip/), is read as the
+// file itself: the same grid, point for point, and the same fingerprint (its bytes and file
+// names), which a member changed by one coordinate changes. A bare zip or gzip that OGR cannot
+// open is refused, naming the path to give; a member not there is no such file.
+TEST(GridSources, ACoastInsideAZipOrAGzipIsTheFileItself) {
+    t::TempDir dir;
+    const std::string zip = dir.file("coasts.zip"), gz = dir.file("solent.geojson.gz");
+    const std::string shp = "gr_saronic_piraeus_land";
+    for (const char* ext : {".shp", ".shx", ".dbf", ".prj"})
+        ASSERT_EQ(CPLCopyFile(("/vsizip/" + zip + "/land/" + shp + ext).c_str(), t::data_path("coast/" + shp + ext).c_str()), 0) << ext;
+    ASSERT_EQ(CPLCopyFile(("/vsizip/" + zip + "/uk_solent_land.geojson").c_str(), t::data_path("coast/uk_solent_land.geojson").c_str()), 0);
+    ASSERT_EQ(CPLCopyFile(("/vsigzip/" + gz).c_str(), t::data_path("coast/uk_solent_land.geojson").c_str()), 0);
+    BuildRequest req;
+    req.cell_m = 1000;
+    auto build = [&](const std::string& path) { return shoal::grid::build_grid({path}, req, nullptr); };
+    const CoastGrid plain_shp = build(t::data_path("coast/" + shp + ".shp"));
+    CoastGrid zipped_shp = build("/vsizip/" + zip + "/land/" + shp + ".shp");
+    EXPECT_EQ(zipped_shp.source().inputs, std::vector<std::string>{"/vsizip/" + zip + "/land/" + shp + ".shp"});
+    zipped_shp.source().inputs = plain_shp.source().inputs;  // all else (operator==) the same
+    EXPECT_TRUE(zipped_shp == plain_shp);
+    EXPECT_EQ(zipped_shp.source().fingerprint, plain_shp.source().fingerprint);
+    const CoastGrid plain_json = build(t::data_path("coast/uk_solent_land.geojson"));
+    const std::string solent = t::data_path("coast/uk_solent_land.geojson");
+    for (const std::string& packed : {"/vsizip/" + zip + "/uk_solent_land.geojson", "/vsigzip/" + gz}) {
+        CoastGrid g = build(packed);
+        // The same bytes under the same name: the same fingerprint (the gzip's name is another).
+        if (packed.rfind("/vsizip/", 0) == 0) {
+            EXPECT_EQ(g.source().fingerprint, plain_json.source().fingerprint);
+        }
+        CoastGrid same_inputs = g;
+        same_inputs.source().inputs = plain_json.source().inputs;
+        same_inputs.source().fingerprint = plain_json.source().fingerprint;
+        EXPECT_TRUE(same_inputs == plain_json) << packed;
+        EXPECT_NE(g.source().fingerprint, 0u);
+        // A report of a run on the grid file draws its chart from the source, read again.
+        const std::string grid_file = dir.file("packed.shoalgrid");
+        t::write_bytes(grid_file, GridFile::serialize(g));
+        EXPECT_EQ(shoal::grid::coast_sources({grid_file}, g), std::vector<std::string>{packed});
+    }
+    // One coordinate changed in the zipped GeoJSON: another fingerprint.
+    std::string text = file_bytes(solent);
+    const std::size_t digit = text.find_first_of("123456789", text.find("\"coordinates\""));
+    ASSERT_NE(digit, std::string::npos);
+    text[digit] = text[digit] == '9' ? '8' : static_cast<char>(text[digit] + 1);
+    const std::string changed = dir.file("changed.geojson");
+    t::write_bytes(changed, std::vector<char>(text.begin(), text.end()));
+    const std::string zip2 = dir.file("changed.zip");
+    ASSERT_EQ(CPLCopyFile(("/vsizip/" + zip2 + "/uk_solent_land.geojson").c_str(), changed.c_str()), 0);
+    EXPECT_NE(build("/vsizip/" + zip2 + "/uk_solent_land.geojson").source().fingerprint, plain_json.source().fingerprint);
+    // Refusals.
+    EXPECT_THAT([&] { build("/vsizip/" + zip + "/nothere.geojson"); }, ThrowsMessage<InputError>(HasSubstr("no such file or directory")));
+    EXPECT_THAT([&] { build(zip); }, ThrowsMessage<InputError>(AllOf(HasSubstr(zip), HasSubstr("/vsizip/" + zip + "/"))));
+    EXPECT_THAT([&] { build(gz); }, ThrowsMessage<InputError>(AllOf(HasSubstr(gz), HasSubstr("/vsigzip/" + gz))));
+}
+
 // A plain *.geojson file whose first character that is not blank is '{' is told to be its one
 // file without GDAL (a check may then never load GDAL): the same answer as GDAL's, on every
 // committed GeoJSON and on files made at the edges of that rule (blanks, a byte order mark,
