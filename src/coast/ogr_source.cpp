@@ -25,6 +25,8 @@ std::string packed_hint(const std::string& path) {
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     auto ends = [&](const char* e) { return lower.size() >= std::strlen(e) && lower.compare(lower.size() - std::strlen(e), std::string::npos, e) == 0; };
     if (ends(".zip")) return "; a file inside a zip is read as /vsizip/" + path + "/NAME (e.g. the .shp of a Shapefile)";
+    if (ends(".tar.gz") || ends(".tgz") || ends(".tar")) return "; a file inside a tar is read as /vsitar/" + path + "/NAME";
+    if (ends(".000.gz")) return "; an S-57 cell is read unpacked (GDAL applies updates to a .000 only) or from a zip, /vsizip/ZIP/NAME.000";
     if (ends(".gz")) return "; a gzipped file is read as /vsigzip/" + path;
     return "";
 }

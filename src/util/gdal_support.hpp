@@ -64,6 +64,8 @@ public:
 /// coast was hashed for the grid cache for ever). Paths GDAL reads itself (/vsi...) and paths
 /// that do not exist (the caller says so) pass.
 inline void require_dataset_file(const std::string& path, const char* what) {
+    if (path.rfind("/vsistdin", 0) == 0)
+        throw InputError("'" + path + "': standard input: " + what + " is read by OGR, which needs a file it can read again; save it to a file first");
     if (path.rfind("/vsi", 0) == 0) return;
     std::error_code ec;
     const auto st = std::filesystem::status(path, ec);

@@ -216,13 +216,13 @@ bool is_regular_input(const std::string& path) {
 }
 
 bool input_exists(const std::string& path) {
-    if (is_virtual_path(path)) return path != "-" && gdal_input::stat(path).exists;
+    if (path != "-" && is_virtual_path(path)) return gdal_input::stat(path).exists;
     std::error_code ec;
     return fs::exists(path, ec);
 }
 
 bool is_folder_input(const std::string& path) {
-    if (is_virtual_path(path)) return path != "-" && gdal_input::stat(path).folder;
+    if (path != "-" && is_virtual_path(path)) return gdal_input::stat(path).folder;
     std::error_code ec;
     return fs::is_directory(path, ec);
 }

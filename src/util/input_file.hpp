@@ -76,8 +76,8 @@ std::string read_at(const std::string& path, std::uint64_t at, std::size_t n);
 
 /// Whether `path` is a regular file (through GDAL for a `/vsi` path; `-` is none).
 bool is_regular_input(const std::string& path);
-/// Whether `path` exists (through GDAL for a `/vsi` path: a member of a zip, a gzip; `-` is
-/// none), and whether it is a folder (a zip's folder too).
+/// Whether `path` exists (through GDAL for a `/vsi` path: a member of a zip, a gzip; `-` is a
+/// file of that name, as a path), and whether it is a folder (a zip's folder too).
 bool input_exists(const std::string& path);
 bool is_folder_input(const std::string& path);
 

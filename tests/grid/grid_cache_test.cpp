@@ -441,10 +441,22 @@ std::string file_bytes(const std::string& path) {
 // opening it, also where JSON is told by its driver alone (not opened: not parsed).
 TEST(DatasetFiles, AreTheFilesGdalListsForEveryKindOfSource) {
     // On a copy of the committed coasts: other tests, run at the same time, open them (and a
-    // companion file that appears between the two lists would tell them apart).
-    const fs::path copy = fs::temp_directory_path() / ("shoal_dataset_files_" + std::to_string(::getpid()));
-    fs::remove_all(copy);
-    fs::copy(t::data_path("coast"), copy, fs::copy_options::recursive);
+    // companion file that appears between the two lists would tell them apart). What another
+    // process makes beside them for a while (SQLite's, GDAL's) is not copied; a file that is
+    // gone before it is copied is passed over.
+    const t::TempDir scratch;
+    const fs::path copy = scratch.path() / "coast";
+    const fs::path from = t::data_path("coast");
+    fs::create_directories(copy);
+    for (const auto& e : fs::recursive_directory_iterator(from)) {
+        const std::string name = e.path().filename().string();
+        auto ends = [&](const std::string& tail) { return name.size() >= tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0; };
+        if (ends("-wal") || ends("-shm") || ends("-journal") || ends(".aux.xml")) continue;
+        std::error_code ec;
+        const fs::path to = copy / fs::relative(e.path(), from);
+        if (e.is_directory(ec)) fs::create_directories(to, ec);
+        else if (e.is_regular_file(ec)) fs::copy_file(e.path(), to, ec);
+    }
     int json = 0;
     for (const auto& e : fs::recursive_directory_iterator(copy)) {
         const std::string path = e.path().string();
@@ -456,7 +468,7 @@ TEST(DatasetFiles, AreTheFilesGdalListsForEveryKindOfSource) {
     }
     EXPECT_GE(json, 8);  // the committed coasts hold GeoJSON, Shapefiles, GeoPackages and S-57 cells
     // Inside a zip (GDAL's virtual file), and a file that is not there.
-    const fs::path zip = fs::temp_directory_path() / ("shoal_dataset_files_" + std::to_string(::getpid()) + ".zip");
+    const fs::path zip = scratch.path() / "dataset_files.zip";
     const std::string zipped = "/vsizip/" + zip.string() + "/solent.geojson";
     ASSERT_EQ(CPLCopyFile(zipped.c_str(), t::data_path("coast/uk_solent_land.geojson").c_str()), 0);
     EXPECT_EQ(shoal::grid::dataset_files(zipped), std::vector<std::string>{zipped});
@@ -464,7 +476,6 @@ TEST(DatasetFiles, AreTheFilesGdalListsForEveryKindOfSource) {
     fs::remove(zip);
     const std::string missing = t::data_path("coast/no_such.geojson");
     EXPECT_EQ(shoal::grid::dataset_files(missing), std::vector<std::string>{missing});
-    fs::remove_all(copy);
 }
 
 // A coast inside a zip or a gzip, named by GDAL's paths (/vsizip/, /vsigzip/), is read as the
@@ -520,6 +531,22 @@ TEST(GridSources, ACoastInsideAZipOrAGzipIsTheFileItself) {
     EXPECT_THAT([&] { build("/vsizip/" + zip + "/nothere.geojson"); }, ThrowsMessage<InputError>(HasSubstr("no such file or directory")));
     EXPECT_THAT([&] { build(zip); }, ThrowsMessage<InputError>(AllOf(HasSubstr(zip), HasSubstr("/vsizip/" + zip + "/"))));
     EXPECT_THAT([&] { build(gz); }, ThrowsMessage<InputError>(AllOf(HasSubstr(gz), HasSubstr("/vsigzip/" + gz))));
+    EXPECT_THAT([&] { build("/vsistdin/"); }, ThrowsMessage<InputError>(HasSubstr("standard input")));
+    // A changed gzip of the same name: another fingerprint too.
+    fs::create_directories(dir.path() / "other");
+    const std::string gz2 = (dir.path() / "other" / "solent.geojson.gz").string();
+    ASSERT_EQ(CPLCopyFile(("/vsigzip/" + gz2).c_str(), changed.c_str()), 0);
+    EXPECT_NE(build("/vsigzip/" + gz2).source().fingerprint, build("/vsigzip/" + gz).source().fingerprint);
+    // A file named "-" is that file, as before (a coast is never read from standard input).
+    const fs::path here = fs::current_path();
+    fs::current_path(dir.path());
+    fs::copy_file(solent, "-");
+    CoastGrid dash = build("-");
+    fs::current_path(here);
+    EXPECT_EQ(dash.source().inputs, std::vector<std::string>{"-"});
+    dash.source().inputs = plain_json.source().inputs;
+    dash.source().fingerprint = plain_json.source().fingerprint;
+    EXPECT_TRUE(dash == plain_json);
 }
 
 // A plain *.geojson file whose first character that is not blank is '{' is told to be its one
