@@ -110,7 +110,7 @@ std::vector<std::string> coast_sources(const std::vector<std::string>& coast, co
     if (!(coast.size() == 1 && looks_like_grid(coast[0]))) return coast;
     std::vector<std::string> out;
     for (const std::string& in : g.source().inputs)
-        if (detail::is_regular_input(in)) out.push_back(in);
+        if (detail::is_regular_input(in) || detail::is_folder_input(in)) out.push_back(in);  // a Shapefile folder too
     return out;
 }
 

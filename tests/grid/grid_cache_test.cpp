@@ -549,6 +549,24 @@ TEST(GridSources, ACoastInsideAZipOrAGzipIsTheFileItself) {
     EXPECT_TRUE(dash == plain_json);
 }
 
+// A grid imported from a folder (of Shapefiles) names the folder as its source, which a report of
+// a run on the grid file reads again for its chart (it was said to be "not there any more").
+TEST(GridSources, AGridFromAFolderDrawsItsChartFromTheFolder) {
+    t::TempDir dir;
+    const std::string shp = "gr_saronic_piraeus_land";
+    fs::create_directories(dir.path() / "land");
+    for (const char* ext : {".shp", ".shx", ".dbf", ".prj"}) fs::copy_file(t::data_path("coast/" + shp + ext), dir.path() / "land" / (shp + ext));
+    BuildRequest req;
+    req.cell_m = 1000;
+    const std::string folder = dir.file("land");
+    const CoastGrid g = shoal::grid::build_grid({folder}, req, nullptr);
+    const std::string grid_file = dir.file("land.shoalgrid");
+    t::write_bytes(grid_file, GridFile::serialize(g));
+    EXPECT_EQ(shoal::grid::coast_sources({grid_file}, g), std::vector<std::string>{folder});
+    fs::remove_all(dir.path() / "land");
+    EXPECT_TRUE(shoal::grid::coast_sources({grid_file}, g).empty()) << "gone: not read";
+}
+
 // A plain *.geojson file whose first character that is not blank is '{' is told to be its one
 // file without GDAL (a check may then never load GDAL): the same answer as GDAL's, on every
 // committed GeoJSON and on files made at the edges of that rule (blanks, a byte order mark,
