@@ -17,6 +17,15 @@ namespace shoal::grid {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// A coastline source as a file to read: a coast is never standard input (OGR reads a source
+/// more than once), so `-` is a file of that name, as input_exists takes it; the input layer
+/// reads `-` as standard input.
+std::string as_file(const std::string& path) { return path == "-" ? "./-" : path; }
+
+}  // namespace
+
 std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const coast::ImportOptions& options,
                                   const std::string& crs, double cell_m) {
     XXH3_state_t* st = XXH3_createState();
@@ -44,7 +53,7 @@ std::uint64_t fingerprint_sources(const std::vector<std::string>& paths, const c
             if (detail::is_folder_input(f)) continue;
             feed(fs::path(f).filename().string());
             // Its bytes as they are stored (a member of a zip unpacked by GDAL).
-            detail::read_blocks(f, std::size_t{1} << 20, [&](const char* data, std::size_t n) { XXH3_64bits_update(st, data, n); });
+            detail::read_blocks(as_file(f), std::size_t{1} << 20, [&](const char* data, std::size_t n) { XXH3_64bits_update(st, data, n); });
         }
     }
     for (const auto& l : options.layers) feed("layer:" + l);
@@ -110,7 +119,7 @@ std::vector<std::string> coast_sources(const std::vector<std::string>& coast, co
     if (!(coast.size() == 1 && looks_like_grid(coast[0]))) return coast;
     std::vector<std::string> out;
     for (const std::string& in : g.source().inputs)
-        if (detail::is_regular_input(in) || detail::is_folder_input(in)) out.push_back(in);  // a Shapefile folder too
+        if (detail::is_regular_input(as_file(in)) || detail::is_folder_input(in)) out.push_back(in);  // a Shapefile folder too
     return out;
 }
 

@@ -542,7 +542,10 @@ TEST(GridSources, ACoastInsideAZipOrAGzipIsTheFileItself) {
     fs::current_path(dir.path());
     fs::copy_file(solent, "-");
     CoastGrid dash = build("-");
+    fs::copy_file(changed, "-", fs::copy_options::overwrite_existing);  // its bytes are fingerprinted
+    const std::uint64_t dash_changed = build("-").source().fingerprint;
     fs::current_path(here);
+    EXPECT_NE(dash_changed, dash.source().fingerprint);
     EXPECT_EQ(dash.source().inputs, std::vector<std::string>{"-"});
     dash.source().inputs = plain_json.source().inputs;
     dash.source().fingerprint = plain_json.source().fingerprint;
