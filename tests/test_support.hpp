@@ -37,6 +37,12 @@ inline std::vector<char> read_bytes(const std::string& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+/// A file's bytes as a string.
+inline std::string read_text(const std::string& path) {
+    const std::vector<char> b = read_bytes(path);
+    return {b.begin(), b.end()};
+}
+
 inline void write_bytes(const std::string& path, const std::vector<char>& bytes) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 
 #include <shoal/util/error.hpp>
@@ -21,9 +20,7 @@ namespace {
 /// For a zip or gzip OGR could not open as it is: how to name what it holds (GDAL's paths).
 std::string packed_hint(const std::string& path) {
     if (detail::is_virtual_path(path)) return "";
-    std::string lower = path;
-    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    auto ends = [&](const char* e) { return lower.size() >= std::strlen(e) && lower.compare(lower.size() - std::strlen(e), std::string::npos, e) == 0; };
+    auto ends = [&](std::string_view suffix) { return detail::lower_ends_with(path, suffix); };
     if (ends(".zip")) return "; a file inside a zip is read as /vsizip/" + path + "/NAME (e.g. the .shp of a Shapefile)";
     if (ends(".tar.gz") || ends(".tgz") || ends(".tar")) return "; a file inside a tar is read as /vsitar/" + path + "/NAME";
     if (ends(".000.gz")) return "; an S-57 cell is read unpacked (GDAL applies updates to a .000 only) or from a zip, /vsizip/ZIP/NAME.000";

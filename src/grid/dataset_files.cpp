@@ -6,8 +6,6 @@
 
 #include <gdal_priv.h>
 
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
 
 #include "util/gdal_support.hpp"
@@ -25,11 +23,9 @@ namespace {
 /// (util/lazy_libraries.hpp); grid_cache_test compares it with GDAL's list on every committed
 /// GeoJSON and on files made to sit at its edges.
 bool geojson_alone(const std::string& path) {
-    if (detail::is_virtual_path(path) || path.size() < 8) return false;
-    std::string ext = path.substr(path.size() - 8);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (detail::is_virtual_path(path) || !detail::lower_ends_with(path, ".geojson")) return false;
     std::error_code ec;
-    if (ext != ".geojson" || !std::filesystem::is_regular_file(path, ec)) return false;
+    if (!std::filesystem::is_regular_file(path, ec)) return false;
     const std::string head = detail::read_head(path, 4096);
     const std::size_t first = head.find_first_not_of(" \t\r\n");
     return first != std::string::npos && head[first] == '{';

@@ -154,11 +154,6 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
     return out;
 }
 
-namespace {
-
-/// Appends `v` as printf's "%.<precision>f" would (std::to_chars is exact, as glibc's printf is).
-}  // namespace
-
 void append_probe_row(std::string& out, const PoseRow& pose, bool claimed, bool collision, double clearance_m, bool covered) {
     detail::append_fixed(out, pose.lat, 7);
     out += ',';

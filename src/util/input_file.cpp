@@ -32,16 +32,6 @@ bool starts_with(const std::string& s, std::string_view prefix) noexcept { retur
 
 bool is_stdin(const std::string& path) noexcept { return path == "-" || starts_with(path, "/vsistdin"); }
 
-bool lower_ends_with(const std::string& s, std::string_view suffix) noexcept {
-    if (s.size() < suffix.size()) return false;
-    for (std::size_t i = 0; i < suffix.size(); ++i) {
-        char c = s[s.size() - suffix.size() + i];
-        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-        if (c != suffix[i]) return false;
-    }
-    return true;
-}
-
 bool is_gzip(const std::string& head) noexcept { return starts_with(head, "\x1f\x8b"); }
 
 bool is_zip(const std::string& head) noexcept {
@@ -133,6 +123,16 @@ std::string size_text(std::size_t bytes) {
 }
 
 bool is_virtual_path(const std::string& path) noexcept { return path == "-" || starts_with(path, "/vsi"); }
+
+bool lower_ends_with(const std::string& s, std::string_view suffix) noexcept {
+    if (s.size() < suffix.size()) return false;
+    for (std::size_t i = 0; i < suffix.size(); ++i) {
+        char c = s[s.size() - suffix.size() + i];
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+        if (c != suffix[i]) return false;
+    }
+    return true;
+}
 
 std::vector<std::string> zip_entry_names(const std::string& path, bool* directory_read) {
     std::vector<std::string> names;

@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct InputOpenError : InputError {
 
 /// True for `-` and the paths GDAL reads itself (`/vsi...`).
 bool is_virtual_path(const std::string& path) noexcept;
+
+/// Whether `s` ends with `suffix` (given in lower case), ASCII letters compared in any case.
+bool lower_ends_with(const std::string& s, std::string_view suffix) noexcept;
 
 /// The members of a zip file (its files, not its folders, in any sub-folder), each as the
 /// `/vsizip/` path GDAL reads it by, sorted; empty when `path` is not a zip (by its magic bytes).

@@ -19,8 +19,6 @@
 #include <map>
 #include <numbers>
 #include <random>
-#include <iterator>
-#include <unistd.h>
 #include <set>
 
 #include <shoal/coast/coastline.hpp>
@@ -354,6 +352,7 @@ TEST(StructureAreas, WholeCellHasHulksAndNoMooringBuoys) {
 }
 
 }  // namespace
+
 // Whether a file may be an S-57 chart is first told from its first bytes without GDAL (a check
 // of a grid whose sources are GeoJSON may then never load GDAL): the answer is GDAL's S-57
 // driver's own, on the committed cells and on their beginnings cut, spoilt byte by byte, cut by
@@ -361,16 +360,11 @@ TEST(StructureAreas, WholeCellHasHulksAndNoMooringBuoys) {
 // driver claims.
 TEST(S57Identify, TheLeaderRuleAnswersAsGdalsDriverAndNeverRefusesWhatItClaims) {
     GDALAllRegister();
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("shoal_s57_identify_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    auto bytes = [](const std::string& path) {
-        std::ifstream in(path, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), {});
-    };
+    const t::TempDir dir;
     std::vector<std::string> contents;
     std::mt19937 rng(57);
     for (const char* cell : {"coast/US5WA22M_tacoma_cut.000", "coast/US4MD81M_cut.000", "coast/US4MD81M_hazard_cut.000"}) {
-        const std::string whole = bytes(t::data_path(cell));
+        const std::string whole = t::read_text(t::data_path(cell));
         const std::string head = whole.substr(0, 2048);
         contents.push_back(whole);
         for (std::size_t n : {0, 5, 9, 10, 11, 24, 100, 1023, 1024, 1025}) contents.push_back(head.substr(0, n));
@@ -402,7 +396,7 @@ TEST(S57Identify, TheLeaderRuleAnswersAsGdalsDriverAndNeverRefusesWhatItClaims) 
     }
     int told_without_gdal = 0, claimed = 0;
     for (std::size_t i = 0; i < contents.size(); ++i) {
-        const std::string path = (dir / ("c" + std::to_string(i) + ".000")).string();
+        const std::string path = dir.file("c" + std::to_string(i) + ".000");
         std::ofstream(path, std::ios::binary) << contents[i];
         const char* const s57_only[] = {"S57", nullptr};
         const bool gdal = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_VECTOR, s57_only, nullptr) != nullptr;
@@ -415,7 +409,6 @@ TEST(S57Identify, TheLeaderRuleAnswersAsGdalsDriverAndNeverRefusesWhatItClaims) 
     }
     EXPECT_GE(claimed, 30);
     EXPECT_GE(told_without_gdal, 60);
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace shoal::coast

@@ -14,7 +14,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <random>
 #include <span>
@@ -414,9 +413,8 @@ TEST_F(LoadOrBuild, MissingSourceIsAnInputError) {
 
 namespace {
 
-/// GDAL's own answer: the dataset opened, its GetFileList, sorted.
-/// What GDAL lists after opening `path`, sorted; the path itself when it lists none (it cannot
-/// open it), as dataset_files gives it.
+/// GDAL's own answer: what GetFileList lists after opening `path`, sorted; the path itself when
+/// it lists none (it cannot open it), as dataset_files gives it.
 std::vector<std::string> gdal_file_list(const std::string& path) {
     std::vector<std::string> files;
     GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
@@ -428,11 +426,6 @@ std::vector<std::string> gdal_file_list(const std::string& path) {
     std::sort(files.begin(), files.end());
     if (files.empty()) files.push_back(path);
     return files;
-}
-
-std::string file_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 }  // namespace
@@ -518,7 +511,7 @@ TEST(GridSources, ACoastInsideAZipOrAGzipIsTheFileItself) {
         EXPECT_EQ(shoal::grid::coast_sources({grid_file}, g), std::vector<std::string>{packed});
     }
     // One coordinate changed in the zipped GeoJSON: another fingerprint.
-    std::string text = file_bytes(solent);
+    std::string text = t::read_text(solent);
     const std::size_t digit = text.find_first_of("123456789", text.find("\"coordinates\""));
     ASSERT_NE(digit, std::string::npos);
     text[digit] = text[digit] == '9' ? '8' : static_cast<char>(text[digit] + 1);
@@ -578,7 +571,7 @@ TEST(GridSources, AGridFromAFolderDrawsItsChartFromTheFolder) {
 TEST(DatasetFiles, PlainGeoJsonToldWithoutGdalIsWhatGdalLists) {
     const fs::path dir = fs::temp_directory_path() / ("shoal_plain_geojson_" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    const std::string real = file_bytes(t::data_path("coast/island_with_lake.geojson"));
+    const std::string real = t::read_text(t::data_path("coast/island_with_lake.geojson"));
     ASSERT_EQ(real.substr(0, 1), "{");
     std::vector<std::pair<std::string, std::string>> cases = {  // name, content
         {"real.geojson", real},
@@ -596,9 +589,9 @@ TEST(DatasetFiles, PlainGeoJsonToldWithoutGdalIsWhatGdalLists) {
         {"esri.geojson", R"({"geometryType":"esriGeometryPoint","spatialReference":{"wkid":4326},"fields":[],"features":[{"geometry":{"x":1,"y":2},"attributes":{}}]})"},
         {"topo.geojson", R"({"type":"Topology","objects":{"a":{"type":"GeometryCollection","geometries":[{"type":"Point","coordinates":[1,2]}]}},"arcs":[]})"},
         {"metadata.geojson", R"({"name":"x","format":"pbf","json":"{\"vector_layers\":[]}"})"},
-        {"shp.geojson", file_bytes(t::data_path("coast/gr_saronic_piraeus_land.shp"))},
-        {"gpkg.geojson", file_bytes(t::data_path("coast/uk_solent.gpkg"))},
-        {"s57.geojson", file_bytes(t::data_path("coast/US4MD81M_cut.000"))},
+        {"shp.geojson", t::read_text(t::data_path("coast/gr_saronic_piraeus_land.shp"))},
+        {"gpkg.geojson", t::read_text(t::data_path("coast/uk_solent.gpkg"))},
+        {"s57.geojson", t::read_text(t::data_path("coast/US4MD81M_cut.000"))},
         {"real.json", real},
         {"real.geojson.txt", real},
     };
