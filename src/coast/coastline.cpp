@@ -60,8 +60,10 @@ LayerRole role_of(OGRLayer& layer, const ImportOptions& options) {
 
 class LayerReader {
 public:
-    LayerReader(std::string file, OGRLayer& layer, const ImportOptions& options, Coastline& out, geo::GeosContext& geos)
-        : m_file(std::move(file)), m_layer(layer), m_options(options), m_out(out), m_geos(geos) {}
+    /// `open_said`: what GDAL reported as failures while opening the file (ogr::open_vector).
+    LayerReader(std::string file, OGRLayer& layer, const ImportOptions& options, Coastline& out, geo::GeosContext& geos,
+                std::string open_said = {})
+        : m_file(std::move(file)), m_layer(layer), m_options(options), m_out(out), m_geos(geos), m_open_said(std::move(open_said)) {}
 
     void read() {
         LayerStats stats;
@@ -82,6 +84,8 @@ public:
         const s57::StructureFields names = s57::structure_fields(m_layer.GetName(), *m_layer.GetLayerDefn());
         m_layer.ResetReading();
         std::vector<RawPart> parts;
+        std::vector<std::int64_t> no_geometry;  // features OGR gave without a geometry
+        detail::GdalFailures failures;
         for (auto& feature : m_layer) {
             ++stats.features;
             StructureKind structure = StructureKind::none;
@@ -101,6 +105,7 @@ public:
             }
             const ogr::LinearGeometry linear = ogr::linear_geometry(*feature);
             const OGRGeometry* g = linear.geometry;
+            if (!g) no_geometry.push_back(feature->GetFID());
             if (!g || g->IsEmpty()) {
                 ++stats.empty_skipped;
                 continue;
@@ -124,6 +129,7 @@ public:
                 }
             }
         }
+        said_while_reading(failures, no_geometry, stats.features);
         if (stats.features == 0)
             throw InputError("layer '" + stats.layer + "' in '" + m_file + "' has no features");
         stats.crs = to_wgs84(parts);
@@ -149,6 +155,26 @@ public:
 
 private:
     std::string where(std::int64_t fid) const { return ogr::feature_where(m_file, m_layer.GetName(), fid); }
+
+    /// A coastline OGR could not read whole is refused: a grid without part of its land would
+    /// call that land water. GDAL says so only through its error handler (a Shapefile cut short:
+    /// "Error in fread()", the features after the cut without a geometry; a GeoJSON geometry
+    /// with text for coordinates: the feature without one). A feature with no geometry and no
+    /// failure (a Shapefile's null shape, GeoJSON's "geometry": null, a type GDAL does not
+    /// know) holds no coastline: it is skipped, and said.
+    void said_while_reading(const detail::GdalFailures& failures, const std::vector<std::int64_t>& no_geometry, std::uint64_t features) {
+        std::string fids;
+        for (std::size_t i = 0; i < no_geometry.size() && i < 5; ++i) fids += (i ? ", " : "") + std::to_string(no_geometry[i]);
+        if (no_geometry.size() > 5) fids += ", ...";
+        const std::string which = std::to_string(no_geometry.size()) + " of its " + std::to_string(features) + " features (" + fids + ")";
+        const std::string said = failures.count() ? failures.said() : m_open_said;
+        const std::string what = "layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "'";
+        if (failures.count() || (!said.empty() && !no_geometry.empty()))
+            throw InputError(what + ": OGR could not read all of it (" + said + ")" +
+                             (no_geometry.empty() ? "" : "; " + which + " came without a geometry") +
+                             ": the file is damaged or cut short, and a grid without part of its land would call that land water");
+        if (!no_geometry.empty()) m_out.warnings.push_back(what + ": " + which + (no_geometry.size() == 1 ? " has" : " have") + " no geometry; skipped");
+    }
 
     static std::vector<LonLat> points_of(const OGRSimpleCurve& c) { return ogr::points_of<LonLat>(c); }
 
@@ -374,6 +400,7 @@ private:
     const ImportOptions& m_options;
     Coastline& m_out;
     geo::GeosContext& m_geos;
+    std::string m_open_said;
     std::uint32_t m_layer_index = 0;
     LayerRole m_role;
 };
@@ -391,7 +418,8 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
     geo::GeosContext geos;
     std::vector<bool> found(options.layers.size(), false);
     for (const std::string& path : paths) {
-        GDALDatasetUniquePtr ds = ogr::open_vector(path);
+        std::string open_said;
+        GDALDatasetUniquePtr ds = ogr::open_vector(path, &open_said);
         if (char** files = ds->GetFileList()) {
             for (char** f = files; *f; ++f) out.files.emplace_back(*f);
             CSLDestroy(files);
@@ -423,7 +451,7 @@ Coastline import_coastline(const std::vector<std::string>& paths, const ImportOp
             if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");
         }
         QuietErrors quiet;
-        for (OGRLayer* layer : chosen) LayerReader(path, *layer, options, out, geos).read();
+        for (OGRLayer* layer : chosen) LayerReader(path, *layer, options, out, geos, open_said).read();
     }
     for (std::size_t i = 0; i < options.layers.size(); ++i)
         if (!found[i]) throw InputError("no input has a layer named '" + options.layers[i] + "'");

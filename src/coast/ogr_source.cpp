@@ -30,16 +30,17 @@ std::string packed_hint(const std::string& path) {
 
 }  // namespace
 
-GDALDatasetUniquePtr open_vector(const std::string& path) {
+GDALDatasetUniquePtr open_vector(const std::string& path, std::string* said) {
     detail::register_drivers();
     if (!detail::input_exists(path)) throw InputError("'" + path + "': no such file or directory");
     detail::require_dataset_file(path, "a coastline, chart or areas file");
-    detail::QuietErrors quiet;
+    detail::GdalFailures failures;
     GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
     if (!ds) {
         const std::string why = detail::QuietErrors::last();
         throw InputError("'" + path + "': not a vector dataset OGR can read" + (why.empty() ? "" : " (" + why + ")") + packed_hint(path));
     }
+    if (said) *said = failures.said();
     return ds;
 }
 

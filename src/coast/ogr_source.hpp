@@ -19,8 +19,11 @@
 namespace shoal::coast::ogr {
 
 /// Opens `path` as a vector dataset, read-only, GDAL kept quiet. Throws InputError for a
-/// missing path or one OGR cannot read (with GDAL's reason).
-GDALDatasetUniquePtr open_vector(const std::string& path);
+/// missing path or one OGR cannot read (with GDAL's reason). `said`, when given, receives
+/// the failures GDAL reported while opening a dataset it did open (GdalFailures::said(); ""
+/// for none): a GeoJSON file is parsed when opened, and a geometry it cannot read is then a
+/// feature without one.
+GDALDatasetUniquePtr open_vector(const std::string& path, std::string* said = nullptr);
 
 /// Whether `ds` is an S-57 chart (ENC).
 bool is_s57(GDALDataset& ds);

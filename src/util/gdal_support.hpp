@@ -58,6 +58,40 @@ public:
     }
 };
 
+/// Like QuietErrors, and keeps what GDAL reports as a failure in its lifetime (CE_Failure and
+/// worse): a driver that cannot read part of a file (a Shapefile cut short, a GeoJSON
+/// geometry with text for coordinates) often says so only through the error handler, and
+/// hands back the feature without its geometry, or no more features.
+class GdalFailures {
+public:
+    GdalFailures() {
+        need_gdal();
+        CPLPushErrorHandlerEx(handler, this);
+        CPLErrorReset();
+    }
+    ~GdalFailures() { CPLPopErrorHandler(); }
+    GdalFailures(const GdalFailures&) = delete;
+    GdalFailures& operator=(const GdalFailures&) = delete;
+    std::size_t count() const noexcept { return m_count; }
+    /// "GDAL: FIRST (and N more)", or "" when GDAL reported no failure.
+    std::string said() const {
+        if (m_count == 0) return "";
+        return "GDAL: " + m_first + (m_count > 1 ? " (and " + std::to_string(m_count - 1) + " more)" : "");
+    }
+
+private:
+    static void CPL_STDCALL handler(CPLErr type, CPLErrorNum number, const char* message) {
+        auto* self = static_cast<GdalFailures*>(CPLGetErrorHandlerUserData());
+        if (self && type >= CE_Failure) {
+            if (self->m_count++ == 0) self->m_first = message ? message : "";
+            return;
+        }
+        CPLQuietErrorHandler(type, number, message);
+    }
+    std::size_t m_count = 0;
+    std::string m_first;
+};
+
 /// Refuses a dataset path (a coastline, a chart, --berths) that is neither a file nor a folder:
 /// a device (/dev/zero, /dev/urandom), a pipe or a FIFO. OGR's drivers seek in and read again
 /// what they open, so a stream would be drained or read without end (before: /dev/zero as a

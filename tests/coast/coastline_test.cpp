@@ -404,6 +404,14 @@ TEST(CoastImport, PointsAndEmptyGeometriesAreCountedAndSkipped) {
     EXPECT_EQ(fids, (std::set<std::int64_t>{1, 7}));
 }
 
+TEST(CoastImport, AFeatureWithoutAGeometryIsSkippedAndNamed) {
+    // mixed_points_empty.geojson's feature 4 has "geometry": null: no coastline in it, and
+    // nothing that GDAL failed to read; the warning names it.
+    const std::string path = coast_file("mixed_points_empty.geojson");
+    const Coastline c = import_coastline({path});
+    EXPECT_THAT(c.warnings, Contains(AllOf(HasSubstr(path), HasSubstr("'mixed_points_empty'"), HasSubstr("1 of its 7 features (4) has no geometry"))));
+}
+
 TEST(CoastImport, SourceCrsOptionPlacesAFileWithoutCrs) {
     // projected_no_crs.shp: the square 620000..622000 E, 5615000..5617000 N of UTM zone 30N,
     // with its .prj removed. Corners by gdaltransform -s_srs EPSG:32630 -t_srs EPSG:4326:
@@ -449,6 +457,43 @@ TEST(CoastImportErrors, LayerThatIsNotThere) {
     opt.layers = {"DEPARE"};
     EXPECT_THAT([&] { import_coastline({coast_file("US4MD81M_cut.000")}, opt); },
                 ThrowsMessage<InputError>(AllOf(HasSubstr("US4MD81M_cut.000"), HasSubstr("DEPARE"))));
+}
+
+TEST(CoastImportErrors, AShapefileCutShortIsRefused) {
+    // The Saronic land polygons (66 features, ogrinfo -al) with the .shp cut after 40,000 of
+    // its bytes: GDAL reads the records before the cut, says "Error in fread()" for the rest
+    // and hands those features back without a geometry. Before, the grid was built from the
+    // 25 polygons left, without a word: land where the 41 others lay was water.
+    t::TempDir dir;
+    for (const char* ext : {".shp", ".shx", ".dbf", ".prj"})
+        std::filesystem::copy_file(coast_file(std::string("gr_saronic_piraeus_land") + ext), dir.file(std::string("land") + ext));
+    const std::string path = dir.file("land.shp");
+    EXPECT_NO_THROW(import_coastline({path}));  // whole, it reads
+    ASSERT_GT(std::filesystem::file_size(path), 60000u);
+    std::filesystem::resize_file(path, 40000);
+    EXPECT_THAT([&] { import_coastline({path}); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("layer 'land'"), HasSubstr("could not read all of it"),
+                                                HasSubstr("Error in fread()"), HasSubstr("of its 66 features"), HasSubstr("without a geometry"))));
+}
+
+TEST(CoastImportErrors, AGeoJsonGeometryGdalCannotReadIsRefused) {
+    // Text for coordinates: GDAL says "Invalid 'x' coordinate" when it parses the file and
+    // gives the feature no geometry. The good square beside it is not enough for a grid.
+    t::TempDir dir;
+    const std::string path = dir.file("bad.geojson");
+    const std::string square = "[[[-1.25, 50.80], [-1.20, 50.80], [-1.20, 50.84], [-1.25, 50.84], [-1.25, 50.80]]]";
+    const std::string text = R"({"type": "FeatureCollection", "features": [)"
+                             R"({"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [[["a", "b"], [1, 2], [3, 4], ["a", "b"]]]}},)"
+                             R"({"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": )" + square + "}}]}";
+    t::write_bytes(path, std::vector<char>(text.begin(), text.end()));
+    EXPECT_THAT([&] { import_coastline({path}); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("could not read all of it"), HasSubstr("Invalid 'x' coordinate"),
+                                                HasSubstr("1 of its 2 features (0)"))));
+    // Without the bad feature, the same file reads.
+    const std::string good = R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": )" +
+                             square + "}}]}";
+    t::write_bytes(path, std::vector<char>(good.begin(), good.end()));
+    EXPECT_EQ(import_coastline({path}).polylines.size(), 1u);
 }
 
 TEST(CoastImportErrors, EmptyLayer) {
