@@ -125,6 +125,10 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
                 continue;
             }
         }
+        if (split.quote_not_closed()) {
+            bad(std::string(track::quote_not_closed_message));
+            continue;
+        }
         const int need = std::max({col_lat, col_lon, col_hdg});
         if (static_cast<int>(f.size()) <= need) {
             bad("expected at least " + std::to_string(need + 1) + " fields, got " + std::to_string(f.size()));

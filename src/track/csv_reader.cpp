@@ -229,7 +229,8 @@ public:
             if (!rec.empty() && rec.back() == '\n') rec.remove_suffix(1);
             if (!rec.empty() && rec.back() == '\r') rec.remove_suffix(1);
             m_long_row = rec.size() > shoal::detail::max_line_bytes;
-            parse(f, m_split->unescaped(), out);
+            if (m_split->quote_not_closed()) skip(out, std::string(quote_not_closed_message));
+            else parse(f, m_split->unescaped(), out);
             m_long_row = false;
         }
         return m_split->consumed();

@@ -103,11 +103,21 @@ void CsvSplitter::more(std::string_view text, bool complete) {
     m_pos = 0;
 }
 
+bool CsvSplitter::quote_left_open(bool closed, char sep) const noexcept {
+    const std::string_view t = m_text;
+    const std::size_t n = t.size();
+    if (!closed) return m_pos < n || m_complete;  // too many lines, or the end of the file: the end of the text alone may be a block's
+    std::size_t p = m_pos;
+    while (p < n && (t[p] == ' ' || t[p] == '\r')) ++p;
+    return p < n && t[p] != sep && t[p] != '\n';  // text after the closing quote
+}
+
 bool CsvSplitter::next(std::vector<std::string_view>& fields) {
     const std::string_view t = m_text;
     const std::size_t n = t.size();
     const char sep = m_sep ? m_sep : ',';
     m_unescaped.clear();
+    m_quote_not_closed = false;
     while (m_pos < n) {
         fields.clear();
         m_record_line = m_line;
@@ -160,11 +170,12 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
             while (m_pos < n && t[m_pos] == ' ' && sep != ' ') ++m_pos;
             if (m_pos < n && t[m_pos] == '"') {
                 const std::size_t start = ++m_pos;
-                bool escaped = false;
+                const std::size_t field_line = m_line;
+                bool escaped = false, closed = false;
                 std::size_t end = n;
                 while (m_pos < n) {
                     const char c = t[m_pos];
-                    if (c == '\n') ++m_line;
+                    if (c == '\n' && ++m_line - field_line >= max_quoted_lines) break;
                     if (c == '"') {
                         if (m_pos + 1 < n && t[m_pos + 1] == '"') {
                             escaped = true;
@@ -172,9 +183,29 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
                             continue;
                         }
                         end = m_pos++;
+                        closed = true;
                         break;
                     }
                     ++m_pos;
+                }
+                if (m_line > field_line && quote_left_open(closed, sep)) {
+                    // A quote that takes in the lines after its own but does not close as a
+                    // field's quotes do: a stray quote (an AIS name "ALPHA), which would take
+                    // every row up to the next quote, or to the end of the file. Only its own
+                    // line is lost: it is split as it stands, and said (quote_not_closed()).
+                    const std::size_t line_end = t.find('\n', record_start);
+                    fields.clear();
+                    m_unescaped.clear();
+                    for (std::size_t from = record_start;;) {
+                        const std::size_t to = std::min(t.find(sep, from), line_end);
+                        fields.push_back(trim(t.substr(from, to - from)));
+                        if (to == line_end) break;
+                        from = to + 1;
+                    }
+                    m_pos = line_end + 1;
+                    m_line = m_record_line + 1;
+                    m_quote_not_closed = true;
+                    return true;
                 }
                 std::string_view value = t.substr(start, end - start);
                 if (escaped) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <shoal/track/csv_splitter.hpp>
 #include <shoal/io/pose_csv.hpp>
 #include <shoal/util/error.hpp>
 
@@ -251,6 +252,13 @@ TEST(PoseCsv, HandMadeCases) {
     EXPECT_THROW(parse_pose_csv("lat,lon\n1,2\n", "p.csv"), InputError);
     // Quotes are honoured: a separator inside them does not split, "" is a quote; a comment
     // line may hold a quote, and the separator is found on the first row, not on a comment.
+    // A quote that does not close (it would take in the rows after it): that row alone.
+    const PoseFile o = parse_pose_csv("lat,lon,heading\n60,24,1\n60,24,\"9\n61,25,2\n62,26,3\n", "o.csv");
+    ASSERT_EQ(o.poses.size(), 3u);
+    EXPECT_EQ(o.poses[1].line, 4u);
+    EXPECT_EQ(o.poses[2].lat, 62);
+    ASSERT_EQ(o.errors.size(), 1u);
+    EXPECT_EQ(o.errors[0], "o.csv line 3: " + std::string(shoal::track::quote_not_closed_message) + "; row skipped");
     const PoseFile q = parse_pose_csv("# a \"comment\n\n\"lat\";\"lon\";heading\n60;\"24.5\";\"9\"\"\"\n\"60,5\";24;1\n", "q.csv");
     ASSERT_EQ(q.poses.size(), 0u);
     ASSERT_EQ(q.errors.size(), 2u) << q.errors.size();

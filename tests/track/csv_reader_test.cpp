@@ -18,6 +18,8 @@
 #include <cstring>
 #include <map>
 #include <random>
+#include <tuple>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -543,6 +545,135 @@ TEST(CsvSplitter, RecordsWithoutQuotesSplitAsANaiveSplitDoes) {
             }
             ASSERT_EQ(k, want.size()) << "round " << round << " in blocks of " << block;
         }
+    }
+}
+
+TEST(CsvReader, AQuoteThatDoesNotCloseCostsItsOwnRowOnly) {
+    // An AIS name with a stray quote ("ALPHA): before, its field took in every row after it
+    // up to the end of the file, and they were lost without a word.
+    std::string text = "mmsi,time,lat,lon,name\n";
+    for (int i = 0; i < 200; ++i) {
+        char row[96];
+        std::snprintf(row, sizeof row, "230000001,2014-08-15T19:%02d:%02dZ,60,%.4f,%s\n", i / 60, i % 60, 24 + i * 1e-4, i == 100 ? "\"ALPHA" : "ALPHA");
+        text += row;
+    }
+    const auto f = read_csv_text(text, "stray.csv");
+    ASSERT_EQ(f.tracks.size(), 1u);
+    EXPECT_EQ(f.tracks[0].fixes.size(), 199u);
+    EXPECT_EQ(f.report.skipped, 1u);
+    ASSERT_EQ(f.report.messages.size(), 1u);
+    EXPECT_THAT(f.report.messages[0], HasSubstr("stray.csv line 102: a quote (\") opens a field that does not close"));
+    EXPECT_THAT(f.report.messages[0], HasSubstr("row skipped"));
+    // A quoted name over two lines, closed as a field's quotes close, is one row as before.
+    const auto g = read_csv_text("mmsi,time,lat,lon,name\n230000001,2014-08-15T19:00:00Z,60,24,\"TWO\nLINES\"\n"
+                                 "230000001,2014-08-15T19:00:10Z,60,24.001,B\n",
+                                 "two.csv");
+    EXPECT_EQ(g.report.skipped, 0u);
+    ASSERT_EQ(g.tracks.size(), 1u);
+    EXPECT_EQ(g.tracks[0].fixes.size(), 2u);
+}
+
+TEST(CsvSplitter, AQuoteThatDoesNotCloseIsItsOwnLineSplitAsItStands) {
+    std::vector<std::string_view> f;
+    auto records = [&](std::string_view text) {
+        std::vector<std::tuple<std::size_t, bool, std::vector<std::string>>> out;
+        CsvSplitter sp(text);
+        EXPECT_TRUE(sp.next(f));  // the header
+        while (sp.next(f)) out.emplace_back(sp.line(), sp.quote_not_closed(), std::vector<std::string>(f.begin(), f.end()));
+        return out;
+    };
+    using R = std::tuple<std::size_t, bool, std::vector<std::string>>;
+    using V = std::vector<std::string>;
+    // Not closed by the end of the file.
+    EXPECT_THAT(records("h,n\n1,\"ALPHA\n2,b\n3,c\n"), ElementsAre(R{2, true, V{"1", "\"ALPHA"}}, R{3, false, V{"2", "b"}}, R{4, false, V{"3", "c"}}));
+    // Closed by a later field's opening quote, text after it.
+    EXPECT_THAT(records("h,n\n1,\"ALPHA\n2,\"B, C\"\n3,x\n"),
+                ElementsAre(R{2, true, V{"1", "\"ALPHA"}}, R{3, false, V{"2", "B, C"}}, R{4, false, V{"3", "x"}}));
+    // A field over two lines that closes as a field does: one record, as RFC 4180 reads it.
+    EXPECT_THAT(records("h,n\n1,\"two\nlines\" \r\n2,x\n"), ElementsAre(R{2, false, V{"1", "two\nlines"}}, R{4, false, V{"2", "x"}}));
+    // Not closed on the last line, no line after it: the field runs to the end, as before.
+    EXPECT_THAT(records("h,n\n1,\"ALPHA"), ElementsAre(R{2, false, V{"1", "ALPHA"}}));
+    // At most max_quoted_lines line ends in a field.
+    const std::size_t cap = CsvSplitter::max_quoted_lines;
+    auto lines = [](std::size_t k) {
+        std::string s = "h,n\n1,\"";
+        for (std::size_t i = 0; i < k; ++i) s += "x\n";
+        return s + "end\"\n2,b\n";
+    };
+    const auto under = records(lines(cap - 1));
+    ASSERT_EQ(under.size(), 2u);
+    EXPECT_FALSE(std::get<1>(under[0]));
+    EXPECT_EQ(std::get<0>(under[1]), cap + 2);
+    const auto over = records(lines(cap));
+    ASSERT_GE(over.size(), 2u);
+    EXPECT_EQ(over[0], (R{2, true, V{"1", "\"x"}}));
+    EXPECT_EQ(std::get<0>(over[1]), 3u);
+}
+
+TEST(CsvSplitter, QuotesLeftOpenGiveTheSameRecordsInBlocksAsWhole) {
+    // Random lines of plain fields, quoted fields (separators, doubled quotes, line ends inside)
+    // and stray quotes: the records, their lines and quote_not_closed() the same whether the
+    // text comes whole or in blocks ending anywhere; a line whose quote did not close is its
+    // line split at each separator.
+    std::mt19937_64 rng(40);
+    std::vector<std::string_view> f;
+    for (int round = 0; round < 3000; ++round) {
+        std::string text = "a,b,c\n";
+        const std::size_t lines = 1 + rng() % 30;
+        for (std::size_t r = 0; r < lines; ++r) {
+            const std::size_t fields = 1 + rng() % 4;
+            for (std::size_t k = 0; k < fields; ++k) {
+                if (k) text += ',';
+                switch (rng() % 8) {
+                case 0: text += "\"ALPHA"; break;                         // stray
+                case 1: text += "\"q, \"\"x\"\"\""; break;                  // quoted, doubled quotes
+                case 2: text += "\"two\nlines\""; break;                   // over a line end
+                case 3: text += "\"shut\" tail"; break;                     // text after the quote
+                case 4: text += std::string(rng() % 3, ' ') + "v" + std::to_string(rng() % 100); break;
+                default: text += "w" + std::to_string(rng() % 1000);
+                }
+            }
+            if (r + 1 < lines || rng() % 2) text += rng() % 4 ? "\n" : "\r\n";
+        }
+        std::vector<std::tuple<std::size_t, bool, std::vector<std::string>>> whole;
+        {
+            CsvSplitter sp(text);
+            while (sp.next(f)) {
+                whole.emplace_back(sp.line(), sp.quote_not_closed(), std::vector<std::string>(f.begin(), f.end()));
+                if (sp.quote_not_closed()) {  // its own line, split at each separator
+                    std::size_t at = 0;
+                    for (std::size_t l = 1; l < sp.line(); ++l) at = text.find('\n', at) + 1;
+                    const std::string line = text.substr(at, text.find('\n', at) - at);
+                    std::vector<std::string> naive;
+                    for (std::size_t from = 0;;) {
+                        const std::size_t to = std::min(line.find(',', from), line.size());
+                        naive.emplace_back(shoal::track::detail::trim(std::string_view(line).substr(from, to - from)));
+                        if (to == line.size()) break;
+                        from = to + 1;
+                    }
+                    ASSERT_EQ(std::get<2>(whole.back()), naive) << "round " << round << " line " << sp.line();
+                }
+            }
+        }
+        const std::size_t block = 1 + rng() % 64;
+        std::size_t taken = 0, have = std::min(text.size(), std::max<std::size_t>(block, text.find('\n') + 1));
+        CsvSplitter sp(std::string_view(text).substr(0, have), have == text.size());
+        std::size_t k = 0;
+        for (;;) {
+            while (sp.next(f)) {
+                ASSERT_LT(k, whole.size()) << "round " << round;
+                ASSERT_EQ((std::tuple<std::size_t, bool, std::vector<std::string>>(sp.line(), sp.quote_not_closed(),
+                                                                                  std::vector<std::string>(f.begin(), f.end()))),
+                          whole[k])
+                    << "round " << round << " record " << k << " in blocks of " << block;
+                ++k;
+            }
+            taken += sp.consumed();
+            if (have == text.size()) break;
+            have = std::min(text.size(), have + block);
+            sp.more(std::string_view(text).substr(taken, have - taken), have == text.size());
+        }
+        ASSERT_EQ(k, whole.size()) << "round " << round << " in blocks of " << block;
     }
 }
 

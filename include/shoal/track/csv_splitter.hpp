@@ -19,6 +19,11 @@ namespace shoal::track {
 /// whole first line, see holds_first_line), take the records next() gives, then call more()
 /// with the bytes from consumed() on followed by the next block, and so on; the records are
 /// exactly those of the whole text at once.
+/// What a reader says of a line whose quote did not close (CsvSplitter::quote_not_closed()),
+/// before "; row skipped".
+inline constexpr std::string_view quote_not_closed_message =
+    "a quote (\") opens a field that does not close as a field's quotes do (it would take in the lines after it)";
+
 class CsvSplitter {
 public:
     explicit CsvSplitter(std::string_view text, bool complete = true);
@@ -30,6 +35,14 @@ public:
     /// Whether a field of the record last returned held "" (its view then points into the
     /// splitter, valid only until the next call; the others point into the text).
     bool unescaped() const noexcept { return !m_unescaped.empty(); }
+    /// Whether the record last returned is a line whose quote did not close: a quoted field
+    /// that went on over a line end and then did not end as a field ends (text after its
+    /// closing quote), did not close by the end of the file, or went on over
+    /// `max_quoted_lines` line ends. Such a line is split as it stands, its quotes text, so
+    /// that the lines after it are read as their own records; a reader skips it and says so.
+    bool quote_not_closed() const noexcept { return m_quote_not_closed; }
+    /// The most line ends a quoted field may hold.
+    static constexpr std::size_t max_quoted_lines = 64;
     /// 1-based line on which the record last returned starts.
     std::size_t line() const noexcept { return m_record_line; }
     /// Bytes of the current text taken by the records returned so far.
@@ -48,6 +61,10 @@ private:
     std::size_t m_record_line = 0;
     char m_sep = ',';
     std::deque<std::string> m_unescaped;  // fields that held "" (a deque: views stay valid)
+    bool m_quote_not_closed = false;
+    /// After a quoted field that went over a line end (m_pos past it): whether it left its
+    /// quote open (see quote_not_closed()).
+    bool quote_left_open(bool closed, char sep) const noexcept;
 };
 
 }  // namespace shoal::track
