@@ -109,7 +109,17 @@ public:
             if (gt && (*gt == "LineString" || *gt == "MultiLineString")) ++lines;
         }
         m_single_line = lines == 1;
-        for (std::size_t k = 0; k < features.size(); ++k) feature(*features[k], k + 1);
+        for (std::size_t k = 0; k < features.size(); ++k) {
+            // A line that cannot be read (times that do not match its vertices, none at all, no
+            // coordinates) costs that feature, said, not the file: line() finds these before it
+            // takes a fix.
+            try {
+                feature(*features[k], k + 1);
+            } catch (const InputError& e) {
+                ++m_out.report.rows;
+                m_out.report.skip(std::string(e.what()) + "; feature skipped");
+            }
+        }
         for (const auto& [what, wanted, field, seen] : {std::tuple{"exercise", &m_options.exercise_column, "ReadOptions::exercise_column", m_exercise_seen},
                                                         std::tuple{"role", &m_options.role_column, "ReadOptions::role_column", m_role_seen}})
             if (!wanted->empty() && !seen && !features.empty())

@@ -140,12 +140,28 @@ TEST(GeoJsonReader, PointFeatureIdsDoNotSplitTracks) {
     EXPECT_THAT(times(f.tracks[0]), ElementsAre(0.0, 10.0));
 }
 
-TEST(GeoJsonReader, LineWithoutTimesIsAnErrorNamingFileAndFeature) {
-    EXPECT_THAT([] { read_geojson(data_path("tracks/line_without_times.geojson")); },
-                ThrowsMessage<InputError>(AllOf(HasSubstr("line_without_times.geojson feature 1 ('no clock')"),
-                                                HasSubstr("line without times"))));
-    EXPECT_THAT([] { read_geojson(data_path("tracks/line_times_mismatch.geojson")); },
-                ThrowsMessage<InputError>(HasSubstr("feature 1: 'times' has 1 times for 2 vertices")));
+TEST(GeoJsonReader, ALineThatCannotBeReadCostsThatFeatureNamedAndNotTheFile) {
+    const auto a = read_geojson(data_path("tracks/line_without_times.geojson"));
+    EXPECT_TRUE(a.tracks.empty());
+    EXPECT_EQ(a.report.skipped, 1u);
+    EXPECT_THAT(a.report.messages, ElementsAre(AllOf(HasSubstr("line_without_times.geojson feature 1 ('no clock')"),
+                                                     HasSubstr("line without times"), HasSubstr("feature skipped"))));
+    const auto b = read_geojson(data_path("tracks/line_times_mismatch.geojson"));
+    EXPECT_THAT(b.report.messages, ElementsAre(HasSubstr("feature 1: 'times' has 1 times for 2 vertices; feature skipped")));
+    // Before, one such line cost every track of its file.
+    const auto c = read_geojson_text(R"({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {"id": "ok", "times": ["2014-08-15T19:00:00Z", "2014-08-15T19:00:10Z"]}, "geometry": {"type": "LineString", "coordinates": [[24.9, 60.1], [24.91, 60.1]]}},
+        {"type": "Feature", "properties": {"id": "short", "times": ["2014-08-15T19:00:00Z"]}, "geometry": {"type": "LineString", "coordinates": [[24.9, 60.1], [24.91, 60.1]]}},
+        {"type": "Feature", "properties": {"id": "none"}, "geometry": {"type": "LineString", "coordinates": [[24.9, 60.1], [24.91, 60.1]]}},
+        {"type": "Feature", "properties": {"id": "ok2", "times": ["2014-08-15T19:00:00Z", "2014-08-15T19:00:10Z"]}, "geometry": {"type": "LineString", "coordinates": [[24.9, 60.2], [24.91, 60.2]]}}]})",
+                                     "three.geojson");
+    ASSERT_EQ(c.tracks.size(), 2u);
+    EXPECT_EQ(c.tracks[0].id, "ok");
+    EXPECT_EQ(c.tracks[1].id, "ok2");
+    EXPECT_EQ(c.tracks[1].fixes.size(), 2u);
+    EXPECT_EQ(c.report.skipped, 2u);
+    EXPECT_THAT(c.report.messages, ElementsAre(HasSubstr("three.geojson feature 2: 'times' has 1 times for 2 vertices; feature skipped"),
+                                               HasSubstr("three.geojson feature 3 ('none'): line without times")));
 }
 
 TEST(GeoJsonReader, RejectsBrokenJsonOtherJsonAndOtherCrs) {
