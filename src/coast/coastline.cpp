@@ -251,6 +251,12 @@ private:
 
     /// Transforms every part to WGS84 lon/lat; returns the CRS description for the stats.
     std::string to_wgs84(std::vector<RawPart>& parts) {
+        // A GeoJSON "crs" GDAL cannot find: GDAL says so when it opens the file and takes the
+        // layer as WGS84 (RFC 7946), whatever its coordinates are.
+        if (m_open_said.find("PROJ") != std::string::npos || m_open_said.find("crs") != std::string::npos ||
+            m_open_said.find("CRS") != std::string::npos)
+            throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "': its CRS is not one GDAL can read (" + m_open_said +
+                             "); give the file a CRS GDAL knows (e.g. convert it with ogr2ogr -t_srs EPSG:4326)");
         const ogr::LayerCrs crs =
             ogr::layer_crs(m_layer, m_file, {m_options.source_crs, "; name its CRS with ImportOptions::source_crs", "none in file; assumed WGS84 lon/lat"},
                            [&](double max_lon) { return first_not_lonlat(parts, max_lon); }, m_out.warnings);

@@ -122,6 +122,15 @@ LayerCrs layer_crs(OGRLayer& layer, const std::string& file, const NoCrsRule& no
             throw UsageError("ImportOptions::source_crs '" + no_crs.source_crs + "' is not a CRS GDAL understands");
         out.description = "none in file; ImportOptions::source_crs " + no_crs.source_crs;
     } else {
+        // A Shapefile's .prj that GDAL could not read leaves it without a CRS, without a word.
+        if (!detail::is_virtual_path(file) && detail::lower_ends_with(file, ".shp")) {
+            std::error_code ec;
+            for (const char* ext : {".prj", ".PRJ"}) {
+                const fs::path prj = fs::path(file).replace_extension(ext);
+                if (fs::is_regular_file(prj, ec) && fs::file_size(prj, ec) > 0)
+                    throw InputError(what + ": its " + prj.filename().string() + " is not a CRS GDAL can read" + no_crs.remedy + ", or mend the .prj");
+            }
+        }
         if (const std::string bad = first_not_lonlat(180.0); !bad.empty())
             throw InputError(what + " has no CRS and its coordinates are not longitude/latitude" + bad + no_crs.remedy);
         warnings.push_back(what + " has no CRS; assuming WGS84 longitude/latitude (every coordinate is a valid one)");

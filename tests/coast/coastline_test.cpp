@@ -496,6 +496,30 @@ TEST(CoastImportErrors, AGeoJsonGeometryGdalCannotReadIsRefused) {
     EXPECT_EQ(import_coastline({path}).polylines.size(), 1u);
 }
 
+TEST(CoastImportErrors, ACrsGdalCannotReadIsSaidAsSuch) {
+    // A GeoJSON "crs" that PROJ does not know: GDAL said so when it opened the file and took
+    // the layer as WGS84; before, the file was imported as lon/lat without a word, or refused
+    // as "has the CRS WGS 84 but its coordinates are not longitude/latitude".
+    t::TempDir dir;
+    const std::string path = dir.file("odd_crs.geojson");
+    const std::string text = R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::999999"}}, "features": [)"
+                             R"({"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [[[-1.25, 50.7], [-1.2, 50.7], [-1.2, 50.74], [-1.25, 50.7]]]}}]})";
+    t::write_bytes(path, std::vector<char>(text.begin(), text.end()));
+    EXPECT_THAT([&] { import_coastline({path}); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("its CRS is not one GDAL can read"), HasSubstr("crs not found"))));
+    // A Shapefile whose .prj GDAL cannot read (it then has no CRS, silently): said, unless the
+    // CRS is named.
+    for (const char* ext : {".shp", ".shx", ".dbf"})
+        std::filesystem::copy_file(coast_file(std::string("gr_saronic_piraeus_land") + ext), dir.file(std::string("land") + ext));
+    const std::string prj = "GARBAGE[";
+    t::write_bytes(dir.file("land.prj"), std::vector<char>(prj.begin(), prj.end()));
+    EXPECT_THAT([&] { import_coastline({dir.file("land.shp")}); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr("land.shp"), HasSubstr("its land.prj is not a CRS GDAL can read"))));
+    ImportOptions named;
+    named.source_crs = "EPSG:4326";
+    EXPECT_EQ(import_coastline({dir.file("land.shp")}, named).polylines.size(), import_coastline({coast_file("gr_saronic_piraeus_land.shp")}).polylines.size());
+}
+
 TEST(CoastImportErrors, EmptyLayer) {
     const std::string path = coast_file("empty_collection.geojson");
     EXPECT_THAT([&] { import_coastline({path}); },
