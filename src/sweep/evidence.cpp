@@ -188,7 +188,14 @@ void gather_evidence(const track::Track& t, const std::vector<XY>& p, double hul
                 const Stay& s = *s_it;
                 ev.stay = static_cast<std::size_t>(s_it - r.stays.begin());
                 ev.stop_distance_m = dist(at_contact, s.local);
-                ev.stay_s = s.end_s - s.start_s;
+                // How long it lay there: to the end of the visit's last stay. A vessel lying
+                // still for hours is seldom one stay: its first box holds the last of its
+                // approach, and GPS jitter then takes a fix out of it (a grounding of 4 h read
+                // as 81 min, berth stays of 3 h as 5-7 min); the stays after it, the vessel not
+                // gone beyond the berth radius, are the same visit.
+                double visit_end_s = s.end_s;
+                for (auto it = std::next(s_it); it != r.stays.end() && it->visit == s.visit; ++it) visit_end_s = it->end_s;
+                ev.stay_s = visit_end_s - s.start_s;
                 const double rest_s = std::max(s.start_s, fx[a].time_s);
                 ev.prompt_stop = s.first <= a || rest_s - t0 <= opt.abrupt_window_s;
                 if (have_b && ev.speed_before_age_s <= opt.abrupt_window_s && rest_s - t0 <= opt.abrupt_window_s && rest_s > fx[b].time_s)

@@ -7,7 +7,9 @@
 #include <numbers>
 #include <random>
 
+#include <shoal/sweep/evidence.hpp>
 #include <shoal/sweep/sweep.hpp>
+#include <shoal/track/kinematics.hpp>
 #include <shoal/check/brute_force.hpp>
 
 namespace shoal::audit {
@@ -826,6 +828,50 @@ TEST(Sweep, AGroundingsPointIsWhereHullAndCoastMeetAtItsStart) {
         }
     }
     EXPECT_GT(groundings, 15u) << "too few groundings to mean anything";
+}
+
+}  // namespace
+}  // namespace shoal::audit
+
+namespace shoal::audit {
+namespace {
+
+TEST(Evidence, HowLongAVesselLayThereIsItsWholeVisitNotItsFirstStay) {
+    // A ship runs north onto a shore (land from y = 1000) at 5 m/s, its bow 30 m in when it
+    // comes to rest (reference at y = 950, slowing over its last 45 m), and lies there 4 h,
+    // a fix a minute, GPS jitter of up to 20 m (class B AIS). The first stay's box holds the last of the
+    // approach, and jitter breaks it within minutes; the stays after it are the same visit.
+    // Before, the event said it lay there for the first stay alone.
+    World w({land({{-3000, 1000}, {3000, 1000}, {3000, 3000}, {-3000, 3000}})});
+    std::vector<XY> pts;
+    for (double y = 0; y <= 900; y += 50) pts.push_back({0, y});
+    track::Track t = track_through(pts, 5.0);
+    double time = t.fixes.back().time_s;
+    auto add = [&](XY p, double dt) {
+        time += dt;
+        track::Fix f = t.fixes.back();
+        f.time_s = time;
+        f.position = frame().inverse(p);
+        f.line = t.fixes.size() + 2;
+        t.fixes.push_back(f);
+    };
+    for (const double y : {920.0, 935.0, 945.0, 950.0}) add({0, y}, 5);
+    std::mt19937_64 rng(36);
+    std::uniform_real_distribution<double> jitter(-20, 20);
+    const double rest_s = time;
+    for (int k = 0; k < 240; ++k) add({jitter(rng), 950 + jitter(rng)}, 60);
+    track::resolve_motion(t);
+    TrackResult r = w.sweep(t);
+    gather_evidence(t, w.hull.length(), frame(), w.grid, SweepOptions{}, EvidenceOptions{}, r);
+    ASSERT_GE(r.stays.size(), 2u) << "jitter must break the stay for this test to mean anything";
+    EXPECT_LT(r.stays[0].end_s - r.stays[0].start_s, 3 * 3600.0);
+    const auto g = std::find_if(r.events.begin(), r.events.end(), [](const Event& e) { return is_contact(e.kind); });
+    ASSERT_NE(g, r.events.end());
+    EXPECT_EQ(g->kind, EventKind::grounding);
+    // 4 h: from its first stay to the end of its last (the fixes after the last stay, fewer
+    // than a stay's five minutes, are none).
+    EXPECT_NEAR(g->evidence.stay_s, time - rest_s, 300.0);
+    EXPECT_LE(g->evidence.stay_s, time - t.fixes.front().time_s);
 }
 
 }  // namespace
