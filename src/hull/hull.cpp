@@ -38,7 +38,8 @@ std::string fmt(XY p) { return "(" + fmt(p.x) + ", " + fmt(p.y) + ")"; }
 
 bool is_valid_extent(double v) noexcept { return std::isfinite(v) && v > 0.0; }
 
-/// What makes a hull of these dimensions larger than any ship ("" when none does).
+/// What makes a hull of these dimensions larger than any ship, or smaller than any vessel ("" when
+/// nothing does).
 std::string size_problem(const Dimensions& dims) {
     if (dims.a + dims.b > Hull::max_length_m)
         return "a length (a + b) of " + fmt(dims.a + dims.b) + " m is more than the " + fmt(Hull::max_length_m) +
@@ -46,6 +47,9 @@ std::string size_problem(const Dimensions& dims) {
     if (dims.c + dims.d > Hull::max_beam_m)
         return "a beam (c + d) of " + fmt(dims.c + dims.d) + " m is more than the " + fmt(Hull::max_beam_m) +
                " m of any ship (a wrong unit?)";
+    if (dims.a + dims.b < Hull::min_extent_m || dims.c + dims.d < Hull::min_extent_m)
+        return "a length (a + b) of " + fmt(dims.a + dims.b) + " m and a beam (c + d) of " + fmt(dims.c + dims.d) + " m: less than the " +
+               fmt(Hull::min_extent_m) + " m a hull needs (a wrong unit?)";
     return {};
 }
 

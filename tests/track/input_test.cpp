@@ -422,6 +422,11 @@ TEST(Input, HullsLargerThanAnyShipAreRefused) {
                 ThrowsMessage<InputError>(HasSubstr("a beam (c + d) of 101 m is more than the 100 m of any ship")));
     EXPECT_THAT([] { Hull::parse(R"({"name": "big", "a": 100000, "b": 10, "c": 5, "d": 5})", "big.json"); },
                 ThrowsMessage<InputError>(HasSubstr("In ship file 'big.json': a length (a + b) of 100010 m")));
+    // Under a millimetre: before, an outline of no area, said of every track.
+    EXPECT_NO_THROW(Hull::from_dims_string("0.01,0.01,0.01,0.01"));
+    EXPECT_THAT([] { Hull::from_dims_string("1e-300,1e-300,1e-300,1e-300"); },
+                ThrowsMessage<InputError>(HasSubstr("less than the 0.001 m a hull needs")));
+    EXPECT_THAT([] { Hull::from_dims_string("10,10,0.0004,0.0004"); }, ThrowsMessage<InputError>(HasSubstr("a beam (c + d) of 8e-04 m")));
 }
 
 TEST(Input, TrackWithImpossibleAisDimensionsKeepsItsFixesAndLosesTheDimensions) {

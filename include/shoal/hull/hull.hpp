@@ -34,6 +34,11 @@ public:
     /// more is a wrong unit or a corrupt value (and would make every check slow).
     static constexpr double max_length_m = 500.0;
     static constexpr double max_beam_m = 100.0;
+    /// Smallest length (a + b) and beam (c + d) of a hull made from dimensions, metres (a
+    /// millimetre: a hull of a centimetre is a point probe): a smaller one makes an outline
+    /// whose edges' lengths and area round to nothing (before, --dims 1e-300,... gave an
+    /// outline of no area, said of every track as if the tracks were wrong).
+    static constexpr double min_extent_m = 0.001;
     /// Most bytes a ship file may hold.
     static constexpr std::size_t max_file_bytes = std::size_t{1} << 20;
     /// True when a + b <= max_length_m and c + d <= max_beam_m.
