@@ -102,8 +102,10 @@ LinearGeometry linear_geometry(const OGRFeature& feature) {
 
 std::string not_lonlat_note(double x, double y, std::int64_t fid, double max_lon) {
     if (std::fabs(x) <= max_lon && std::fabs(y) <= 90.0) return "";
+    // %.10g, not %.3f: a coordinate of 1e120 in %.3f is 124 digits, and the note was cut short
+    // before the feature it names.
     char buf[128];
-    std::snprintf(buf, sizeof buf, " (e.g. %.3f, %.3f in feature %lld)", x, y, static_cast<long long>(fid));
+    std::snprintf(buf, sizeof buf, " (e.g. %.10g, %.10g in feature %lld)", x, y, static_cast<long long>(fid));
     return buf;
 }
 
