@@ -93,6 +93,26 @@ std::string sniff_format(std::string_view content, const std::string& path) {
 
 namespace {
 
+/// Why sniff_format() told no format, where the beginning says: a NUL byte (binary, or a text
+/// file with a damaged line: where), or a first line without a separator (comment lines before
+/// a CSV header); "" otherwise.
+std::string why_not_a_track_format(std::string_view head) {
+    if (head.substr(0, 3) == "\xEF\xBB\xBF") head.remove_prefix(3);
+    if (const std::size_t nul = head.substr(0, 4096).find('\0'); nul != std::string_view::npos) {
+        const std::size_t line = 1 + static_cast<std::size_t>(std::count(head.begin(), head.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
+        return ": a NUL byte on line " + std::to_string(line) + " (byte " + std::to_string(nul + 1) +
+               "): a binary file, or a text file with a damaged line there";
+    }
+    const std::size_t first = head.find_first_not_of(" \t\r\n");
+    if (first == std::string_view::npos || head[first] == '<' || head[first] == '{') return "";
+    std::string_view line = head.substr(first, head.find('\n', first) - first);
+    if (line.find_first_of(",;\t") != std::string_view::npos) return "";
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.size() > 60) line = line.substr(0, 60);
+    return ": its first line ('" + std::string(line) + "') holds no ',', ';' or tab" +
+           (line.front() == '#' ? " (a CSV file's header must be its first line: remove the comment lines before it)" : "");
+}
+
 /// A file's format, from its beginning: enough of it that sniff_format decides as it would on
 /// the whole file (the first 4 KB, and the first 20 lines that are not blank or comments).
 struct Sniffed {
@@ -139,7 +159,7 @@ Sniffed sniff_file(shoal::detail::InputFile& in) {
     const std::size_t bom = out.head.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
     if (out.whole && out.head.find_first_not_of(" \t\r\n", bom) == std::string::npos) throw InputError(path + ": empty file");
     out.format = sniff_format(out.head, path);
-    if (out.format.empty()) throw InputError(path + not_a_track_format);
+    if (out.format.empty()) throw InputError(path + not_a_track_format + why_not_a_track_format(out.head));
     return out;
 }
 

@@ -198,8 +198,19 @@ TEST(ReadTracks, EmptyHeaderOnlyUnknownAndMissingFilesAreInputErrors) {
                 ThrowsMessage<InputError>(EndsWith("header_only.csv: no usable fix (0 rows read, 0 skipped)")));
     EXPECT_THAT([] { read_tracks(data_path("tracks/unknown_format.txt")); },
                 ThrowsMessage<InputError>(EndsWith(
-                    "unknown_format.txt: not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183)")));
+                    "unknown_format.txt: not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183): its first line "
+                    "('Voyage notes') holds no ',', ';' or tab")));
     TempDir dir;
+    // Where the beginning says why: comment lines before a CSV header; a NUL byte (before, the
+    // whole file refused without a line named).
+    write(dir.file("comments.csv"), "# exported by tool\nmmsi,time,lat,lon\n1,2014-08-15T19:00:00Z,60,24\n");
+    EXPECT_THAT([&] { read_tracks(dir.file("comments.csv")); },
+                ThrowsMessage<InputError>(HasSubstr("its first line ('# exported by tool') holds no ',', ';' or tab (a CSV file's header must be its first line")));
+    std::string nul = "mmsi,time,lat,lon\n";
+    for (int i = 0; i < 100; ++i) nul += "1,2014-08-15T19:00:" + std::to_string(10 + i % 50) + "Z,60,24\n";
+    nul[nul.find('\n', 200) + 3] = '\0';
+    write(dir.file("nul.csv"), nul);
+    EXPECT_THAT([&] { read_tracks(dir.file("nul.csv")); }, ThrowsMessage<InputError>(HasSubstr("a NUL byte on line 9 (byte 224)")));
     write(dir.file("bom.csv"), "\xEF\xBB\xBF\r\n");
     EXPECT_THAT([&] { read_tracks(dir.file("bom.csv")); }, ThrowsMessage<InputError>(EndsWith("bom.csv: empty file")));
     EXPECT_THAT([] { read_tracks(data_path("tracks/no_such_file.csv")); },
