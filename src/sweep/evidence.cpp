@@ -498,6 +498,9 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t
     set(EventKind::chart_disagrees, 3, "sailed on through under way (" + speed + "): the chart lacks water there");
 }
 
+/// Berthing contacts at most this far apart that come to rest in the same stay are one event.
+constexpr double arrival_gap_s = 60.0;
+
 }  // namespace
 
 void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, const std::vector<std::size_t>& own_visits,
@@ -526,7 +529,13 @@ void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, c
             continue;
         }
         const std::size_t s = stay_at(e.start_s);
-        if (last_contact != static_cast<std::size_t>(-1) && s != static_cast<std::size_t>(-1) && s == open_stay) {
+        // One arrival: berthing contacts seconds apart that come to rest in the same stay (a
+        // vessel creeping in across a coastline drawn a few metres off, GPS jitter taking it
+        // in and out of contact: four alongside events within two minutes, before).
+        const bool one_arrival = last_contact != static_cast<std::size_t>(-1) && e.kind == EventKind::alongside &&
+                                 merged[last_contact].kind == EventKind::alongside && e.evidence.stay != static_cast<std::size_t>(-1) &&
+                                 e.evidence.stay == merged[last_contact].evidence.stay && e.start_s - merged[last_contact].end_s <= arrival_gap_s;
+        if (one_arrival || (last_contact != static_cast<std::size_t>(-1) && s != static_cast<std::size_t>(-1) && s == open_stay)) {
             Event& m = merged[last_contact];
             m.end_s = std::max(m.end_s, e.end_s);
             m.penetration_m = std::max(m.penetration_m, e.penetration_m);

@@ -242,6 +242,40 @@ TEST(OneEventPerStay, AShipThatLeavesAndComesBackHasTwoStays) {
     EXPECT_EQ(j.summary.alongside, 2u);
 }
 
+TEST(OneEventPerStay, BerthingContactsSecondsApartThatComeToRestInOneStayAreOneArrival) {
+    // A vessel creeping in across a coastline drawn a few metres off: jitter takes it in and out
+    // of contact (before, an alongside event for each). All come to rest in stay 0 (from
+    // t = 1000); the first two 20 s apart are one arrival, the third 230 s later another; two
+    // groundings that come to rest there stay two (never merged); an alongside contact that
+    // comes to rest in another stay stays its own.
+    TrackResult r;
+    r.stays = {Stay{}, Stay{}};
+    r.stays[0].start_s = 1000, r.stays[0].end_s = 5000;
+    r.stays[1].start_s = 9000, r.stays[1].end_s = 12000;
+    auto arriving = [](EventKind k, double start_s, double end_s, std::size_t stay, double penetration_m) {
+        Event e = contact(k, start_s, end_s, penetration_m);
+        e.stopped_before = k == EventKind::alongside;  // decided alongside, "stopped before the contact"
+        e.reported_aground = k == EventKind::grounding;  // decided a grounding, "AIS status aground"
+        e.evidence.stay = stay;
+        e.evidence.stay_s = 4000;
+        e.evidence.pieces = 1;
+        return e;
+    };
+    r.events = {arriving(EventKind::alongside, 100, 130, 0, 1.0), arriving(EventKind::alongside, 150, 170, 0, 4.0),
+                arriving(EventKind::alongside, 400, 420, 0, 2.0), arriving(EventKind::grounding, 500, 520, 0, 1.0),
+                arriving(EventKind::grounding, 530, 560, 0, 1.0), arriving(EventKind::alongside, 8000, 8010, 1, 1.0)};
+    decide_kinds(r, {0, 0}, {0, 0}, EvidenceOptions{});
+    ASSERT_EQ(kinds(r), (std::vector<EventKind>{EventKind::alongside, EventKind::alongside, EventKind::grounding, EventKind::grounding,
+                                                EventKind::alongside}));
+    EXPECT_DOUBLE_EQ(r.events[0].start_s, 100);
+    EXPECT_DOUBLE_EQ(r.events[0].end_s, 170);
+    EXPECT_DOUBLE_EQ(r.events[0].penetration_m, 4.0);
+    EXPECT_EQ(r.events[0].evidence.pieces, 2u);
+    EXPECT_DOUBLE_EQ(r.events[1].start_s, 400);
+    EXPECT_EQ(r.summary.alongside, 3u);
+    EXPECT_EQ(r.summary.groundings, 2u);
+}
+
 TEST(OneEventPerStay, GroundingsAndExpectedContactsAreNeverMergedNorMergedInto) {
     track::Track t;
     for (int i = 0; i <= 60; ++i) t.fixes.push_back(still_fix(60.0 * i));
