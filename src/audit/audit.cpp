@@ -312,7 +312,10 @@ TrackResult sweep_vessel(const track::Track& t, Vessel& v, const grid::CoastGrid
     if (options.world == World::real) context.positions = &positions;
     TrackResult r = sweep_track(t, frame, detector, sweep_options, context);
     if (options.world == World::real) gather_evidence(t, positions, v.hull->length(), frame, grid, sweep_options, options.evidence, r);
-    else merge_stays(r, t, sweep_options, options.evidence.under_way_kn);
+    else {
+        ground_inside_gaps(r, t, sweep_options, options.evidence, v.hull->length());
+        merge_stays(r, t, sweep_options, options.evidence.under_way_kn);
+    }
     TrackSummary& s = r.summary;
     s.fixes += v.wild.size();  // fixes read, the wild ones among them
     s.wild_fixes = std::move(v.wild);

@@ -556,12 +556,46 @@ void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, c
     recount(r);
 }
 
+void ground_inside_gaps(TrackResult& r, const track::Track& t, const SweepOptions& opt, const EvidenceOptions& evidence, double hull_length_m) {
+    const auto& fx = t.fixes;
+    bool changed = false;
+    for (Event& e : r.events) {
+        if (e.kind != EventKind::contact_at_start || e.unseen_after != "gap") continue;
+        // a: the first fix of the piece (in contact); b: the last one before the gap.
+        const auto a_it = std::lower_bound(fx.begin(), fx.end(), e.start_s - 1e-6, [](const track::Fix& f, double v) { return f.time_s < v; });
+        const std::size_t a = static_cast<std::size_t>(a_it - fx.begin());
+        if (a == 0 || a >= fx.size() || fx[a].jump_before) continue;
+        const track::Fix& b = fx[a - 1];
+        // Seen clear there: no contact of the track holds its time.
+        const bool clear = std::none_of(r.events.begin(), r.events.end(), [&](const Event& o) {
+            return is_contact(o.kind) && o.start_s <= b.time_s + 1e-6 && o.end_s >= b.time_s - 1e-6;
+        });
+        const double gap_s = fx[a].time_s - b.time_s;
+        const bool under_way = !b.stopped && b.speed_used_kn >= opt.berthing_speed_kn;
+        const double reach_m = (std::isfinite(hull_length_m) ? hull_length_m : 0.0) + 50.0;
+        const bool plausible = track::distance_m(b.position, fx[a].position) <= 1.5 * b.speed_used_kn * 1852.0 / 3600.0 * gap_s + reach_m;
+        if (!clear || !under_way || !plausible || gap_s > evidence.max_unseen_s) continue;
+        e.kind = EventKind::grounding;
+        e.evidence.seen_clear_before = true;
+        e.evidence.start_not_before_s = b.time_s;
+        e.evidence.speed_before_kn = b.speed_used_kn;
+        e.evidence.speed_before_age_s = std::max(0.0, e.start_s - b.time_s);
+        changed = true;
+    }
+    if (changed) recount(r);
+}
+
 void grade_simulated(TrackResult& r) {
     for (Event& e : r.events) {
         if (!is_contact(e.kind)) continue;
         e.evidence.grade = 4;
         switch (e.kind) {
-            case EventKind::grounding: e.evidence.reason = "contact under way, seen clear before: the chart is the world"; break;
+            case EventKind::grounding:
+                e.evidence.reason = e.unseen_after.empty()
+                                        ? "contact under way, seen clear before: the chart is the world"
+                                        : "seen clear under way at " + fmt1(e.evidence.speed_before_kn) + " kn, in contact after a gap of " +
+                                              fmt1(e.evidence.speed_before_age_s) + " s: aground inside the gap; the chart is the world";
+                break;
             case EventKind::alongside: e.evidence.reason = "began while stopped or under the berthing speed"; break;
             case EventKind::contact_at_start: e.evidence.reason = "already in contact at the first fix after the " + e.unseen_after; break;
             case EventKind::expected_contact: e.evidence.reason = "in a " + e.area_kind + " area, not under way"; break;

@@ -276,6 +276,47 @@ TEST(OneEventPerStay, BerthingContactsSecondsApartThatComeToRestInOneStayAreOneA
     EXPECT_EQ(r.summary.groundings, 2u);
 }
 
+TEST(SimulatedWorld, AContactFirstSeenAfterAGapUnderWayBeforeItIsAGroundingInsideTheGap) {
+    // Seen clear at 10 kn (5.14 m/s) every minute northwards, then nothing for 30 min, then in
+    // contact at rest 3 km further on (within 1.5 x 10 kn x 30 min = 13.9 km): aground inside
+    // the gap, the fix before it the start's bound.
+    auto run = [](double gap_s, double speed_kn, bool stopped, double lying_m, bool jump, bool contact_before) {
+        track::Track t;
+        for (int i = 0; i <= 10; ++i) t.fixes.push_back(still_fix(60.0 * i, 308.6 * i, 0, speed_kn, stopped));
+        const double t1 = 600.0 + gap_s;
+        for (int i = 0; i <= 5; ++i) t.fixes.push_back(still_fix(t1 + 60.0 * i, 3086.0 + lying_m, 0, 0.0, true));
+        t.fixes[11].jump_before = jump;
+        TrackResult r;
+        if (contact_before) r.events.push_back(contact(EventKind::alongside, 500, 600));
+        Event e = contact(EventKind::contact_at_start, t1, t1 + 300);
+        e.unseen_after = "gap";
+        r.events.push_back(e);
+        ground_inside_gaps(r, t, SweepOptions{}, EvidenceOptions{}, 100.0);
+        return r;
+    };
+    const TrackResult g = run(1800, 10, false, 3000, false, false);
+    ASSERT_EQ(g.events.size(), 1u);
+    EXPECT_EQ(g.events[0].kind, EventKind::grounding);
+    EXPECT_DOUBLE_EQ(g.events[0].evidence.start_not_before_s, 600);
+    EXPECT_DOUBLE_EQ(g.events[0].evidence.speed_before_kn, 10);
+    EXPECT_DOUBLE_EQ(g.events[0].evidence.speed_before_age_s, 1800);
+    EXPECT_EQ(g.summary.groundings, 1u);
+    EXPECT_EQ(g.summary.contacts_at_start, 0u);
+    // Not when: the gap is over the hour; the vessel was stopped or under the berthing speed
+    // before it; it lies further than it could have gone; the fixes jump; it was in contact
+    // before the gap.
+    EXPECT_EQ(run(3700, 10, false, 3000, false, false).events[0].kind, EventKind::contact_at_start);
+    EXPECT_EQ(run(1800, 10, true, 3000, false, false).events[0].kind, EventKind::contact_at_start);
+    EXPECT_EQ(run(1800, 0.5, false, 3000, false, false).events[0].kind, EventKind::contact_at_start);
+    EXPECT_EQ(run(1800, 10, false, 20000, false, false).events[0].kind, EventKind::contact_at_start);
+    EXPECT_EQ(run(1800, 10, false, 3000, true, false).events[0].kind, EventKind::contact_at_start);
+    EXPECT_EQ(run(1800, 10, false, 3000, false, true).events[1].kind, EventKind::contact_at_start);
+    // Its reason, graded by the simulated world.
+    TrackResult graded = g;
+    grade_simulated(graded);
+    EXPECT_EQ(graded.events[0].evidence.reason, "seen clear under way at 10 kn, in contact after a gap of 1800 s: aground inside the gap; the chart is the world");
+}
+
 TEST(OneEventPerStay, GroundingsAndExpectedContactsAreNeverMergedNorMergedInto) {
     track::Track t;
     for (int i = 0; i <= 60; ++i) t.fixes.push_back(still_fix(60.0 * i));

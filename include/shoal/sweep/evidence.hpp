@@ -136,4 +136,16 @@ void grade_simulated(TrackResult& r);
 /// Recounts the summary's contacts.
 void merge_stays(TrackResult& r, const track::Track& track, const SweepOptions& options, double under_way_kn = EvidenceOptions{}.under_way_kn);
 
+/// The simulated world's contacts that began inside a gap of the fixes: an `in_contact_at_start`
+/// after a gap (not a jump, not the track's start) of at most `evidence.max_unseen_s`, whose fix
+/// before the gap was seen clear and under way (not stopped, at `sweep.berthing_speed_kn` or
+/// more) and lies no farther from the first fix after it than 1.5 times that speed over the gap
+/// plus the hull's length and 50 m, is a grounding: the chart is the world, and the vessel came
+/// into contact under way, unseen. Its `start_not_before` is that fix, with its speed and age as
+/// evidence. Before, such a vessel, last seen clear at 11 kn and lying aground after a gap of
+/// 35 min, was only "already in contact at the first fix after the gap". Recounts the summary's
+/// contacts.
+void ground_inside_gaps(TrackResult& r, const track::Track& track, const SweepOptions& sweep, const EvidenceOptions& evidence,
+                        double hull_length_m);
+
 }  // namespace shoal::audit
