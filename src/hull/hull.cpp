@@ -47,9 +47,10 @@ std::string size_problem(const Dimensions& dims) {
     if (dims.c + dims.d > Hull::max_beam_m)
         return "a beam (c + d) of " + fmt(dims.c + dims.d) + " m is more than the " + fmt(Hull::max_beam_m) +
                " m of any ship (a wrong unit?)";
-    if (dims.a + dims.b < Hull::min_extent_m || dims.c + dims.d < Hull::min_extent_m)
-        return "a length (a + b) of " + fmt(dims.a + dims.b) + " m and a beam (c + d) of " + fmt(dims.c + dims.d) + " m: less than the " +
-               fmt(Hull::min_extent_m) + " m a hull needs (a wrong unit?)";
+    if (dims.a + dims.b < Hull::min_extent_m)
+        return "a length (a + b) of " + fmt(dims.a + dims.b) + " m is less than the " + fmt(Hull::min_extent_m) + " m a hull needs (a wrong unit?)";
+    if (dims.c + dims.d < Hull::min_extent_m)
+        return "a beam (c + d) of " + fmt(dims.c + dims.d) + " m is less than the " + fmt(Hull::min_extent_m) + " m a hull needs (a wrong unit?)";
     return {};
 }
 
@@ -443,7 +444,9 @@ Hull Hull::from_dims_string(const std::string& text) {
     return from_dimensions({v[0], v[1], v[2], v[3]});
 }
 
-bool Hull::plausible(const Dimensions& dims) noexcept { return dims.a + dims.b <= max_length_m && dims.c + dims.d <= max_beam_m; }
+bool Hull::plausible(const Dimensions& dims) noexcept {
+    return dims.a + dims.b <= max_length_m && dims.c + dims.d <= max_beam_m && dims.a + dims.b >= min_extent_m && dims.c + dims.d >= min_extent_m;
+}
 
 Hull Hull::parse(std::string_view text, const std::string& name) {
     const ShipFileReader reader{name, text};

@@ -198,7 +198,8 @@ void drop_impossible_dims(File& out, const std::string& path) {
     if (count == 0) return;
     out.report.messages.push_back(path + ": " + std::to_string(count) + (count == 1 ? " track gives" : " tracks give") +
                                   " AIS dimensions larger than any ship (length A+B over " + detail::fmt(hull::Hull::max_length_m) +
-                                  " m or beam C+D over " + detail::fmt(hull::Hull::max_beam_m) + " m), e.g. " + example +
+                                  " m or beam C+D over " + detail::fmt(hull::Hull::max_beam_m) + " m) or under a hull's " +
+                                  detail::fmt(hull::Hull::min_extent_m) + " m, e.g. " + example +
                                   ": the default hull is used for them");
 }
 

@@ -219,7 +219,8 @@ std::map<std::string, VesselInfo> read_vessels(const std::string& path, std::vec
         if (all_given) given = hull::Dimensions{d[0], d[1], d[2], d[3]};
         if (problem.empty() && given && !hull::Hull::plausible(*given))
             problem = "dimensions " + dims_text(*given) + " are larger than any ship (length A+B over " + detail::fmt(hull::Hull::max_length_m) +
-                      " m or beam C+D over " + detail::fmt(hull::Hull::max_beam_m) + " m: a wrong unit?)";
+                      " m or beam C+D over " + detail::fmt(hull::Hull::max_beam_m) + " m) or under a hull's " +
+                      detail::fmt(hull::Hull::min_extent_m) + " m: a wrong unit?";
         if (problem.empty() && std::isfinite(dr) && dr > max_draught_m)
             problem = "draught " + detail::fmt(dr) + " m is deeper than any ship draws (" + detail::fmt(max_draught_m) + " m)";
         if (!problem.empty()) {

@@ -426,7 +426,12 @@ TEST(Input, HullsLargerThanAnyShipAreRefused) {
     EXPECT_NO_THROW(Hull::from_dims_string("0.01,0.01,0.01,0.01"));
     EXPECT_THAT([] { Hull::from_dims_string("1e-300,1e-300,1e-300,1e-300"); },
                 ThrowsMessage<InputError>(HasSubstr("less than the 0.001 m a hull needs")));
-    EXPECT_THAT([] { Hull::from_dims_string("10,10,0.0004,0.0004"); }, ThrowsMessage<InputError>(HasSubstr("a beam (c + d) of 8e-04 m")));
+    EXPECT_THAT([] { Hull::from_dims_string("10,10,0.0004,0.0004"); }, ThrowsMessage<InputError>(HasSubstr("a beam (c + d) of 8e-04 m is less")));
+    // A track's AIS dimensions that small are not its hull (the default serves it), as those
+    // larger than any ship.
+    EXPECT_FALSE(Hull::plausible({0.0004, 0.0004, 5, 5}));
+    EXPECT_FALSE(Hull::plausible({5, 5, 0.0004, 0.0004}));
+    EXPECT_TRUE(Hull::plausible({0.01, 0.01, 0.01, 0.01}));
 }
 
 TEST(Input, TrackWithImpossibleAisDimensionsKeepsItsFixesAndLosesTheDimensions) {

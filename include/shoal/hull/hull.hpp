@@ -41,7 +41,8 @@ public:
     static constexpr double min_extent_m = 0.001;
     /// Most bytes a ship file may hold.
     static constexpr std::size_t max_file_bytes = std::size_t{1} << 20;
-    /// True when a + b <= max_length_m and c + d <= max_beam_m.
+    /// True when a + b and c + d lie within [min_extent_m, max_length_m] and [min_extent_m,
+    /// max_beam_m] (a track's AIS dimensions that are not: the default hull serves it).
     static bool plausible(const Dimensions& dims) noexcept;
 
     /// 36-point outline with a pointed bow that exactly fits the box x in [-b, a], y in [-c, d]
