@@ -163,6 +163,13 @@ private:
     /// failure (a Shapefile's null shape, GeoJSON's "geometry": null, a type GDAL does not
     /// know) holds no coastline: it is skipped, and said.
     void said_while_reading(const detail::GdalFailures& failures, const std::vector<std::int64_t>& no_geometry, std::uint64_t features) {
+        // A GeoJSON "crs" GDAL cannot find: GDAL says so when it opens the file and takes the
+        // layer as WGS84 (RFC 7946), whatever its coordinates are. Said first: the features
+        // are then not the problem.
+        if (m_open_said.find("PROJ") != std::string::npos || m_open_said.find("crs") != std::string::npos ||
+            m_open_said.find("CRS") != std::string::npos)
+            throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "': its CRS is not one GDAL can read (" + m_open_said +
+                             "); give the file a CRS GDAL knows (e.g. convert it with ogr2ogr -t_srs EPSG:4326)");
         std::string fids;
         for (std::size_t i = 0; i < no_geometry.size() && i < 5; ++i) fids += (i ? ", " : "") + std::to_string(no_geometry[i]);
         if (no_geometry.size() > 5) fids += ", ...";
@@ -173,7 +180,10 @@ private:
             throw InputError(what + ": OGR could not read all of it (" + said + ")" +
                              (no_geometry.empty() ? "" : "; " + which + " came without a geometry") +
                              ": the file is damaged or cut short, and a grid without part of its land would call that land water");
-        if (!no_geometry.empty()) m_out.warnings.push_back(what + ": " + which + (no_geometry.size() == 1 ? " has" : " have") + " no geometry; skipped");
+        if (!no_geometry.empty())
+            m_out.warnings.push_back(what + ": " + which + (no_geometry.size() == 1 ? " has" : " have") +
+                                     " no geometry OGR could read (none given, or one OGR does not know, as a GeoJSON type misspelt); "
+                                     "skipped: no land is drawn for " + (no_geometry.size() == 1 ? "it" : "them"));
     }
 
     static std::vector<LonLat> points_of(const OGRSimpleCurve& c) { return ogr::points_of<LonLat>(c); }
@@ -251,12 +261,6 @@ private:
 
     /// Transforms every part to WGS84 lon/lat; returns the CRS description for the stats.
     std::string to_wgs84(std::vector<RawPart>& parts) {
-        // A GeoJSON "crs" GDAL cannot find: GDAL says so when it opens the file and takes the
-        // layer as WGS84 (RFC 7946), whatever its coordinates are.
-        if (m_open_said.find("PROJ") != std::string::npos || m_open_said.find("crs") != std::string::npos ||
-            m_open_said.find("CRS") != std::string::npos)
-            throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "': its CRS is not one GDAL can read (" + m_open_said +
-                             "); give the file a CRS GDAL knows (e.g. convert it with ogr2ogr -t_srs EPSG:4326)");
         const ogr::LayerCrs crs =
             ogr::layer_crs(m_layer, m_file, {m_options.source_crs, "; name its CRS with ImportOptions::source_crs", "none in file; assumed WGS84 lon/lat"},
                            [&](double max_lon) { return first_not_lonlat(parts, max_lon); }, m_out.warnings);

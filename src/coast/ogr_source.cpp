@@ -1,5 +1,6 @@
 #include "coast/ogr_source.hpp"
 
+#include <cpl_vsi.h>
 #include <ogr_spatialref.h>
 
 #include <cctype>
@@ -124,14 +125,18 @@ LayerCrs layer_crs(OGRLayer& layer, const std::string& file, const NoCrsRule& no
             throw UsageError("ImportOptions::source_crs '" + no_crs.source_crs + "' is not a CRS GDAL understands");
         out.description = "none in file; ImportOptions::source_crs " + no_crs.source_crs;
     } else {
-        // A Shapefile's .prj that GDAL could not read leaves it without a CRS, without a word.
-        if (!detail::is_virtual_path(file) && detail::lower_ends_with(file, ".shp")) {
-            std::error_code ec;
-            for (const char* ext : {".prj", ".PRJ"}) {
-                const fs::path prj = fs::path(file).replace_extension(ext);
-                if (fs::is_regular_file(prj, ec) && fs::file_size(prj, ec) > 0)
-                    throw InputError(what + ": its " + prj.filename().string() + " is not a CRS GDAL can read" + no_crs.remedy + ", or mend the .prj");
-            }
+        // A Shapefile's .prj that GDAL could not read leaves it without a CRS, without a word
+        // (the .shp named, or a layer of a folder of Shapefiles; on disk or in GDAL's paths).
+        std::string shp;
+        if (detail::lower_ends_with(file, ".shp")) shp = file;
+        else if (std::string(layer.GetName()).find('/') == std::string::npos && detail::is_folder_input(file))
+            shp = file + "/" + layer.GetName() + ".shp";
+        for (const char* ext : {".prj", ".PRJ"}) {
+            if (shp.empty()) break;
+            const std::string prj = shp.substr(0, shp.size() - 4) + ext;
+            VSIStatBufL st;
+            if (VSIStatL(prj.c_str(), &st) == 0 && VSI_ISREG(st.st_mode) && st.st_size > 0)
+                throw InputError(what + ": its " + fs::path(prj).filename().string() + " is not a CRS GDAL can read" + no_crs.remedy + ", or mend the .prj");
         }
         if (const std::string bad = first_not_lonlat(180.0); !bad.empty())
             throw InputError(what + " has no CRS and its coordinates are not longitude/latitude" + bad + no_crs.remedy);
