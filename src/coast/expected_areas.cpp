@@ -94,16 +94,18 @@ struct Built {
 /// Reads one layer into areas. `user` layers must hold something usable.
 class LayerReader {
 public:
+    /// `open_said`: what GDAL reported as failures while opening the file (ogr::open_vector).
     LayerReader(std::string file, OGRLayer& layer, LayerRole role, bool user, const geo::LocalFrame& frame,
-                double tolerance_m, const GeosContext& geos, std::vector<std::string>& warnings)
+                double tolerance_m, const GeosContext& geos, std::vector<std::string>& warnings, std::string open_said = {})
         : m_file(std::move(file)), m_layer(layer), m_role(std::move(role)), m_user(user), m_frame(frame),
-          m_tolerance_m(tolerance_m), m_geos(geos), m_warnings(warnings) {}
+          m_tolerance_m(tolerance_m), m_geos(geos), m_warnings(warnings), m_open_said(std::move(open_said)) {}
 
     std::vector<Built> read() {
         const s57::StructureFields fields = s57::structure_fields(layer_name(), *m_layer.GetLayerDefn());
         std::vector<RawFeature> raws;
         std::uint64_t features = 0, unusable = 0, not_structures = 0;
         m_layer.ResetReading();
+        detail::GdalFailures failures;
         for (auto& feature : m_layer) {
             ++features;
             RawFeature raw;
@@ -131,6 +133,18 @@ public:
                 continue;
             }
             raws.push_back(std::move(raw));
+        }
+        // A user's areas file OGR could not read whole is refused, as a coastline is: a berth
+        // left out would make a contact there a grounding (a Shapefile cut short; a GeoJSON crs
+        // GDAL cannot find, taken as WGS84; a geometry with text for coordinates).
+        if (m_user) {
+            const std::string what = "layer '" + layer_name() + "' in '" + m_file + "'";
+            if (m_open_said.find("PROJ") != std::string::npos || m_open_said.find("crs") != std::string::npos ||
+                m_open_said.find("CRS") != std::string::npos)
+                throw InputError(what + ": its CRS is not one GDAL can read (" + m_open_said + "); give the file a CRS GDAL knows");
+            if (failures.count() > 0 || (!m_open_said.empty() && unusable > 0))
+                throw InputError(what + ": OGR could not read all of it (" + (failures.count() > 0 ? failures.said() : m_open_said) +
+                                 "): the file is damaged or cut short, and an area left out would make a contact there a grounding");
         }
         const auto nothing_usable = [&](const std::string& why) {
             return InputError("layer '" + layer_name() + "' in '" + m_file + "' has no polygon, line or point to use as an area" + why);
@@ -317,6 +331,7 @@ private:
     double m_tolerance_m;
     const GeosContext& m_geos;
     std::vector<std::string>& m_warnings;
+    std::string m_open_said;
 };
 
 /// The same file, as far as the file system can tell (for skipping a chart also given as a user file).
@@ -366,11 +381,12 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
     std::unique_ptr<Impl> impl;  // made (with its GEOS context) by the first file read
     std::vector<std::string> local_warnings;
     std::vector<std::string>& warn = warnings ? *warnings : local_warnings;
-    auto read_layers = [&](const std::string& path, const std::vector<std::pair<OGRLayer*, LayerRole>>& layers, bool user) {
+    auto read_layers = [&](const std::string& path, const std::vector<std::pair<OGRLayer*, LayerRole>>& layers, bool user,
+                           const std::string& open_said) {
         QuietErrors quiet;
         if (!impl) impl = std::make_unique<Impl>();
         for (const auto& [layer, role] : layers)
-            for (Built& b : LayerReader(path, *layer, role, user, frame, tolerance_m, impl->geos, warn).read()) {
+            for (Built& b : LayerReader(path, *layer, role, user, frame, tolerance_m, impl->geos, warn, open_said).read()) {
                 impl->areas.push_back(std::move(b.area));
                 impl->geoms.push_back(std::move(b.geom));
             }
@@ -384,7 +400,8 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
 
     std::set<std::string> user_keys;
     for (const std::string& path : user_files) {
-        GDALDatasetUniquePtr ds = ogr::open_vector(path);
+        std::string open_said;
+        GDALDatasetUniquePtr ds = ogr::open_vector(path, &open_said);
         user_keys.insert(file_key(path));
         std::vector<std::pair<OGRLayer*, LayerRole>> chosen;
         if (ogr::is_s57(*ds)) {
@@ -396,7 +413,7 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
             for (OGRLayer* l : ds->GetLayers()) chosen.emplace_back(l, s57_role(l->GetName()).value_or(LayerRole{}));
             if (chosen.empty()) throw InputError("'" + path + "' has no vector layers");
         }
-        read_layers(path, chosen, true);
+        read_layers(path, chosen, true, open_said);
     }
     for (const std::string& path : charts) {
         if (user_keys.count(file_key(path))) continue;  // already read as a user file
@@ -404,7 +421,7 @@ ExpectedAreas ExpectedAreas::load(const std::vector<std::string>& user_files, co
         // opened: opening a GeoJSON coast would parse it whole. A missing one fails as any input.
         if (detail::input_exists(path) && !ogr::may_be_s57(path)) continue;
         GDALDatasetUniquePtr ds = ogr::open_vector(path);
-        if (ogr::is_s57(*ds)) read_layers(path, s57_layers(*ds), false);
+        if (ogr::is_s57(*ds)) read_layers(path, s57_layers(*ds), false, {});
     }
 
     ExpectedAreas out;

@@ -282,6 +282,27 @@ TEST(ExpectedAreas, UserGeoJsonIsReadFeatureByFeature) {
     }
 }
 
+TEST(ExpectedAreas, AUsersFileOgrCannotReadWholeIsRefused) {
+    // A berths file cut short: before, the 25 polygons before the cut were the berths, a warning
+    // said "41 feature(s) ... skipped", and contacts at the berths left out were groundings.
+    t::TempDir dir;
+    for (const char* ext : {".shp", ".shx", ".dbf", ".prj"})
+        std::filesystem::copy_file(coast_file(std::string("gr_saronic_piraeus_land") + ext), dir.file(std::string("berths") + ext));
+    const std::string path = dir.file("berths.shp");
+    const LocalFrame frame = LocalFrame::transverse_mercator({23.6, 37.9});
+    EXPECT_EQ(ExpectedAreas::load({path}, {}, frame, tolerance_m, nullptr).size(), 66u);
+    std::filesystem::resize_file(path, 40000);
+    EXPECT_THAT([&] { ExpectedAreas::load({path}, {}, frame, tolerance_m, nullptr); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("could not read all of it"), HasSubstr("Error in fread()"))));
+    // A GeoJSON crs GDAL cannot find (taken as WGS84 before, without a word).
+    const std::string odd = dir.file("odd.geojson");
+    const std::string text = R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::999999"}}, "features": [)"
+                             R"({"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [[[23.6, 37.9], [23.61, 37.9], [23.61, 37.91], [23.6, 37.9]]]}}]})";
+    t::write_bytes(odd, std::vector<char>(text.begin(), text.end()));
+    EXPECT_THAT([&] { ExpectedAreas::load({odd}, {}, frame, tolerance_m, nullptr); },
+                ThrowsMessage<InputError>(AllOf(HasSubstr(odd), HasSubstr("its CRS is not one GDAL can read"))));
+}
+
 TEST(ExpectedAreas, PointAnswersMatchOgr) {
     const std::string path = areas_file("helsinki_harbours.geojson");
     const ExpectedAreas areas = ExpectedAreas::load({path}, {}, helsinki_frame(), tolerance_m, nullptr);
