@@ -167,6 +167,7 @@ struct ParsedRow {
     std::string_view id, exercise;
     const char* role = nullptr;  ///< role_value() of the role column; null when not read
     std::size_t skip = no_skip;  ///< a bad row: its message in ParsedBlock::skips
+    std::size_t quoted_line_ends = 0;  ///< line ends inside its quoted fields (CsvSplitter::quoted_line_ends)
 };
 
 /// The records read from one block of a CSV file, in file order: what the thread that splits
@@ -229,8 +230,10 @@ public:
             if (!rec.empty() && rec.back() == '\n') rec.remove_suffix(1);
             if (!rec.empty() && rec.back() == '\r') rec.remove_suffix(1);
             m_long_row = rec.size() > shoal::detail::max_line_bytes;
+            m_quoted_line_ends = m_split->quoted_line_ends();
             if (m_split->quote_not_closed()) skip(out, std::string(quote_not_closed_message));
             else parse(f, m_split->unescaped(), out);
+            m_quoted_line_ends = 0;
             m_long_row = false;
         }
         return m_split->consumed();
@@ -249,7 +252,11 @@ public:
     /// A record longer than the line limit, its fields cut short: a bad row, reported with its
     /// first problem, else as too long (its line is the pending record's: the splitter stopped
     /// before it).
-    void long_record(const std::vector<std::string>& fields, ParsedBlock& out) {
+    void long_record(const std::vector<std::string>& fields, bool quote_not_closed, ParsedBlock& out) {
+        if (quote_not_closed) {
+            skip(out, std::string(quote_not_closed_message));
+            return;
+        }
         std::vector<std::string_view> f;
         for (const std::string& s : fields) f.push_back(out.owned.emplace_back(s));
         m_long_row = true;
@@ -336,6 +343,7 @@ private:
         r.position = position;
         r.line = m_split->line();
         r.long_row = m_long_row;
+        r.quoted_line_ends = m_quoted_line_ends;
         r.heading = field(f, m_cols.heading, copy, out);
         r.cog = field(f, m_cols.cog, copy, out);
         r.sog = field(f, m_cols.sog, copy, out);
@@ -351,6 +359,7 @@ private:
 
     std::optional<CsvSplitter> m_split;
     std::vector<std::string_view> m_fields;
+    std::size_t m_quoted_line_ends = 0;  // of the record being parsed
     bool m_long_row = false;
     bool m_header_read = false;
     const std::string& m_file;
@@ -385,6 +394,7 @@ public:
             if (r.skip != no_skip) {
                 m_out.report.skip(b.skips[r.skip]);
             } else {
+                if (r.quoted_line_ends > 0 && m_quoted_rows++ == 0) m_first_quoted = {r.line, r.quoted_line_ends};
                 add(r, vessel);
                 vessel += k;
             }
@@ -393,6 +403,13 @@ public:
 
     PackedTrackFile finish() {
         date_pending();
+        // Rows that held line ends inside quotes are read as RFC 4180 says, each one row: said,
+        // since a stray quote closed by another a few lines on joins those rows so.
+        if (m_quoted_rows > 0)
+            m_out.report.messages.push_back(m_file + ": " + std::to_string(m_quoted_rows) + (m_quoted_rows == 1 ? " row holds" : " rows hold") +
+                                            " line ends inside quotes, each read as one row (the first on line " + std::to_string(m_first_quoted.first) +
+                                            ", over " + std::to_string(m_first_quoted.second + 1) +
+                                            " lines); a stray quote (\") closed by another on a later line joins the rows between so");
         for (const RoleConflict& c : m_role_conflicts) {
             PackedTrack& t = m_out.tracks[c.track];
             m_out.report.messages.push_back(m_file + ": track '" + t.id + "'" + (t.exercise.empty() ? "" : " of exercise '" + t.exercise + "'") +
@@ -517,6 +534,8 @@ private:
     const ReadOptions& m_options;
     const CsvRowParser& m_parser;
     PackedTrackFile m_out;
+    std::size_t m_quoted_rows = 0;                              // rows that held line ends inside quotes
+    std::pair<std::size_t, std::size_t> m_first_quoted{0, 0};  // the first: its line and line ends
     std::optional<TrackTable> m_table;  ///< made at the first row, once the header has given the columns
     struct RoleConflict {
         std::size_t track, first_line, other_line;
@@ -563,6 +582,10 @@ namespace {
 struct LongRecord {
     std::vector<std::string> fields;
     std::size_t newlines = 0;  ///< its line end included (none when the file ends in it)
+    /// A quoted field met a line end: the record ends there, as CsvSplitter::quote_not_closed
+    /// ends a line whose quote does not close (a stray quote in a record this long would
+    /// otherwise take in every row up to the next quote).
+    bool quote_not_closed = false;
 };
 
 /// Reads the record at the start of `buf` (then of what `more` appends to it, until `more`
@@ -591,9 +614,15 @@ LongRecord read_long_record(std::string& buf, char sep, More&& more) {
                 after_quote = true;
             }
             if (quoted) {
+                if (c == '\n') {
+                    r.quote_not_closed = true;
+                    end_field();
+                    ++r.newlines;
+                    buf.erase(0, i + 1);
+                    return r;
+                }
                 if (c == '"') quote_seen = true;
                 else if (field.size() < keep) field += c;
-                if (c == '\n') ++r.newlines;
                 continue;
             }
             if (c == sep || c == '\n') {
@@ -747,7 +776,7 @@ PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::strin
                     return true;
                 });
                 std::unique_ptr<ParsedBlock> b = take();
-                parser.long_record(r.fields, *b);
+                parser.long_record(r.fields, r.quote_not_closed, *b);
                 emit(std::move(b));
                 buf.insert(0, r.newlines, '\n');  // blank lines: the splitter counts the lines the record held
             }

@@ -118,6 +118,7 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
     const char sep = m_sep ? m_sep : ',';
     m_unescaped.clear();
     m_quote_not_closed = false;
+    m_quoted_line_ends = 0;
     while (m_pos < n) {
         fields.clear();
         m_record_line = m_line;
@@ -188,6 +189,7 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
                     }
                     ++m_pos;
                 }
+                if (m_line > field_line && !quote_left_open(closed, sep)) m_quoted_line_ends += m_line - field_line;
                 if (m_line > field_line && quote_left_open(closed, sep)) {
                     // A quote that takes in the lines after its own but does not close as a
                     // field's quotes do: a stray quote (an AIS name "ALPHA), which would take
@@ -205,6 +207,7 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
                     m_pos = line_end + 1;
                     m_line = m_record_line + 1;
                     m_quote_not_closed = true;
+                    m_quoted_line_ends = 0;
                     return true;
                 }
                 std::string_view value = t.substr(start, end - start);
@@ -241,6 +244,7 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
             m_line = m_record_line;
             fields.clear();
             m_unescaped.clear();
+            m_quoted_line_ends = 0;
             return false;
         }
         if (fields.size() == 1 && fields[0].empty()) continue;  // blank line

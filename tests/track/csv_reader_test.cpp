@@ -16,6 +16,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <random>
 #include <tuple>
@@ -571,6 +572,52 @@ TEST(CsvReader, AQuoteThatDoesNotCloseCostsItsOwnRowOnly) {
     EXPECT_EQ(g.report.skipped, 0u);
     ASSERT_EQ(g.tracks.size(), 1u);
     EXPECT_EQ(g.tracks[0].fixes.size(), 2u);
+    // Said, though: a stray quote closed by another a few lines on, before a separator, joins
+    // the rows between into one as RFC 4180 reads it (rows 3-5 here), and only this says so.
+    EXPECT_THAT(g.report.messages, ElementsAre("two.csv: 1 row holds line ends inside quotes, each read as one row (the first on line 2, "
+                                               "over 2 lines); a stray quote (\") closed by another on a later line joins the rows between so"));
+    const auto m = read_csv_text("mmsi,time,lat,lon,name\n230000001,2014-08-15T19:00:00Z,60,24,A\n230000001,2014-08-15T19:00:10Z,60,24.001,\"SEA STAR\n"
+                                 "230000001,2014-08-15T19:00:20Z,60,24.002,A\n230000001,2014-08-15T19:00:30Z,60,24.003,OCEAN\"\n"
+                                 "230000001,2014-08-15T19:00:40Z,60,24.004,A\n",
+                                 "merged.csv");
+    ASSERT_EQ(m.tracks.size(), 1u);
+    EXPECT_EQ(m.tracks[0].fixes.size(), 3u);
+    EXPECT_THAT(m.report.messages, ElementsAre(HasSubstr("merged.csv: 1 row holds line ends inside quotes, each read as one row (the first on line 3, over 3 lines)")));
+}
+
+TEST(CsvReader, AStrayQuoteBesideARecordOverTheLineLimitCostsTheSameRowsReadWholeOrStreamed) {
+    // A record over 1 MiB is read without being held (read_long_record); a stray quote there, or
+    // on the row before it, used to take in every row after it when the file was streamed (50
+    // fixes of 200), while the same text read whole cost two rows.
+    const std::string big(3 << 20, 'x');
+    for (const bool quote_in_long : {true, false}) {
+        std::string text = "mmsi,time,lat,lon,name\n";
+        for (int i = 0; i < 200; ++i) {
+            char row[96];
+            std::snprintf(row, sizeof row, "230000001,2014-08-15T19:%02d:%02dZ,60,%.4f,", i / 60, i % 60, 24 + i * 1e-4);
+            text += row;
+            if (i == 50) text += quote_in_long ? "\"" + big : "\"ALPHA";
+            else if (i == 51 && !quote_in_long) text += big;
+            else text += "ALPHA";
+            text += '\n';
+        }
+        shoal::test::TempDir dir;
+        const std::string path = dir.file("long.csv");
+        {
+            std::ofstream out(path, std::ios::binary);
+            out << text;
+        }
+        const auto whole = read_csv_text(text, path);
+        const auto streamed = read_csv(path);
+        ASSERT_EQ(whole.tracks.size(), 1u);
+        ASSERT_EQ(streamed.tracks.size(), 1u);
+        const std::size_t lost = quote_in_long ? 1 : 2;  // the stray quote's row (and the long one)
+        EXPECT_EQ(whole.tracks[0].fixes.size(), 200 - lost) << quote_in_long;
+        EXPECT_EQ(streamed.tracks[0].fixes.size(), 200 - lost) << quote_in_long;
+        EXPECT_EQ(streamed.report.skipped, whole.report.skipped) << quote_in_long;
+        EXPECT_EQ(streamed.report.messages, whole.report.messages) << quote_in_long;
+        EXPECT_THAT(streamed.report.messages.at(0), HasSubstr("long.csv line 52: a quote (\") opens a field that does not close"));
+    }
 }
 
 TEST(CsvSplitter, AQuoteThatDoesNotCloseIsItsOwnLineSplitAsItStands) {

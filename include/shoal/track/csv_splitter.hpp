@@ -41,6 +41,8 @@ public:
     /// `max_quoted_lines` line ends. Such a line is split as it stands, its quotes text, so
     /// that the lines after it are read as their own records; a reader skips it and says so.
     bool quote_not_closed() const noexcept { return m_quote_not_closed; }
+    /// Line ends inside the quoted fields of the record last returned (0 for most records).
+    std::size_t quoted_line_ends() const noexcept { return m_quoted_line_ends; }
     /// The most line ends a quoted field may hold.
     static constexpr std::size_t max_quoted_lines = 64;
     /// 1-based line on which the record last returned starts.
@@ -62,6 +64,7 @@ private:
     char m_sep = ',';
     std::deque<std::string> m_unescaped;  // fields that held "" (a deque: views stay valid)
     bool m_quote_not_closed = false;
+    std::size_t m_quoted_line_ends = 0;
     /// After a quoted field that went over a line end (m_pos past it): whether it left its
     /// quote open (see quote_not_closed()).
     bool quote_left_open(bool closed, char sep) const noexcept;
