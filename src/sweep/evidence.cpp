@@ -193,8 +193,15 @@ void gather_evidence(const track::Track& t, const std::vector<XY>& p, double hul
                 // approach, and GPS jitter then takes a fix out of it (a grounding of 4 h read
                 // as 81 min, berth stays of 3 h as 5-7 min); the stays after it, the vessel not
                 // gone beyond the berth radius, are the same visit.
+                // Only stays that begin before the vessel is next seen clear (across gaps, in
+                // contact at each fix): one that floats off and anchors 200 m away is the same
+                // visit, but no longer lies where it touched.
+                std::size_t k = a;
+                while (k < fx.size() && in_contact(fx[k].time_s)) ++k;
+                const double seen_clear_s = k < fx.size() ? fx[k].time_s : INFINITY;
                 double visit_end_s = s.end_s;
-                for (auto it = std::next(s_it); it != r.stays.end() && it->visit == s.visit; ++it) visit_end_s = it->end_s;
+                for (auto it = std::next(s_it); it != r.stays.end() && it->visit == s.visit && it->start_s < seen_clear_s; ++it)
+                    visit_end_s = it->end_s;
                 ev.stay_s = visit_end_s - s.start_s;
                 const double rest_s = std::max(s.start_s, fx[a].time_s);
                 ev.prompt_stop = s.first <= a || rest_s - t0 <= opt.abrupt_window_s;
@@ -540,12 +547,16 @@ void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, c
             m.end_s = std::max(m.end_s, e.end_s);
             m.penetration_m = std::max(m.penetration_m, e.penetration_m);
             m.evidence.pieces += e.evidence.pieces;
+            // One arrival lies in its stay as long as its last contact says (the first was seen
+            // clear again, between the touches); its reason names no minutes.
+            if (one_arrival && e.evidence.stay_s > m.evidence.stay_s) m.evidence.stay_s = e.evidence.stay_s;
             if (e.reported_aground && m.kind != EventKind::grounding) {
                 m.reported_aground = true;
                 m.kind = EventKind::grounding;
                 m.evidence.grade = 4;
                 m.evidence.reason = "AIS status aground";
             }
+            open_stay = stay_at(m.end_s);  // the merged event now ends where this one did
             continue;
         }
         merged.push_back(std::move(e));
@@ -591,10 +602,13 @@ void grade_simulated(TrackResult& r) {
         e.evidence.grade = 4;
         switch (e.kind) {
             case EventKind::grounding:
-                e.evidence.reason = e.unseen_after.empty()
-                                        ? "contact under way, seen clear before: the chart is the world"
-                                        : "seen clear under way at " + fmt1(e.evidence.speed_before_kn) + " kn, in contact after a gap of " +
-                                              fmt1(e.evidence.speed_before_age_s) + " s: aground inside the gap; the chart is the world";
+                if (e.unseen_after.empty()) {
+                    e.evidence.reason = "contact under way, seen clear before: the chart is the world";
+                } else {  // the speed at the contact was not seen: grade 3
+                    e.evidence.grade = 3;
+                    e.evidence.reason = "seen clear under way at " + fmt1(e.evidence.speed_before_kn) + " kn, in contact after a gap of " +
+                                        fmt1(e.evidence.speed_before_age_s) + " s: aground inside the gap (its speed at the contact not seen); the chart is the world";
+                }
                 break;
             case EventKind::alongside: e.evidence.reason = "began while stopped or under the berthing speed"; break;
             case EventKind::contact_at_start: e.evidence.reason = "already in contact at the first fix after the " + e.unseen_after; break;

@@ -394,7 +394,7 @@ public:
             if (r.skip != no_skip) {
                 m_out.report.skip(b.skips[r.skip]);
             } else {
-                if (r.quoted_line_ends > 0 && m_quoted_rows++ == 0) m_first_quoted = {r.line, r.quoted_line_ends};
+                if (r.quoted_line_ends > 0 && !r.long_row && m_quoted_rows++ == 0) m_first_quoted = {r.line, r.quoted_line_ends};
                 add(r, vessel);
                 vessel += k;
             }

@@ -274,6 +274,17 @@ TEST(OneEventPerStay, BerthingContactsSecondsApartThatComeToRestInOneStayAreOneA
     EXPECT_DOUBLE_EQ(r.events[1].start_s, 400);
     EXPECT_EQ(r.summary.alongside, 3u);
     EXPECT_EQ(r.summary.groundings, 2u);
+    // Jitter contacts just before the stay, the last running into it, then touches inside it:
+    // one event (the merged one ends in the stay, so later ones there are part of it).
+    TrackResult j;
+    j.stays = {Stay{}};
+    j.stays[0].start_s = 1000, j.stays[0].end_s = 5000;
+    j.events = {arriving(EventKind::alongside, 900, 930, 0, 1.0), arriving(EventKind::alongside, 950, 1100, 0, 1.0),
+                arriving(EventKind::alongside, 2000, 2100, 0, 1.0), arriving(EventKind::alongside, 3000, 3100, 0, 1.0)};
+    decide_kinds(j, {0}, {0}, EvidenceOptions{});
+    ASSERT_EQ(j.events.size(), 1u);
+    EXPECT_DOUBLE_EQ(j.events[0].start_s, 900);
+    EXPECT_DOUBLE_EQ(j.events[0].end_s, 3100);
 }
 
 TEST(SimulatedWorld, AContactFirstSeenAfterAGapUnderWayBeforeItIsAGroundingInsideTheGap) {
@@ -314,7 +325,9 @@ TEST(SimulatedWorld, AContactFirstSeenAfterAGapUnderWayBeforeItIsAGroundingInsid
     // Its reason, graded by the simulated world.
     TrackResult graded = g;
     grade_simulated(graded);
-    EXPECT_EQ(graded.events[0].evidence.reason, "seen clear under way at 10 kn, in contact after a gap of 1800 s: aground inside the gap; the chart is the world");
+    EXPECT_EQ(graded.events[0].evidence.grade, 3) << "its speed at the contact was not seen";
+    EXPECT_EQ(graded.events[0].evidence.reason,
+              "seen clear under way at 10 kn, in contact after a gap of 1800 s: aground inside the gap (its speed at the contact not seen); the chart is the world");
 }
 
 TEST(OneEventPerStay, GroundingsAndExpectedContactsAreNeverMergedNorMergedInto) {

@@ -872,6 +872,31 @@ TEST(Evidence, HowLongAVesselLayThereIsItsWholeVisitNotItsFirstStay) {
     // than a stay's five minutes, are none).
     EXPECT_NEAR(g->evidence.stay_s, time - rest_s, 300.0);
     EXPECT_LE(g->evidence.stay_s, time - t.fixes.front().time_s);
+
+    // The same ship floats off after 40 min, backs 200 m off the shore (its bow 130 m clear) and
+    // anchors there 5 h: the same visit (within the berth radius), but it lay where it touched
+    // for 40 min only.
+    track::Track u = track_through(pts, 5.0);
+    time = u.fixes.back().time_s;
+    auto add_u = [&](XY p, double dt) {
+        time += dt;
+        track::Fix f = u.fixes.back();
+        f.time_s = time;
+        f.position = frame().inverse(p);
+        f.line = u.fixes.size() + 2;
+        u.fixes.push_back(f);
+    };
+    for (const double y : {920.0, 935.0, 945.0, 950.0}) add_u({0, y}, 5);
+    for (int k = 0; k < 40; ++k) add_u({jitter(rng) / 4, 950 + jitter(rng) / 4}, 60);
+    for (const double y : {900.0, 850.0, 800.0, 750.0}) add_u({0, y}, 30);
+    for (int k = 0; k < 300; ++k) add_u({jitter(rng), 750 + jitter(rng)}, 60);
+    track::resolve_motion(u);
+    TrackResult ru = w.sweep(u);
+    gather_evidence(u, w.hull.length(), frame(), w.grid, SweepOptions{}, EvidenceOptions{}, ru);
+    const auto gu = std::find_if(ru.events.begin(), ru.events.end(), [](const Event& e) { return is_contact(e.kind); });
+    ASSERT_NE(gu, ru.events.end());
+    EXPECT_LT(gu->evidence.stay_s, 60 * 60.0) << "the anchorage after it is not lying aground";
+    EXPECT_GT(gu->evidence.stay_s, 30 * 60.0);
 }
 
 }  // namespace
