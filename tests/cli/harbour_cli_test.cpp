@@ -86,8 +86,11 @@ TEST(HarbourCli, TheBerthedShipTouchesTheWharf) {
     const double first = seconds(ev.front()["start"]);
     EXPECT_GT(first, *track::parse_iso8601("2023-07-14T06:06:30Z"));
     EXPECT_LE(first, *track::parse_iso8601("2023-07-14T06:06:40Z"));
-    // And the ship is in contact at berth: contacts begin after it has come to rest (06:09:00Z).
-    EXPECT_GT(seconds(ev.back()["start"]), *track::parse_iso8601("2023-07-14T06:09:00Z"));
+    // And the ship is in contact at berth until it leaves (08:09:00Z): one arrival, its touches
+    // on the way in (seconds apart, coming to rest in the same stay) and its 2 h at the wharf
+    // one event (three before: two touches, then the stay).
+    EXPECT_EQ(ev.size(), 1u);
+    EXPECT_GE(seconds(ev.back()["end"]), *track::parse_iso8601("2023-07-14T08:00:00Z"));
 }
 
 TEST(HarbourCli, TheShipRunningIntoPier23HitsItWhenTheChartSaysSo) {
