@@ -166,8 +166,7 @@ private:
         // A GeoJSON "crs" GDAL cannot find: GDAL says so when it opens the file and takes the
         // layer as WGS84 (RFC 7946), whatever its coordinates are. Said first: the features
         // are then not the problem.
-        if (m_open_said.find("PROJ") != std::string::npos || m_open_said.find("crs") != std::string::npos ||
-            m_open_said.find("CRS") != std::string::npos)
+        if (ogr::crs_unreadable(m_open_said))
             throw InputError("layer '" + std::string(m_layer.GetName()) + "' in '" + m_file + "': its CRS is not one GDAL can read (" + m_open_said +
                              "); give the file a CRS GDAL knows (e.g. convert it with ogr2ogr -t_srs EPSG:4326)");
         std::string fids;

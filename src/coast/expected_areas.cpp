@@ -139,8 +139,7 @@ public:
         // GDAL cannot find, taken as WGS84; a geometry with text for coordinates).
         if (m_user) {
             const std::string what = "layer '" + layer_name() + "' in '" + m_file + "'";
-            if (m_open_said.find("PROJ") != std::string::npos || m_open_said.find("crs") != std::string::npos ||
-                m_open_said.find("CRS") != std::string::npos)
+            if (ogr::crs_unreadable(m_open_said))
                 throw InputError(what + ": its CRS is not one GDAL can read (" + m_open_said + "); give the file a CRS GDAL knows");
             if (failures.count() > 0 || (!m_open_said.empty() && unusable > 0))
                 throw InputError(what + ": OGR could not read all of it (" + (failures.count() > 0 ? failures.said() : m_open_said) +

@@ -45,6 +45,10 @@ GDALDatasetUniquePtr open_vector(const std::string& path, std::string* said) {
     return ds;
 }
 
+bool crs_unreadable(const std::string& said) {
+    return said.find("PROJ") != std::string::npos || said.find("crs") != std::string::npos || said.find("CRS") != std::string::npos;
+}
+
 bool is_s57(GDALDataset& ds) { return std::string(ds.GetDriver()->GetDescription()) == "S57"; }
 
 bool s57_leader_possible(std::string_view head) {

@@ -25,6 +25,10 @@ namespace shoal::coast::ogr {
 /// feature without one.
 GDALDatasetUniquePtr open_vector(const std::string& path, std::string* said = nullptr);
 
+/// Whether what GDAL said while opening a file (open_vector's `said`) is that its CRS could
+/// not be read: a GeoJSON "crs" PROJ does not know, after which GDAL takes the layer as WGS84.
+bool crs_unreadable(const std::string& said);
+
 /// Whether `ds` is an S-57 chart (ENC).
 bool is_s57(GDALDataset& ds);
 /// Whether GDAL's S-57 driver claims `path` (it reads the file's first bytes only): a file it
