@@ -353,6 +353,16 @@ bool berthing_structure(const std::string& kind) {
     return false;
 }
 
+/// How far from where it touched a ship that runs aground comes to rest: about its length,
+/// and 50 m more.
+double reach_of(double hull_length_m) { return (std::isfinite(hull_length_m) ? hull_length_m : 0.0) + 50.0; }
+
+/// Whether a vessel making `speed_kn` could have gone `distance_m` in `seconds` (half as fast
+/// again, and `reach_m` more): a contact first seen after a gap lies where it could have come to.
+bool could_have_gone(double distance_m, double speed_kn, double seconds, double reach_m) {
+    return distance_m <= 1.5 * speed_kn * 1852.0 / 3600.0 * seconds + reach_m;
+}
+
 std::string fmt1(double v) { return track::detail::fmt(std::round(v * 10) / 10); }
 
 void recount(TrackResult& r) {
@@ -372,7 +382,7 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t
     const bool expected_area = !e.area_kind.empty();
     const bool at_structure = berthing_structure(e.structure);
     const bool lay_still = ev.stay != static_cast<std::size_t>(-1) && ev.stay_s >= opt.ground_stay_s;
-    const double reach_m = (std::isfinite(hull_length_m) ? hull_length_m : 0.0) + 50.0;
+    const double reach_m = reach_of(hull_length_m);
     const bool at_contact = lay_still && ev.prompt_stop && ev.stop_distance_m <= reach_m;
     const bool berth = berth_stays > 0 || expected_area || at_structure || ev.moored_at_stay;
     auto berth_words = [&] {
@@ -406,7 +416,7 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t
                 // Not seen begin. After a gap, with the vessel seen clear and under way before
                 // it and lying still in contact after it: a grounding inside the gap.
                 const bool gap = e.unseen_after == "gap" && under_way_before && ev.speed_before_age_s <= opt.max_unseen_s;
-                const bool plausible = ev.gap_distance_m <= 1.5 * ev.speed_before_kn * 1852.0 / 3600.0 * ev.speed_before_age_s + reach_m;
+                const bool plausible = could_have_gone(ev.gap_distance_m, ev.speed_before_kn, ev.speed_before_age_s, reach_m);
                 if (gap && plausible && at_contact && !berth) {
                     e.kind = EventKind::grounding;
                     set(EventKind::grounding, 3 - tol_cut,
@@ -583,8 +593,7 @@ void ground_inside_gaps(TrackResult& r, const track::Track& t, const SweepOption
         });
         const double gap_s = fx[a].time_s - b.time_s;
         const bool under_way = !b.stopped && b.speed_used_kn >= opt.berthing_speed_kn;
-        const double reach_m = (std::isfinite(hull_length_m) ? hull_length_m : 0.0) + 50.0;
-        const bool plausible = track::distance_m(b.position, fx[a].position) <= 1.5 * b.speed_used_kn * 1852.0 / 3600.0 * gap_s + reach_m;
+        const bool plausible = could_have_gone(track::distance_m(b.position, fx[a].position), b.speed_used_kn, gap_s, reach_of(hull_length_m));
         if (!clear || !under_way || !plausible || gap_s > evidence.max_unseen_s) continue;
         e.kind = EventKind::grounding;
         e.evidence.seen_clear_before = true;
