@@ -845,21 +845,22 @@ TEST(Evidence, HowLongAVesselLayThereIsItsWholeVisitNotItsFirstStay) {
     World w({land({{-3000, 1000}, {3000, 1000}, {3000, 3000}, {-3000, 3000}})});
     std::vector<XY> pts;
     for (double y = 0; y <= 900; y += 50) pts.push_back({0, y});
-    track::Track t = track_through(pts, 5.0);
-    double time = t.fixes.back().time_s;
-    auto add = [&](XY p, double dt) {
-        time += dt;
-        track::Fix f = t.fixes.back();
-        f.time_s = time;
+    // A fix `dt` after the last at local point `p`, the last one's data otherwise.
+    auto add_to = [](track::Track& k, XY p, double dt) {
+        track::Fix f = k.fixes.back();
+        f.time_s += dt;
         f.position = frame().inverse(p);
-        f.line = t.fixes.size() + 2;
-        t.fixes.push_back(f);
+        f.line = k.fixes.size() + 2;
+        k.fixes.push_back(f);
     };
+    track::Track t = track_through(pts, 5.0);
+    auto add = [&](XY p, double dt) { add_to(t, p, dt); };
     for (const double y : {920.0, 935.0, 945.0, 950.0}) add({0, y}, 5);
     std::mt19937_64 rng(36);
     std::uniform_real_distribution<double> jitter(-20, 20);
-    const double rest_s = time;
+    const double rest_s = t.fixes.back().time_s;
     for (int k = 0; k < 240; ++k) add({jitter(rng), 950 + jitter(rng)}, 60);
+    const double time = t.fixes.back().time_s;
     track::resolve_motion(t);
     TrackResult r = w.sweep(t);
     gather_evidence(t, w.hull.length(), frame(), w.grid, SweepOptions{}, EvidenceOptions{}, r);
@@ -877,15 +878,7 @@ TEST(Evidence, HowLongAVesselLayThereIsItsWholeVisitNotItsFirstStay) {
     // anchors there 5 h: the same visit (within the berth radius), but it lay where it touched
     // for 40 min only.
     track::Track u = track_through(pts, 5.0);
-    time = u.fixes.back().time_s;
-    auto add_u = [&](XY p, double dt) {
-        time += dt;
-        track::Fix f = u.fixes.back();
-        f.time_s = time;
-        f.position = frame().inverse(p);
-        f.line = u.fixes.size() + 2;
-        u.fixes.push_back(f);
-    };
+    auto add_u = [&](XY p, double dt) { add_to(u, p, dt); };
     for (const double y : {920.0, 935.0, 945.0, 950.0}) add_u({0, y}, 5);
     for (int k = 0; k < 40; ++k) add_u({jitter(rng) / 4, 950 + jitter(rng) / 4}, 60);
     for (const double y : {900.0, 850.0, 800.0, 750.0}) add_u({0, y}, 30);
