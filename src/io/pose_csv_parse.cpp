@@ -151,6 +151,12 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
             bad("heading '" + std::string(shdg) + "' is not a number of degrees");
             continue;
         }
+        // AIS's "not available" (an AIS export's heading column): taken as 151 degrees, the
+        // answer would be for a pose nobody had. Other headings are taken modulo 360.
+        if (r.heading_deg == 511) {
+            bad("heading 511 is AIS's \"not available\": probe needs the ship's heading");
+            continue;
+        }
         r.heading_deg = std::fmod(r.heading_deg, 360.0);
         if (r.heading_deg < 0) r.heading_deg += 360.0;
         out.poses.push_back(r);
