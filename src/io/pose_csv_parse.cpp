@@ -161,6 +161,9 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
         if (r.heading_deg < 0) r.heading_deg += 360.0;
         out.poses.push_back(r);
     }
+    // Nothing but blanks and comments (a zero-byte file, an export that failed): not a pose
+    // file, as an empty track file is not a track file. A header alone is an empty set.
+    if (first) throw InputError(name + ": empty file (no header and no poses)");
     return out;
 }
 

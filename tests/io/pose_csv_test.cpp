@@ -166,6 +166,7 @@ PoseFile reference(const std::string& text, const std::string& name) {
         if (r.heading_deg < 0) r.heading_deg += 360.0;
         out.poses.push_back(r);
     }
+    if (first) throw InputError(name + ": empty file (no header and no poses)");
     return out;
 }
 
@@ -270,6 +271,9 @@ TEST(PoseCsv, HandMadeCases) {
     EXPECT_EQ(q.errors[1], "q.csv line 5: latitude '60,5' is not a number in [-90, 90]; row skipped");
     // AIS's "not available" heading is not a heading (the track reader's rule); any other
     // number of degrees is taken modulo 360, 871 too.
+    EXPECT_THROW(parse_pose_csv("", "e.csv"), InputError);
+    EXPECT_THROW(parse_pose_csv("\n  \n# only a comment\n", "e.csv"), InputError);
+    EXPECT_TRUE(parse_pose_csv("lat,lon,heading\n", "e.csv").poses.empty());
     const PoseFile h = parse_pose_csv("lat,lon,heading\n60,24,511\n60,24,511.0\n60,24,871\n", "h.csv");
     ASSERT_EQ(h.poses.size(), 1u);
     EXPECT_EQ(h.poses[0].line, 4u);
