@@ -18,6 +18,7 @@ BUILD=(
   libproj-dev                 # PROJ (find_package(PROJ CONFIG)), geodesic.h
   libeigen3-dev nlohmann-json3-dev libcli11-dev libxxhash-dev
   zlib1g-dev                  # deflating the .qgz of the QGIS project stored in a GeoPackage report
+  libexpat1-dev               # expat: where each point of a GPX file is written (GDAL reads the points)
 )
 TESTS=(
   ccache                      # compiler cache, used by CMakeLists.txt when found

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "track/gpx_points.hpp"
 #include "util/parse_util.hpp"
 #include <shoal/track/row_rules.hpp>
 #include "track/stream_readers.hpp"
@@ -56,8 +57,9 @@ public:
         auto tracks = parents(*ds, "tracks");
         auto routes = parents(*ds, "routes");
         const bool single = tracks.size() + routes.size() == 1;
-        points(*ds, "track_points", "track_fid", "track", tracks, single);
-        points(*ds, "route_points", "route_fid", "route", routes, single);
+        const detail::GpxPoints where = detail::scan_gpx_points(m_gdal_path);
+        points(*ds, "track_points", "track_fid", "track", tracks, single, where.read ? &where.track : nullptr);
+        points(*ds, "route_points", "route_fid", "route", routes, single, where.read ? &where.route : nullptr);
         for (Track& t : m_out.tracks) normalise(t, m_out.report);
         return std::move(m_out);
     }
@@ -92,26 +94,70 @@ private:
         return t;
     }
 
+    /// Whether the scan's elements are the layer's features: FID k the k-th element, each
+    /// feature at the lat and lon written there (a feature whose element holds no number is not
+    /// compared: GDAL reads 'abc' as 0). GDAL's driver numbers them so; should one not, the
+    /// points are named by their number in the file, not by a line.
+    static bool agrees(OGRLayer& layer, const std::vector<detail::GpxPoint>& scanned) {
+        for (auto& f : layer) {
+            const GIntBig fid = f->GetFID();
+            if (fid < 0 || static_cast<std::size_t>(fid) >= scanned.size()) return false;
+            const detail::GpxPoint& at = scanned[static_cast<std::size_t>(fid)];
+            if (!at.problem.empty()) continue;
+            const OGRGeometry* g = f->GetGeometryRef();
+            if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) return false;
+            if (g->toPoint()->getX() != at.lon || g->toPoint()->getY() != at.lat) return false;
+        }
+        layer.ResetReading();
+        return true;
+    }
+
     void points(GDALDataset& ds, const char* layer_name, const char* parent_field, const char* kind,
-                std::map<GIntBig, GpxParent>& parents, bool single) {
+                std::map<GIntBig, GpxParent>& parents, bool single, const std::vector<detail::GpxPoint>* scanned) {
         OGRLayer* layer = ds.GetLayerByName(layer_name);
         if (!layer) return;
+        if (scanned && !agrees(*layer, *scanned)) scanned = nullptr;
+        layer->ResetReading();
         OGRFeatureDefn* defn = layer->GetLayerDefn();
         const int fid_field = defn->GetFieldIndex(parent_field);
         const int time_field = defn->GetFieldIndex("time");
         const int course_field = defn->GetFieldIndex("course");
         const int speed_field = defn->GetFieldIndex("speed");
         m_current = nullptr;
+        // The elements GDAL's driver gave no feature (no lat or lon): each a bad row, in file order.
+        std::size_t next = 0;
+        auto dropped_before = [&](std::size_t end) {
+            for (; scanned && next < end && next < scanned->size(); ++next) {
+                const detail::GpxPoint& at = (*scanned)[next];
+                ++m_out.report.rows;
+                const auto parent = static_cast<GIntBig>(at.parent);
+                m_out.report.skip(m_file + " line " + std::to_string(at.line) + " (" + kind + " '" +
+                                  id_of(kind, parent, parents[parent], single) + "'): " +
+                                  (at.problem.empty() ? std::string("GDAL's GPX driver read no point there") : at.problem) +
+                                  "; point skipped");
+            }
+        };
         for (auto& f : *layer) {
             ++m_out.report.rows;
             ++m_point;
+            const detail::GpxPoint* at = nullptr;
+            if (scanned) {
+                const auto fid = static_cast<std::size_t>(f->GetFID());
+                dropped_before(fid);
+                next = fid + 1;
+                at = &(*scanned)[fid];
+            }
             const GIntBig parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
             GpxParent& p = parents[parent];
             ++p.points;
             auto skip = [&](const std::string& what) {
-                m_out.report.skip(m_file + " point " + std::to_string(m_point) + " (" + kind + " '" +
-                                  id_of(kind, parent, p, single) + "'): " + what + "; point skipped");
+                m_out.report.skip(m_file + (at ? " line " + std::to_string(at->line) : " point " + std::to_string(m_point)) + " (" +
+                                  kind + " '" + id_of(kind, parent, p, single) + "'): " + what + "; point skipped");
             };
+            if (at && !at->problem.empty()) {  // 'abc' read by GDAL as 0
+                skip(at->problem);
+                continue;
+            }
             const auto t = time_of(*f, time_field);
             if (!t) {
                 skip("no time");
@@ -138,13 +184,14 @@ private:
                 fix.cog_deg = valid_cog(f->GetFieldAsDouble(course_field));
             if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field))
                 fix.sog_kn = valid_sog(f->GetFieldAsDouble(speed_field) * 3600.0 / 1852.0);
-            fix.line = m_point;
+            fix.line = at ? at->line : m_point;
             if (!m_current || parent != m_current_parent) {
                 m_current = &m_set.get(id_of(kind, parent, p, single), p.name);
                 m_current_parent = parent;
             }
             m_current->fixes.push_back(fix);
         }
+        if (scanned) dropped_before(scanned->size());
         for (const auto& [fid, p] : parents)
             if (p.points > 0 && p.timed == 0)
                 throw InputError(m_file + ": " + kind + " '" + id_of(kind, fid, p, single) + "' (" + kind + " " +

@@ -10,7 +10,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -48,13 +52,13 @@ TEST(GpxReader, ReadsTracksAndRoutesWithTheirNames) {
     EXPECT_THAT(times(trk), ElementsAre(0.0, 10.5, 20.0, 40.0));
     EXPECT_DOUBLE_EQ(trk.fixes[3].position.lon, 24.904);
     EXPECT_DOUBLE_EQ(trk.fixes[3].position.lat, 60.15);
-    EXPECT_EQ(trk.fixes[3].line, 5u);
+    EXPECT_EQ(trk.fixes[3].line, 12u);  // the file's lines (expat's), not the points' numbers
     const Track& rte = f.tracks[1];
     EXPECT_EQ(rte.id, "Plan B");
     EXPECT_THAT(times(rte), ElementsAre(-3600.0, -3000.0, -2400.0));
-    EXPECT_EQ(rte.fixes[0].line, 6u);
+    EXPECT_EQ(rte.fixes[0].line, 17u);
     ASSERT_EQ(f.report.messages.size(), 1u);
-    EXPECT_EQ(f.report.messages[0], path + " point 4 (track 'Trainee A'): no time; point skipped");
+    EXPECT_EQ(f.report.messages[0], path + " line 11 (track 'Trainee A'): no time; point skipped");
 }
 
 TEST(GpxReader, UnnamedSingleTrackTakesTheStemAndGpx10CourseAndSpeed) {
@@ -76,6 +80,140 @@ TEST(GpxReader, RouteWithoutTimesIsAnErrorNamingFileAndRoute) {
 TEST(GpxReader, NotGpxIsAnInputError) {
     EXPECT_THAT([] { read_gpx(data_path("tracks/unknown_format.txt")); },
                 ThrowsMessage<InputError>(HasSubstr("unknown_format.txt: not a GPX file")));
+}
+
+TEST(GpxReader, APointWithoutANumberForLatOrLonCostsThatPointNamedByItsLine) {
+    // GDAL's driver reads lat="abc" as latitude 0 and drops a point without lat silently; its
+    // features carry no line. Each such point is a bad row named by the line of its tag, and
+    // every fix keeps its line (the wild-fix messages and the report's fix_line name it).
+    shoal::test::TempDir dir;
+    const std::string path = dir.file("hostile.gpx");
+    std::ofstream(path) << "<?xml version=\"1.0\"?>\n"                                                              // 1
+                           "<gpx version=\"1.1\" creator=\"t\" xmlns=\"http://www.topografix.com/GPX/1/1\">\n"   // 2
+                           "<trk><name>T</name><trkseg>\n"                                                       // 3
+                           "<trkpt lat=\"60.10\" lon=\"24.90\"><time>2024-05-01T10:00:00Z</time></trkpt>\n"      // 4
+                           "<trkpt lat=\"abc\" lon=\"24.902\"><time>2024-05-01T10:00:20Z</time></trkpt>\n"       // 5
+                           "<trkpt lon=\"24.903\"><time>2024-05-01T10:00:30Z</time></trkpt>\n"                   // 6
+                           "<trkpt lat=\"60.104\"\n"                                                             // 7
+                           "  lon=\"24,904\"><time>2024-05-01T10:00:40Z</time></trkpt>\n"                        // 8
+                           "<trkpt lat=\"1e999\" lon=\"24.905\"><time>2024-05-01T10:00:50Z</time></trkpt>\n"     // 9
+                           "<trkpt lon=\"24.906\" lat=\"60.106\"><time>2024-05-01T10:01:00Z</time></trkpt>\n"    // 10
+                           "</trkseg></trk></gpx>\n";
+    const TrackFile f = read_gpx(path);
+    ASSERT_EQ(f.tracks.size(), 1u);
+    ASSERT_EQ(f.tracks[0].fixes.size(), 2u);
+    EXPECT_EQ(f.tracks[0].fixes[0].line, 4u);
+    EXPECT_EQ(f.tracks[0].fixes[1].line, 10u);
+    EXPECT_EQ(f.tracks[0].fixes[1].position.lat, 60.106);
+    EXPECT_EQ(f.report.rows, 6u);
+    EXPECT_EQ(f.report.skipped, 4u);
+    EXPECT_THAT(f.report.messages, ElementsAre(path + " line 5 (track 'T'): latitude 'abc' is not a number; point skipped",
+                                               path + " line 6 (track 'T'): no lat attribute; point skipped",
+                                               path + " line 7 (track 'T'): longitude '24,904' is not a number; point skipped",
+                                               path + " line 9 (track 'T'): latitude '1e999' is not a number; point skipped"));
+}
+
+TEST(GpxReader, EveryPointsLineAndEveryBadPointAgreeWithTheFileAsWrittenOnRandomFiles) {
+    // Random GPX files (tracks, segments, routes, waypoints, points outside a segment, tags over
+    // several lines, attributes in either order, lat or lon missing, empty, not numbers): what
+    // the reader gives is what was written, known as each file was made: every good point a fix
+    // of its track with the line of its tag, every other one a bad row.
+    std::mt19937_64 rng(40);
+    auto chance = [&](double p) { return std::uniform_real_distribution<double>(0, 1)(rng) < p; };
+    auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
+    shoal::test::TempDir dir;
+    std::size_t files_with_bad = 0, points_read = 0;
+    for (int k = 0; k < 60; ++k) {
+        std::string text = "<?xml version=\"1.0\"?>\n<gpx version=\"1.1\" creator=\"t\" xmlns=\"http://www.topografix.com/GPX/1/1\">\n";
+        std::size_t line = 3;
+        auto put = [&](const std::string& s) {
+            text += s;
+            for (char c : s) line += c == '\n';
+        };
+        struct Want {
+            std::string track;
+            std::size_t line;
+            double lat, lon;
+        };
+        std::vector<Want> good;
+        std::size_t bad = 0, second = 0;
+        auto point = [&](const char* tag, const std::string& track) {
+            const std::size_t at = line;
+            const double lat = 60 + static_cast<double>(pick(100000)) * 1e-6, lon = 24 + static_cast<double>(pick(100000)) * 1e-6;
+            char la[32], lo[32];
+            std::snprintf(la, sizeof la, "%.6f", lat);
+            std::snprintf(lo, sizeof lo, "%.6f", lon);
+            std::string lat_attr = std::string(" lat=\"") + la + "\"", lon_attr = std::string(" lon=\"") + lo + "\"";
+            bool ok = true;
+            switch (chance(0.3) ? pick(6) : 6) {
+                case 0: lat_attr.clear(); ok = false; break;
+                case 1: lon_attr.clear(); ok = false; break;
+                case 2: lat_attr = " lat=\"abc\""; ok = false; break;
+                case 3: lon_attr = " lon=\"\""; ok = false; break;
+                case 4: lat_attr = std::string(" lat=\"") + la + "x\""; ok = false; break;
+                case 5: lon_attr = " lon=\"24,5\""; ok = false; break;
+                default: break;
+            }
+            std::string attrs = chance(0.5) ? lat_attr + (chance(0.2) ? "\n  " : "") + lon_attr : lon_attr + " ele=\"1\"" + lat_attr;
+            char when[64];
+            ++second;
+            std::snprintf(when, sizeof when, "<time>2024-05-01T10:%02zu:%02zuZ</time>", second / 60 % 60, second % 60);
+            put(std::string("<") + tag + attrs + ">" + (chance(0.3) ? "\n" : "") + when + "</" + tag + ">" + (chance(0.7) ? "\n" : ""));
+            if (ok) good.push_back({track, at, std::strtod(la, nullptr), std::strtod(lo, nullptr)});
+            else ++bad;
+        };
+        const std::size_t tracks = 1 + pick(3), routes = pick(2);
+        for (std::size_t t = 0; t < tracks; ++t) {
+            if (chance(0.3)) put("<wpt lat=\"1\" lon=\"2\"><name>w</name></wpt>\n");
+            const std::string name = "T" + std::to_string(t);
+            put("<trk><name>" + name + "</name>\n");
+            if (chance(0.1)) point("trkpt", name);  // outside any segment (GDAL reads it too)
+            for (std::size_t g = 0, segs = 1 + pick(3); g < segs; ++g) {
+                put("<trkseg>\n");
+                for (std::size_t n = 0, pts = pick(6); n < pts; ++n) point("trkpt", name);
+                put("</trkseg>\n");
+            }
+            put("</trk>\n");
+        }
+        for (std::size_t r = 0; r < routes; ++r) {
+            const std::string name = "R" + std::to_string(r);
+            put("<rte><name>" + name + "</name>\n");
+            for (std::size_t n = 0, pts = 1 + pick(4); n < pts; ++n) point("rtept", name);
+            put("</rte>\n");
+        }
+        put("</gpx>\n");
+        const std::string path = dir.file("random" + std::to_string(k) + ".gpx");
+        std::ofstream(path) << text;
+        TrackFile f;
+        try {
+            f = read_gpx(path);
+        } catch (const InputError& e) {
+            // A route or track whose every point was bad has no times: the reader's rule for it.
+            ASSERT_THAT(e.what(), HasSubstr("has no times")) << text;
+            continue;
+        }
+        std::vector<Want> got;
+        for (const Track& t : f.tracks)
+            for (const Fix& x : t.fixes) got.push_back({t.id, x.line, x.position.lat, x.position.lon});
+        auto by_line = [](const Want& a, const Want& b) { return a.line < b.line || (a.line == b.line && a.lat < b.lat); };
+        std::sort(got.begin(), got.end(), by_line);
+        std::sort(good.begin(), good.end(), by_line);
+        ASSERT_EQ(got.size(), good.size()) << text;
+        for (std::size_t i = 0; i < got.size(); ++i) {
+            EXPECT_EQ(got[i].track, good[i].track) << text;
+            EXPECT_EQ(got[i].line, good[i].line) << text;
+            EXPECT_EQ(got[i].lat, good[i].lat) << text;
+            EXPECT_EQ(got[i].lon, good[i].lon) << text;
+        }
+        EXPECT_EQ(f.report.skipped, bad) << text;
+        EXPECT_EQ(f.report.rows, good.size() + bad) << text;
+        for (const std::string& m : f.report.messages) EXPECT_THAT(m, HasSubstr(" line ")) << m;
+        files_with_bad += bad > 0;
+        points_read += good.size();
+        if (HasFailure()) return;
+    }
+    EXPECT_GT(files_with_bad, 20u) << "too few bad points to mean anything";
+    EXPECT_GT(points_read, 300u);
 }
 
 TEST(GeoJsonReader, LineStringWithTimesArray) {

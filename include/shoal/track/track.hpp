@@ -53,7 +53,7 @@ struct Fix {
     double heading_deg = NAN;        ///< true heading from the source; NAN when unknown
     double cog_deg = NAN;            ///< course over ground; NAN when unknown
     double sog_kn = NAN;             ///< speed over ground, knots; NAN when unknown
-    std::size_t line = 0;            ///< 1-based line (CSV, NMEA) or point number (GPX, GeoJSON) in the file
+    std::size_t line = 0;            ///< 1-based line (CSV, NMEA, GPX: its tag's) or point number (GeoJSON) in the file
     std::uint8_t nav_status = nav_status_unknown;  ///< AIS navigational status when the source gives it
     /// Set by drop_wild_fixes(): a jump that persists separates this fix from the one before, so
     /// a new piece of track starts here (nothing is swept across the jump), as after a gap.

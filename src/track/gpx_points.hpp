@@ -1,0 +1,40 @@
+// Where each point of a GPX file is written, and its lat and lon as written: what GDAL's GPX
+// driver does not say. It reads a `lat="abc"` as latitude 0 and drops a point without `lat`
+// without a word; its features carry no line. Read with expat, the XML parser GDAL's driver
+// itself uses, through GDAL's virtual file system (the same path GDAL opens).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace shoal::track::detail {
+
+/// One <trkpt> or <rtept> element.
+struct GpxPoint {
+    std::size_t line = 0;   ///< 1-based line of its start tag
+    std::size_t parent = 0; ///< 0-based index of its <trk> or <rte> (GDAL's track_fid, route_fid)
+    double lat = 0, lon = 0;
+    /// Empty when lat and lon are both there and numbers; else what is wrong ("latitude 'abc' is
+    /// not a number", "no lon attribute").
+    std::string problem;
+};
+
+/// Every <trkpt> and <rtept> of a GPX file, each in document order: GDAL's GPX driver gives the
+/// k-th element of each kind the FID k in its track_points / route_points layer (an element it
+/// drops still takes its number). The caller checks that the features agree before it relies on
+/// that (GpxPoints::agrees).
+struct GpxPoints {
+    std::vector<GpxPoint> track, route;
+    bool read = false;  ///< the whole file was parsed as XML
+};
+
+/// Scans the file at `gdal_path` (a path GDAL's VSI opens: a file, /vsimem/, /vsizip/...). A file
+/// that is not well-formed XML gives read = false (GDAL says why when it opens it).
+GpxPoints scan_gpx_points(const std::string& gdal_path);
+
+/// What is wrong with a lat or lon attribute's text ("" when it is a number; `what` is
+/// "latitude" or "longitude"); the number in `out`.
+std::string gpx_coordinate_problem(const char* text, const char* what, double& out);
+
+}  // namespace shoal::track::detail
