@@ -8,6 +8,7 @@
 #include <ogrsf_frmts.h>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -94,21 +95,28 @@ private:
         return t;
     }
 
-    /// Whether the scan's elements are the layer's features: FID k the k-th element, each
-    /// feature at the lat and lon written there (a feature whose element holds no number is not
-    /// compared: GDAL reads 'abc' as 0). GDAL's driver numbers them so; should one not, the
-    /// points are named by their number in the file, not by a line.
-    static bool agrees(OGRLayer& layer, const std::vector<detail::GpxPoint>& scanned) {
-        for (auto& f : layer) {
-            const GIntBig fid = f->GetFID();
-            if (fid < 0 || static_cast<std::size_t>(fid) >= scanned.size()) return false;
-            const detail::GpxPoint& at = scanned[static_cast<std::size_t>(fid)];
-            if (!at.problem.empty()) continue;
-            const OGRGeometry* g = f->GetGeometryRef();
-            if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) return false;
-            if (g->toPoint()->getX() != at.lon || g->toPoint()->getY() != at.lat) return false;
+    /// One feature of a points layer, as read (the layer is read once: GDAL parses the XML again
+    /// on every pass).
+    struct Row {
+        GIntBig fid = 0, parent = 0;
+        std::optional<double> time;
+        bool point = false;  ///< a point geometry, at x, y
+        double x = 0, y = 0;
+        std::optional<double> course, speed;
+    };
+
+    /// Whether the scan's elements are the layer's features: FID k the k-th element, the FIDs
+    /// rising, each feature at the lat and lon written there (one whose element holds no number
+    /// is not compared: GDAL reads 'abc' as 0). GDAL's driver numbers them so; should one not,
+    /// the points are named by their number in the file, not by a line.
+    static bool agrees(const std::vector<Row>& rows, const std::vector<detail::GpxPoint>& scanned) {
+        GIntBig last = -1;
+        for (const Row& r : rows) {
+            if (r.fid <= last || static_cast<std::size_t>(r.fid) >= scanned.size()) return false;
+            last = r.fid;
+            const detail::GpxPoint& at = scanned[static_cast<std::size_t>(r.fid)];
+            if (at.problem.empty() && (!r.point || r.x != at.lon || r.y != at.lat)) return false;
         }
-        layer.ResetReading();
         return true;
     }
 
@@ -116,13 +124,27 @@ private:
                 std::map<GIntBig, GpxParent>& parents, bool single, const std::vector<detail::GpxPoint>* scanned) {
         OGRLayer* layer = ds.GetLayerByName(layer_name);
         if (!layer) return;
-        if (scanned && !agrees(*layer, *scanned)) scanned = nullptr;
-        layer->ResetReading();
         OGRFeatureDefn* defn = layer->GetLayerDefn();
         const int fid_field = defn->GetFieldIndex(parent_field);
         const int time_field = defn->GetFieldIndex("time");
         const int course_field = defn->GetFieldIndex("course");
         const int speed_field = defn->GetFieldIndex("speed");
+        std::vector<Row> rows;
+        for (auto& f : *layer) {
+            Row& r = rows.emplace_back();
+            r.fid = f->GetFID();
+            r.parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
+            r.time = time_of(*f, time_field);
+            const OGRGeometry* g = f->GetGeometryRef();
+            r.point = g && wkbFlatten(g->getGeometryType()) == wkbPoint && !g->IsEmpty();
+            if (r.point) {
+                r.x = g->toPoint()->getX();
+                r.y = g->toPoint()->getY();
+            }
+            if (course_field >= 0 && f->IsFieldSetAndNotNull(course_field)) r.course = f->GetFieldAsDouble(course_field);
+            if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field)) r.speed = f->GetFieldAsDouble(speed_field);
+        }
+        if (scanned && !agrees(rows, *scanned)) scanned = nullptr;
         m_current = nullptr;
         // The elements GDAL's driver gave no feature (no lat or lon): each a bad row, in file order.
         std::size_t next = 0;
@@ -137,17 +159,17 @@ private:
                                   "; point skipped");
             }
         };
-        for (auto& f : *layer) {
+        for (const Row& f : rows) {
             ++m_out.report.rows;
             ++m_point;
             const detail::GpxPoint* at = nullptr;
             if (scanned) {
-                const auto fid = static_cast<std::size_t>(f->GetFID());
+                const auto fid = static_cast<std::size_t>(f.fid);
                 dropped_before(fid);
                 next = fid + 1;
                 at = &(*scanned)[fid];
             }
-            const GIntBig parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
+            const GIntBig parent = f.parent;
             GpxParent& p = parents[parent];
             ++p.points;
             auto skip = [&](const std::string& what) {
@@ -158,7 +180,7 @@ private:
                 skip(at->problem);
                 continue;
             }
-            const auto t = time_of(*f, time_field);
+            const std::optional<double>& t = f.time;
             if (!t) {
                 skip("no time");
                 continue;
@@ -168,22 +190,19 @@ private:
                 continue;
             }
             ++p.timed;
-            const OGRGeometry* g = f->GetGeometryRef();
-            if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) {
+            if (!f.point) {
                 skip("no point geometry");
                 continue;
             }
             Fix fix;
             fix.time_s = *t;
-            fix.position = {g->toPoint()->getX(), g->toPoint()->getY()};
+            fix.position = {f.x, f.y};
             if (std::string what; position_problem(fix.position.lat, fix.position.lon, what)) {
                 skip(what);
                 continue;
             }
-            if (course_field >= 0 && f->IsFieldSetAndNotNull(course_field))
-                fix.cog_deg = valid_cog(f->GetFieldAsDouble(course_field));
-            if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field))
-                fix.sog_kn = valid_sog(f->GetFieldAsDouble(speed_field) * 3600.0 / 1852.0);
+            if (f.course) fix.cog_deg = valid_cog(*f.course);
+            if (f.speed) fix.sog_kn = valid_sog(*f.speed * 3600.0 / 1852.0);
             fix.line = at ? at->line : m_point;
             if (!m_current || parent != m_current_parent) {
                 m_current = &m_set.get(id_of(kind, parent, p, single), p.name);
