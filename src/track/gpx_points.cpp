@@ -3,10 +3,12 @@
 #include <cpl_vsi.h>
 #include <expat.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <memory>
 #include <string_view>
+#include <strings.h>
 
 #include "util/parse_util.hpp"
 
@@ -18,18 +20,26 @@ struct Scan {
     XML_Parser parser = nullptr;
     GpxPoints out;
     std::size_t trk = 0, rte = 0;  // elements begun so far
+    int in_trk = 0, in_rte = 0;    // open now
 };
 
 void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     Scan& s = *static_cast<Scan*>(data);
     // Names as GDAL's driver compares them: as written, without namespace processing.
     const bool trkpt = std::strcmp(name, "trkpt") == 0, rtept = !trkpt && std::strcmp(name, "rtept") == 0;
-    if (std::strcmp(name, "trk") == 0) ++s.trk;
-    if (std::strcmp(name, "rte") == 0) ++s.rte;
+    if (std::strcmp(name, "trk") == 0) {
+        ++s.trk;
+        ++s.in_trk;
+    } else if (std::strcmp(name, "rte") == 0) {
+        ++s.rte;
+        ++s.in_rte;
+    }
     if (!trkpt && !rtept) return;
     GpxPoint p;
     p.line = static_cast<std::size_t>(XML_GetCurrentLineNumber(s.parser));
-    p.parent = trkpt ? (s.trk > 0 ? s.trk - 1 : 0) : (s.rte > 0 ? s.rte - 1 : 0);
+    p.column = static_cast<std::size_t>(XML_GetCurrentColumnNumber(s.parser)) + 1;
+    // Outside any <trk> (<rte>) GDAL's driver gives the point the parent -1.
+    p.parent = trkpt ? (s.in_trk > 0 ? static_cast<long long>(s.trk) - 1 : -1) : (s.in_rte > 0 ? static_cast<long long>(s.rte) - 1 : -1);
     const char* lat = nullptr;
     const char* lon = nullptr;
     for (std::size_t i = 0; attrs[i]; i += 2) {
@@ -42,7 +52,42 @@ void start(void* data, const XML_Char* name, const XML_Char** attrs) {
         p.problem = gpx_coordinate_problem(lat, "latitude", p.lat);
         if (p.problem.empty()) p.problem = gpx_coordinate_problem(lon, "longitude", p.lon);
     }
-    (trkpt ? s.out.track : s.out.route).push_back(std::move(p));
+    std::vector<GpxPoint>& to = trkpt ? s.out.track : s.out.route;
+    to.push_back(std::move(p));
+}
+
+void end(void* data, const XML_Char* name) {
+    Scan& s = *static_cast<Scan*>(data);
+    if (std::strcmp(name, "trk") == 0 && s.in_trk > 0) --s.in_trk;
+    else if (std::strcmp(name, "rte") == 0 && s.in_rte > 0) --s.in_rte;
+}
+
+/// The single-byte encodings GDAL's own expat parser also reads (ogr_expat.cpp's handler):
+/// Windows-1252 and ISO-8859-15. (Expat reads UTF-8, UTF-16, ISO-8859-1 and US-ASCII itself.)
+int unknown_encoding(void*, const XML_Char* name, XML_Encoding* info) {
+    const bool cp1252 = strcasecmp(name, "windows-1252") == 0 || strcasecmp(name, "cp1252") == 0;
+    const bool latin9 = strcasecmp(name, "iso-8859-15") == 0;
+    if (!cp1252 && !latin9) return XML_STATUS_ERROR;
+    for (int i = 0; i < 256; ++i) info->map[i] = i;
+    if (cp1252) {
+        static constexpr std::array<int, 32> high{0x20AC, 0x81,   0x201A, 0x192,  0x201E, 0x2026, 0x2020, 0x2021, 0x2C6, 0x2030, 0x160,
+                                                  0x2039, 0x152,  0x8D,   0x17D,  0x8F,   0x90,   0x2018, 0x2019, 0x201C, 0x201D, 0x2022,
+                                                  0x2013, 0x2014, 0x2DC,  0x2122, 0x161,  0x203A, 0x153,  0x9D,   0x17E,  0x178};
+        for (int i = 0; i < 32; ++i) info->map[0x80 + i] = high[static_cast<std::size_t>(i)];
+    } else {
+        info->map[0xA4] = 0x20AC;
+        info->map[0xA6] = 0x160;
+        info->map[0xA8] = 0x161;
+        info->map[0xB4] = 0x17D;
+        info->map[0xB8] = 0x17E;
+        info->map[0xBC] = 0x152;
+        info->map[0xBD] = 0x153;
+        info->map[0xBE] = 0x178;
+    }
+    info->data = nullptr;
+    info->convert = nullptr;
+    info->release = nullptr;
+    return XML_STATUS_OK;
 }
 
 }  // namespace
@@ -54,7 +99,7 @@ std::string gpx_coordinate_problem(const char* text, const char* what, double& o
     if (number && std::isfinite(out)) return "";
     std::string shown(t.substr(0, 40));
     if (t.size() > 40) shown += "...";
-    return std::string(what) + " '" + shown + (number ? "' is out of range" : "' is not a number");
+    return std::string(what) + " '" + shown + (number && !std::isnan(out) ? "' is out of range" : "' is not a number");
 }
 
 GpxPoints scan_gpx_points(const std::string& gdal_path) {
@@ -65,15 +110,28 @@ GpxPoints scan_gpx_points(const std::string& gdal_path) {
     if (!parser) return {};
     s.parser = parser.get();
     XML_SetUserData(s.parser, &s);
-    XML_SetStartElementHandler(s.parser, start);
+    XML_SetElementHandler(s.parser, start, end);
+    XML_SetUnknownEncodingHandler(s.parser, unknown_encoding, nullptr);
     std::vector<char> buf(1 << 16);
     for (;;) {
         const std::size_t n = VSIFReadL(buf.data(), 1, buf.size(), f.get());
         const bool last = n < buf.size();
-        if (XML_Parse(s.parser, buf.data(), static_cast<int>(n), last) != XML_STATUS_OK) return {};
-        if (last) break;
+        if (XML_Parse(s.parser, buf.data(), static_cast<int>(n), last) != XML_STATUS_OK) {
+            // The points before it are where they are: GDAL's parser stops at the same place.
+            s.out.error = XML_ErrorString(XML_GetErrorCode(s.parser));
+            s.out.error_line = static_cast<std::size_t>(XML_GetCurrentLineNumber(s.parser));
+            s.out.error_column = static_cast<std::size_t>(XML_GetCurrentColumnNumber(s.parser)) + 1;
+            break;
+        }
+        if (last) {
+            s.out.read = true;
+            break;
+        }
     }
-    s.out.read = true;
+    // Points that share their line (a GPX written on one line) are told apart by their column.
+    for (std::vector<GpxPoint>* v : {&s.out.track, &s.out.route})
+        for (std::size_t i = 0; i < v->size(); ++i)
+            (*v)[i].shares_line = (i > 0 && (*v)[i - 1].line == (*v)[i].line) || (i + 1 < v->size() && (*v)[i + 1].line == (*v)[i].line);
     return std::move(s.out);
 }
 

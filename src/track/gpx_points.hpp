@@ -12,8 +12,10 @@ namespace shoal::track::detail {
 
 /// One <trkpt> or <rtept> element.
 struct GpxPoint {
-    std::size_t line = 0;   ///< 1-based line of its start tag
-    std::size_t parent = 0; ///< 0-based index of its <trk> or <rte> (GDAL's track_fid, route_fid)
+    std::size_t line = 0;    ///< 1-based line of its start tag
+    std::size_t column = 0;  ///< 1-based column of its start tag
+    bool shares_line = false;  ///< another point of its kind starts on the same line
+    long long parent = -1;   ///< 0-based index of its <trk> or <rte> (GDAL's track_fid, route_fid); -1 outside one
     double lat = 0, lon = 0;
     /// Empty when lat and lon are both there and numbers; else what is wrong ("latitude 'abc' is
     /// not a number", "no lon attribute").
@@ -25,12 +27,14 @@ struct GpxPoint {
 /// drops still takes its number). The caller checks that the features agree before it relies on
 /// that (GpxPoints::agrees).
 struct GpxPoints {
-    std::vector<GpxPoint> track, route;
+    std::vector<GpxPoint> track, route;  ///< up to the error, when there is one
     bool read = false;  ///< the whole file was parsed as XML
+    std::string error;  ///< else expat's reason ("" when the file could not be opened)
+    std::size_t error_line = 0, error_column = 0;
 };
 
 /// Scans the file at `gdal_path` (a path GDAL's VSI opens: a file, /vsimem/, /vsizip/...). A file
-/// that is not well-formed XML gives read = false (GDAL says why when it opens it).
+/// that is not well-formed XML gives read = false, where and why, and the points before it.
 GpxPoints scan_gpx_points(const std::string& gdal_path);
 
 /// What is wrong with a lat or lon attribute's text ("" when it is a number; `what` is

@@ -7,6 +7,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -59,8 +60,16 @@ public:
         auto routes = parents(*ds, "routes");
         const bool single = tracks.size() + routes.size() == 1;
         const detail::GpxPoints where = detail::scan_gpx_points(m_gdal_path);
-        points(*ds, "track_points", "track_fid", "track", tracks, single, where.read ? &where.track : nullptr);
-        points(*ds, "route_points", "route_fid", "route", routes, single, where.read ? &where.route : nullptr);
+        // A point GDAL gave no feature without a reason of its own was lost to the XML's break
+        // further on (GDAL's parser drops the features of the block it fails in).
+        const std::string lost = where.read ? "GDAL's GPX driver read no point there"
+                                            : "not read: the XML is not well-formed further on, at line " + std::to_string(where.error_line);
+        points(*ds, "track_points", "track_fid", "track", tracks, single, &where.track, lost);
+        points(*ds, "route_points", "route_fid", "route", routes, single, &where.route, lost);
+        if (!where.read && !where.error.empty())  // GDAL's parser stops there too, without a word
+            m_out.report.skip_all(0, m_file + " line " + std::to_string(where.error_line) + " column " +
+                                         std::to_string(where.error_column) + ": the XML is not well-formed (" + where.error +
+                                         "): no point after it is read");
         for (Track& t : m_out.tracks) normalise(t, m_out.report);
         return std::move(m_out);
     }
@@ -95,14 +104,19 @@ private:
         return t;
     }
 
+    /// " line L" of a point's tag, with its column when another point starts on that line.
+    static std::string where(const detail::GpxPoint& at) {
+        return " line " + std::to_string(at.line) + (at.shares_line ? " column " + std::to_string(at.column) : "");
+    }
+
     /// One feature of a points layer, as read (the layer is read once: GDAL parses the XML again
     /// on every pass).
     struct Row {
         GIntBig fid = 0, parent = 0;
-        std::optional<double> time;
+        double time = NAN;  ///< NaN: none that reads
         bool point = false;  ///< a point geometry, at x, y
         double x = 0, y = 0;
-        std::optional<double> course, speed;
+        double course = NAN, speed = NAN;  ///< NaN: not given
     };
 
     /// Whether the scan's elements are the layer's features: FID k the k-th element, the FIDs
@@ -121,7 +135,8 @@ private:
     }
 
     void points(GDALDataset& ds, const char* layer_name, const char* parent_field, const char* kind,
-                std::map<GIntBig, GpxParent>& parents, bool single, const std::vector<detail::GpxPoint>* scanned) {
+                std::map<GIntBig, GpxParent>& parents, bool single, const std::vector<detail::GpxPoint>* scanned,
+                const std::string& lost) {
         OGRLayer* layer = ds.GetLayerByName(layer_name);
         if (!layer) return;
         OGRFeatureDefn* defn = layer->GetLayerDefn();
@@ -134,7 +149,7 @@ private:
             Row& r = rows.emplace_back();
             r.fid = f->GetFID();
             r.parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
-            r.time = time_of(*f, time_field);
+            r.time = time_of(*f, time_field).value_or(NAN);
             const OGRGeometry* g = f->GetGeometryRef();
             r.point = g && wkbFlatten(g->getGeometryType()) == wkbPoint && !g->IsEmpty();
             if (r.point) {
@@ -153,9 +168,8 @@ private:
                 const detail::GpxPoint& at = (*scanned)[next];
                 ++m_out.report.rows;
                 const auto parent = static_cast<GIntBig>(at.parent);
-                m_out.report.skip(m_file + " line " + std::to_string(at.line) + " (" + kind + " '" +
-                                  id_of(kind, parent, parents[parent], single) + "'): " +
-                                  (at.problem.empty() ? std::string("GDAL's GPX driver read no point there") : at.problem) +
+                m_out.report.skip(m_file + where(at) + " (" + kind + " '" + id_of(kind, parent, parents[parent], single) + "'): " +
+                                  (at.problem.empty() ? lost : at.problem) +
                                   "; point skipped");
             }
         };
@@ -173,36 +187,36 @@ private:
             GpxParent& p = parents[parent];
             ++p.points;
             auto skip = [&](const std::string& what) {
-                m_out.report.skip(m_file + (at ? " line " + std::to_string(at->line) : " point " + std::to_string(m_point)) + " (" +
-                                  kind + " '" + id_of(kind, parent, p, single) + "'): " + what + "; point skipped");
+                m_out.report.skip(m_file + (at ? where(*at) : " point " + std::to_string(m_point)) + " (" + kind + " '" +
+                                  id_of(kind, parent, p, single) + "'): " + what + "; point skipped");
             };
+            const double t = f.time;
+            if (std::isnan(t)) {
+                skip("no time");
+                continue;
+            }
+            if (!plausible_fix_time(t)) {
+                skip("time " + format_iso8601(t, 0) + " is outside the years " + fix_time_range);
+                continue;
+            }
+            ++p.timed;
             if (at && !at->problem.empty()) {  // 'abc' read by GDAL as 0
                 skip(at->problem);
                 continue;
             }
-            const std::optional<double>& t = f.time;
-            if (!t) {
-                skip("no time");
-                continue;
-            }
-            if (!plausible_fix_time(*t)) {
-                skip("time " + format_iso8601(*t, 0) + " is outside the years " + fix_time_range);
-                continue;
-            }
-            ++p.timed;
             if (!f.point) {
                 skip("no point geometry");
                 continue;
             }
             Fix fix;
-            fix.time_s = *t;
+            fix.time_s = t;
             fix.position = {f.x, f.y};
             if (std::string what; position_problem(fix.position.lat, fix.position.lon, what)) {
                 skip(what);
                 continue;
             }
-            if (f.course) fix.cog_deg = valid_cog(*f.course);
-            if (f.speed) fix.sog_kn = valid_sog(*f.speed * 3600.0 / 1852.0);
+            if (!std::isnan(f.course)) fix.cog_deg = valid_cog(f.course);
+            if (!std::isnan(f.speed)) fix.sog_kn = valid_sog(f.speed * 3600.0 / 1852.0);
             fix.line = at ? at->line : m_point;
             if (!m_current || parent != m_current_parent) {
                 m_current = &m_set.get(id_of(kind, parent, p, single), p.name);
