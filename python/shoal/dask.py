@@ -49,6 +49,7 @@ compiled module. No dashboard is started (bokeh is not in Debian 12).
 
 import argparse
 import ctypes
+import logging
 import os
 import shutil
 import signal
@@ -234,7 +235,19 @@ def run_task(name, cmd, cwd, grid, fresh=None):
     return name, p.returncode, time.monotonic() - t0, said[-1] if said else ""
 
 
+class _UnretrievedTimeouts(logging.Filter):
+    """Drops asyncio's "Future exception was never retrieved" for a TimeoutError: under load,
+    distributed.wait(timeout=...) leaves such a future in the client's loop (the wait's timeout,
+    which _completed handles), and asyncio says so on stderr when the driver exits, after the
+    run's own last line. Any other asyncio message is kept."""
+
+    def filter(self, record):
+        exc = record.exc_info[1] if record.exc_info else None
+        return not (isinstance(exc, TimeoutError) and record.getMessage().startswith("Future exception was never retrieved"))
+
+
 def main(argv=None):
+    logging.getLogger("asyncio").addFilter(_UnretrievedTimeouts())
     ap = argparse.ArgumentParser(prog="python3 -m shoal.dask", description=__doc__.split("\n\n")[0])
     where = ap.add_mutually_exclusive_group()
     where.add_argument("--scheduler", help="address of a running Dask scheduler, tcp://HOST:PORT")
