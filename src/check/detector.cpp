@@ -274,19 +274,36 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
             };
             std::array<Known, 8> known;
             std::size_t n_known = 0, next_known = 0;
+            // The last hull point whose winding was counted (not on the coast): the next one's
+            // is counted from it, along the short path between them, when they share a cell
+            // (CoastGrid::winding_from; any path inside a cell counts the same).
+            bool chained = false;
+            XY chain_at{};
+            int chain_w = 0;
             const std::size_t first = s.deepest < h.n ? s.deepest : 0;
             for (std::size_t step = 0; step < h.n; ++step) {
                 const std::size_t i = first + step < h.n ? first + step : first + step - h.n;
                 const XY p = h.to_local(h.pt(i));
-                double most = INFINITY;
+                // (One square root for the bound: the rounded root and the hair added rise with
+                // their argument, so the least of them is that of the least square. A point at
+                // least d away, squared, is no nearer with the hair either: not on land by it.)
+                double most2 = INFINITY;
                 bool on_land = false;
                 for (std::size_t k = 0; k < n_known; ++k) {
-                    const double gap = std::sqrt(geo::norm2(p - known[k].p)) * (1 + 1e-9) + 1e-9;
-                    on_land = on_land || gap < known[k].d * (1 - 1e-9);
-                    most = std::min(most, std::sqrt(geo::norm2(p - known[k].coast)) * (1 + 1e-9) + 1e-9);
+                    const double gap2 = geo::norm2(p - known[k].p);
+                    on_land = on_land || (gap2 < known[k].d * known[k].d && std::sqrt(gap2) * (1 + 1e-9) + 1e-9 < known[k].d * (1 - 1e-9));
+                    most2 = std::min(most2, geo::norm2(p - known[k].coast));
                 }
+                const double most = n_known > 0 ? std::sqrt(most2) * (1 + 1e-9) + 1e-9 : INFINITY;
                 if (most <= depth) continue;
-                if (!on_land && m_grid.winding(p) <= 0) continue;
+                if (!on_land) {
+                    bool on_coast = false;
+                    const int w = chained ? m_grid.winding_from(chain_at, chain_w, p, &on_coast) : m_grid.winding(p, &on_coast);
+                    chained = !on_coast;
+                    chain_at = p;
+                    chain_w = w;
+                    if (w <= 0) continue;
+                }
                 XY coast{INFINITY, INFINITY};  // none found: no bound from this point
                 double d = nearest_coast(p, most, &coast);
                 if (std::isinf(d)) d = nearest_coast(p, INFINITY, &coast);

@@ -438,7 +438,12 @@ int CoastGrid::winding_in_cell(std::uint32_t s, XY r, int w, XY p, bool* on_boun
             continue;
         }
         if (!(m_seg_info[k] & boundary_bit)) continue;
-        const int c = crossing_of(r, p, m_segments[k].a, m_segments[k].b);
+        // A segment whose box misses the path's box neither crosses the path nor holds p
+        // (winding_along's test): a short path, from a point near p, meets few of the cell's.
+        const Segment& sg = m_segments[k];
+        if (std::max(sg.a.x, sg.b.x) < px0 || std::min(sg.a.x, sg.b.x) > px1 || std::max(sg.a.y, sg.b.y) < py0 || std::min(sg.a.y, sg.b.y) > py1)
+            continue;
+        const int c = crossing_of(r, p, sg.a, sg.b);
         if (c == 2) {
             if (on_boundary) *on_boundary = true;
             return std::max(w, 1);
