@@ -243,7 +243,8 @@ class _UnretrievedTimeouts(logging.Filter):
 
     def filter(self, record):
         exc = record.exc_info[1] if record.exc_info else None
-        return not (isinstance(exc, TimeoutError) and record.getMessage().startswith("Future exception was never retrieved"))
+        # By name: asyncio's TimeoutError is not the builtin before Python 3.11 (as _completed has it).
+        return not (type(exc).__name__ == "TimeoutError" and record.getMessage().startswith("Future exception was never retrieved"))
 
 
 def main(argv=None):

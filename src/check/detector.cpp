@@ -274,12 +274,6 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
             };
             std::array<Known, 8> known;
             std::size_t n_known = 0, next_known = 0;
-            // The last hull point whose winding was counted (not on the coast): the next one's
-            // is counted from it, along the short path between them, when they share a cell
-            // (CoastGrid::winding_from; any path inside a cell counts the same).
-            bool chained = false;
-            XY chain_at{};
-            int chain_w = 0;
             const std::size_t first = s.deepest < h.n ? s.deepest : 0;
             for (std::size_t step = 0; step < h.n; ++step) {
                 const std::size_t i = first + step < h.n ? first + step : first + step - h.n;
@@ -296,14 +290,9 @@ Contact Detector::check(const LocalPose& pose, const CheckOptions& options) cons
                 }
                 const double most = n_known > 0 ? std::sqrt(most2) * (1 + 1e-9) + 1e-9 : INFINITY;
                 if (most <= depth) continue;
-                if (!on_land) {
-                    bool on_coast = false;
-                    const int w = chained ? m_grid.winding_from(chain_at, chain_w, p, &on_coast) : m_grid.winding(p, &on_coast);
-                    chained = !on_coast;
-                    chain_at = p;
-                    chain_w = w;
-                    if (w <= 0) continue;
-                }
+                // Each from its cell's reference point: counted from another hull point, an
+                // error of rounding at one lying on the coast would carry on to the next.
+                if (!on_land && m_grid.winding(p) <= 0) continue;
                 XY coast{INFINITY, INFINITY};  // none found: no bound from this point
                 double d = nearest_coast(p, most, &coast);
                 if (std::isinf(d)) d = nearest_coast(p, INFINITY, &coast);

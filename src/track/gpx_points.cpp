@@ -20,26 +20,20 @@ struct Scan {
     XML_Parser parser = nullptr;
     GpxPoints out;
     std::size_t trk = 0, rte = 0;  // elements begun so far
-    int in_trk = 0, in_rte = 0;    // open now
 };
 
 void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     Scan& s = *static_cast<Scan*>(data);
     // Names as GDAL's driver compares them: as written, without namespace processing.
     const bool trkpt = std::strcmp(name, "trkpt") == 0, rtept = !trkpt && std::strcmp(name, "rtept") == 0;
-    if (std::strcmp(name, "trk") == 0) {
-        ++s.trk;
-        ++s.in_trk;
-    } else if (std::strcmp(name, "rte") == 0) {
-        ++s.rte;
-        ++s.in_rte;
-    }
+    if (std::strcmp(name, "trk") == 0) ++s.trk;
+    else if (std::strcmp(name, "rte") == 0) ++s.rte;
     if (!trkpt && !rtept) return;
     GpxPoint p;
     p.line = static_cast<std::size_t>(XML_GetCurrentLineNumber(s.parser));
     p.column = static_cast<std::size_t>(XML_GetCurrentColumnNumber(s.parser)) + 1;
-    // Outside any <trk> (<rte>) GDAL's driver gives the point the parent -1.
-    p.parent = trkpt ? (s.in_trk > 0 ? static_cast<long long>(s.trk) - 1 : -1) : (s.in_rte > 0 ? static_cast<long long>(s.rte) - 1 : -1);
+    // GDAL's driver gives a point the last <trk> (<rte>) begun, closed or not; -1 before any.
+    p.parent = static_cast<long long>(trkpt ? s.trk : s.rte) - 1;
     const char* lat = nullptr;
     const char* lon = nullptr;
     for (std::size_t i = 0; attrs[i]; i += 2) {
@@ -56,16 +50,10 @@ void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     to.push_back(std::move(p));
 }
 
-void end(void* data, const XML_Char* name) {
-    Scan& s = *static_cast<Scan*>(data);
-    if (std::strcmp(name, "trk") == 0 && s.in_trk > 0) --s.in_trk;
-    else if (std::strcmp(name, "rte") == 0 && s.in_rte > 0) --s.in_rte;
-}
-
 /// The single-byte encodings GDAL's own expat parser also reads (ogr_expat.cpp's handler):
 /// Windows-1252 and ISO-8859-15. (Expat reads UTF-8, UTF-16, ISO-8859-1 and US-ASCII itself.)
 int unknown_encoding(void*, const XML_Char* name, XML_Encoding* info) {
-    const bool cp1252 = strcasecmp(name, "windows-1252") == 0 || strcasecmp(name, "cp1252") == 0;
+    const bool cp1252 = strcasecmp(name, "windows-1252") == 0;
     const bool latin9 = strcasecmp(name, "iso-8859-15") == 0;
     if (!cp1252 && !latin9) return XML_STATUS_ERROR;
     for (int i = 0; i < 256; ++i) info->map[i] = i;
@@ -73,7 +61,9 @@ int unknown_encoding(void*, const XML_Char* name, XML_Encoding* info) {
         static constexpr std::array<int, 32> high{0x20AC, 0x81,   0x201A, 0x192,  0x201E, 0x2026, 0x2020, 0x2021, 0x2C6, 0x2030, 0x160,
                                                   0x2039, 0x152,  0x8D,   0x17D,  0x8F,   0x90,   0x2018, 0x2019, 0x201C, 0x201D, 0x2022,
                                                   0x2013, 0x2014, 0x2DC,  0x2122, 0x161,  0x203A, 0x153,  0x9D,   0x17E,  0x178};
+        // (The five bytes Windows-1252 leaves undefined are malformed, as GDAL's parser has them.)
         for (int i = 0; i < 32; ++i) info->map[0x80 + i] = high[static_cast<std::size_t>(i)];
+        for (const int undefined : {0x81, 0x8D, 0x8F, 0x90, 0x9D}) info->map[undefined] = -1;
     } else {
         info->map[0xA4] = 0x20AC;
         info->map[0xA6] = 0x160;
@@ -110,7 +100,7 @@ GpxPoints scan_gpx_points(const std::string& gdal_path) {
     if (!parser) return {};
     s.parser = parser.get();
     XML_SetUserData(s.parser, &s);
-    XML_SetElementHandler(s.parser, start, end);
+    XML_SetStartElementHandler(s.parser, start);
     XML_SetUnknownEncodingHandler(s.parser, unknown_encoding, nullptr);
     std::vector<char> buf(1 << 16);
     for (;;) {

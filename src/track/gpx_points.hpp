@@ -15,7 +15,7 @@ struct GpxPoint {
     std::size_t line = 0;    ///< 1-based line of its start tag
     std::size_t column = 0;  ///< 1-based column of its start tag
     bool shares_line = false;  ///< another point of its kind starts on the same line
-    long long parent = -1;   ///< 0-based index of its <trk> or <rte> (GDAL's track_fid, route_fid); -1 outside one
+    long long parent = -1;   ///< 0-based index of the last <trk> or <rte> begun (GDAL's track_fid, route_fid); -1 before any
     double lat = 0, lon = 0;
     /// Empty when lat and lon are both there and numbers; else what is wrong ("latitude 'abc' is
     /// not a number", "no lon attribute").

@@ -597,6 +597,32 @@ TEST(DetectorPenetration, TheSameWhateverPoseCameBefore) {
     EXPECT_GT(deep, 300) << "too few hulls deep in land to mean anything";
 }
 
+TEST(DetectorPenetration, AHullPointOnACoastCornerMisleadsNoOtherPointsCount) {
+    // A land square (200..1200 m both ways) and a notched hull with one point on its corner
+    // (200, 200) and one 20 m inside it, (220, 230): 20 m deep (its nearest side is x = 200;
+    // the other points lie in water). Counted from the hull point on the corner, the winding of
+    // the next point came out 0 (a review's case): each point is counted from its cell's own
+    // reference point. Every rotation of the outline (which point the search meets first).
+    // (An islet far off: the grid's extent holds the hull.)
+    const std::vector<coast::LocalPolyline> lines{land_ring({{200, 200}, {1200, 200}, {1200, 1200}, {200, 1200}}),
+                                                  land_ring({{-3000, -3000}, {-2990, -3000}, {-2990, -2990}, {-3000, -2990}})};
+    const grid::CoastGrid grid = grid::CoastGrid::build(lines, any_frame(), 500);
+    const XY pos{200, 180};
+    const std::vector<XY> local{{190, 210}, {200, 200}, {220, 230}, {230, 160}, {170, 160}};
+    for (std::size_t start = 0; start < local.size(); ++start) {
+        std::vector<XY> ship;  // heading north: forward is +y, starboard +x
+        for (std::size_t k = 0; k < local.size(); ++k) {
+            const XY p = local[(start + k) % local.size()];
+            ship.push_back({p.y - pos.y, p.x - pos.x});
+        }
+        const Detector det(grid, hull::Hull::from_contour(ship));
+        const Contact c = det.check(LocalPose::at(pos, 0));
+        ASSERT_TRUE(c.collision) << start;
+        EXPECT_NEAR(c.penetration_m, 20, 1e-9) << start;
+        EXPECT_NEAR(det.check(LocalPose::at(pos, 0)).penetration_m, 20, 1e-9) << start << " (the deepest point tried first)";
+    }
+}
+
 TEST(Placement, ManyPosesAtOnceAsOneByOne) {
     // check::place for a batch: the same positions as one by one (one batch projection), the
     // Jacobian from a field over the chart where it covers the pose, to well under 1e-8 of

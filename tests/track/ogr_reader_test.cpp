@@ -258,6 +258,35 @@ TEST(GpxReader, AFileCutShortSaysWhereItBreaksAndEveryPointBeforeItKeepsItsLine)
     EXPECT_EQ(o.report.messages[0], one + " line 1 column 129 (track 'A'): latitude 'abc' is not a number; point skipped");
 }
 
+TEST(GpxReader, PointsAfterATrackAndBytesWindows1252LeavesUndefinedAreTakenAsGdalTakesThem) {
+    shoal::test::TempDir dir;
+    // GDAL's driver gives a point after </trk> to the last track begun: so does its message.
+    const std::string after = dir.file("after.gpx");
+    std::ofstream(after) << "<gpx version=\"1.1\" creator=\"t\">\n"                                                   // 1
+                            "<trk><name>T</name><trkseg>\n"                                                            // 2
+                            "<trkpt lat=\"60.1\" lon=\"24.9\"><time>2024-05-01T10:00:00Z</time></trkpt>\n"           // 3
+                            "</trkseg></trk>\n"                                                                        // 4
+                            "<trkpt lat=\"abc\" lon=\"24.9\"><time>2024-05-01T10:00:10Z</time></trkpt>\n"            // 5
+                            "<trkpt lon=\"24.9\"><time>2024-05-01T10:00:20Z</time></trkpt>\n"                        // 6
+                            "</gpx>\n";
+    const TrackFile a = read_gpx(after);
+    EXPECT_THAT(a.report.messages, ElementsAre(after + " line 5 (track 'T'): latitude 'abc' is not a number; point skipped",
+                                               after + " line 6 (track 'T'): no lat attribute; point skipped"));
+    // 0x81 is no character in Windows-1252: GDAL's parser stops there, and the scan says so.
+    std::string text = "<?xml version=\"1.0\" encoding=\"windows-1252\"?>\n<gpx version=\"1.1\" creator=\"t\">\n<trk><name>W</name><trkseg>\n";
+    for (int i = 0; i < 300; ++i) {
+        char row[160];
+        std::snprintf(row, sizeof row, "<trkpt lat=\"60.1\" lon=\"%.5f\"><time>2024-05-01T10:%02d:%02dZ</time>%s</trkpt>\n", 24.9 + i * 1e-5, i / 60,
+                      i % 60, i == 200 ? "<desc>\x81</desc>" : "");
+        text += row;
+    }
+    const std::string undefined = dir.file("undefined.gpx");
+    std::ofstream(undefined) << text << "</trkseg></trk></gpx>\n";
+    const TrackFile u = read_gpx(undefined);
+    ASSERT_FALSE(u.report.messages.empty());
+    EXPECT_THAT(u.report.messages.back(), AllOf(HasSubstr(undefined + " line 204 column "), HasSubstr("the XML is not well-formed")));
+}
+
 TEST(GeoJsonReader, LineStringWithTimesArray) {
     const std::string path = data_path("tracks/line_times.geojson");
     const auto f = read_geojson(path);
