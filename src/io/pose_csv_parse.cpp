@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <system_error>
 #include <vector>
@@ -26,14 +27,19 @@ namespace {
 
 constexpr std::size_t max_messages = 10;
 
-bool parse_double(std::string_view s, double& v) {
+bool parse_double(std::string_view s, double& v, bool decimal_comma) {
     if (s.empty()) return false;
     const char* first = s.data();
     const char* last = s.data() + s.size();
     if (*first == '+') ++first;
     if (track::detail::plain_decimal({first, static_cast<std::size_t>(last - first)}, v)) return true;  // from_chars' number, sooner
     const auto [p, ec] = std::from_chars(first, last, v);
-    return ec == std::errc() && p == last;
+    if (ec == std::errc() && p == last) return true;
+    // With ';' or tab separators a decimal comma is read, as in a track file ("60,5").
+    if (!decimal_comma || std::count(s.begin(), s.end(), ',') != 1 || s.size() > 64) return false;
+    std::string dotted(s);
+    std::replace(dotted.begin(), dotted.end(), ',', '.');
+    return parse_double(dotted, v, false);
 }
 
 /// `text` from its first line that is not blank or a comment ('#' first, after blanks) on, a
@@ -95,6 +101,7 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
     std::string copy;
     const std::string_view rows = without_comments(from_first_row(text, &passed), copy);
     track::CsvSplitter split(rows);
+    const bool decimal_comma = split.separator() == ';' || split.separator() == '\t';  // ('\0': none on the first row, ',' splits)
     std::vector<std::string_view> f;
     for (std::size_t from = 0; split.next(f); from = split.consumed()) {
         lineno = passed + split.line();
@@ -139,15 +146,15 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
         const std::string_view slat = f[static_cast<std::size_t>(col_lat)];
         const std::string_view slon = f[static_cast<std::size_t>(col_lon)];
         const std::string_view shdg = f[static_cast<std::size_t>(col_hdg)];
-        if (!parse_double(slat, r.lat) || !std::isfinite(r.lat) || std::fabs(r.lat) > 90) {
+        if (!parse_double(slat, r.lat, decimal_comma) || !std::isfinite(r.lat) || std::fabs(r.lat) > 90) {
             bad("latitude '" + std::string(slat) + "' is not a number in [-90, 90]");
             continue;
         }
-        if (!parse_double(slon, r.lon) || !std::isfinite(r.lon) || std::fabs(r.lon) > 180) {
+        if (!parse_double(slon, r.lon, decimal_comma) || !std::isfinite(r.lon) || std::fabs(r.lon) > 180) {
             bad("longitude '" + std::string(slon) + "' is not a number in [-180, 180]");
             continue;
         }
-        if (!parse_double(shdg, r.heading_deg) || !std::isfinite(r.heading_deg)) {
+        if (!parse_double(shdg, r.heading_deg, decimal_comma) || !std::isfinite(r.heading_deg)) {
             bad("heading '" + std::string(shdg) + "' is not a number of degrees");
             continue;
         }

@@ -87,12 +87,17 @@ std::vector<std::string> ref_split(const std::string& line, char sep) {
     return out;
 }
 
-bool ref_double(const std::string& s, double& v) {
+bool ref_double(const std::string& s, double& v, char sep = ',') {
     if (s.empty()) return false;
     const char* first = s.data();
     if (*first == '+') ++first;
     const auto [p, ec] = std::from_chars(first, s.data() + s.size(), v);
-    return ec == std::errc() && p == s.data() + s.size();
+    if (ec == std::errc() && p == s.data() + s.size()) return true;
+    // A decimal comma with ';' or tab separators: one comma, read as a point.
+    if (sep == ',' || std::count(s.begin(), s.end(), ',') != 1) return false;
+    std::string dotted = s;
+    dotted[dotted.find(',')] = '.';
+    return ref_double(dotted, v);
 }
 
 PoseFile reference(const std::string& text, const std::string& name) {
@@ -146,15 +151,15 @@ PoseFile reference(const std::string& text, const std::string& name) {
         const std::string& slat = f[static_cast<std::size_t>(col_lat)];
         const std::string& slon = f[static_cast<std::size_t>(col_lon)];
         const std::string& shdg = f[static_cast<std::size_t>(col_hdg)];
-        if (!ref_double(slat, r.lat) || !std::isfinite(r.lat) || std::fabs(r.lat) > 90) {
+        if (!ref_double(slat, r.lat, sep) || !std::isfinite(r.lat) || std::fabs(r.lat) > 90) {
             bad("latitude '" + slat + "' is not a number in [-90, 90]");
             continue;
         }
-        if (!ref_double(slon, r.lon) || !std::isfinite(r.lon) || std::fabs(r.lon) > 180) {
+        if (!ref_double(slon, r.lon, sep) || !std::isfinite(r.lon) || std::fabs(r.lon) > 180) {
             bad("longitude '" + slon + "' is not a number in [-180, 180]");
             continue;
         }
-        if (!ref_double(shdg, r.heading_deg) || !std::isfinite(r.heading_deg)) {
+        if (!ref_double(shdg, r.heading_deg, sep) || !std::isfinite(r.heading_deg)) {
             bad("heading '" + shdg + "' is not a number of degrees");
             continue;
         }
@@ -187,7 +192,7 @@ std::string random_file(std::mt19937_64& rng) {
         for (int i = 0; i < fields; ++i) {
             if (i) line += rng() % 10 ? sep : pick({",", ";", "\t", ", "});
             line += pick({"60.1", "-59.25", "+24.5", "1e1", "  12.5 ", "\"33.3\"", "3\"4", "", "abc", "nan", "inf", "95", "-181",
-                          "720.5", "511", "-45", "0x10", "1.5e400", "7.", ".5", "#", " "});
+                          "720.5", "511", "\"1,5\"", "2,25", "-45", "0x10", "1.5e400", "7.", ".5", "#", " "});
         }
         if (rng() % 10 == 0) line = pick({"", "   ", "# a comment", "\t", "  # indented comment"});
         t += line;
@@ -265,10 +270,18 @@ TEST(PoseCsv, HandMadeCases) {
     ASSERT_EQ(o.errors.size(), 1u);
     EXPECT_EQ(o.errors[0], "o.csv line 3: " + std::string(shoal::track::quote_not_closed_message) + "; row skipped");
     const PoseFile q = parse_pose_csv("# a \"comment\n\n\"lat\";\"lon\";heading\n60;\"24.5\";\"9\"\"\"\n\"60,5\";24;1\n", "q.csv");
-    ASSERT_EQ(q.poses.size(), 0u);
-    ASSERT_EQ(q.errors.size(), 2u) << q.errors.size();
+    // With ';' a decimal comma is read (as in a track file): "60,5" is 60.5.
+    ASSERT_EQ(q.poses.size(), 1u);
+    EXPECT_EQ(q.poses[0].lat, 60.5);
+    ASSERT_EQ(q.errors.size(), 1u) << q.errors.size();
     EXPECT_EQ(q.errors[0], "q.csv line 4: heading '9\"' is not a number of degrees; row skipped");
-    EXPECT_EQ(q.errors[1], "q.csv line 5: latitude '60,5' is not a number in [-90, 90]; row skipped");
+    const PoseFile c = parse_pose_csv("lat,lon,heading\n\"60,5\",24,1\n", "c.csv");  // with ',' it is not
+    ASSERT_EQ(c.errors.size(), 1u);
+    EXPECT_EQ(c.errors[0], "c.csv line 2: latitude '60,5' is not a number in [-90, 90]; row skipped");
+    const PoseFile t = parse_pose_csv("lat\tlon\theading\n60,25\t24,5\t90,5\n", "t.csv");
+    ASSERT_EQ(t.poses.size(), 1u);
+    EXPECT_EQ(t.poses[0].lon, 24.5);
+    EXPECT_EQ(t.poses[0].heading_deg, 90.5);
     // AIS's "not available" heading is not a heading (the track reader's rule); any other
     // number of degrees is taken modulo 360, 871 too.
     EXPECT_THROW(parse_pose_csv("", "e.csv"), InputError);
