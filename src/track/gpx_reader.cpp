@@ -109,8 +109,7 @@ private:
         return " line " + std::to_string(at.line) + (at.shares_line ? " column " + std::to_string(at.column) : "");
     }
 
-    /// One feature of a points layer, as read (the layer is read once: GDAL parses the XML again
-    /// on every pass).
+    /// One feature of a points layer, as read.
     struct Row {
         GIntBig fid = 0, parent = 0;
         double time = NAN;  ///< NaN: none that reads
@@ -118,21 +117,6 @@ private:
         double x = 0, y = 0;
         double course = NAN, speed = NAN;  ///< NaN: not given
     };
-
-    /// Whether the scan's elements are the layer's features: FID k the k-th element, the FIDs
-    /// rising, each feature at the lat and lon written there (one whose element holds no number
-    /// is not compared: GDAL reads 'abc' as 0). GDAL's driver numbers them so; should one not,
-    /// the points are named by their number in the file, not by a line.
-    static bool agrees(const std::vector<Row>& rows, const std::vector<detail::GpxPoint>& scanned) {
-        GIntBig last = -1;
-        for (const Row& r : rows) {
-            if (r.fid <= last || static_cast<std::size_t>(r.fid) >= scanned.size()) return false;
-            last = r.fid;
-            const detail::GpxPoint& at = scanned[static_cast<std::size_t>(r.fid)];
-            if (at.problem.empty() && (!r.point || r.x != at.lon || r.y != at.lat)) return false;
-        }
-        return true;
-    }
 
     void points(GDALDataset& ds, const char* layer_name, const char* parent_field, const char* kind,
                 std::map<GIntBig, GpxParent>& parents, bool single, const std::vector<detail::GpxPoint>* scanned,
@@ -144,22 +128,6 @@ private:
         const int time_field = defn->GetFieldIndex("time");
         const int course_field = defn->GetFieldIndex("course");
         const int speed_field = defn->GetFieldIndex("speed");
-        std::vector<Row> rows;
-        for (auto& f : *layer) {
-            Row& r = rows.emplace_back();
-            r.fid = f->GetFID();
-            r.parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
-            r.time = time_of(*f, time_field).value_or(NAN);
-            const OGRGeometry* g = f->GetGeometryRef();
-            r.point = g && wkbFlatten(g->getGeometryType()) == wkbPoint && !g->IsEmpty();
-            if (r.point) {
-                r.x = g->toPoint()->getX();
-                r.y = g->toPoint()->getY();
-            }
-            if (course_field >= 0 && f->IsFieldSetAndNotNull(course_field)) r.course = f->GetFieldAsDouble(course_field);
-            if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field)) r.speed = f->GetFieldAsDouble(speed_field);
-        }
-        if (scanned && !agrees(rows, *scanned)) scanned = nullptr;
         m_current = nullptr;
         // The elements GDAL's driver gave no feature (no lat or lon): each a bad row, in file order.
         std::size_t next = 0;
@@ -169,19 +137,45 @@ private:
                 ++m_out.report.rows;
                 const auto parent = static_cast<GIntBig>(at.parent);
                 m_out.report.skip(m_file + where(at) + " (" + kind + " '" + id_of(kind, parent, parents[parent], single) + "'): " +
-                                  (at.problem.empty() ? lost : at.problem) +
-                                  "; point skipped");
+                                  (at.problem.empty() ? lost : at.problem) + "; point skipped");
             }
         };
-        for (const Row& f : rows) {
+        // GDAL's driver gives the k-th element FID k (those it drops too), the FIDs rising. Each
+        // feature is checked to lie at the lat and lon written in its element (one whose element
+        // holds no number is not compared: GDAL reads 'abc' as 0); should one not, the mapping
+        // is given up and the points from there on are named by their number in the file.
+        GIntBig last_fid = -1;
+        for (auto& feature : *layer) {
+            Row f;
+            f.fid = feature->GetFID();
+            f.parent = fid_field >= 0 ? feature->GetFieldAsInteger64(fid_field) : 0;
+            f.time = time_of(*feature, time_field).value_or(NAN);
+            const OGRGeometry* g = feature->GetGeometryRef();
+            f.point = g && wkbFlatten(g->getGeometryType()) == wkbPoint && !g->IsEmpty();
+            if (f.point) {
+                f.x = g->toPoint()->getX();
+                f.y = g->toPoint()->getY();
+            }
+            if (course_field >= 0 && feature->IsFieldSetAndNotNull(course_field)) f.course = feature->GetFieldAsDouble(course_field);
+            if (speed_field >= 0 && feature->IsFieldSetAndNotNull(speed_field)) f.speed = feature->GetFieldAsDouble(speed_field);
             ++m_out.report.rows;
             ++m_point;
             const detail::GpxPoint* at = nullptr;
             if (scanned) {
-                const auto fid = static_cast<std::size_t>(f.fid);
-                dropped_before(fid);
-                next = fid + 1;
-                at = &(*scanned)[fid];
+                bool fits = f.fid > last_fid && static_cast<std::size_t>(f.fid) < scanned->size();
+                if (fits) {
+                    const detail::GpxPoint& e = (*scanned)[static_cast<std::size_t>(f.fid)];
+                    fits = !e.problem.empty() || (f.point && f.x == e.lon && f.y == e.lat);
+                }
+                if (fits) {
+                    const auto fid = static_cast<std::size_t>(f.fid);
+                    dropped_before(fid);
+                    next = fid + 1;
+                    last_fid = f.fid;
+                    at = &(*scanned)[fid];
+                } else {
+                    scanned = nullptr;
+                }
             }
             const GIntBig parent = f.parent;
             GpxParent& p = parents[parent];
