@@ -3,7 +3,10 @@
 #include <cpl_vsi.h>
 #include <expat.h>
 
+#include <algorithm>
 #include <array>
+#include <climits>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -15,6 +18,10 @@
 namespace shoal::track::detail {
 
 namespace {
+
+static_assert(sizeof(GpxPoint) == 32, "GpxPoint: 32 bytes a point");
+
+std::uint32_t saturated(XML_Size v) { return v > UINT32_MAX ? UINT32_MAX : static_cast<std::uint32_t>(v); }
 
 struct Scan {
     XML_Parser parser = nullptr;
@@ -30,21 +37,26 @@ void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     else if (std::strcmp(name, "rte") == 0) ++s.rte;
     if (!trkpt && !rtept) return;
     GpxPoint p;
-    p.line = static_cast<std::size_t>(XML_GetCurrentLineNumber(s.parser));
-    p.column = static_cast<std::size_t>(XML_GetCurrentColumnNumber(s.parser)) + 1;
+    p.line = saturated(XML_GetCurrentLineNumber(s.parser));
+    p.column = saturated(XML_GetCurrentColumnNumber(s.parser) + 1);
     // GDAL's driver gives a point the last <trk> (<rte>) begun, closed or not; -1 before any.
-    p.parent = static_cast<long long>(trkpt ? s.trk : s.rte) - 1;
+    p.parent = static_cast<std::int32_t>(std::min<std::size_t>(trkpt ? s.trk : s.rte, INT32_MAX)) - 1;
     const char* lat = nullptr;
     const char* lon = nullptr;
     for (std::size_t i = 0; attrs[i]; i += 2) {
         if (std::strcmp(attrs[i], "lat") == 0) lat = attrs[i + 1];
         else if (std::strcmp(attrs[i], "lon") == 0) lon = attrs[i + 1];
     }
-    if (!lat) p.problem = "no lat attribute";
-    else if (!lon) p.problem = "no lon attribute";
+    std::string problem;
+    if (!lat) problem = "no lat attribute";
+    else if (!lon) problem = "no lon attribute";
     else {
-        p.problem = gpx_coordinate_problem(lat, "latitude", p.lat);
-        if (p.problem.empty()) p.problem = gpx_coordinate_problem(lon, "longitude", p.lon);
+        problem = gpx_coordinate_problem(lat, "latitude", p.lat);
+        if (problem.empty()) problem = gpx_coordinate_problem(lon, "longitude", p.lon);
+    }
+    if (!problem.empty() && s.out.problems.size() < (1u << 31) - 1) {
+        s.out.problems.push_back(std::move(problem));
+        p.problem = static_cast<std::uint32_t>(s.out.problems.size()) & 0x7fffffffu;
     }
     std::vector<GpxPoint>& to = trkpt ? s.out.track : s.out.route;
     to.push_back(std::move(p));
@@ -121,7 +133,7 @@ GpxPoints scan_gpx_points(const std::string& gdal_path) {
     // Points that share their line (a GPX written on one line) are told apart by their column.
     for (std::vector<GpxPoint>* v : {&s.out.track, &s.out.route})
         for (std::size_t i = 0; i < v->size(); ++i)
-            (*v)[i].shares_line = (i > 0 && (*v)[i - 1].line == (*v)[i].line) || (i + 1 < v->size() && (*v)[i + 1].line == (*v)[i].line);
+            (*v)[i].shares_line = (i > 0 && (*v)[i - 1].line == (*v)[i].line) || (i + 1 < v->size() && (*v)[i + 1].line == (*v)[i].line) ? 1 : 0;
     return std::move(s.out);
 }
 

@@ -5,21 +5,22 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace shoal::track::detail {
 
-/// One <trkpt> or <rtept> element.
+/// One <trkpt> or <rtept> element (32 bytes: a file of 10 million points is 320 MB of them).
 struct GpxPoint {
-    std::size_t line = 0;    ///< 1-based line of its start tag
-    std::size_t column = 0;  ///< 1-based column of its start tag
-    bool shares_line = false;  ///< another point of its kind starts on the same line
-    long long parent = -1;   ///< 0-based index of the last <trk> or <rte> begun (GDAL's track_fid, route_fid); -1 before any
     double lat = 0, lon = 0;
-    /// Empty when lat and lon are both there and numbers; else what is wrong ("latitude 'abc' is
-    /// not a number", "no lon attribute").
-    std::string problem;
+    std::uint32_t line = 0;    ///< 1-based line of its start tag (saturated at 2^32 - 1)
+    std::uint32_t column = 0;  ///< 1-based column of its start tag (saturated)
+    std::int32_t parent = -1;  ///< 0-based index of the last <trk> or <rte> begun (GDAL's track_fid, route_fid); -1 before any
+    /// 0 when lat and lon are both there and numbers; else 1 + the index in GpxPoints::problems
+    /// of what is wrong ("latitude 'abc' is not a number", "no lon attribute").
+    std::uint32_t problem : 31 = 0;
+    std::uint32_t shares_line : 1 = 0;  ///< another point of its kind starts on the same line
 };
 
 /// Every <trkpt> and <rtept> of a GPX file, each in document order: GDAL's GPX driver gives the
@@ -28,6 +29,7 @@ struct GpxPoint {
 /// that (GpxPoints::agrees).
 struct GpxPoints {
     std::vector<GpxPoint> track, route;  ///< up to the error, when there is one
+    std::vector<std::string> problems;   ///< what is wrong with the points that have a problem
     bool read = false;  ///< the whole file was parsed as XML
     std::string error;  ///< else expat's reason ("" when the file could not be opened)
     std::size_t error_line = 0, error_column = 0;

@@ -64,8 +64,8 @@ public:
         // further on (GDAL's parser drops the features of the block it fails in).
         const std::string lost = where.read ? "GDAL's GPX driver read no point there"
                                             : "not read: the XML is not well-formed further on, at line " + std::to_string(where.error_line);
-        points(*ds, "track_points", "track_fid", "track", tracks, single, &where.track, lost);
-        points(*ds, "route_points", "route_fid", "route", routes, single, &where.route, lost);
+        points(*ds, "track_points", "track_fid", "track", tracks, single, &where.track, where.problems, lost);
+        points(*ds, "route_points", "route_fid", "route", routes, single, &where.route, where.problems, lost);
         if (!where.read && !where.error.empty())  // GDAL's parser stops there too, without a word
             m_out.report.skip_all(0, m_file + " line " + std::to_string(where.error_line) + " column " +
                                          std::to_string(where.error_column) + ": the XML is not well-formed (" + where.error +
@@ -120,7 +120,7 @@ private:
 
     void points(GDALDataset& ds, const char* layer_name, const char* parent_field, const char* kind,
                 std::map<GIntBig, GpxParent>& parents, bool single, const std::vector<detail::GpxPoint>* scanned,
-                const std::string& lost) {
+                const std::vector<std::string>& problems, const std::string& lost) {
         OGRLayer* layer = ds.GetLayerByName(layer_name);
         if (!layer) return;
         OGRFeatureDefn* defn = layer->GetLayerDefn();
@@ -137,7 +137,7 @@ private:
                 ++m_out.report.rows;
                 const auto parent = static_cast<GIntBig>(at.parent);
                 m_out.report.skip(m_file + where(at) + " (" + kind + " '" + id_of(kind, parent, parents[parent], single) + "'): " +
-                                  (at.problem.empty() ? lost : at.problem) + "; point skipped");
+                                  (at.problem ? problems[at.problem - 1] : lost) + "; point skipped");
             }
         };
         // GDAL's driver gives the k-th element FID k (those it drops too), the FIDs rising. Each
@@ -165,7 +165,7 @@ private:
                 bool fits = f.fid > last_fid && static_cast<std::size_t>(f.fid) < scanned->size();
                 if (fits) {
                     const detail::GpxPoint& e = (*scanned)[static_cast<std::size_t>(f.fid)];
-                    fits = !e.problem.empty() || (f.point && f.x == e.lon && f.y == e.lat);
+                    fits = e.problem || (f.point && f.x == e.lon && f.y == e.lat);
                 }
                 if (fits) {
                     const auto fid = static_cast<std::size_t>(f.fid);
@@ -194,8 +194,8 @@ private:
                 continue;
             }
             ++p.timed;
-            if (at && !at->problem.empty()) {  // 'abc' read by GDAL as 0
-                skip(at->problem);
+            if (at && at->problem) {  // 'abc' read by GDAL as 0
+                skip(problems[at->problem - 1]);
                 continue;
             }
             if (!f.point) {
