@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <climits>
 #include <cstdint>
 #include <cmath>
 #include <cstring>
@@ -28,6 +27,16 @@ struct Scan {
     GpxPoints out;
     std::size_t trk = 0, rte = 0;  // elements begun so far
 };
+
+/// What is wrong with a lat or lon attribute's text ("" when it is a number; `what` is
+/// "latitude" or "longitude"); the number in `out`.
+std::string gpx_coordinate_problem(const char* text, const char* what, double& out) {
+    const std::string_view t = trim(text);
+    if (t.empty()) return std::string(what) + " is empty";
+    const bool number = parse_double(t, out);
+    if (number && std::isfinite(out)) return "";
+    return std::string(what) + " " + quoted(t) + (number && !std::isnan(out) ? " is out of range" : " is not a number");
+}
 
 void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     Scan& s = *static_cast<Scan*>(data);
@@ -59,7 +68,7 @@ void start(void* data, const XML_Char* name, const XML_Char** attrs) {
         p.problem = static_cast<std::uint32_t>(s.out.problems.size()) & 0x7fffffffu;
     }
     std::vector<GpxPoint>& to = trkpt ? s.out.track : s.out.route;
-    to.push_back(std::move(p));
+    to.push_back(p);
 }
 
 /// The single-byte encodings GDAL's own expat parser also reads (ogr_expat.cpp's handler):
@@ -93,16 +102,6 @@ int unknown_encoding(void*, const XML_Char* name, XML_Encoding* info) {
 }
 
 }  // namespace
-
-std::string gpx_coordinate_problem(const char* text, const char* what, double& out) {
-    const std::string_view t = trim(text);
-    if (t.empty()) return std::string(what) + " is empty";
-    const bool number = parse_double(t, out);
-    if (number && std::isfinite(out)) return "";
-    std::string shown(t.substr(0, 40));
-    if (t.size() > 40) shown += "...";
-    return std::string(what) + " '" + shown + (number && !std::isnan(out) ? "' is out of range" : "' is not a number");
-}
 
 GpxPoints scan_gpx_points(const std::string& gdal_path) {
     Scan s;

@@ -25,8 +25,8 @@ struct GpxPoint {
 
 /// Every <trkpt> and <rtept> of a GPX file, each in document order: GDAL's GPX driver gives the
 /// k-th element of each kind the FID k in its track_points / route_points layer (an element it
-/// drops still takes its number). The caller checks that the features agree before it relies on
-/// that (GpxPoints::agrees).
+/// drops still takes its number). The reader checks each feature against its element (its lat
+/// and lon) before it relies on that.
 struct GpxPoints {
     std::vector<GpxPoint> track, route;  ///< up to the error, when there is one
     std::vector<std::string> problems;   ///< what is wrong with the points that have a problem
@@ -38,9 +38,5 @@ struct GpxPoints {
 /// Scans the file at `gdal_path` (a path GDAL's VSI opens: a file, /vsimem/, /vsizip/...). A file
 /// that is not well-formed XML gives read = false, where and why, and the points before it.
 GpxPoints scan_gpx_points(const std::string& gdal_path);
-
-/// What is wrong with a lat or lon attribute's text ("" when it is a number; `what` is
-/// "latitude" or "longitude"); the number in `out`.
-std::string gpx_coordinate_problem(const char* text, const char* what, double& out);
 
 }  // namespace shoal::track::detail
