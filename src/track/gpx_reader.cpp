@@ -109,15 +109,6 @@ private:
         return " line " + std::to_string(at.line) + (at.shares_line ? " column " + std::to_string(at.column) : "");
     }
 
-    /// One feature of a points layer, as read.
-    struct Row {
-        GIntBig fid = 0, parent = 0;
-        double time = NAN;  ///< NaN: none that reads
-        bool point = false;  ///< a point geometry, at x, y
-        double x = 0, y = 0;
-        double course = NAN, speed = NAN;  ///< NaN: not given
-    };
-
     void points(GDALDataset& ds, const char* layer_name, const char* parent_field, const char* kind,
                 std::map<GIntBig, GpxParent>& parents, bool single, const std::vector<detail::GpxPoint>* scanned,
                 const std::vector<std::string>& problems, const std::string& lost) {
@@ -145,52 +136,42 @@ private:
         // holds no number is not compared: GDAL reads 'abc' as 0); should one not, the mapping
         // is given up and the points from there on are named by their number in the file.
         GIntBig last_fid = -1;
-        for (auto& feature : *layer) {
-            Row f;
-            f.fid = feature->GetFID();
-            f.parent = fid_field >= 0 ? feature->GetFieldAsInteger64(fid_field) : 0;
-            f.time = time_of(*feature, time_field).value_or(NAN);
-            const OGRGeometry* g = feature->GetGeometryRef();
-            f.point = g && wkbFlatten(g->getGeometryType()) == wkbPoint && !g->IsEmpty();
-            if (f.point) {
-                f.x = g->toPoint()->getX();
-                f.y = g->toPoint()->getY();
-            }
-            if (course_field >= 0 && feature->IsFieldSetAndNotNull(course_field)) f.course = feature->GetFieldAsDouble(course_field);
-            if (speed_field >= 0 && feature->IsFieldSetAndNotNull(speed_field)) f.speed = feature->GetFieldAsDouble(speed_field);
+        for (auto& f : *layer) {
+            const GIntBig fid = f->GetFID();
+            const OGRGeometry* g = f->GetGeometryRef();
+            const bool point = g && wkbFlatten(g->getGeometryType()) == wkbPoint && !g->IsEmpty();
             ++m_out.report.rows;
             ++m_point;
             const detail::GpxPoint* at = nullptr;
             if (scanned) {
-                bool fits = f.fid > last_fid && static_cast<std::size_t>(f.fid) < scanned->size();
+                bool fits = fid > last_fid && static_cast<std::size_t>(fid) < scanned->size();
                 if (fits) {
-                    const detail::GpxPoint& e = (*scanned)[static_cast<std::size_t>(f.fid)];
-                    fits = e.problem || (f.point && f.x == e.lon && f.y == e.lat);
+                    const detail::GpxPoint& e = (*scanned)[static_cast<std::size_t>(fid)];
+                    fits = e.problem || (point && g->toPoint()->getX() == e.lon && g->toPoint()->getY() == e.lat);
                 }
                 if (fits) {
-                    const auto fid = static_cast<std::size_t>(f.fid);
-                    dropped_before(fid);
-                    next = fid + 1;
-                    last_fid = f.fid;
-                    at = &(*scanned)[fid];
+                    dropped_before(static_cast<std::size_t>(fid));
+                    next = static_cast<std::size_t>(fid) + 1;
+                    last_fid = fid;
+                    at = &(*scanned)[static_cast<std::size_t>(fid)];
                 } else {
                     scanned = nullptr;
                 }
             }
-            const GIntBig parent = f.parent;
+            const GIntBig parent = fid_field >= 0 ? f->GetFieldAsInteger64(fid_field) : 0;
             GpxParent& p = parents[parent];
             ++p.points;
             auto skip = [&](const std::string& what) {
                 m_out.report.skip(m_file + (at ? where(*at) : " point " + std::to_string(m_point)) + " (" + kind + " '" +
                                   id_of(kind, parent, p, single) + "'): " + what + "; point skipped");
             };
-            const double t = f.time;
-            if (std::isnan(t)) {
+            const auto t = time_of(*f, time_field);
+            if (!t) {
                 skip("no time");
                 continue;
             }
-            if (!plausible_fix_time(t)) {
-                skip("time " + format_iso8601(t, 0) + " is outside the years " + fix_time_range);
+            if (!plausible_fix_time(*t)) {
+                skip("time " + format_iso8601(*t, 0) + " is outside the years " + fix_time_range);
                 continue;
             }
             ++p.timed;
@@ -198,19 +179,21 @@ private:
                 skip(problems[at->problem - 1]);
                 continue;
             }
-            if (!f.point) {
+            if (!point) {
                 skip("no point geometry");
                 continue;
             }
             Fix fix;
-            fix.time_s = t;
-            fix.position = {f.x, f.y};
+            fix.time_s = *t;
+            fix.position = {g->toPoint()->getX(), g->toPoint()->getY()};
             if (std::string what; position_problem(fix.position.lat, fix.position.lon, what)) {
                 skip(what);
                 continue;
             }
-            if (!std::isnan(f.course)) fix.cog_deg = valid_cog(f.course);
-            if (!std::isnan(f.speed)) fix.sog_kn = valid_sog(f.speed * 3600.0 / 1852.0);
+            if (course_field >= 0 && f->IsFieldSetAndNotNull(course_field))
+                fix.cog_deg = valid_cog(f->GetFieldAsDouble(course_field));
+            if (speed_field >= 0 && f->IsFieldSetAndNotNull(speed_field))
+                fix.sog_kn = valid_sog(f->GetFieldAsDouble(speed_field) * 3600.0 / 1852.0);
             fix.line = at ? at->line : m_point;
             if (!m_current || parent != m_current_parent) {
                 m_current = &m_set.get(id_of(kind, parent, p, single), p.name);
