@@ -189,8 +189,9 @@ bool CsvSplitter::next(std::vector<std::string_view>& fields) {
                     }
                     ++m_pos;
                 }
-                if (m_line > field_line && !quote_left_open(closed, sep)) m_quoted_line_ends += m_line - field_line;
-                if (m_line > field_line && quote_left_open(closed, sep)) {
+                const bool over_lines = m_line > field_line, left_open = over_lines && quote_left_open(closed, sep);
+                if (over_lines && !left_open) m_quoted_line_ends += m_line - field_line;
+                if (left_open) {
                     // A quote that takes in the lines after its own but does not close as a
                     // field's quotes do: a stray quote (an AIS name "ALPHA), which would take
                     // every row up to the next quote, or to the end of the file. Only its own
