@@ -478,10 +478,12 @@ public:
         std::size_t debrief_pages = 0;
         if (!m_debrief.empty()) {
             try {
-                std::vector<std::string> debrief_warnings;
-                std::vector<StagedOutput> sheets = report::stage_debrief(m_debrief, r, g, info, all_inputs, outputs, {}, &debrief_warnings);
-                print_warnings(debrief_warnings);
-                debrief_failed = !debrief_warnings.empty();
+                // A page refused (a file of its name that shoal did not write) fails the run
+                // (exit 2), said as an error, also with --quiet.
+                std::vector<std::string> refused;
+                std::vector<StagedOutput> sheets = report::stage_debrief(m_debrief, r, g, info, all_inputs, outputs, {}, &refused);
+                print_errors(refused);
+                debrief_failed = !refused.empty();
                 debrief_pages = sheets.size();
                 for (auto& s : sheets) staged.push_back(std::move(s));
             } catch (const InputError& e) {

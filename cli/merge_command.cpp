@@ -47,6 +47,7 @@ public:
             throw UsageError("merge --coast goes with --debrief or --plot (the grid they are drawn on)");
         const report::MergeSummary s = report::merge_reports(m_parts, m_output, &warnings, m_options);
         print_warnings(warnings);
+        print_errors(s.pages_refused);
         std::FILE* out = is_standard_output(m_output) || (!m_options.plot.empty() && is_standard_output(m_options.plot)) ? stderr : stdout;
         const std::string collisions = s.collisions ? ", " + std::to_string(s.collisions) + " collisions" : "";
         std::fprintf(out, "merged %zu parts: %zu tracks, %zu events, %zu groundings%s\nreport: %s\n", s.parts, s.tracks, s.events, s.groundings,
@@ -55,7 +56,7 @@ public:
         if (!m_options.debrief.empty())
             std::fprintf(out, "debrief: %zu page%s in %s\n", s.pages, s.pages == 1 ? "" : "s", printable(m_options.debrief).c_str());
         if (s.groundings > 0 || s.collisions > 0) return exit_found;
-        return s.pages_left_out ? exit_usage : exit_ok;
+        return s.pages_refused.empty() ? exit_ok : exit_usage;
     }
 
 private:

@@ -64,6 +64,10 @@ void print_warnings(const std::vector<std::string>& warnings) {
     for (const auto& w : warnings) std::fprintf(stderr, "shoal: warning: %s\n", printable(in_cli_terms(w)).c_str());
 }
 
+void print_errors(const std::vector<std::string>& errors) {
+    for (const auto& e : errors) std::fprintf(stderr, "shoal: error: %s\n", printable(in_cli_terms(e)).c_str());
+}
+
 void print_grid(const grid::CoastGrid& g) {
     const auto& s = g.source();
     const geo::Box e = g.extent();

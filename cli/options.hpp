@@ -36,6 +36,9 @@ std::string in_cli_terms(std::string message);
 
 /// "shoal: warning: ..." on stderr, one line each, in the CLI's terms, terminal escapes shown as hex.
 void print_warnings(const std::vector<std::string>& warnings);
+/// "shoal: error: ..." the same way, also with --quiet: what made the run fail (exit 2) though
+/// the report was written (a debrief page refused).
+void print_errors(const std::vector<std::string>& errors);
 /// --quiet: warnings and notes on stderr are left out (errors never are); `quiet()` says so.
 void set_quiet(bool quiet);
 bool quiet();

@@ -510,7 +510,13 @@ std::size_t count_of(const json& summary, const char* name) {
 }
 
 MergeSummary summary_of(std::size_t parts, std::size_t tracks, const json& s) {
-    return {parts, tracks, count_of(s, "events"), count_of(s, "groundings"), count_of(s, "collisions")};
+    MergeSummary m;
+    m.parts = parts;
+    m.tracks = tracks;
+    m.events = count_of(s, "events");
+    m.groundings = count_of(s, "groundings");
+    m.collisions = count_of(s, "collisions");
+    return m;
 }
 
 /// The merged GeoJSON report of GeoJSON parts.
@@ -766,11 +772,8 @@ MergeSummary merge_reports(const std::vector<std::string>& parts, const std::str
             picture.write(plot_svg(run, grid));
         }
         if (!options.debrief.empty()) {
-            std::vector<std::string> page_warnings;
-            std::vector<StagedOutput> sheets = stage_debrief(options.debrief, run, grid, info, inputs, outputs, {}, &page_warnings);
+            std::vector<StagedOutput> sheets = stage_debrief(options.debrief, run, grid, info, inputs, outputs, {}, &summary.pages_refused);
             summary.pages = sheets.size();
-            summary.pages_left_out = !page_warnings.empty();
-            if (warnings) warnings->insert(warnings->end(), page_warnings.begin(), page_warnings.end());
             for (StagedOutput& s : sheets) staged.push_back(std::move(s));
         }
     }

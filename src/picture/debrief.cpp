@@ -703,7 +703,7 @@ std::vector<OutputSpec> debrief_outputs(const std::string& folder, const std::ve
 std::vector<StagedOutput> stage_debrief(const std::string& folder, const audit::AuditResult& result, const grid::CoastGrid& grid,
                                         const RunInfo& info, const std::vector<std::string>& inputs,
                                         const std::vector<OutputSpec>& others, const DebriefOptions& options,
-                                        std::vector<std::string>* warnings) {
+                                        std::vector<std::string>* refused) {
     check_debrief_folder(folder);
     std::error_code ec;
     if (!fs::is_directory(folder, ec) && !fs::create_directory(folder, ec) && !fs::is_directory(folder))
@@ -721,8 +721,8 @@ std::vector<StagedOutput> stage_debrief(const std::string& folder, const audit::
             in.read(head.data(), static_cast<std::streamsize>(head.size()));
             head.resize(static_cast<std::size_t>(in.gcount()));
             if (head.find(generator_mark) == std::string::npos) {
-                if (warnings)
-                    warnings->push_back("'" + path + "' exists and shoal did not write it: the debrief of exercise '" + page.exercise +
+                if (refused)
+                    refused->push_back("'" + path + "' exists and shoal did not write it: the debrief of exercise '" + page.exercise +
                                         "' was not written (move the file away)");
                 continue;
             }

@@ -553,9 +553,15 @@ TEST(Debrief, CliWritesOnePagePerExerciseKeepsAForeignFileAndRefusesAPageName) {
     const test::Outcome again = shoal("--debrief '" + folder.string() + "'");
     EXPECT_EQ(again.status, 1) << again.err;
     EXPECT_EQ(read_text((folder / "ex2.csv.html").string()), "my own notes");
-    EXPECT_NE(again.err.find("shoal did not write it"), std::string::npos) << again.err;
+    EXPECT_NE(again.err.find("shoal: error: '" + (folder / "ex2.csv.html").string() + "' exists and shoal did not write it"), std::string::npos)
+        << again.err;
     EXPECT_NE(read_text((folder / "ex1_b_.csv.html").string()).find("shoal debrief"), std::string::npos);
     for (const auto& e : fs::directory_iterator(folder)) EXPECT_EQ(e.path().filename().string().find(".shoal.tmp"), std::string::npos);
+    // A page not written is an error: said with --quiet too (before: a warning, left out).
+    const test::Outcome quiet = shoal("--quiet --debrief '" + folder.string() + "'");
+    EXPECT_EQ(quiet.status, 1) << quiet.err;
+    EXPECT_NE(quiet.err.find("shoal: error: '" + (folder / "ex2.csv.html").string() + "' exists"), std::string::npos) << quiet.err;
+    EXPECT_EQ(read_text((folder / "ex2.csv.html").string()), "my own notes");
 }
 
 /// Pixels of `png` (RGB) within `tol` of `rgb` in the rectangle [x0, x1) x [y0, y1).

@@ -34,7 +34,9 @@ namespace shoal::report {
 struct MergeSummary {
     std::size_t parts = 0, tracks = 0, events = 0, groundings = 0, collisions = 0;
     std::size_t pages = 0;           ///< debrief pages written
-    bool pages_left_out = false;     ///< a page not written (a file of that name that shoal did not write)
+    /// The pages not written, a message each (a file of that name that shoal did not write):
+    /// the merge's failure (exit 2), not a warning.
+    std::vector<std::string> pages_refused;
 };
 
 /// The whole run's other outputs, made at the merge from the parts' debrief records

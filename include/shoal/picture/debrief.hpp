@@ -83,11 +83,12 @@ std::vector<OutputSpec> debrief_outputs(const std::string& folder, const std::ve
 /// with the report, once check_outputs has passed for the pages (debrief_outputs) with
 /// `others` (the run's other outputs) against `inputs`: the page names come from the
 /// exercises, so they can be checked only now. A page whose file exists without shoal's mark
-/// is not staged: `warnings` says so. Throws UsageError when a page would be an input or
-/// another output, InputError naming the file when one cannot be written.
+/// is not staged: `refused` says so, a message each (the CLI's exit 2). Throws UsageError
+/// when a page would be an input or another output, InputError naming the file when one
+/// cannot be written.
 std::vector<StagedOutput> stage_debrief(const std::string& folder, const audit::AuditResult& result, const grid::CoastGrid& grid,
                                         const RunInfo& info, const std::vector<std::string>& inputs,
                                         const std::vector<OutputSpec>& others, const DebriefOptions& options = {},
-                                        std::vector<std::string>* warnings = nullptr);
+                                        std::vector<std::string>* refused = nullptr);
 
 }  // namespace shoal::report
