@@ -336,7 +336,28 @@ void write_plot_svg(const std::string& path, const audit::AuditResult& result, c
 }
 
 bool is_shoal_picture(const std::string& path) {
-    return file_head(path, 4096).find("<title>" + std::string(picture_title)) != std::string::npos;
+    // The root element's first child, as svg_element writes it: not a <title> anywhere (a
+    // user's drawing with a group titled "shoal audit area").
+    const std::string head = file_head(path, 4096);
+    std::size_t at = head.find("<svg");
+    auto ends_name = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '>'; };
+    while (at != std::string::npos && at + 4 < head.size() && !ends_name(head[at + 4])) at = head.find("<svg", at + 4);  // "<svgx": another element
+    if (at == std::string::npos) return false;
+    // The end of its start tag (a '>' inside a quoted attribute value passed over).
+    char quote = 0;
+    std::size_t i = at + 4;
+    for (; i < head.size(); ++i) {
+        if (quote) {
+            if (head[i] == quote) quote = 0;
+        } else if (head[i] == '"' || head[i] == '\'') {
+            quote = head[i];
+        } else if (head[i] == '>') {
+            break;
+        }
+    }
+    if (i >= head.size()) return false;
+    const std::size_t child = head.find_first_not_of(" \t\r\n", i + 1);
+    return child != std::string::npos && head.compare(child, 7 + picture_title.size(), "<title>" + std::string(picture_title)) == 0;
 }
 
 }  // namespace shoal::report

@@ -375,10 +375,72 @@ void check_project_name(const std::string& path) {
                          "--no-project");
 }
 
-bool is_shoal_geojson_report(const std::string& path) {
-    const std::string head = file_head(path, 4096);
-    return head.find('{') != std::string::npos && head.find("\"shoal\":") != std::string::npos;
+namespace {
+
+/// Whether `head` (a JSON text's beginning) is an object with a member `key` whose value is an
+/// object, among the members that begin within it: the top level's members are read in turn,
+/// each other value passed over (strings with their escapes, nested arrays and objects). A
+/// `"shoal"` deeper down (a feature's property) or inside a string is not one.
+bool top_level_object_member(std::string_view head, std::string_view key) {
+    std::size_t i = 0;
+    const std::size_t n = head.size();
+    if (head.substr(0, 3) == "\xEF\xBB\xBF") i = 3;  // a byte-order mark
+    auto blank = [&] {
+        while (i < n && (head[i] == ' ' || head[i] == '\t' || head[i] == '\n' || head[i] == '\r')) ++i;
+    };
+    // Past the string that starts at i (a quote); false when it does not end within head.
+    auto skip_string = [&] {
+        for (++i; i < n; ++i) {
+            if (head[i] == '\\') ++i;
+            else if (head[i] == '"') {
+                ++i;
+                return true;
+            }
+        }
+        return false;
+    };
+    blank();
+    if (i >= n || head[i] != '{') return false;
+    ++i;
+    int depth = 1;       // of the containers open at i
+    bool at_key = true;  // a top-level member's key comes next
+    while (i < n) {
+        blank();
+        if (i >= n) return false;
+        const char c = head[i];
+        if (depth == 1 && at_key) {
+            if (c == '}') return false;
+            if (c != '"') return false;  // not JSON: not shoal's
+            const std::size_t start = i + 1;
+            if (!skip_string()) return false;
+            const std::string_view name = head.substr(start, i - 1 - start);
+            blank();
+            if (i >= n || head[i] != ':') return false;
+            ++i;
+            blank();
+            if (name == key) return i < n && head[i] == '{';
+            at_key = false;
+            continue;
+        }
+        if (c == '"') {
+            if (!skip_string()) return false;
+        } else if (c == '{' || c == '[') {
+            ++depth;
+            ++i;
+        } else if (c == '}' || c == ']') {
+            if (--depth == 0) return false;
+            ++i;
+        } else {
+            if (c == ',' && depth == 1) at_key = true;
+            ++i;
+        }
+    }
+    return false;
 }
+
+}  // namespace
+
+bool is_shoal_geojson_report(const std::string& path) { return top_level_object_member(file_head(path, 4096), "shoal"); }
 
 std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project) {
     std::vector<OutputSpec> out{{path, "-o", "the report", format == "gpkg" ? WrittenByShoal(is_shoal_gpkg_report) : WrittenByShoal(is_shoal_geojson_report)}};

@@ -638,5 +638,49 @@ TEST(PlotSvg, WritesTheFileAndRefusesANonsenseWidth) {
     EXPECT_THROW(plot_svg(audit::AuditResult{}, g, PlotOptions{12, NAN}), UsageError);
 }
 
+/// The file at `path` after writing `text` there.
+const std::string& written(const std::string& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+TEST(OwnFiles, AReportIsToldByItsTopLevelShoalMemberNotByTheWordAnywhere) {
+    const test::TempDir dir;
+    const std::string f = dir.file("r.geojson");
+    auto ours = [&](const std::string& text) { return is_shoal_geojson_report(written(f, text)); };
+    // As shoal writes it (dump(1)), compact, after a byte-order mark, with strings before it.
+    EXPECT_TRUE(ours("{\n \"type\": \"FeatureCollection\",\n \"shoal\": {\n  \"version\": \"0.2.0\"\n }\n}\n"));
+    EXPECT_TRUE(ours("{\"type\":\"FeatureCollection\",\"shoal\":{\"version\":\"0.2.0\"},\"features\":[]}"));
+    EXPECT_TRUE(ours("\xEF\xBB\xBF  {\"shoal\" : {}}"));
+    EXPECT_TRUE(ours("{\"d\":\"a \\\" b \\\\\",\"n\":[1,{\"x\":[2]}],\"shoal\":{\"v\":1}}"));
+    // Someone's hazard file: "shoal" a feature's property (before: replaced by the report).
+    EXPECT_FALSE(ours("{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{\"name\":\"Harmaja\",\"shoal\":true},"
+                      "\"geometry\":null}]}"));
+    EXPECT_FALSE(ours("{\"type\":\"FeatureCollection\",\"features\":[{\"properties\":{\"shoal\":{\"depth\":2}}}]}"));
+    EXPECT_FALSE(ours("{\"name\":\"x\",\"shoal\":true}"));                      // not an object
+    EXPECT_FALSE(ours("{\"description\":\"\\\"shoal\\\": {\",\"x\":1}"));        // inside a string
+    EXPECT_FALSE(ours("{\"description\":\"\\\"\",\"shoal\\\"\":{}}"));          // a key "shoal\"" is not "shoal"
+    EXPECT_FALSE(ours("[{\"shoal\":{}}]"));
+    EXPECT_FALSE(ours("{\"a\":{\"shoal\":{}}}"));
+    EXPECT_FALSE(ours("{\"a\":1}\n{\"shoal\":{}}"));                             // after the object
+    EXPECT_FALSE(ours("{\"pad\":\"" + std::string(5000, 'x') + "\",\"shoal\":{}}"));  // past 4 KiB
+    EXPECT_FALSE(ours(""));
+    EXPECT_FALSE(ours("shoal"));
+}
+
+TEST(OwnFiles, APictureIsToldByItsRootsFirstChildTitleNotByATitleAnywhere) {
+    const test::TempDir dir;
+    const std::string f = dir.file("p.svg");
+    auto ours = [&](const std::string& text) { return is_shoal_picture(written(f, text)); };
+    EXPECT_TRUE(ours(plot_svg(audit::AuditResult{}, solent_grid())));  // as shoal writes it
+    EXPECT_TRUE(ours("<svg viewBox=\"0 0 1 1\" data-x='a>b'>\n  <title>shoal audit: 1 track</title></svg>"));
+    // Someone's drawing (before: replaced by the picture).
+    EXPECT_FALSE(ours("<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\">\n<g><title>shoal audit area</title></g>\n</svg>"));
+    EXPECT_FALSE(ours("<svg><desc>d</desc><title>shoal audit</title></svg>"));
+    EXPECT_FALSE(ours("<svgx><title>shoal audit</title></svgx>"));
+    EXPECT_FALSE(ours("<svg><title>my shoal audit</title></svg>"));
+    EXPECT_FALSE(ours("<html><title>shoal audit</title></html>"));
+}
+
 }  // namespace
 }  // namespace shoal::report

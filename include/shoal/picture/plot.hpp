@@ -138,7 +138,8 @@ const char* kind_colour(const std::string& kind) noexcept;
 /// Writes `plot_svg(...)` to `path` atomically ("-" or "" writes to stdout). Throws InputError
 /// naming the path when it cannot be written.
 /// The start of the picture's <title> ("shoal audit: 3 tracks, ..."): how shoal tells a picture
-/// it wrote, which --plot may replace (is_shoal_picture: in the file's first 4 KiB).
+/// it wrote, which --plot may replace (is_shoal_picture: the root <svg> element's first child,
+/// within the file's first 4 KiB; a <title> further in, a group's, is not shoal's mark).
 inline constexpr std::string_view picture_title = "shoal audit";
 bool is_shoal_picture(const std::string& path);
 

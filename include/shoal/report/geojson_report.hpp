@@ -33,8 +33,9 @@ void check_project_name(const std::string& path);
 /// The report itself is replaced only when shoal wrote it (OutputSpec::ours).
 std::vector<OutputSpec> report_outputs(const std::string& path, const std::string& format, bool project = true);
 
-/// A GeoJSON report or shard's part shoal wrote: its top-level member "shoal" (the run) within
-/// its first 4 KiB.
+/// A GeoJSON report or shard's part shoal wrote: a top-level member "shoal" (the run, an
+/// object) that begins within its first 4 KiB. A "shoal" anywhere else (a feature's property
+/// `"shoal": true` in someone's hazard file, a string) is not shoal's mark.
 bool is_shoal_geojson_report(const std::string& path);
 /// The GeoJSON report, staged at `path` (not yet in place: commit_all puts it there), and the
 /// QGIS style REPORT.qml beside it, unless a file of that name exists that shoal did not write
