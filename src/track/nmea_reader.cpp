@@ -24,6 +24,42 @@ constexpr double kmh_per_kn = 1.852;
 
 bool is_alnum_upper(char c) noexcept { return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'); }
 
+/// Whether a sentence begins at `text[i]`: `$` or `!`, 4 to 6 letters or digits of address, a comma.
+bool sentence_at(std::string_view text, std::size_t i) noexcept {
+    if (i >= text.size() || (text[i] != '$' && text[i] != '!')) return false;
+    std::size_t k = i + 1;
+    while (k < text.size() && is_alnum_upper(text[k])) ++k;
+    const std::size_t len = k - i - 1;
+    return len >= 4 && len <= 6 && k < text.size() && text[k] == ',';
+}
+
+/// The line ends of a log: "\n", "\r\n" and a lone "\r" (a log written with CR line ends, as
+/// some loggers and old Mac programs write: read at "\n" alone it was one line, of which only
+/// the first sentence was read, without a word). A stream's blocks may cut a "\r\n" in two.
+class LineEnds {
+public:
+    /// The first line end in `piece` at or after `from`: its position (npos: none) and its
+    /// length in `length` (2 for "\r\n").
+    std::size_t find(std::string_view piece, std::size_t from, std::size_t& length) {
+        const std::size_t end = piece.find_first_of("\r\n", from);
+        if (end == std::string_view::npos) return end;
+        length = piece[end] == '\r' && end + 1 < piece.size() && piece[end + 1] == '\n' ? 2 : 1;
+        m_cr_last = piece[end] == '\r' && end + 1 == piece.size();
+        return end;
+    }
+    /// Whether the next piece begins with the "\n" of a "\r\n" whose "\r" ended the last one
+    /// (then it is no line).
+    bool ends_last_line(std::string_view piece) {
+        if (piece.empty()) return false;
+        const bool lf = m_cr_last && piece[0] == '\n';
+        m_cr_last = false;
+        return lf;
+    }
+
+private:
+    bool m_cr_last = false;
+};
+
 /// Digits only, as an int.
 bool parse_int(std::string_view s, int& out) noexcept {
     s = detail::trim(s);
@@ -98,7 +134,7 @@ public:
         t.file = file;
     }
 
-    /// The next line of the log (without its `\n`).
+    /// The next line of the log (without its line end).
     void feed(std::string_view text) {
         ++m_line;
         line(detail::trim(text));
@@ -130,7 +166,26 @@ private:
         m_out.report.skip(m_file + " line " + std::to_string(line) + ": " + what + (sentence ? "; sentence skipped" : " skipped"));
     }
 
+    /// The sentences of a line: more than one when a logger ran them together ("...*6C$GPRMC,...",
+    /// a line end lost; before, all but the first were lost without a word). Each after the
+    /// first begins at a '$' or '!' that starts a sentence (neither is ever in a field), or at
+    /// the tag block before it.
     void line(std::string_view text) {
+        for (;;) {
+            const std::size_t first = text.find_first_of("$!");
+            if (first == std::string_view::npos) return;
+            std::size_t next = first + 1;
+            while ((next = text.find_first_of("$!", next)) != std::string_view::npos && !sentence_at(text, next)) ++next;
+            if (next == std::string_view::npos) return one_sentence(text);
+            std::size_t cut = next;
+            if (const std::size_t close = text.find_last_not_of(" \t", next - 1); close > first && text[close] == '\\')
+                if (const std::size_t open = text.rfind('\\', close - 1); open != std::string_view::npos && open > first) cut = open;
+            one_sentence(text.substr(0, cut));
+            text.remove_prefix(cut);
+        }
+    }
+
+    void one_sentence(std::string_view text) {
         const std::size_t start = text.find_first_of("$!");
         if (start == std::string_view::npos) return;
         std::string_view sentence = text.substr(start);
@@ -651,23 +706,21 @@ private:
 }  // namespace
 
 bool holds_nmea_sentence(std::string_view line) noexcept {
-    for (std::size_t i = line.find_first_of("$!"); i != std::string_view::npos; i = line.find_first_of("$!", i + 1)) {
-        std::size_t k = i + 1;
-        while (k < line.size() && is_alnum_upper(line[k])) ++k;
-        const std::size_t len = k - i - 1;
-        if (len >= 4 && len <= 6 && k < line.size() && line[k] == ',') return true;
-    }
+    for (std::size_t i = line.find_first_of("$!"); i != std::string_view::npos; i = line.find_first_of("$!", i + 1))
+        if (sentence_at(line, i)) return true;
     return false;
 }
 
 TrackFile read_nmea_text(std::string_view text, const std::string& file, const ReadOptions& options) {
     NmeaReader reader(file, options);
+    LineEnds ends;
     for (std::size_t pos = 0; pos < text.size();) {
-        std::size_t end = text.find('\n', pos);
+        std::size_t length = 1;
+        std::size_t end = ends.find(text, pos, length);
         if (end == std::string_view::npos) end = text.size();
         if (end - pos > shoal::detail::max_line_bytes) reader.too_long();
         else reader.feed(text.substr(pos, end - pos));
-        pos = end + 1;
+        pos = end + length;
     }
     return reader.finish();
 }
@@ -679,9 +732,12 @@ TrackFile read_nmea_stream(shoal::detail::InputFile& in, std::string head, bool 
     NmeaReader reader(in.path(), options);
     std::string partial;    // the bytes of a line that runs past the end of a block
     bool dropping = false;  // the current line is over max_line: its bytes are not kept
+    LineEnds ends;
     auto take = [&](std::string_view chunk) {
+        if (ends.ends_last_line(chunk)) chunk.remove_prefix(1);
         while (!chunk.empty()) {
-            const std::size_t nl = chunk.find('\n');
+            std::size_t length = 1;
+            const std::size_t nl = ends.find(chunk, 0, length);
             const std::string_view part = chunk.substr(0, nl == std::string_view::npos ? chunk.size() : nl);
             if (!dropping && partial.size() + part.size() > max_line) {
                 dropping = true;
@@ -701,7 +757,7 @@ TrackFile read_nmea_stream(shoal::detail::InputFile& in, std::string head, bool 
             }
             partial.clear();
             dropping = false;
-            chunk.remove_prefix(nl + 1);
+            chunk.remove_prefix(nl + length);
         }
     };
     take(head);

@@ -413,6 +413,93 @@ TEST(Input, AnNmeaLogReadInBlocksIsTheLogReadWhole) {
     }
 }
 
+TEST(Input, AnNmeaLogWithCrLineEndsIsTheLogWithLfLineEnds) {
+    // A log written with CR line ends (some loggers, old Mac programs) or CR LF: the same
+    // sentences on the same lines as with LF, whole or in blocks that cut a CR LF in two.
+    // Before, a CR-only log was one line: its first sentence read, the rest lost without a word.
+    TempDir dir;
+    std::string lf;
+    for (const char c : slurp(data_path("tracks/ais_raw/gpsd_ait250.log")) + slurp(data_path("tracks/mixed_talkers.nmea")) +
+                            slurp(data_path("tracks/bad_checksum.nmea")))
+        if (c != '\r') lf += c;
+    shoal::track::ReadOptions options;
+    options.max_messages = 1000;
+    const TrackFile want = shoal::track::read_nmea_text(lf, dir.file("log.nmea"), options);
+    ASSERT_GT(want.report.rows, 100u);
+    ASSERT_GT(want.report.skipped, 0u);
+    for (const std::string end : {"\r", "\r\n", "\n\r\n"}) {
+        std::string text;
+        for (const char c : lf) text += c == '\n' ? end : std::string(1, c);
+        SCOPED_TRACE("line end " + std::to_string(end.size()) + " bytes");
+        if (end == "\n\r\n") {  // a blank line after each: every line number doubled, the same sentences
+            const TrackFile got = shoal::track::read_nmea_text(text, dir.file("log.nmea"), options);
+            EXPECT_EQ(got.report.rows, want.report.rows);
+            EXPECT_EQ(got.report.skipped, want.report.skipped);
+            continue;
+        }
+        const TrackFile whole = shoal::track::read_nmea_text(text, dir.file("log.nmea"), options);
+        expect_same(whole, want);
+        EXPECT_EQ(whole.report.messages, want.report.messages);
+        write(dir.file("log.nmea"), text);
+        for (const std::size_t block : {std::size_t{1}, std::size_t{2}, std::size_t{61}, std::size_t{4096}}) {
+            SCOPED_TRACE("block " + std::to_string(block));
+            shoal::detail::InputFile in(dir.file("log.nmea"));
+            const TrackFile got = shoal::track::detail::read_nmea_stream(in, {}, false, options, block);
+            expect_same(got, want);
+            EXPECT_EQ(got.report.messages, want.report.messages);
+        }
+    }
+}
+
+TEST(Input, NmeaSentencesRunTogetherOnALineAreEachRead) {
+    // A logger that lost line ends ("...*6C$GPRMC,..." on one line; before, all but the first
+    // sentence of the line were lost without a word): the same sentences read as when each has
+    // its line, AIS with its tag block too.
+    TempDir dir;
+    const std::string log = slurp(data_path("tracks/plaka_head400.log")) + slurp(data_path("tracks/mixed_talkers.nmea")) +
+                            slurp(data_path("tracks/bad_checksum.nmea")) +
+                            "\\s:rx1,c:1408104100*0E\\!AIVDM,1,1,,A,13u?etPv2;0n:dDPwUM1U1Cb069D,0*24\n"
+                            "\\s:rx1,c:1408104110*0F\\!AIVDM,1,1,,A,13u?etPv2;0n:dDPwUM1U1Cb069D,0*24\n"
+                            "\\s:rx1,c:1408104120*0C\\!AIVDM,1,1,,A,13u?etPv2;0n:dDPwUM1U1Cb069D,0*24\n";
+    std::vector<std::string> lines;
+    for (std::size_t pos = 0; pos < log.size();) {
+        const std::size_t end = log.find('\n', pos);
+        lines.push_back(log.substr(pos, end - pos));
+        pos = end + 1;
+    }
+    std::string glued;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        glued += lines[i];
+        // Each line that begins with its sentence (or a tag block) joins the one before it,
+        // every other time.
+        const bool joins_next = i % 2 == 0 && i + 1 < lines.size() && !lines[i + 1].empty() && std::string("$!\\").find(lines[i + 1][0]) != std::string::npos &&
+                                lines[i].find_first_of("$!") != std::string::npos;
+        if (!joins_next) glued += '\n';
+    }
+    ASSERT_LT(std::count(glued.begin(), glued.end(), '\n'), std::count(log.begin(), log.end(), '\n') * 3 / 4);
+    shoal::track::ReadOptions options;
+    options.max_messages = 1000;
+    const TrackFile want = shoal::track::read_nmea_text(log, "log.nmea", options);
+    const TrackFile got = shoal::track::read_nmea_text(glued, "log.nmea", options);
+    ASSERT_GT(want.report.rows, 300u);
+    // The AIS reports are timed by their tag blocks (c:), also when glued to the line before.
+    bool tagged = false;
+    for (const auto& t : got.tracks)
+        for (const auto& f : t.fixes) tagged = tagged || f.time_s == 1408104110.0;
+    EXPECT_TRUE(tagged);
+    EXPECT_EQ(got.report.rows, want.report.rows);
+    EXPECT_EQ(got.report.skipped, want.report.skipped);
+    ASSERT_EQ(got.tracks.size(), want.tracks.size());
+    for (std::size_t i = 0; i < got.tracks.size(); ++i) {
+        ASSERT_EQ(got.tracks[i].fixes.size(), want.tracks[i].fixes.size()) << want.tracks[i].id;
+        for (std::size_t k = 0; k < got.tracks[i].fixes.size(); ++k) {
+            EXPECT_EQ(got.tracks[i].fixes[k].time_s, want.tracks[i].fixes[k].time_s);
+            EXPECT_EQ(got.tracks[i].fixes[k].position.lat, want.tracks[i].fixes[k].position.lat);
+            EXPECT_EQ(got.tracks[i].fixes[k].position.lon, want.tracks[i].fixes[k].position.lon);
+        }
+    }
+}
+
 TEST(Input, HullsLargerThanAnyShipAreRefused) {
     using shoal::hull::Hull;
     EXPECT_NO_THROW(Hull::from_dims_string("400,50,30,30"));
