@@ -88,6 +88,7 @@ std::string_view without_comments(std::string_view text, std::string& copy) {
 PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
     PoseFile out;
     int col_lat = 0, col_lon = 1, col_hdg = 2;
+    std::size_t header_fields = 0;  // 0: no header
     bool first = true;
     std::size_t lineno = 0;
     auto bad = [&](const std::string& why) {
@@ -124,6 +125,7 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
                             if (names[i] == n) return static_cast<int>(i);
                     return -1;
                 };
+                header_fields = f.size();
                 col_lat = column("lat");
                 col_lon = column("lon");
                 col_hdg = column("heading");
@@ -139,6 +141,17 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
         const int need = std::max({col_lat, col_lon, col_hdg});
         if (static_cast<int>(f.size()) <= need) {
             bad("expected at least " + std::to_string(need + 1) + " fields, got " + std::to_string(f.size()));
+            continue;
+        }
+        // More fields than the header names (or than lat, lon, heading without one), one of
+        // them not blank: which is which is not known ("60,24,24,9,90", decimal commas in a
+        // comma-separated file, read as the pose 60, 24, 24 before).
+        const std::size_t known = header_fields > 0 ? header_fields : 3;
+        if (std::any_of(f.begin() + static_cast<std::ptrdiff_t>(std::min(known, f.size())), f.end(),
+                        [](std::string_view v) { return v.find_first_not_of(" \t") != std::string_view::npos; })) {
+            bad("has " + std::to_string(f.size()) + " fields, " + (header_fields > 0 ? "the header " : "a row without a header ") +
+                std::to_string(known) +
+                (decimal_comma ? " (a separator inside an unquoted field?)" : " (a decimal comma in a comma-separated file?)"));
             continue;
         }
         PoseRow r;

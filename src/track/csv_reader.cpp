@@ -211,6 +211,7 @@ public:
                                  (m_split->separator() == '\0' ? ": the first line has no ',', ';' or tab" : ""));
             }
             m_cols = map_columns(f, m_file, m_options);
+            m_header_fields = f.size();
             m_decimal_comma = m_split->separator() != ',';
             m_header_read = true;
             const std::array<std::size_t, vessel_fields> cols{m_cols.name,   m_cols.dims[0], m_cols.dims[1], m_cols.dims[2],   m_cols.dims[3],
@@ -284,6 +285,18 @@ private:
             skip(out, "has " + std::to_string(f.size()) + " fields, the header needs " + std::to_string(m_cols.required));
             return;
         }
+        // More fields than the header names, one of them not blank: which field is which is
+        // not known (a decimal comma in a comma-separated file read "60,24" as two fields; a
+        // name with a comma shifted every field after it). Blank ones (a trailing separator)
+        // are nothing. (A record over the line limit, its fields cut short, is said as that.)
+        if (!m_long_row)
+            for (std::size_t i = m_header_fields; i < f.size(); ++i)
+                if (!detail::trim(f[i]).empty()) {
+                    skip(out, "has " + std::to_string(f.size()) + " fields, the header " + std::to_string(m_header_fields) +
+                                  (m_decimal_comma ? " (a separator inside an unquoted field?)"
+                                                   : " (a decimal comma in a comma-separated file, or a comma inside an unquoted field?)"));
+                    return;
+                }
         if (m_cols.mobile_type != absent && m_cols.mobile_type < f.size()) {
             const std::string_view type = f[m_cols.mobile_type];
             if (!is_vessel_row(type)) {
@@ -372,6 +385,7 @@ private:
         return a;
     }();
     bool m_decimal_comma = false;
+    std::size_t m_header_fields = 0;  ///< the header's fields: a row with more that are not blank is a bad row
 };
 
 /// Makes the tracks of a CSV file from its parsed records, taken in file order (apply() each

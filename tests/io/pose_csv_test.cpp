@@ -103,6 +103,7 @@ bool ref_double(const std::string& s, double& v, char sep = ',') {
 PoseFile reference(const std::string& text, const std::string& name) {
     PoseFile out;
     int col_lat = 0, col_lon = 1, col_hdg = 2;
+    std::size_t header_fields = 0;
     bool first = true;
     std::istringstream in(text);
     std::string line;
@@ -129,6 +130,7 @@ PoseFile reference(const std::string& text, const std::string& name) {
             first = false;
             if (std::any_of(line.begin(), line.end(), [](unsigned char c) { return std::isalpha(c) && c != 'e' && c != 'E'; })) {
                 col_lat = col_lon = col_hdg = -1;
+                header_fields = f.size();
                 for (int i = 0; i < static_cast<int>(f.size()); ++i) {
                     std::string h = f[static_cast<std::size_t>(i)];
                     for (char& c : h) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -144,6 +146,14 @@ PoseFile reference(const std::string& text, const std::string& name) {
         const int need = std::max({col_lat, col_lon, col_hdg});
         if (static_cast<int>(f.size()) <= need) {
             bad("expected at least " + std::to_string(need + 1) + " fields, got " + std::to_string(f.size()));
+            continue;
+        }
+        const std::size_t known = header_fields > 0 ? header_fields : 3;
+        bool extra = false;
+        for (std::size_t i = known; i < f.size(); ++i) extra = extra || f[i].find_first_not_of(" \t") != std::string::npos;
+        if (extra) {
+            bad("has " + std::to_string(f.size()) + " fields, " + (header_fields > 0 ? "the header " : "a row without a header ") +
+                std::to_string(known) + (sep == ',' ? " (a decimal comma in a comma-separated file?)" : " (a separator inside an unquoted field?)"));
             continue;
         }
         PoseRow r;
@@ -188,7 +198,8 @@ std::string random_file(std::mt19937_64& rng) {
     const int rows = static_cast<int>(rng() % 40);
     for (int k = 0; k < rows; ++k) {
         std::string line;
-        const int fields = 1 + static_cast<int>(rng() % 5);
+        // Mostly three fields (a header's fourth column, or a trailing separator, now and then).
+        const int fields = rng() % 3 ? 3 : 1 + static_cast<int>(rng() % 5);
         for (int i = 0; i < fields; ++i) {
             if (i) line += rng() % 10 ? sep : pick({",", ";", "\t", ", "});
             line += pick({"60.1", "-59.25", "+24.5", "1e1", "  12.5 ", "\"33.3\"", "3\"4", "", "abc", "nan", "inf", "95", "-181",
@@ -260,6 +271,18 @@ TEST(PoseCsv, HandMadeCases) {
     EXPECT_EQ(b.errors[0], "p.csv line 1: expected at least 3 fields, got 2; row skipped");
     EXPECT_EQ(b.errors[1], "p.csv line 2: longitude 'x' is not a number in [-180, 180]; row skipped");
     EXPECT_THROW(parse_pose_csv("lat,lon\n1,2\n", "p.csv"), InputError);
+    // More fields than there are columns, one not blank: a bad row (before: "60,24,24,9,90",
+    // decimal commas, was the pose 60, 24, 24); a trailing separator is nothing.
+    const PoseFile x = parse_pose_csv("60,24,24,9,90\n60.05,24.9,90,extra\n60.05,24.9,90, \n", "x.csv");
+    ASSERT_EQ(x.poses.size(), 1u);
+    EXPECT_EQ(x.poses[0].line, 3u);
+    ASSERT_EQ(x.errors.size(), 2u);
+    EXPECT_EQ(x.errors[0], "x.csv line 1: has 5 fields, a row without a header 3 (a decimal comma in a comma-separated file?); row skipped");
+    EXPECT_EQ(x.errors[1], "x.csv line 2: has 4 fields, a row without a header 3 (a decimal comma in a comma-separated file?); row skipped");
+    const PoseFile y = parse_pose_csv("lat;lon;heading;t\n60,5;24;90;1;2\n60,5;24;90;1\n", "y.csv");
+    ASSERT_EQ(y.poses.size(), 1u);
+    ASSERT_EQ(y.errors.size(), 1u);
+    EXPECT_EQ(y.errors[0], "y.csv line 2: has 5 fields, the header 4 (a separator inside an unquoted field?); row skipped");
     // Quotes are honoured: a separator inside them does not split, "" is a quote; a comment
     // line may hold a quote, and the separator is found on the first row, not on a comment.
     // A quote that does not close (it would take in the rows after it): that row alone.

@@ -444,6 +444,31 @@ TEST(CsvReader, RowsWithTooFewFieldsOrNoIdAreSkipped) {
     EXPECT_THAT(f.report.messages.at(1), HasSubstr("x.csv line 3: no vessel id; row skipped"));
 }
 
+TEST(CsvReader, RowsWithMoreFieldsThanTheHeaderNamesAreSkippedUnlessTheRestAreBlank) {
+    // Before: read as if the extra fields were not there. "60,24" of a decimal comma put the
+    // vessel at 60, 24; a name with a comma shifted the length, width and draught after it.
+    const auto f = read_csv_text(
+        "mmsi,time,lat,lon,sog,name,length\n"
+        "1,2014-08-15T19:00:00Z,60.1,24.9,10,A,100\n"
+        "1,2014-08-15T19:00:10Z,60,1,24,9,10,A,100\n"
+        "1,2014-08-15T19:00:20Z,60.1,24.902,10,SHIP, THE,100\n"
+        "1,2014-08-15T19:00:30Z,60.1,24.903,10,A,100,\n"
+        "1,2014-08-15T19:00:40Z,60.1,24.904,10,A,100, ,\t\n",
+        "x.csv");
+    EXPECT_EQ(f.report.skipped, 2u);
+    ASSERT_EQ(f.report.messages.size(), 2u);
+    EXPECT_EQ(f.report.messages[0],
+              "x.csv line 3: has 9 fields, the header 7 (a decimal comma in a comma-separated file, or a comma inside an unquoted field?); row skipped");
+    EXPECT_THAT(f.report.messages[1], HasSubstr("x.csv line 4: has 8 fields, the header 7 ("));
+    ASSERT_EQ(f.tracks.size(), 1u);
+    ASSERT_EQ(f.tracks[0].fixes.size(), 3u);
+    EXPECT_EQ(f.tracks[0].fixes[1].line, 5u);
+    EXPECT_EQ(f.tracks[0].fixes[2].line, 6u);
+    const auto g = read_csv_text("mmsi;time;lat;lon\n1;2014-08-15T19:00:00Z;60,1;24,9;x\n1;2014-08-15T19:00:10Z;60,1;24,9\n", "g.csv");
+    ASSERT_EQ(g.report.messages.size(), 1u);
+    EXPECT_EQ(g.report.messages[0], "g.csv line 2: has 5 fields, the header 4 (a separator inside an unquoted field?); row skipped");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Pieces
 
