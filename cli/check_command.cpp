@@ -1,6 +1,7 @@
 // shoal check: audit voyage tracks and write the grounding report.
 #include "commands.hpp"
 #include "options.hpp"
+#include "process.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -494,7 +495,16 @@ public:
                 debrief_failed = true;
             }
         }
-        commit_all(staged);
+        // Every output in place at once; an interrupt from here on comes too late to undo the
+        // run, which ends as it would have (process.hpp: hold_interrupts).
+        const sigset_t interrupts = hold_interrupts();
+        try {
+            commit_all(staged);
+        } catch (...) {
+            release_interrupts(interrupts);
+            throw;
+        }
+        outputs_in_place(interrupts);
         const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         // With -o - the report is stdout: the table goes to stderr, so the JSON stays clean.
         std::FILE* table = is_standard_output(m_output) || (!m_plot.empty() && is_standard_output(m_plot)) ? stderr : stdout;

@@ -42,6 +42,29 @@ inline void on_interrupt(int sig) {
     ::_exit(128 + sig);
 }
 
+/// Around the moment a run puts its outputs in place (commit_all): the interrupts held from
+/// before it, so that one that comes while or after the files are renamed is not taken as
+/// "interrupted" (exit 130, the summary not printed, a grounding's exit 1 hidden) of a run whose
+/// every file is written. outputs_in_place() then ignores them (a pending one is discarded) for
+/// the little the run still does; release_interrupts() gives them back when the commit failed.
+inline sigset_t hold_interrupts() {
+    sigset_t hold, old;
+    sigemptyset(&hold);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaddset(&hold, sig);
+    ::pthread_sigmask(SIG_BLOCK, &hold, &old);
+    return old;
+}
+inline void release_interrupts(const sigset_t& old) { ::pthread_sigmask(SIG_SETMASK, &old, nullptr); }
+inline void outputs_in_place(const sigset_t& old) {
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+        struct sigaction sa{};
+        sa.sa_handler = SIG_IGN;
+        sigemptyset(&sa.sa_mask);
+        ::sigaction(sig, &sa, nullptr);
+    }
+    release_interrupts(old);
+}
+
 inline void handle_interrupts() {
     for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
         struct sigaction old{};

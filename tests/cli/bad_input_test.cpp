@@ -827,6 +827,34 @@ TEST_F(BadInput, CtrlCKeepsTheReportOfAnEarlierRunAsItWas) {
     EXPECT_TRUE(temporaries(m_dir.path()).empty());
 }
 
+TEST_F(BadInput, CtrlCJustAfterTheOutputsArePutInPlaceEndsTheRunAsItWould) {
+    // A Ctrl-C that comes once the report is renamed into place (a preloaded rename(2) sends
+    // it then: tests/cli/rename_interrupt.c) is too late to undo the run: before, "shoal:
+    // interrupted", exit 130 (a grounding's 1 hidden) and no summary, with every new file in
+    // place. Now the run ends as it would: its summary, its exit status.
+    const std::string tracks = good_tracks();
+    const std::string r = file("r.geojson", earlier_report);
+    setenv("LD_PRELOAD", SHOAL_RENAME_INTERRUPT, 1);
+    setenv("SHOAL_TEST_INTERRUPT_AFTER_RENAME", r.c_str(), 1);
+    // (Under AddressSanitizer the preloaded module comes before its runtime.)
+    const char* asan = std::getenv("ASAN_OPTIONS");
+    const std::string asan_before = asan ? asan : "";
+    setenv("ASAN_OPTIONS", (asan_before + (asan_before.empty() ? "" : ":") + "verify_asan_link_order=0").c_str(), 1);
+    const pid_t pid = spawn({SHOAL_BINARY, "check", "--coast", s_grid, "--dims", "50,10,5,5", "--jobs", "1", tracks, "-o", r}, m_dir.path());
+    unsetenv("LD_PRELOAD");
+    unsetenv("SHOAL_TEST_INTERRUPT_AFTER_RENAME");
+    if (asan) setenv("ASAN_OPTIONS", asan_before.c_str(), 1);
+    else unsetenv("ASAN_OPTIONS");
+    ASSERT_GT(pid, 0);
+    const Outcome o = wait_for(pid, m_dir.path());
+    EXPECT_TRUE(o.status == 0 || o.status == 1) << o.status << " " << o.err;
+    EXPECT_EQ(o.err.find("interrupted"), std::string::npos) << o.err;
+    EXPECT_NE(o.out.find("report: " + r), std::string::npos) << o.out;
+    EXPECT_NE(slurp(r), earlier_report);
+    EXPECT_NE(slurp(r).find("\"shoal\""), std::string::npos);
+    EXPECT_TRUE(temporaries(m_dir.path()).empty());
+}
+
 TEST(TempFilesInProgress, AreRemovedWithSqliteCompanionsByTheInterruptHandlersCall) {
     TempDir dir;
     const std::string tmp = dir.file(".r.gpkg.tmp-1-2"), other = dir.file("keep.txt");
