@@ -158,6 +158,17 @@ void gather_evidence(const track::Track& t, const std::vector<XY>& p, double hul
         if (have_b) {
             ev.speed_before_kn = fx[b].speed_used_kn;
             ev.speed_before_age_s = std::max(0.0, t0 - fx[b].time_s);
+            // A fix minutes before the contact (beyond the speed window) tells the speed then,
+            // not on the way to the contact: when the positions say the vessel went from it to
+            // the contact much faster (as sweep.cpp's speed at contact takes them over a SOG
+            // they belie), that is the speed before (a vessel at anchor at 0.2 kn whose next
+            // fix, 3 minutes on, is on the shore 735 m away: 7.9 kn; before, "came to rest at
+            // the contact from 0.2 kn: berthing").
+            if (ev.speed_before_age_s > sweep.speed_window_s && ev.speed_before_age_s <= sweep.max_gap_s) {  // (not across a gap)
+                const double implied_kn = dist(p[b], frame.forward(e.ship)) / ev.speed_before_age_s * 3600.0 / 1852.0;
+                const double sog = std::isfinite(ev.speed_before_kn) ? ev.speed_before_kn : 0.0;
+                if (implied_kn >= 2.0 && implied_kn > 2 * sog + 1) ev.speed_before_kn = implied_kn;
+            }
             ev.seen_clear_before = !in_contact(fx[b].time_s);
             if (ev.seen_clear_before) ev.start_not_before_s = fx[b].time_s;
         }
@@ -182,12 +193,21 @@ void gather_evidence(const track::Track& t, const std::vector<XY>& p, double hul
         // fix a. Shorter stays before it are a vessel creeping in (berthing, jitter at low speed).
         const XY at_contact = frame.forward(e.ship);
         if (have_a) {
+            // When the vessel is next seen clear (across gaps, in contact at each fix).
+            std::size_t k = a;
+            while (k < fx.size() && in_contact(fx[k].time_s)) ++k;
+            const double seen_clear_s = k < fx.size() ? fx[k].time_s : INFINITY;
             auto s_it = std::lower_bound(r.stays.begin(), r.stays.end(), a, [](const Stay& s, std::size_t i) { return s.last < i; });
             while (s_it != r.stays.end() && s_it->end_s - s_it->start_s < opt.ground_stay_s) ++s_it;
             if (s_it != r.stays.end()) {
                 const Stay& s = *s_it;
                 ev.stay = static_cast<std::size_t>(s_it - r.stays.begin());
                 ev.stop_distance_m = dist(at_contact, s.local);
+                // A stay that begins once the vessel is clear again is not where it came to
+                // rest in the land (a ferry that leaves the berth the chart lacks and lies next
+                // at the other end of its crossing, 6 km on); one a few seconds after a touch
+                // at a wharf may still be its berth (decide(): within its reach).
+                ev.rests_in_contact = s.start_s <= seen_clear_s;
                 // How long it lay there: to the end of the visit's last stay. A vessel lying
                 // still for hours is seldom one stay: its first box holds the last of its
                 // approach, and GPS jitter then takes a fix out of it (a grounding of 4 h read
@@ -196,9 +216,6 @@ void gather_evidence(const track::Track& t, const std::vector<XY>& p, double hul
                 // Only stays that begin before the vessel is next seen clear (across gaps, in
                 // contact at each fix): one that floats off and anchors 200 m away is the same
                 // visit, but no longer lies where it touched.
-                std::size_t k = a;
-                while (k < fx.size() && in_contact(fx[k].time_s)) ++k;
-                const double seen_clear_s = k < fx.size() ? fx[k].time_s : INFINITY;
                 double visit_end_s = s.end_s;
                 for (auto it = std::next(s_it); it != r.stays.end() && it->visit == s.visit && it->start_s < seen_clear_s; ++it)
                     visit_end_s = it->end_s;
@@ -434,10 +451,16 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t
             }
             set(e.kind, 3, "began while stopped or under the berthing speed, in a " + e.area_kind + " area");
             return;
-        case EventKind::alongside:
+        case EventKind::alongside: {
+            // Which rule made it so (sweep.cpp): stopped, moored or at anchor by its AIS status
+            // and under 3 kn, or under the berthing speed.
+            const bool moored = e.nav_status == track::nav_status_moored || e.nav_status == track::nav_status_at_anchor;
             set(e.kind, e.stopped_before ? 4 : 3,
-                e.stopped_before ? "stopped before the contact" : "began under the berthing speed (" + fmt1(e.speed_kn) + " kn)");
+                e.stopped_before ? std::string("stopped before the contact")
+                : moored         ? "began at " + fmt1(e.speed_kn) + " kn, " + track::nav_status_text(e.nav_status) + " by its AIS status (under 3 kn)"
+                                 : "began under the berthing speed (" + fmt1(e.speed_kn) + " kn)");
             return;
+        }
         case EventKind::chart_disagrees:
         case EventKind::close_pass: return;
         case EventKind::grounding: break;
@@ -501,8 +524,14 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t
         return;
     }
     if (lay_still) {
+        // Where it came to rest: in the land (an arrival the chart does not draw), or on once
+        // it was seen clear of it again: a harbour basin after an entrance the chart lacks, or
+        // the far end of a ferry's crossing after it clipped the land leaving (before, "went
+        // on 6049.5 m through charted land and came to rest there: an arrival").
         set(EventKind::alongside, berth ? 3 : 2,
-            "went on " + fmt1(ev.stop_distance_m) + " m through charted land and came to rest there: an arrival the chart does not draw" +
+            (ev.rests_in_contact ? "went on " + fmt1(ev.stop_distance_m) + " m through charted land and came to rest there: an arrival the chart does not draw"
+                                 : "went through charted land and was seen clear of it again, then came to rest " + fmt1(ev.stop_distance_m) +
+                                       " m on: the chart lacks water there") +
                 (berth ? " (" + berth_words() + ")" : ""));
         return;
     }

@@ -272,12 +272,20 @@ private:
             e.speed_kn = b.speed_used_kn;
             e.speed_source = b.speed_source;
         }
-        e.stopped_before = b.stopped;
+        const check::LocalPose pose = m_local.pose({first.i, first.f});
+        // A stopped fix vouches for the contact while it is recent (within the speed window: a
+        // jitter burst, a tug's push) or the vessel is still within the stop diameter of it;
+        // not when the vessel has since gone on at a berthing speed or more (it left its
+        // anchorage and ran 700 m onto the shore in the 3 minutes to the next fix).
+        const XY moved = pose.position - m_local.position(before);
+        const double moved_m = std::hypot(moved.x, moved.y), since_s = e.start_s - b.time_s;
+        const bool left_stop = since_s > m_opt.speed_window_s && moved_m > m_opt.stop_diameter_m &&
+                               moved_m / since_s * 3600.0 / 1852.0 >= m_opt.berthing_speed_kn;
+        e.stopped_before = b.stopped && !left_stop;
         e.nav_status = b.nav_status;
         const double t0 = e.start_s;
         if (const auto stop = track::stopped_after(m_track, after < fx.size() ? after : before, t0, m_opt.motion()))
             e.stopped_after_s = *stop - t0;
-        const check::LocalPose pose = m_local.pose({first.i, first.f});
         e.reference_inside_m = m_checker.inside_depth(pose.position, 2 * m_checker.hull().radius() + m_opt.margin_m);
         if (std::isinf(e.reference_inside_m)) e.reference_inside_m = NAN;
         e.orientation_unknown = &checker_at(first.i, first.f) != &m_checker;

@@ -678,6 +678,30 @@ TEST(Sweep, ContactKindsFollowWhatWasObserved) {
         EXPECT_EQ(r.events[0].kind, EventKind::alongside);
         EXPECT_TRUE(r.events[0].stopped_before);
     }
+    // Lying at anchor 600 m off for 5 min, then the next fix 180 s on is on the shore (it ran
+    // 640 m at 6.9 kn between them): the stopped fix no longer vouches for the contact, which
+    // is a grounding (before: alongside, "stopped before the contact").
+    {
+        track::Track t = track_through({{0, 300}}, 0.0);
+        for (int i = 1; i <= 30; ++i) {
+            track::Fix f = t.fixes.back();
+            f.time_s += 10;
+            f.line += 1;
+            t.fixes.push_back(f);
+        }
+        for (int i = 0; i < 30; ++i) {
+            track::Fix f = t.fixes.back();
+            f.time_s += i == 0 ? 180 : 10;
+            f.position = frame().inverse({0, 940});
+            f.line += 1;
+            t.fixes.push_back(f);
+        }
+        const TrackResult r = w.sweep(resolved(t), o);
+        ASSERT_EQ(r.events.size(), 1u);
+        EXPECT_FALSE(r.events[0].stopped_before);
+        EXPECT_EQ(r.events[0].kind, EventKind::grounding);
+        EXPECT_NEAR(r.events[0].speed_kn, 640 / 180.0 * 3600 / 1852, 0.1);
+    }
 }
 
 }  // namespace
@@ -890,6 +914,67 @@ TEST(Evidence, HowLongAVesselLayThereIsItsWholeVisitNotItsFirstStay) {
     ASSERT_NE(gu, ru.events.end());
     EXPECT_LT(gu->evidence.stay_s, 60 * 60.0) << "the anchorage after it is not lying aground";
     EXPECT_GT(gu->evidence.stay_s, 30 * 60.0);
+}
+
+TEST(Evidence, AVesselThatLeftItsAnchorageBetweenSparseFixesIsUnderWayAtTheContact) {
+    // At anchor 600 m off a shore (land from y = 1000) for 10 min at 0 kn, a fix every 10 s;
+    // the next fix, 3 minutes on, has it on the shore (it ran 640 m at 6.9 kn), lying there
+    // an hour. Before: "came to rest at the contact from 0 kn: berthing" (the speed of the
+    // anchored fix); the positions say it was under way: a grounding inside a gap of the fixes.
+    World w({land({{-3000, 1000}, {3000, 1000}, {3000, 3000}, {-3000, 3000}})});
+    track::Track t = track_through({{0, 300}}, 0.0);
+    auto add = [&](XY p, double dt) {
+        track::Fix f = t.fixes.back();
+        f.time_s += dt;
+        f.position = frame().inverse(p);
+        f.line = t.fixes.size() + 2;
+        t.fixes.push_back(f);
+    };
+    for (int k = 0; k < 60; ++k) add({0, 300}, 10);
+    add({0, 940}, 180);
+    for (int k = 0; k < 60; ++k) add({0, 940}, 60);
+    track::resolve_motion(t);
+    TrackResult r = w.sweep(t);
+    gather_evidence(t, w.hull.length(), frame(), w.grid, SweepOptions{}, EvidenceOptions{}, r);
+    const auto c = std::find_if(r.events.begin(), r.events.end(), [](const Event& e) { return is_contact(e.kind); });
+    ASSERT_NE(c, r.events.end());
+    EXPECT_FALSE(c->stopped_before);
+    EXPECT_GT(c->evidence.speed_before_kn, 6.0) << "from the anchored fix to the contact, not the anchored fix's own";
+    const std::size_t at = static_cast<std::size_t>(c - r.events.begin());
+    decide_kinds(r, {}, {}, EvidenceOptions{});
+    EXPECT_EQ(r.events.at(at).kind, EventKind::grounding) << r.events.at(at).evidence.reason;
+}
+
+TEST(Evidence, AStopAfterTheVesselSailedClearOfTheLandIsNotSaidToBeInTheLand) {
+    // A ship sails north at 5 m/s through a 200 m strip of charted land (y 1000-1200: a canal,
+    // a channel the chart lacks) and stops 1.8 km on, in open water, for an hour. Before: its
+    // contact said "went on 2080 m through charted land and came to rest there"; it came to
+    // rest in the water, after it was seen clear of the land.
+    World w({land({{-3000, 1000}, {3000, 1000}, {3000, 1200}, {-3000, 1200}})});
+    std::vector<XY> pts;
+    for (double y = 0; y <= 3000; y += 50) pts.push_back({0, y});
+    track::Track t = track_through(pts, 5.0);
+    for (int k = 0; k < 60; ++k) {
+        track::Fix f = t.fixes.back();
+        f.time_s += 60;
+        f.line = t.fixes.size() + 2;
+        t.fixes.push_back(f);
+    }
+    track::resolve_motion(t);
+    TrackResult r = w.sweep(t);
+    gather_evidence(t, w.hull.length(), frame(), w.grid, SweepOptions{}, EvidenceOptions{}, r);
+    const auto c = std::find_if(r.events.begin(), r.events.end(), [](const Event& e) { return is_contact(e.kind); });
+    ASSERT_NE(c, r.events.end());
+    ASSERT_NE(c->evidence.stay, static_cast<std::size_t>(-1)) << "the stop in the water is found";
+    EXPECT_FALSE(c->evidence.rests_in_contact);
+    const std::size_t at = static_cast<std::size_t>(c - r.events.begin());
+    decide_kinds(r, {}, {}, EvidenceOptions{});
+    const Event& e = r.events.at(at);
+    EXPECT_EQ(e.kind, EventKind::alongside) << e.evidence.reason;
+    EXPECT_EQ(e.evidence.reason.find("through charted land and came to rest there"), std::string::npos) << e.evidence.reason;
+    EXPECT_NE(e.evidence.reason.find("went through charted land and was seen clear of it again, then came to rest 20"), std::string::npos)
+        << e.evidence.reason;
+    EXPECT_NE(e.evidence.reason.find(" m on: the chart lacks water there"), std::string::npos) << e.evidence.reason;
 }
 
 }  // namespace

@@ -154,6 +154,7 @@ struct Event {
         bool seen_clear_before = false;  ///< the fix before was clear (also across a gap, not a jump)
         std::size_t stay = static_cast<std::size_t>(-1);  ///< index of the stay that follows, in TrackResult::stays
         bool prompt_stop = false;        ///< that stay begins at the first fix after the contact or within the abrupt window
+        bool rests_in_contact = false;   ///< that stay begins before the vessel is next seen clear (across gaps)
         bool bracket_dense = false;      ///< the fixes around the contact both lie within the abrupt window of it
         bool between_fixes_only = false; ///< no fix lies in the contact, and the fixes around it are far apart
         bool left_contact = false;       ///< the contact ended before the track did (the vessel came clear again)
