@@ -13,12 +13,13 @@
 #include <strings.h>
 
 #include "util/parse_util.hpp"
+#include <shoal/track/time.hpp>
 
 namespace shoal::track::detail {
 
 namespace {
 
-static_assert(sizeof(GpxPoint) == 32, "GpxPoint: 32 bytes a point");
+static_assert(sizeof(GpxPoint) == 40, "GpxPoint: 40 bytes a point");
 
 std::uint32_t saturated(XML_Size v) { return v > UINT32_MAX ? UINT32_MAX : static_cast<std::uint32_t>(v); }
 
@@ -26,7 +27,21 @@ struct Scan {
     XML_Parser parser = nullptr;
     GpxPoints out;
     std::size_t trk = 0, rte = 0;  // elements begun so far
+    std::size_t depth = 0;         // of the element open now (the root 1)
+    std::vector<GpxPoint>* in_point = nullptr;  // the kind of the point open now, its depth:
+    std::size_t point_depth = 0;
+    bool in_time = false;  // in the open point's own <time> (its first), whose text is
+    bool time_seen = false;
+    std::string time_text;
 };
+
+/// What is wrong with a point's problem slot taken for `what` (at most 2^30 - 1 of them).
+void add_problem(Scan& s, GpxPoint& p, std::string what, bool time) {
+    if (s.out.problems.size() >= (1u << 30) - 1) return;
+    s.out.problems.push_back(std::move(what));
+    p.problem = static_cast<std::uint32_t>(s.out.problems.size()) & 0x3fffffffu;
+    p.time_problem = time ? 1 : 0;
+}
 
 /// What is wrong with a lat or lon attribute's text ("" when it is a number; `what` is
 /// "latitude" or "longitude"); the number in `out`.
@@ -40,6 +55,15 @@ std::string gpx_coordinate_problem(const char* text, const char* what, double& o
 
 void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     Scan& s = *static_cast<Scan*>(data);
+    ++s.depth;
+    // The point's own <time>, as GDAL's driver takes it: a child of the point, not one deeper
+    // (an <extensions> element's).
+    if (s.in_point && !s.time_seen && s.depth == s.point_depth + 1 && std::strcmp(name, "time") == 0) {
+        s.in_time = true;
+        s.time_seen = true;
+        s.time_text.clear();
+        return;
+    }
     // Names as GDAL's driver compares them: as written, without namespace processing.
     const bool trkpt = std::strcmp(name, "trkpt") == 0, rtept = !trkpt && std::strcmp(name, "rtept") == 0;
     if (std::strcmp(name, "trk") == 0) ++s.trk;
@@ -63,12 +87,33 @@ void start(void* data, const XML_Char* name, const XML_Char** attrs) {
         problem = gpx_coordinate_problem(lat, "latitude", p.lat);
         if (problem.empty()) problem = gpx_coordinate_problem(lon, "longitude", p.lon);
     }
-    if (!problem.empty() && s.out.problems.size() < (1u << 31) - 1) {
-        s.out.problems.push_back(std::move(problem));
-        p.problem = static_cast<std::uint32_t>(s.out.problems.size()) & 0x7fffffffu;
-    }
+    if (!problem.empty()) add_problem(s, p, std::move(problem), false);
     std::vector<GpxPoint>& to = trkpt ? s.out.track : s.out.route;
     to.push_back(p);
+    s.in_point = &to;
+    s.point_depth = s.depth;
+    s.time_seen = false;
+}
+
+void text(void* data, const XML_Char* chars, int len) {
+    Scan& s = *static_cast<Scan*>(data);
+    if (s.in_time && s.time_text.size() < 256) s.time_text.append(chars, static_cast<std::size_t>(std::min(len, 256)));
+}
+
+void end(void* data, const XML_Char*) {
+    Scan& s = *static_cast<Scan*>(data);
+    if (s.in_time && s.depth == s.point_depth + 1) {
+        s.in_time = false;
+        GpxPoint& p = s.in_point->back();
+        std::string_view t = s.time_text;  // (XML's blanks around it: line ends too)
+        while (!t.empty() && std::strchr(" \t\r\n", t.front())) t.remove_prefix(1);
+        while (!t.empty() && std::strchr(" \t\r\n", t.back())) t.remove_suffix(1);
+        if (const auto v = parse_iso8601(t)) p.time_s = *v;
+        else if (!p.problem)
+            add_problem(s, p, "time " + quoted(t) + (parse_date(t) ? " is a date without a time of day" : " is not a valid time"), true);
+    }
+    if (s.in_point && s.depth == s.point_depth) s.in_point = nullptr;
+    --s.depth;
 }
 
 /// The single-byte encodings GDAL's own expat parser also reads (ogr_expat.cpp's handler):
@@ -111,7 +156,8 @@ GpxPoints scan_gpx_points(const std::string& gdal_path) {
     if (!parser) return {};
     s.parser = parser.get();
     XML_SetUserData(s.parser, &s);
-    XML_SetStartElementHandler(s.parser, start);
+    XML_SetElementHandler(s.parser, start, end);
+    XML_SetCharacterDataHandler(s.parser, text);
     XML_SetUnknownEncodingHandler(s.parser, unknown_encoding, nullptr);
     std::vector<char> buf(1 << 16);
     for (;;) {

@@ -4,6 +4,7 @@
 // itself uses, through GDAL's virtual file system (the same path GDAL opens).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -11,16 +12,22 @@
 
 namespace shoal::track::detail {
 
-/// One <trkpt> or <rtept> element (32 bytes: a file of 10 million points is 320 MB of them).
+/// One <trkpt> or <rtept> element (40 bytes: a file of 10 million points is 400 MB of them).
 struct GpxPoint {
     double lat = 0, lon = 0;
+    /// Its own <time> (the element's child) read as shoal reads a time (track/time.hpp,
+    /// ISO 8601: `2024-05-01 10:04:00Z` too, which GDAL's driver reads as midnight); NaN when
+    /// it has none, or one that is no time (then `problem` says so).
+    double time_s = NAN;
     std::uint32_t line = 0;    ///< 1-based line of its start tag (saturated at 2^32 - 1)
     std::uint32_t column = 0;  ///< 1-based column of its start tag (saturated)
     std::int32_t parent = -1;  ///< 0-based index of the last <trk> or <rte> begun (GDAL's track_fid, route_fid); -1 before any
-    /// 0 when lat and lon are both there and numbers; else 1 + the index in GpxPoints::problems
-    /// of what is wrong ("latitude 'abc' is not a number", "no lon attribute").
-    std::uint32_t problem : 31 = 0;
-    std::uint32_t shares_line : 1 = 0;  ///< another point of its kind starts on the same line
+    /// 0 when lat, lon (and the time, when it has one) are there and readable; else 1 + the
+    /// index in GpxPoints::problems of what is wrong ("latitude 'abc' is not a number", "no
+    /// lon attribute", "time '2024-05-01' is a date without a time of day").
+    std::uint32_t problem : 30 = 0;
+    std::uint32_t time_problem : 1 = 0;  ///< `problem` is its time's (its lat and lon are fine)
+    std::uint32_t shares_line : 1 = 0;   ///< another point of its kind starts on the same line
 };
 
 /// Every <trkpt> and <rtept> of a GPX file, each in document order: GDAL's GPX driver gives the

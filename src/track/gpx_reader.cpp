@@ -147,7 +147,7 @@ private:
                 bool fits = fid > last_fid && static_cast<std::size_t>(fid) < scanned->size();
                 if (fits) {
                     const detail::GpxPoint& e = (*scanned)[static_cast<std::size_t>(fid)];
-                    fits = e.problem || (point && g->toPoint()->getX() == e.lon && g->toPoint()->getY() == e.lat);
+                    fits = (e.problem && !e.time_problem) || (point && g->toPoint()->getX() == e.lon && g->toPoint()->getY() == e.lat);
                 }
                 if (fits) {
                     dropped_before(static_cast<std::size_t>(fid));
@@ -165,7 +165,22 @@ private:
                 m_out.report.skip(m_file + (at ? where(*at) : " point " + std::to_string(m_point)) + " (" + kind + " '" +
                                   id_of(kind, parent, p, single) + "'): " + what + "; point skipped");
             };
-            const auto t = time_of(*f, time_field);
+            std::optional<double> t = time_of(*f, time_field);
+            // What its element says is wrong: a lat or lon that is no number ('abc', which GDAL
+            // reads as 0), or a <time> that is no time (GDAL reads a date alone as midnight). A
+            // point with a time (or one written) counts as timed: its track is not one
+            // without times.
+            if (at && at->problem) {
+                if (at->time_problem || t || std::isfinite(at->time_s)) ++p.timed;
+                skip(problems[at->problem - 1]);
+                continue;
+            }
+            // GDAL's driver reads "2024-05-01 10:04:00Z" as midnight: the time as written, read
+            // as a CSV's is, where the two differ (GDAL's where they agree, to the millisecond).
+            if (at && std::isfinite(at->time_s) && !(t && std::fabs(*t - at->time_s) < 0.002)) {
+                const double whole = std::floor(at->time_s);
+                t = whole + std::round((at->time_s - whole) * 1000.0) / 1000.0;
+            }
             if (!t) {
                 skip("no time");
                 continue;
@@ -175,10 +190,6 @@ private:
                 continue;
             }
             ++p.timed;
-            if (at && at->problem) {  // 'abc' read by GDAL as 0
-                skip(problems[at->problem - 1]);
-                continue;
-            }
             if (!point) {
                 skip("no point geometry");
                 continue;

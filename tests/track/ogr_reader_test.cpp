@@ -113,6 +113,44 @@ TEST(GpxReader, APointWithoutANumberForLatOrLonCostsThatPointNamedByItsLine) {
                                                path + " line 9 (track 'T'): latitude '1e999' is not a number; point skipped"));
 }
 
+TEST(GpxReader, EachPointsTimeIsItsOwnTimeAsWrittenAndOneThatIsNoTimeIsNamedByItsLine) {
+    // GDAL's driver reads "2024-05-01 10:01:00Z" (a space for the T) as midnight, so a track
+    // written so was one fix and the rest "repeats"; it reads a date alone as midnight and an
+    // impossible time as none ("no time"). Each point's own <time> is read as a CSV's time is;
+    // where GDAL's agrees (to the millisecond) GDAL's is kept; GDAL's is the one of a point
+    // whose only <time> is deeper down (an extension's, line 11). Epoch seconds from GNU date:
+    // date -u -d 2024-05-01T10:00:00Z +%s -> 1714557600.
+    shoal::test::TempDir dir;
+    const std::string path = dir.file("times.gpx");
+    std::ofstream(path) << "<?xml version=\"1.0\"?>\n"                                                                       // 1
+                           "<gpx version=\"1.1\" creator=\"t\" xmlns=\"http://www.topografix.com/GPX/1/1\">\n"            // 2
+                           "<trk><name>T</name><trkseg>\n"                                                                // 3
+                           "<trkpt lat=\"60.100\" lon=\"24.90\"><time>2024-05-01T10:00:00Z</time></trkpt>\n"              // 4
+                           "<trkpt lat=\"60.101\" lon=\"24.90\"><time>2024-05-01 10:01:00Z</time></trkpt>\n"              // 5
+                           "<trkpt lat=\"60.102\" lon=\"24.90\"><time>2024-05-01T12:01:30+02:00</time></trkpt>\n"         // 6
+                           "<trkpt lat=\"60.103\" lon=\"24.90\"><time>2024-05-01T10:02:00.5Z</time></trkpt>\n"            // 7
+                           "<trkpt lat=\"60.104\" lon=\"24.90\"><time>2024-05-01T10:02:30</time></trkpt>\n"               // 8
+                           "<trkpt lat=\"60.105\" lon=\"24.90\"><time>2024-05-01</time></trkpt>\n"                        // 9
+                           "<trkpt lat=\"60.106\" lon=\"24.90\"><time>2024-02-30T10:00:00Z</time></trkpt>\n"              // 10
+                           "<trkpt lat=\"60.107\" lon=\"24.90\"><extensions><time>2024-05-01T10:03:00Z</time></extensions></trkpt>\n"  // 11
+                           "<trkpt lat=\"60.108\" lon=\"24.90\"><time>\n  2024-05-01 10:03:30Z\n</time></trkpt>\n"        // 12-14
+                           "<trkpt lat=\"abc\" lon=\"24.90\"><time>yesterday</time></trkpt>\n"                           // 15
+                           "</trkseg></trk></gpx>\n";
+    const TrackFile f = read_gpx(path);
+    ASSERT_EQ(f.tracks.size(), 1u);
+    std::vector<double> times, lines;
+    for (const auto& x : f.tracks[0].fixes) {
+        times.push_back(x.time_s - 1714557600.0);
+        lines.push_back(static_cast<double>(x.line));
+    }
+    EXPECT_THAT(times, ElementsAre(0, 60, 90, 120.5, 150, 180, 210));
+    EXPECT_THAT(lines, ElementsAre(4, 5, 6, 7, 8, 11, 12));
+    EXPECT_EQ(f.report.skipped, 3u);
+    EXPECT_THAT(f.report.messages, ElementsAre(path + " line 9 (track 'T'): time '2024-05-01' is a date without a time of day; point skipped",
+                                               path + " line 10 (track 'T'): time '2024-02-30T10:00:00Z' is not a valid time; point skipped",
+                                               path + " line 15 (track 'T'): latitude 'abc' is not a number; point skipped"));
+}
+
 TEST(GpxReader, EveryPointsLineAndEveryBadPointAgreeWithTheFileAsWrittenOnRandomFiles) {
     // Random GPX files (tracks, segments, routes, waypoints, points outside a segment, tags over
     // several lines, attributes in either order, lat or lon missing, empty, not numbers): what
