@@ -233,6 +233,8 @@ public:
             m_long_row = rec.size() > shoal::detail::max_line_bytes;
             m_quoted_line_ends = m_split->quoted_line_ends();
             if (m_split->quote_not_closed()) skip(out, std::string(quote_not_closed_message));
+            else if (const std::size_t nul = rec.find('\0'); nul != std::string_view::npos)  // (an id with one was a vessel of its own)
+                skip(out, "a NUL byte at its byte " + std::to_string(nul + 1) + ": a damaged line");
             else parse(f, m_split->unescaped(), out);
             m_quoted_line_ends = 0;
             m_long_row = false;

@@ -62,11 +62,26 @@ std::string read_file(const std::string& path) {
     }
 }
 
+namespace {
+
+/// Whether the first 4 KB of a file hold NUL bytes as a binary file's do: on its first line, or
+/// more than a few. A text file with a line or two damaged by a NUL is text (before, one NUL
+/// in its first 4 KB cost the whole file): that line is a bad row of its reader.
+bool looks_binary(std::string_view head) {
+    head = head.substr(0, 4096);
+    const std::size_t nul = head.find('\0');
+    if (nul == std::string_view::npos) return false;
+    const std::size_t first_line_end = head.find('\n');
+    return first_line_end == std::string_view::npos || nul < first_line_end || std::count(head.begin(), head.end(), '\0') > 4;
+}
+
+}  // namespace
+
 std::string sniff_format(std::string_view content, const std::string& path) {
     if (content.substr(0, 3) == "\xEF\xBB\xBF") content.remove_prefix(3);
     const std::string ext = path.empty() ? std::string() : lower_extension(path);
     const std::string_view head = content.substr(0, 4096);
-    if (head.find('\0') != std::string_view::npos) return {};  // binary
+    if (looks_binary(head)) return {};
     const std::size_t first = content.find_first_not_of(" \t\r\n");
     if (first == std::string_view::npos) return {};
     const char c = content[first];
@@ -98,7 +113,7 @@ namespace {
 /// a CSV header); "" otherwise.
 std::string why_not_a_track_format(std::string_view head) {
     if (head.substr(0, 3) == "\xEF\xBB\xBF") head.remove_prefix(3);
-    if (const std::size_t nul = head.substr(0, 4096).find('\0'); nul != std::string_view::npos) {
+    if (const std::size_t nul = head.substr(0, 4096).find('\0'); nul != std::string_view::npos && looks_binary(head)) {
         const std::size_t line = 1 + static_cast<std::size_t>(std::count(head.begin(), head.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
         return ": a NUL byte on line " + std::to_string(line) + " (byte " + std::to_string(nul + 1) +
                "): a binary file, or a text file with a damaged line there";
@@ -152,7 +167,7 @@ Sniffed sniff_file(shoal::detail::InputFile& in) {
         if (out.head.size() >= shoal::detail::max_sniff_bytes) break;  // decided on what is there
         // Binary, XML and JSON are told by the first 4 KB alone (so /dev/zero stops here).
         const std::size_t first = out.head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
-        if (out.head.size() >= 4096 + 3 && (std::string_view(out.head).substr(0, 4096 + 3).find('\0') != std::string_view::npos ||
+        if (out.head.size() >= 4096 + 3 && (looks_binary(std::string_view(out.head).substr(out.head.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0)) ||
                                             (first != std::string::npos && (out.head[first] == '<' || out.head[first] == '{'))))
             break;
     }

@@ -201,16 +201,37 @@ TEST(ReadTracks, EmptyHeaderOnlyUnknownAndMissingFilesAreInputErrors) {
                     "unknown_format.txt: not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183): its first line "
                     "('Voyage notes') holds no ',', ';' or tab")));
     TempDir dir;
-    // Where the beginning says why: comment lines before a CSV header; a NUL byte (before, the
-    // whole file refused without a line named).
+    // Where the beginning says why: comment lines before a CSV header; NUL bytes as a binary
+    // file has them (before, the whole file refused without a line named).
     write(dir.file("comments.csv"), "# exported by tool\nmmsi,time,lat,lon\n1,2014-08-15T19:00:00Z,60,24\n");
     EXPECT_THAT([&] { read_tracks(dir.file("comments.csv")); },
                 ThrowsMessage<InputError>(HasSubstr("its first line ('# exported by tool') holds no ',', ';' or tab (a CSV file's header must be its first line")));
     std::string nul = "mmsi,time,lat,lon\n";
     for (int i = 0; i < 100; ++i) nul += "1,2014-08-15T19:00:" + std::to_string(10 + i % 50) + "Z,60,24\n";
-    nul[nul.find('\n', 200) + 3] = '\0';
-    write(dir.file("nul.csv"), nul);
-    EXPECT_THAT([&] { read_tracks(dir.file("nul.csv")); }, ThrowsMessage<InputError>(HasSubstr("a NUL byte on line 9 (byte 224)")));
+    // One NUL in the first 4 KB (a line damaged there): that row alone, named (before: the
+    // whole file refused as binary). NULs on the first line, or more than a few: binary.
+    const std::size_t at = nul.find('\n', 200) + 3;
+    std::string damaged = nul;
+    damaged[at] = '\0';
+    write(dir.file("nul.csv"), damaged);
+    const TrackFile got = read_tracks(dir.file("nul.csv"));
+    EXPECT_EQ(got.report.skipped, 1u);
+    ASSERT_EQ(got.report.messages.size(), 1u);
+    EXPECT_EQ(got.report.messages[0], dir.file("nul.csv") + " line 9: a NUL byte at its byte 3: a damaged line; row skipped");
+    std::string id = nul;
+    id[nul.find('\n', 300) + 1] = '\0';  // in a row's id: no vessel "\0" of its own
+    write(dir.file("nul_id.csv"), id);
+    const TrackFile got_id = read_tracks(dir.file("nul_id.csv"));
+    EXPECT_EQ(got_id.tracks.size(), 1u);
+    EXPECT_EQ(got_id.report.skipped, 1u);
+    std::string first = nul;
+    first[2] = '\0';
+    write(dir.file("nul_first.csv"), first);
+    EXPECT_THAT([&] { read_tracks(dir.file("nul_first.csv")); }, ThrowsMessage<InputError>(HasSubstr("a NUL byte on line 1 (byte 3)")));
+    std::string many = nul;
+    for (const std::size_t k : {200, 260, 320, 380, 440}) many[k] = '\0';
+    write(dir.file("nul_many.csv"), many);
+    EXPECT_THAT([&] { read_tracks(dir.file("nul_many.csv")); }, ThrowsMessage<InputError>(HasSubstr("a NUL byte on line ")));
     write(dir.file("bom.csv"), "\xEF\xBB\xBF\r\n");
     EXPECT_THAT([&] { read_tracks(dir.file("bom.csv")); }, ThrowsMessage<InputError>(EndsWith("bom.csv: empty file")));
     EXPECT_THAT([] { read_tracks(data_path("tracks/no_such_file.csv")); },
