@@ -742,6 +742,10 @@ PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::strin
     std::string buf;
     std::size_t head_pos = 0;
     bool eof = false, in_done = whole;
+    // A file with CR line ends (a spreadsheet's "CSV (Macintosh)", old Mac programs): each CR
+    // a line end, as an editor shows it (before: one line, "no usable fix (0 rows read)").
+    // Told by its first line end: a CR not followed by an LF (-1: none read yet).
+    int cr_lines = -1;
     auto read_more = [&] {
         const std::size_t from_head = std::min(block, head.size() - head_pos);
         buf.append(head, head_pos, from_head);
@@ -754,6 +758,10 @@ PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::strin
             const std::size_t want = block - from_head;
             if (in_done || in.append(buf, want) < want) in_done = eof = true;
         }
+        if (cr_lines < 0)
+            if (const std::size_t end = buf.find_first_of("\r\n"); end != std::string::npos && (end + 1 < buf.size() || eof))
+                cr_lines = buf[end] == '\r' && (end + 1 == buf.size() || buf[end + 1] != '\n') ? 1 : 0;
+        if (cr_lines == 1) std::replace(buf.begin(), buf.end(), '\r', '\n');
     };
     const auto too_long = [&] {
         return InputError(path + ": not a track format shoal reads (CSV with a header, GPX, GeoJSON, NMEA 0183): its first line is longer than " +

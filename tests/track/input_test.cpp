@@ -451,6 +451,31 @@ TEST(Input, AnNmeaLogWithCrLineEndsIsTheLogWithLfLineEnds) {
     }
 }
 
+TEST(Input, ACsvFileWithCrLineEndsIsTheFileWithLfLineEnds) {
+    // A spreadsheet's "CSV (Macintosh)" (CR line ends): each CR a line end, the same rows on
+    // the same lines as with LF, whole or in blocks. Before: one line, "no usable fix (0 rows read)".
+    TempDir dir;
+    std::string lf = "mmsi,timestamp,lat,lon,name\n";
+    for (int i = 0; i < 300; ++i)
+        lf += std::to_string(230000000 + i % 7) + ",2024-05-01T10:" + std::to_string(10 + i / 7 % 50) + ":00Z," +
+              (i % 17 == 0 ? "91" : "60." + std::to_string(100 + i)) + ",24.9," + (i % 11 == 0 ? "\"A\nB\"" : "X") + "\n";
+    lf += "1,2024-05-01T10:00:00Z,91,24\n";  // a bad row, named by its line
+    std::string cr = lf;
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    write(dir.file("lf.csv"), lf);
+    write(dir.file("cr.csv"), cr);
+    shoal::track::ReadOptions options;
+    options.max_messages = 1000;
+    const shoal::track::PackedTrackFile want = shoal::track::read_csv_text_packed(lf, dir.file("cr.csv"), options);
+    ASSERT_GT(want.report.skipped, 10u);
+    for (const std::size_t block : {std::size_t{7}, std::size_t{4096}, std::size_t{1} << 20}) {
+        SCOPED_TRACE("block " + std::to_string(block));
+        shoal::detail::InputFile in(dir.file("cr.csv"));
+        expect_same_packed(shoal::track::detail::read_csv_stream(in, {}, false, options, block), want);
+    }
+    EXPECT_EQ(read_tracks(dir.file("cr.csv"), options).report.messages.size(), want.report.messages.size());
+}
+
 TEST(Input, NmeaSentencesRunTogetherOnALineAreEachRead) {
     // A logger that lost line ends ("...*6C$GPRMC,..." on one line; before, all but the first
     // sentence of the line were lost without a word): the same sentences read as when each has
