@@ -389,8 +389,9 @@ void recount(TrackResult& r) {
 }
 
 /// The kind a contact has by the real world's rules (its sweep kind, the simulated world's,
-/// is the starting point), its grade and reason.
-void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t own_visits, const EvidenceOptions& opt) {
+/// is the starting point), its grade and reason; decide() below holds it to what a charted
+/// depth can be.
+void decide_rules(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t own_visits, const EvidenceOptions& opt) {
     Event::Evidence& ev = e.evidence;
     ev.berth_stays = berth_stays;
     const double tol = opt.chart_tolerance_m;
@@ -548,6 +549,27 @@ void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t
 constexpr double arrival_gap_s = 60.0;
 
 }  // namespace
+
+/// decide_rules(), then: a charted depth (a shoal, a danger) is no berth's face. A vessel that
+/// came onto one and lay there, where no vessel berths (no other stays there, no berth,
+/// harbour or anchorage area, no structure), is aground whatever its speed or AIS status: a
+/// ship dragging its anchor, or drifting at 1.5 kn, onto a 3.6 m shoal in the open bay (before:
+/// "alongside ... berthing", or "in water the chart lacks" of a shoal area that is large).
+void decide(Event& e, double hull_length_m, std::size_t berth_stays, std::size_t own_visits, const EvidenceOptions& opt) {
+    decide_rules(e, hull_length_m, berth_stays, own_visits, opt);
+    const Event::Evidence& ev = e.evidence;
+    const bool depth = e.hit == coast::HazardKind::shallow || e.hit == coast::HazardKind::danger;
+    const bool lay_still = ev.stay != static_cast<std::size_t>(-1) && ev.stay_s >= opt.ground_stay_s && ev.rests_in_contact;
+    if (!depth || !lay_still || e.kind != EventKind::alongside || berth_stays > 0 || !e.area_kind.empty() || berthing_structure(e.structure))
+        return;
+    const std::string what = e.hit == coast::HazardKind::shallow
+                                 ? "shallow water (" + (std::isfinite(e.charted_depth_m) ? fmt1(e.charted_depth_m) + " m" : std::string("depth unknown")) + " charted)"
+                                 : std::string("danger") + (e.danger == coast::DangerKind::none ? "" : std::string(" (") + coast::to_string(e.danger) + ")");
+    e.kind = EventKind::grounding;
+    e.evidence.grade = ev.within_chart_tolerance ? 2 : 3;
+    e.evidence.reason = "came onto charted " + what + " at " + fmt1(e.speed_kn) + " kn and lay there " + fmt1(ev.stay_s / 60) +
+                        " min, where no vessel berths: a charted depth is no berth, aground";
+}
 
 void decide_kinds(TrackResult& r, const std::vector<std::size_t>& berth_stays, const std::vector<std::size_t>& own_visits,
                   const EvidenceOptions& opt) {

@@ -287,6 +287,40 @@ TEST(OneEventPerStay, BerthingContactsSecondsApartThatComeToRestInOneStayAreOneA
     EXPECT_DOUBLE_EQ(j.events[0].end_s, 3100);
 }
 
+TEST(RealWorld, ASlowContactWithAChartedDepthWhereNoVesselBerthsIsAground) {
+    // Drifting (or dragging its anchor) at 1.5 kn onto a 3.6 m shoal of an S-57 chart and lying
+    // there 4 h: before, "alongside ... berthing". A depth area is no berth's face: aground,
+    // unless vessels berth there (other stays, a berth or harbour area, a structure). Land
+    // (a port the coarse chart lacks) keeps its rules.
+    auto decided = [](coast::HazardKind hit, std::size_t berth_stays, const std::string& area) {
+        TrackResult r;
+        Event e = contact(EventKind::alongside, 1000, 15400, 20.0);
+        e.hit = hit;
+        e.charted_depth_m = hit == coast::HazardKind::shallow ? 3.6 : NAN;
+        e.speed_kn = 1.5;
+        e.area_kind = area;
+        e.evidence.stay = 0;
+        e.evidence.stay_s = 4 * 3600.0;
+        e.evidence.rests_in_contact = true;
+        e.evidence.prompt_stop = true;
+        e.evidence.stop_distance_m = 70.0;
+        e.evidence.seen_clear_before = true;
+        e.evidence.speed_before_kn = 1.5;
+        r.events.push_back(e);
+        r.summary.hull_length_m = 120.0;
+        decide_kinds(r, {berth_stays}, {0}, EvidenceOptions{});
+        return r.events.at(0);
+    };
+    const Event shoal = decided(coast::HazardKind::shallow, 0, "");
+    EXPECT_EQ(shoal.kind, EventKind::grounding);
+    EXPECT_EQ(shoal.evidence.reason,
+              "came onto charted shallow water (3.6 m charted) at 1.5 kn and lay there 240 min, where no vessel berths: a charted depth is no berth, aground");
+    EXPECT_EQ(decided(coast::HazardKind::danger, 0, "").kind, EventKind::grounding);
+    EXPECT_EQ(decided(coast::HazardKind::shallow, 2, "").kind, EventKind::alongside) << "vessels berth there";
+    EXPECT_NE(decided(coast::HazardKind::shallow, 0, "harbour").kind, EventKind::grounding) << "in a harbour area";
+    EXPECT_EQ(decided(coast::HazardKind::land, 0, "").kind, EventKind::alongside) << "a port the coarse chart lacks";
+}
+
 TEST(SimulatedWorld, AContactFirstSeenAfterAGapUnderWayBeforeItIsAGroundingInsideTheGap) {
     // Seen clear at 10 kn (5.14 m/s) every minute northwards, then nothing for 30 min, then in
     // contact at rest 3 km further on (within 1.5 x 10 kn x 30 min = 13.9 km): aground inside
