@@ -86,6 +86,10 @@ CoastGrid load_or_build(const std::vector<std::string>& paths, const BuildReques
         rep.how = "loaded grid";
         return done(GridFile::load(paths[0]));
     }
+    // A file named as a grid that is none (empty, another file renamed): said as a grid's
+    // problem, not as a coastline OGR cannot read.
+    if (std::error_code ec; paths.size() == 1 && fs::path(paths[0]).extension() == ".shoalgrid" && fs::is_regular_file(paths[0], ec))
+        GridFile::load(paths[0]);  // throws: it is no grid
     for (const auto& p : paths)
         if (paths.size() > 1 && looks_like_grid(p))
             throw UsageError("'" + p + "' is a grid file: give either one grid or coastline sources, not both");

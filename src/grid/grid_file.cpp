@@ -301,7 +301,7 @@ CoastGrid GridFile::parse(std::span<const char> bytes, const std::string& name) 
     const auto size = h.pod<std::uint64_t>();
     const auto checksum = h.pod<std::uint64_t>();
     if (size != bytes.size() - header_size)
-        h.fail("its length is " + std::to_string(bytes.size() - header_size) + " bytes, the header says " + std::to_string(size) +
+        h.fail("it is " + std::to_string(bytes.size()) + " bytes long, its header says " + std::to_string(size + header_size) +
                " (cut short?)");
     const char* payload = bytes.data() + header_size;
     if (util::xxh3_64(payload, size) != checksum) h.fail("checksum mismatch");

@@ -629,7 +629,15 @@ TEST_F(BadInput, AGridOfAnotherFormatVersionOrCutShortAsksForARebuild) {
         EXPECT_FALSE(fs::exists(m_dir.file("x.geojson")));
     }
     const Outcome t = shoal({"info", cut});
-    EXPECT_NE(t.err.find("is damaged: its length is"), std::string::npos) << t.err;
+    EXPECT_NE(t.err.find("is damaged: it is " + std::to_string(fs::file_size(cut)) + " bytes long, its header says " +
+                         std::to_string(fs::file_size(s_grid))),
+              std::string::npos)
+        << t.err;
+    // An empty file named as a grid is said to be no grid (before: "not a vector dataset OGR can read").
+    const std::string empty = file("empty.shoalgrid", "");
+    const Outcome e = shoal({"check", "--coast", empty, "--dims", "50,10,5,5", good_tracks(), "-o", m_dir.file("e.geojson")});
+    EXPECT_EQ(e.status, 2) << e.err;
+    EXPECT_NE(e.err.find("is not a shoal grid file"), std::string::npos) << e.err;
     EXPECT_NE(t.err.find("(cut short?)"), std::string::npos) << t.err;
 }
 

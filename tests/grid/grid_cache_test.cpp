@@ -294,7 +294,7 @@ TEST_F(GridCache, OneFlippedByteFailsTheChecksum) {
     // A flipped byte in the payload size: the length no longer matches.
     bytes = *s_bytes;
     bytes[size_offset] = static_cast<char>(bytes[size_offset] ^ 0x01);
-    EXPECT_THAT([&] { GridFile::load(write_grid(bytes)); }, ThrowsMessage<InputError>(HasSubstr("the header says")));
+    EXPECT_THAT([&] { GridFile::load(write_grid(bytes)); }, ThrowsMessage<InputError>(HasSubstr("its header says")));
 }
 
 TEST_F(GridCache, SaveIntoAMissingFolderFailsAndLeavesNoTemporaryFile) {
