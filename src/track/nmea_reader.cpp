@@ -33,14 +33,23 @@ bool sentence_at(std::string_view text, std::size_t i) noexcept {
     return len >= 4 && len <= 6 && k < text.size() && text[k] == ',';
 }
 
-/// The line ends of a log: "\n", "\r\n" and a lone "\r" (a log written with CR line ends, as
-/// some loggers and old Mac programs write: read at "\n" alone it was one line, of which only
-/// the first sentence was read, without a word). A stream's blocks may cut a "\r\n" in two.
+/// The line ends of a log. A log whose first line ends in a lone "\r" (written with CR line
+/// ends, as some loggers and old Mac programs write: read at "\n" alone it was one line, of
+/// which only the first sentence was read, without a word) has its lines end at "\r", "\r\n"
+/// or "\n"; any other at "\n" alone, as grep, sed and editors count them (a "\r\r\n" is one
+/// line end there). A stream's blocks may cut a "\r\n" in two.
 class LineEnds {
 public:
     /// The first line end in `piece` at or after `from`: its position (npos: none) and its
     /// length in `length` (2 for "\r\n").
     std::size_t find(std::string_view piece, std::size_t from, std::size_t& length) {
+        if (m_cr_lines < 0)  // told by the first line end: CRs not followed by an LF ("\r" last in the piece: taken so)
+            if (std::size_t end = piece.find_first_of("\r\n", from); end != std::string_view::npos) {
+                while (end < piece.size() && piece[end] == '\r') ++end;
+                m_cr_lines = end < piece.size() && piece[end] == '\n' ? 0 : 1;
+            }
+        length = 1;
+        if (m_cr_lines != 1) return piece.find('\n', from);
         const std::size_t end = piece.find_first_of("\r\n", from);
         if (end == std::string_view::npos) return end;
         length = piece[end] == '\r' && end + 1 < piece.size() && piece[end + 1] == '\n' ? 2 : 1;
@@ -57,6 +66,7 @@ public:
     }
 
 private:
+    int m_cr_lines = -1;  ///< 1: lines end at a CR too; 0: at LF alone; -1: no line end seen yet
     bool m_cr_last = false;
 };
 
@@ -168,13 +178,19 @@ private:
 
     /// The sentences of a line: more than one when a logger ran them together ("...*6C$GPRMC,...",
     /// a line end lost; before, all but the first were lost without a word). Each after the
-    /// first begins at a '$' or '!' that starts a sentence (neither is ever in a field), or at
-    /// the tag block before it.
+    /// first begins at a '$' or '!' that starts a sentence (neither is ever in a field) past the
+    /// checksum of the one before, or at the tag block before it.
     void line(std::string_view text) {
         for (;;) {
             const std::size_t first = text.find_first_of("$!");
             if (first == std::string_view::npos) return;
-            std::size_t next = first + 1;
+            // Only after the sentence's own checksum: a line that holds no '*' before the next
+            // '$' is one sentence, valid by its checksum ("$SDVLW,$SDVLW,,N,...*59", as a real
+            // log has it) or not (one cut short before another: its checksum fails, as before;
+            // taken alone it would be read without one, its last field cut).
+            const std::size_t star = text.find('*', first);
+            if (star == std::string_view::npos) return one_sentence(text);
+            std::size_t next = star + 1;
             while ((next = text.find_first_of("$!", next)) != std::string_view::npos && !sentence_at(text, next)) ++next;
             if (next == std::string_view::npos) return one_sentence(text);
             std::size_t cut = next;

@@ -92,7 +92,7 @@ std::string sniff_format(std::string_view content, const std::string& path) {
     std::size_t lines = 0, sentences = 0, pos = 0;
     std::string_view first_line;
     while (pos < content.size() && lines < 20) {
-        std::size_t end = content.find('\n', pos);
+        std::size_t end = content.find_first_of("\r\n", pos);  // (a log with CR line ends too)
         if (end == std::string_view::npos) end = content.size();
         const std::string_view line = detail::trim(content.substr(pos, end - pos));
         if (first_line.empty()) first_line = line;
@@ -120,10 +120,13 @@ std::string why_not_a_track_format(std::string_view head) {
     }
     const std::size_t first = head.find_first_not_of(" \t\r\n");
     if (first == std::string_view::npos || head[first] == '<' || head[first] == '{') return "";
-    std::string_view line = head.substr(first, head.find('\n', first) - first);
+    std::string_view line = head.substr(first, head.find_first_of("\r\n", first) - first);
     if (line.find_first_of(",;\t") != std::string_view::npos) return "";
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (line.size() > 60) line = line.substr(0, 60);
+    if (line.size() > 60) {  // (cut between UTF-8 characters: the message goes into the report's JSON)
+        std::size_t n = 60;
+        while (n > 0 && (static_cast<unsigned char>(line[n]) & 0xC0) == 0x80) --n;
+        line = line.substr(0, n);
+    }
     return ": its first line ('" + std::string(line) + "') holds no ',', ';' or tab" +
            (line.front() == '#' ? " (a CSV file's header must be its first line: remove the comment lines before it)" : "");
 }

@@ -525,6 +525,30 @@ TEST(Input, NmeaSentencesRunTogetherOnALineAreEachRead) {
     }
 }
 
+TEST(Input, NmeaSentencesAreSplitOnlyAfterTheirChecksumAndCrCrLfIsOneLineEnd) {
+    // A line is split only past the first sentence's own checksum: one whose whole checksum
+    // holds a '$' inside (a real log's "$SDVLW,$SDVLW,,N,...*16") is one sentence, and one cut
+    // short before another ("...,E,2$GPRMC,...*11") fails its checksum as one sentence, as
+    // before (split, its cut-off piece would be read without a checksum: 2 kn for 22.4). A log
+    // whose first line ends in LF counts lines at LF alone, as grep and editors do ("\r\r\n"
+    // is one line end).
+    const std::string text =
+        "$GPRMC,100000,A,6005.000,N,02455.000,E,22.4,90.0,010524,,*16\r\r\n"
+        "$SDVLW,$SDVLW,,N,12.3,N*16\r\r\n"
+        "$GPRMC,100010,A,6005.000,N,02455.234,E,2$GPRMC,100020,A,6005.000,N,02455.500,E,22.4,90.0,010524,,*11\r\r\n"
+        "$GPRMC,100020,A,6005.000,N,02455.500,E,22.4,90.0,010524,,*11\r\r\n"
+        "$GPRMC,100030,A,6005.000,N,02455.750,E,22.4,90.0,010524,,*1X\r\r\n";
+    const TrackFile f = shoal::track::read_nmea_text(text, "v.nmea", {});
+    ASSERT_EQ(f.tracks.size(), 1u);
+    ASSERT_EQ(f.tracks[0].fixes.size(), 2u);
+    EXPECT_EQ(f.tracks[0].fixes[0].line, 1u);
+    EXPECT_EQ(f.tracks[0].fixes[1].line, 4u);
+    EXPECT_EQ(f.report.skipped, 2u);
+    ASSERT_EQ(f.report.messages.size(), 2u);
+    EXPECT_THAT(f.report.messages[0], HasSubstr("v.nmea line 3: bad checksum '*11'"));
+    EXPECT_THAT(f.report.messages[1], HasSubstr("v.nmea line 5: bad checksum '*1X'"));
+}
+
 TEST(Input, HullsLargerThanAnyShipAreRefused) {
     using shoal::hull::Hull;
     EXPECT_NO_THROW(Hull::from_dims_string("400,50,30,30"));
