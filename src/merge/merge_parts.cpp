@@ -573,7 +573,7 @@ std::string merged_geojson(Plan& plan, MergeSummary* summary) {
         }
     }
     if (summary) *summary = summary_of(parts.size(), n_tracks, doc["shoal"]["summary"]);
-    return doc.dump(1) + "\n";
+    return doc.dump(1, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 /// The features of layer `name` of every part, each with its key (`key` of the part's

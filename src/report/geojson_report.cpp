@@ -102,7 +102,7 @@ public:
     /// Appends to `out` what value(j, depth) writes: j's dump(1) with every line after the
     /// first indented by `depth` (JSON strings hold no raw newline).
     static void render(const json& j, int depth, std::string& out) {
-        const std::string d = j.dump(1);
+        const std::string d = j.dump(1, ' ', false, json::error_handler_t::replace);  // (json_text.cpp: bytes that are not UTF-8)
         std::size_t from = 0;
         for (std::size_t nl; (nl = d.find('\n', from)) != std::string::npos; from = nl + 1) {
             out.append(d, from, nl + 1 - from);

@@ -173,7 +173,7 @@ void write_layers(GDALDataset& ds, const audit::AuditResult& r, const RunInfo& i
     put(summary, fields::summary_fields(), fields::RunRow{r, info}, r, nullptr);
     if (layers.part) {
         OGRFeature f(layers.part->GetLayerDefn());
-        f.SetField(0, part_order(r, true, info.chart_lonlat).dump().c_str());
+        f.SetField(0, part_order(r, true, info.chart_lonlat).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
         if (layers.part->CreateFeature(&f) != OGRERR_NONE) throw LibraryError(std::string("writing the part table: ") + CPLGetLastErrorMsg());
     }
     if (ds.CommitTransaction() != OGRERR_NONE) throw LibraryError("GeoPackage commit failed: " + std::string(CPLGetLastErrorMsg()));

@@ -10,11 +10,14 @@ namespace shoal::report {
 
 void append_json_string(std::string& out, std::string_view s) {
     // Printable ASCII other than the quote and the backslash is written as it is; any other
-    // text is left to nlohmann (escapes, and the check that it is UTF-8).
+    // text is left to nlohmann (escapes, and the check that it is UTF-8: bytes that are not,
+    // a Latin-1 'é' in a bad row's field quoted by its message, or such a field cut at 40
+    // bytes inside a character, become U+FFFD; before, the run ended with an internal error
+    // and no report).
     for (const char c : s) {
         const auto u = static_cast<unsigned char>(c);
         if (u < 0x20 || u >= 0x7f || c == '"' || c == '\\') {
-            out += nlohmann::json(std::string(s)).dump();
+            out += nlohmann::json(std::string(s)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
             return;
         }
     }

@@ -84,7 +84,7 @@ std::string join(const std::vector<std::string_view>& fields) {
     std::string s;
     for (std::size_t i = 0; i < fields.size() && i < 30; ++i) {  // at most 30 fields of 40 bytes: one line
         if (i) s += ',';
-        s += fields[i].substr(0, 40);
+        s += detail::utf8_prefix(fields[i], 40);
         if (fields[i].size() > 40) s += "...";
     }
     return s;

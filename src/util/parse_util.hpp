@@ -83,10 +83,18 @@ inline std::string fmt(double v) {
     return {buf.data(), r.ptr};
 }
 
-/// A field's text for a message: at most 40 bytes, quoted.
+/// The first `n` bytes of `s` or fewer, not cut inside a UTF-8 character (a message quoting a
+/// field goes into the report's JSON).
+inline std::string_view utf8_prefix(std::string_view s, std::size_t n) {
+    if (s.size() <= n) return s;
+    while (n > 0 && (static_cast<unsigned char>(s[n]) & 0xC0) == 0x80) --n;
+    return s.substr(0, n);
+}
+
+/// A field's text for a message: at most 40 bytes (a whole UTF-8 character less), quoted.
 inline std::string quoted(std::string_view s) {
     std::string out(1, '\'');  // appended, not "'" + string: GCC 12 -O3 warns falsely (-Wrestrict) on that
-    out += s.substr(0, 40);
+    out += utf8_prefix(s, 40);
     out += s.size() > 40 ? "...'" : "'";
     return out;
 }

@@ -292,6 +292,29 @@ TEST_F(BadInput, CsvCutShortInTheLastRowSkipsThatRowOnly) {
     EXPECT_EQ(report(r)["shoal"]["summary"]["fixes"], 32);
 }
 
+TEST_F(BadInput, ABadFieldThatIsNotUtf8CostsItsRowNotTheReport) {
+    // A Latin-1 'é' in a bad row's field, or a UTF-8 field cut at 40 bytes inside a character,
+    // quoted by the row's message: before, the report's JSON writer threw and the run ended
+    // with an internal error (exit 3) and no report. Now the row costs itself, and the bytes
+    // that are not UTF-8 are U+FFFD in the report (GeoJSON and GeoPackage).
+    for (const char* name : {"r.geojson", "r.gpkg"}) {
+        std::string text = header + solent_rows();
+        text += "222222222,2024-05-01T10:11:00Z,caf\xe9,-1.2,1,2,3\n";
+        text += "222222222,2024-05-01T10:12:00Z,a" + std::string(30, 'x') + "\xd0\x9f\xd0\x9f\xd0\x9f\xd0\x9f\xd0\x9f,-1.2,1,2,3\n";
+        const std::string r = m_dir.file(name);
+        const Outcome o = check({file("latin1.csv", text)}, r);
+        EXPECT_EQ(o.status, 1) << o.err;
+        EXPECT_NE(o.err.find("latin1.csv line 34: latitude 'caf\xe9' is not a number"), std::string::npos) << o.err;  // (as written)
+        EXPECT_TRUE(fs::exists(r)) << name;
+    }
+    const nlohmann::json j = report(m_dir.file("r.geojson"));  // (parsed: valid UTF-8)
+    EXPECT_EQ(j["shoal"]["summary"]["fixes"], 32);
+    const std::string text = slurp(m_dir.file("r.geojson"));
+    EXPECT_NE(text.find("latitude 'caf\xef\xbf\xbd' is not a number"), std::string::npos);
+    EXPECT_NE(text.find("latitude 'a" + std::string(30, 'x') + "\xd0\x9f\xd0\x9f\xd0\x9f\xd0\x9f...' is not a number"), std::string::npos)
+        << "cut before the character that does not fit";
+}
+
 TEST_F(BadInput, CsvCutShortInsideAQuotedFieldSkipsThatRowOnly) {
     std::string text = header + solent_rows();
     text += "222222222,\"2024-05-01T10:11:00Z,50.7";  // a quote never closed: the field runs to the end

@@ -577,11 +577,14 @@ TEST(ReportFields, LayerPropertiesAreWhatNlohmannWritesOfTheFields) {
         const fields::CoastRow coast{text(), "land", "", number()};
         ASSERT_EQ(written(fields::coast_fields(), coast), nlohmann_dump(fields::coast_fields(), coast)) << i;
     }
-    // Not UTF-8: nlohmann's error, as from its dump().
+    // Not UTF-8 (a Latin-1 byte of an input quoted by a message, a field cut inside a
+    // character): U+FFFD, as nlohmann's dump() replaces it (before: its error, which ended the
+    // run with an internal error and no report).
     audit::TrackSummary bad;
     bad.id = "MMSI \xff";
     std::string got;
-    EXPECT_THROW(append_object(got, fields::pose_fields(), fields::PoseRow{bad, audit::Pose{}}, r), nlohmann::json::type_error);
+    append_object(got, fields::pose_fields(), fields::PoseRow{bad, audit::Pose{}}, r);
+    EXPECT_NE(got.find("\"track\":\"MMSI \xef\xbf\xbd\""), std::string::npos) << got;
 }
 
 TEST(ReportFields, ValuesAreRoundedAsTheTableSaysAndNotFiniteIsNull) {
