@@ -160,14 +160,14 @@ void gather_evidence(const track::Track& t, const std::vector<XY>& p, double hul
             ev.speed_before_age_s = std::max(0.0, t0 - fx[b].time_s);
             // A fix minutes before the contact (beyond the speed window) tells the speed then,
             // not on the way to the contact: when the positions say the vessel went from it to
-            // the contact much faster (as sweep.cpp's speed at contact takes them over a SOG
-            // they belie), that is the speed before (a vessel at anchor at 0.2 kn whose next
-            // fix, 3 minutes on, is on the shore 735 m away: 7.9 kn; before, "came to rest at
-            // the contact from 0.2 kn: berthing").
+            // the contact at twice the speed of one under way or more (which no berthing
+            // averages over minutes, as sweep.cpp's "stopped before" has it), that is the speed
+            // before (a vessel at anchor at 0.2 kn whose next fix, 3 minutes on, is on the shore
+            // 735 m away: 7.9 kn; before, "came to rest at the contact from 0.2 kn: berthing").
             if (ev.speed_before_age_s > sweep.speed_window_s && ev.speed_before_age_s <= sweep.max_gap_s) {  // (not across a gap)
                 const double implied_kn = dist(p[b], frame.forward(e.ship)) / ev.speed_before_age_s * 3600.0 / 1852.0;
                 const double sog = std::isfinite(ev.speed_before_kn) ? ev.speed_before_kn : 0.0;
-                if (implied_kn >= 2.0 && implied_kn > 2 * sog + 1) ev.speed_before_kn = implied_kn;
+                if (implied_kn >= 2 * opt.under_way_kn && implied_kn > 2 * sog + 1) ev.speed_before_kn = implied_kn;
             }
             ev.seen_clear_before = !in_contact(fx[b].time_s);
             if (ev.seen_clear_before) ev.start_not_before_s = fx[b].time_s;
@@ -455,7 +455,10 @@ void decide_rules(Event& e, double hull_length_m, std::size_t berth_stays, std::
         case EventKind::alongside: {
             // Which rule made it so (sweep.cpp): stopped, moored or at anchor by its AIS status
             // and under 3 kn, or under the berthing speed.
-            const bool moored = e.nav_status == track::nav_status_moored || e.nav_status == track::nav_status_at_anchor;
+            // (The status's rule named only where the speed was at the default berthing speed or
+            // more: under it, that rule is the one the vessel met whatever its status.)
+            const bool moored = (e.nav_status == track::nav_status_moored || e.nav_status == track::nav_status_at_anchor) &&
+                                e.speed_kn >= SweepOptions{}.berthing_speed_kn;
             set(e.kind, e.stopped_before ? 4 : 3,
                 e.stopped_before ? std::string("stopped before the contact")
                 : moored         ? "began at " + fmt1(e.speed_kn) + " kn, " + track::nav_status_text(e.nav_status) + " by its AIS status (under 3 kn)"

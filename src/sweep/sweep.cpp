@@ -275,12 +275,15 @@ private:
         const check::LocalPose pose = m_local.pose({first.i, first.f});
         // A stopped fix vouches for the contact while it is recent (within the speed window: a
         // jitter burst, a tug's push) or the vessel is still within the stop diameter of it;
-        // not when the vessel has since gone on at a berthing speed or more (it left its
-        // anchorage and ran 700 m onto the shore in the 3 minutes to the next fix).
+        // not when the vessel has since gone on at twice the speed of one under way or more,
+        // which no berthing averages over minutes (it left its anchorage and ran 735 m onto
+        // the shore at 7.9 kn in the 3 minutes to the next fix; one that leaves its anchorage
+        // and berths 530 m on in 5 minutes, 3.5 kn, or one GPS fix 150 m off at a berth, is
+        // still "stopped before").
         const XY moved = pose.position - m_local.position(before);
         const double moved_m = std::hypot(moved.x, moved.y), since_s = e.start_s - b.time_s;
         const bool left_stop = since_s > m_opt.speed_window_s && moved_m > m_opt.stop_diameter_m &&
-                               moved_m / since_s * 3600.0 / 1852.0 >= m_opt.berthing_speed_kn;
+                               moved_m / since_s * 3600.0 / 1852.0 >= 2 * moored_speed_kn;
         e.stopped_before = b.stopped && !left_stop;
         e.nav_status = b.nav_status;
         const double t0 = e.start_s;
