@@ -773,6 +773,7 @@ MergeSummary merge_reports(const std::vector<std::string>& parts, const std::str
         }
         if (!options.debrief.empty()) {
             std::vector<StagedOutput> sheets = stage_debrief(options.debrief, run, grid, info, inputs, outputs, {}, &summary.pages_refused);
+            summary.pages_left_out = !summary.pages_refused.empty();
             summary.pages = sheets.size();
             for (StagedOutput& s : sheets) staged.push_back(std::move(s));
         }

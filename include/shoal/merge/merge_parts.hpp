@@ -37,6 +37,7 @@ struct MergeSummary {
     /// The pages not written, a message each (a file of that name that shoal did not write):
     /// the merge's failure (exit 2), not a warning.
     std::vector<std::string> pages_refused;
+    bool pages_left_out = false;  ///< !pages_refused.empty() (kept for callers of 0.2.0)
 };
 
 /// The whole run's other outputs, made at the merge from the parts' debrief records
