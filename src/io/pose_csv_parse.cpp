@@ -177,7 +177,7 @@ PoseFile parse_pose_csv(const std::string& text, const std::string& name) {
             bad("heading 511 is AIS's \"not available\": probe needs the ship's heading");
             continue;
         }
-        r.heading_deg = std::fmod(r.heading_deg, 360.0);
+        r.heading_deg = std::fmod(r.heading_deg, 360.0) + 0.0;  // (+ 0.0: -0 and -360 are 0, not "-0.0")
         if (r.heading_deg < 0) r.heading_deg += 360.0;
         out.poses.push_back(r);
     }

@@ -177,7 +177,7 @@ PoseFile reference(const std::string& text, const std::string& name) {
             bad("heading 511 is AIS's \"not available\": probe needs the ship's heading");
             continue;
         }
-        r.heading_deg = std::fmod(r.heading_deg, 360.0);
+        r.heading_deg = std::fmod(r.heading_deg, 360.0) + 0.0;  // (+ 0.0: -0 and -360 are 0, not "-0.0")
         if (r.heading_deg < 0) r.heading_deg += 360.0;
         out.poses.push_back(r);
     }
@@ -203,7 +203,7 @@ std::string random_file(std::mt19937_64& rng) {
         for (int i = 0; i < fields; ++i) {
             if (i) line += rng() % 10 ? sep : pick({",", ";", "\t", ", "});
             line += pick({"60.1", "-59.25", "+24.5", "1e1", "  12.5 ", "\"33.3\"", "3\"4", "", "abc", "nan", "inf", "95", "-181",
-                          "720.5", "511", "\"1,5\"", "2,25", "-45", "0x10", "1.5e400", "7.", ".5", "#", " "});
+                          "720.5", "511", "\"1,5\"", "2,25", "-45", "-0", "-360", "0x10", "1.5e400", "7.", ".5", "#", " "});
         }
         if (rng() % 10 == 0) line = pick({"", "   ", "# a comment", "\t", "  # indented comment"});
         t += line;
@@ -265,6 +265,10 @@ TEST(PoseCsv, HandMadeCases) {
     EXPECT_EQ(f.poses[0].heading_deg, 270.0);
     EXPECT_EQ(f.poses[1].line, 5u);
     EXPECT_EQ(f.poses[1].heading_deg, 5.0);
+    const PoseFile z = parse_pose_csv("60,24,-0\n60,24,-360\n", "z.csv");  // (written back as "0.0", not "-0.0")
+    ASSERT_EQ(z.poses.size(), 2u);
+    EXPECT_FALSE(std::signbit(z.poses[0].heading_deg));
+    EXPECT_FALSE(std::signbit(z.poses[1].heading_deg));
     const PoseFile b = parse_pose_csv("60,24\n60,x,1\n", "p.csv");
     EXPECT_TRUE(b.poses.empty());
     ASSERT_EQ(b.errors.size(), 2u);
