@@ -744,7 +744,8 @@ PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::strin
     bool eof = false, in_done = whole;
     // A file with CR line ends (a spreadsheet's "CSV (Macintosh)", old Mac programs): each CR
     // a line end, as an editor shows it (before: one line, "no usable fix (0 rows read)").
-    // Told by its first line end: a CR not followed by an LF (-1: none read yet).
+    // Told by its first line end: CRs not followed by an LF ("\r\r\n" is one line end, as
+    // editors count it; -1: none read yet).
     int cr_lines = -1;
     auto read_more = [&] {
         const std::size_t from_head = std::min(block, head.size() - head_pos);
@@ -759,8 +760,10 @@ PackedTrackFile detail::read_csv_stream(shoal::detail::InputFile& in, std::strin
             if (in_done || in.append(buf, want) < want) in_done = eof = true;
         }
         if (cr_lines < 0)
-            if (const std::size_t end = buf.find_first_of("\r\n"); end != std::string::npos && (end + 1 < buf.size() || eof))
-                cr_lines = buf[end] == '\r' && (end + 1 == buf.size() || buf[end + 1] != '\n') ? 1 : 0;
+            if (std::size_t end = buf.find_first_of("\r\n"); end != std::string::npos) {
+                while (end < buf.size() && buf[end] == '\r') ++end;
+                if (end < buf.size() || eof) cr_lines = end < buf.size() && buf[end] == '\n' ? 0 : 1;
+            }
         if (cr_lines == 1) std::replace(buf.begin(), buf.end(), '\r', '\n');
     };
     const auto too_long = [&] {

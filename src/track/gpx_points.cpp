@@ -30,8 +30,7 @@ struct Scan {
     std::size_t depth = 0;         // of the element open now (the root 1)
     std::vector<GpxPoint>* in_point = nullptr;  // the kind of the point open now, its depth:
     std::size_t point_depth = 0;
-    bool in_time = false;  // in the open point's own <time> (its first), whose text is
-    bool time_seen = false;
+    bool in_time = false;  // in the open point's own <time>, whose text is
     std::string time_text;
 };
 
@@ -56,11 +55,9 @@ std::string gpx_coordinate_problem(const char* text, const char* what, double& o
 void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     Scan& s = *static_cast<Scan*>(data);
     ++s.depth;
-    // The point's own <time>, as GDAL's driver takes it: a child of the point, not one deeper
-    // (an <extensions> element's).
-    if (s.in_point && !s.time_seen && s.depth == s.point_depth + 1 && std::strcmp(name, "time") == 0) {
+    // The point's own <time>, a child of the point (GDAL's driver takes the last of them).
+    if (s.in_point && s.depth == s.point_depth + 1 && std::strcmp(name, "time") == 0) {
         s.in_time = true;
-        s.time_seen = true;
         s.time_text.clear();
         return;
     }
@@ -92,7 +89,6 @@ void start(void* data, const XML_Char* name, const XML_Char** attrs) {
     to.push_back(p);
     s.in_point = &to;
     s.point_depth = s.depth;
-    s.time_seen = false;
 }
 
 void text(void* data, const XML_Char* chars, int len) {
@@ -108,8 +104,11 @@ void end(void* data, const XML_Char*) {
         std::string_view t = s.time_text;  // (XML's blanks around it: line ends too)
         while (!t.empty() && std::strchr(" \t\r\n", t.front())) t.remove_prefix(1);
         while (!t.empty() && std::strchr(" \t\r\n", t.back())) t.remove_suffix(1);
+        // (A later <time> of the point replaces an earlier one, as in GDAL's driver.)
+        if (p.time_problem) p.problem = p.time_problem = 0;
+        p.time_s = NAN;
         if (const auto v = parse_iso8601(t)) p.time_s = *v;
-        else if (!p.problem)
+        else if (!t.empty() && !p.problem)  // (empty: no time, as GDAL has it)
             add_problem(s, p, "time " + quoted(t) + (parse_date(t) ? " is a date without a time of day" : " is not a valid time"), true);
     }
     if (s.in_point && s.depth == s.point_depth) s.in_point = nullptr;

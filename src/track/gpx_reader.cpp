@@ -170,14 +170,17 @@ private:
             // reads as 0), or a <time> that is no time (GDAL reads a date alone as midnight). A
             // point with a time (or one written) counts as timed: its track is not one
             // without times.
-            if (at && at->problem) {
+            // A time shoal does not read but GDAL does (a leap second, 23:59:60; a trailing
+            // non-breaking space) is GDAL's, as before; a date alone GDAL reads as midnight.
+            const bool gdal_time = at && at->problem && at->time_problem && t && !problems[at->problem - 1].ends_with("a date without a time of day");
+            if (at && at->problem && !gdal_time) {
                 if (at->time_problem || t || std::isfinite(at->time_s)) ++p.timed;
                 skip(problems[at->problem - 1]);
                 continue;
             }
             // GDAL's driver reads "2024-05-01 10:04:00Z" as midnight: the time as written, read
             // as a CSV's is, where the two differ (GDAL's where they agree, to the millisecond).
-            if (at && std::isfinite(at->time_s) && !(t && std::fabs(*t - at->time_s) < 0.002)) {
+            if (!gdal_time && at && std::isfinite(at->time_s) && !(t && std::fabs(*t - at->time_s) < 0.002)) {
                 const double whole = std::floor(at->time_s);
                 t = whole + std::round((at->time_s - whole) * 1000.0) / 1000.0;
             }

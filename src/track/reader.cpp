@@ -85,8 +85,11 @@ std::string sniff_format(std::string_view content, const std::string& path) {
     const std::size_t first = content.find_first_not_of(" \t\r\n");
     if (first == std::string_view::npos) return {};
     const char c = content[first];
-    if (c == '<') return head.find("<gpx") != std::string_view::npos || ext == ".gpx" ? "gpx" : "";
-    if (c == '{') return "geojson";
+    // A NUL is a damaged line (a bad row) only in the formats read line by line: a GPX or
+    // GeoJSON file with one is binary, as before (its parser would stop at it, the rest lost).
+    const bool nul = head.find('\0') != std::string_view::npos;
+    if (c == '<') return !nul && (head.find("<gpx") != std::string_view::npos || ext == ".gpx") ? "gpx" : "";
+    if (c == '{') return nul ? "" : "geojson";
 
     // NMEA when most of the first 20 lines that are not blank or '#' comments hold a sentence.
     std::size_t lines = 0, sentences = 0, pos = 0;
@@ -113,7 +116,9 @@ namespace {
 /// a CSV header); "" otherwise.
 std::string why_not_a_track_format(std::string_view head) {
     if (head.substr(0, 3) == "\xEF\xBB\xBF") head.remove_prefix(3);
-    if (const std::size_t nul = head.substr(0, 4096).find('\0'); nul != std::string_view::npos && looks_binary(head)) {
+    const std::size_t lead = head.find_first_not_of(" \t\r\n");
+    const bool whole_document = lead != std::string_view::npos && (head[lead] == '<' || head[lead] == '{');  // (GPX, GeoJSON)
+    if (const std::size_t nul = head.substr(0, 4096).find('\0'); nul != std::string_view::npos && (whole_document || looks_binary(head))) {
         const std::size_t line = 1 + static_cast<std::size_t>(std::count(head.begin(), head.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
         return ": a NUL byte on line " + std::to_string(line) + " (byte " + std::to_string(nul + 1) +
                "): a binary file, or a text file with a damaged line there";

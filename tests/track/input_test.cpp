@@ -464,6 +464,10 @@ TEST(Input, ACsvFileWithCrLineEndsIsTheFileWithLfLineEnds) {
     std::replace(cr.begin(), cr.end(), '\n', '\r');
     write(dir.file("lf.csv"), lf);
     write(dir.file("cr.csv"), cr);
+    // "\r\r\n" (a CR LF file converted twice) is one line end, as editors count it.
+    std::string crcrlf;
+    for (const char c : lf) crcrlf += c == '\n' ? std::string("\r\r\n") : std::string(1, c);
+    write(dir.file("crcrlf.csv"), crcrlf);
     shoal::track::ReadOptions options;
     options.max_messages = 1000;
     const shoal::track::PackedTrackFile want = shoal::track::read_csv_text_packed(lf, dir.file("cr.csv"), options);
@@ -474,6 +478,16 @@ TEST(Input, ACsvFileWithCrLineEndsIsTheFileWithLfLineEnds) {
         expect_same_packed(shoal::track::detail::read_csv_stream(in, {}, false, options, block), want);
     }
     EXPECT_EQ(read_tracks(dir.file("cr.csv"), options).report.messages.size(), want.report.messages.size());
+    for (const std::size_t block : {std::size_t{2}, std::size_t{4096}}) {
+        SCOPED_TRACE("crcrlf, block " + std::to_string(block));
+        shoal::detail::InputFile in(dir.file("crcrlf.csv"));
+        const shoal::track::PackedTrackFile got = shoal::track::detail::read_csv_stream(in, {}, false, options, block);
+        ASSERT_EQ(got.tracks.size(), want.tracks.size());
+        for (std::size_t i = 0; i < got.tracks.size(); ++i) {
+            ASSERT_EQ(got.tracks[i].size(), want.tracks[i].size());
+            for (std::size_t k = 0; k < got.tracks[i].size(); ++k) EXPECT_EQ(got.tracks[i].fix(k).line, want.tracks[i].fix(k).line);
+        }
+    }
 }
 
 TEST(Input, NmeaSentencesRunTogetherOnALineAreEachRead) {

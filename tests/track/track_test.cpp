@@ -228,6 +228,13 @@ TEST(ReadTracks, EmptyHeaderOnlyUnknownAndMissingFilesAreInputErrors) {
     first[2] = '\0';
     write(dir.file("nul_first.csv"), first);
     EXPECT_THAT([&] { read_tracks(dir.file("nul_first.csv")); }, ThrowsMessage<InputError>(HasSubstr("a NUL byte on line 1 (byte 3)")));
+    // In a GPX or GeoJSON file (a whole document, whose parser would stop at it): binary, as
+    // before (a second FeatureCollection after a NUL was lost without a word).
+    std::string doc = "{\"type\": \"FeatureCollection\",\n\"features\": []}\n";
+    doc += '\0';
+    doc += "\n{\"type\": \"FeatureCollection\"}\n";
+    write(dir.file("nul.geojson"), doc);
+    EXPECT_THAT([&] { read_tracks(dir.file("nul.geojson")); }, ThrowsMessage<InputError>(HasSubstr("a NUL byte on line 3")));
     std::string many = nul;
     for (const std::size_t k : {200, 260, 320, 380, 440}) many[k] = '\0';
     write(dir.file("nul_many.csv"), many);
