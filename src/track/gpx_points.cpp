@@ -34,11 +34,11 @@ struct Scan {
     std::string time_text;
 };
 
-/// What is wrong with a point's problem slot taken for `what` (at most 2^30 - 1 of them).
+/// What is wrong with a point's problem slot taken for `what` (at most 2^29 - 1 of them).
 void add_problem(Scan& s, GpxPoint& p, std::string what, bool time) {
-    if (s.out.problems.size() >= (1u << 30) - 1) return;
+    if (s.out.problems.size() >= (1u << 29) - 1) return;
     s.out.problems.push_back(std::move(what));
-    p.problem = static_cast<std::uint32_t>(s.out.problems.size()) & 0x3fffffffu;
+    p.problem = static_cast<std::uint32_t>(s.out.problems.size()) & 0x1fffffffu;
     p.time_problem = time ? 1 : 0;
 }
 
@@ -105,11 +105,14 @@ void end(void* data, const XML_Char*) {
         while (!t.empty() && std::strchr(" \t\r\n", t.front())) t.remove_prefix(1);
         while (!t.empty() && std::strchr(" \t\r\n", t.back())) t.remove_suffix(1);
         // (A later <time> of the point replaces an earlier one, as in GDAL's driver.)
-        if (p.time_problem) p.problem = p.time_problem = 0;
+        if (p.time_problem) p.problem = p.time_problem = p.date_alone = 0;
         p.time_s = NAN;
-        if (const auto v = parse_iso8601(t)) p.time_s = *v;
-        else if (!t.empty() && !p.problem)  // (empty: no time, as GDAL has it)
-            add_problem(s, p, "time " + quoted(t) + (parse_date(t) ? " is a date without a time of day" : " is not a valid time"), true);
+        if (const auto v = parse_iso8601(t)) {
+            p.time_s = *v;
+        } else if (!t.empty() && !p.problem) {  // (empty: no time, as GDAL has it)
+            p.date_alone = parse_date(t) ? 1 : 0;
+            add_problem(s, p, "time " + quoted(t) + (p.date_alone ? " is a date without a time of day" : " is not a valid time"), true);
+        }
     }
     if (s.in_point && s.depth == s.point_depth) s.in_point = nullptr;
     --s.depth;

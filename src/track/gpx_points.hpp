@@ -25,8 +25,9 @@ struct GpxPoint {
     /// 0 when lat, lon (and the time, when it has one) are there and readable; else 1 + the
     /// index in GpxPoints::problems of what is wrong ("latitude 'abc' is not a number", "no
     /// lon attribute", "time '2024-05-01' is a date without a time of day").
-    std::uint32_t problem : 30 = 0;
+    std::uint32_t problem : 29 = 0;
     std::uint32_t time_problem : 1 = 0;  ///< `problem` is its time's (its lat and lon are fine)
+    std::uint32_t date_alone : 1 = 0;    ///< that time is a date alone (which GDAL reads as midnight)
     std::uint32_t shares_line : 1 = 0;   ///< another point of its kind starts on the same line
 };
 

@@ -172,7 +172,7 @@ private:
             // without times.
             // A time shoal does not read but GDAL does (a leap second, 23:59:60; a trailing
             // non-breaking space) is GDAL's, as before; a date alone GDAL reads as midnight.
-            const bool gdal_time = at && at->problem && at->time_problem && t && !problems[at->problem - 1].ends_with("a date without a time of day");
+            const bool gdal_time = at && at->problem && at->time_problem && !at->date_alone && t;
             if (at && at->problem && !gdal_time) {
                 if (at->time_problem || t || std::isfinite(at->time_s)) ++p.timed;
                 skip(problems[at->problem - 1]);
