@@ -127,11 +127,7 @@ std::string why_not_a_track_format(std::string_view head) {
     if (first == std::string_view::npos || head[first] == '<' || head[first] == '{') return "";
     std::string_view line = head.substr(first, head.find_first_of("\r\n", first) - first);
     if (line.find_first_of(",;\t") != std::string_view::npos) return "";
-    if (line.size() > 60) {  // (cut between UTF-8 characters: the message goes into the report's JSON)
-        std::size_t n = 60;
-        while (n > 0 && (static_cast<unsigned char>(line[n]) & 0xC0) == 0x80) --n;
-        line = line.substr(0, n);
-    }
+    line = detail::utf8_prefix(line, 60);  // (cut between UTF-8 characters: the message goes into the report's JSON)
     return ": its first line ('" + std::string(line) + "') holds no ',', ';' or tab" +
            (line.front() == '#' ? " (a CSV file's header must be its first line: remove the comment lines before it)" : "");
 }
